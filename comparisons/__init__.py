@@ -1,0 +1,1 @@
+"""upliftlab.comparisons"""

@@ -1,0 +1,95 @@
+"""Input checks that fail early with a message naming the field, the value and the valid range.
+
+Every scene, motion and option passes through these before any work starts. The error is an
+:class:`InputError` (a ``ValueError``), so callers and the CLI can report it in one line.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+
+__all__ = [
+    "InputError",
+    "finite",
+    "positive",
+    "nonnegative",
+    "in_range",
+    "one_of",
+    "integer_at_least",
+    "boolean",
+]
+
+
+class InputError(ValueError):
+    """A scene field, motion file or option that makes no sense."""
+
+
+def _number(field: str, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise InputError(f"{field} = {value!r}: expected a number")
+    value = float(value)
+    if math.isnan(value):
+        raise InputError(f"{field} = nan: expected a finite number")
+    return value
+
+
+def finite(field: str, value) -> float:
+    """``value`` as a float, refusing NaN and infinity."""
+    value = _number(field, value)
+    if math.isinf(value):
+        raise InputError(f"{field} = {value}: expected a finite number")
+    return value
+
+
+def positive(field: str, value, *, allow_inf: bool = False) -> float:
+    """A number > 0 (finite unless ``allow_inf``)."""
+    value = _number(field, value) if allow_inf else finite(field, value)
+    if not value > 0.0:
+        raise InputError(f"{field} = {value:g}: must be > 0")
+    return value
+
+
+def nonnegative(field: str, value) -> float:
+    """A finite number >= 0."""
+    value = finite(field, value)
+    if value < 0.0:
+        raise InputError(f"{field} = {value:g}: must be >= 0")
+    return value
+
+
+def in_range(field: str, value, low: float, high: float, *,
+             low_open: bool = False, high_open: bool = False) -> float:
+    """A finite number within [low, high]; either end may be open."""
+    value = finite(field, value)
+    below = value <= low if low_open else value < low
+    above = value >= high if high_open else value > high
+    if below or above:
+        left = "(" if low_open else "["
+        right = ")" if high_open else "]"
+        raise InputError(f"{field} = {value:g}: valid range is {left}{low:g}, {high:g}{right}")
+    return value
+
+
+def one_of(field: str, value, choices: Iterable[str]) -> str:
+    """A string among ``choices``."""
+    choices = tuple(choices)
+    if value not in choices:
+        raise InputError(f"{field} = {value!r}: must be one of {', '.join(map(repr, choices))}")
+    return value
+
+
+def integer_at_least(field: str, value, minimum: int) -> int:
+    """An integer >= ``minimum`` (floats with an integral value are accepted)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or value != int(value):
+        raise InputError(f"{field} = {value!r}: expected an integer >= {minimum}")
+    if int(value) < minimum:
+        raise InputError(f"{field} = {int(value)}: must be an integer >= {minimum}")
+    return int(value)
+
+
+def boolean(field: str, value) -> bool:
+    """A true/false flag."""
+    if not isinstance(value, bool):
+        raise InputError(f"{field} = {value!r}: expected true or false")
+    return value

@@ -1,0 +1,350 @@
+"""Ground motions: records read from files, and built-in motions that need no file.
+
+A :class:`Motion` holds ground acceleration in g, sampled at a uniform step ``dt``, and the
+initial conditions of the structure (for free vibration). The acceleration is piecewise linear
+between samples ``t_k = k·dt`` and returns to zero at ``t = n·dt``, which is the motion's duration.
+
+Files
+    * two columns ``time  acceleration[g]`` (uniform time step, ``#`` comments);
+    * one column of accelerations in g, with ``dt`` given;
+    * PEER NGA ``.AT2`` (four header lines, ``NPTS`` and ``DT`` on the fourth).
+
+A motion is named either by a path or by a name looked up on the ``UPLIFTLAB_MOTIONS`` search
+path (directories separated by ``os.pathsep``), e.g. ``elcentro_1940_ns`` finds
+``$UPLIFTLAB_MOTIONS/elcentro_1940_ns.txt``.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from .checks import InputError, finite, nonnegative, positive
+
+__all__ = [
+    "Motion",
+    "MOTIONS_ENV",
+    "ELCENTRO",
+    "read_motion",
+    "find_motion",
+    "load_motion",
+    "free_vibration",
+    "sine_pulse",
+    "cosine_pulse",
+    "ricker_pulse",
+    "harmonic",
+    "motion_search_path",
+]
+
+MOTIONS_ENV = "UPLIFTLAB_MOTIONS"
+ELCENTRO = "elcentro_1940_ns"
+ELCENTRO_DESCRIPTION = (
+    "El Centro 1940 N-S (Imperial Valley, S00E; public-domain USGS record, 0.02 s digitization, "
+    "in g), file elcentro_1940_ns.txt"
+)
+_SUFFIXES = ("", ".txt", ".dat", ".csv", ".acc", ".AT2", ".at2")
+_UNIFORM_DT_RTOL = 1e-6
+
+
+@dataclass(frozen=True)
+class Motion:
+    """A ground motion and the structure's initial conditions.
+
+    Attributes
+    ----------
+    name : str
+        Short name (a file stem or a built-in description).
+    dt : float
+        Sample interval (s).
+    acceleration : numpy.ndarray
+        Ground acceleration samples (g), piecewise linear, zero after ``n·dt``.
+    initial_velocity : float
+        Initial lateral velocity of the top mass relative to the ground (length/s).
+    initial_displacement : float
+        Initial lateral displacement of the top mass relative to the ground (length).
+    initial_rotation : float
+        Initial base rotation θ (rad), with the superstructure undeformed.
+    source : str
+        Where it came from: an absolute path or ``builtin:...``.
+    """
+
+    name: str
+    dt: float
+    acceleration: np.ndarray = field(repr=False)
+    initial_velocity: float = 0.0
+    initial_displacement: float = 0.0
+    initial_rotation: float = 0.0
+    source: str = ""
+
+    def __post_init__(self):
+        acc = np.array(self.acceleration, dtype=float).ravel()
+        acc.setflags(write=False)
+        object.__setattr__(self, "acceleration", acc)
+        positive("motion.dt", self.dt)
+        if acc.size == 0:
+            raise InputError(f"motion {self.name!r}: no samples")
+        bad = np.flatnonzero(~np.isfinite(acc))
+        if bad.size:
+            raise InputError(
+                f"motion {self.name!r}: acceleration sample {bad[0]} is {acc[bad[0]]}; "
+                "every sample must be a finite number (g)")
+        for key in ("initial_velocity", "initial_displacement", "initial_rotation"):
+            finite(f"motion.{key}", getattr(self, key))
+
+    @property
+    def duration(self) -> float:
+        """n·dt (s): the acceleration is zero from then on."""
+        return self.acceleration.size * self.dt
+
+    @property
+    def time(self) -> np.ndarray:
+        """Sample times k·dt (s)."""
+        return np.arange(self.acceleration.size) * self.dt
+
+    @property
+    def pga(self) -> float:
+        """Peak ground acceleration (g)."""
+        return float(np.max(np.abs(self.acceleration)))
+
+    @property
+    def is_free_vibration(self) -> bool:
+        return not np.any(self.acceleration)
+
+    def scaled(self, factor: float) -> Motion:
+        """This motion with its acceleration multiplied by ``factor``."""
+        finite("motion.scale", factor)
+        return replace(self, acceleration=self.acceleration * factor)
+
+    def scaled_to_pga(self, pga: float) -> Motion:
+        """This motion scaled so that its peak ground acceleration is ``pga`` (g)."""
+        positive("motion.pga", pga)
+        if self.pga == 0.0:
+            raise InputError(f"motion {self.name!r} has zero acceleration: cannot scale it to a PGA")
+        return self.scaled(pga / self.pga)
+
+    def extended(self, duration: float) -> Motion:
+        """This motion padded with zero acceleration to at least ``duration`` (s)."""
+        n = int(math.ceil(duration / self.dt - 1e-9))
+        if n <= self.acceleration.size:
+            return self
+        acc = np.concatenate([self.acceleration, np.zeros(n - self.acceleration.size)])
+        return replace(self, acceleration=acc)
+
+    def acceleration_at(self, t) -> np.ndarray:
+        """Ground acceleration (g) at times ``t`` (s), linear between samples."""
+        n = self.acceleration.size
+        times = np.arange(n + 1) * self.dt
+        values = np.append(self.acceleration, 0.0)
+        return np.interp(t, times, values, right=0.0)
+
+
+def motion_search_path() -> list[Path]:
+    """Directories on ``UPLIFTLAB_MOTIONS``, in order."""
+    raw = os.environ.get(MOTIONS_ENV, "")
+    return [Path(p).expanduser() for p in raw.split(os.pathsep) if p.strip()]
+
+
+def find_motion(name: str) -> Path:
+    """The file for motion ``name`` on the ``UPLIFTLAB_MOTIONS`` path.
+
+    Raises an :class:`InputError` that says which file to supply, and how, when it is missing.
+    """
+    path = motion_search_path()
+    for directory in path:
+        for suffix in _SUFFIXES:
+            candidate = directory / f"{name}{suffix}"
+            if candidate.is_file():
+                return candidate
+    where = (f"{MOTIONS_ENV}={os.pathsep.join(map(str, path))}" if path
+             else f"{MOTIONS_ENV} is not set")
+    hint = f" ({ELCENTRO_DESCRIPTION})" if name == ELCENTRO else ""
+    raise InputError(
+        f"motion {name!r} not found: {where}. Supply it as a file path, or set {MOTIONS_ENV} "
+        f"to the directory that holds {name}.txt{hint}")
+
+
+def load_motion(name_or_path: str | os.PathLike, dt: float | None = None) -> Motion:
+    """Read a motion given by a path, or by a name on ``UPLIFTLAB_MOTIONS``."""
+    text = str(name_or_path)
+    candidate = Path(text).expanduser()
+    looks_like_path = candidate.suffix != "" or os.sep in text or (os.altsep or os.sep) in text
+    if candidate.is_file():
+        return read_motion(candidate, dt=dt)
+    if looks_like_path:
+        raise InputError(f"motion file {text!r} does not exist")
+    return read_motion(find_motion(text), dt=dt)
+
+
+def read_motion(path: str | os.PathLike, dt: float | None = None) -> Motion:
+    """Read a motion file: PEER ``.AT2``, two columns (time, g), or one column (g) with ``dt``."""
+    path = Path(path)
+    try:
+        text = path.read_text(errors="replace")
+    except OSError as exc:
+        raise InputError(f"motion file {str(path)!r}: cannot read it ({exc.strerror})") from None
+    if path.suffix.lower() == ".at2" or text.lstrip().upper().startswith("PEER"):
+        step, acc = _parse_at2(text, path)
+    else:
+        step, acc = _parse_columns(text, path, dt)
+    return Motion(name=path.stem, dt=step, acceleration=acc, source=str(path.resolve()))
+
+
+def _parse_columns(text: str, path: Path, dt: float | None) -> tuple[float, np.ndarray]:
+    rows, lines = [], []
+    for number, line in enumerate(text.splitlines(), start=1):
+        body = line.split("#", 1)[0].strip()
+        if not body:
+            continue
+        fields = body.replace(",", " ").split()
+        try:
+            rows.append([float(f) for f in fields])
+        except ValueError:
+            raise InputError(f"motion file {str(path)!r} line {number}: {line.strip()!r} "
+                             "is not numbers") from None
+        lines.append(number)
+    if not rows:
+        raise InputError(f"motion file {str(path)!r}: no data rows")
+    width = len(rows[0])
+    for row, number in zip(rows, lines):
+        if len(row) != width:
+            raise InputError(f"motion file {str(path)!r} line {number}: {len(row)} columns, "
+                             f"but the first data row has {width}")
+    if width not in (1, 2):
+        raise InputError(f"motion file {str(path)!r}: {width} columns; expected 2 "
+                         "(time [s], acceleration [g]) or 1 (acceleration [g], with dt given)")
+    data = np.array(rows)
+    _refuse_nan(data, path, lines)
+    if width == 1:
+        if dt is None:
+            raise InputError(f"motion file {str(path)!r} has one column: give its dt "
+                             "(motion.dt in the scene)")
+        return positive("motion.dt", dt), data[:, 0]
+    return _uniform_step(data[:, 0], path, lines), data[:, 1]
+
+
+def _refuse_nan(data: np.ndarray, path: Path, lines: list[int]) -> None:
+    bad = np.argwhere(~np.isfinite(data))
+    if bad.size:
+        row = bad[0][0]
+        raise InputError(f"motion file {str(path)!r} line {lines[row]}: value "
+                         f"{data[row, bad[0][1]]} is not a finite number")
+
+
+def _uniform_step(time: np.ndarray, path: Path, lines: list[int]) -> float:
+    if time.size < 2:
+        raise InputError(f"motion file {str(path)!r}: needs at least two samples")
+    steps = np.diff(time)
+    step = (time[-1] - time[0]) / (time.size - 1)
+    if not step > 0:
+        raise InputError(f"motion file {str(path)!r}: time does not increase")
+    off = np.flatnonzero(np.abs(steps - step) > _UNIFORM_DT_RTOL * step + 1e-12)
+    if off.size:
+        i = off[0]
+        raise InputError(
+            f"motion file {str(path)!r} line {lines[i + 1]}: time step {steps[i]:g} s differs "
+            f"from the mean step {step:g} s; the time step must be uniform")
+    return float(step)
+
+
+_AT2_HEADER = re.compile(r"NPTS\s*=\s*(\d+)\s*,?\s*DT\s*=\s*([0-9.eE+-]+)", re.IGNORECASE)
+_AT2_HEADER_NEW = re.compile(r"^\s*(\d+)\s+([0-9.eE+-]+)\s+NPTS", re.IGNORECASE)
+
+
+def _parse_at2(text: str, path: Path) -> tuple[float, np.ndarray]:
+    lines = text.splitlines()
+    if len(lines) < 5:
+        raise InputError(f"motion file {str(path)!r}: too short for a PEER .AT2 record")
+    header = lines[3]
+    match = _AT2_HEADER.search(header) or _AT2_HEADER_NEW.search(header)
+    if not match:
+        raise InputError(f"motion file {str(path)!r} line 4: {header.strip()!r} does not give "
+                         "NPTS and DT as a PEER .AT2 header does")
+    npts, step = int(match.group(1)), float(match.group(2))
+    try:
+        values = np.array(" ".join(lines[4:]).split(), dtype=float)
+    except ValueError:
+        raise InputError(f"motion file {str(path)!r}: the data after line 4 is not numbers") from None
+    if values.size != npts:
+        raise InputError(f"motion file {str(path)!r}: header says NPTS={npts} but the file "
+                         f"holds {values.size} values")
+    if not np.all(np.isfinite(values)):
+        i = int(np.flatnonzero(~np.isfinite(values))[0])
+        raise InputError(f"motion file {str(path)!r}: value {i} is {values[i]}, not finite")
+    return positive("DT", step), values
+
+
+def free_vibration(duration: float, dt: float = 0.01, *, velocity: float = 0.0,
+                   displacement: float = 0.0, rotation: float = 0.0) -> Motion:
+    """No ground motion; the structure starts from the given state (length/s, length, rad)."""
+    positive("motion.duration", duration)
+    positive("motion.dt", dt)
+    if velocity == 0.0 and displacement == 0.0 and rotation == 0.0:
+        raise InputError("free vibration needs a nonzero motion.velocity, motion.displacement "
+                         "or motion.rotation")
+    n = max(int(math.ceil(duration / dt - 1e-9)), 1)
+    return Motion(name="free", dt=dt, acceleration=np.zeros(n), initial_velocity=velocity,
+                  initial_displacement=displacement, initial_rotation=rotation,
+                  source=f"builtin:free(v0={velocity:g}, x0={displacement:g}, theta0={rotation:g})")
+
+
+def _pulse_samples(duration: float, dt: float) -> np.ndarray:
+    positive("motion.duration", duration)
+    positive("motion.dt", dt)
+    return np.arange(max(int(math.ceil(duration / dt - 1e-9)), 1)) * dt
+
+
+def sine_pulse(amplitude: float, period: float, cycles: float = 1.0, *,
+               duration: float | None = None, dt: float = 0.005) -> Motion:
+    """``a(t) = A sin(2πt/T)`` for ``0 ≤ t ≤ cycles·T``, then zero. A in g, T in s."""
+    return _trig_pulse(np.sin, "sine", amplitude, period, cycles, duration, dt)
+
+
+def cosine_pulse(amplitude: float, period: float, cycles: float = 1.0, *,
+                 duration: float | None = None, dt: float = 0.005) -> Motion:
+    """``a(t) = A cos(2πt/T)`` for ``0 ≤ t ≤ cycles·T``, then zero. A in g, T in s."""
+    return _trig_pulse(np.cos, "cosine", amplitude, period, cycles, duration, dt)
+
+
+def _trig_pulse(fn, kind, amplitude, period, cycles, duration, dt) -> Motion:
+    finite("motion.amplitude", amplitude)
+    positive("motion.period", period)
+    positive("motion.cycles", cycles)
+    length = cycles * period
+    duration = max(duration if duration is not None else 4.0 * length, length)
+    t = _pulse_samples(duration, dt)
+    acc = np.where(t <= length + 1e-12, amplitude * fn(2.0 * np.pi * t / period), 0.0)
+    return Motion(name=f"{kind}_pulse", dt=dt, acceleration=acc,
+                  source=f"builtin:{kind}(A={amplitude:g} g, T={period:g} s, cycles={cycles:g})")
+
+
+def ricker_pulse(amplitude: float, period: float, *, duration: float | None = None,
+                 dt: float = 0.005, delay: float | None = None) -> Motion:
+    """Ricker wavelet of peak A (g) and central period T = 1/f_p (s), centred at ``delay``.
+
+    ``a(t) = A (1 − 2π²f²τ²) exp(−π²f²τ²)``, ``τ = t − delay``; the delay defaults to 1.5 T.
+    """
+    finite("motion.amplitude", amplitude)
+    positive("motion.period", period)
+    delay = 1.5 * period if delay is None else nonnegative("motion.delay", delay)
+    duration = duration if duration is not None else 2.0 * delay + 3.0 * period
+    t = _pulse_samples(duration, dt)
+    arg = (np.pi * (t - delay) / period) ** 2
+    acc = amplitude * (1.0 - 2.0 * arg) * np.exp(-arg)
+    return Motion(name="ricker_pulse", dt=dt, acceleration=acc,
+                  source=f"builtin:ricker(A={amplitude:g} g, T={period:g} s, delay={delay:g} s)")
+
+
+def harmonic(amplitude: float, period: float, duration: float, *, dt: float = 0.005) -> Motion:
+    """Steady harmonic ``a(t) = A sin(2πt/T)`` over the whole ``duration``. A in g, T in s."""
+    finite("motion.amplitude", amplitude)
+    positive("motion.period", period)
+    t = _pulse_samples(duration, dt)
+    acc = amplitude * np.sin(2.0 * np.pi * t / period)
+    return Motion(name="harmonic", dt=dt, acceleration=acc,
+                  source=f"builtin:harmonic(A={amplitude:g} g, T={period:g} s)")
+

@@ -1,0 +1,706 @@
+"""Scenes: TOML files that describe a structure, its foundation, a motion and an analysis.
+
+A scene is read, merged with one of its ``[cases.X]`` tables, patched with ``--set`` overrides
+(dotted TOML keys), and validated into immutable dataclasses. Unknown keys are errors, and every
+error names the field, the value and the valid range before any work starts.
+
+The same scene runs in the reduced model and (with ``[soil]`` and ``[continuum]``) in the
+continuum model. Units are declared by ``units`` and g follows from them.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import json
+import math
+import tomllib
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from . import checks
+from .checks import InputError
+from .motions import (Motion, cosine_pulse, free_vibration, harmonic, load_motion, ricker_pulse,
+                      sine_pulse)
+from .units import UnitSystem, unit_system
+
+__all__ = [
+    "SCHEMA_VERSION",
+    "Story",
+    "Structure",
+    "Foundation",
+    "MotionSpec",
+    "Analysis",
+    "Soil",
+    "ContinuumOptions",
+    "Scene",
+    "load_scene",
+    "scene_from_dict",
+    "find_scene",
+    "packaged_scenes",
+    "apply_override",
+    "build_motion",
+]
+
+SCHEMA_VERSION = 1
+_MISSING = object()
+
+SUPPORTS = ("uplift", "bonded", "fixed")
+LAYOUTS = ("winkler", "edges", "equivalent", "end_stiffened", "custom")
+LAWS = ("elastic", "elastoplastic")
+MOTION_TYPES = ("record", "free", "sine", "cosine", "ricker", "harmonic")
+INTEGRATORS = ("events", "rk4", "abm4", "newmark", "hht")
+
+
+class _Table:
+    """A TOML table read key by key; :meth:`done` refuses keys nobody asked for."""
+
+    def __init__(self, data: Any, path: str):
+        if not isinstance(data, dict):
+            raise InputError(f"{path} = {data!r}: expected a table")
+        self.data, self.path, self.used = data, path, set()
+
+    def get(self, key: str, check=None, default=_MISSING):
+        self.used.add(key)
+        name = f"{self.path}.{key}" if self.path else key
+        if key not in self.data:
+            if default is _MISSING:
+                raise InputError(f"{name} is missing")
+            return default
+        value = self.data[key]
+        return check(name, value) if check else value
+
+    def has(self, key: str) -> bool:
+        return key in self.data
+
+    def done(self) -> None:
+        unknown = sorted(set(self.data) - self.used)
+        if unknown:
+            where = f"{self.path}." if self.path else ""
+            valid = ", ".join(sorted(self.used))
+            raise InputError(f"{where}{unknown[0]}: unknown key (valid keys here: {valid})")
+
+
+def _string(name: str, value) -> str:
+    if not isinstance(value, str):
+        raise InputError(f"{name} = {value!r}: expected a string")
+    return value
+
+
+def _choice(choices):
+    return lambda name, value: checks.one_of(name, value, choices)
+
+
+def _range(low, high, low_open=False, high_open=False):
+    return lambda name, value: checks.in_range(name, value, low, high,
+                                               low_open=low_open, high_open=high_open)
+
+
+def _numbers(name: str, value) -> tuple[float, ...]:
+    if not isinstance(value, list) or not value:
+        raise InputError(f"{name} = {value!r}: expected a non-empty list of numbers")
+    return tuple(checks.finite(f"{name}[{i}]", v) for i, v in enumerate(value))
+
+
+# ---------------------------------------------------------------------------------------------
+# Structure
+# ---------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Story:
+    """One story of a shear building: a lumped mass on a story spring.
+
+    ``weight`` (force) at ``height`` (length, above the base centre O); ``stiffness`` of the story
+    spring below it (force/length); ``yield_force`` (force; inf = elastic) with a bilinear
+    ``post_yield_ratio``; ``damping_ratio`` of its parallel dashpot, as a fraction of critical
+    for the fixed-base first mode (None: the structure's ratio).
+    """
+
+    weight: float
+    height: float
+    stiffness: float
+    yield_force: float = math.inf
+    post_yield_ratio: float = 0.0
+    damping_ratio: float | None = None
+
+
+@dataclass(frozen=True)
+class Structure:
+    """The superstructure (Ewing eqs. 6–8): one story (SDOF) or a shear building (MDOF).
+
+    ``rotary_inertia`` is I₀, the mass moment of inertia of the rocking base body about O
+    (mass·length²), excluding the story masses, which enter through their lateral DOFs.
+    ``vertical_weight`` (force) is carried by the foundation and gives the vertical mass.
+    ``rigid`` ties every story to the base rotation (u = 0). ``p_delta`` adds the P-Δ moment of
+    the story weights about the rocking base.
+    """
+
+    stories: tuple[Story, ...]
+    damping_ratio: float
+    rotary_inertia: float
+    vertical_weight: float
+    rigid: bool = False
+    p_delta: bool = False
+
+    @property
+    def weight(self) -> float:
+        return sum(s.weight for s in self.stories)
+
+    @property
+    def height(self) -> float:
+        """Height of the top mass (length)."""
+        return self.stories[-1].height
+
+
+def _story(table: _Table, sdof: bool, g: float) -> Story:
+    weight = table.get("weight", checks.positive)
+    height = table.get("height", checks.positive)
+    if table.has("stiffness") and table.has("period"):
+        raise InputError(f"{table.path}: give stiffness or period, not both")
+    if table.has("period") and sdof:
+        period = table.get("period", checks.positive)
+        stiffness = (weight / g) * (2.0 * math.pi / period) ** 2
+    else:
+        stiffness = table.get("stiffness", checks.positive)
+    yield_force = table.get("yield_force", lambda n, v: checks.positive(n, v, allow_inf=True),
+                            math.inf)
+    ratio = table.get("post_yield_ratio", _range(0.0, 1.0, high_open=True), 0.0)
+    damping = None if sdof else table.get("damping_ratio", _range(0.0, 1.0), None)
+    return Story(weight, height, stiffness, yield_force, ratio, damping)
+
+
+def _structure(data, g: float) -> Structure:
+    table = _Table(data, "structure")
+    if table.has("story"):
+        stories_data = table.get("story")
+        if not isinstance(stories_data, list) or not stories_data:
+            raise InputError("structure.story: expected a list of story tables")
+        stories = []
+        for i, item in enumerate(stories_data):
+            sub = _Table(item, f"structure.story.{i}")
+            stories.append(_story(sub, sdof=False, g=g))
+            sub.done()
+        stories = tuple(stories)
+    else:
+        stories = (_story(table, sdof=True, g=g),)
+    heights = [s.height for s in stories]
+    for i in range(1, len(heights)):
+        if heights[i] <= heights[i - 1]:
+            raise InputError(f"structure.story.{i}.height = {heights[i]:g}: must exceed the "
+                             f"story below ({heights[i - 1]:g})")
+    rigid = table.get("rigid", checks.boolean, False)
+    structure = Structure(
+        stories=stories,
+        damping_ratio=table.get("damping_ratio", _range(0.0, 1.0), 0.0),
+        rotary_inertia=table.get("rotary_inertia", checks.nonnegative),
+        vertical_weight=table.get("vertical_weight", checks.positive,
+                                  sum(s.weight for s in stories)),
+        rigid=rigid,
+        p_delta=table.get("p_delta", checks.boolean, False),
+    )
+    table.done()
+    return structure
+
+
+# ---------------------------------------------------------------------------------------------
+# Foundation
+# ---------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Foundation:
+    """The foundation under the base (Ewing eqs. 3, 9; Figs. 1, 6).
+
+    ``support``: ``uplift`` (compression-only springs), ``bonded`` (springs also carry tension)
+    or ``fixed`` (θ and V locked). ``half_width`` b (length). ``layout`` and ``springs`` (N) place
+    the springs; ``stiffness`` is their total K_v (force/length). ``law`` is ``elastic`` or
+    ``elastoplastic`` (yield at ``yield_multiple`` times the static compression). Dashpots in
+    parallel carry ``damping_ratio`` of critical for the bonded vertical mode. ``restitution`` ε
+    < 1 adds Ewing's impact damper with c* = ``impact_multiple`` · c_cr.
+    """
+
+    support: str
+    half_width: float
+    layout: str
+    springs: int
+    stiffness: float
+    law: str = "elastic"
+    yield_multiple: float = 3.0
+    damping_ratio: float = 0.0
+    restitution: float = 1.0
+    impact_multiple: float = 10.0
+    end_stiffness_ratio: float = 1.0
+    end_length: float = 0.0
+    positions: tuple[float, ...] = ()
+    stiffnesses: tuple[float, ...] = ()
+
+    @property
+    def width(self) -> float:
+        """Full base width B = 2b (length)."""
+        return 2.0 * self.half_width
+
+
+def _foundation(data, vertical_mass: float) -> Foundation:
+    table = _Table(data, "foundation")
+    support = table.get("support", _choice(SUPPORTS), "uplift")
+    half_width = table.get("half_width", checks.positive)
+    layout = table.get("layout", _choice(LAYOUTS), "winkler")
+    positions, stiffnesses = (), ()
+    if layout == "custom":
+        positions = table.get("positions", _numbers)
+        stiffnesses = table.get("stiffnesses", _numbers)
+        if len(positions) != len(stiffnesses):
+            raise InputError(f"foundation.stiffnesses has {len(stiffnesses)} entries but "
+                             f"foundation.positions has {len(positions)}: give one per spring")
+        for i, (x, k) in enumerate(zip(positions, stiffnesses)):
+            checks.in_range(f"foundation.positions[{i}]", x, -half_width, half_width)
+            checks.positive(f"foundation.stiffnesses[{i}]", k)
+        springs, stiffness = len(positions), float(sum(stiffnesses))
+        checks.integer_at_least("foundation.springs (number of custom positions)", springs, 2)
+    else:
+        default_n = 2 if layout in ("edges", "equivalent") else _MISSING
+        springs = table.get("springs", lambda n, v: checks.integer_at_least(n, v, 2), default_n)
+        if layout in ("edges", "equivalent") and springs != 2:
+            raise InputError(f"foundation.springs = {springs}: layout {layout!r} has exactly 2")
+        if table.has("stiffness") and table.has("vertical_period"):
+            raise InputError("foundation: give stiffness or vertical_period, not both")
+        if table.has("vertical_period"):
+            period = table.get("vertical_period", checks.positive)
+            stiffness = vertical_mass * (2.0 * math.pi / period) ** 2
+        else:
+            stiffness = table.get("stiffness", checks.positive)
+    end_ratio, end_length = 1.0, 0.0
+    if layout == "end_stiffened":
+        end_ratio = table.get("end_stiffness_ratio", _range(1.0, 1e6))
+        end_length = table.get("end_length", _range(0.0, 1.0, low_open=True, high_open=True))
+    foundation = Foundation(
+        support=support,
+        half_width=half_width,
+        layout=layout,
+        springs=springs,
+        stiffness=stiffness,
+        law=table.get("law", _choice(LAWS), "elastic"),
+        yield_multiple=table.get("yield_multiple", _range(1.0, 1e6, low_open=True), 3.0),
+        damping_ratio=table.get("damping_ratio", _range(0.0, 2.0), 0.0),
+        restitution=table.get("restitution", _range(0.0, 1.0), 1.0),
+        impact_multiple=table.get("impact_multiple", _range(0.1, 1e4), 10.0),
+        end_stiffness_ratio=end_ratio,
+        end_length=end_length,
+        positions=positions,
+        stiffnesses=stiffnesses,
+    )
+    table.done()
+    return foundation
+
+
+# ---------------------------------------------------------------------------------------------
+# Motion and analysis
+# ---------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class MotionSpec:
+    """What motion drives the scene. Built into a :class:`~upliftlab.motions.Motion` on demand.
+
+    ``record``: ``name`` (a name on ``UPLIFTLAB_MOTIONS`` or a path), optional ``dt`` for one
+    column files, ``scale`` or ``pga`` (g). ``free``: ``velocity`` (length/s), ``displacement``
+    (length), ``rotation`` (rad). Pulses: ``amplitude`` (g), ``period`` (s), ``cycles``, ``delay``.
+    ``duration`` (s) extends or sets the length.
+    """
+
+    type: str
+    name: str = ""
+    dt: float | None = None
+    scale: float = 1.0
+    pga: float | None = None
+    duration: float | None = None
+    velocity: float = 0.0
+    displacement: float = 0.0
+    rotation: float = 0.0
+    amplitude: float = 0.0
+    period: float = 0.0
+    cycles: float = 1.0
+    delay: float | None = None
+
+
+def _motion_spec(data) -> MotionSpec:
+    table = _Table(data, "motion")
+    kind = table.get("type", _choice(MOTION_TYPES))
+    positive_or_none = lambda n, v: checks.positive(n, v)  # noqa: E731
+    spec: dict[str, Any] = {"type": kind,
+                            "duration": table.get("duration", positive_or_none, None),
+                            "dt": table.get("dt", positive_or_none, None)}
+    if kind == "record":
+        spec["name"] = table.get("name", _string)
+        if table.has("scale") and table.has("pga"):
+            raise InputError("motion: give scale or pga, not both")
+        spec["scale"] = table.get("scale", checks.finite, 1.0)
+        spec["pga"] = table.get("pga", positive_or_none, None)
+    elif kind == "free":
+        for key in ("velocity", "displacement", "rotation"):
+            spec[key] = table.get(key, checks.finite, 0.0)
+        if not any(spec[k] for k in ("velocity", "displacement", "rotation")):
+            raise InputError("motion.type = 'free' needs a nonzero motion.velocity, "
+                             "motion.displacement or motion.rotation")
+        if spec["duration"] is None:
+            raise InputError("motion.duration is missing: free vibration needs a duration (s)")
+    else:
+        spec["amplitude"] = table.get("amplitude", checks.finite)
+        spec["period"] = table.get("period", checks.positive)
+        if kind in ("sine", "cosine"):
+            spec["cycles"] = table.get("cycles", checks.positive, 1.0)
+        if kind == "ricker":
+            spec["delay"] = table.get("delay", checks.nonnegative, None)
+        if kind == "harmonic" and spec["duration"] is None:
+            raise InputError("motion.duration is missing: a harmonic motion needs a duration (s)")
+    table.done()
+    return MotionSpec(**spec)
+
+
+def build_motion(spec: MotionSpec) -> Motion:
+    """The :class:`Motion` a spec describes (reads the record file if it names one)."""
+    dt = spec.dt
+    if spec.type == "record":
+        motion = load_motion(spec.name, dt=dt)
+        motion = motion.scaled_to_pga(spec.pga) if spec.pga is not None else motion.scaled(spec.scale)
+    elif spec.type == "free":
+        motion = free_vibration(spec.duration, dt or 0.01, velocity=spec.velocity,
+                                displacement=spec.displacement, rotation=spec.rotation)
+    elif spec.type == "harmonic":
+        motion = harmonic(spec.amplitude, spec.period, spec.duration, dt=dt or 0.005)
+    elif spec.type == "ricker":
+        motion = ricker_pulse(spec.amplitude, spec.period, duration=spec.duration,
+                              dt=dt or 0.005, delay=spec.delay)
+    else:
+        pulse = sine_pulse if spec.type == "sine" else cosine_pulse
+        motion = pulse(spec.amplitude, spec.period, spec.cycles, duration=spec.duration,
+                       dt=dt or 0.005)
+    if spec.duration is not None:
+        motion = motion.extended(spec.duration)
+    return motion
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """How to integrate: ``integrator``, time step ``dt`` (s; None = automatic), ``subcycle``
+    (split a step beyond the stability limit instead of refusing it), ``duration`` (s; None = the
+    motion's), ``output_dt`` (s; None = automatic), ``hht_alpha`` in [−1/3, 0] for ``hht``.
+    """
+
+    integrator: str = "events"
+    dt: float | None = None
+    subcycle: bool = False
+    duration: float | None = None
+    output_dt: float | None = None
+    hht_alpha: float = -0.1
+
+
+def _analysis(data) -> Analysis:
+    table = _Table(data, "analysis")
+    positive_or_none = lambda n, v: checks.positive(n, v)  # noqa: E731
+    analysis = Analysis(
+        integrator=table.get("integrator", _choice(INTEGRATORS), "events"),
+        dt=table.get("dt", positive_or_none, None),
+        subcycle=table.get("subcycle", checks.boolean, False),
+        duration=table.get("duration", positive_or_none, None),
+        output_dt=table.get("output_dt", positive_or_none, None),
+        hht_alpha=table.get("hht_alpha", _range(-1.0 / 3.0, 0.0), -0.1),
+    )
+    table.done()
+    return analysis
+
+
+# ---------------------------------------------------------------------------------------------
+# Continuum sections (used by upliftlab.continuum; the reduced model ignores them)
+# ---------------------------------------------------------------------------------------------
+
+SOIL_MODELS = ("elastic", "tresca", "von_mises", "drucker_prager", "mohr_coulomb")
+INTERFACES = ("frictionless", "bonded", "coulomb")
+ELEMENTS = ("P1", "P2", "Q1", "Q2")
+
+
+@dataclass(frozen=True)
+class Soil:
+    """Plane-strain soil under the footing.
+
+    ``youngs_modulus`` E (force/length²), ``poisson_ratio`` ν, ``density`` ρ (mass/length³).
+    ``model``: elastic, tresca / von_mises (``undrained_strength`` c_u, force/length²), or
+    drucker_prager / mohr_coulomb (``cohesion`` c, ``friction_angle`` φ and ``dilation_angle`` ψ
+    in degrees). ``layer_depth`` (length) puts a rigid base at that depth (None: the box bottom).
+    ``interface`` under the footing: frictionless, bonded, or coulomb with ``interface_friction``.
+    """
+
+    youngs_modulus: float
+    poisson_ratio: float
+    density: float = 0.0
+    model: str = "elastic"
+    undrained_strength: float | None = None
+    cohesion: float = 0.0
+    friction_angle: float = 0.0
+    dilation_angle: float = 0.0
+    hardening_modulus: float = 0.0
+    layer_depth: float | None = None
+    interface: str = "frictionless"
+    interface_friction: float = 0.0
+
+    @property
+    def shear_modulus(self) -> float:
+        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+
+def _soil(data) -> Soil:
+    table = _Table(data, "soil")
+    model = table.get("model", _choice(SOIL_MODELS), "elastic")
+    soil = Soil(
+        youngs_modulus=table.get("youngs_modulus", checks.positive),
+        poisson_ratio=table.get("poisson_ratio", _range(-1.0, 0.5, low_open=True, high_open=True)),
+        density=table.get("density", checks.nonnegative, 0.0),
+        model=model,
+        undrained_strength=(table.get("undrained_strength", checks.positive)
+                            if model in ("tresca", "von_mises") else None),
+        cohesion=table.get("cohesion", checks.nonnegative, 0.0),
+        friction_angle=table.get("friction_angle", _range(0.0, 60.0, high_open=True), 0.0),
+        dilation_angle=table.get("dilation_angle", _range(0.0, 60.0, high_open=True), 0.0),
+        hardening_modulus=table.get("hardening_modulus", checks.nonnegative, 0.0),
+        layer_depth=table.get("layer_depth", checks.positive, None),
+        interface=table.get("interface", _choice(INTERFACES), "frictionless"),
+        interface_friction=table.get("interface_friction", checks.nonnegative, 0.0),
+    )
+    if soil.dilation_angle > soil.friction_angle:
+        raise InputError(f"soil.dilation_angle = {soil.dilation_angle:g}: valid range is "
+                         f"[0, friction_angle = {soil.friction_angle:g}]")
+    table.done()
+    return soil
+
+
+@dataclass(frozen=True)
+class ContinuumOptions:
+    """Continuum domain and mesh: a box ``domain_width`` × ``domain_depth`` (multiples of the
+    footing width B), ``element`` type, ``elements_across`` the footing, ``grading`` towards the
+    footing edges, ``base`` (rigid or compliant) and side/bottom ``boundary`` (fixed or lysmer).
+    """
+
+    domain_width: float = 10.0
+    domain_depth: float = 10.0
+    element: str = "Q2"
+    elements_across: int = 16
+    grading: float = 1.0
+    base: str = "rigid"
+    boundary: str = "fixed"
+
+
+def _continuum(data) -> ContinuumOptions:
+    table = _Table(data, "continuum")
+    options = ContinuumOptions(
+        domain_width=table.get("domain_width", _range(1.0, 1e4, low_open=True), 10.0),
+        domain_depth=table.get("domain_depth", _range(0.0, 1e4, low_open=True), 10.0),
+        element=table.get("element", _choice(ELEMENTS), "Q2"),
+        elements_across=table.get("elements_across",
+                                  lambda n, v: checks.integer_at_least(n, v, 2), 16),
+        grading=table.get("grading", _range(1.0, 100.0), 1.0),
+        base=table.get("base", _choice(("rigid", "compliant")), "rigid"),
+        boundary=table.get("boundary", _choice(("fixed", "lysmer")), "fixed"),
+    )
+    table.done()
+    return options
+
+
+# ---------------------------------------------------------------------------------------------
+# Scene
+# ---------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A validated scene. ``data`` is the merged table it came from (for provenance)."""
+
+    title: str
+    units: UnitSystem
+    structure: Structure
+    foundation: Foundation
+    motion: MotionSpec
+    analysis: Analysis
+    soil: Soil | None = None
+    continuum: ContinuumOptions | None = None
+    description: str = ""
+    reference: str = ""
+    cases: tuple[str, ...] = ()
+    case: str | None = None
+    source: str = ""
+    overrides: tuple[str, ...] = ()
+    data: dict = field(default_factory=dict, repr=False, compare=False)
+
+    @property
+    def g(self) -> float:
+        """Acceleration of gravity in the scene's units (length/s²)."""
+        return self.units.gravity
+
+    @property
+    def name(self) -> str:
+        stem = Path(self.source).stem if self.source else "scene"
+        return f"{stem}-{self.case}" if self.case else stem
+
+    @property
+    def digest(self) -> str:
+        """SHA-256 of the merged scene table: equal digests mean equal inputs."""
+        text = json.dumps(self.data, sort_keys=True, default=str)
+        return hashlib.sha256(text.encode()).hexdigest()
+
+    def build_motion(self) -> Motion:
+        return build_motion(self.motion)
+
+    def with_overrides(self, *overrides: str) -> Scene:
+        """This scene with more ``key=value`` overrides (dotted TOML keys)."""
+        data = copy.deepcopy(self.data)
+        for item in overrides:
+            apply_override(data, item)
+        return scene_from_dict(data, source=self.source, case=self.case,
+                               overrides=self.overrides + tuple(overrides), merged=True)
+
+
+def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
+                    overrides: tuple[str, ...] = (), merged: bool = False) -> Scene:
+    """Validate a scene table (as parsed from TOML) into a :class:`Scene`.
+
+    Unless ``merged``, the ``[cases.<case>]`` table is merged in and ``overrides`` applied first.
+    """
+    data = copy.deepcopy(data)
+    cases_table = data.get("cases", {})
+    if not merged:
+        data = _merge_case(data, case)
+        for item in overrides:
+            apply_override(data, item)
+    table = _Table(data, "")
+    schema = table.get("schema", lambda n, v: checks.integer_at_least(n, v, 1))
+    if schema != SCHEMA_VERSION:
+        raise InputError(f"schema = {schema}: this upliftlab reads schema {SCHEMA_VERSION}")
+    units = unit_system(table.get("units", _string))
+    g = units.gravity
+    structure = _structure(table.get("structure"), g)
+    vertical_mass = structure.vertical_weight / g
+    scene = Scene(
+        title=table.get("title", _string, ""),
+        description=table.get("description", _string, ""),
+        reference=table.get("reference", _string, ""),
+        units=units,
+        structure=structure,
+        foundation=_foundation(table.get("foundation"), vertical_mass),
+        motion=_motion_spec(table.get("motion")),
+        analysis=_analysis(table.get("analysis", None, {})),
+        soil=_soil(table.get("soil")) if table.has("soil") else None,
+        continuum=_continuum(table.get("continuum")) if table.has("continuum") else None,
+        cases=tuple(cases_table) if isinstance(cases_table, dict) else (),
+        case=case,
+        source=source,
+        overrides=tuple(overrides),
+        data=data,
+    )
+    table.get("cases", None, None)
+    table.done()
+    _check_consistency(scene)
+    return scene
+
+
+def _check_consistency(scene: Scene) -> None:
+    s, f = scene.structure, scene.foundation
+    if s.rigid and f.support == "fixed":
+        raise InputError("structure.rigid = true with foundation.support = 'fixed': "
+                         "a rigid structure on a fixed base has no motion")
+    if s.rotary_inertia == 0.0 and not s.rigid and f.support != "fixed":
+        raise InputError("structure.rotary_inertia = 0: the rocking base needs a mass moment of "
+                         "inertia > 0 (mass·length²) unless structure.rigid = true")
+
+
+def _merge_case(data: dict, case: str | None) -> dict:
+    cases = data.pop("cases", {})
+    if case is None:
+        return data
+    if not isinstance(cases, dict) or case not in cases:
+        valid = ", ".join(map(repr, cases)) if isinstance(cases, dict) and cases else "none"
+        raise InputError(f"case = {case!r}: not defined in this scene (cases: {valid})")
+    _deep_merge(data, cases[case], f"cases.{case}")
+    return data
+
+
+def _deep_merge(base: dict, patch: dict, path: str) -> None:
+    if not isinstance(patch, dict):
+        raise InputError(f"{path} = {patch!r}: expected a table")
+    for key, value in patch.items():
+        if isinstance(value, dict) and isinstance(base.get(key), dict):
+            _deep_merge(base[key], value, f"{path}.{key}")
+        else:
+            base[key] = copy.deepcopy(value)
+
+
+def _parse_value(text: str):
+    try:
+        return tomllib.loads(f"v = {text}")["v"]
+    except tomllib.TOMLDecodeError:
+        return text
+
+
+def apply_override(data: dict, item: str) -> None:
+    """Apply one ``dotted.key=value`` override in place. The value is read as TOML, else text.
+
+    List entries are addressed by index: ``structure.story.1.stiffness=300``.
+    """
+    if "=" not in item:
+        raise InputError(f"--set {item!r}: expected KEY=VALUE with a dotted TOML key")
+    key, text = item.split("=", 1)
+    parts = [p for p in key.strip().split(".") if p]
+    if not parts:
+        raise InputError(f"--set {item!r}: empty key")
+    node = data
+    for depth, part in enumerate(parts[:-1]):
+        where = ".".join(parts[: depth + 1])
+        if isinstance(node, list):
+            node = node[_index(part, node, where)]
+        else:
+            node = node.setdefault(part, {})
+        if not isinstance(node, (dict, list)):
+            raise InputError(f"--set {item!r}: {where} is a value, not a table")
+    last = parts[-1]
+    if isinstance(node, list):
+        node[_index(last, node, key)] = _parse_value(text.strip())
+    else:
+        node[last] = _parse_value(text.strip())
+
+
+def _index(part: str, node: list, where: str) -> int:
+    if not part.isdigit() or int(part) >= len(node):
+        raise InputError(f"--set {where}: index {part!r} is not in 0..{len(node) - 1}")
+    return int(part)
+
+
+def packaged_scenes() -> dict[str, Path]:
+    """The scene files shipped with upliftlab, by name."""
+    root = resources.files("upliftlab.scene_files")
+    return {Path(p.name).stem: Path(str(p)) for p in root.iterdir() if p.name.endswith(".toml")}
+
+
+def find_scene(name_or_path: str) -> Path:
+    """A scene file given by a path, or the packaged scene of that name."""
+    path = Path(name_or_path).expanduser()
+    if path.is_file():
+        return path
+    scenes = packaged_scenes()
+    stem = path.stem if path.suffix == ".toml" else name_or_path
+    if stem in scenes:
+        return scenes[stem]
+    raise InputError(f"scene {name_or_path!r}: no such file, and no packaged scene of that name "
+                     f"(packaged: {', '.join(sorted(scenes))})")
+
+
+def load_scene(name_or_path: str, case: str | None = None,
+               overrides: tuple[str, ...] | list[str] = ()) -> Scene:
+    """Read, merge, override and validate a scene file."""
+    path = find_scene(str(name_or_path))
+    try:
+        data = tomllib.loads(path.read_text())
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"scene {str(path)!r}: not valid TOML ({exc})") from None
+    return scene_from_dict(data, source=str(path), case=case, overrides=tuple(overrides))
+
