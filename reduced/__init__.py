@@ -1,1 +1,21 @@
-"""upliftlab.reduced"""
+"""Ewing's compatibility-matrix model of a superstructure on compression-only foundation springs.
+
+Build a model from a scene with :func:`build_model`, integrate it with :func:`run`, and read the
+:class:`Response`. Static analyses live in :mod:`.static`; the spring laws in :mod:`.springs`;
+the compiled integrators in :mod:`.kernels`.
+"""
+
+from .compatibility import (SpringLayout, compatibility_matrix, custom_springs, edge_springs,
+                            end_stiffened_bed, equivalent_springs, stiffness_matrix, winkler_bed)
+from .integrators import METHODS, stability_limit, time_step
+from .model import ReducedModel, build_model
+from .response import Response
+from .run import IntegrationError, run, run_model
+from .static import rocking_pushover, uplift_onset_force
+
+__all__ = [
+    "SpringLayout", "compatibility_matrix", "custom_springs", "edge_springs",
+    "end_stiffened_bed", "equivalent_springs", "stiffness_matrix", "winkler_bed",
+    "METHODS", "stability_limit", "time_step", "ReducedModel", "build_model", "Response",
+    "IntegrationError", "run", "run_model", "rocking_pushover", "uplift_onset_force",
+]

@@ -1,0 +1,244 @@
+"""The reduced model of a scene: masses, compatibility matrix, spring parameters (Ewing eqs. 1–9).
+
+:func:`build_model` turns a validated :class:`~upliftlab.scenes.Scene` into a
+:class:`ReducedModel`: immutable arrays that the compiled integrators take as arguments.
+Conventions (``design.md``): DOFs relative to the ground; θ positive when it moves the top by
++hθ; V positive up; foundation spring deformation is compression. Damping of the foundation is a
+fraction ζ_f of critical for the bonded vertical mode, c_i = ζ_f·2√(K_v m_v)·k_i/K_v; damping of
+the superstructure is a fraction ζ_s of critical for its fixed-base first mode (stiffness
+proportional for a shear building, which is ζ_s exactly for one story).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg
+
+from ..checks import InputError
+from ..scenes import Scene
+from . import springs as sp
+from .compatibility import DofMap, SpringLayout, compatibility_matrix, layout_for, stiffness_matrix
+
+__all__ = ["ReducedModel", "build_model", "impact_effective_mass"]
+
+
+@dataclass(frozen=True)
+class ReducedModel:
+    """Everything the integrators need, as arrays (units of the scene).
+
+    ``mass`` (n) diagonal masses; ``A`` (n × n_spring) compatibility; ``params`` one record of
+    :data:`~.springs.SPRING_DTYPE` per spring, story springs first;
+    ``ground_load`` L = −M r (n), the force per unit ground acceleration; ``geometric`` K_G (n × n)
+    P-Δ stiffness; ``weight`` W carried by the foundation; ``layout`` the foundation springs.
+    """
+
+    scene: Scene
+    dofs: DofMap
+    mass: np.ndarray
+    A: np.ndarray
+    params: np.ndarray
+    ground_load: np.ndarray
+    geometric: np.ndarray
+    weight: float
+    heights: np.ndarray
+    layout: SpringLayout | None
+    static_rotation: float = 0.0
+    notes: tuple[str, ...] = field(default=())
+
+    @property
+    def story_count(self) -> int:
+        return len(self.dofs.stories)
+
+    @property
+    def spring_count(self) -> int:
+        return self.params.size
+
+    @property
+    def kind(self) -> np.ndarray:
+        return self.params["kind"]
+
+    @property
+    def foundation_slice(self) -> slice:
+        return slice(self.story_count, self.spring_count)
+
+    @property
+    def g(self) -> float:
+        return self.scene.g
+
+    @property
+    def compressed_compatibility(self) -> tuple[np.ndarray, np.ndarray]:
+        """A by columns as (DOF index, value) pairs, shape (n_spring, 3) each: every spring
+        touches at most three DOFs (a story: two floors and θ; a foundation spring: θ and V).
+        Unused slots hold index 0 and value 0."""
+        ns = self.spring_count
+        idx = np.zeros((ns, 3), np.int64)
+        val = np.zeros((ns, 3))
+        for j in range(ns):
+            rows = np.flatnonzero(self.A[:, j])
+            idx[j, :rows.size] = rows
+            val[j, :rows.size] = self.A[rows, j]
+        return idx, val
+
+    def bonded_matrices(self, with_impact: bool = False) -> tuple[np.ndarray, np.ndarray]:
+        """(K, C) with every spring elastic and in contact: K = A S Aᵀ + K_G (eq. 5)."""
+        p = self.params
+        k = p["k"] + p["kh"]
+        c = p["c"] + (p["cimp"] if with_impact else 0.0)
+        return stiffness_matrix(self.A, k) + self.geometric, stiffness_matrix(self.A, c)
+
+    def bonded_periods(self) -> np.ndarray:
+        """Periods (s) of the bonded, undamped system, longest first."""
+        K, _ = self.bonded_matrices()
+        w2 = scipy.linalg.eigh(K, np.diag(self.mass), eigvals_only=True)
+        w2 = np.clip(w2, 1e-300, None)
+        return np.sort(2.0 * np.pi / np.sqrt(w2))[::-1]
+
+
+def impact_effective_mass(x: np.ndarray, rotary_mass: float, vertical_mass: float) -> np.ndarray:
+    """m_eff = m I_M / I₀ of eq. 17: the mass a base point at x feels, 1/(x²/I_M + 1/m).
+
+    I_M is the rotary mass of the base about O and I₀ = I_M + m x² its value about the spring.
+    """
+    return 1.0 / (np.asarray(x) ** 2 / rotary_mass + 1.0 / vertical_mass)
+
+
+def build_model(scene: Scene) -> ReducedModel:
+    """The :class:`ReducedModel` of ``scene``."""
+    s, f, g = scene.structure, scene.foundation, scene.g
+    fixed = f.support == "fixed"
+    if s.p_delta and fixed:
+        raise InputError("structure.p_delta = true acts about the rocking base: it needs "
+                         "foundation.support = 'uplift' or 'bonded', not 'fixed'")
+    dofs = DofMap.build(len(s.stories), rigid=s.rigid, fixed=fixed)
+    heights = np.array([st.height for st in s.stories])
+    masses = np.array([st.weight for st in s.stories]) / g
+    layout = None if fixed else layout_for(f)
+    A = compatibility_matrix(dofs, heights, layout)
+    mass, load = _masses(dofs, s, masses, heights, g)
+    tables = [_story_params(s, masses)]
+    weight, theta_s = 0.0, 0.0
+    if layout is not None:
+        found, theta_s = _foundation_params(f, layout, s.vertical_weight, mass[dofs.theta],
+                                            mass[dofs.v])
+        tables.append(found)
+        weight = s.vertical_weight
+    params = sp.derive_columns(np.concatenate(tables))
+    return ReducedModel(scene=scene, dofs=dofs, mass=mass, A=A, params=params, ground_load=load,
+                        geometric=_geometric(dofs, s, masses, heights, g), weight=weight,
+                        heights=heights, layout=layout, static_rotation=theta_s)
+
+
+def _masses(dofs: DofMap, s, masses, heights, g) -> tuple[np.ndarray, np.ndarray]:
+    """Diagonal masses (eq. 4) and the ground load L = −M r."""
+    mass = np.zeros(dofs.size)
+    load = np.zeros(dofs.size)
+    for j, dof in enumerate(dofs.stories):
+        mass[dof] = masses[j]
+        load[dof] = -masses[j]
+    if dofs.theta >= 0:
+        mass[dofs.theta] = s.rotary_inertia
+        mass[dofs.v] = s.vertical_weight / g
+        if s.rigid:  # x_j = h_j θ: the story masses rotate with the base
+            mass[dofs.theta] += float(np.sum(masses * heights**2))
+            load[dofs.theta] = -float(np.sum(masses * heights))
+    return mass, load
+
+
+def _fundamental_frequency(s, masses) -> float:
+    k = np.array([st.stiffness for st in s.stories])
+    n = k.size
+    K = np.zeros((n, n))
+    for j in range(n):
+        K[j, j] += k[j]
+        if j > 0:
+            K[j - 1, j - 1] += k[j]
+            K[j - 1, j] -= k[j]
+            K[j, j - 1] -= k[j]
+    w2 = scipy.linalg.eigh(K, np.diag(masses), eigvals_only=True)
+    return math.sqrt(w2[0])
+
+
+def _story_params(s, masses) -> np.ndarray:
+    """Story springs: EPP k(1−α) capped at Fy(1−α), parallel αk, dashpot 2ζk/ω₁."""
+    if s.rigid:
+        return sp.spring_table(0)
+    omega1 = _fundamental_frequency(s, masses)
+    table = sp.spring_table(len(s.stories))
+    for row, st in zip(table, s.stories):
+        zeta = s.damping_ratio if st.damping_ratio is None else st.damping_ratio
+        alpha = st.post_yield_ratio if math.isfinite(st.yield_force) else 0.0
+        row["kind"] = sp.STORY
+        row["k"] = (1.0 - alpha) * st.stiffness
+        row["kh"] = alpha * st.stiffness
+        row["fy"] = (1.0 - alpha) * st.yield_force
+        row["c"] = 2.0 * zeta * st.stiffness / omega1
+    return table
+
+
+def _static_forces(layout: SpringLayout, weight: float) -> tuple[np.ndarray, float]:
+    """Spring compressions F0 at rest under W (bonded equilibrium), and the static rotation."""
+    k, x = layout.stiffnesses, layout.positions
+    Kb = np.array([[np.sum(k * x * x), -np.sum(k * x)], [-np.sum(k * x), np.sum(k)]])
+    # generalised forces on (θ, V) from compression F_i = k_i (x_i θ − V): −A F; gravity −W on V
+    theta, v = np.linalg.solve(Kb, [0.0, -weight])
+    forces = k * (x * theta - v)
+    bad = np.flatnonzero(forces <= 0.0)
+    if bad.size:
+        i = bad[0]
+        raise InputError(f"foundation spring {i} at x = {x[i]:g} would be in tension at rest "
+                         f"(F0 = {forces[i]:g}): the layout cannot carry the weight in compression")
+    return forces, theta
+
+
+def _foundation_params(f, layout: SpringLayout, weight, rotary_mass, vertical_mass):
+    """Foundation springs: k_i, F0_i from static equilibrium, dashpots, yield, impact damper."""
+    k, x = layout.stiffnesses, layout.positions
+    F0, theta_s = _static_forces(layout, weight)
+    table = sp.spring_table(layout.count)
+    table["kind"] = sp.UPLIFT if f.support == "uplift" else sp.BONDED
+    table["k"] = k
+    table["c"] = (f.damping_ratio * 2.0 * math.sqrt(f.stiffness * vertical_mass) * k
+                  / layout.vertical_stiffness)
+    table["f0"] = F0
+    table["fy"] = f.yield_multiple * F0 if f.law == "elastoplastic" else np.inf
+    table["x"] = x
+    if f.restitution < 1.0 and f.support == "uplift":
+        meff = impact_effective_mass(x, rotary_mass, vertical_mass)
+        cstar = f.impact_multiple * 2.0 * np.sqrt(k * meff)
+        table["cimp"] = cstar
+        table["dzf"] = meff * (1.0 - f.restitution) / cstar
+        table["imph"] = [_impact_step(m, cc, kk) for m, cc, kk in zip(meff, table["c"] + cstar, k)]
+    return table, theta_s
+
+
+RK4_REAL_LIMIT = 2.785293563405282  # |R(z)| = 1 on the negative real axis
+
+
+def _impact_step(mass: float, damping: float, stiffness: float) -> float:
+    """Half the RK4 limit for a spring under its impact dashpot: m s² + c s + k = 0."""
+    roots = np.roots([mass, damping, stiffness])
+    return 0.5 * RK4_REAL_LIMIT / float(np.max(np.abs(roots)))
+
+
+def _geometric(dofs: DofMap, s, masses, heights, g) -> np.ndarray:
+    """P-Δ stiffness of the story weights about the rocking base (zero unless ``p_delta``).
+
+    Gravity potential of story j with lateral x_j and base rotation θ, to second order:
+    W_j(h_j θ²/2 − x_j θ) (flexible) or −W_j h_j θ²/2 (rigid, x_j = h_j θ).
+    """
+    KG = np.zeros((dofs.size, dofs.size))
+    if not s.p_delta or dofs.theta < 0:
+        return KG
+    weights = masses * g
+    t = dofs.theta
+    if s.rigid:
+        KG[t, t] = -float(np.sum(weights * heights))
+        return KG
+    for j, dof in enumerate(dofs.stories):
+        KG[t, t] += weights[j] * heights[j]
+        KG[dof, t] -= weights[j]
+        KG[t, dof] -= weights[j]
+    return KG

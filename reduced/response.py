@@ -1,0 +1,303 @@
+"""The result of a reduced-model run: time histories, peaks, energy balance and provenance.
+
+A :class:`Response` is a record of arrays. Derived histories (u, θ, V, base shear, overturning
+moment, uplift, contact length) are properties computed from the stored state, so that one
+stored set of arrays serves every figure and summary. :meth:`Response.save` writes one
+self-describing NetCDF file (and CSV on request), atomically.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+from pathlib import Path
+
+import numpy as np
+
+from ..results import write_csv, write_netcdf
+from . import kernels as kn
+from . import springs as sp
+from .model import ReducedModel
+from .static import contact_length
+
+__all__ = ["Response", "ENERGY_NAMES"]
+
+ENERGY_NAMES = ("input", "kinetic", "strain", "gravity", "viscous", "impact", "plastic")
+
+
+@dataclass(frozen=True, eq=False)
+class Response:
+    """Time histories of a run (units of the scene).
+
+    ``time`` (nt); ``q``, ``qd`` (nt × n) DOFs relative to the ground; per spring (nt × n_spring):
+    ``deformation`` e, ``force`` (story shear without its dashpot; foundation total compression),
+    ``mode`` and ``plastic`` deformation; ``energy`` (nt × 7, :data:`ENERGY_NAMES`, cumulative).
+    ``peaks`` are tracked at every step (with cubic interpolation between steps), not only at
+    the stored times. ``info`` holds the integrator, step and counters; ``provenance`` the rest.
+    """
+
+    model: ReducedModel
+    time: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    deformation: np.ndarray
+    force: np.ndarray
+    mode: np.ndarray
+    plastic: np.ndarray
+    energy: np.ndarray
+    raw_peaks: np.ndarray
+    ground_displacement: np.ndarray
+    info: dict = field(default_factory=dict)
+    provenance: dict = field(default_factory=dict)
+
+    # ---- histories --------------------------------------------------------------------------
+    @property
+    def dofs(self):
+        return self.model.dofs
+
+    @property
+    def u(self) -> np.ndarray:
+        """Superstructure deformation at the top, u = X − X_g − hθ (eq. 7) (length)."""
+        n = self.model.story_count
+        return self.deformation[:, :n].sum(axis=1) if n else np.zeros(self.time.size)
+
+    @property
+    def x(self) -> np.ndarray:
+        """Lateral displacement of the top mass relative to the ground, X − X_g (length)."""
+        d = self.dofs
+        if d.stories:
+            return self.q[:, d.stories[-1]]
+        return self.model.heights[-1] * self.theta
+
+    @property
+    def X(self) -> np.ndarray:
+        """Absolute lateral displacement of the top mass (length)."""
+        return self.x + self.ground_displacement
+
+    @property
+    def theta(self) -> np.ndarray:
+        """Base rotation θ (rad)."""
+        i = self.dofs.theta
+        return self.q[:, i] if i >= 0 else np.zeros(self.time.size)
+
+    @property
+    def V(self) -> np.ndarray:
+        """Vertical displacement of the base centre O, up (length)."""
+        i = self.dofs.v
+        return self.q[:, i] if i >= 0 else np.zeros(self.time.size)
+
+    @property
+    def story_shear(self) -> np.ndarray:
+        """Story shears including the story dashpots (nt × stories) (force)."""
+        n = self.model.story_count
+        rate = self.qd @ self.model.A[:, :n]
+        return self.force[:, :n] + rate * self.model.params["c"][:n]
+
+    @property
+    def base_shear(self) -> np.ndarray:
+        """Shear at the base of the superstructure (force)."""
+        if self.model.story_count == 0:
+            return np.zeros(self.time.size)
+        return self.story_shear[:, 0]
+
+    @property
+    def overturning_moment(self) -> np.ndarray:
+        """Moment of the story shears about the base, Σ V_j (h_j − h_{j−1}) (force·length)."""
+        n = self.model.story_count
+        if n == 0:
+            return np.zeros(self.time.size)
+        h = self.model.heights
+        lever = np.diff(np.concatenate([[0.0], h]))
+        return self.story_shear @ lever
+
+    @property
+    def foundation_slice(self) -> slice:
+        return self.model.foundation_slice
+
+    @property
+    def spring_positions(self) -> np.ndarray:
+        return self.model.params["x"][self.foundation_slice]
+
+    @property
+    def uplift(self) -> np.ndarray:
+        """Gap under each foundation spring, max(0, −d) (nt × N) (length)."""
+        f = self.foundation_slice
+        d = self.model.params["d0"][f] + self.deformation[:, f] - self.plastic[:, f]
+        return np.maximum(-d, 0.0)
+
+    @property
+    def leftmost(self) -> int:
+        """Index (among foundation springs) of the spring at the most negative x."""
+        return int(np.argmin(self.spring_positions))
+
+    @property
+    def left_spring_displacement(self) -> np.ndarray:
+        """Downward displacement of the base over the leftmost spring, from rest (length).
+
+        Negative when the base rises there (uplift), as plotted in Ewing's Figs. 4, 5, 7–10.
+        """
+        return self.deformation[:, self.foundation_slice][:, self.leftmost]
+
+    @cached_property
+    def contact_length(self) -> np.ndarray:
+        """Length of base in contact (length)."""
+        if self.model.layout is None:
+            return np.zeros(self.time.size)
+        f = self.foundation_slice
+        return np.array([contact_length(self.model, e, ep) for e, ep in
+                         zip(self.deformation[:, f], self.plastic[:, f])])
+
+    @property
+    def settlement(self) -> np.ndarray:
+        """Settlement of the base centre, −V (length, down)."""
+        return -self.V
+
+    # ---- energy -----------------------------------------------------------------------------
+    def energy_of(self, name: str) -> np.ndarray:
+        return self.energy[:, ENERGY_NAMES.index(name)]
+
+    @property
+    def energy_residual(self) -> np.ndarray:
+        """Stored + dissipated − input − initial total: zero for a closed balance (energy)."""
+        e = self.energy
+        total = e[:, 1:].sum(axis=1) - e[:, 0]
+        return total - total[0]
+
+    @property
+    def energy_balance_error(self) -> float:
+        """max |residual| / max(max input, initial energy): the balance's relative error."""
+        e = self.energy
+        scale = max(np.max(np.abs(e[:, 0])), abs(e[0, 1:].sum()), 1e-300)
+        return float(np.max(np.abs(self.energy_residual)) / scale)
+
+    # ---- peaks ------------------------------------------------------------------------------
+    @cached_property
+    def peaks(self) -> dict[str, float]:
+        """Peak values over the whole run (tracked at every step, interpolated between)."""
+        pk = self.raw_peaks
+        f = self.foundation_slice
+        n0 = kn.N_PEAK_SCALARS
+        gap = pk[n0::2][f]
+        force = pk[n0 + 1::2]
+        out = {
+            "u": max(abs(pk[kn.P_UMIN]), abs(pk[kn.P_UMAX])) if self.model.story_count else 0.0,
+            "theta": max(abs(pk[kn.P_THMIN]), abs(pk[kn.P_THMAX])),
+            "V_min": pk[kn.P_VMIN],
+            "V_max": pk[kn.P_VMAX],
+            "base_shear": float(np.max(np.abs(self.base_shear))),
+            "overturning_moment": float(np.max(np.abs(self.overturning_moment))),
+        }
+        if self.model.story_count:
+            out["story_drift"] = [float(v) for v in pk[n0::2][:self.model.story_count]]
+        if self.model.layout is not None:
+            out["uplift_left"] = max(float(gap[self.leftmost]), 0.0)
+            out["uplift_max"] = max(float(np.max(gap)), 0.0)
+            out["spring_force_max"] = float(np.max(force[f]))
+            out["residual_settlement"] = float(-self.V[-1])
+            out["plastic_settlement_max"] = float(np.max(self.plastic[-1, f]))
+            out["plastic_settlement_mean"] = float(np.mean(self.plastic[-1, f]))
+            out["min_contact_length"] = float(np.min(self.contact_length))
+        out["energy_balance_error"] = self.energy_balance_error
+        return {k: (float(v) if not isinstance(v, list) else v) for k, v in out.items()}
+
+    def summary(self) -> dict:
+        """One-line summary: the peaks that matter, with units and provenance essentials."""
+        u = self.model.scene.units
+        pk = self.peaks
+        out = {
+            "scene": self.model.scene.name,
+            "integrator": self.info.get("integrator"),
+            "dt": self.info.get("dt"),
+            "units": u.name,
+            "peak_u": pk["u"],
+            "peak_theta": pk["theta"],
+            "peak_base_shear": pk["base_shear"],
+        }
+        if "uplift_left" in pk:
+            out["peak_uplift_left"] = pk["uplift_left"]
+            out["residual_settlement"] = pk["residual_settlement"]
+        out["energy_balance_error"] = pk["energy_balance_error"]
+        return out
+
+    def summary_line(self) -> str:
+        s = self.summary()
+        u = self.model.scene.units
+        text = (f"{s['scene']}: peak u = {s['peak_u']:.4g} {u.length}, "
+                f"peak theta = {s['peak_theta']:.4g} rad")
+        if "peak_uplift_left" in s:
+            text += (f", uplift of leftmost spring = {s['peak_uplift_left']:.4g} {u.length}, "
+                     f"residual settlement = {s['residual_settlement']:.4g} {u.length}")
+        return text
+
+    # ---- files ------------------------------------------------------------------------------
+    def save(self, path: str | Path, *, csv: bool = False) -> list[Path]:
+        """Write one NetCDF file (and a CSV of the scalar histories if ``csv``); atomic."""
+        path = Path(path)
+        u = self.model.scene.units
+        L, F = u.length, u.force
+        t = ("time",)
+        ts = ("time", "spring")
+        variables = {
+            "time": (t, self.time, {"units": "s"}),
+            "q": (("time", "dof"), self.q, {"dofs": list(self.dofs.names)}),
+            "qd": (("time", "dof"), self.qd, {"dofs": list(self.dofs.names)}),
+            "u": (t, self.u, {"units": L, "long_name": "superstructure deformation (eq. 7)"}),
+            "x": (t, self.x, {"units": L, "long_name": "top displacement relative to ground"}),
+            "X": (t, self.X, {"units": L, "long_name": "absolute top displacement"}),
+            "theta": (t, self.theta, {"units": "rad"}),
+            "V": (t, self.V, {"units": L, "long_name": "vertical displacement of O, up"}),
+            "base_shear": (t, self.base_shear, {"units": F}),
+            "overturning_moment": (t, self.overturning_moment, {"units": f"{F}*{L}"}),
+            "contact_length": (t, self.contact_length, {"units": L}),
+            "spring_deformation": (ts, self.deformation, {"units": L}),
+            "spring_force": (ts, self.force, {"units": F}),
+            "spring_mode": (ts, self.mode.astype(np.int8),
+                            {"meaning": json.dumps({str(k): v for k, v in
+                                                    sp.MODE_NAMES[sp.UPLIFT].items()})}),
+            "plastic_deformation": (ts, self.plastic, {"units": L}),
+            "spring_position": (("spring",), self.model.params["x"], {"units": L}),
+            "spring_stiffness": (("spring",), self.model.params["k"] + self.model.params["kh"],
+                                 {"units": f"{F}/{L}"}),
+            "spring_static_force": (("spring",), self.model.params["f0"], {"units": F}),
+            "spring_kind": (("spring",), self.model.kind,
+                            {"meaning": "0 story, 1 uplift, 2 bonded"}),
+        }
+        for i, name in enumerate(ENERGY_NAMES):
+            variables[f"energy_{name}"] = (t, self.energy[:, i], {"units": f"{F}*{L}"})
+        attrs = {
+            "title": self.model.scene.title,
+            "scene": self.model.scene.name,
+            "units": u.name,
+            "gravity": u.gravity,
+            "peaks": self.peaks,
+            "info": self.info,
+            "provenance": self.provenance,
+            "Conventions": "upliftlab-1",
+        }
+        written = [write_netcdf(path, variables, attrs)]
+        if csv:
+            cols = {"time": self.time, "u": self.u, "x": self.x, "theta": self.theta,
+                    "V": self.V, "base_shear": self.base_shear,
+                    "overturning_moment": self.overturning_moment,
+                    "contact_length": self.contact_length}
+            if self.model.layout is not None:
+                cols["left_spring_displacement"] = self.left_spring_displacement
+            written.append(write_csv(path.with_suffix(".csv"), cols,
+                                     header=f"{self.model.scene.title}\nunits {u.name}"))
+        return written
+
+
+def ground_displacement(acceleration_g: np.ndarray, dt: float, g: float,
+                        times: np.ndarray) -> np.ndarray:
+    """X_g at ``times`` for piecewise-linear acceleration (exact at the samples) (length)."""
+    a = np.append(acceleration_g, 0.0) * g
+    v = np.concatenate([[0.0], np.cumsum(0.5 * dt * (a[1:] + a[:-1]))])
+    d = np.concatenate([[0.0], np.cumsum(dt * v[:-1] + dt * dt * (2 * a[:-1] + a[1:]) / 6.0)])
+    tk = np.arange(a.size) * dt
+    if math.isclose(float(tk[-1]), 0.0):
+        return np.zeros_like(times)
+    last = tk[-1]
+    extra = np.clip(times - last, 0.0, None)
+    return np.interp(times, tk, d) + extra * v[-1]

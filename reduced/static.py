@@ -1,0 +1,202 @@
+"""Static analyses of the reduced model: equilibrium states, pushovers and uplift onset.
+
+They use the same spring laws as the dynamics (no dashpots, since velocities are zero), with the
+history (plastic settlement) committed after each converged increment.
+
+* :func:`rocking_pushover` — rigid base rotated by θ at constant vertical load (anchor §3):
+  moment, settlement and contact length against θ, monotonic or cyclic.
+* :func:`uplift_onset_force` — the lateral force at the top mass that first separates a spring.
+* :func:`initial_state` — the state a free vibration starts from: a base rotation with the
+  superstructure undeformed, or a top displacement held by a lateral force.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..checks import InputError
+from . import kernels as kn
+from . import springs as sp
+from .model import ReducedModel
+
+__all__ = ["Pushover", "rocking_pushover", "uplift_onset_force", "initial_state",
+           "contact_length", "foundation_moment"]
+
+
+def _forces(model: ReducedModel, q: np.ndarray, hist: np.ndarray):
+    """(A s + K_G q, spring tangents, total spring forces, deformations) at rest."""
+    ns, n = model.spring_count, model.mass.size
+    Ai, Av = model.compressed_compatibility
+    fint, kt, ct = np.zeros(n), np.zeros(ns), np.zeros(ns)
+    e, ed = np.zeros(ns), np.zeros(ns)
+    modes = np.zeros(ns, np.int64)
+    kn.internal_force(q, np.zeros(n), Ai, Av, model.params, model.geometric, hist, e, ed, fint,
+                      kt, ct, modes, np.zeros(ns), np.zeros(ns))
+    P = model.params
+    law = [kn.force_in_mode(m, P[j], e[j], 0.0, hist[j]["ep"], 0.0)[0] for j, m in enumerate(modes)]
+    total = np.array(law) + np.where(P["kind"] == sp.STORY, 0.0, P["f0"])
+    return fint, kt, total, e, modes
+
+
+def foundation_moment(model: ReducedModel, spring_forces: np.ndarray) -> float:
+    """M = Σ x_i F_i of the foundation springs about O (force·length), positive against +θ."""
+    found = model.foundation_slice
+    return float(np.sum(model.params["x"][found] * spring_forces[found]))
+
+
+def contact_length(model: ReducedModel, e: np.ndarray, ep: np.ndarray) -> float:
+    """Length of base in contact (length): where d(x) > 0, d linear between springs.
+
+    d_i = δ0_i + e_i − ep_i at each spring; beyond the outer springs d is held constant to the
+    edge. Exact for a rigid base on a uniform elastic bed away from the edge strips.
+    """
+    layout = model.layout
+    d = model.params["d0"][model.foundation_slice] + e - ep
+    x = layout.positions
+    b = layout.half_width
+    xs = np.concatenate([[-b], x, [b]])
+    ds = np.concatenate([[d[0]], d, [d[-1]]])
+    total = 0.0
+    for x0, x1, d0, d1 in zip(xs[:-1], xs[1:], ds[:-1], ds[1:]):
+        if d0 > 0 and d1 > 0:
+            total += x1 - x0
+        elif d0 > 0 or d1 > 0:
+            frac = max(d0, d1) / (abs(d0) + abs(d1))
+            total += frac * (x1 - x0)
+    return total
+
+
+@dataclass(frozen=True)
+class Pushover:
+    """A rocking pushover: rotation θ (rad), moment M (force·length), vertical displacement V
+    (length, up), contact length (length), plastic settlement per spring (length)."""
+
+    theta: np.ndarray
+    moment: np.ndarray
+    vertical: np.ndarray
+    contact: np.ndarray
+    plastic: np.ndarray
+    weight: float
+    width: float
+
+
+def _vertical_equilibrium(model: ReducedModel, q: np.ndarray, hist: np.ndarray) -> float:
+    """V at which the foundation carries exactly the weight, for the other DOFs in q."""
+    iv = model.dofs.v
+
+    def residual(v):
+        q[iv] = v
+        return _forces(model, q, hist)[0][iv]  # = −Σ(F − F0): zero at equilibrium
+
+    scale = model.weight / model.layout.vertical_stiffness
+    lo, hi = -scale, scale
+    for _ in range(200):
+        if residual(lo) < 0:
+            break
+        lo *= 2.0
+    for _ in range(200):
+        if residual(hi) > 0:
+            break
+        hi *= 2.0
+    return brentq(residual, lo, hi, xtol=1e-14 * scale, rtol=1e-14, maxiter=500)
+
+
+def rocking_pushover(model: ReducedModel, thetas) -> Pushover:
+    """Rotate the base through ``thetas`` (rad, a path: monotonic or cyclic) at constant weight.
+
+    The superstructure is carried along undeformed (x_j = h_j θ). Plastic settlement is committed
+    after every increment, so the path matters for elasto-plastic springs.
+    """
+    if model.layout is None:
+        raise InputError("foundation.support = 'fixed': a fixed base cannot rock")
+    d = model.dofs
+    thetas = np.asarray(thetas, dtype=float)
+    ns = model.spring_count
+    hist = np.zeros(ns, dtype=sp.HISTORY_DTYPE)
+    q = np.zeros(model.mass.size)
+    out = {k: [] for k in ("moment", "vertical", "contact", "plastic")}
+    for theta in thetas:
+        q[d.theta] = theta
+        for j, dof in enumerate(d.stories):
+            q[dof] = model.heights[j] * theta
+        q[d.v] = _vertical_equilibrium(model, q, hist)
+        _, _, total, e, _ = _forces(model, q, hist)
+        for j in range(model.story_count, ns):
+            kn.commit_step(model.params[j], e[j], 0.0, hist[j], 1)
+        found = model.foundation_slice
+        out["moment"].append(foundation_moment(model, total))
+        out["vertical"].append(q[d.v])
+        out["contact"].append(contact_length(model, e[found], hist["ep"][found]))
+        out["plastic"].append(hist["ep"][found].copy())
+    return Pushover(thetas, np.array(out["moment"]), np.array(out["vertical"]),
+                    np.array(out["contact"]), np.array(out["plastic"]), model.weight,
+                    2.0 * model.layout.half_width)
+
+
+def uplift_onset_force(model: ReducedModel) -> float:
+    """Lateral force at the top mass (force) at which the first spring separates (quasi-static).
+
+    In the bonded range the response is linear: q = K⁻¹ P. The first spring to reach d = 0 sets
+    the force. For two edge springs this is W b/h; for a uniform bed W b/(3h) as N → ∞.
+    """
+    if model.layout is None:
+        raise InputError("foundation.support = 'fixed': a fixed base has no uplift")
+    K, _ = model.bonded_matrices()
+    load = np.zeros(model.mass.size)
+    top = model.dofs.stories[-1] if model.dofs.stories else model.dofs.theta
+    load[top] = 1.0 if model.dofs.stories else model.heights[-1]
+    q = np.linalg.solve(K, load)
+    e = model.A.T @ q
+    rate = e[model.foundation_slice]  # compression per unit force
+    opening = rate < 0
+    delta0 = model.params["d0"][model.foundation_slice]
+    return float(np.min(delta0[opening] / -rate[opening]))
+
+
+def initial_state(model: ReducedModel, *, displacement: float = 0.0,
+                  rotation: float = 0.0) -> np.ndarray:
+    """Displacements a free vibration starts from, at rest.
+
+    ``rotation`` θ₀ (rad): the base rotated with the superstructure undeformed, V from vertical
+    equilibrium (e.g. a block released on its corner). ``displacement`` (length): the top mass
+    displaced relative to the ground and held there by a lateral force at the top, every other
+    DOF in static equilibrium.
+    """
+    q = np.zeros(model.mass.size)
+    d = model.dofs
+    if rotation:
+        if d.theta < 0:
+            raise InputError("motion.rotation needs a rocking base (foundation.support is 'fixed')")
+        q[d.theta] = rotation
+        for j, dof in enumerate(d.stories):
+            q[dof] = model.heights[j] * rotation
+        if model.layout is not None:
+            q[d.v] = _vertical_equilibrium(model, q, np.zeros(model.spring_count,
+                                                                 dtype=sp.HISTORY_DTYPE))
+    if displacement:
+        if not d.stories:
+            raise InputError("motion.displacement needs a flexible structure; use "
+                             "motion.rotation for a rigid one")
+        q = _displaced(model, q, displacement)
+    return q
+
+
+def _displaced(model: ReducedModel, q: np.ndarray, displacement: float) -> np.ndarray:
+    """Static equilibrium with the top mass held at ``displacement`` (Newton, free DOFs)."""
+    top = model.dofs.stories[-1]
+    free = np.array([i for i in range(q.size) if i != top])
+    hist = np.zeros(model.spring_count, dtype=sp.HISTORY_DTYPE)
+    q = q.copy()
+    q[top] = displacement
+    for _ in range(100):
+        fint, kt, _, _, _ = _forces(model, q, hist)
+        r = fint[free]
+        if np.max(np.abs(r)) <= 1e-10 * max(model.weight, 1.0) and _ > 0:
+            return q
+        Kt = (model.A * kt) @ model.A.T + model.geometric
+        q[free] -= np.linalg.solve(Kt[np.ix_(free, free)], r)
+    raise InputError(f"motion.displacement = {displacement:g}: no static equilibrium found "
+                     "(the structure may overturn under the force that holds it there)")
