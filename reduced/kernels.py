@@ -8,8 +8,9 @@ file only, so a law edited in another file would leave stale compiled integrator
 
 Equation of motion (relative to the ground, Ewing eqs. 5–8):
 ``M q̈ = −A s(Aᵀq, Aᵀq̇) − K_G q + L a_g(t)``, with M diagonal, ``s`` the spring laws, ``K_G``
-the optional P-Δ geometric stiffness and ``L = −M r`` the ground load. A is passed by columns
-as (DOF index, value) pairs ``Ai, Av``: every spring touches at most three DOFs.
+the optional P-Δ geometric stiffness and ``L = −M r`` the ground load. Each spring carries its
+column of A in its record (``nnz`` entries ``a0…a2`` at DOFs ``i0…i2``): every spring touches
+two or three DOFs, so e = Aᵀq and the nodal forces A s are gathered and scattered per spring.
 
 Spring parameters are a structured array (:data:`SPRING_DTYPE`), one record per spring, and the
 spring history another (:data:`HISTORY_DTYPE`). Records keep the laws readable (``p.k``,
@@ -44,6 +45,9 @@ from numba import njit
 
 SPRING_DTYPE = np.dtype([
     ("kind", np.int64),   # STORY, UPLIFT or BONDED
+    ("nnz", np.int64),    # how many DOFs the spring connects (its column of A): 2 or 3
+    ("i0", np.int64), ("i1", np.int64), ("i2", np.int64),          # their indices in q
+    ("a0", np.float64), ("a1", np.float64), ("a2", np.float64),    # and the entries of A
     ("k", np.float64),    # stiffness (story: its elastic-plastic part) (force/length)
     ("c", np.float64),    # parallel dashpot (force·s/length)
     ("cimp", np.float64),  # impact dashpot c* (force·s/length)
@@ -58,14 +62,14 @@ SPRING_DTYPE = np.dtype([
     ("gs", np.float64),   # derived: 1/F0 (story: 1/Fy; 0 if elastic) (1/force)
     ("gd", np.float64),   # derived: 1/δ0 (1/length)
     ("share", np.float64),  # derived: c*/(c + c*), the impact dashpot's share
-])
+], align=True)
 
 HISTORY_DTYPE = np.dtype([
     ("ep", np.float64),   # plastic deformation: settlement, or plastic story drift (length)
     ("imp", np.float64),  # 1 while the impact dashpot acts, else 0
     ("e0", np.float64),   # deformation at the last recontact (length)
     ("dz", np.float64),   # impact stroke Δz of the last recontact (length)
-])
+], align=True)
 
 STORY, UPLIFT, BONDED = 0, 1, 2
 SEPARATED, CONTACT, YIELDING, CLIPPED = 0, 1, 2, 3  # foundation modes
@@ -268,28 +272,31 @@ def ground_acceleration(t, ag, dtg):
     return ag[i] * (1.0 - w) + ag[i + 1] * w
 
 
+# The hot loops below gather e = aᵀq and scatter −a f inline: a helper that takes arrays is
+# reference-counted at every call (about 20 ns, ten times the arithmetic), one on records and
+# scalars is not.
+
+
 @njit(cache=True)
-def deformations(q, qd, Ai, Av, e, ed):
+def deformations(q, qd, P, e, ed):
     """e = Aᵀq and ė = Aᵀq̇ (eq. 3)."""
-    for j in range(Ai.shape[0]):
-        s = 0.0
-        sd = 0.0
-        for k in range(Ai.shape[1]):
-            s += Av[j, k] * q[Ai[j, k]]
-            sd += Av[j, k] * qd[Ai[j, k]]
-        e[j] = s
-        ed[j] = sd
+    for j in range(P.size):
+        p = P[j]
+        e[j] = p.a0 * q[p.i0] + p.a1 * q[p.i1]
+        ed[j] = p.a0 * qd[p.i0] + p.a1 * qd[p.i1]
+        if p.nnz == 3:
+            e[j] += p.a2 * q[p.i2]
+            ed[j] += p.a2 * qd[p.i2]
 
 
 @njit(cache=True)
-def accelerations(t, q, qd, natural, minv, Ai, Av, P, KG, L, ag, dtg, modes, H, e, ed, qdd):
+def accelerations(t, q, qd, natural, minv, P, KG, L, ag, dtg, modes, H, qdd):
     """q̈ from the equation of motion; returns the powers (input, viscous, impact, plastic).
 
     ``natural``: each spring's mode is decided by its trial state (fixed-step methods, whose
     plastic work is counted at the return map instead); otherwise modes are frozen.
     """
     n = q.size
-    deformations(q, qd, Ai, Av, e, ed)
     a = ground_acceleration(t, ag, dtg)
     pin = 0.0
     for i in range(n):
@@ -300,45 +307,51 @@ def accelerations(t, q, qd, natural, minv, Ai, Av, P, KG, L, ag, dtg, modes, H, 
     pv = 0.0
     pi = 0.0
     pp = 0.0
-    for j in range(Ai.shape[0]):
+    for j in range(P.size):
         p = P[j]
         h = H[j]
-        mode = natural_mode(p, e[j], ed[j], h.ep, h.imp) if natural else modes[j]
-        f, v, im, pl, _, _ = force_in_mode(mode, p, e[j], ed[j], h.ep, h.imp)
+        e = p.a0 * q[p.i0] + p.a1 * q[p.i1]
+        ed = p.a0 * qd[p.i0] + p.a1 * qd[p.i1]
+        if p.nnz == 3:
+            e += p.a2 * q[p.i2]
+            ed += p.a2 * qd[p.i2]
+        mode = natural_mode(p, e, ed, h.ep, h.imp) if natural else modes[j]
+        f, v, im, pl, _, _ = force_in_mode(mode, p, e, ed, h.ep, h.imp)
         pv += v
         pi += im
         pp += pl
-        for k in range(Ai.shape[1]):
-            qdd[Ai[j, k]] -= Av[j, k] * f
+        qdd[p.i0] -= p.a0 * f
+        qdd[p.i1] -= p.a1 * f
+        if p.nnz == 3:
+            qdd[p.i2] -= p.a2 * f
     for i in range(n):
         qdd[i] *= minv[i]
     return pin, pv, pi, 0.0 if natural else pp
 
 
 @njit(cache=True)
-def rk4_step(t, h, q, qd, acc, natural, minv, Ai, Av, P, KG, L, ag, dtg, modes, H, e, ed, k1, k2,
-             k3, k4, qs, qds, q1, qd1, acc1):
+def rk4_step(t, h, q, qd, acc, natural, minv, P, KG, L, ag, dtg, modes, H, k1, k2, k3, k4, qs,
+             qds, q1, qd1, acc1):
     """One classical RK4 step of size h in Nyström form (for q̈ = f(t, q, q̇)).
 
     The energy accumulators ``acc`` ride along as extra RK4 components.
     """
     n = q.size
-    p1 = accelerations(t, q, qd, natural, minv, Ai, Av, P, KG, L, ag, dtg, modes, H, e, ed, k1)
+    p1 = accelerations(t, q, qd, natural, minv, P, KG, L, ag, dtg, modes, H, k1)
     for i in range(n):
         qs[i] = q[i] + 0.5 * h * qd[i]
         qds[i] = qd[i] + 0.5 * h * k1[i]
-    p2 = accelerations(t + 0.5 * h, qs, qds, natural, minv, Ai, Av, P, KG, L, ag, dtg, modes, H,
-                       e, ed, k2)
+    p2 = accelerations(t + 0.5 * h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes,
+                       H, k2)
     for i in range(n):
         qs[i] = q[i] + 0.5 * h * qd[i] + 0.25 * h * h * k1[i]
         qds[i] = qd[i] + 0.5 * h * k2[i]
-    p3 = accelerations(t + 0.5 * h, qs, qds, natural, minv, Ai, Av, P, KG, L, ag, dtg, modes, H,
-                       e, ed, k3)
+    p3 = accelerations(t + 0.5 * h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes,
+                       H, k3)
     for i in range(n):
         qs[i] = q[i] + h * qd[i] + 0.5 * h * h * k2[i]
         qds[i] = qd[i] + h * k3[i]
-    p4 = accelerations(t + h, qs, qds, natural, minv, Ai, Av, P, KG, L, ag, dtg, modes, H, e, ed,
-                       k4)
+    p4 = accelerations(t + h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes, H, k4)
     for i in range(n):
         q1[i] = q[i] + h * qd[i] + h * h / 6.0 * (k1[i] + k2[i] + k3[i])
         qd1[i] = qd[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
@@ -394,10 +407,10 @@ def hermite_stationary(h, y0, d0, y1, d1):
 
 
 @njit(cache=True)
-def validity_between(j, s, h, P, modes, H, e0, ed0, e1, ed1):
-    """Validity of spring j at fraction s of the step, on the Hermite interpolant of e."""
-    e, ed = hermite(s, h, e0[j], ed0[j], e1[j], ed1[j])
-    return validity(modes[j], P[j], e, ed, H[j])
+def validity_between(s, h, mode, p, hist, e0, ed0, e1, ed1):
+    """Validity of a spring at fraction s of the step, on the Hermite interpolant of its e."""
+    e, ed = hermite(s, h, e0, ed0, e1, ed1)
+    return validity(mode, p, e, ed, hist)
 
 
 @njit(cache=True)
@@ -445,7 +458,7 @@ def first_crossing(h, P, modes, H, e0, ed0, e1, ed1, g0):
         r3 = -b / (3.0 * a) if abs(a) > 1e-300 else 2.0
         for s in (0.5, r1, r2, r3):
             if 0.0 < s < min(s_neg, best):
-                g = validity_between(j, s, h, P, modes, H, e0, ed0, e1, ed1)
+                g = validity_between(s, h, modes[j], P[j], H[j], e0[j], ed0[j], e1[j], ed1[j])
                 if g < -SWITCH_TOL:
                     s_neg, g_neg = s, g
         if s_neg >= best:
@@ -454,19 +467,19 @@ def first_crossing(h, P, modes, H, e0, ed0, e1, ed1, g0):
         for s in (0.5, r1, r2, r3):
             if lo < s < s_neg:
                 lo = s
-        best = interpolant_root(j, lo, s_neg, max(-0.5 * OVERSHOOT_TOL, 0.5 * g_neg), 0.0, h, P,
-                                modes, H, e0, ed0, e1, ed1)
+        best = interpolant_root(lo, s_neg, max(-0.5 * OVERSHOOT_TOL, 0.5 * g_neg), 0.0, h,
+                                modes[j], P[j], H[j], e0[j], ed0[j], e1[j], ed1[j])
         beyond, spring = s_neg, j
     return best, beyond, spring
 
 
 @njit(cache=True)
-def interpolant_root(j, lo, hi, target, shift, h, P, modes, H, e0, ed0, e1, ed1):
-    """Fraction s in (lo, hi] where spring j's interpolated validity, plus ``shift``, drops
+def interpolant_root(lo, hi, target, shift, h, mode, p, hist, e0, ed0, e1, ed1):
+    """Fraction s in (lo, hi] where a spring's interpolated validity, plus ``shift``, drops
     below ``target``: Illinois on the interpolant to 1e-9 of the step, ending on the far side
     (``hi`` if it does not drop within the bracket)."""
-    f_lo = validity_between(j, lo, h, P, modes, H, e0, ed0, e1, ed1) + shift - target
-    f_hi = validity_between(j, hi, h, P, modes, H, e0, ed0, e1, ed1) + shift - target
+    f_lo = validity_between(lo, h, mode, p, hist, e0, ed0, e1, ed1) + shift - target
+    f_hi = validity_between(hi, h, mode, p, hist, e0, ed0, e1, ed1) + shift - target
     if f_hi >= 0.0 or f_lo < 0.0:
         return hi
     side = 0
@@ -475,7 +488,7 @@ def interpolant_root(j, lo, hi, target, shift, h, P, modes, H, e0, ed0, e1, ed1)
             break
         s = hi - f_hi * (hi - lo) / (f_hi - f_lo)
         s = min(max(s, lo + 1e-3 * (hi - lo)), hi - 1e-3 * (hi - lo))
-        f = validity_between(j, s, h, P, modes, H, e0, ed0, e1, ed1) + shift - target
+        f = validity_between(s, h, mode, p, hist, e0, ed0, e1, ed1) + shift - target
         if f < 0.0:
             hi, f_hi = s, f
             if side == -1:
@@ -492,7 +505,7 @@ def interpolant_root(j, lo, hi, target, shift, h, P, modes, H, e0, ed0, e1, ed1)
 
 
 @njit(cache=True)
-def locate_switch(t, h, s_est, s_past, spring, q, qd, acc, minv, Ai, Av, P, KG, L, ag, dtg,
+def locate_switch(t, h, s_est, s_past, spring, q, qd, acc, minv, P, KG, L, ag, dtg,
                   modes, H, e0, ed0, e1, ed1, e, ed, k1, k2, k3, k4, qs, qds, q1, qd1, acc1,
                   t_tol, counters):
     """Shortest step that crosses a switch, re-integrated by RK4 from the step start.
@@ -511,11 +524,11 @@ def locate_switch(t, h, s_est, s_past, spring, q, qd, acc, minv, Ai, Av, P, KG, 
     known_hi = False
     tau = min(max(s_est * h, t_tol), h)
     for _ in range(60):
-        rk4_step(t, tau, q, qd, acc, False, minv, Ai, Av, P, KG, L, ag, dtg, modes, H, e, ed, k1,
+        rk4_step(t, tau, q, qd, acc, False, minv, P, KG, L, ag, dtg, modes, H, k1,
                  k2, k3, k4, qs, qds, q1, qd1, acc1)
         counters[1] += 1
         counters[2] += 4
-        deformations(q1, qd1, Ai, Av, e, ed)
+        deformations(q1, qd1, P, e, ed)
         g = validity(modes[j], P[j], e[j], ed[j], H[j])
         g_all = min_validity(P, modes, H, e, ed)
         if g_all < -OVERSHOOT_TOL and g >= -OVERSHOOT_TOL:
@@ -534,13 +547,13 @@ def locate_switch(t, h, s_est, s_past, spring, q, qd, acc, minv, Ai, Av, P, KG, 
             if known_hi:
                 break
             return -1.0
-        shift = g - validity_between(j, tau / h, h, P, modes, H, e0, ed0, e1, ed1)
-        s_new = interpolant_root(j, lo / h, hi / h, target, shift, h, P, modes, H, e0, ed0, e1,
-                                 ed1)
+        shift = g - validity_between(tau / h, h, modes[j], P[j], H[j], e0[j], ed0[j], e1[j], ed1[j])
+        s_new = interpolant_root(lo / h, hi / h, target, shift, h, modes[j], P[j], H[j], e0[j],
+                                 ed0[j], e1[j], ed1[j])
         tau = s_new * h
         if not lo < tau < hi or (tau == hi and known_hi):
             tau = 0.5 * (lo + hi)  # the corrected interpolant gives nothing better: bisect
-    rk4_step(t, hi, q, qd, acc, False, minv, Ai, Av, P, KG, L, ag, dtg, modes, H, e, ed, k1, k2,
+    rk4_step(t, hi, q, qd, acc, False, minv, P, KG, L, ag, dtg, modes, H, k1, k2,
              k3, k4, qs, qds, q1, qd1, acc1)
     counters[2] += 4
     return hi
@@ -649,11 +662,11 @@ def current_plastic(mode, p, e, ep):
 
 
 @njit(cache=True)
-def record(k, t, q, qd, acc, Ai, Av, P, modes, H, minv, KG, weight, iv, e_ref, e, ed, out_t,
+def record(k, t, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e, ed, out_t,
            out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy):
     """Store the state at output index k."""
     n = q.size
-    deformations(q, qd, Ai, Av, e, ed)
+    deformations(q, qd, P, e, ed)
     out_t[k] = t
     kinetic = 0.0
     for i in range(n):
@@ -724,7 +737,7 @@ def commit_all(P, modes, H, contact, e, ed):
 
 
 @njit(cache=True)
-def integrate_events(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dtg, weight, ith,
+def integrate_events(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, ith,
                      iv, n_story, max_switches, out_t, out_q, out_qd, out_e, out_f, out_mode,
                      out_ep, out_energy, peaks, counters):
     """RK4 with switch location. ``counters`` = [switches, trial steps spent locating, rhs calls].
@@ -734,7 +747,7 @@ def integrate_events(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dt
     at the switch (:func:`locate_switch`); the spring is switched there and the step goes on.
     While impact dashpots act, steps are capped at their stable length.
     """
-    ns, n = Ai.shape[0], q0.size
+    ns, n = P.size, q0.size
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
     es, eds = np.zeros(ns), np.zeros(ns)
     g_start, gv = np.zeros(ns), np.zeros(ns)  # validity at the step start; scratch
@@ -744,12 +757,12 @@ def integrate_events(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dt
     acc, acc1 = np.zeros(N_ACC), np.zeros(N_ACC)
     H = np.zeros(ns, dtype=HISTORY_DTYPE)
     modes = np.zeros(ns, dtype=np.int64)
-    deformations(q, qd, Ai, Av, e0, ed0)
+    deformations(q, qd, P, e0, ed0)
     initial_modes(P, H, modes, e0, ed0)
     for j in range(ns):
         g_start[j] = validity(modes[j], P[j], e0[j], ed0[j], H[j])
     e_ref = static_strain_energy(P)
-    record(0, 0.0, q, qd, acc, Ai, Av, P, modes, H, minv, KG, weight, iv, e_ref, e1, ed1, out_t,
+    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e1, ed1, out_t,
            out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
     for step in range(nsteps):
         t = step * dt
@@ -758,21 +771,21 @@ def integrate_events(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dt
         switches = 0
         while t_end - t > t_tol:
             h = min(t_end - t, impact_step_cap(P, H))
-            rk4_step(t, h, q, qd, acc, False, minv, Ai, Av, P, KG, L, ag, dtg, modes, H, e1, ed1,
+            rk4_step(t, h, q, qd, acc, False, minv, P, KG, L, ag, dtg, modes, H,
                      k1, k2, k3, k4, qs, qds, q1, qd1, acc1)
             counters[2] += 4
-            deformations(q1, qd1, Ai, Av, e1, ed1)
+            deformations(q1, qd1, P, e1, ed1)
             gv[:] = g_start
             s_est, s_past, spring = first_crossing(h, P, modes, H, e0, ed0, e1, ed1, gv)
             crossed = False
             if spring >= 0:
-                h_cross = locate_switch(t, h, s_est, s_past, spring, q, qd, acc, minv, Ai, Av, P,
+                h_cross = locate_switch(t, h, s_est, s_past, spring, q, qd, acc, minv, P,
                                         KG, L, ag, dtg, modes, H, e0, ed0, e1, ed1, es, eds, k1,
                                         k2, k3, k4, qs, qds, q1, qd1, acc1, t_tol, counters)
                 if h_cross > 0.0:
                     h = h_cross
                     crossed = True
-                deformations(q1, qd1, Ai, Av, e1, ed1)
+                deformations(q1, qd1, P, e1, ed1)
             if not (np.all(np.isfinite(q1)) and np.all(np.isfinite(qd1))):
                 counters[0] = step
                 return NONFINITE
@@ -795,18 +808,18 @@ def integrate_events(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dt
             else:
                 g_start[:] = gv
         if (step + 1) % stride == 0:
-            record((step + 1) // stride, t_end, q, qd, acc, Ai, Av, P, modes, H, minv, KG,
+            record((step + 1) // stride, t_end, q, qd, acc, P, modes, H, minv, KG,
                    weight, iv, e_ref, e1, ed1, out_t, out_q, out_qd, out_e, out_f, out_mode,
                    out_ep, out_energy)
     return OK
 
 
 @njit(cache=True)
-def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dtg, weight, ith, iv,
+def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, ith, iv,
                   n_story, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy,
                   peaks, counters):
     """Classical RK4 with trial spring laws and end-of-step return mapping."""
-    ns, n = Ai.shape[0], q0.size
+    ns, n = P.size, q0.size
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
     k1, k2, k3, k4 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
     qs, qds, q1, qd1 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
@@ -815,19 +828,19 @@ def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dtg, 
     H = np.zeros(ns, dtype=HISTORY_DTYPE)
     modes = np.zeros(ns, dtype=np.int64)
     contact = np.ones(ns, dtype=np.int64)
-    deformations(q, qd, Ai, Av, e0, ed0)
+    deformations(q, qd, P, e0, ed0)
     initial_modes(P, H, modes, e0, ed0)
     e_ref = static_strain_energy(P)
-    record(0, 0.0, q, qd, acc, Ai, Av, P, modes, H, minv, KG, weight, iv, e_ref, e1, ed1, out_t,
+    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e1, ed1, out_t,
            out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
     for step in range(nsteps):
-        rk4_step(step * dt, dt, q, qd, acc, True, minv, Ai, Av, P, KG, L, ag, dtg, modes, H, e1,
-                 ed1, k1, k2, k3, k4, qs, qds, q1, qd1, acc1)
+        rk4_step(step * dt, dt, q, qd, acc, True, minv, P, KG, L, ag, dtg, modes, H, k1, k2, k3,
+                 k4, qs, qds, q1, qd1, acc1)
         counters[2] += 4
         if not (np.all(np.isfinite(q1)) and np.all(np.isfinite(qd1))):
             counters[0] = step
             return NONFINITE
-        deformations(q1, qd1, Ai, Av, e1, ed1)
+        deformations(q1, qd1, P, e1, ed1)
         track_peaks(dt, q, qd, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith, iv, peaks)
         q[:] = q1
         qd[:] = qd1
@@ -836,14 +849,14 @@ def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dtg, 
         ed0[:] = ed1
         acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
         if (step + 1) % stride == 0:
-            record((step + 1) // stride, (step + 1) * dt, q, qd, acc, Ai, Av, P, modes, H, minv,
+            record((step + 1) // stride, (step + 1) * dt, q, qd, acc, P, modes, H, minv,
                    KG, weight, iv, e_ref, e1, ed1, out_t, out_q, out_qd, out_e, out_f, out_mode,
                    out_ep, out_energy)
     return OK
 
 
 @njit(cache=True)
-def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dtg, weight, ith, iv,
+def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, ith, iv,
                    n_story, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy,
                    peaks, counters):
     """Adams–Bashforth–Moulton 4 (PECE) on y = (q, q̇, energy), started by three RK4 steps.
@@ -851,7 +864,7 @@ def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dtg,
     Predictor AB4: y* = yₙ + h/24 (55fₙ − 59fₙ₋₁ + 37fₙ₋₂ − 9fₙ₋₃).
     Corrector AM4: yₙ₊₁ = yₙ + h/24 (9f* + 19fₙ − 5fₙ₋₁ + fₙ₋₂).
     """
-    ns, n = Ai.shape[0], q0.size
+    ns, n = P.size, q0.size
     m = 2 * n + N_ACC
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
     k1, k2, k3, k4 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
@@ -864,15 +877,14 @@ def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dtg,
     H = np.zeros(ns, dtype=HISTORY_DTYPE)
     modes = np.zeros(ns, dtype=np.int64)
     contact = np.ones(ns, dtype=np.int64)
-    deformations(q, qd, Ai, Av, e0, ed0)
+    deformations(q, qd, P, e0, ed0)
     initial_modes(P, H, modes, e0, ed0)
     e_ref = static_strain_energy(P)
-    record(0, 0.0, q, qd, acc, Ai, Av, P, modes, H, minv, KG, weight, iv, e_ref, e1, ed1, out_t,
+    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e1, ed1, out_t,
            out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
     for step in range(nsteps):
         t = step * dt
-        pw = accelerations(t, q, qd, True, minv, Ai, Av, P, KG, L, ag, dtg, modes, H, e1, ed1,
-                           k1)
+        pw = accelerations(t, q, qd, True, minv, P, KG, L, ag, dtg, modes, H, k1)
         counters[2] += 1
         for r in range(3, 0, -1):
             F[r, :] = F[r - 1, :]
@@ -882,8 +894,8 @@ def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dtg,
         for c in range(N_ACC):
             F[0, 2 * n + c] = pw[c]
         if step < 3:
-            rk4_step(t, dt, q, qd, acc, True, minv, Ai, Av, P, KG, L, ag, dtg, modes, H, e1, ed1,
-                     k1, k2, k3, k4, qs, qds, q1, qd1, acc1)
+            rk4_step(t, dt, q, qd, acc, True, minv, P, KG, L, ag, dtg, modes, H, k1, k2, k3, k4,
+                     qs, qds, q1, qd1, acc1)
             counters[2] += 4
         else:
             for c in range(m):
@@ -893,8 +905,7 @@ def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dtg,
             for i in range(n):
                 qs[i] = ystar[i]
                 qds[i] = ystar[n + i]
-            pw = accelerations(t + dt, qs, qds, True, minv, Ai, Av, P, KG, L, ag, dtg, modes, H,
-                               e1, ed1, k2)
+            pw = accelerations(t + dt, qs, qds, True, minv, P, KG, L, ag, dtg, modes, H, k2)
             counters[2] += 1
             for i in range(n):
                 fstar[i] = qds[i]
@@ -912,7 +923,7 @@ def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dtg,
         if not (np.all(np.isfinite(q1)) and np.all(np.isfinite(qd1))):
             counters[0] = step
             return NONFINITE
-        deformations(q1, qd1, Ai, Av, e1, ed1)
+        deformations(q1, qd1, P, e1, ed1)
         track_peaks(dt, q, qd, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith, iv, peaks)
         q[:] = q1
         qd[:] = qd1
@@ -921,7 +932,7 @@ def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dtg,
         ed0[:] = ed1
         acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
         if (step + 1) % stride == 0:
-            record((step + 1) // stride, (step + 1) * dt, q, qd, acc, Ai, Av, P, modes, H, minv,
+            record((step + 1) // stride, (step + 1) * dt, q, qd, acc, P, modes, H, minv,
                    KG, weight, iv, e_ref, e1, ed1, out_t, out_q, out_qd, out_e, out_f, out_mode,
                    out_ep, out_energy)
     return OK
@@ -933,14 +944,14 @@ def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dtg,
 
 
 @njit(cache=True)
-def internal_force(q, qd, Ai, Av, P, KG, H, e, ed, fint, kt, ct, modes, fd, fimp):
+def internal_force(q, qd, P, KG, H, e, ed, fint, kt, ct, modes, fd, fimp):
     """Internal force A s + K_G q, spring tangents and trial modes (natural laws).
 
     Also fills ``fd`` (dashpot force of each spring) and ``fimp`` (the impact dashpot's share).
     Returns (viscous power, impact power).
     """
     n = q.size
-    deformations(q, qd, Ai, Av, e, ed)
+    deformations(q, qd, P, e, ed)
     for i in range(n):
         fint[i] = 0.0
         for k in range(n):
@@ -956,13 +967,15 @@ def internal_force(q, qd, Ai, Av, P, KG, H, e, ed, fint, kt, ct, modes, fd, fimp
         pv += v
         pi += im
         kt[j], ct[j] = tangent(mode, p, h.imp)
-        for k in range(Ai.shape[1]):
-            fint[Ai[j, k]] += Av[j, k] * f
+        fint[p.i0] += p.a0 * f
+        fint[p.i1] += p.a1 * f
+        if p.nnz == 3:
+            fint[p.i2] += p.a2 * f
     return pv, pi
 
 
 @njit(cache=True)
-def newmark_residual(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, Ai, Av, P, KG, L, ag,
+def newmark_residual(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, P, KG, L, ag,
                      dtg, H, modes, e, ed, kt, ct, fd, fimp, q1, qd1, qdd1, fint1, R):
     """Residual of the HHT-α step at trial q₁ (fills q̇₁, q̈₁, f₁); returns (|R|∞, force scale)."""
     n = q.size
@@ -971,7 +984,7 @@ def newmark_residual(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, Ai, Av, 
     for i in range(n):
         qdd1[i] = (q1[i] - q[i] - h * qd[i]) / (beta * h * h) - (0.5 / beta - 1.0) * qdd[i]
         qd1[i] = qd[i] + h * ((1.0 - gamma) * qdd[i] + gamma * qdd1[i])
-    internal_force(q1, qd1, Ai, Av, P, KG, H, e, ed, fint1, kt, ct, modes, fd, fimp)
+    internal_force(q1, qd1, P, KG, H, e, ed, fint1, kt, ct, modes, fd, fimp)
     rnorm = 0.0
     scale = 0.0
     for i in range(n):
@@ -984,24 +997,27 @@ def newmark_residual(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, Ai, Av, 
 
 
 @njit(cache=True)
-def newmark_jacobian(h, alpha, beta, gamma, minv, Ai, Av, KG, kt, ct, J):
+def newmark_jacobian(h, alpha, beta, gamma, minv, P, KG, kt, ct, J):
     """J = M/(βh²) + (1+α)(A diag(k_t + γ c_t/(βh)) Aᵀ + K_G)."""
     n = minv.size
     for i in range(n):
         for k in range(n):
             J[i, k] = (1 + alpha) * KG[i, k]
         J[i, i] += 1.0 / (minv[i] * beta * h * h)
-    for j in range(Ai.shape[0]):
+    for j in range(P.size):
         stiff = (1 + alpha) * (kt[j] + gamma / (beta * h) * ct[j])
         if stiff == 0.0:
             continue
-        for a in range(Ai.shape[1]):
-            for b in range(Ai.shape[1]):
-                J[Ai[j, a], Ai[j, b]] += Av[j, a] * Av[j, b] * stiff
+        p = P[j]
+        idx = (p.i0, p.i1, p.i2)
+        val = (p.a0, p.a1, p.a2)
+        for a in range(p.nnz):
+            for b in range(p.nnz):
+                J[idx[a], idx[b]] += val[a] * val[b] * stiff
 
 
 @njit(cache=True)
-def newmark_substep(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, Ai, Av, P, KG, L, ag, dtg,
+def newmark_substep(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, P, KG, L, ag, dtg,
                     H, modes, e, ed, kt, ct, fd, fimp, tol, fscale, max_iter, q1, qd1, qdd1,
                     fint1):
     """One HHT-α step (α = 0: Newmark average acceleration) by Newton. Returns iterations or −1.
@@ -1019,11 +1035,11 @@ def newmark_substep(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, Ai, Av, P
     for i in range(n):
         q1[i] = q[i] + h * qd[i] + h * h * (0.5 - beta) * qdd[i]
         qscale = max(qscale, abs(q[i]), abs(q1[i]))
-    rnorm, scale = newmark_residual(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, Ai, Av, P,
+    rnorm, scale = newmark_residual(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, P,
                                     KG, L, ag, dtg, H, modes, e, ed, kt, ct, fd, fimp, q1, qd1,
                                     qdd1, fint1, R)
     for it in range(1, max_iter + 1):
-        newmark_jacobian(h, alpha, beta, gamma, minv, Ai, Av, KG, kt, ct, J)
+        newmark_jacobian(h, alpha, beta, gamma, minv, P, KG, kt, ct, J)
         dq = np.linalg.solve(J, R)
         step = 1.0
         trial[:] = q1
@@ -1031,7 +1047,7 @@ def newmark_substep(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, Ai, Av, P
             for i in range(n):
                 q1[i] = trial[i] - step * dq[i]
             new_norm, scale = newmark_residual(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv,
-                                               Ai, Av, P, KG, L, ag, dtg, H, modes, e, ed, kt, ct,
+                                               P, KG, L, ag, dtg, H, modes, e, ed, kt, ct,
                                                fd, fimp, q1, qd1, qdd1, fint1, R)
             if new_norm <= rnorm or new_norm <= tol * max(scale, fscale):
                 break
@@ -1046,7 +1062,7 @@ def newmark_substep(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, Ai, Av, P
 
 
 @njit(cache=True)
-def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, dtg, weight, ith,
+def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, ith,
                       iv, n_story, alpha, tol, fscale, max_iter, max_halvings, out_t, out_q,
                       out_qd, out_e, out_f, out_mode, out_ep, out_energy, peaks, counters):
     """HHT-α (α in [−1/3, 0]; α = 0 is Newmark average acceleration), Newton, step halving.
@@ -1057,7 +1073,7 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, d
     ½(f₀ + f₁)·Δe over the step, so the balance of Newmark closes to the Newton tolerance away
     from switches; HHT's own numerical dissipation is what its balance leaves open.
     """
-    ns, n = Ai.shape[0], q0.size
+    ns, n = P.size, q0.size
     beta = (1.0 - alpha) ** 2 / 4.0
     gamma = 0.5 - alpha
     e, ed = np.zeros(ns), np.zeros(ns)
@@ -1071,12 +1087,12 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, d
     H = np.zeros(ns, dtype=HISTORY_DTYPE)
     modes = np.zeros(ns, dtype=np.int64)
     contact = np.ones(ns, dtype=np.int64)
-    internal_force(q, qd, Ai, Av, P, KG, H, e0, ed0, fint0, kt, ct, modes, fd0, fimp0)
+    internal_force(q, qd, P, KG, H, e0, ed0, fint0, kt, ct, modes, fd0, fimp0)
     a0 = ground_acceleration(0.0, ag, dtg)
     for i in range(n):
         qdd[i] = (L[i] * a0 - fint0[i]) * minv[i]
     e_ref = static_strain_energy(P)
-    record(0, 0.0, q, qd, acc, Ai, Av, P, modes, H, minv, KG, weight, iv, e_ref, e, ed, out_t,
+    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e, ed, out_t,
            out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
     for step in range(nsteps):
         t = step * dt
@@ -1087,7 +1103,7 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, d
             h = min(dt / 2.0**level, t_end - t)
             if t_end - (t + h) <= t_tol:
                 h = t_end - t
-            its = newmark_substep(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, Ai, Av, P,
+            its = newmark_substep(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, P,
                                   KG, L, ag, dtg, H, modes, e, ed, kt, ct, fd1, fimp1, tol,
                                   fscale, max_iter, q1, qd1, qdd1, fint1)
             if its < 0:
@@ -1098,7 +1114,7 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, d
                     return NO_CONVERGENCE
                 continue
             counters[2] += its
-            deformations(q1, qd1, Ai, Av, e1, ed1)
+            deformations(q1, qd1, P, e1, ed1)
             track_peaks(h, q, qd, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith, iv,
                         peaks)
             ga0 = ground_acceleration(t, ag, dtg)
@@ -1126,7 +1142,7 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, Ai, Av, P, KG, L, ag, d
             counters[0] = step
             return NONFINITE
         if (step + 1) % stride == 0:
-            record((step + 1) // stride, t_end, q, qd, acc, Ai, Av, P, modes, H, minv, KG,
+            record((step + 1) // stride, t_end, q, qd, acc, P, modes, H, minv, KG,
                    weight, iv, e_ref, e, ed, out_t, out_q, out_qd, out_e, out_f, out_mode,
                    out_ep, out_energy)
     return OK

@@ -68,20 +68,6 @@ class ReducedModel:
     def g(self) -> float:
         return self.scene.g
 
-    @property
-    def compressed_compatibility(self) -> tuple[np.ndarray, np.ndarray]:
-        """A by columns as (DOF index, value) pairs, shape (n_spring, 3) each: every spring
-        touches at most three DOFs (a story: two floors and θ; a foundation spring: θ and V).
-        Unused slots hold index 0 and value 0."""
-        ns = self.spring_count
-        idx = np.zeros((ns, 3), np.int64)
-        val = np.zeros((ns, 3))
-        for j in range(ns):
-            rows = np.flatnonzero(self.A[:, j])
-            idx[j, :rows.size] = rows
-            val[j, :rows.size] = self.A[rows, j]
-        return idx, val
-
     def bonded_matrices(self, with_impact: bool = False) -> tuple[np.ndarray, np.ndarray]:
         """(K, C) with every spring elastic and in contact: K = A S Aᵀ + K_G (eq. 5)."""
         p = self.params
@@ -125,10 +111,23 @@ def build_model(scene: Scene) -> ReducedModel:
                                             mass[dofs.v])
         tables.append(found)
         weight = s.vertical_weight
-    params = sp.derive_columns(np.concatenate(tables))
+    params = _attach_columns(sp.derive_columns(np.concatenate(tables)), A)
     return ReducedModel(scene=scene, dofs=dofs, mass=mass, A=A, params=params, ground_load=load,
                         geometric=_geometric(dofs, s, masses, heights, g), weight=weight,
                         heights=heights, layout=layout, static_rotation=theta_s)
+
+
+def _attach_columns(params: np.ndarray, A: np.ndarray) -> np.ndarray:
+    """Copy each spring's column of A into its record (nnz entries a0… at DOFs i0…)."""
+    for j in range(params.size):
+        rows = np.flatnonzero(A[:, j])
+        if not 1 <= rows.size <= 3:
+            raise ValueError(f"spring {j} connects {rows.size} DOFs; the kernels take 1 to 3")
+        params["nnz"][j] = max(rows.size, 2)
+        for slot, row in enumerate(rows):
+            params[f"i{slot}"][j] = row
+            params[f"a{slot}"][j] = A[row, j]
+    return params
 
 
 def _masses(dofs: DofMap, s, masses, heights, g) -> tuple[np.ndarray, np.ndarray]:

@@ -100,8 +100,7 @@ def _integrate(model: ReducedModel, motion: Motion, name: str, plan: StepPlan,
     counters = np.zeros(3, np.int64)
     ag = np.append(motion.acceleration * model.g, 0.0)
     minv = 1.0 / model.mass
-    Ai, Av = model.compressed_compatibility
-    common = (q0, qd0, plan.dt, plan.steps, plan.stride, minv, Ai, Av, model.params,
+    common = (q0, qd0, plan.dt, plan.steps, plan.stride, minv, model.params,
               model.geometric, model.ground_load, ag, motion.dt, model.weight, model.dofs.theta,
               model.dofs.v, model.story_count)
     outs = (out["time"], out["q"], out["qd"], out["deformation"], out["force"], out["mode"],

@@ -29,12 +29,11 @@ __all__ = ["Pushover", "rocking_pushover", "uplift_onset_force", "initial_state"
 def _forces(model: ReducedModel, q: np.ndarray, hist: np.ndarray):
     """(A s + K_G q, spring tangents, total spring forces, deformations) at rest."""
     ns, n = model.spring_count, model.mass.size
-    Ai, Av = model.compressed_compatibility
     fint, kt, ct = np.zeros(n), np.zeros(ns), np.zeros(ns)
     e, ed = np.zeros(ns), np.zeros(ns)
     modes = np.zeros(ns, np.int64)
-    kn.internal_force(q, np.zeros(n), Ai, Av, model.params, model.geometric, hist, e, ed, fint,
-                      kt, ct, modes, np.zeros(ns), np.zeros(ns))
+    kn.internal_force(q, np.zeros(n), model.params, model.geometric, hist, e, ed, fint, kt, ct,
+                      modes, np.zeros(ns), np.zeros(ns))
     P = model.params
     law = [kn.force_in_mode(m, P[j], e[j], 0.0, hist[j]["ep"], 0.0)[0] for j, m in enumerate(modes)]
     total = np.array(law) + np.where(P["kind"] == sp.STORY, 0.0, P["f0"])
