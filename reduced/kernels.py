@@ -573,6 +573,28 @@ def apply_switches(P, modes, H, e, ed):
 
 
 @njit(cache=True)
+def log_impacts(t, H, was_imp, ed, impacts, open_impact, counters):
+    """Record impact dampers that switched on (recontact) or locked at time t."""
+    for j in range(H.size):
+        if was_imp[j] == H[j].imp:
+            continue
+        if H[j].imp > 0.0:
+            k = counters[3]
+            if k < impacts.shape[0]:
+                impacts[k, 0] = t
+                impacts[k, 1] = j
+                impacts[k, 2] = ed[j]
+                impacts[k, 3] = np.nan
+                impacts[k, 4] = np.nan
+                open_impact[j] = k
+            counters[3] += 1
+        elif open_impact[j] >= 0:
+            impacts[open_impact[j], 3] = t
+            impacts[open_impact[j], 4] = ed[j]
+            open_impact[j] = -1
+
+
+@njit(cache=True)
 def impact_step_cap(P, H):
     """Largest step while impact dashpots act: the smallest ``imph`` of the active ones."""
     cap = np.inf
@@ -739,8 +761,14 @@ def commit_all(P, modes, H, contact, e, ed):
 @njit(cache=True)
 def integrate_events(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, ith,
                      iv, n_story, max_switches, out_t, out_q, out_qd, out_e, out_f, out_mode,
-                     out_ep, out_energy, peaks, counters):
-    """RK4 with switch location. ``counters`` = [switches, trial steps spent locating, rhs calls].
+                     out_ep, out_energy, peaks, counters, impacts, H):
+    """RK4 with switch location. ``counters`` = [switches, trial steps spent locating, rhs calls,
+    impacts logged]. ``H`` is the spring history (:data:`HISTORY_DTYPE`, zeros at rest); it holds
+    the final history on return, as in every integrator here.
+
+    ``impacts`` (rows × 5) logs each activation of an impact damper: time of recontact, spring,
+    closing velocity v₀, and time and closing velocity when the damper locked (NaN if it never
+    did: the spring separated first, or the run ended).
 
     Within a step every spring keeps its mode, so the right-hand side is smooth and RK4 keeps
     its order. A trial step that leaves a mode anywhere inside (:func:`first_crossing`) is cut
@@ -751,11 +779,12 @@ def integrate_events(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weigh
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
     es, eds = np.zeros(ns), np.zeros(ns)
     g_start, gv = np.zeros(ns), np.zeros(ns)  # validity at the step start; scratch
+    was_imp = np.zeros(ns)
+    open_impact = np.full(ns, -1, dtype=np.int64)
     k1, k2, k3, k4 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
     qs, qds, q1, qd1 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
     q, qd = q0.copy(), qd0.copy()
     acc, acc1 = np.zeros(N_ACC), np.zeros(N_ACC)
-    H = np.zeros(ns, dtype=HISTORY_DTYPE)
     modes = np.zeros(ns, dtype=np.int64)
     deformations(q, qd, P, e0, ed0)
     initial_modes(P, H, modes, e0, ed0)
@@ -798,7 +827,10 @@ def integrate_events(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weigh
             ed0[:] = ed1
             t = t + h if t_end - (t + h) > t_tol else t_end
             if crossed:
+                for j in range(ns):
+                    was_imp[j] = H[j].imp
                 switches += apply_switches(P, modes, H, e0, ed0)
+                log_impacts(t, H, was_imp, ed0, impacts, open_impact, counters)
                 counters[0] += 1
                 if switches > max_switches:
                     counters[1] = step
@@ -817,7 +849,7 @@ def integrate_events(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weigh
 @njit(cache=True)
 def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, ith, iv,
                   n_story, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy,
-                  peaks, counters):
+                  peaks, counters, H):
     """Classical RK4 with trial spring laws and end-of-step return mapping."""
     ns, n = P.size, q0.size
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
@@ -825,7 +857,6 @@ def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, 
     qs, qds, q1, qd1 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
     q, qd = q0.copy(), qd0.copy()
     acc, acc1 = np.zeros(N_ACC), np.zeros(N_ACC)
-    H = np.zeros(ns, dtype=HISTORY_DTYPE)
     modes = np.zeros(ns, dtype=np.int64)
     contact = np.ones(ns, dtype=np.int64)
     deformations(q, qd, P, e0, ed0)
@@ -858,7 +889,7 @@ def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, 
 @njit(cache=True)
 def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, ith, iv,
                    n_story, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy,
-                   peaks, counters):
+                   peaks, counters, H):
     """Adams–Bashforth–Moulton 4 (PECE) on y = (q, q̇, energy), started by three RK4 steps.
 
     Predictor AB4: y* = yₙ + h/24 (55fₙ − 59fₙ₋₁ + 37fₙ₋₂ − 9fₙ₋₃).
@@ -874,7 +905,6 @@ def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight,
     F = np.zeros((4, m))  # derivative history, F[0] newest
     ystar = np.zeros(m)
     fstar = np.zeros(m)
-    H = np.zeros(ns, dtype=HISTORY_DTYPE)
     modes = np.zeros(ns, dtype=np.int64)
     contact = np.ones(ns, dtype=np.int64)
     deformations(q, qd, P, e0, ed0)
@@ -1064,7 +1094,7 @@ def newmark_substep(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, P, KG, L,
 @njit(cache=True)
 def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, ith,
                       iv, n_story, alpha, tol, fscale, max_iter, max_halvings, out_t, out_q,
-                      out_qd, out_e, out_f, out_mode, out_ep, out_energy, peaks, counters):
+                      out_qd, out_e, out_f, out_mode, out_ep, out_energy, peaks, counters, H):
     """HHT-α (α in [−1/3, 0]; α = 0 is Newmark average acceleration), Newton, step halving.
 
     β = (1 − α)²/4, γ = 1/2 − α. A step whose Newton iteration fails is split in halves, up to
@@ -1084,7 +1114,6 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weig
     q1, qd1, qdd, qdd1 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
     fint0, fint1 = np.zeros(n), np.zeros(n)
     acc = np.zeros(N_ACC)
-    H = np.zeros(ns, dtype=HISTORY_DTYPE)
     modes = np.zeros(ns, dtype=np.int64)
     contact = np.ones(ns, dtype=np.int64)
     internal_force(q, qd, P, KG, H, e0, ed0, fint0, kt, ct, modes, fd0, fimp0)

@@ -49,6 +49,7 @@ class Response:
     energy: np.ndarray
     raw_peaks: np.ndarray
     ground_displacement: np.ndarray
+    impacts: np.ndarray = field(default_factory=lambda: np.zeros((0, 5)))
     info: dict = field(default_factory=dict)
     provenance: dict = field(default_factory=dict)
 
@@ -153,6 +154,19 @@ class Response:
     def settlement(self) -> np.ndarray:
         """Settlement of the base centre, −V (length, down)."""
         return -self.V
+
+    @property
+    def impact_log(self) -> dict[str, np.ndarray]:
+        """Each activation of an impact damper (event stepper only): ``time`` of recontact (s),
+        ``spring`` (index among foundation springs), closing velocity ``v0`` (length/s), and
+        ``lock_time``/``lock_velocity`` when the stroke Δz was done (NaN if the spring separated
+        first). ``ratio`` = lock_velocity / v0 is the realised coefficient of restitution."""
+        im = self.impacts
+        spring = im[:, 1].astype(int) - self.model.story_count
+        with np.errstate(invalid="ignore", divide="ignore"):
+            ratio = im[:, 4] / im[:, 2]
+        return {"time": im[:, 0], "spring": spring, "v0": im[:, 2], "lock_time": im[:, 3],
+                "lock_velocity": im[:, 4], "ratio": ratio}
 
     # ---- energy -----------------------------------------------------------------------------
     def energy_of(self, name: str) -> np.ndarray:

@@ -10,6 +10,7 @@ from ..motions import Motion
 from ..results import provenance
 from ..scenes import Scene
 from . import kernels as kn
+from . import springs as sp
 from .integrators import StepPlan, method, time_step
 from .model import ReducedModel, build_model
 from .response import Response, ground_displacement
@@ -97,27 +98,32 @@ def _integrate(model: ReducedModel, motion: Motion, name: str, plan: StepPlan,
     found = model.foundation_slice
     gaps = peaks[kn.N_PEAK_SCALARS::2]  # a view: the gap at rest is −δ0
     gaps[found] = -model.params["d0"][found]
-    counters = np.zeros(3, np.int64)
+    counters = np.zeros(4, np.int64)
     ag = np.append(motion.acceleration * model.g, 0.0)
     minv = 1.0 / model.mass
-    common = (q0, qd0, plan.dt, plan.steps, plan.stride, minv, model.params,
+    params = model.params.view(np.recarray)  # records read as p.k in compiled and plain code
+    history = np.zeros(ns, dtype=sp.HISTORY_DTYPE).view(np.recarray)
+    common = (q0, qd0, plan.dt, plan.steps, plan.stride, minv, params,
               model.geometric, model.ground_load, ag, motion.dt, model.weight, model.dofs.theta,
               model.dofs.v, model.story_count)
     outs = (out["time"], out["q"], out["qd"], out["deformation"], out["force"], out["mode"],
             out["plastic"], out["energy"], peaks, counters)
+    impacts = np.zeros((0, 5))
     if name == "events":
         max_switches = 50 * ns + 1000
-        status = kn.integrate_events(*common, max_switches, *outs)
+        impacts = np.full((max(1000, 20 * ns * int(plan.steps * plan.dt + 1)), 5), np.nan)
+        status = kn.integrate_events(*common, max_switches, *outs, impacts, history)
     elif name == "rk4":
-        status = kn.integrate_rk4(*common, *outs)
+        status = kn.integrate_rk4(*common, *outs, history)
     elif name == "abm4":
-        status = kn.integrate_abm4(*common, *outs)
+        status = kn.integrate_abm4(*common, *outs, history)
     else:
         alpha = 0.0 if name == "newmark" else model.scene.analysis.hht_alpha
         fscale = model.g * float(np.sum(model.mass[list(model.dofs.stories)])) + model.weight
-        status = kn.integrate_newmark(*common, alpha, 1e-10, fscale, 50, 12, *outs)
+        status = kn.integrate_newmark(*common, alpha, 1e-10, fscale, 50, 12, *outs, history)
     _check_status(status, counters, plan, name)
     out["raw_peaks"] = peaks
+    out["impacts"] = impacts[:min(int(counters[3]), impacts.shape[0])].copy()
     return out, counters
 
 

@@ -260,11 +260,21 @@ def _foundation(data, vertical_mass: float) -> Foundation:
             checks.positive(f"foundation.stiffnesses[{i}]", k)
         springs, stiffness = len(positions), float(sum(stiffnesses))
         checks.integer_at_least("foundation.springs (number of custom positions)", springs, 2)
+        given = table.get("springs", None, springs)
+        if given != springs:
+            raise InputError(f"foundation.springs = {given!r}: a custom layout has one spring "
+                             f"per position ({springs}); set it to {springs} or remove it")
+        for key in ("stiffness", "vertical_period"):
+            if table.get(key, None, None) is not None:
+                raise InputError(f"foundation.{key}: a custom layout takes its stiffness from "
+                                 f"foundation.stiffnesses; remove foundation.{key} "
+                                 f"(--set foundation.{key}= removes a key)")
     else:
         default_n = 2 if layout in ("edges", "equivalent") else _MISSING
         springs = table.get("springs", lambda n, v: checks.integer_at_least(n, v, 2), default_n)
         if layout in ("edges", "equivalent") and springs != 2:
-            raise InputError(f"foundation.springs = {springs}: layout {layout!r} has exactly 2")
+            raise InputError(f"foundation.springs = {springs}: layout {layout!r} has exactly 2 "
+                             "springs; set foundation.springs = 2 or remove it")
         if table.has("stiffness") and table.has("vertical_period"):
             raise InputError("foundation: give stiffness or vertical_period, not both")
         if table.has("vertical_period"):
@@ -645,7 +655,8 @@ def _parse_value(text: str):
 def apply_override(data: dict, item: str) -> None:
     """Apply one ``dotted.key=value`` override in place. The value is read as TOML, else text.
 
-    List entries are addressed by index: ``structure.story.1.stiffness=300``.
+    List entries are addressed by index: ``structure.story.1.stiffness=300``. An empty value
+    removes the key: ``foundation.vertical_period=``.
     """
     if "=" not in item:
         raise InputError(f"--set {item!r}: expected KEY=VALUE with a dotted TOML key")
@@ -665,6 +676,8 @@ def apply_override(data: dict, item: str) -> None:
     last = parts[-1]
     if isinstance(node, list):
         node[_index(last, node, key)] = _parse_value(text.strip())
+    elif not text.strip():
+        node.pop(last, None)
     else:
         node[last] = _parse_value(text.strip())
 

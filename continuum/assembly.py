@@ -1,0 +1,173 @@
+"""Vectorised plane-strain assembly on scikit-fem bases.
+
+The soil's tangent changes at every Newton iteration, so the stiffness is not assembled through
+``skfem.BilinearForm`` but as one ``np.einsum`` of Bᵀ D B over (element, quadrature point),
+scattered into a CSR pattern that is built once per mesh (``continuum-notes.md``, Assembly).
+
+Conventions (per unit out-of-plane length):
+
+- DOFs are those of ``skfem.ElementVector(element)``: ``u^1`` = ux, ``u^2`` = uy.
+- Strains and stresses at quadrature points are plane vectors ``(3, nelems, nqp)`` in the order
+  (xx, yy, xy). Strains carry the **engineering** shear γ_xy = ∂ux/∂y + ∂uy/∂x, stresses the
+  tensorial σ_xy, so that a 3×3 tangent D from :func:`~upliftlab.continuum.materials.plane_strain_tangent`
+  gives dσ = D dε and the stiffness is ∫ Bᵀ D B.
+- ``intorder`` is explicit (:data:`DEFAULT_INTORDER`). Q2 defaults to 2×2 Gauss points: reduced
+  integration, which keeps the element free of volumetric locking under plastic flow.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import skfem
+from scipy import sparse
+
+from ..checks import InputError
+
+__all__ = ["DEFAULT_INTORDER", "ELEMENT_TYPES", "Pattern", "Discretisation", "discretise",
+           "strain", "stiffness", "internal_force", "body_force", "element_name"]
+
+#: Quadrature order per element: P1 3 points (degree 1 is exact), P2 3 points (exact for an
+#: affine stiffness), Q1 2×2 (full), Q2 2×2 (reduced; full would be 3×3).
+DEFAULT_INTORDER = {"P1": 1, "P2": 2, "Q1": 2, "Q2": 2}
+
+#: Element name -> (skfem mesh type, skfem scalar element type).
+ELEMENT_TYPES = {
+    "P1": (skfem.MeshTri1, skfem.ElementTriP1),
+    "P2": (skfem.MeshTri1, skfem.ElementTriP2),
+    "Q1": (skfem.MeshQuad1, skfem.ElementQuad1),
+    "Q2": (skfem.MeshQuad1, skfem.ElementQuad2),
+}
+
+
+@dataclass(frozen=True, eq=False)
+class Pattern:
+    """A CSR sparsity pattern and where each element-matrix entry lands in its data array.
+
+    ``scatter[k]`` is the data index of entry k of the element matrices flattened in the order
+    (element, row, column).
+    """
+
+    indptr: np.ndarray
+    indices: np.ndarray
+    scatter: np.ndarray
+    size: int
+
+    @property
+    def nnz(self) -> int:
+        return self.indices.size
+
+    def data(self, element_matrices: np.ndarray) -> np.ndarray:
+        """Sum element matrices ``(nelems, nloc, nloc)`` into the CSR data array."""
+        return np.bincount(self.scatter, weights=element_matrices.ravel(), minlength=self.nnz)
+
+    def matrix(self, data: np.ndarray) -> sparse.csr_matrix:
+        """The CSR matrix with this pattern and ``data`` (not copied)."""
+        return sparse.csr_matrix((data, self.indices, self.indptr), shape=(self.size,) * 2)
+
+
+def _pattern(dofs: np.ndarray, size: int) -> Pattern:
+    """The CSR pattern of element DOF tables ``dofs`` (nloc, nelems), rows sorted."""
+    nloc = dofs.shape[0]
+    rows = np.repeat(dofs.T, nloc, axis=1).ravel()
+    cols = np.tile(dofs.T, (1, nloc)).ravel()
+    keys, scatter = np.unique(rows.astype(np.int64) * size + cols, return_inverse=True)
+    counts = np.bincount(keys // size, minlength=size)
+    indptr = np.concatenate(([0], np.cumsum(counts)))
+    return Pattern(indptr=indptr, indices=(keys % size).astype(np.int32), scatter=scatter.ravel(),
+                   size=size)
+
+
+@dataclass(frozen=True, eq=False)
+class Discretisation:
+    """A vector basis with its B-matrices at the quadrature points and its CSR pattern.
+
+    ``B`` (3, nloc, nelems, nqp): rows (∂ux/∂x, ∂uy/∂y, ∂ux/∂y + ∂uy/∂x) of each local basis
+    function; ``dx`` (nelems, nqp): quadrature weights times Jacobians (area); ``dofs``
+    (nloc, nelems): global DOF of each local function.
+    """
+
+    basis: skfem.CellBasis
+    element: str
+    intorder: int
+    B: np.ndarray
+    dx: np.ndarray
+    dofs: np.ndarray
+    pattern: Pattern
+
+    @property
+    def ndofs(self) -> int:
+        return self.basis.N
+
+    @property
+    def qp_shape(self) -> tuple[int, int]:
+        """(nelems, nqp): the batch shape of quadrature-point fields."""
+        return self.dx.shape
+
+    @property
+    def qp_coordinates(self) -> np.ndarray:
+        """Global (x, y) of every quadrature point, (2, nelems, nqp)."""
+        return np.asarray(self.basis.mapping.F(self.basis.X))
+
+
+def element_name(mesh: skfem.Mesh, element: str) -> str:
+    """``element`` validated against the mesh type (P* on triangles, Q* on quads)."""
+    if element not in ELEMENT_TYPES:
+        raise InputError(f"element = {element!r}: must be one of "
+                         f"{', '.join(map(repr, ELEMENT_TYPES))}")
+    mesh_type = ELEMENT_TYPES[element][0]
+    if type(mesh) is not mesh_type:
+        raise InputError(f"element = {element!r}: needs a {mesh_type.__name__} mesh, "
+                         f"got {type(mesh).__name__}")
+    return element
+
+
+def discretise(mesh: skfem.Mesh, element: str, intorder: int | None = None) -> Discretisation:
+    """The :class:`Discretisation` of ``element`` (P1, P2, Q1, Q2) on a linear skfem mesh.
+
+    ``intorder`` defaults to :data:`DEFAULT_INTORDER` (Q2: 2×2 reduced integration).
+    """
+    element = element_name(mesh, element)
+    intorder = DEFAULT_INTORDER[element] if intorder is None else intorder
+    if isinstance(intorder, bool) or not isinstance(intorder, int) or not 1 <= intorder <= 10:
+        raise InputError(f"intorder = {intorder!r}: valid range is an integer in [1, 10]")
+    basis = skfem.Basis(mesh, skfem.ElementVector(ELEMENT_TYPES[element][1]()), intorder=intorder)
+    B = np.stack([_b_rows(phi[0].grad) for phi in basis.basis], axis=1)
+    dofs = np.asarray(basis.element_dofs)
+    return Discretisation(basis=basis, element=element, intorder=intorder, B=B,
+                          dx=np.asarray(basis.dx), dofs=dofs, pattern=_pattern(dofs, basis.N))
+
+
+def _b_rows(grad: np.ndarray) -> np.ndarray:
+    """(εxx, εyy, γxy) of one vector basis function from its gradient (2, 2, nelems, nqp)."""
+    return np.stack((grad[0, 0], grad[1, 1], grad[0, 1] + grad[1, 0]))
+
+
+def strain(disc: Discretisation, u: np.ndarray) -> np.ndarray:
+    """Plane strain (εxx, εyy, γxy) of the DOF vector ``u`` at the quadrature points."""
+    return np.einsum("aiep,ie->aep", disc.B, u[disc.dofs], optimize=True)
+
+
+def stiffness(disc: Discretisation, D: np.ndarray) -> sparse.csr_matrix:
+    """∫ Bᵀ D B with the plane tangent ``D`` (3, 3, nelems, nqp) or one constant (3, 3)."""
+    D = np.asarray(D, dtype=float)
+    if D.ndim == 2:
+        DB = np.einsum("ab,bjep->ajep", D, disc.B, optimize=True)
+    else:
+        DB = np.einsum("abep,bjep->ajep", D, disc.B, optimize=True)
+    Ke = np.einsum("aiep,ajep->eij", disc.B, DB * disc.dx, optimize=True)
+    return disc.pattern.matrix(disc.pattern.data(Ke))
+
+
+def internal_force(disc: Discretisation, stress: np.ndarray) -> np.ndarray:
+    """∫ Bᵀ σ for the plane stress (σxx, σyy, σxy) ``(3, nelems, nqp)``."""
+    fe = np.einsum("aiep,aep->ie", disc.B, stress * disc.dx, optimize=True)
+    return np.bincount(disc.dofs.ravel(), weights=fe.ravel(), minlength=disc.ndofs)
+
+
+def body_force(disc: Discretisation, force_density) -> np.ndarray:
+    """∫ Nᵀ b for a constant body force ``(bx, by)`` (force per volume)."""
+    b = np.asarray(force_density, dtype=float)
+    form = skfem.LinearForm(lambda v, w: b[0] * v[0] + b[1] * v[1])
+    return form.assemble(disc.basis)
