@@ -197,9 +197,10 @@ class Response:
         force = pk[n0 + 1::2]
         out = {
             "u": max(abs(pk[kn.P_UMIN]), abs(pk[kn.P_UMAX])) if self.model.story_count else 0.0,
-            "theta": max(abs(pk[kn.P_THMIN]), abs(pk[kn.P_THMAX])),
-            "V_min": pk[kn.P_VMIN],
-            "V_max": pk[kn.P_VMAX],
+            "theta": (max(abs(pk[kn.P_THMIN]), abs(pk[kn.P_THMAX]))
+                      if self.dofs.theta >= 0 else 0.0),
+            "V_min": pk[kn.P_VMIN] if self.dofs.v >= 0 else 0.0,
+            "V_max": pk[kn.P_VMAX] if self.dofs.v >= 0 else 0.0,
             "base_shear": float(np.max(np.abs(self.base_shear))),
             "overturning_moment": float(np.max(np.abs(self.overturning_moment))),
         }

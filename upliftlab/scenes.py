@@ -572,15 +572,20 @@ class Scene:
 
 
 def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
-                    overrides: tuple[str, ...] = (), merged: bool = False) -> Scene:
+                    overrides: tuple[str, ...] = (), merged: bool = False,
+                    motion: str | None = None) -> Scene:
     """Validate a scene table (as parsed from TOML) into a :class:`Scene`.
 
-    Unless ``merged``, the ``[cases.<case>]`` table is merged in and ``overrides`` applied first.
+    Unless ``merged``, the ``[cases.<case>]`` table is merged in, the motion replaced by the
+    record ``motion`` (a name on UPLIFTLAB_MOTIONS or a path) if given, and ``overrides``
+    applied, in that order.
     """
     data = copy.deepcopy(data)
     cases_table = data.get("cases", {})
     if not merged:
         data = _merge_case(data, case)
+        if motion is not None:
+            data["motion"] = {"type": "record", "name": str(motion)}
         for item in overrides:
             apply_override(data, item)
     table = _Table(data, "")
@@ -708,12 +713,13 @@ def find_scene(name_or_path: str) -> Path:
 
 
 def load_scene(name_or_path: str, case: str | None = None,
-               overrides: tuple[str, ...] | list[str] = ()) -> Scene:
-    """Read, merge, override and validate a scene file."""
+               overrides: tuple[str, ...] | list[str] = (), motion: str | None = None) -> Scene:
+    """Read, merge, override and validate a scene file (see :func:`scene_from_dict`)."""
     path = find_scene(str(name_or_path))
     try:
         data = tomllib.loads(path.read_text())
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"scene {str(path)!r}: not valid TOML ({exc})") from None
-    return scene_from_dict(data, source=str(path), case=case, overrides=tuple(overrides))
+    return scene_from_dict(data, source=str(path), case=case, overrides=tuple(overrides),
+                           motion=motion)
 

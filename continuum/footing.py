@@ -1,0 +1,286 @@
+"""The rigid footing: its kinematics, its contact with the soil, and the contact solver.
+
+**Kinematics.** The footing has three DOFs q = (u, v, θ) at the centre of its base (x = 0,
+y = 0): u horizontal (+x), v vertical (up), θ positive when it moves the top of the structure by
++hθ. A base point at x moves by (u, v − x θ) (small rotation, base on y = 0): the right edge goes
+down for θ > 0. The work-conjugate generalised force is (H, −N, M): H horizontal (+x), N the
+vertical compression (downwards, positive), M the moment about the base centre, positive driving
++θ, which in equilibrium equals the soil's resisting moment Σ x_i P_i (right edge compressed).
+
+**Contact.** Every soil DOF location on the footing base (mesh nodes and, for P2/Q2, facet
+midpoints) is a contact node i at x_i. Its normal force P_i ≥ 0 (compression; the soil receives
+−P_i in y), its gap g_i = (v − x_i θ) − uy_i ≥ 0, and P_i g_i = 0, solved exactly (no penalty).
+Its pressure is p_i = P_i / w_i with w_i = ∫ φ_i ds the node's weight on the base (the nodal
+force of a unit pressure). Tangentially the interface is frictionless (no tangential force),
+bonded (tied while in contact: no slip over a step) or Coulomb (|T_i| ≤ μ P_i, slip opposes the
+soil's motion relative to the footing).
+
+**Solver.** The soil's linearisation is condensed onto the contact DOFs c (the flexibility route
+of ``continuum-notes.md``): f_c = r + S Δu_c, with S the Schur complement of the current tangent
+and f_c the forces the footing applies to the soil. :func:`solve_contact` then solves this small
+dense problem together with the footing's equilibrium or prescribed motion and the contact
+conditions by a primal–dual active set (semismooth Newton on the complementarity function
+P − c g): guess the closed/stick/slip sets, solve the linear system they define, update the sets
+from the solution, and stop when they no longer change. Each solve is exact for its sets, so the
+converged answer satisfies P ≥ 0, g ≥ 0, P g = 0 to round-off.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import skfem
+
+from ..checks import InputError, nonnegative, one_of
+from ..scenes import INTERFACES
+
+__all__ = ["OPEN", "STICK", "SLIP_POSITIVE", "SLIP_NEGATIVE", "Interface", "Footing",
+           "footing_on", "ContactProblem", "ContactSolution", "ContactError", "solve_contact"]
+
+#: Contact status of a node: open (separated), closed and sticking (or closed, frictionless),
+#: closed and slipping with the tangential force on the soil +μP or −μP.
+OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE = 0, 1, 2, 3
+
+
+class ContactError(RuntimeError):
+    """The contact problem of one Newton iteration has no solution (the footing lost all
+    contact under a prescribed force) or its active set did not settle."""
+
+
+@dataclass(frozen=True)
+class Interface:
+    """Tangential law of the footing–soil interface: ``frictionless``, ``bonded`` (rough: no
+    slip while in contact) or ``coulomb`` with friction coefficient ``friction`` μ > 0. The
+    normal law is always unilateral (tensionless)."""
+
+    kind: str = "frictionless"
+    friction: float = 0.0
+
+    def __post_init__(self):
+        one_of("soil.interface", self.kind, INTERFACES)
+        nonnegative("soil.interface_friction", self.friction)
+        if self.kind == "coulomb" and not self.friction > 0.0:
+            raise InputError(f"soil.interface_friction = {self.friction:g}: a coulomb interface "
+                             "needs a friction coefficient > 0 (use interface = 'frictionless' "
+                             "for none)")
+
+    @property
+    def tangential(self) -> bool:
+        """True if the interface carries tangential force (bonded or coulomb)."""
+        return self.kind != "frictionless"
+
+    @property
+    def mu(self) -> float:
+        """Friction coefficient: 0 frictionless, inf bonded."""
+        return {"frictionless": 0.0, "bonded": math.inf}.get(self.kind, self.friction)
+
+
+@dataclass(frozen=True, eq=False)
+class Footing:
+    """The contact nodes of the footing base, sorted by x.
+
+    ``x`` (length), soil DOFs ``ux`` and ``uy``, weights ``weight`` = ∫ φ_i ds (length; they
+    sum to B), footing ``width`` B, and the ``interface``. The contact DOFs c are ``uy`` then,
+    for a tangential interface, ``ux``.
+    """
+
+    x: np.ndarray
+    ux: np.ndarray
+    uy: np.ndarray
+    weight: np.ndarray
+    width: float
+    interface: Interface
+
+    @property
+    def nodes(self) -> int:
+        return self.x.size
+
+    @property
+    def contact_dofs(self) -> np.ndarray:
+        """Soil DOFs condensed for contact: ``uy`` (and ``ux`` if tangential)."""
+        return np.concatenate((self.uy, self.ux)) if self.interface.tangential else self.uy
+
+    @property
+    def kinematics(self) -> np.ndarray:
+        """L (m, 3): footing displacement at the contact DOFs per unit (u, v, θ)."""
+        normal = np.column_stack((np.zeros(self.nodes), np.ones(self.nodes), -self.x))
+        if not self.interface.tangential:
+            return normal
+        tangential = np.column_stack((np.ones(self.nodes), np.zeros((self.nodes, 2))))
+        return np.vstack((normal, tangential))
+
+    def gap(self, u: np.ndarray, q: np.ndarray) -> np.ndarray:
+        """Gap g_i = (v − x_i θ) − uy_i (length) of the soil displacement ``u`` and footing ``q``."""
+        return (q[1] - self.x * q[2]) - u[self.uy]
+
+    def slip(self, u: np.ndarray, q: np.ndarray) -> np.ndarray:
+        """Tangential displacement of the soil relative to the footing, ux_i − u (length)."""
+        return u[self.ux] - q[0]
+
+    def contact_length(self, closed: np.ndarray) -> float:
+        """Length of the base in contact: each closed node owns half of each interval to its
+        neighbours (midpoint rule; B for full contact, O(h) accurate at a contact edge)."""
+        mid = np.concatenate(([self.x[0]], 0.5 * (self.x[1:] + self.x[:-1]), [self.x[-1]]))
+        return float(np.sum((mid[1:] - mid[:-1])[np.asarray(closed, dtype=bool)]))
+
+
+def footing_on(basis: skfem.CellBasis, interface: Interface) -> Footing:
+    """The :class:`Footing` on the ``footing`` boundary of a two-component vector ``basis``."""
+    from ..meshes import footing_dofs
+
+    dofs = footing_dofs(basis)
+    facets = basis.mesh.boundaries["footing"]
+    order = 2 * max(basis.elem.elem.maxdeg, 1)
+    facet_basis = skfem.FacetBasis(basis.mesh, basis.elem, facets=facets, intorder=order)
+    weight = skfem.LinearForm(lambda v, w: v[1]).assemble(facet_basis)[dofs.uy]
+    return Footing(x=dofs.x, ux=dofs.ux, uy=dofs.uy, weight=weight,
+                   width=float(dofs.x[-1] - dofs.x[0]), interface=interface)
+
+
+@dataclass(frozen=True, eq=False)
+class ContactProblem:
+    """One linearised footing–soil problem (all arrays in the contact-DOF order of
+    :attr:`Footing.contact_dofs`).
+
+    - ``S`` (m, m), ``r`` (m): condensed soil, f_c = r + S Δu_c (force on the soil).
+    - ``uc`` (m), ``q`` (3): current soil displacement at c and footing displacement.
+    - ``slip0`` (nodes): soil–footing tangential displacement at the start of the step.
+    - ``prescribed`` (3 bool) and ``target`` (3): for a prescribed component the total footing
+      displacement, otherwise the generalised force (H, −N, M) it must carry.
+    - ``Kq`` (3, 3), ``rq`` (3): stiffness and force of anything else attached to the footing
+      (zero in statics; the superstructure and inertia in dynamics): its internal force is
+      rq + Kq Δq.
+    """
+
+    footing: Footing
+    S: np.ndarray
+    r: np.ndarray
+    uc: np.ndarray
+    q: np.ndarray
+    slip0: np.ndarray
+    prescribed: np.ndarray
+    target: np.ndarray
+    Kq: np.ndarray
+    rq: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class ContactSolution:
+    """Increments ``duc`` (m) and ``dq`` (3), contact forces ``force`` on the soil (m), the
+    node ``status`` and the number of active-set ``iterations``."""
+
+    duc: np.ndarray
+    dq: np.ndarray
+    force: np.ndarray
+    status: np.ndarray
+    iterations: int
+
+
+def solve_contact(problem: ContactProblem, status: np.ndarray, *, frozen: bool = False,
+                  max_iterations: int = 100) -> ContactSolution:
+    """Solve ``problem`` by a primal–dual active set from the guess ``status`` (module docstring).
+
+    ``frozen`` keeps ``status`` fixed (one linear solve). Raises :class:`ContactError` if the
+    sets cycle or do not settle in ``max_iterations``, or the system is singular.
+    """
+    status = np.asarray(status, dtype=np.int8).copy()
+    if not frozen and not (status != OPEN).any():
+        status[:] = STICK  # start from full contact: the sets then shrink monotonically
+    seen = set()
+    for iteration in range(1, max_iterations + 1):
+        duc, dq = _solve_sets(problem, status)
+        force = problem.r + problem.S @ duc
+        if frozen:
+            return ContactSolution(duc, dq, force, status, iteration)
+        new = _update_sets(problem, duc, dq, force)
+        if np.array_equal(new, status):
+            return ContactSolution(duc, dq, force, status, iteration)
+        key = new.tobytes()
+        if key in seen:
+            raise ContactError(f"contact active set cycles after {iteration} iterations "
+                               f"({int(np.count_nonzero(new))} of {new.size} nodes closed)")
+        seen.add(key)
+        status = new
+    raise ContactError(f"contact active set did not settle in {max_iterations} iterations")
+
+
+def _solve_sets(p: ContactProblem, status: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The increments (Δu_c, Δq) that the sets ``status`` define (module docstring)."""
+    A, b = _system(p, status)
+    try:
+        z = np.linalg.solve(A, b)
+    except np.linalg.LinAlgError:
+        z = np.full(b.size, np.nan)
+    if not np.isfinite(z).all():
+        closed = int(np.count_nonzero(status != OPEN))
+        raise ContactError(f"contact system is singular with {closed} of {status.size} nodes "
+                           "closed: the footing cannot carry the prescribed force "
+                           f"(H, -N, M) = {tuple(np.round(p.target, 6))} in this contact state")
+    m = p.S.shape[0]
+    return z[:m], z[m:]
+
+
+def _system(p: ContactProblem, status: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    f, n, m = p.footing, p.footing.nodes, p.S.shape[0]
+    L = f.kinematics
+    A, b = np.zeros((m + 3, m + 3)), np.zeros(m + 3)
+    nodes = np.arange(n)
+    closed, opened = status != OPEN, status == OPEN
+    # normal rows: closed -> zero gap after the step; open -> zero normal force
+    A[nodes[closed], nodes[closed]] = 1.0
+    A[nodes[closed], m:] = -L[nodes[closed]]
+    b[nodes[closed]] = L[nodes[closed]] @ p.q - p.uc[nodes[closed]]
+    A[nodes[opened], :m] = p.S[nodes[opened]]
+    b[nodes[opened]] = -p.r[nodes[opened]]
+    if f.interface.tangential:
+        _tangential_rows(p, status, A, b, L)
+    for k in range(3):
+        row = m + k
+        if p.prescribed[k]:
+            A[row, row] = 1.0
+            b[row] = p.target[k] - p.q[k]
+        else:
+            A[row, :m] = L[:, k] @ p.S
+            A[row, m:] += p.Kq[k]
+            b[row] = p.target[k] - p.rq[k] - L[:, k] @ p.r
+    return A, b
+
+
+def _tangential_rows(p: ContactProblem, status, A, b, L) -> None:
+    n, m = p.footing.nodes, p.S.shape[0]
+    rows, normal = n + np.arange(n), np.arange(n)
+    stick, slip = status == STICK, (status == SLIP_POSITIVE) | (status == SLIP_NEGATIVE)
+    free = status == OPEN
+    A[rows[free], :m] = p.S[rows[free]]
+    b[rows[free]] = -p.r[rows[free]]
+    A[rows[stick], rows[stick]] = 1.0
+    A[rows[stick], m:] = -L[rows[stick]]
+    b[rows[stick]] = p.slip0[stick] - (p.uc[rows[stick]] - p.q[0])
+    # slip: T = μ P σ with T = f_x and P = -f_y, i.e. f_x + μ σ f_y = 0
+    sign = np.where(status == SLIP_POSITIVE, 1.0, -1.0)[slip]
+    mu = p.footing.interface.mu
+    A[rows[slip], :m] = p.S[rows[slip]] + (mu * sign)[:, None] * p.S[normal[slip]]
+    b[rows[slip]] = -(p.r[rows[slip]] + mu * sign * p.r[normal[slip]])
+
+
+def _update_sets(p: ContactProblem, duc, dq, force) -> np.ndarray:
+    """New sets from a solution: closed where P − c g ≥ −tol; stick or slip by the trial
+    tangential force T − c_t Δs against μ P."""
+    f, n = p.footing, p.footing.nodes
+    diag = np.abs(np.diag(p.S))
+    c_n = float(diag[:n].mean())
+    tol = 1e-12 * c_n * f.width
+    uc, q = p.uc + duc, p.q + dq
+    pressure = -force[:n]
+    gap = f.kinematics[:n] @ q - uc[:n]
+    closed = pressure - c_n * gap >= -tol
+    status = np.where(closed, STICK, OPEN).astype(np.int8)
+    mu = f.interface.mu
+    if f.interface.tangential and math.isfinite(mu):
+        c_t = float(diag[n:].mean())
+        trial = force[n:] - c_t * ((uc[n:] - q[0]) - p.slip0)
+        slipping = closed & (np.abs(trial) > mu * pressure + tol)
+        status[slipping] = np.where(trial[slipping] > 0.0, SLIP_POSITIVE, SLIP_NEGATIVE)
+    return status

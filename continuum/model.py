@@ -1,0 +1,330 @@
+"""The continuum model of a scene: soil mesh, discretisation, material, footing and the DOF
+blocks of the Newton solver.
+
+Boundary conditions (statics): the bottom is fixed (a rigid base: the box bottom, or the rigid
+base under ``soil.layer_depth``), the sides are rollers (ux = 0). The footing's contact DOFs c
+(see :class:`~upliftlab.continuum.footing.Footing`) are condensed; every other unconstrained DOF
+is interior (i).
+
+Every input is checked before any mesh is built: each error is an :class:`InputError` naming the
+field, its value and the valid range.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+import skfem
+from scipy import sparse
+from scipy.sparse.linalg import splu
+
+from .. import checks
+from ..checks import InputError
+from ..meshes import BOUNDARIES, SoilMesh, from_options
+from ..scenes import ELEMENTS, ContinuumOptions, Scene, Soil
+from . import assembly
+from .footing import Footing, Interface, footing_on
+from .materials import (DruckerPrager, Elastic, MohrCoulomb, State, material_from_soil,
+                        plane_strain, plane_strain_stress, plane_strain_tangent)
+
+__all__ = ["ContinuumModel", "Blocks", "Condensation", "Response", "build_model", "make_model",
+           "default_k0", "validate"]
+
+
+# ---------------------------------------------------------------------------------------------
+# Validation (before any work)
+# ---------------------------------------------------------------------------------------------
+
+
+def validate(soil: Soil, options: ContinuumOptions, footing_width: float) -> None:
+    """Refuse a soil, mesh options or footing that make no sense (InputError naming the field,
+    the value and the valid range)."""
+    checks.positive("foundation.half_width", 0.5 * footing_width)
+    checks.one_of("continuum.element", options.element, ELEMENTS)
+    checks.positive("soil.youngs_modulus", soil.youngs_modulus)
+    nu = checks.finite("soil.poisson_ratio", soil.poisson_ratio)
+    if not -1.0 < nu < 0.5:
+        raise InputError(f"soil.poisson_ratio = {nu:g}: valid range is (-1, 0.5) with the "
+                         f"displacement element {options.element} (ν = 0.5 is incompressible "
+                         "and locks every displacement element)")
+    checks.nonnegative("soil.density", soil.density)
+    if soil.model in ("tresca", "von_mises") and soil.undrained_strength is not None:
+        checks.positive("soil.undrained_strength", soil.undrained_strength)
+    checks.in_range("soil.friction_angle", soil.friction_angle, 0.0, 60.0, high_open=True)
+    if soil.k0 is not None:
+        checks.in_range("soil.k0", soil.k0, 0.0, 10.0, low_open=True)
+    if not options.domain_width > 1.0:
+        raise InputError(f"continuum.domain_width = {options.domain_width:g}: the footing "
+                         f"(B = {footing_width:g}) must be narrower than the domain; valid range "
+                         "is (1, 1e4] footing widths")
+    checks.in_range("continuum.domain_depth", options.domain_depth, 0.0, 1e4, low_open=True)
+    if soil.layer_depth is not None:
+        checks.positive("soil.layer_depth", soil.layer_depth)
+    Interface(soil.interface, soil.interface_friction)
+    material_from_soil(soil)  # names soil.* fields on anything else
+
+
+def default_k0(soil: Soil) -> float:
+    """K0 = σ'h/σ'v of the geostatic stress when ``soil.k0`` is not given:
+    ν/(1 − ν) for elastic soil (what an elastic gravity step under roller sides gives),
+    1 for undrained Tresca/von Mises (isotropic total stress: gravity uses none of c_u),
+    1 − sin φ (Jaky) for Mohr–Coulomb/Drucker–Prager."""
+    if soil.k0 is not None:
+        return float(soil.k0)
+    if soil.model == "elastic":
+        return soil.poisson_ratio / (1.0 - soil.poisson_ratio)
+    if soil.model in ("tresca", "von_mises"):
+        return 1.0
+    return 1.0 - math.sin(math.radians(soil.friction_angle))
+
+
+# ---------------------------------------------------------------------------------------------
+# DOF blocks and condensation
+# ---------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class _Gather:
+    """A sub-matrix of the full CSR pattern: ``take`` indexes the full data array."""
+
+    take: np.ndarray
+    indices: np.ndarray
+    indptr: np.ndarray
+    shape: tuple[int, int]
+    csc: bool
+
+    def matrix(self, data: np.ndarray):
+        cls = sparse.csc_matrix if self.csc else sparse.csr_matrix
+        return cls((data[self.take], self.indices, self.indptr), shape=self.shape)
+
+
+def _gather(marked: sparse.csr_matrix, rows, cols, csc: bool) -> _Gather:
+    """Where the block (rows, cols) of a matrix lives in its CSR data, from ``marked`` whose
+    data are 1, 2, …, nnz (never zero, so slicing keeps every entry)."""
+    sub = marked[rows][:, cols]
+    sub = sub.tocsc() if csc else sub.tocsr()
+    sub.sort_indices()
+    return _Gather(take=sub.data.astype(np.int64) - 1, indices=sub.indices.copy(),
+                   indptr=sub.indptr.copy(), shape=sub.shape, csc=csc)
+
+
+@dataclass(frozen=True, eq=False)
+class Blocks:
+    """Interior (i), contact (c) and fixed DOFs, and gathers from the full CSR data array into
+    K_ii (CSC, for the factorisation), K_ic, K_ci (CSR) and K_cc (dense)."""
+
+    interior: np.ndarray
+    contact: np.ndarray
+    fixed: np.ndarray
+    ii: _Gather = field(repr=False)
+    ic: _Gather = field(repr=False)
+    ci: _Gather = field(repr=False)
+    cc: _Gather = field(repr=False)
+
+    def split(self, data: np.ndarray):
+        """(K_ii, K_ic, K_ci, K_cc dense) of the full matrix with CSR ``data``."""
+        return (self.ii.matrix(data), self.ic.matrix(data), self.ci.matrix(data),
+                self.cc.matrix(data).toarray())
+
+
+def _blocks(pattern: assembly.Pattern, interior, contact, fixed) -> Blocks:
+    marked = pattern.matrix(np.arange(1.0, pattern.nnz + 1.0))
+    return Blocks(interior=interior, contact=contact, fixed=fixed,
+                  ii=_gather(marked, interior, interior, csc=True),
+                  ic=_gather(marked, interior, contact, csc=False),
+                  ci=_gather(marked, contact, interior, csc=False),
+                  cc=_gather(marked, contact, contact, csc=False))
+
+
+@dataclass(frozen=True, eq=False)
+class Condensation:
+    """A tangent condensed onto the contact DOFs: S = K_cc − K_ci K_ii⁻¹ K_ic, with
+    ``X`` = K_ii⁻¹ K_ic and the factorisation ``solve`` of K_ii."""
+
+    solve: object
+    X: np.ndarray
+    S: np.ndarray
+    K_ci: sparse.csr_matrix
+
+    def condense(self, R_i: np.ndarray, R_c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(y, r): y = K_ii⁻¹ R_i and the condensed residual r = R_c − K_ci y."""
+        y = self.solve(R_i)
+        return y, R_c - self.K_ci @ y
+
+
+def condensation(blocks: Blocks, data: np.ndarray, symmetric: bool) -> Condensation:
+    """Factorise K_ii once and condense the matrix with CSR ``data`` onto the contact DOFs."""
+    K_ii, K_ic, K_ci, K_cc = blocks.split(data)
+    options = dict(permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                   options=dict(SymmetricMode=True)) if symmetric else {}
+    lu = splu(K_ii, **options)
+    X = lu.solve(K_ic.toarray())
+    return Condensation(solve=lu.solve, X=X, S=K_cc - K_ci @ X, K_ci=K_ci)
+
+
+# ---------------------------------------------------------------------------------------------
+# The model
+# ---------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class Response:
+    """The soil's response to a displacement ``u`` from a converged material ``state``:
+    ``stress`` (3, 3, nelems, nqp), plane ``tangent`` (3, 3, nelems, nqp), the ``material``
+    state it would commit, and the out-of-balance force ``residual`` = f_int − f_body (ndofs)."""
+
+    stress: np.ndarray
+    tangent: np.ndarray
+    material: State
+    residual: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class ContinuumModel:
+    """A plane-strain soil domain under a rigid footing (build it with :func:`build_model` or
+    :func:`make_model`).
+
+    ``mesh`` (the linear skfem mesh with its named boundaries), ``mesh_parameters`` (what
+    built it, for provenance), ``disc`` (B-matrices and pattern),
+    ``material`` (callable record of :mod:`~upliftlab.continuum.materials`), ``footing``,
+    ``blocks``, ``body_force`` (the soil's weight as nodal forces), ``gravity`` g, ``k0``.
+    """
+
+    soil: Soil
+    options: ContinuumOptions
+    mesh: skfem.Mesh
+    mesh_parameters: dict
+    disc: assembly.Discretisation
+    material: object
+    footing: Footing
+    blocks: Blocks
+    body_force: np.ndarray
+    gravity: float
+    k0: float
+    scene: Scene | None = None
+
+    @property
+    def width(self) -> float:
+        """Footing width B (length)."""
+        return self.footing.width
+
+    @property
+    def linear(self) -> bool:
+        """True for elastic soil: one tangent, factorised once."""
+        return isinstance(self.material, Elastic)
+
+    @property
+    def symmetric(self) -> bool:
+        """True unless the flow rule is non-associated (ψ < φ)."""
+        m = self.material
+        return not (isinstance(m, (MohrCoulomb, DruckerPrager))
+                    and m.dilation_angle < m.friction_angle)
+
+    @property
+    def dofs(self) -> int:
+        """Unconstrained soil DOFs (interior + contact)."""
+        return self.blocks.interior.size + self.blocks.contact.size
+
+    def respond(self, u: np.ndarray, state: State, eigenstrain: np.ndarray | None) -> Response:
+        """Material update at every quadrature point for the total strain ε(u) + ``eigenstrain``
+        (the geostatic stress enters as the eigenstrain C⁻¹σ0), from the converged ``state``."""
+        strain = plane_strain(_tensor(assembly.strain(self.disc, u)))
+        if eigenstrain is not None:
+            strain = strain + eigenstrain
+        stress, tangent, new_state = self.material(strain, state)
+        residual = assembly.internal_force(self.disc, plane_strain_stress(stress)) \
+            - self.body_force
+        return Response(stress, plane_strain_tangent(tangent), new_state, residual)
+
+    def condense(self, tangent: np.ndarray) -> Condensation:
+        """The :class:`Condensation` of a plane tangent (cached for elastic soil)."""
+        if self.linear:
+            return self._elastic_condensation
+        return self._condense(tangent)
+
+    def _condense(self, tangent: np.ndarray) -> Condensation:
+        Ke = assembly.stiffness(self.disc, tangent)
+        return condensation(self.blocks, Ke.data, self.symmetric)
+
+    @cached_property
+    def _elastic_condensation(self) -> Condensation:
+        D = plane_strain_tangent(self.material(np.zeros((3, 3, 1)))[1])[..., 0]
+        return self._condense(D)
+
+    def initial_material_state(self) -> State:
+        return self.material.initial_state(self.disc.qp_shape)
+
+
+def _tensor(eps: np.ndarray) -> np.ndarray:
+    """(εxx, εyy, γxy) (3, …) -> the 2×2 tensor (2, 2, …)."""
+    half = 0.5 * eps[2]
+    return np.array([[eps[0], half], [half, eps[1]]])
+
+
+def _dirichlet(basis: skfem.CellBasis) -> np.ndarray:
+    """Fixed DOFs for statics: the bottom (both components), the sides (ux)."""
+    return np.union1d(basis.get_dofs("bottom").all(), basis.get_dofs("sides").all("u^1"))
+
+
+def _check_boundaries(mesh: skfem.Mesh) -> None:
+    names = sorted((mesh.boundaries or {}).keys())
+    missing = [name for name in BOUNDARIES if name not in names]
+    if missing:
+        raise InputError(f"mesh.boundaries = {names}: missing {', '.join(missing)}; a soil mesh "
+                         f"needs the named boundaries {', '.join(BOUNDARIES)}")
+
+
+def make_model(soil: Soil, footing_width: float, options: ContinuumOptions | None = None, *,
+               gravity: float = 9.80665, mesh: SoilMesh | skfem.Mesh | None = None,
+               scene: Scene | None = None) -> ContinuumModel:
+    """A :class:`ContinuumModel` of ``soil`` under a footing of width ``footing_width``.
+
+    ``options`` default to :class:`~upliftlab.scenes.ContinuumOptions` (10B × 10B, Q2, 16
+    across). ``gravity`` g (length/s²) weighs soil of ``soil.density`` > 0. ``mesh`` replaces the
+    generated mesh: a :class:`~upliftlab.meshes.SoilMesh`, or a linear skfem mesh (e.g. from
+    :func:`~upliftlab.meshes.read_mesh`) used with ``options.element``; it must carry the named
+    boundaries footing, surface, sides and bottom.
+    """
+    options = options or ContinuumOptions()
+    validate(soil, options, footing_width)
+    checks.nonnegative("gravity", gravity)
+    if mesh is None:
+        mesh = from_options(footing_width, options, layer_depth=soil.layer_depth)
+    if isinstance(mesh, SoilMesh):
+        skmesh, element, parameters = mesh.mesh, mesh.element, mesh.parameters
+    else:
+        skmesh, element, parameters = mesh, options.element, {"element": options.element}
+    _check_boundaries(skmesh)
+    disc = assembly.discretise(skmesh, element, options.intorder)
+    footing = footing_on(disc.basis, Interface(soil.interface, soil.interface_friction))
+    _check_footing(footing, footing_width, skmesh)
+    fixed = _dirichlet(disc.basis)
+    contact = footing.contact_dofs
+    interior = np.setdiff1d(np.arange(disc.ndofs), np.union1d(fixed, contact))
+    body = assembly.body_force(disc, (0.0, -soil.density * gravity))
+    return ContinuumModel(soil=soil, options=options, mesh=skmesh, mesh_parameters=parameters,
+                          disc=disc, material=material_from_soil(soil), footing=footing,
+                          blocks=_blocks(disc.pattern, interior, contact, fixed),
+                          body_force=body, gravity=gravity, k0=default_k0(soil), scene=scene)
+
+
+def _check_footing(footing: Footing, width: float, mesh: skfem.Mesh) -> None:
+    if abs(footing.width - width) > 1e-9 * width or abs(footing.x[0] + 0.5 * width) > 1e-9 * width:
+        raise InputError(f"foundation.half_width = {0.5 * width:g}: the mesh's footing boundary "
+                         f"spans x = [{footing.x[0]:g}, {footing.x[-1]:g}]; valid is "
+                         f"[-{0.5 * width:g}, {0.5 * width:g}]")
+    span = float(np.ptp(mesh.p[0]))
+    if not span > width:
+        raise InputError(f"foundation.half_width = {0.5 * width:g}: the footing is as wide as "
+                         f"or wider than the domain ({span:g}); valid range is < {0.5 * span:g}")
+
+
+def build_model(scene: Scene, mesh: SoilMesh | None = None) -> ContinuumModel:
+    """The :class:`ContinuumModel` of a scene with ``[soil]`` (and optionally ``[continuum]``)."""
+    if scene.soil is None:
+        raise InputError("soil is missing: the continuum model needs a [soil] table")
+    return make_model(scene.soil, scene.foundation.width, scene.continuum or ContinuumOptions(),
+                      gravity=scene.g, mesh=mesh, scene=scene)
