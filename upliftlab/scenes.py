@@ -441,6 +441,7 @@ class Soil:
     drucker_prager / mohr_coulomb (``cohesion`` c, ``friction_angle`` φ and ``dilation_angle`` ψ
     in degrees). ``layer_depth`` (length) puts a rigid base at that depth (None: the box bottom).
     ``interface`` under the footing: frictionless, bonded, or coulomb with ``interface_friction``.
+    ``k0`` the geostatic ratio σh/σv (None: the continuum model's default for ``model``).
     """
 
     youngs_modulus: float
@@ -455,6 +456,7 @@ class Soil:
     layer_depth: float | None = None
     interface: str = "frictionless"
     interface_friction: float = 0.0
+    k0: float | None = None
 
     @property
     def shear_modulus(self) -> float:
@@ -478,6 +480,7 @@ def _soil(data) -> Soil:
         layer_depth=table.get("layer_depth", checks.positive, None),
         interface=table.get("interface", _choice(INTERFACES), "frictionless"),
         interface_friction=table.get("interface_friction", checks.nonnegative, 0.0),
+        k0=table.get("k0", _range(0.0, 10.0, low_open=True), None),
     )
     if soil.dilation_angle > soil.friction_angle:
         raise InputError(f"soil.dilation_angle = {soil.dilation_angle:g}: valid range is "
@@ -491,6 +494,7 @@ class ContinuumOptions:
     """Continuum domain and mesh: a box ``domain_width`` × ``domain_depth`` (multiples of the
     footing width B), ``element`` type, ``elements_across`` the footing, ``grading`` towards the
     footing edges, ``base`` (rigid or compliant) and side/bottom ``boundary`` (fixed or lysmer).
+    ``intorder`` is the quadrature order (None: the element's default, Q2 2×2 reduced).
     """
 
     domain_width: float = 10.0
@@ -500,6 +504,7 @@ class ContinuumOptions:
     grading: float = 1.0
     base: str = "rigid"
     boundary: str = "fixed"
+    intorder: int | None = None
 
 
 def _continuum(data) -> ContinuumOptions:
@@ -513,6 +518,7 @@ def _continuum(data) -> ContinuumOptions:
         grading=table.get("grading", _range(1.0, 100.0), 1.0),
         base=table.get("base", _choice(("rigid", "compliant")), "rigid"),
         boundary=table.get("boundary", _choice(("fixed", "lysmer")), "fixed"),
+        intorder=table.get("intorder", lambda n, v: checks.integer_at_least(n, v, 1), None),
     )
     table.done()
     return options

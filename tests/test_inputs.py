@@ -1,0 +1,198 @@
+"""Bad input gets a clear error before any work starts: it names the field, the value and the
+valid range. Also the readers, scenes and result files that guard the inputs and outputs."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from upliftlab.checks import InputError
+from upliftlab.cli import main as cli
+from upliftlab.motions import (Motion, cosine_pulse, free_vibration, harmonic, load_motion,
+                               read_motion, ricker_pulse, sine_pulse)
+from upliftlab.reduced import run
+from upliftlab.results import read_netcdf, write_netcdf
+from upliftlab.scenes import load_scene, packaged_scenes
+
+BAD_FIELDS = [
+    ("structure.weight=0", "structure.weight = 0: must be > 0"),
+    ("structure.weight=-5", "structure.weight = -5: must be > 0"),
+    ("structure.stiffness=-1", "structure: give stiffness or period, not both"),
+    ("foundation.stiffness=0", "foundation: give stiffness or vertical_period, not both"),
+    ("foundation.vertical_period=0", "foundation.vertical_period = 0: must be > 0"),
+    ("foundation.restitution=1.2", "foundation.restitution = 1.2: valid range is [0, 1]"),
+    ("foundation.restitution=-0.1", "foundation.restitution = -0.1: valid range is [0, 1]"),
+    ("foundation.yield_multiple=1.0", "foundation.yield_multiple = 1: valid range is (1, 1e+06]"),
+    ("foundation.springs=1", "foundation.springs = 1: must be an integer >= 2"),
+    ("foundation.springs=2.5", "foundation.springs = 2.5: expected an integer >= 2"),
+    ("foundation.law='plastic'", "foundation.law = 'plastic': must be one of"),
+    ("foundation.colour='red'", "foundation.colour: unknown key"),
+    ("units='furlong-stone-fortnight'", "units = 'furlong-stone-fortnight': must be one of"),
+    ("analysis.integrator='euler'", "analysis.integrator = 'euler': must be one of"),
+    ("structure.damping_ratio=1.5", "structure.damping_ratio = 1.5: valid range is [0, 1]"),
+    ("structure.rotary_inertia=0", "structure.rotary_inertia = 0: the rocking base needs"),
+    ("motion.velocity=nan", "motion.velocity = nan: expected a finite number"),
+]
+
+
+@pytest.mark.parametrize("override, message", BAD_FIELDS)
+def test_bad_scene_fields_are_named_with_their_range(override, message):
+    with pytest.raises(InputError) as err:
+        load_scene("short_period_free", case="B", overrides=[override])
+    assert message in str(err.value)
+
+
+def test_every_packaged_scene_loads_and_every_case_validates():
+    for name in packaged_scenes():
+        scene = load_scene(name)
+        for case in scene.cases:
+            load_scene(name, case=case)
+
+
+def test_unknown_case_and_scene_are_errors():
+    with pytest.raises(InputError, match="case = 'Z': not defined in this scene"):
+        load_scene("short_period_free", case="Z")
+    with pytest.raises(InputError, match="no such file, and no packaged scene"):
+        load_scene("no_such_scene")
+
+
+def test_overrides_address_nested_keys_and_remove_keys():
+    scene = load_scene("short_period_free", overrides=["foundation.springs=40",
+                                                       "structure.period=0.3"])
+    assert scene.foundation.springs == 40
+    mass = 202.0 / 386.09
+    assert scene.structure.stories[0].stiffness == pytest.approx(mass * (2 * math.pi / 0.3) ** 2)
+    with pytest.raises(InputError, match="foundation.stiffness is missing"):
+        load_scene("short_period_free", overrides=["foundation.vertical_period="])
+
+
+def test_time_step_beyond_stability_is_refused_with_the_limit():
+    """The message carries the limit; subcycling on request runs at a stable step instead."""
+    scene = load_scene("short_period_free", case="A", overrides=["motion.duration=0.2"])
+    with pytest.raises(InputError, match=r"analysis.dt = 0.5 s is beyond the stability limit "
+                                         r"[0-9.e-]+ s of integrator 'rk4'"):
+        run(scene, integrator="rk4", dt=0.5)
+    sub = scene.with_overrides("analysis.subcycle=true")
+    response = run(sub, integrator="rk4", dt=0.05)
+    assert response.info["dt"] <= response.info["stability_limit"]
+    assert "subcycled" in response.info["step_choice"]
+
+
+def test_motion_files_two_columns_one_column_and_at2(tmp_path):
+    t = np.arange(50) * 0.01
+    a = 0.1 * np.sin(2 * np.pi * t)
+    two = tmp_path / "two.txt"
+    two.write_text("# time [s], acc [g]\n" + "\n".join(f"{x:.2f} {y:.6f}" for x, y in zip(t, a)))
+    one = tmp_path / "one.txt"
+    one.write_text("\n".join(f"{y:.6f}" for y in a))
+    at2 = tmp_path / "rec.AT2"
+    body = "\n".join(" ".join(f"{y:.6E}" for y in a[i:i + 5]) for i in range(0, 50, 5))
+    at2.write_text("PEER NGA STRONG MOTION DATABASE RECORD\nTEST\nACCELERATION TIME SERIES IN "
+                   f"UNITS OF G\nNPTS=   50, DT=   .0100 SEC\n{body}\n")
+    for motion in (read_motion(two), read_motion(one, dt=0.01), read_motion(at2)):
+        assert motion.dt == pytest.approx(0.01)
+        np.testing.assert_allclose(motion.acceleration, a, atol=1e-6)
+    assert read_motion(two).scaled_to_pga(0.3).pga == pytest.approx(0.3)
+
+
+@pytest.mark.parametrize("content, message", [
+    ("0.0 0.1\n0.01 nan\n", "line 2: value nan is not a finite number"),
+    ("0.0 0.1\n0.01 0.2\n0.03 0.1\n", "line 2: time step 0.01 s differs from the mean step 0.015 s"),
+    ("0.0 0.1 0.3\n0.01 0.2 0.4\n", "3 columns; expected 2"),
+    ("0.0 0.1\n0.01\n", "line 2: 1 columns, but the first data row has 2"),
+    ("0.0 abc\n", "is not numbers"),
+])
+def test_bad_motion_files_are_refused(tmp_path, content, message):
+    path = tmp_path / "bad.txt"
+    path.write_text(content)
+    with pytest.raises(InputError, match=message):
+        read_motion(path)
+
+
+def test_one_column_needs_dt_and_missing_names_say_how_to_supply(tmp_path, monkeypatch):
+    path = tmp_path / "one.txt"
+    path.write_text("0.1\n0.2\n")
+    with pytest.raises(InputError, match="has one column: give its dt"):
+        read_motion(path)
+    monkeypatch.setenv("UPLIFTLAB_MOTIONS", str(tmp_path))
+    with pytest.raises(InputError, match="set UPLIFTLAB_MOTIONS to the directory that holds "
+                                         "elcentro_1940_ns.txt \\(El Centro 1940 N-S"):
+        load_motion("elcentro_1940_ns")
+
+
+def test_builtin_motions():
+    """Pulses and harmonics in g: amplitude, period and length as asked."""
+    sine = sine_pulse(0.3, 0.5, 1.0, dt=0.001)
+    assert sine.pga == pytest.approx(0.3, rel=1e-5)
+    assert np.all(sine.acceleration_at(np.array([0.6, 1.0])) == 0.0)
+    assert cosine_pulse(0.2, 0.5, dt=0.001).acceleration[0] == pytest.approx(0.2)
+    ricker = ricker_pulse(0.4, 0.5, dt=0.001)
+    assert ricker.pga == pytest.approx(0.4, rel=1e-6)
+    assert harmonic(0.1, 0.25, 2.0, dt=0.005).duration == pytest.approx(2.0)
+    with pytest.raises(InputError, match="free vibration needs a nonzero"):
+        free_vibration(1.0)
+    with pytest.raises(InputError, match="acceleration sample 1 is nan"):
+        Motion("x", 0.01, [0.0, np.nan])
+
+
+def test_netcdf_results_are_self_describing_and_read_by_xarray(tmp_path):
+    xr = pytest.importorskip("xarray")
+    response = run(load_scene("short_period_free", case="C", overrides=["motion.duration=0.5"]))
+    path = response.save(tmp_path / "run.nc", csv=True)[0]
+    ds = xr.open_dataset(path, engine="scipy")
+    np.testing.assert_allclose(ds["u"].values, response.u)
+    assert ds["u"].attrs["units"] == "in"
+    provenance = json.loads(ds.attrs["provenance"])
+    assert provenance["scene"] == "short_period_free-C" and provenance["model"] == "reduced"
+    assert json.loads(ds.attrs["peaks"])["u"] == pytest.approx(response.peaks["u"])
+    ds.close()
+    assert (tmp_path / "run.csv").read_text().splitlines()[2].startswith("time,u,x,theta")
+
+
+def test_results_are_written_atomically(tmp_path):
+    """A failed write leaves no partial file and keeps the old one."""
+    path = tmp_path / "r.nc"
+    write_netcdf(path, {"a": (("n",), np.arange(3.0), {})})
+    before = path.read_bytes()
+    with pytest.raises(ValueError):
+        write_netcdf(path, {"a": (("n",), np.arange(3.0), {}),
+                            "b": (("n",), np.arange(4.0), {})})
+    assert path.read_bytes() == before
+    assert not list(tmp_path.glob("*.part"))
+    assert read_netcdf(path)[0]["a"].tolist() == [0.0, 1.0, 2.0]
+
+
+def test_cli_refuses_bad_input_before_writing(tmp_path, capsys):
+    out = tmp_path / "out"
+    code = cli(["run", "wall_free", "--set", "foundation.restitution=2", "--out", str(out)])
+    assert code == 2
+    assert "foundation.restitution = 2: valid range is [0, 1]" in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_cli_run_json_summary(tmp_path, capsys):
+    code = cli(["run", "short_period_free", "--case", "A", "--set", "motion.duration=1.0",
+                "--out", str(tmp_path), "--json", "--no-figure"])
+    assert code == 0
+    summary = json.loads(capsys.readouterr().out)
+    response = run(load_scene("short_period_free", case="A",
+                              overrides=["motion.duration=1.0"]))
+    assert summary["peak_u"] == pytest.approx(response.peaks["u"], rel=1e-12)
+    assert summary["peak_uplift_left"] == pytest.approx(response.peaks["uplift_left"], rel=1e-12)
+    assert (tmp_path / "short_period_free-A.nc").exists()
+
+
+def test_paper_without_the_record_makes_free_vibration_figures(tmp_path, monkeypatch, capsys):
+    """Without El Centro: Figs. 4, 7 and 9, and the summary says what to supply and how."""
+    monkeypatch.setenv("UPLIFTLAB_MOTIONS", str(tmp_path / "empty"))
+    code = cli(["paper", "--out", str(tmp_path / "paper")])
+    assert code == 0
+    summary = json.loads((tmp_path / "paper" / "summary.json").read_text())
+    assert summary["figures"] == [4, 7, 9]
+    assert summary["missing_figures"] == [5, 8, 10, 11, 12]
+    text = (tmp_path / "paper" / "summary.md").read_text()
+    assert "elcentro_1940_ns.txt" in text and "UPLIFTLAB_MOTIONS" in text and "--motion" in text
+    assert "El Centro" in capsys.readouterr().out
+    for n in (4, 7, 9):
+        assert (tmp_path / "paper" / f"fig{n:02d}.png").stat().st_size > 10_000
