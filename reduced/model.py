@@ -95,9 +95,6 @@ def build_model(scene: Scene) -> ReducedModel:
     """The :class:`ReducedModel` of ``scene``."""
     s, f, g = scene.structure, scene.foundation, scene.g
     fixed = f.support == "fixed"
-    if s.p_delta and fixed:
-        raise InputError("structure.p_delta = true acts about the rocking base: it needs "
-                         "foundation.support = 'uplift' or 'bonded', not 'fixed'")
     dofs = DofMap.build(len(s.stories), rigid=s.rigid, fixed=fixed)
     heights = np.array([st.height for st in s.stories])
     masses = np.array([st.weight for st in s.stories]) / g
@@ -113,7 +110,7 @@ def build_model(scene: Scene) -> ReducedModel:
         weight = s.vertical_weight
     params = _attach_columns(sp.derive_columns(np.concatenate(tables)), A)
     return ReducedModel(scene=scene, dofs=dofs, mass=mass, A=A, params=params, ground_load=load,
-                        geometric=_geometric(dofs, s, masses, heights, g), weight=weight,
+                        geometric=_geometric(dofs, s, masses, heights, g, A), weight=weight,
                         heights=heights, layout=layout, static_rotation=theta_s)
 
 
@@ -217,27 +214,37 @@ RK4_REAL_LIMIT = 2.785293563405282  # |R(z)| = 1 on the negative real axis
 
 
 def _impact_step(mass: float, damping: float, stiffness: float) -> float:
-    """Half the RK4 limit for a spring under its impact dashpot: m s² + c s + k = 0."""
+    """Step cap while a spring's impact dashpot acts: |λ|·h = 0.1 × RK4's real-axis limit
+    (0.28) for m s² + c s + k = 0, where RK4's local error is about 1e-5 — a stroke that lasts
+    many steps (ε → 0) is then integrated accurately, not only stably."""
     roots = np.roots([mass, damping, stiffness])
-    return 0.5 * RK4_REAL_LIMIT / float(np.max(np.abs(roots)))
+    return 0.1 * RK4_REAL_LIMIT / float(np.max(np.abs(roots)))
 
 
-def _geometric(dofs: DofMap, s, masses, heights, g) -> np.ndarray:
-    """P-Δ stiffness of the story weights about the rocking base (zero unless ``p_delta``).
+def _geometric(dofs: DofMap, s, masses, heights, g, A) -> np.ndarray:
+    """P-Δ stiffness of the story weights (zero unless ``p_delta``).
 
-    Gravity potential of story j with lateral x_j and base rotation θ, to second order:
-    W_j(h_j θ²/2 − x_j θ) (flexible) or −W_j h_j θ²/2 (rigid, x_j = h_j θ).
+    Second-order gravity potential of floor j at (u_j, h_j − Σ_{k≤j} d_k²/(2Δh_k)) in the frame
+    of the base rotated by θ, d_k the story drifts: W_j(h_j θ²/2 − x_j θ) about the rocking base
+    (rigid structure: −W_j h_j θ²/2) and −P_k d_k²/(2Δh_k) per story, P_k the weight above
+    story k. For one story the two add up to −W x²/(2h): an inverted pendulum about O.
     """
     KG = np.zeros((dofs.size, dofs.size))
-    if not s.p_delta or dofs.theta < 0:
+    if not s.p_delta:
         return KG
     weights = masses * g
     t = dofs.theta
-    if s.rigid:
+    if t >= 0 and s.rigid:
         KG[t, t] = -float(np.sum(weights * heights))
         return KG
-    for j, dof in enumerate(dofs.stories):
-        KG[t, t] += weights[j] * heights[j]
-        KG[dof, t] -= weights[j]
-        KG[t, dof] -= weights[j]
+    if t >= 0:
+        for j, dof in enumerate(dofs.stories):
+            KG[t, t] += weights[j] * heights[j]
+            KG[dof, t] -= weights[j]
+            KG[t, dof] -= weights[j]
+    story_heights = np.diff(np.concatenate([[0.0], heights]))
+    above = np.cumsum(weights[::-1])[::-1]
+    for k in range(len(dofs.stories)):
+        column = A[:, k]
+        KG -= above[k] / story_heights[k] * np.outer(column, column)
     return KG

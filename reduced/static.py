@@ -190,10 +190,11 @@ def _displaced(model: ReducedModel, q: np.ndarray, displacement: float) -> np.nd
     hist = np.zeros(model.spring_count, dtype=sp.HISTORY_DTYPE)
     q = q.copy()
     q[top] = displacement
-    for _ in range(100):
-        fint, kt, _, _, _ = _forces(model, q, hist)
+    scale = max(model.weight, model.g * float(np.sum(model.mass[list(model.dofs.stories)])))
+    for iteration in range(100):
+        fint, kt, *_ = _forces(model, q, hist)
         r = fint[free]
-        if np.max(np.abs(r)) <= 1e-10 * max(model.weight, 1.0) and _ > 0:
+        if np.max(np.abs(r)) <= 1e-10 * scale and iteration > 0:
             return q
         Kt = (model.A * kt) @ model.A.T + model.geometric
         q[free] -= np.linalg.solve(Kt[np.ix_(free, free)], r)

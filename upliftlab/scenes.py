@@ -134,8 +134,8 @@ class Structure:
     ``rotary_inertia`` is I₀, the mass moment of inertia of the rocking base body about O
     (mass·length²), excluding the story masses, which enter through their lateral DOFs.
     ``vertical_weight`` (force) is carried by the foundation and gives the vertical mass.
-    ``rigid`` ties every story to the base rotation (u = 0). ``p_delta`` adds the P-Δ moment of
-    the story weights about the rocking base.
+    ``rigid`` ties every story to the base rotation (u = 0). ``p_delta`` adds the P-Δ effect of
+    the story weights: about the rocking base and on the story drifts.
     """
 
     stories: tuple[Story, ...]
