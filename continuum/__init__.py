@@ -1,1 +1,48 @@
-"""upliftlab.continuum"""
+"""upliftlab.continuum: a plane-strain soil domain (scikit-fem) under a rigid footing with
+unilateral contact and soil plasticity, and its static analyses.
+
+Conventions are the reduced model's, so one scene runs in both: x right, y up, surface y = 0,
+soil y < 0. The footing has three DOFs q = (u, v, θ) at the centre of its base; a base point at
+x moves by (u, v − xθ) (θ > 0 pushes the right edge down). The contact carries H (+x), N
+(compression) and M (about the base centre, + resisting +θ); the work-conjugate generalised
+force of q is (H, −N, M). Forces are per unit length out of plane, in the scene's units.
+
+Model and state
+    :func:`build_model` (scene) and :func:`make_model` (soil, B, options) give a
+    :class:`ContinuumModel`; :func:`geostatic` its initial :class:`ContinuumState` (K0 stress).
+Analyses (results are frozen records with ``save()`` to NetCDF)
+    :func:`footing_stiffness` -> :class:`FootingStiffness` (elastic, full contact);
+    :func:`vertical_pushover`, :func:`rotation_pushover`, :func:`moment_pushover`
+    -> :class:`StaticPath`; :func:`uplift_onset` -> :class:`UpliftOnset`;
+    :func:`vm_envelope` -> :class:`Envelope`.
+Solver
+    :func:`equilibrium` (one Newton step to a :class:`Control`), :func:`follow` (a load path
+    with step cutting), :func:`footing_tangent` (dF/dq), :class:`NewtonOptions`,
+    :class:`ConvergenceError`, :class:`ContactError`; :class:`SoilTerm` and
+    :class:`FootingTerm` add affine terms (inertia, dashpots, a superstructure) for dynamics.
+Pieces
+    :mod:`.assembly` (B-matrices, einsum Bᵀ D B into a fixed CSR pattern), :mod:`.footing`
+    (kinematics, contact solver), :mod:`.materials` (return maps), :mod:`.model`,
+    :mod:`.newton`, :mod:`.statics`.
+"""
+
+from .footing import (OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK, ContactError, Footing,
+                      Interface)
+from .model import ContinuumModel, build_model, default_k0, make_model
+from .newton import (ContinuumState, Control, ConvergenceError, FootingTerm, NewtonOptions,
+                     SoilTerm, equilibrium, follow, footing_tangent)
+from .statics import (Envelope, FootingStiffness, StaticPath, UpliftOnset,
+                      elastic_gravity_stress, footing_stiffness, geostatic, k0_stress,
+                      moment_pushover, rotation_pushover, uplift_onset, vertical_pushover,
+                      vm_envelope)
+
+__all__ = [
+    "ContinuumModel", "build_model", "make_model", "default_k0",
+    "ContinuumState", "Control", "NewtonOptions", "ConvergenceError", "ContactError",
+    "FootingTerm", "SoilTerm", "equilibrium", "follow", "footing_tangent",
+    "Footing", "Interface", "OPEN", "STICK", "SLIP_POSITIVE", "SLIP_NEGATIVE",
+    "geostatic", "k0_stress", "elastic_gravity_stress",
+    "FootingStiffness", "footing_stiffness",
+    "StaticPath", "vertical_pushover", "rotation_pushover", "moment_pushover",
+    "UpliftOnset", "uplift_onset", "Envelope", "vm_envelope",
+]

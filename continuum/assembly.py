@@ -9,8 +9,9 @@ Conventions (per unit out-of-plane length):
 - DOFs are those of ``skfem.ElementVector(element)``: ``u^1`` = ux, ``u^2`` = uy.
 - Strains and stresses at quadrature points are plane vectors ``(3, nelems, nqp)`` in the order
   (xx, yy, xy). Strains carry the **engineering** shear γ_xy = ∂ux/∂y + ∂uy/∂x, stresses the
-  tensorial σ_xy, so that a 3×3 tangent D from :func:`~upliftlab.continuum.materials.plane_strain_tangent`
-  gives dσ = D dε and the stiffness is ∫ Bᵀ D B.
+  tensorial σ_xy, so that the 3×3 tangent D of
+  :func:`~upliftlab.continuum.materials.plane_strain_tangent` gives dσ = D dε and the
+  stiffness is ∫ Bᵀ D B.
 - ``intorder`` is explicit (:data:`DEFAULT_INTORDER`). Q2 defaults to 2×2 Gauss points: reduced
   integration, which keeps the element free of volumetric locking under plastic flow.
 """
@@ -26,7 +27,8 @@ from scipy import sparse
 from ..checks import InputError
 
 __all__ = ["DEFAULT_INTORDER", "ELEMENT_TYPES", "Pattern", "Discretisation", "discretise",
-           "strain", "stiffness", "internal_force", "body_force", "element_name"]
+           "strain", "strain_tensor", "stiffness", "internal_force", "body_force",
+           "element_name"]
 
 #: Quadrature order per element: P1 3 points (degree 1 is exact), P2 3 points (exact for an
 #: affine stiffness), Q1 2×2 (full), Q2 2×2 (reduced; full would be 3×3).
@@ -65,6 +67,17 @@ class Pattern:
     def matrix(self, data: np.ndarray) -> sparse.csr_matrix:
         """The CSR matrix with this pattern and ``data`` (not copied)."""
         return sparse.csr_matrix((data, self.indices, self.indptr), shape=(self.size,) * 2)
+
+    def gather(self, matrix) -> np.ndarray:
+        """The data array, in this pattern, of a sparse ``matrix`` on the same DOFs (e.g. a
+        mass or boundary-dashpot matrix assembled by scikit-fem). Entries outside the pattern
+        are refused."""
+        matrix = sparse.csr_matrix(matrix)
+        rows = np.repeat(np.arange(self.size), np.diff(self.indptr))
+        data = np.asarray(matrix[rows, self.indices]).ravel()
+        if abs(matrix - self.matrix(data)).max() > 0.0:
+            raise InputError("matrix: has entries outside the sparsity pattern of the basis")
+        return data
 
 
 def _pattern(dofs: np.ndarray, size: int) -> Pattern:
@@ -147,6 +160,12 @@ def _b_rows(grad: np.ndarray) -> np.ndarray:
 def strain(disc: Discretisation, u: np.ndarray) -> np.ndarray:
     """Plane strain (εxx, εyy, γxy) of the DOF vector ``u`` at the quadrature points."""
     return np.einsum("aiep,ie->aep", disc.B, u[disc.dofs], optimize=True)
+
+
+def strain_tensor(eps: np.ndarray) -> np.ndarray:
+    """The 2×2 tensor (2, 2, …) of plane strains (εxx, εyy, γxy) (3, …)."""
+    half = 0.5 * eps[2]
+    return np.array([[eps[0], half], [half, eps[1]]])
 
 
 def stiffness(disc: Discretisation, D: np.ndarray) -> sparse.csr_matrix:

@@ -12,8 +12,10 @@ midpoints) is a contact node i at x_i. Its normal force P_i ≥ 0 (compression; 
 −P_i in y), its gap g_i = (v − x_i θ) − uy_i ≥ 0, and P_i g_i = 0, solved exactly (no penalty).
 Its pressure is p_i = P_i / w_i with w_i = ∫ φ_i ds the node's weight on the base (the nodal
 force of a unit pressure). Tangentially the interface is frictionless (no tangential force),
-bonded (tied while in contact: no slip over a step) or Coulomb (|T_i| ≤ μ P_i, slip opposes the
-soil's motion relative to the footing).
+Coulomb (|T_i| ≤ μ P_i; a slipping node's T_i opposes the soil's slip relative to the footing,
+measured from the start of the step) or bonded (rough: no slip while in contact). Bonded is
+Coulomb with μ = :data:`ROUGH_FRICTION` (1000): identical to a tie wherever |T| < 1000 P, and
+solvable at the node where contact ends, where an infinite μ has no solution.
 
 **Solver.** The soil's linearisation is condensed onto the contact DOFs c (the flexibility route
 of ``continuum-notes.md``): f_c = r + S Δu_c, with S the Schur complement of the current tangent
@@ -27,7 +29,6 @@ converged answer satisfies P ≥ 0, g ≥ 0, P g = 0 to round-off.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -38,6 +39,16 @@ from ..scenes import INTERFACES
 
 __all__ = ["OPEN", "STICK", "SLIP_POSITIVE", "SLIP_NEGATIVE", "Interface", "Footing",
            "footing_on", "ContactProblem", "ContactSolution", "ContactError", "solve_contact"]
+
+#: Relative round-off allowance of the contact conditions: P ≥ −tol and g ≥ −tol/c with
+#: tol = RTOL_CONTACT × the largest contact force.
+RTOL_CONTACT = 1e-9
+
+#: Friction coefficient that stands for "bonded" (rough, tied while in contact). A tie with
+#: μ = ∞ has no solution at a node where contact ends under plastic flow (sticking pulls it,
+#: opening lets it penetrate); with this μ such a node slips with T = μP, P ≈ 0+, and every
+#: node with |T| < 1000 P sticks exactly as a tie would.
+ROUGH_FRICTION = 1e3
 
 #: Contact status of a node: open (separated), closed and sticking (or closed, frictionless),
 #: closed and slipping with the tangential force on the soil +μP or −μP.
@@ -73,8 +84,9 @@ class Interface:
 
     @property
     def mu(self) -> float:
-        """Friction coefficient: 0 frictionless, inf bonded."""
-        return {"frictionless": 0.0, "bonded": math.inf}.get(self.kind, self.friction)
+        """Friction coefficient of the contact solver: 0 frictionless, :data:`ROUGH_FRICTION`
+        bonded, ``friction`` for coulomb."""
+        return {"frictionless": 0.0, "bonded": ROUGH_FRICTION}.get(self.kind, self.friction)
 
 
 @dataclass(frozen=True, eq=False)
@@ -112,7 +124,7 @@ class Footing:
         return np.vstack((normal, tangential))
 
     def gap(self, u: np.ndarray, q: np.ndarray) -> np.ndarray:
-        """Gap g_i = (v − x_i θ) − uy_i (length) of the soil displacement ``u`` and footing ``q``."""
+        """Gap g_i = (v − x_i θ) − uy_i (length) of soil displacement ``u``, footing ``q``."""
         return (q[1] - self.x * q[2]) - u[self.uy]
 
     def slip(self, u: np.ndarray, q: np.ndarray) -> np.ndarray:
@@ -182,28 +194,33 @@ def solve_contact(problem: ContactProblem, status: np.ndarray, *, frozen: bool =
                   max_iterations: int = 100) -> ContactSolution:
     """Solve ``problem`` by a primal–dual active set from the guess ``status`` (module docstring).
 
+    The active set updates every node at once; if the sets cycle (possible when the plastic
+    tangent makes S nearly singular) it switches to Murty's least-index rule, which changes one
+    node at a time and terminates for the P-matrix contact problems of a stable soil.
     ``frozen`` keeps ``status`` fixed (one linear solve). Raises :class:`ContactError` if the
-    sets cycle or do not settle in ``max_iterations``, or the system is singular.
+    sets do not settle in ``max_iterations``, or the system is singular.
     """
     status = np.asarray(status, dtype=np.int8).copy()
     if not frozen and not (status != OPEN).any():
         status[:] = STICK  # start from full contact: the sets then shrink monotonically
-    seen = set()
+    seen, least_index = set(), False
     for iteration in range(1, max_iterations + 1):
         duc, dq = _solve_sets(problem, status)
         force = problem.r + problem.S @ duc
         if frozen:
             return ContactSolution(duc, dq, force, status, iteration)
         new = _update_sets(problem, duc, dq, force)
-        if np.array_equal(new, status):
+        changed = np.flatnonzero(new != status)
+        if changed.size == 0:
             return ContactSolution(duc, dq, force, status, iteration)
-        key = new.tobytes()
-        if key in seen:
-            raise ContactError(f"contact active set cycles after {iteration} iterations "
-                               f"({int(np.count_nonzero(new))} of {new.size} nodes closed)")
-        seen.add(key)
-        status = new
-    raise ContactError(f"contact active set did not settle in {max_iterations} iterations")
+        least_index = least_index or new.tobytes() in seen
+        seen.add(new.tobytes())
+        if least_index:
+            status[changed[0]] = new[changed[0]]
+        else:
+            status = new
+    raise ContactError(f"contact active set did not settle in {max_iterations} iterations "
+                       f"({int(np.count_nonzero(status))} of {status.size} nodes closed)")
 
 
 def _solve_sets(p: ContactProblem, status: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -226,14 +243,13 @@ def _system(p: ContactProblem, status: np.ndarray) -> tuple[np.ndarray, np.ndarr
     f, n, m = p.footing, p.footing.nodes, p.S.shape[0]
     L = f.kinematics
     A, b = np.zeros((m + 3, m + 3)), np.zeros(m + 3)
-    nodes = np.arange(n)
-    closed, opened = status != OPEN, status == OPEN
+    closed, opened = np.flatnonzero(status != OPEN), np.flatnonzero(status == OPEN)
     # normal rows: closed -> zero gap after the step; open -> zero normal force
-    A[nodes[closed], nodes[closed]] = 1.0
-    A[nodes[closed], m:] = -L[nodes[closed]]
-    b[nodes[closed]] = L[nodes[closed]] @ p.q - p.uc[nodes[closed]]
-    A[nodes[opened], :m] = p.S[nodes[opened]]
-    b[nodes[opened]] = -p.r[nodes[opened]]
+    A[closed, closed] = 1.0
+    A[closed, m:] = -L[closed]
+    b[closed] = L[closed] @ p.q - p.uc[closed]
+    A[opened, :m] = p.S[opened]
+    b[opened] = -p.r[opened]
     if f.interface.tangential:
         _tangential_rows(p, status, A, b, L)
     for k in range(3):
@@ -271,14 +287,15 @@ def _update_sets(p: ContactProblem, duc, dq, force) -> np.ndarray:
     f, n = p.footing, p.footing.nodes
     diag = np.abs(np.diag(p.S))
     c_n = float(diag[:n].mean())
-    tol = 1e-12 * c_n * f.width
+    # round-off allowance: a node with P ≈ 0 and g ≈ 0 (where contact ends) must not flip
+    tol = RTOL_CONTACT * max(np.abs(force).max(), np.abs(p.r).max(), 1e-6 * c_n * f.width)
     uc, q = p.uc + duc, p.q + dq
     pressure = -force[:n]
     gap = f.kinematics[:n] @ q - uc[:n]
     closed = pressure - c_n * gap >= -tol
     status = np.where(closed, STICK, OPEN).astype(np.int8)
     mu = f.interface.mu
-    if f.interface.tangential and math.isfinite(mu):
+    if f.interface.tangential:
         c_t = float(diag[n:].mean())
         trial = force[n:] - c_t * ((uc[n:] - q[0]) - p.slip0)
         slipping = closed & (np.abs(trial) > mu * pressure + tol)

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import cached_property
 
 import numpy as np
 import skfem
@@ -68,7 +67,7 @@ def validate(soil: Soil, options: ContinuumOptions, footing_width: float) -> Non
 
 
 def default_k0(soil: Soil) -> float:
-    """K0 = σ'h/σ'v of the geostatic stress when ``soil.k0`` is not given:
+    """K0 = σh/σv (total stress) of the geostatic stress when ``soil.k0`` is not given:
     ν/(1 − ν) for elastic soil (what an elastic gravity step under roller sides gives),
     1 for undrained Tresca/von Mises (isotropic total stress: gravity uses none of c_u),
     1 − sin φ (Jaky) for Mohr–Coulomb/Drucker–Prager."""
@@ -205,6 +204,7 @@ class ContinuumModel:
     gravity: float
     k0: float
     scene: Scene | None = None
+    _cache: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def width(self) -> float:
@@ -231,7 +231,7 @@ class ContinuumModel:
     def respond(self, u: np.ndarray, state: State, eigenstrain: np.ndarray | None) -> Response:
         """Material update at every quadrature point for the total strain ε(u) + ``eigenstrain``
         (the geostatic stress enters as the eigenstrain C⁻¹σ0), from the converged ``state``."""
-        strain = plane_strain(_tensor(assembly.strain(self.disc, u)))
+        strain = plane_strain(assembly.strain_tensor(assembly.strain(self.disc, u)))
         if eigenstrain is not None:
             strain = strain + eigenstrain
         stress, tangent, new_state = self.material(strain, state)
@@ -239,29 +239,29 @@ class ContinuumModel:
             - self.body_force
         return Response(stress, plane_strain_tangent(tangent), new_state, residual)
 
-    def condense(self, tangent: np.ndarray) -> Condensation:
-        """The :class:`Condensation` of a plane tangent (cached for elastic soil)."""
-        if self.linear:
-            return self._elastic_condensation
-        return self._condense(tangent)
+    def condense(self, tangent: np.ndarray, extra: np.ndarray | None = None) -> Condensation:
+        """The :class:`Condensation` of a plane tangent plus an ``extra`` matrix given by its
+        CSR data in the model's pattern. For elastic soil the tangent is constant and the
+        condensation is computed once per ``extra`` (cached)."""
+        if not self.linear:
+            return self._condense(tangent, extra)
+        key = None if extra is None else id(extra)
+        cached = self._cache.get(key)
+        if cached is None or cached[0] is not extra:
+            if len(self._cache) > 4:
+                self._cache.clear()
+            D = plane_strain_tangent(self.material(np.zeros((3, 3, 1)))[1])[..., 0]
+            cached = self._cache[key] = (extra, self._condense(D, extra))
+        return cached[1]
 
-    def _condense(self, tangent: np.ndarray) -> Condensation:
-        Ke = assembly.stiffness(self.disc, tangent)
-        return condensation(self.blocks, Ke.data, self.symmetric)
-
-    @cached_property
-    def _elastic_condensation(self) -> Condensation:
-        D = plane_strain_tangent(self.material(np.zeros((3, 3, 1)))[1])[..., 0]
-        return self._condense(D)
+    def _condense(self, tangent: np.ndarray, extra: np.ndarray | None) -> Condensation:
+        data = assembly.stiffness(self.disc, tangent).data
+        if extra is not None:
+            data = data + extra
+        return condensation(self.blocks, data, self.symmetric)
 
     def initial_material_state(self) -> State:
         return self.material.initial_state(self.disc.qp_shape)
-
-
-def _tensor(eps: np.ndarray) -> np.ndarray:
-    """(εxx, εyy, γxy) (3, …) -> the 2×2 tensor (2, 2, …)."""
-    half = 0.5 * eps[2]
-    return np.array([[eps[0], half], [half, eps[1]]])
 
 
 def _dirichlet(basis: skfem.CellBasis) -> np.ndarray:
