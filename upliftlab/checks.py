@@ -9,6 +9,8 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 
+import numpy as np
+
 __all__ = [
     "InputError",
     "finite",
@@ -26,7 +28,8 @@ class InputError(ValueError):
 
 
 def _number(field: str, value) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer,
+                                                                    np.floating)):
         raise InputError(f"{field} = {value!r}: expected a number")
     value = float(value)
     if math.isnan(value):
@@ -80,8 +83,11 @@ def one_of(field: str, value, choices: Iterable[str]) -> str:
 
 
 def integer_at_least(field: str, value, minimum: int) -> int:
-    """An integer >= ``minimum`` (floats with an integral value are accepted)."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or value != int(value):
+    """An integer >= ``minimum`` (numpy integers and integral floats are accepted)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer,
+                                                                    np.floating)):
+        raise InputError(f"{field} = {value!r}: expected an integer >= {minimum}")
+    if not math.isfinite(value) or value != int(value):
         raise InputError(f"{field} = {value!r}: expected an integer >= {minimum}")
     if int(value) < minimum:
         raise InputError(f"{field} = {int(value)}: must be an integer >= {minimum}")

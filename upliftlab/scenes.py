@@ -471,8 +471,8 @@ def _soil(data) -> Soil:
         poisson_ratio=table.get("poisson_ratio", _range(-1.0, 0.5, low_open=True, high_open=True)),
         density=table.get("density", checks.nonnegative, 0.0),
         model=model,
-        undrained_strength=(table.get("undrained_strength", checks.positive)
-                            if model in ("tresca", "von_mises") else None),
+        undrained_strength=table.get("undrained_strength", checks.positive,
+                                     _MISSING if model in ("tresca", "von_mises") else None),
         cohesion=table.get("cohesion", checks.nonnegative, 0.0),
         friction_angle=table.get("friction_angle", _range(0.0, 60.0, high_open=True), 0.0),
         dilation_angle=table.get("dilation_angle", _range(0.0, 60.0, high_open=True), 0.0),
