@@ -39,6 +39,12 @@ import math
 import numpy as np
 from numba import njit
 
+try:  # numba's own switch for helpers that never allocate (numba.core.options.DefaultOptions)
+    from numba.core.options import DefaultOptions as _DefaultOptions
+    HOT = {"_nrt": False} if hasattr(_DefaultOptions, "_nrt") else {}
+except ImportError:  # pragma: no cover
+    HOT = {}
+
 # ---------------------------------------------------------------------------------------------
 # Spring parameters and state
 # ---------------------------------------------------------------------------------------------
@@ -257,9 +263,14 @@ def tangent(mode, p, imp):
 # ---------------------------------------------------------------------------------------------
 # Equation of motion
 # ---------------------------------------------------------------------------------------------
+#
+# Helpers that take arrays are inlined into their callers (``inline="always"``): an ordinary
+# call reference-counts each array argument, which costs accelerations about 100 ns a call,
+# almost as much as its arithmetic for 41 springs (140 ns). Helpers on records and scalars cost nothing
+# to call and stay ordinary functions. e = aᵀq is gathered and −a f scattered inline.
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def ground_acceleration(t, ag, dtg):
     """a_g(t): linear between samples k·dtg; ``ag`` ends with an appended zero."""
     s = t / dtg
@@ -272,15 +283,10 @@ def ground_acceleration(t, ag, dtg):
     return ag[i] * (1.0 - w) + ag[i + 1] * w
 
 
-# The hot loops below gather e = aᵀq and scatter −a f inline: a helper that takes arrays is
-# reference-counted at every call (about 20 ns, ten times the arithmetic), one on records and
-# scalars is not.
-
-
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def deformations(q, qd, P, e, ed):
-    """e = Aᵀq and ė = Aᵀq̇ (eq. 3)."""
-    for j in range(P.size):
+    """e = Aᵀq and ė = Aᵀq̇ (eq. 3), for the first e.size springs."""
+    for j in range(e.size):
         p = P[j]
         e[j] = p.a0 * q[p.i0] + p.a1 * q[p.i1]
         ed[j] = p.a0 * qd[p.i0] + p.a1 * qd[p.i1]
@@ -289,12 +295,28 @@ def deformations(q, qd, P, e, ed):
             ed[j] += p.a2 * qd[p.i2]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
+def rates(q, qd, qdd, P, e, ed, edd):
+    """e = Aᵀq, ė = Aᵀq̇ and ë = Aᵀq̈, for the first e.size springs."""
+    for j in range(e.size):
+        p = P[j]
+        e[j] = p.a0 * q[p.i0] + p.a1 * q[p.i1]
+        ed[j] = p.a0 * qd[p.i0] + p.a1 * qd[p.i1]
+        edd[j] = p.a0 * qdd[p.i0] + p.a1 * qdd[p.i1]
+        if p.nnz == 3:
+            e[j] += p.a2 * q[p.i2]
+            ed[j] += p.a2 * qd[p.i2]
+            edd[j] += p.a2 * qdd[p.i2]
+
+
+@njit(cache=True, inline="always")
 def accelerations(t, q, qd, natural, minv, P, KG, L, ag, dtg, modes, H, qdd):
     """q̈ from the equation of motion; returns the powers (input, viscous, impact, plastic).
 
     ``natural``: each spring's mode is decided by its trial state (fixed-step methods, whose
-    plastic work is counted at the return map instead); otherwise modes are frozen.
+    plastic work is counted at the return map instead); otherwise modes are frozen. Springs on
+    the same two DOFs as the last spring (the foundation bed, on θ and V) sum their forces
+    locally instead of scattering each into q̈.
     """
     n = q.size
     a = ground_acceleration(t, ag, dtg)
@@ -302,77 +324,353 @@ def accelerations(t, q, qd, natural, minv, P, KG, L, ag, dtg, modes, H, qdd):
     for i in range(n):
         qdd[i] = L[i] * a
         pin += L[i] * a * qd[i]
-        for k in range(n):
+        for k in range(KG.shape[1]):
             qdd[i] -= KG[i, k] * q[k]
     pv = 0.0
     pi = 0.0
     pp = 0.0
+    b0, b1 = P[P.size - 1].i0, P[P.size - 1].i1
+    qb0, qb1, vb0, vb1 = q[b0], q[b1], qd[b0], qd[b1]
+    fb0 = 0.0
+    fb1 = 0.0
     for j in range(P.size):
         p = P[j]
         h = H[j]
-        e = p.a0 * q[p.i0] + p.a1 * q[p.i1]
-        ed = p.a0 * qd[p.i0] + p.a1 * qd[p.i1]
-        if p.nnz == 3:
-            e += p.a2 * q[p.i2]
-            ed += p.a2 * qd[p.i2]
+        base = p.nnz == 2 and p.i0 == b0 and p.i1 == b1
+        if base:
+            e = p.a0 * qb0 + p.a1 * qb1
+            ed = p.a0 * vb0 + p.a1 * vb1
+        else:
+            e = p.a0 * q[p.i0] + p.a1 * q[p.i1]
+            ed = p.a0 * qd[p.i0] + p.a1 * qd[p.i1]
+            if p.nnz == 3:
+                e += p.a2 * q[p.i2]
+                ed += p.a2 * qd[p.i2]
         mode = natural_mode(p, e, ed, h.ep, h.imp) if natural else modes[j]
         f, v, im, pl, _, _ = force_in_mode(mode, p, e, ed, h.ep, h.imp)
         pv += v
         pi += im
         pp += pl
-        qdd[p.i0] -= p.a0 * f
-        qdd[p.i1] -= p.a1 * f
-        if p.nnz == 3:
-            qdd[p.i2] -= p.a2 * f
+        if base:
+            fb0 += p.a0 * f
+            fb1 += p.a1 * f
+        else:
+            qdd[p.i0] -= p.a0 * f
+            qdd[p.i1] -= p.a1 * f
+            if p.nnz == 3:
+                qdd[p.i2] -= p.a2 * f
+    qdd[b0] -= fb0
+    qdd[b1] -= fb1
     for i in range(n):
         qdd[i] *= minv[i]
     return pin, pv, pi, 0.0 if natural else pp
 
 
 @njit(cache=True)
-def rk4_step(t, h, q, qd, acc, natural, minv, P, KG, L, ag, dtg, modes, H, k1, k2, k3, k4, qs,
-             qds, q1, qd1, acc1):
-    """One classical RK4 step of size h in Nyström form (for q̈ = f(t, q, q̇)).
+def geometric_or_nothing(KG):
+    """K_G, or a K_G with no columns when it is zero (no P-Δ, the usual case), so that the
+    loops over it cost nothing."""
+    for i in range(KG.shape[0]):
+        for k in range(KG.shape[1]):
+            if KG[i, k] != 0.0:
+                return KG
+    return np.zeros((KG.shape[0], 0))
 
-    The energy accumulators ``acc`` ride along as extra RK4 components.
-    """
-    n = q.size
-    p1 = accelerations(t, q, qd, natural, minv, P, KG, L, ag, dtg, modes, H, k1)
-    for i in range(n):
-        qs[i] = q[i] + 0.5 * h * qd[i]
-        qds[i] = qd[i] + 0.5 * h * k1[i]
-    p2 = accelerations(t + 0.5 * h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes,
-                       H, k2)
-    for i in range(n):
-        qs[i] = q[i] + 0.5 * h * qd[i] + 0.25 * h * h * k1[i]
-        qds[i] = qd[i] + 0.5 * h * k2[i]
-    p3 = accelerations(t + 0.5 * h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes,
-                       H, k3)
-    for i in range(n):
-        qs[i] = q[i] + h * qd[i] + 0.5 * h * h * k2[i]
-        qds[i] = qd[i] + h * k3[i]
-    p4 = accelerations(t + h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes, H, k4)
-    for i in range(n):
+
+@njit(cache=True, inline="always")
+def rk4_stage_state(stage, h, q, qd, k1, k2, k3, qs, qds):
+    """The state at which classical RK4 (Nyström form, q̈ = f(t, q, q̇)) evaluates its stage
+    2, 3 or 4, from the stages before it."""
+    for i in range(q.size):
+        if stage == 2:
+            qs[i] = q[i] + 0.5 * h * qd[i]
+            qds[i] = qd[i] + 0.5 * h * k1[i]
+        elif stage == 3:
+            qs[i] = q[i] + 0.5 * h * qd[i] + 0.25 * h * h * k1[i]
+            qds[i] = qd[i] + 0.5 * h * k2[i]
+        else:
+            qs[i] = q[i] + h * qd[i] + 0.5 * h * h * k2[i]
+            qds[i] = qd[i] + h * k3[i]
+
+
+@njit(cache=True, inline="always")
+def rk4_combine(h, q, qd, acc, k1, k2, k3, k4, p1, p2, p3, p4, q1, qd1, acc1):
+    """The end of an RK4 step from its four stages; the energy accumulators ``acc`` ride along
+    as extra components, with the powers p1…p4 as their rates."""
+    for i in range(q.size):
         q1[i] = q[i] + h * qd[i] + h * h / 6.0 * (k1[i] + k2[i] + k3[i])
         qd1[i] = qd[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
     for c in range(N_ACC):
         acc1[c] = acc[c] + h / 6.0 * (p1[c] + 2.0 * p2[c] + 2.0 * p3[c] + p4[c])
 
 
+@njit(cache=True, **HOT)
+def rk4_step(t, h, q, qd, acc, natural, minv, P, KG, L, ag, dtg, modes, H, k1, k2, k3, k4, qs,
+             qds, q1, qd1, acc1):
+    """One classical RK4 step of size h with the laws of :func:`accelerations`."""
+    p1 = accelerations(t, q, qd, natural, minv, P, KG, L, ag, dtg, modes, H, k1)
+    rk4_stage_state(2, h, q, qd, k1, k2, k3, qs, qds)
+    p2 = accelerations(t + 0.5 * h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes, H, k2)
+    rk4_stage_state(3, h, q, qd, k1, k2, k3, qs, qds)
+    p3 = accelerations(t + 0.5 * h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes, H, k3)
+    rk4_stage_state(4, h, q, qd, k1, k2, k3, qs, qds)
+    p4 = accelerations(t + h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes, H, k4)
+    rk4_combine(h, q, qd, acc, k1, k2, k3, k4, p1, p2, p3, p4, q1, qd1, acc1)
+
+
 # ---------------------------------------------------------------------------------------------
-# Switch detection and location
+# Laws tabulated by mode (event stepper)
 # ---------------------------------------------------------------------------------------------
+#
+# While a spring keeps its mode its force is affine in (e, ė), its powers are quadratic and
+# its validity conditions are affine. The event stepper keeps their coefficients in a table,
+# one column per spring, rewritten only when the spring switches, so that its right-hand side
+# and its switch screen are branch-free loops. The foundation bed (the springs on the same two
+# DOFs as the last spring: θ and V) has a table of its own that those loops run through in SIMD
+# lanes; the other springs (stories) are few and go one by one.
+
+T_A0, T_A1 = 0, 1           # entries of A on the two shared DOFs (bed table only)
+T_K, T_C, T_F = 2, 3, 4      # force conjugate to e: T_K e + T_C ė + T_F
+T_V, T_I = 5, 8              # viscous, impact power: (T[r] + T[r + 1] e + T[r + 2] ė) ė
+T_P = 11                     # plastic power: T_P ė
+T_COND = 12                  # condition k (:func:`condition`): α, β, γ in rows T_COND + 3k
+N_CONDITIONS = 4
+T_GAP, T_KC, T_FY = 24, 25, 26  # foundation peaks: gap T_GAP − e, force min(T_KC d, T_FY)
+N_ROWS = 27
+FAST = {"reassoc", "contract"}  # lets the compiler regroup sums into SIMD lanes
 
 
 @njit(cache=True)
-def min_validity(P, modes, H, e, ed):
-    """Smallest validity over all springs at deformations (e, ė)."""
-    g = np.inf
-    for j in range(e.size):
-        v = validity(modes[j], P[j], e[j], ed[j], H[j])
-        if v < g:
-            g = v
-    return g
+def condition(k, mode, p, hist):
+    """Condition k of a spring's mode as (α, β, γ): the spring stays in its mode while
+    α + β e + γ ė ≥ 0. :func:`validity` is the least of them; a k the mode does not use gives
+    the constant 1. Foundation condition 0 is the impact stroke; the others, by mode: gap
+    (separated); loading rate (yielding); contact, yield, compression (contact); contact,
+    tension of the clipped force (clipped). Story: the two yield limits, or the rate."""
+    one = (1.0, 0.0, 0.0)
+    if p.kind == STORY:
+        if mode == ELASTIC:
+            s = p.k * p.gs
+            if k == 0:
+                return 1.0 + s * hist.ep, -s, 0.0
+            return (1.0 - s * hist.ep, s, 0.0) if k == 1 else one
+        if k == 0:
+            return 0.0, 0.0, (1.0 if mode == YIELD_POS else -1.0)
+        return one
+    if k == 0:
+        return ((hist.dz + hist.e0) * p.gd, -p.gd, 0.0) if hist.imp > 0.0 else one
+    r = p.d0 - hist.ep  # d = e + r
+    cd = (p.c + p.cimp * hist.imp) * p.gs
+    if mode == SEPARATED:
+        return (-r * p.gd, -p.gd, 0.0) if k == 1 else one
+    if mode == YIELDING:
+        return (0.0, 0.0, 1.0) if k == 1 else one
+    if p.kind == BONDED:
+        return ((p.fy - p.k * r) * p.gs, -p.k * p.gs, 0.0) if k == 1 else one
+    if k == 1:
+        return r * p.gd, p.gd, 0.0
+    if mode == CLIPPED:
+        return (-p.k * r * p.gs, -p.k * p.gs, -cd) if k == 2 else one
+    if k == 2:
+        return (p.fy - p.k * r) * p.gs, -p.k * p.gs, 0.0
+    return (p.k * r * p.gs, p.k * p.gs, cd) if k == 3 else one
+
+
+@njit(cache=True)
+def law(mode, p, hist):
+    """A spring's law in a mode, in the affine form of :func:`force_in_mode`: (K, C, F) of the
+    force K e + C ė + F; (a, b, c) of the viscous power (a + b e + c ė) ė; the same for the
+    impact dashpot; P of the plastic power P ė."""
+    if p.kind == STORY:
+        if mode == ELASTIC:
+            return p.kh + p.k, p.c, -p.k * hist.ep, 0.0, 0.0, p.c, 0.0, 0.0, 0.0, 0.0
+        fep = p.fy if mode == YIELD_POS else -p.fy
+        return p.kh, p.c, fep, 0.0, 0.0, p.c, 0.0, 0.0, 0.0, fep
+    if mode == SEPARATED:
+        return 0.0, 0.0, -p.f0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    share = p.share * hist.imp
+    cd = p.c + p.cimp * hist.imp
+    if mode == CLIPPED:  # the dashpot cancels the spring: its power is −k d ė
+        kr = -p.k * (p.d0 - hist.ep)
+        return (0.0, 0.0, -p.f0, kr * (1.0 - share), -p.k * (1.0 - share), 0.0, kr * share,
+                -p.k * share, 0.0, 0.0)
+    if mode == YIELDING:
+        return 0.0, cd, p.fy - p.f0, 0.0, 0.0, cd * (1.0 - share), 0.0, 0.0, cd * share, p.fy
+    return (p.k, cd, p.k * (p.d0 - hist.ep) - p.f0, 0.0, 0.0, cd * (1.0 - share), 0.0, 0.0,
+            cd * share, 0.0)
+
+
+@njit(cache=True, **HOT)
+def write_column(T, col, mode, p, hist):
+    """Tabulate a spring's law and conditions in its mode into column ``col`` of T."""
+    coefficients = law(mode, p, hist)
+    for r in range(10):
+        T[T_K + r, col] = coefficients[r]
+    for k in range(N_CONDITIONS):
+        alpha, beta, gamma = condition(k, mode, p, hist)
+        T[T_COND + 3 * k, col] = alpha
+        T[T_COND + 3 * k + 1, col] = beta
+        T[T_COND + 3 * k + 2, col] = gamma
+    T[T_GAP, col] = hist.ep - p.d0
+    T[T_KC, col] = p.k if (p.kind != STORY and mode != SEPARATED) else 0.0
+    T[T_FY, col] = p.fy
+
+
+@njit(cache=True, **HOT)
+def tabulate(j, modes, P, H, Tg, Tb):
+    """Rewrite spring j's column (its mode or history changed)."""
+    first = Tg.shape[1]
+    if j >= first:
+        write_column(Tb, j - first, modes[j], P[j], H[j])
+    else:
+        write_column(Tg, j, modes[j], P[j], H[j])
+
+
+@njit(cache=True)
+def bed_start(P):
+    """Index of the first spring of the bed: the trailing run of foundation springs that
+    connect the same two DOFs (and only those) as the last spring."""
+    last = P[P.size - 1]
+    first = P.size
+    while (first > 0 and P[first - 1].kind != STORY and P[first - 1].nnz == 2
+           and P[first - 1].i0 == last.i0 and P[first - 1].i1 == last.i1):
+        first -= 1
+    return first
+
+
+@njit(cache=True, inline="always")
+def bed_state(P, q, qd, qdd):
+    """Value, rate and second rate of the bed's two DOFs (those of the last spring)."""
+    b0, b1 = P[P.size - 1].i0, P[P.size - 1].i1
+    return (q[b0], qd[b0], qdd[b0]), (q[b1], qd[b1], qdd[b1])
+
+
+@njit(cache=True, inline="always")
+def bed_rates(a0, a1, x, y):
+    """e, ė, ë of a bed spring (entries a0, a1 of A) from the state x, y of the bed's DOFs."""
+    return (a0 * x[0] + a1 * y[0], a0 * x[1] + a1 * y[1], a0 * x[2] + a1 * y[2])
+
+
+@njit(cache=True)
+def law_tables(P, modes, H):
+    """The tables of the springs off the bed (Tg, in spring order) and of the bed (Tb)."""
+    first = bed_start(P)
+    Tg = np.zeros((N_ROWS, first))
+    Tb = np.zeros((N_ROWS, P.size - first))
+    for k in range(P.size - first):
+        Tb[T_A0, k] = P[first + k].a0
+        Tb[T_A1, k] = P[first + k].a1
+    for j in range(P.size):
+        tabulate(j, modes, P, H, Tg, Tb)
+    return Tg, Tb
+
+
+@njit(cache=True, fastmath=FAST, **HOT)
+def bed_forces(T, x, xd, y, yd):
+    """Forces of the bed on its two DOFs (values x, y, rates ẋ, ẏ) and its viscous, impact and
+    plastic powers."""
+    fx = 0.0
+    fy = 0.0
+    pv = 0.0
+    pi = 0.0
+    pp = 0.0
+    for k in range(T.shape[1]):
+        a0 = T[T_A0, k]
+        a1 = T[T_A1, k]
+        e = a0 * x + a1 * y
+        ed = a0 * xd + a1 * yd
+        f = T[T_K, k] * e + T[T_C, k] * ed + T[T_F, k]
+        pv += (T[T_V, k] + T[T_V + 1, k] * e + T[T_V + 2, k] * ed) * ed
+        pi += (T[T_I, k] + T[T_I + 1, k] * e + T[T_I + 2, k] * ed) * ed
+        pp += T[T_P, k] * ed
+        fx += a0 * f
+        fy += a1 * f
+    return fx, fy, pv, pi, pp
+
+
+@njit(cache=True, inline="always")
+def frozen_accelerations(t, q, qd, minv, P, KG, L, ag, dtg, Tg, Tb, qdd):
+    """q̈ with every spring held in its tabulated mode (event stepper); returns the powers
+    (input, viscous, impact, plastic)."""
+    n = q.size
+    a = ground_acceleration(t, ag, dtg)
+    pin = 0.0
+    for i in range(n):
+        qdd[i] = L[i] * a
+        pin += L[i] * a * qd[i]
+        for k in range(KG.shape[1]):
+            qdd[i] -= KG[i, k] * q[k]
+    pv = 0.0
+    pi = 0.0
+    pp = 0.0
+    for j in range(Tg.shape[1]):
+        p = P[j]
+        e = p.a0 * q[p.i0] + p.a1 * q[p.i1]
+        ed = p.a0 * qd[p.i0] + p.a1 * qd[p.i1]
+        if p.nnz == 3:
+            e += p.a2 * q[p.i2]
+            ed += p.a2 * qd[p.i2]
+        f = Tg[T_K, j] * e + Tg[T_C, j] * ed + Tg[T_F, j]
+        pv += (Tg[T_V, j] + Tg[T_V + 1, j] * e + Tg[T_V + 2, j] * ed) * ed
+        pi += (Tg[T_I, j] + Tg[T_I + 1, j] * e + Tg[T_I + 2, j] * ed) * ed
+        pp += Tg[T_P, j] * ed
+        qdd[p.i0] -= p.a0 * f
+        qdd[p.i1] -= p.a1 * f
+        if p.nnz == 3:
+            qdd[p.i2] -= p.a2 * f
+    if Tb.shape[1] > 0:
+        b0, b1 = P[P.size - 1].i0, P[P.size - 1].i1
+        fx, fy, bv, bi, bp = bed_forces(Tb, q[b0], qd[b0], q[b1], qd[b1])
+        qdd[b0] -= fx
+        qdd[b1] -= fy
+        pv += bv
+        pi += bi
+        pp += bp
+    for i in range(n):
+        qdd[i] *= minv[i]
+    return pin, pv, pi, pp
+
+
+@njit(cache=True, **HOT)
+def frozen_rk4_step(t, h, q, qd, acc, k1, p1, minv, P, KG, L, ag, dtg, Tg, Tb, k2, k3, k4, qs,
+                    qds, q1, qd1, acc1):
+    """RK4 step of the event stepper, every spring in its tabulated mode, from its first stage
+    k1 (with its powers p1): the acceleration at the end of the step before (three
+    right-hand sides a step, with the one at its end)."""
+    rk4_stage_state(2, h, q, qd, k1, k2, k3, qs, qds)
+    p2 = frozen_accelerations(t + 0.5 * h, qs, qds, minv, P, KG, L, ag, dtg, Tg, Tb, k2)
+    rk4_stage_state(3, h, q, qd, k1, k2, k3, qs, qds)
+    p3 = frozen_accelerations(t + 0.5 * h, qs, qds, minv, P, KG, L, ag, dtg, Tg, Tb, k3)
+    rk4_stage_state(4, h, q, qd, k1, k2, k3, qs, qds)
+    p4 = frozen_accelerations(t + h, qs, qds, minv, P, KG, L, ag, dtg, Tg, Tb, k4)
+    rk4_combine(h, q, qd, acc, k1, k2, k3, k4, p1, p2, p3, p4, q1, qd1, acc1)
+
+
+# ---------------------------------------------------------------------------------------------
+# Switch detection and location
+# ---------------------------------------------------------------------------------------------
+#
+# Within a step of the event stepper every spring keeps its mode, so the trial step is a smooth
+# solution of one set of laws. Its ends carry q, q̇ and q̈, and the quintic Hermite interpolant
+# through them is a dense output of the step as accurate as the step itself (its error comes
+# from the end values, O(h⁵)). A switch is located on that interpolant and the step is cut
+# there, with the interpolated state: no re-integration. Each validity condition of a spring is
+# affine in (e, ė), so along the step it is a quintic in s = (t − t₀)/h, bounded by its
+# Bernstein coefficients (convex hull). A cheaper bound first screens out the springs that
+# cannot switch; the Bernstein coefficients, on halved pieces, isolate the first crossing of
+# the others.
+
+MAX_DEPTH = 24      # subdivision depth of the crossing search (2⁻²⁴ of a step)
+MAX_PIECES = 4096   # pieces it visits at most
+
+
+@njit(cache=True, inline="always")
+def finite(a, b):
+    """True if every entry of a and b is finite (without the temporaries of np.isfinite)."""
+    for i in range(a.size):
+        if not (math.isfinite(a[i]) and math.isfinite(b[i])):
+            return False
+    return True
 
 
 @njit(cache=True)
@@ -388,7 +686,7 @@ def hermite(s, h, y0, d0, y1, d1):
 
 @njit(cache=True)
 def hermite_stationary(h, y0, d0, y1, d1):
-    """Fractions s in (0, 1) where the Hermite interpolant is stationary (2.0 if none)."""
+    """Fractions s in (0, 1) where the cubic Hermite interpolant is stationary (2.0 if none)."""
     c = d0 * h
     b = 6.0 * (y1 - y0) - 4.0 * d0 * h - 2.0 * d1 * h
     a = -6.0 * (y1 - y0) + 3.0 * (d0 + d1) * h
@@ -406,202 +704,330 @@ def hermite_stationary(h, y0, d0, y1, d1):
     return min(r1, r2), max(r1, r2)
 
 
-@njit(cache=True)
-def validity_between(s, h, mode, p, hist, e0, ed0, e1, ed1):
-    """Validity of a spring at fraction s of the step, on the Hermite interpolant of its e."""
-    e, ed = hermite(s, h, e0, ed0, e1, ed1)
-    return validity(mode, p, e, ed, hist)
+@njit(cache=True, inline="always")
+def quintic(h, y0, d0, a0, y1, d1, a1):
+    """Coefficients (m₀ … m₅) in s ∈ [0, 1] of the quintic Hermite interpolant that matches
+    value, rate and second rate (per unit time) at both ends of a step of length h."""
+    m1 = h * d0
+    m2 = 0.5 * h * h * a0
+    r0 = y1 - y0 - m1 - m2
+    r1 = h * d1 - m1 - 2.0 * m2
+    r2 = h * h * a1 - 2.0 * m2
+    return (y0, m1, m2, 10.0 * r0 - 4.0 * r1 + 0.5 * r2, -15.0 * r0 + 7.0 * r1 - r2,
+            6.0 * r0 - 3.0 * r1 + 0.5 * r2)
+
+
+@njit(cache=True, inline="always")
+def chord_deviation(m, h):
+    """Bounds on how far a quintic's value and rate (per unit time) stray from their chords
+    over the step: the largest distance of its Bernstein control points (value: degree 5;
+    rate: degree 4) from those of the chord."""
+    u = m[1] - (m[1] + m[2] + m[3] + m[4] + m[5])
+    dev_e = max(abs(0.2 * u), abs(0.4 * u + 0.1 * m[2]), abs(0.6 * u + 0.3 * m[2] + 0.1 * m[3]),
+                abs(0.8 * u + 0.6 * m[2] + 0.4 * m[3] + 0.2 * m[4]))
+    n1, n2, n3 = 2.0 * m[2], 3.0 * m[3], 4.0 * m[4]
+    dn = n1 + n2 + n3 + 5.0 * m[5]
+    dev_ed = max(abs(n1 - dn) / 4.0, abs(0.5 * (n1 - dn) + n2 / 6.0),
+                 abs(0.75 * (n1 - dn) + 0.5 * n2 + 0.25 * n3))
+    return dev_e, dev_ed / h
 
 
 @njit(cache=True)
-def dip_bound(p, h, e0, ed0, e1, ed1, imp):
-    """Most any validity condition of a spring can fall below the straight line between its
-    end values on the step's interpolant (validity units).
-
-    On the cubic Hermite e(s), e deviates from its chord by at most (4/27)·h·(|ė₀ − m| +
-    |ė₁ − m|) and ė from its chord by at most 1.5·|m − (ė₀ + ė₁)/2|, m = (e₁ − e₀)/h; each
-    condition is a combination of e and ė with the coefficients below.
-    """
-    m = (e1 - e0) / h
-    dev_e = 4.0 / 27.0 * h * (abs(ed0 - m) + abs(ed1 - m))
-    dev_ed = 1.5 * abs(m - 0.5 * (ed0 + ed1))
-    if p.kind == STORY:
-        return p.k * p.gs * dev_e + dev_ed
-    return max(p.gd, p.k * p.gs) * dev_e + max((p.c + p.cimp * imp) * p.gs, 1.0) * dev_ed
+def condition_polynomial(alpha, beta, gamma, m, h):
+    """Coefficients in s of α + β e(s) + γ ė(s), e the quintic with coefficients m."""
+    g = gamma / h
+    return (alpha + beta * m[0] + g * m[1], beta * m[1] + 2.0 * g * m[2],
+            beta * m[2] + 3.0 * g * m[3], beta * m[3] + 4.0 * g * m[4],
+            beta * m[4] + 5.0 * g * m[5], beta * m[5])
 
 
 @njit(cache=True)
-def first_crossing(h, P, modes, H, e0, ed0, e1, ed1, g0):
-    """Earliest fraction s of the step at which a spring leaves its mode, on the interpolant.
-
-    Every condition is linear in (e, ė), and e is a cubic on the step. A spring whose smaller
-    end validity exceeds :func:`dip_bound` cannot switch inside the step. Any other is checked
-    where a dip below zero and back (a brief touch-down or yield, which a check at the step end
-    would step over) can hide: mid-step, at the stationary points of e and of ė, and at the end.
-    The earliest crossing is refined on the interpolant to a point just past it (by half the
-    overshoot tolerance). ``g0`` holds each spring's validity at the step start and receives it
-    at the step end. Returns (estimate, a fraction known to be past it, spring), or (2, 2, −1)
-    when every spring stays in its mode.
-    """
-    best, beyond, spring = 2.0, 2.0, -1
-    for j in range(e0.size):
-        g_end = validity(modes[j], P[j], e1[j], ed1[j], H[j])
-        g_start = g0[j]
-        g0[j] = g_end
-        if min(g_start, g_end) > dip_bound(P[j], h, e0[j], ed0[j], e1[j], ed1[j], H[j].imp):
-            continue
-        s_neg, g_neg = (1.0, g_end) if g_end < -SWITCH_TOL else (2.0, 0.0)
-        r1, r2 = hermite_stationary(h, e0[j], ed0[j], e1[j], ed1[j])
-        # ė is quadratic in s; it is stationary where the cubic's second derivative vanishes
-        a = -6.0 * (e1[j] - e0[j]) + 3.0 * (ed0[j] + ed1[j]) * h
-        b = 6.0 * (e1[j] - e0[j]) - 4.0 * ed0[j] * h - 2.0 * ed1[j] * h
-        r3 = -b / (3.0 * a) if abs(a) > 1e-300 else 2.0
-        for s in (0.5, r1, r2, r3):
-            if 0.0 < s < min(s_neg, best):
-                g = validity_between(s, h, modes[j], P[j], H[j], e0[j], ed0[j], e1[j], ed1[j])
-                if g < -SWITCH_TOL:
-                    s_neg, g_neg = s, g
-        if s_neg >= best:
-            continue
-        lo = 0.0  # the latest checked point before s_neg that is still valid
-        for s in (0.5, r1, r2, r3):
-            if lo < s < s_neg:
-                lo = s
-        best = interpolant_root(lo, s_neg, max(-0.5 * OVERSHOOT_TOL, 0.5 * g_neg), 0.0, h,
-                                modes[j], P[j], H[j], e0[j], ed0[j], e1[j], ed1[j])
-        beyond, spring = s_neg, j
-    return best, beyond, spring
+def bernstein(c):
+    """Bernstein coefficients on [0, 1] of the quintic with power coefficients c."""
+    return (c[0], c[0] + 0.2 * c[1], c[0] + 0.4 * c[1] + 0.1 * c[2],
+            c[0] + 0.6 * c[1] + 0.3 * c[2] + 0.1 * c[3],
+            c[0] + 0.8 * c[1] + 0.6 * c[2] + 0.4 * c[3] + 0.2 * c[4],
+            c[0] + c[1] + c[2] + c[3] + c[4] + c[5])
 
 
 @njit(cache=True)
-def interpolant_root(lo, hi, target, shift, h, mode, p, hist, e0, ed0, e1, ed1):
-    """Fraction s in (lo, hi] where a spring's interpolated validity, plus ``shift``, drops
-    below ``target``: Illinois on the interpolant to 1e-9 of the step, ending on the far side
-    (``hi`` if it does not drop within the bracket)."""
-    f_lo = validity_between(lo, h, mode, p, hist, e0, ed0, e1, ed1) + shift - target
-    f_hi = validity_between(hi, h, mode, p, hist, e0, ed0, e1, ed1) + shift - target
+def restricted(c, a, w):
+    """Power coefficients in u of the quintic c at s = a + w u (its piece on [a, a + w])."""
+    d1 = c[1] + a * (2.0 * c[2] + a * (3.0 * c[3] + a * (4.0 * c[4] + a * 5.0 * c[5])))
+    d2 = c[2] + a * (3.0 * c[3] + a * (6.0 * c[4] + a * 10.0 * c[5]))
+    d3 = c[3] + a * (4.0 * c[4] + a * 10.0 * c[5])
+    d4 = c[4] + a * 5.0 * c[5]
+    d0 = c[0] + a * (c[1] + a * (c[2] + a * (c[3] + a * (c[4] + a * c[5]))))
+    w2 = w * w
+    return d0, w * d1, w2 * d2, w2 * w * d3, w2 * w2 * d4, w2 * w2 * w * c[5]
+
+
+@njit(cache=True)
+def polynomial_at(c, s):
+    return c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * (c[4] + s * c[5]))))
+
+
+@njit(cache=True)
+def place_switch(c, lo, hi, g_hi):
+    """Where in (lo, hi] to put a switch of the condition c, which is above −SWITCH_TOL at lo
+    and at g_hi below it at hi: the first point found at the target overshoot (half of
+    OVERSHOOT_TOL, or halfway down to g_hi for a shallower dip), by Illinois."""
+    level = -SWITCH_TOL
+    target = max(-0.5 * OVERSHOOT_TOL, 0.5 * (level + g_hi))
+    f_lo = polynomial_at(c, lo) - target
+    f_hi = g_hi - target
     if f_hi >= 0.0 or f_lo < 0.0:
         return hi
+    accept = 0.5 * (level - target)
     side = 0
-    for _ in range(60):
-        if hi - lo <= 1e-9:
+    for _ in range(100):
+        if hi - lo <= 1e-15:
             break
         s = hi - f_hi * (hi - lo) / (f_hi - f_lo)
         s = min(max(s, lo + 1e-3 * (hi - lo)), hi - 1e-3 * (hi - lo))
-        f = validity_between(s, h, mode, p, hist, e0, ed0, e1, ed1) + shift - target
+        f = polynomial_at(c, s) - target
         if f < 0.0:
             hi, f_hi = s, f
             if side == -1:
                 f_lo *= 0.5
             side = -1
+            if f > -accept:
+                break
         else:
             lo, f_lo = s, f
             if side == 1:
                 f_hi *= 0.5
             side = 1
-        if abs(f) < 0.25 * OVERSHOOT_TOL and f < 0.0:
-            break
     return hi
 
 
 @njit(cache=True)
-def locate_switch(t, h, s_est, s_past, spring, q, qd, acc, minv, P, KG, L, ag, dtg,
-                  modes, H, e0, ed0, e1, ed1, e, ed, k1, k2, k3, k4, qs, qds, q1, qd1, acc1,
-                  t_tol, counters):
-    """Shortest step that crosses a switch, re-integrated by RK4 from the step start.
-
-    Root-finds on the validity of the spring predicted to switch first. Each try is
-    re-integrated; the next one is taken on the step's interpolant (``e0, ed0, e1, ed1``)
-    shifted by the error seen at the try — a Newton step with the interpolant's slope — until
-    the crossing is overshot by at most :data:`OVERSHOOT_TOL` (validity units: δ0, F0) or the
-    bracket is shorter than ``t_tol``. If another spring turns out to have crossed first, it is
-    located in turn. Leaves the state at the returned step length in (q1, q̇1, acc1) and returns
-    it, or −1 (with the full step in q1) when no spring leaves its mode after all.
-    """
-    target = -0.5 * OVERSHOOT_TOL
-    j = spring
-    lo, hi = 0.0, (s_past * h if s_past <= 1.0 else h)
-    known_hi = False
-    tau = min(max(s_est * h, t_tol), h)
-    for _ in range(60):
-        rk4_step(t, tau, q, qd, acc, False, minv, P, KG, L, ag, dtg, modes, H, k1,
-                 k2, k3, k4, qs, qds, q1, qd1, acc1)
-        counters[1] += 1
-        counters[2] += 4
-        deformations(q1, qd1, P, e, ed)
-        g = validity(modes[j], P[j], e[j], ed[j], H[j])
-        g_all = min_validity(P, modes, H, e, ed)
-        if g_all < -OVERSHOOT_TOL and g >= -OVERSHOOT_TOL:
-            for k in range(e.size):  # another spring crossed first: locate it instead
-                if validity(modes[k], P[k], e[k], ed[k], H[k]) == g_all:
-                    j = k
-                    break
-            g = g_all
-        if -OVERSHOOT_TOL <= g < -SWITCH_TOL:
-            return tau
-        if g < -SWITCH_TOL:
-            hi, known_hi = tau, True
-        else:
-            lo = tau
-        if hi - lo <= t_tol:
-            if known_hi:
-                break
-            return -1.0
-        shift = g - validity_between(tau / h, h, modes[j], P[j], H[j], e0[j], ed0[j], e1[j], ed1[j])
-        s_new = interpolant_root(lo / h, hi / h, target, shift, h, modes[j], P[j], H[j], e0[j],
-                                 ed0[j], e1[j], ed1[j])
-        tau = s_new * h
-        if not lo < tau < hi or (tau == hi and known_hi):
-            tau = 0.5 * (lo + hi)  # the corrected interpolant gives nothing better: bisect
-    rk4_step(t, hi, q, qd, acc, False, minv, P, KG, L, ag, dtg, modes, H, k1, k2,
-             k3, k4, qs, qds, q1, qd1, acc1)
-    counters[2] += 4
-    return hi
+def condition_crossing(c, s_max):
+    """Fraction s at which to switch for the first dip of condition c below −SWITCH_TOL before
+    s_max (2.0 if none). Pieces of [0, 1] are visited left to right, halving those whose
+    Bernstein coefficients do not clear the level, down to :data:`MAX_DEPTH`; a dip narrower
+    and shallower than that resolves (a graze) is ignored."""
+    level = -SWITCH_TOL
+    b = bernstein(c)
+    if min(b) >= level:
+        return 2.0
+    if b[0] < level:
+        return 0.0
+    depth, k = 0, 0
+    for _ in range(MAX_PIECES):
+        w = 0.5 ** depth
+        a = k * w
+        if a >= s_max:
+            return 2.0
+        b = bernstein(restricted(c, a, w)) if depth > 0 else b
+        if min(b) < level:
+            if b[5] < level:
+                return place_switch(c, a, a + w, b[5])
+            if depth < MAX_DEPTH:
+                depth, k = depth + 1, 2 * k
+                continue
+            g_mid = polynomial_at(c, a + 0.5 * w)
+            if g_mid < level:
+                return place_switch(c, a, a + 0.5 * w, g_mid)
+        while k % 2 == 1:  # this piece is clear: on to the next one
+            depth, k = depth - 1, k // 2
+        if depth == 0:
+            return 2.0
+        k += 1
+    return 2.0
 
 
-@njit(cache=True)
-def apply_switches(P, modes, H, e, ed):
-    """Switch every spring whose mode was crossed, at deformations (e, ė); returns how many."""
-    count = 0
-    for j in range(e.size):
-        for _ in range(4):
-            if validity(modes[j], P[j], e[j], ed[j], H[j]) >= -SWITCH_TOL:
-                break
-            modes[j] = switch_mode(modes[j], P[j], e[j], ed[j], H[j])
-            count += 1
-    return count
+@njit(cache=True, **HOT)
+def log_impact(t, j, was_imp, imp, ed, impacts, open_impact, counters):
+    """Record spring j's impact damper switching on (recontact) or locking at time t."""
+    if was_imp == imp:
+        return
+    if imp > 0.0:
+        k = counters[3]
+        if k < impacts.shape[0]:
+            impacts[k, 0] = t
+            impacts[k, 1] = j
+            impacts[k, 2] = ed
+            impacts[k, 3] = np.nan
+            impacts[k, 4] = np.nan
+            open_impact[j] = k
+        counters[3] += 1
+    elif open_impact[j] >= 0:
+        impacts[open_impact[j], 3] = t
+        impacts[open_impact[j], 4] = ed
+        open_impact[j] = -1
 
 
-@njit(cache=True)
-def log_impacts(t, H, was_imp, ed, impacts, open_impact, counters):
-    """Record impact dampers that switched on (recontact) or locked at time t."""
-    for j in range(H.size):
-        if was_imp[j] == H[j].imp:
-            continue
-        if H[j].imp > 0.0:
-            k = counters[3]
-            if k < impacts.shape[0]:
-                impacts[k, 0] = t
-                impacts[k, 1] = j
-                impacts[k, 2] = ed[j]
-                impacts[k, 3] = np.nan
-                impacts[k, 4] = np.nan
-                open_impact[j] = k
-            counters[3] += 1
-        elif open_impact[j] >= 0:
-            impacts[open_impact[j], 3] = t
-            impacts[open_impact[j], 4] = ed[j]
-            open_impact[j] = -1
-
-
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def impact_step_cap(P, H):
-    """Largest step while impact dashpots act: the smallest ``imph`` of the active ones."""
-    cap = np.inf
+    """Largest step while impact dashpots act: 1/Σ(1/``imph``) over the active ones.
+
+    Each ``imph`` is the cap for one dashpot alone; dashpots that act at once add up (the
+    largest eigenvalue of M⁻¹C is at most its trace, the sum of each one's c*/m_eff), so their
+    rates add.
+    """
+    rate = 0.0
     for j in range(H.size):
-        if H[j].imp > 0.0 and P[j].imph < cap:
-            cap = P[j].imph
-    return cap
+        if H[j].imp > 0.0:
+            rate += 1.0 / P[j].imph
+    return 1.0 / rate if rate > 0.0 else np.inf
+
+
+@njit(cache=True, inline="always")
+def condition_bound(alpha, beta, gamma, e0, ed0, e1, ed1, dev_e, dev_ed):
+    """Lower bound over a step of the condition α + β e + γ ė: its smaller end value less how
+    far e and ė can stray from their chords."""
+    return (min(alpha + beta * e0 + gamma * ed0, alpha + beta * e1 + gamma * ed1)
+            - abs(beta) * dev_e - abs(gamma) * dev_ed)
+
+
+@njit(cache=True, inline="always")
+def column_margin(T, col, h, e0, ed0, edd0, e1, ed1, edd1):
+    """Lower bound of a spring's validity over a step (column ``col`` of its table; its e, ė, ë
+    at both ends), the least :func:`condition_bound` of its conditions on the step's quintic.
+    Below −SWITCH_TOL the spring may switch inside the step. (Written out again in
+    :func:`bed_margins`, whose loop it would keep out of SIMD lanes.)"""
+    dev_e, dev_ed = chord_deviation(quintic(h, e0, ed0, edd0, e1, ed1, edd1), h)
+    low = np.inf
+    for k in range(N_CONDITIONS):
+        r = T_COND + 3 * k
+        low = min(low, condition_bound(T[r, col], T[r + 1, col], T[r + 2, col], e0, ed0, e1,
+                                       ed1, dev_e, dev_ed))
+    return low
+
+
+@njit(cache=True, fastmath=FAST, **HOT)
+def bed_margins(T, h, x0, y0, x1, y1, margin):
+    """:func:`column_margin` of every spring of the bed, from the state of its two DOFs at the
+    start (x0, y0) and the end (x1, y1) of the step. (Written out: a helper that takes the
+    table would keep this loop out of SIMD lanes.)"""
+    for k in range(T.shape[1]):
+        a0, a1 = T[T_A0, k], T[T_A1, k]
+        e0, ed0, edd0 = bed_rates(a0, a1, x0, y0)
+        e1, ed1, edd1 = bed_rates(a0, a1, x1, y1)
+        dev_e, dev_ed = chord_deviation(quintic(h, e0, ed0, edd0, e1, ed1, edd1), h)
+        low = np.inf
+        for c in range(N_CONDITIONS):
+            r = T_COND + 3 * c
+            low = min(low, condition_bound(T[r, k], T[r + 1, k], T[r + 2, k], e0, ed0, e1, ed1,
+                                           dev_e, dev_ed))
+        margin[k] = low
+
+
+@njit(cache=True, inline="always")
+def column_crossing(T, col, m, h, s_max, shift):
+    """Earliest switch fraction before s_max (2.0 if none) of the spring in column ``col``,
+    whose e on the step is the quintic with coefficients m, its conditions raised by
+    ``shift``."""
+    best = 2.0
+    for k in range(N_CONDITIONS):
+        alpha = T[T_COND + 3 * k, col] + shift
+        beta = T[T_COND + 3 * k + 1, col]
+        gamma = T[T_COND + 3 * k + 2, col]
+        if (beta == 0.0 and gamma == 0.0) or not math.isfinite(alpha):
+            continue  # a constant, or a limit at infinity (elastic)
+        c = condition_polynomial(alpha, beta, gamma, m, h)
+        best = min(best, condition_crossing(c, min(best, s_max)))
+    return best
+
+
+@njit(cache=True, inline="always")
+def spring_quintic(j, h, Tb, x0, y0, x1, y1, e0, ed0, edd0, e1, ed1, edd1):
+    """Coefficients of spring j's e on a trial step (bed springs from their DOFs' state)."""
+    ng = e0.size
+    if j < ng:
+        return quintic(h, e0[j], ed0[j], edd0[j], e1[j], ed1[j], edd1[j])
+    a0, a1 = Tb[T_A0, j - ng], Tb[T_A1, j - ng]
+    ea, eda, edda = bed_rates(a0, a1, x0, y0)
+    eb, edb, eddb = bed_rates(a0, a1, x1, y1)
+    return quintic(h, ea, eda, edda, eb, edb, eddb)
+
+
+@njit(cache=True, inline="always")
+def quintic_at(m, s, h):
+    """Value and rate (per unit time) at fraction s of a quintic with coefficients m."""
+    y = m[0] + s * (m[1] + s * (m[2] + s * (m[3] + s * (m[4] + s * m[5]))))
+    dy = m[1] + s * (2.0 * m[2] + s * (3.0 * m[3] + s * (4.0 * m[4] + s * 5.0 * m[5])))
+    return y, dy / h
+
+
+@njit(cache=True, inline="always")
+def deformation(p, q, qd):
+    """e and ė of the spring with record p at the state (q, q̇)."""
+    e = p.a0 * q[p.i0] + p.a1 * q[p.i1]
+    ed = p.a0 * qd[p.i0] + p.a1 * qd[p.i1]
+    if p.nnz == 3:
+        e += p.a2 * q[p.i2]
+        ed += p.a2 * qd[p.i2]
+    return e, ed
+
+
+@njit(cache=True, **HOT)
+def relocate(j, s, m, h, P, modes, H, Tg, Tb, q, qd):
+    """Where to cut again when the step re-integrated to fraction s fell short of spring j's
+    switch (state q, q̇): on the trial's interpolant raised by what it missed there."""
+    e, ed = deformation(P[j], q, qd)
+    reached = validity(modes[j], P[j], e, ed, H[j])
+    e, ed = quintic_at(m, s, h)
+    shift = reached - validity(modes[j], P[j], e, ed, H[j])
+    ng = Tg.shape[1]
+    if j < ng:
+        return column_crossing(Tg, j, m, h, 2.0, shift)
+    return column_crossing(Tb, j - ng, m, h, 2.0, shift)
+
+
+@njit(cache=True, **HOT)
+def first_crossing(h, P, Tg, Tb, x0, y0, x1, y1, e0, ed0, edd0, e1, ed1, edd1, margin):
+    """Earliest fraction s of a trial step at which a spring should switch, on the step's
+    quintic interpolant, and that spring; (2.0, −1) when every spring keeps its mode.
+
+    (e, ė, ë) of the springs off the bed at the start and the end of the step; the bed's follow
+    from its DOFs' state at the start (x0, y0) and the end (x1, y1). ``margin`` is scratch.
+    """
+    level = -SWITCH_TOL
+    best, spring = 2.0, -1
+    for j in range(e0.size):
+        if column_margin(Tg, j, h, e0[j], ed0[j], edd0[j], e1[j], ed1[j], edd1[j]) >= level:
+            continue
+        m = quintic(h, e0[j], ed0[j], edd0[j], e1[j], ed1[j], edd1[j])
+        s = column_crossing(Tg, j, m, h, best, 0.0)
+        if s < best:
+            best, spring = s, j
+    if Tb.shape[1] == 0:
+        return best, spring
+    bed_margins(Tb, h, x0, y0, x1, y1, margin)
+    for k in range(Tb.shape[1]):
+        if margin[k] >= level:
+            continue
+        a0, a1 = Tb[T_A0, k], Tb[T_A1, k]
+        ea, eda, edda = bed_rates(a0, a1, x0, y0)
+        eb, edb, eddb = bed_rates(a0, a1, x1, y1)
+        s = column_crossing(Tb, k, quintic(h, ea, eda, edda, eb, edb, eddb), h, best, 0.0)
+        if s < best:
+            best, spring = s, e0.size + k
+    return best, spring
+
+
+@njit(cache=True, **HOT)
+def apply_switches(t, P, modes, H, q, qd, Tg, Tb, impacts, open_impact, counters):
+    """Switch every spring whose mode was crossed at the state (q, q̇), rewrite its column and
+    log its impact damper; returns how many switches."""
+    switches = 0
+    for j in range(P.size):
+        p = P[j]
+        e, ed = deformation(p, q, qd)
+        was_imp = H[j].imp
+        switched = False
+        for _ in range(4):
+            if validity(modes[j], p, e, ed, H[j]) >= -SWITCH_TOL:
+                break
+            modes[j] = switch_mode(modes[j], p, e, ed, H[j])
+            switches += 1
+            switched = True
+        if switched:
+            tabulate(j, modes, P, H, Tg, Tb)
+            log_impact(t, j, was_imp, H[j].imp, ed, impacts, open_impact, counters)
+    return switches
 
 
 # ---------------------------------------------------------------------------------------------
@@ -623,12 +1049,13 @@ def hermite_extreme(y0, d0, y1, d1, h, current, find_max):
     return best
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def track_peaks(h, q0, qd0, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith, iv, peaks):
     """Update peaks over a step [t, t+h], refining interior extrema by Hermite interpolation.
 
     Scalars: top deformation u (sum of story drifts), θ, V. Per spring j: slot A = max opening
-    (foundation: gap −d; story: |drift|), slot B = max |force| (foundation: spring compression).
+    (foundation: gap −d; story: |drift|), slot B = max |force| at the step ends (foundation:
+    spring compression; story: its shear, dashpot included, so story 0 gives the base shear).
     """
     if n_story > 0:
         u0 = ud0 = u1 = ud1 = 0.0
@@ -653,11 +1080,8 @@ def track_peaks(h, q0, qd0, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith
             top = hermite_extreme(e0[j], ed0[j], e1[j], ed1[j], h, max(e1[j], peaks[a]), True)
             low = hermite_extreme(e0[j], ed0[j], e1[j], ed1[j], h, min(e1[j], -peaks[a]), False)
             peaks[a] = max(top, -low)
-            if modes[j] == ELASTIC:
-                fep = p.k * (e1[j] - H[j].ep)
-            else:
-                fep = p.fy if modes[j] == YIELD_POS else -p.fy
-            peaks[a + 1] = max(peaks[a + 1], abs(p.kh * e1[j] + fep))
+            fep = min(max(p.k * (e1[j] - H[j].ep), -p.fy), p.fy)  # after the return map
+            peaks[a + 1] = max(peaks[a + 1], abs(p.kh * e1[j] + fep + p.c * ed1[j]))
         else:
             # gap = −d = (ep − δ0) − e, largest where e is smallest
             offset = H[j].ep - p.d0
@@ -667,6 +1091,20 @@ def track_peaks(h, q0, qd0, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith
             if modes[j] != SEPARATED:
                 d1 = p.d0 + e1[j] - H[j].ep
                 peaks[a + 1] = max(peaks[a + 1], min(p.k * max(d1, 0.0), p.fy))
+
+
+@njit(cache=True, fastmath=FAST, **HOT)
+def bed_peaks(T, h, x0, y0, x1, y1, peaks):
+    """:func:`track_peaks` for the springs of the bed (its slots: ``peaks[k, 0]`` the gap,
+    ``peaks[k, 1]`` the compression), from the state of its two DOFs at the step's ends."""
+    for k in range(T.shape[1]):
+        a0, a1 = T[T_A0, k], T[T_A1, k]
+        e0, ed0, _ = bed_rates(a0, a1, x0, y0)
+        e1, ed1, _ = bed_rates(a0, a1, x1, y1)
+        offset = T[T_GAP, k]
+        e_min = hermite_extreme(e0, ed0, e1, ed1, h, min(e1, offset - peaks[k, 0]), False)
+        peaks[k, 0] = max(peaks[k, 0], offset - e_min)
+        peaks[k, 1] = max(peaks[k, 1], min(T[T_KC, k] * max(e1 - offset, 0.0), T[T_FY, k]))
 
 
 @njit(cache=True)
@@ -683,7 +1121,7 @@ def current_plastic(mode, p, e, ep):
     return ep
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def record(k, t, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e, ed, out_t,
            out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy):
     """Store the state at output index k."""
@@ -715,7 +1153,7 @@ def record(k, t, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e, ed, ou
                 strain += 0.5 * p.k * d * d
     gravity = weight * q[iv] if iv >= 0 else 0.0
     for i in range(n):
-        for m in range(n):
+        for m in range(KG.shape[1]):
             gravity += 0.5 * q[i] * KG[i, m] * q[m]
     out_energy[k, 0] = acc[E_INPUT]
     out_energy[k, 1] = kinetic
@@ -726,7 +1164,7 @@ def record(k, t, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e, ed, ou
     out_energy[k, 6] = acc[E_PLASTIC]
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def static_strain_energy(P):
     """Σ ½ k δ0² of the foundation springs at static equilibrium (the energy datum)."""
     total = 0.0
@@ -736,13 +1174,13 @@ def static_strain_energy(P):
     return total
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def initial_modes(P, H, modes, e, ed):
     for j in range(e.size):
         modes[j] = natural_mode(P[j], e[j], ed[j], H[j].ep, H[j].imp)
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def commit_all(P, modes, H, contact, e, ed):
     """End-of-step return mapping of every spring (fixed-step methods); returns plastic work."""
     work = 0.0
@@ -758,91 +1196,152 @@ def commit_all(P, modes, H, contact, e, ed):
 # ---------------------------------------------------------------------------------------------
 
 
+@njit(cache=True, inline="always")
+def copy(a, b):
+    """a[:] = b, without the temporary numba may make when the two could overlap."""
+    for i in range(a.size):
+        a[i] = b[i]
+
+
+@njit(cache=True, inline="always")
+def advance(q, qd, a, acc, e, ed, edd, q1, qd1, a1, acc1, e1, ed1, edd1):
+    """Make the end of an accepted step the start of the next."""
+    for i in range(q.size):
+        q[i] = q1[i]
+        qd[i] = qd1[i]
+        a[i] = a1[i]
+    for c in range(N_ACC):
+        acc[c] = acc1[c]
+    for j in range(e.size):
+        e[j] = e1[j]
+        ed[j] = ed1[j]
+        edd[j] = edd1[j]
+
+
 @njit(cache=True)
 def integrate_events(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, ith,
                      iv, n_story, max_switches, out_t, out_q, out_qd, out_e, out_f, out_mode,
                      out_ep, out_energy, peaks, counters, impacts, H):
-    """RK4 with switch location. ``counters`` = [switches, trial steps spent locating, rhs calls,
-    impacts logged]. ``H`` is the spring history (:data:`HISTORY_DTYPE`, zeros at rest); it holds
-    the final history on return, as in every integrator here.
+    """RK4 with switch location. ``counters`` = [steps cut at a switch, springs switched, rhs
+    calls, impacts logged]. ``H`` is the spring history (:data:`HISTORY_DTYPE`, zeros at rest);
+    it holds the final history on return, as in every integrator here.
 
     ``impacts`` (rows × 5) logs each activation of an impact damper: time of recontact, spring,
     closing velocity v₀, and time and closing velocity when the damper locked (NaN if it never
     did: the spring separated first, or the run ended).
 
-    Within a step every spring keeps its mode, so the right-hand side is smooth and RK4 keeps
-    its order. A trial step that leaves a mode anywhere inside (:func:`first_crossing`) is cut
-    at the switch (:func:`locate_switch`); the spring is switched there and the step goes on.
-    While impact dashpots act, steps are capped at their stable length.
+    Within a step every spring keeps its mode (its law tabulated, :func:`law_tables`), so the
+    right-hand side is smooth and RK4 keeps its order. A trial step in which a spring leaves
+    its mode (:func:`first_crossing`, on the trial's quintic interpolant) is re-integrated from
+    its start up to that switch, where every spring past its limit is switched. A cut that falls
+    short of the switch is tried once more on the interpolant raised by what it missed
+    (:func:`relocate`); if that too falls short, it ends a step without a switch, and the next
+    trial finds the switch at its start. The acceleration at the end of a step is the first stage of the next. While impact
+    dashpots act, steps are capped at their stable length. The springs off the bed keep
+    (e, ė, ë) in arrays; the bed's follow from the state of its two DOFs.
     """
     ns, n = P.size, q0.size
-    e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
-    es, eds = np.zeros(ns), np.zeros(ns)
-    g_start, gv = np.zeros(ns), np.zeros(ns)  # validity at the step start; scratch
-    was_imp = np.zeros(ns)
+    KG = geometric_or_nothing(KG)
+    modes = np.zeros(ns, dtype=np.int64)
+    e_all, ed_all = np.zeros(ns), np.zeros(ns)
+    deformations(q0, qd0, P, e_all, ed_all)
+    initial_modes(P, H, modes, e_all, ed_all)
+    Tg, Tb = law_tables(P, modes, H)
+    ng = Tg.shape[1]  # springs off the bed: 0 … ng − 1
+    e0, ed0, edd0 = np.zeros(ng), np.zeros(ng), np.zeros(ng)
+    e1, ed1, edd1 = np.zeros(ng), np.zeros(ng), np.zeros(ng)
+    margin = np.zeros(Tb.shape[1])
+    bed = peaks[N_PEAK_SCALARS + 2 * ng:].reshape((Tb.shape[1], 2))  # the bed's peak slots
     open_impact = np.full(ns, -1, dtype=np.int64)
-    k1, k2, k3, k4 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
+    a0, a1, k2, k3, k4 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
     qs, qds, q1, qd1 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
     q, qd = q0.copy(), qd0.copy()
     acc, acc1 = np.zeros(N_ACC), np.zeros(N_ACC)
-    modes = np.zeros(ns, dtype=np.int64)
-    deformations(q, qd, P, e0, ed0)
-    initial_modes(P, H, modes, e0, ed0)
-    for j in range(ns):
-        g_start[j] = validity(modes[j], P[j], e0[j], ed0[j], H[j])
     e_ref = static_strain_energy(P)
-    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e1, ed1, out_t,
+    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e_all, ed_all, out_t,
            out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+    return march_events(q, qd, acc, modes, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight,
+                        ith, iv, n_story, max_switches, e_ref, Tg, Tb, e0, ed0, edd0, e1, ed1,
+                        edd1, e_all, ed_all, margin, bed, a0, a1, k2, k3, k4, qs, qds, q1, qd1,
+                        acc1, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy,
+                        peaks, counters, impacts, open_impact)
+
+
+@njit(cache=True, **HOT)
+def march_events(q, qd, acc, modes, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight,
+                 ith, iv, n_story, max_switches, e_ref, Tg, Tb, e0, ed0, edd0, e1, ed1, edd1,
+                 e_all, ed_all, margin, bed, a0, a1, k2, k3, k4, qs, qds, q1, qd1, acc1, out_t,
+                 out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy, peaks, counters,
+                 impacts, open_impact):
+    """The time loop of :func:`integrate_events`, in the workspace it allocated; every helper
+    is inlined and nothing is reference-counted (the loop never allocates)."""
+    t = 0.0
+    p0 = frozen_accelerations(t, q, qd, minv, P, KG, L, ag, dtg, Tg, Tb, a0)
+    counters[2] += 1
+    rates(q, qd, a0, P, e0, ed0, edd0)
     for step in range(nsteps):
-        t = step * dt
         t_end = (step + 1) * dt
         t_tol = 1e-10 * dt + 8.0 * np.finfo(np.float64).eps * t_end
         switches = 0
         while t_end - t > t_tol:
             h = min(t_end - t, impact_step_cap(P, H))
-            rk4_step(t, h, q, qd, acc, False, minv, P, KG, L, ag, dtg, modes, H,
-                     k1, k2, k3, k4, qs, qds, q1, qd1, acc1)
+            t1 = t + h if t_end - (t + h) > t_tol else t_end
+            frozen_rk4_step(t, h, q, qd, acc, a0, p0, minv, P, KG, L, ag, dtg, Tg, Tb, k2, k3,
+                            k4, qs, qds, q1, qd1, acc1)
+            p1 = frozen_accelerations(t1, q1, qd1, minv, P, KG, L, ag, dtg, Tg, Tb, a1)
             counters[2] += 4
-            deformations(q1, qd1, P, e1, ed1)
-            gv[:] = g_start
-            s_est, s_past, spring = first_crossing(h, P, modes, H, e0, ed0, e1, ed1, gv)
-            crossed = False
-            if spring >= 0:
-                h_cross = locate_switch(t, h, s_est, s_past, spring, q, qd, acc, minv, P,
-                                        KG, L, ag, dtg, modes, H, e0, ed0, e1, ed1, es, eds, k1,
-                                        k2, k3, k4, qs, qds, q1, qd1, acc1, t_tol, counters)
-                if h_cross > 0.0:
-                    h = h_cross
-                    crossed = True
-                deformations(q1, qd1, P, e1, ed1)
-            if not (np.all(np.isfinite(q1)) and np.all(np.isfinite(qd1))):
+            if not finite(q1, qd1):
                 counters[0] = step
                 return NONFINITE
+            rates(q1, qd1, a1, P, e1, ed1, edd1)
+            x0, y0 = bed_state(P, q, qd, a0)
+            x1, y1 = bed_state(P, q1, qd1, a1)
+            s, spring = first_crossing(h, P, Tg, Tb, x0, y0, x1, y1, e0, ed0, edd0, e1, ed1,
+                                       edd1, margin)
+            if spring >= 0:  # re-integrate up to the switch
+                m = spring_quintic(spring, h, Tb, x0, y0, x1, y1, e0, ed0, edd0, e1, ed1, edd1)
+                tau = min(max(s * h, t_tol), h)
+                frozen_rk4_step(t, tau, q, qd, acc, a0, p0, minv, P, KG, L, ag, dtg, Tg, Tb, k2,
+                                k3, k4, qs, qds, q1, qd1, acc1)
+                counters[2] += 3
+                e, ed = deformation(P[spring], q1, qd1)
+                if validity(modes[spring], P[spring], e, ed, H[spring]) >= -SWITCH_TOL:
+                    s = relocate(spring, tau / h, m, h, P, modes, H, Tg, Tb, q1, qd1)
+                    if s < 1.0:  # once more, on the interpolant raised by what it missed
+                        tau = min(max(s * h, t_tol), h)
+                        frozen_rk4_step(t, tau, q, qd, acc, a0, p0, minv, P, KG, L, ag, dtg, Tg,
+                                        Tb, k2, k3, k4, qs, qds, q1, qd1, acc1)
+                        counters[2] += 3
+                h = tau
+                t1 = t + h if t_end - (t + h) > t_tol else t_end
+                deformations(q1, qd1, P, e1, ed1)
+                x1, y1 = bed_state(P, q1, qd1, a1)  # (the peaks take values and rates only)
             track_peaks(h, q, qd, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith, iv,
                         peaks)
-            q[:] = q1
-            qd[:] = qd1
-            acc[:] = acc1
-            e0[:] = e1
-            ed0[:] = ed1
-            t = t + h if t_end - (t + h) > t_tol else t_end
-            if crossed:
-                for j in range(ns):
-                    was_imp[j] = H[j].imp
-                switches += apply_switches(P, modes, H, e0, ed0)
-                log_impacts(t, H, was_imp, ed0, impacts, open_impact, counters)
-                counters[0] += 1
-                if switches > max_switches:
-                    counters[1] = step
-                    return CHATTER
-                for j in range(ns):
-                    g_start[j] = validity(modes[j], P[j], e0[j], ed0[j], H[j])
-            else:
-                g_start[:] = gv
+            bed_peaks(Tb, h, x0, y0, x1, y1, bed)
+            t = t1
+            if spring < 0:  # the whole step, without a switch
+                advance(q, qd, a0, acc, e0, ed0, edd0, q1, qd1, a1, acc1, e1, ed1, edd1)
+                p0 = p1
+                continue
+            copy(q, q1)
+            copy(qd, qd1)
+            copy(acc, acc1)
+            switched = apply_switches(t, P, modes, H, q, qd, Tg, Tb, impacts, open_impact,
+                                      counters)
+            counters[0] += 1
+            counters[1] += switched
+            switches += max(switched, 1)
+            if switches > max_switches:
+                counters[1] = step
+                return CHATTER
+            p0 = frozen_accelerations(t, q, qd, minv, P, KG, L, ag, dtg, Tg, Tb, a0)
+            counters[2] += 1
+            rates(q, qd, a0, P, e0, ed0, edd0)
         if (step + 1) % stride == 0:
             record((step + 1) // stride, t_end, q, qd, acc, P, modes, H, minv, KG,
-                   weight, iv, e_ref, e1, ed1, out_t, out_q, out_qd, out_e, out_f, out_mode,
-                   out_ep, out_energy)
+                   weight, iv, e_ref, e_all, ed_all, out_t, out_q, out_qd, out_e, out_f,
+                   out_mode, out_ep, out_energy)
     return OK
 
 
@@ -852,6 +1351,7 @@ def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, 
                   peaks, counters, H):
     """Classical RK4 with trial spring laws and end-of-step return mapping."""
     ns, n = P.size, q0.size
+    KG = geometric_or_nothing(KG)
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
     k1, k2, k3, k4 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
     qs, qds, q1, qd1 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
@@ -864,20 +1364,32 @@ def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, 
     e_ref = static_strain_energy(P)
     record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e1, ed1, out_t,
            out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+    return march_rk4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg,
+                     weight, ith, iv, n_story, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds,
+                     q1, qd1, acc1, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep,
+                     out_energy, peaks, counters)
+
+
+@njit(cache=True, **HOT)
+def march_rk4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg,
+              weight, ith, iv, n_story, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds, q1,
+              qd1, acc1, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy,
+              peaks, counters):
+    """The time loop of :func:`integrate_rk4`, in the workspace it allocated."""
     for step in range(nsteps):
         rk4_step(step * dt, dt, q, qd, acc, True, minv, P, KG, L, ag, dtg, modes, H, k1, k2, k3,
                  k4, qs, qds, q1, qd1, acc1)
         counters[2] += 4
-        if not (np.all(np.isfinite(q1)) and np.all(np.isfinite(qd1))):
+        if not finite(q1, qd1):
             counters[0] = step
             return NONFINITE
         deformations(q1, qd1, P, e1, ed1)
         track_peaks(dt, q, qd, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith, iv, peaks)
-        q[:] = q1
-        qd[:] = qd1
-        acc[:] = acc1
-        e0[:] = e1
-        ed0[:] = ed1
+        copy(q, q1)
+        copy(qd, qd1)
+        copy(acc, acc1)
+        copy(e0, e1)
+        copy(ed0, ed1)
         acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
         if (step + 1) % stride == 0:
             record((step + 1) // stride, (step + 1) * dt, q, qd, acc, P, modes, H, minv,
@@ -896,6 +1408,7 @@ def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight,
     Corrector AM4: yₙ₊₁ = yₙ + h/24 (9f* + 19fₙ − 5fₙ₋₁ + fₙ₋₂).
     """
     ns, n = P.size, q0.size
+    KG = geometric_or_nothing(KG)
     m = 2 * n + N_ACC
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
     k1, k2, k3, k4 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
@@ -912,12 +1425,26 @@ def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight,
     e_ref = static_strain_energy(P)
     record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e1, ed1, out_t,
            out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+    return march_abm4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg,
+                      weight, ith, iv, n_story, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds,
+                      q1, qd1, acc1, F, ystar, fstar, out_t, out_q, out_qd, out_e, out_f,
+                      out_mode, out_ep, out_energy, peaks, counters)
+
+
+@njit(cache=True, **HOT)
+def march_abm4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg,
+               weight, ith, iv, n_story, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds, q1,
+               qd1, acc1, F, ystar, fstar, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep,
+               out_energy, peaks, counters):
+    """The time loop of :func:`integrate_abm4`, in the workspace it allocated."""
+    n, m = q.size, F.shape[1]
     for step in range(nsteps):
         t = step * dt
         pw = accelerations(t, q, qd, True, minv, P, KG, L, ag, dtg, modes, H, k1)
         counters[2] += 1
         for r in range(3, 0, -1):
-            F[r, :] = F[r - 1, :]
+            for c in range(m):
+                F[r, c] = F[r - 1, c]
         for i in range(n):
             F[0, i] = qd[i]
             F[0, n + i] = k1[i]
@@ -950,16 +1477,16 @@ def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight,
                     qd1[c - n] = qd[c - n] + incr
                 else:
                     acc1[c - 2 * n] = acc[c - 2 * n] + incr
-        if not (np.all(np.isfinite(q1)) and np.all(np.isfinite(qd1))):
+        if not finite(q1, qd1):
             counters[0] = step
             return NONFINITE
         deformations(q1, qd1, P, e1, ed1)
         track_peaks(dt, q, qd, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith, iv, peaks)
-        q[:] = q1
-        qd[:] = qd1
-        acc[:] = acc1
-        e0[:] = e1
-        ed0[:] = ed1
+        copy(q, q1)
+        copy(qd, qd1)
+        copy(acc, acc1)
+        copy(e0, e1)
+        copy(ed0, ed1)
         acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
         if (step + 1) % stride == 0:
             record((step + 1) // stride, (step + 1) * dt, q, qd, acc, P, modes, H, minv,
@@ -1167,7 +1694,7 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weig
             fimp0[:] = fimp1
             acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
             t = t + h if t_end - (t + h) > t_tol else t_end
-        if not np.all(np.isfinite(q)):
+        if not finite(q, qd):
             counters[0] = step
             return NONFINITE
         if (step + 1) % stride == 0:

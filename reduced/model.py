@@ -206,19 +206,23 @@ def _foundation_params(f, layout: SpringLayout, weight, rotary_mass, vertical_ma
         cstar = f.impact_multiple * 2.0 * np.sqrt(k * meff)
         table["cimp"] = cstar
         table["dzf"] = meff * (1.0 - f.restitution) / cstar
-        table["imph"] = [_impact_step(m, cc, kk) for m, cc, kk in zip(meff, table["c"] + cstar, k)]
+        table["imph"] = _impact_step(meff, table["c"] + cstar, k)
     return table, theta_s
 
 
 RK4_REAL_LIMIT = 2.785293563405282  # |R(z)| = 1 on the negative real axis
 
 
-def _impact_step(mass: float, damping: float, stiffness: float) -> float:
+def _impact_step(mass, damping, stiffness):
     """Step cap while a spring's impact dashpot acts: |λ|·h = 0.1 × RK4's real-axis limit
     (0.28) for m s² + c s + k = 0, where RK4's local error is about 1e-5 — a stroke that lasts
-    many steps (ε → 0) is then integrated accurately, not only stably."""
-    roots = np.roots([mass, damping, stiffness])
-    return 0.1 * RK4_REAL_LIMIT / float(np.max(np.abs(roots)))
+    many steps (ε → 0) is then integrated accurately, not only stably. Takes arrays: |λ| is
+    the larger real root (c + √(c² − 4mk))/2m when overdamped, √(k/m) otherwise."""
+    m, c, k = np.broadcast_arrays(*map(np.asarray, (mass, damping, stiffness)))
+    disc = c * c - 4.0 * m * k
+    largest = np.where(disc >= 0.0, (c + np.sqrt(np.maximum(disc, 0.0))) / (2.0 * m),
+                       np.sqrt(k / m))
+    return 0.1 * RK4_REAL_LIMIT / largest
 
 
 def _geometric(dofs: DofMap, s, masses, heights, g, A) -> np.ndarray:

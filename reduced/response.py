@@ -22,7 +22,7 @@ from . import springs as sp
 from .model import ReducedModel
 from .static import contact_length
 
-__all__ = ["Response", "ENERGY_NAMES"]
+__all__ = ["Response", "ENERGY_NAMES", "energy_balance_error"]
 
 ENERGY_NAMES = ("input", "kinetic", "strain", "gravity", "viscous", "impact", "plastic")
 
@@ -182,14 +182,14 @@ class Response:
     @property
     def energy_balance_error(self) -> float:
         """max |residual| / max(max input, initial energy): the balance's relative error."""
-        e = self.energy
-        scale = max(np.max(np.abs(e[:, 0])), abs(e[0, 1:].sum()), 1e-300)
-        return float(np.max(np.abs(self.energy_residual)) / scale)
+        return energy_balance_error(self.energy)
 
     # ---- peaks ------------------------------------------------------------------------------
     @cached_property
     def peaks(self) -> dict[str, float]:
-        """Peak values over the whole run (tracked at every step, interpolated between)."""
+        """Peak values over the whole run, tracked at every step (u, θ, V and the gaps with
+        cubic interpolation between steps; the base shear at the step ends). The overturning
+        moment is the largest of the stored states only (``histories=False`` keeps two)."""
         pk = self.raw_peaks
         f = self.foundation_slice
         n0 = kn.N_PEAK_SCALARS
@@ -201,7 +201,8 @@ class Response:
                       if self.dofs.theta >= 0 else 0.0),
             "V_min": pk[kn.P_VMIN] if self.dofs.v >= 0 else 0.0,
             "V_max": pk[kn.P_VMAX] if self.dofs.v >= 0 else 0.0,
-            "base_shear": float(np.max(np.abs(self.base_shear))),
+            "base_shear": (max(float(pk[n0 + 1]), float(np.max(np.abs(self.base_shear))))
+                           if self.model.story_count else 0.0),
             "overturning_moment": float(np.max(np.abs(self.overturning_moment))),
         }
         if self.model.story_count:
@@ -302,6 +303,15 @@ class Response:
             written.append(write_csv(path.with_suffix(".csv"), cols,
                                      header=f"{self.model.scene.title}\nunits {u.name}"))
         return written
+
+
+def energy_balance_error(energy: np.ndarray) -> float:
+    """Relative error of an energy balance (rows of cumulative :data:`ENERGY_NAMES`): the
+    largest residual, stored + dissipated − input − initial total, over the larger of the
+    largest input and the initial energy."""
+    total = energy[:, 1:].sum(axis=1) - energy[:, 0]
+    scale = max(np.max(np.abs(energy[:, 0])), abs(energy[0, 1:].sum()), 1e-300)
+    return float(np.max(np.abs(total - total[0])) / scale)
 
 
 def ground_displacement(acceleration_g: np.ndarray, dt: float, g: float,

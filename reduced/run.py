@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import time as _time
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -16,7 +17,8 @@ from .model import ReducedModel, build_model
 from .response import Response, ground_displacement
 from .static import initial_state
 
-__all__ = ["run", "run_model", "initial_conditions", "IntegrationError"]
+__all__ = ["run", "run_model", "initial_conditions", "IntegrationError", "KernelInputs",
+           "integrate", "ground_acceleration"]
 
 
 class IntegrationError(RuntimeError):
@@ -82,9 +84,41 @@ def run_model(model: ReducedModel, motion: Motion, *, integrator: str | None = N
     return Response(model=model, ground_displacement=xg, info=info, provenance=prov, **arrays)
 
 
-def _integrate(model: ReducedModel, motion: Motion, name: str, plan: StepPlan,
-               q0: np.ndarray, qd0: np.ndarray):
-    n, ns = model.mass.size, model.spring_count
+@dataclass(frozen=True, eq=False)
+class KernelInputs:
+    """What the compiled integrators take from a model: masses, the spring table, K_G, the
+    ground load and the DOFs that peaks are tracked on (no motion, no step)."""
+
+    params: np.ndarray     # one record of SPRING_DTYPE per spring
+    minv: np.ndarray       # inverse masses
+    geometric: np.ndarray  # K_G
+    ground_load: np.ndarray
+    weight: float
+    theta: int
+    v: int
+    stories: int
+    newmark_scale: float   # force scale of the Newton tolerance: the weights
+    hht_alpha: float
+
+    @classmethod
+    def of(cls, model: ReducedModel) -> KernelInputs:
+        d = model.dofs
+        scale = model.g * float(np.sum(model.mass[list(d.stories)])) + model.weight
+        return cls(model.params, 1.0 / model.mass, model.geometric, model.ground_load,
+                   model.weight, d.theta, d.v, model.story_count, scale,
+                   model.scene.analysis.hht_alpha)
+
+
+def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
+              qd0: np.ndarray, ag: np.ndarray, dtg: float, *, impacts: bool = True):
+    """Run the compiled integrator ``name``; returns (status, output arrays, counters).
+
+    ``ag`` is the ground acceleration (length/s², samples dtg apart, an appended zero). The
+    arrays: histories at every ``plan.stride`` steps, ``raw_peaks`` and, for the event stepper
+    when ``impacts``, the impact log.
+    """
+    P = inputs.params
+    n, ns = q0.size, P.size
     nout = plan.steps // plan.stride + 1
     out = {
         "time": np.zeros(nout), "q": np.zeros((nout, n)), "qd": np.zeros((nout, n)),
@@ -95,35 +129,46 @@ def _integrate(model: ReducedModel, motion: Motion, name: str, plan: StepPlan,
     peaks = np.zeros(kn.N_PEAK_SCALARS + 2 * ns)
     peaks[[kn.P_UMIN, kn.P_THMIN, kn.P_VMIN]] = np.inf
     peaks[[kn.P_UMAX, kn.P_THMAX, kn.P_VMAX]] = -np.inf
-    found = model.foundation_slice
     gaps = peaks[kn.N_PEAK_SCALARS::2]  # a view: the gap at rest is −δ0
-    gaps[found] = -model.params["d0"][found]
+    gaps[inputs.stories:] = -P["d0"][inputs.stories:]
     counters = np.zeros(4, np.int64)
-    ag = np.append(motion.acceleration * model.g, 0.0)
-    minv = 1.0 / model.mass
-    params = model.params.view(np.recarray)  # records read as p.k in compiled and plain code
+    params = P.view(np.recarray)  # records read as p.k in compiled and plain code
     history = np.zeros(ns, dtype=sp.HISTORY_DTYPE).view(np.recarray)
-    common = (q0, qd0, plan.dt, plan.steps, plan.stride, minv, params,
-              model.geometric, model.ground_load, ag, motion.dt, model.weight, model.dofs.theta,
-              model.dofs.v, model.story_count)
+    common = (q0, qd0, plan.dt, plan.steps, plan.stride, inputs.minv, params, inputs.geometric,
+              inputs.ground_load, ag, dtg, inputs.weight, inputs.theta, inputs.v, inputs.stories)
     outs = (out["time"], out["q"], out["qd"], out["deformation"], out["force"], out["mode"],
             out["plastic"], out["energy"], peaks, counters)
-    impacts = np.zeros((0, 5))
+    log = np.zeros((0, 5))
     if name == "events":
         max_switches = 50 * ns + 1000
-        impacts = np.full((max(1000, 20 * ns * int(plan.steps * plan.dt + 1)), 5), np.nan)
-        status = kn.integrate_events(*common, max_switches, *outs, impacts, history)
+        rows = max(1000, 20 * ns * int(plan.steps * plan.dt + 1)) if impacts else 0
+        log = np.full((rows, 5), np.nan)
+        status = kn.integrate_events(*common, max_switches, *outs, log, history)
     elif name == "rk4":
         status = kn.integrate_rk4(*common, *outs, history)
     elif name == "abm4":
         status = kn.integrate_abm4(*common, *outs, history)
     else:
-        alpha = 0.0 if name == "newmark" else model.scene.analysis.hht_alpha
-        fscale = model.g * float(np.sum(model.mass[list(model.dofs.stories)])) + model.weight
-        status = kn.integrate_newmark(*common, alpha, 1e-10, fscale, 50, 12, *outs, history)
-    _check_status(status, counters, plan, name)
+        alpha = 0.0 if name == "newmark" else inputs.hht_alpha
+        status = kn.integrate_newmark(*common, alpha, 1e-10, inputs.newmark_scale, 50, 12,
+                                      *outs, history)
     out["raw_peaks"] = peaks
-    out["impacts"] = impacts[:min(int(counters[3]), impacts.shape[0])].copy()
+    out["impacts"] = log[:min(int(counters[3]), log.shape[0])].copy()
+    return status, out, counters
+
+
+def ground_acceleration(acceleration: np.ndarray, g: float) -> np.ndarray:
+    """The ground acceleration the kernels take, from samples in g: length/s², with an
+    appended zero."""
+    return np.append(acceleration * g, 0.0)
+
+
+def _integrate(model: ReducedModel, motion: Motion, name: str, plan: StepPlan,
+               q0: np.ndarray, qd0: np.ndarray):
+    status, out, counters = integrate(KernelInputs.of(model), name, plan, q0, qd0,
+                                      ground_acceleration(motion.acceleration, model.g),
+                                      motion.dt)
+    _check_status(status, counters, plan, name)
     return out, counters
 
 
