@@ -12,11 +12,19 @@ flat surface with roller sides this is in exact equilibrium with the soil's weig
 displacements start at zero. ``method="elastic"`` instead solves one elastic gravity step (soil
 alone, no footing) and keeps its stress, resetting the displacement to zero; under roller sides
 it gives K0 = ν/(1 − ν), which the tests use to cross-check the two routes.
+
+**Soil fields (opt-in).** The pushovers take ``record_fields``: ``True`` records every step,
+a sequence of step indices records those (negative indices count from the end). Each recorded
+step keeps the soil displacement DOF vector (the model basis's ordering), and the
+element averages (quadrature weights × Jacobians) of the equivalent plastic strain and of the
+maximum shear stress (σ1 − σ3)/2 of the total stress (geostatic included). They are what
+:mod:`~upliftlab.continuum.output` writes to XDMF and renders. Recording changes no result.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterable
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
@@ -29,11 +37,13 @@ from ..results import provenance, write_netcdf
 from . import assembly
 from .footing import OPEN
 from .materials import Elastic, Region, plane_strain, plane_strain_tangent
-from .newton import ContinuumState, Control, NewtonOptions, follow, start_state
+from .newton import (ContinuumState, Control, ConvergenceError, NewtonOptions, follow,
+                     start_state)
 
 __all__ = ["geostatic", "k0_stress", "elastic_gravity_stress", "FootingStiffness",
            "footing_stiffness", "StaticPath", "vertical_pushover", "rotation_pushover",
-           "moment_pushover", "Envelope", "vm_envelope", "UpliftOnset", "uplift_onset"]
+           "moment_pushover", "Envelope", "vm_envelope", "UpliftOnset", "uplift_onset",
+           "element_average", "max_shear_stress"]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -163,6 +173,15 @@ class StaticPath:
     traction on the soil (+x), ``gap`` (length) and ``status``; ``iterations`` (Newton, last
     sub-step) and ``cuts`` (bisections) per step.
     ``width`` B; ``metadata`` provenance.
+
+    Soil fields, when the pushover was asked to ``record_fields`` (else None):
+    ``snapshot_step`` (nk) the recorded step indices; ``displacement`` (nk, ndofs) the soil
+    displacement DOF vector in the model basis's ordering (length); ``plastic_strain``
+    (nk, nelems) the element-averaged equivalent plastic strain; ``max_shear_stress``
+    (nk, nelems) the element-averaged (σ1 − σ3)/2 (force/length²).
+    The properties ``time`` (the step number, a pseudo-time), ``footing`` (n, 3) and
+    ``snapshot_time`` give a static path the shape of a dynamic result for
+    :mod:`~upliftlab.continuum.output`.
     """
 
     kind: str
@@ -182,6 +201,32 @@ class StaticPath:
     cuts: np.ndarray
     width: float
     metadata: dict = field(default_factory=dict, repr=False)
+    snapshot_step: np.ndarray | None = None
+    displacement: np.ndarray | None = field(default=None, repr=False)
+    plastic_strain: np.ndarray | None = field(default=None, repr=False)
+    max_shear_stress: np.ndarray | None = field(default=None, repr=False)
+
+    @property
+    def time(self) -> np.ndarray:
+        """The load-step number 1, 2, …, n: the pseudo-time of a static path."""
+        return np.arange(1.0, self.theta.size + 1.0)
+
+    @property
+    def footing(self) -> np.ndarray:
+        """(n, 3): u, v, θ of the footing per step."""
+        return np.column_stack((self.u, self.v, self.theta))
+
+    @property
+    def has_fields(self) -> bool:
+        """True if soil fields were recorded."""
+        return self.snapshot_step is not None
+
+    @property
+    def snapshot_time(self) -> np.ndarray:
+        """The pseudo-time (step number) of each recorded step; empty if none."""
+        if self.snapshot_step is None:
+            return np.zeros(0)
+        return self.time[self.snapshot_step]
 
     @property
     def settlement(self) -> np.ndarray:
@@ -225,11 +270,92 @@ class StaticPath:
             "iterations": (step, self.iterations, {}),
             "cuts": (step, self.cuts, {}),
         }
+        if self.has_fields:
+            variables.update(self._field_variables(units))
         return write_netcdf(path, variables, attrs={"kind": self.kind, "width": self.width,
                                                     **self.metadata})
 
+    def _field_variables(self, units: dict) -> dict:
+        snap = ("snapshot",)
+        return {
+            "snapshot_step": (snap, self.snapshot_step, {"meaning": "index of the step"}),
+            "snapshot_time": (snap, self.snapshot_time, {"meaning": "load-step number"}),
+            "displacement": (snap + ("dof",), self.displacement,
+                             {"units": units.get("length", ""),
+                              "meaning": "soil DOF vector, model basis ordering"}),
+            "plastic_strain": (snap + ("element",), self.plastic_strain,
+                               {"meaning": "element-averaged equivalent plastic strain"}),
+            "max_shear_stress": (snap + ("element",), self.max_shear_stress,
+                                 {"units": units.get("stress", ""),
+                                  "meaning": "element-averaged (s1 - s3)/2"}),
+        }
 
-def _path(model, kind: str, states, extra=None) -> StaticPath:
+
+def element_average(model, values: np.ndarray) -> np.ndarray:
+    """The area-weighted average per element of a quadrature-point field (…, nelems, nqp)."""
+    dx = model.disc.dx
+    return np.sum(values * dx, axis=-1) / np.sum(dx, axis=-1)
+
+
+def max_shear_stress(stress: np.ndarray) -> np.ndarray:
+    """(σ1 − σ3)/2 of a stress field (3, 3, …), from its principal values."""
+    batch = stress.shape[2:]
+    flat = np.moveaxis(stress.reshape(3, 3, -1), -1, 0)
+    principal = np.linalg.eigvalsh(0.5 * (flat + np.swapaxes(flat, 1, 2)))
+    return (0.5 * (principal[:, -1] - principal[:, 0])).reshape(batch)
+
+
+def _snapshot_steps(record_fields, steps: int) -> np.ndarray | None:
+    """The step indices ``record_fields`` asks for (None: none), checked before any work."""
+    if record_fields is None or record_fields is False:
+        return None
+    if record_fields is True:
+        return np.arange(steps)
+    try:
+        chosen = np.asarray(list(record_fields))
+    except TypeError:
+        chosen = np.asarray([record_fields])
+    if chosen.ndim != 1 or chosen.size == 0 or chosen.dtype.kind not in "iu":
+        raise InputError(f"record_fields = {record_fields!r}: expected True, False or a "
+                         "non-empty list of step indices")
+    if chosen.min() < -steps or chosen.max() >= steps:
+        raise InputError(f"record_fields = {chosen.tolist()}: step indices must lie in "
+                         f"[{-steps}, {steps - 1}] for {steps} steps")
+    return np.unique(np.where(chosen < 0, chosen + steps, chosen))
+
+
+def _fields(model, states, snapshots: np.ndarray | None) -> dict:
+    if snapshots is None:
+        return {}
+    chosen = [states[k] for k in snapshots]
+    return dict(
+        snapshot_step=snapshots,
+        displacement=np.array([s.u for s in chosen]),
+        plastic_strain=np.array([element_average(model, s.material.equivalent_plastic_strain)
+                                 for s in chosen]),
+        max_shear_stress=np.array([element_average(model, max_shear_stress(s.stress))
+                                   for s in chosen]))
+
+
+def _follow(model, state, controls, options, progress) -> list[ContinuumState]:
+    """:func:`follow`, calling ``progress(k, n, state)`` after each step if given (the steps
+    are the same: :func:`follow` takes its controls one after the other)."""
+    if progress is None:
+        return follow(model, state, controls, options)
+    states = []
+    for k, control in enumerate(controls):
+        try:
+            state = follow(model, state, [control], options)[0]
+        except ConvergenceError as exc:
+            raise ConvergenceError(f"step {k} of {len(controls)}: {exc}", step=k,
+                                   fraction=exc.fraction, residual=exc.residual,
+                                   iterations=exc.iterations) from exc
+        states.append(state)
+        progress(k, len(controls), state)
+    return states
+
+
+def _path(model, kind: str, states, extra=None, snapshots=None) -> StaticPath:
     f = model.footing
     normal = np.array([-s.force[:f.nodes] for s in states])
     shear = np.array([s.force[f.nodes:] if f.interface.tangential else np.zeros(f.nodes)
@@ -245,7 +371,7 @@ def _path(model, kind: str, states, extra=None) -> StaticPath:
         gap=np.array([f.gap(s.u, s.q) for s in states]), status=status,
         iterations=np.array([s.iterations for s in states]),
         cuts=np.array([s.cuts for s in states]), width=f.width,
-        metadata=_metadata(model, kind, extra))
+        metadata=_metadata(model, kind, extra), **_fields(model, states, snapshots))
 
 
 def _metadata(model, kind: str, extra) -> dict:
@@ -254,7 +380,8 @@ def _metadata(model, kind: str, extra) -> dict:
     if scene is not None:
         u = scene.units
         units = {"length": u.length, "force/length": f"{u.force}/{u.length}",
-                 "moment/length": f"{u.force}*{u.length}/{u.length}"}
+                 "moment/length": f"{u.force}*{u.length}/{u.length}",
+                 "stress": f"{u.force}/{u.length}^2"}
     return provenance(analysis=kind, model="continuum", scene=scene.name if scene else "",
                       scene_digest=scene.digest if scene else "", soil=asdict(model.soil),
                       options=asdict(model.options), mesh=model.mesh_parameters,
@@ -267,15 +394,25 @@ def _u_control(model) -> tuple[bool, float]:
     return (not model.footing.interface.tangential), 0.0
 
 
+RecordFields = bool | Iterable[int]
+Progress = Callable[[int, int, ContinuumState], None] | None
+
+
 def vertical_pushover(model, settlements, *, state: ContinuumState | None = None,
-                      options: NewtonOptions = NewtonOptions()) -> StaticPath:
+                      options: NewtonOptions = NewtonOptions(),
+                      record_fields: RecordFields = False, progress: Progress = None
+                      ) -> StaticPath:
     """Displacement-controlled vertical loading: the footing is pushed down to each of
     ``settlements`` (length, positive down) with u = 0 and θ = 0 held. Returns the
-    load–settlement history (``N`` against ``settlement``; ``capacity`` its maximum)."""
+    load–settlement history (``N`` against ``settlement``; ``capacity`` its maximum).
+    ``record_fields`` keeps soil fields (module docstring); ``progress(k, n, state)`` is
+    called after each step."""
     settlements = _history("settlements", settlements)
+    snapshots = _snapshot_steps(record_fields, settlements.size)
     state = geostatic(model) if state is None else state
     controls = [Control((True, True, True), (0.0, -s, 0.0)) for s in settlements]
-    return _path(model, "vertical_pushover", follow(model, state, controls, options))
+    states = _follow(model, state, controls, options, progress)
+    return _path(model, "vertical_pushover", states, snapshots=snapshots)
 
 
 def _apply_n(model, state, N: float, steps: int, options) -> ContinuumState:
@@ -288,33 +425,43 @@ def _apply_n(model, state, N: float, steps: int, options) -> ContinuumState:
 
 
 def rotation_pushover(model, N: float, rotations, *, state: ContinuumState | None = None,
-                      load_steps: int = 4, options: NewtonOptions = NewtonOptions()
+                      load_steps: int = 4, options: NewtonOptions = NewtonOptions(),
+                      record_fields: RecordFields = False, progress: Progress = None
                       ) -> StaticPath:
     """Rotation-controlled pushover at constant vertical load ``N`` (force/length, compression):
     N is applied first in ``load_steps`` with θ held, then θ follows ``rotations`` (rad, any
     history: monotonic or cyclic) while N stays constant and H = 0 (u = 0 held on a
     frictionless interface). Returns M–θ, settlement, contact length and pressures per θ step.
+    ``record_fields`` keeps soil fields of the θ steps (module docstring);
+    ``progress(k, n, state)`` is called after each θ step.
     """
-    return _rocking(model, N, "rotations", rotations, True, state, load_steps, options)
+    return _rocking(model, N, "rotations", rotations, True, state, load_steps, options,
+                    record_fields, progress)
 
 
 def moment_pushover(model, N: float, moments, *, state: ContinuumState | None = None,
-                    load_steps: int = 4, options: NewtonOptions = NewtonOptions()) -> StaticPath:
+                    load_steps: int = 4, options: NewtonOptions = NewtonOptions(),
+                    record_fields: RecordFields = False, progress: Progress = None
+                    ) -> StaticPath:
     """Moment-controlled pushover at constant ``N``: like :func:`rotation_pushover` with M
     (force·length/length) prescribed. It cannot pass the moment capacity; use
     :func:`rotation_pushover` to follow the plateau."""
-    return _rocking(model, N, "moments", moments, False, state, load_steps, options)
+    return _rocking(model, N, "moments", moments, False, state, load_steps, options,
+                    record_fields, progress)
 
 
-def _rocking(model, N, name, values, by_rotation, state, load_steps, options) -> StaticPath:
+def _rocking(model, N, name, values, by_rotation, state, load_steps, options,
+             record_fields=False, progress=None) -> StaticPath:
     checks.positive("N", N)
     values = _history(name, values)
+    snapshots = _snapshot_steps(record_fields, values.size)
     state = geostatic(model) if state is None else state
     state = _apply_n(model, state, N, load_steps, options)
     fixed_u, H = _u_control(model)
     controls = [Control((fixed_u, False, by_rotation), (H, -N, x)) for x in values]
     kind = "rotation_pushover" if by_rotation else "moment_pushover"
-    return _path(model, kind, follow(model, state, controls, options), {"N_applied": N})
+    states = _follow(model, state, controls, options, progress)
+    return _path(model, kind, states, {"N_applied": N}, snapshots)
 
 
 def _history(name: str, values) -> np.ndarray:

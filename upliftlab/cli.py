@@ -3,6 +3,9 @@
     upliftlab run SCENE [--case C] [--motion NAME|PATH] [--set KEY=VALUE ...] [--out DIR] [--json]
     upliftlab paper [--out DIR] [--motion PATH]
     upliftlab scenes
+    upliftlab continuum SCENE [--analysis pushover|dynamic] [--case C] [--set KEY=VALUE ...]
+                        [--mesh KEY=VALUE[,KEY=VALUE ...] ...] [--theta-max RAD] [--steps N]
+                        [--motion NAME|PATH] [--scale S] [--out DIR] [--no-render] [--json]
 
 Bad input ends with one line naming the field, the value and the valid range (exit code 2),
 before any file is written.
@@ -12,7 +15,9 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
+import time
 from pathlib import Path
 
 from . import __version__
@@ -50,7 +55,38 @@ def parser() -> argparse.ArgumentParser:
                                      "UPLIFTLAB_MOTIONS")
 
     sub.add_parser("scenes", help="list the packaged scenes")
+
+    c = sub.add_parser("continuum", help="run one scene in the continuum model: a rotation "
+                                         "pushover or a dynamic run, with XDMF and pictures")
+    c.add_argument("scene", help="a packaged scene name or a TOML path (needs a [soil] table)")
+    c.add_argument("--analysis", default="pushover",
+                   help=f"{' or '.join(CONTINUUM_ANALYSES)} (default pushover: rotation at "
+                        "constant N = the structure's vertical weight)")
+    c.add_argument("--case", help="a case of the scene")
+    c.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                   help="override a scene field by its dotted TOML key (repeatable)")
+    c.add_argument("--mesh", action="append", default=[], metavar="KEY=VALUE[,KEY=VALUE]",
+                   help=f"mesh options ({', '.join(MESH_KEYS)}), e.g. "
+                        "elements_across=8,grading=2,element=Q2 (repeatable)")
+    c.add_argument("--theta-max", help="largest rotation of the pushover (rad, > 0; default "
+                                       "10 times the elastic half-plane's uplift rotation)")
+    c.add_argument("--steps", default="40", help="rotation steps of the pushover (default 40; "
+                                                 "two more below uplift if they are coarse)")
+    c.add_argument("--motion", help="dynamic: a record name on UPLIFTLAB_MOTIONS or a path; "
+                                    "replaces the scene's motion")
+    c.add_argument("--scale", help="displacement magnification of the pictures (default: "
+                                   "automatic, stated in each picture)")
+    c.add_argument("--out", help="output directory (default results/<scene>-continuum-"
+                                 "<analysis>)")
+    c.add_argument("--no-render", action="store_true", help="skip the PNG and GIF renders")
+    c.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     return p
+
+
+CONTINUUM_ANALYSES = ("pushover", "dynamic")
+#: ``--mesh`` keys: the [continuum] fields that shape the mesh and its quadrature.
+MESH_KEYS = ("elements_across", "grading", "element", "domain_width", "domain_depth",
+             "intorder")
 
 
 def _run(args) -> int:
@@ -97,9 +133,116 @@ def _scenes(_args) -> int:
     return 0
 
 
+def _mesh_overrides(items: list[str]) -> list[str]:
+    """``--mesh a=1,b=2`` -> ``continuum.a=1``, ``continuum.b=2``; unknown keys refused."""
+    overrides = []
+    for item in items:
+        for pair in filter(None, (p.strip() for p in item.split(","))):
+            key, sep, value = pair.partition("=")
+            if not sep or not value.strip():
+                raise InputError(f"--mesh {pair!r}: expected KEY=VALUE with KEY one of "
+                                 f"{', '.join(MESH_KEYS)}")
+            if key.strip() not in MESH_KEYS:
+                raise InputError(f"--mesh {key.strip()!r}: unknown mesh key (valid: "
+                                 f"{', '.join(MESH_KEYS)})")
+            overrides.append(f"continuum.{key.strip()}={value.strip()}")
+    return overrides
+
+
+def _number(name: str, text: str | None, *, integer: bool = False, low: float = 0.0):
+    """A number > ``low`` (or an integer >= ``low``) given on the command line, or None."""
+    if text is None:
+        return None
+    try:
+        value = int(text) if integer else float(text)
+    except ValueError:
+        kind = "an integer" if integer else "a number"
+        raise InputError(f"{name} = {text!r}: expected {kind}") from None
+    if integer and value < low:
+        raise InputError(f"{name} = {value}: must be an integer >= {low:g}")
+    if not integer and not (value > low and math.isfinite(value)):
+        raise InputError(f"{name} = {text}: must be a finite number > {low:g}")
+    return value
+
+
+def _say(message: str) -> None:
+    print(f"upliftlab continuum: {message}", file=sys.stderr, flush=True)
+
+
+def _continuum(args) -> int:
+    from .scenes import load_scene
+
+    if args.analysis not in CONTINUUM_ANALYSES:
+        raise InputError(f"--analysis = {args.analysis!r}: must be one of "
+                         f"{', '.join(CONTINUUM_ANALYSES)}")
+    overrides = list(args.overrides) + _mesh_overrides(args.mesh)
+    theta_max = _number("--theta-max", args.theta_max)
+    steps = _number("--steps", args.steps, integer=True, low=2)
+    scale = _number("--scale", args.scale)
+    if args.analysis == "pushover" and args.motion is not None:
+        raise InputError("--motion: only the dynamic analysis takes a motion")
+    scene = load_scene(args.scene, case=args.case, overrides=overrides,
+                       motion=args.motion if args.analysis == "dynamic" else None)
+    if scene.soil is None:
+        raise InputError(f"scene {scene.name!r}: soil is missing; the continuum model needs a "
+                         "[soil] table")
+    if args.analysis == "dynamic":
+        try:
+            from .continuum.dynamics import DynamicOptions, run_dynamic
+        except ImportError as exc:
+            raise InputError(f"--analysis dynamic: upliftlab.continuum.dynamics cannot be "
+                             f"imported ({exc})") from None
+        motion = scene.build_motion()  # reads and checks the record before any meshing
+    from .continuum import build_model
+
+    out = Path(args.out or Path("results") / f"{scene.name}-continuum-{args.analysis}")
+    started = time.perf_counter()
+    model = build_model(scene)
+    _say(f"{scene.name}: {model.disc.element}, {model.mesh.nelements} elements, "
+         f"{model.dofs} DOFs, soil {scene.soil.model}")
+    if args.analysis == "pushover":
+        result = _pushover(model, scene, theta_max, steps)
+    else:
+        result = run_dynamic(model, scene, motion, DynamicOptions())
+    _say(f"solved in {time.perf_counter() - started:.1f} s")
+    from .continuum.output import (dynamic_summary, pushover_summary, summary_line,
+                                   write_outputs)
+
+    write_outputs(out, model, result, scene=scene, renders=not args.no_render, scale=scale,
+                  progress=_say)
+    summary = (pushover_summary(result) if args.analysis == "pushover"
+               else dynamic_summary(result, width=model.width))
+    if args.json:
+        print(json.dumps(summary))
+    else:
+        units = {"length": scene.units.length,
+                 "moment/length": f"{scene.units.force}*{scene.units.length}/{scene.units.length}"}
+        print(summary_line(summary, units))
+    return 0
+
+
+def _pushover(model, scene, theta_max, steps):
+    from .continuum import rotation_pushover
+    from .continuum.output import rotation_schedule
+
+    soil, N, B = scene.soil, scene.structure.vertical_weight, model.width
+    theta_on = 2.0 * N * (1.0 - soil.poisson_ratio) / (math.pi * soil.shear_modulus * B)
+    theta_max = 10.0 * theta_on if theta_max is None else theta_max
+    rotations = rotation_schedule(theta_max, steps, theta_on)
+    _say(f"rotation pushover at N = {N:g} to θ = {theta_max:.4g} rad in {rotations.size - 1} "
+         f"steps (elastic half-plane uplift at θ_on = {theta_on:.4g} rad)")
+
+    def progress(k, n, state):
+        _say(f"step {k + 1}/{n}: θ = {state.q[2]:.4g} rad, M = {state.M:.4g}, "
+             f"{state.iterations} Newton iterations")
+
+    return rotation_pushover(model, N, rotations, record_fields=True, progress=progress)
+
+
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
-    handler = {"run": _run, "paper": _paper, "scenes": _scenes}[args.command]
+    handler = {"run": _run, "paper": _paper, "scenes": _scenes,
+               "continuum": _continuum}[args.command]
     try:
         return handler(args)
     except InputError as exc:

@@ -1,0 +1,328 @@
+"""Speed against error of the continuum model, per mesh level.
+
+    python benchmarks/continuum_speed.py [--quick] [--out DIR] [--repeats R]
+
+For each case and mesh level (elements across the footing B; Q2 with 2×2 reduced integration,
+10B × 10B box, grading 1) it prints the DOFs, the runtime (median of the repeats), the time in
+tangent assembly, in residuals (return map and internal force), in linear solves (factorisation,
+Schur condensation, the contact active set and back-substitution), the Newton iterations, and
+the error against the reference:
+
+- ``rocking``: elastic rocking stiffness K_r of a frictionless strip in full contact
+  (``footing_stiffness``) against π G B²/(8(1 − ν)) (anchors §4);
+- ``prandtl``: capacity of a rough (bonded) strip on Tresca clay, settlement pushed to 0.05 B
+  in 10 steps, against (2 + π) c_u B (anchors §4);
+- ``uplift``: rotation pushover of a frictionless strip on elastic soil at N = 171.39 kN/m to
+  10 θ_on in 40 steps: the uplift-onset eccentricity against the half-plane B/4, and (second
+  error) the largest |c/B − θ_on/θ| after uplift (tests/test_continuum_contact.py);
+- ``elcentro``: 10 s of El Centro 1940 N-S on the clay scene (Tresca, unilateral contact),
+  error of the peak footing rotation against the finest level run. It needs
+  ``upliftlab.continuum.dynamics`` and the record on ``UPLIFTLAB_MOTIONS``; without either the row
+  is skipped with a message.
+
+Soil: E = 50 MPa, ν = 0.3, ρ = 1.8 t/m³, c_u = 50 kPa, B = 2 m (the clay scene). The timers wrap
+the solver's functions for the duration of a run and change no result. One thread per solve
+(``OMP_NUM_THREADS=1``, continuum-notes.md). Writes ``CONTINUUM.md`` (the table) and
+``continuum_speed.png`` (runtime against error) to ``--out`` (default: this folder).
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import argparse  # noqa: E402
+import contextlib  # noqa: E402
+import datetime  # noqa: E402
+import math  # noqa: E402
+import platform  # noqa: E402
+import statistics  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from upliftlab.checks import InputError  # noqa: E402
+from upliftlab.continuum import (OPEN, footing_stiffness, make_model,  # noqa: E402
+                                 rotation_pushover, uplift_onset, vertical_pushover)
+from upliftlab.results import write_text  # noqa: E402
+from upliftlab.scenes import ContinuumOptions, Soil  # noqa: E402
+
+E, NU, RHO, CU, B, N = 50e3, 0.3, 1.8, 50.0, 2.0, 171.39
+G = E / (2 * (1 + NU))
+K_R = math.pi * G * B ** 2 / (8 * (1 - NU))
+Q_U = (2 + math.pi) * CU * B
+THETA_ON = 2 * N * (1 - NU) / (math.pi * G * B)
+ELASTIC = Soil(youngs_modulus=E, poisson_ratio=NU, density=RHO, model="elastic")
+CLAY = Soil(youngs_modulus=E, poisson_ratio=NU, density=RHO, model="tresca",
+            undrained_strength=CU, interface="bonded")
+
+LEVELS = {"rocking": (8, 16, 32), "prandtl": (8, 16), "uplift": (8, 16, 32),
+          "elcentro": (4, 8)}
+QUICK = {"rocking": (4, 8), "prandtl": (4, 8), "uplift": (4, 8), "elcentro": (4,)}
+
+
+# ---------------------------------------------------------------------------------------------
+# Timers around the solver's leaves
+# ---------------------------------------------------------------------------------------------
+
+
+class Timers:
+    """Seconds and calls spent in the wrapped functions, by category."""
+
+    def __init__(self):
+        self.seconds = {"assembly": 0.0, "residual": 0.0, "solve": 0.0}
+        self.calls = {"newton": 0}
+
+    def wrap(self, function, category: str | None, count: str | None = None):
+        def timed(*args, **kwargs):
+            if count:
+                self.calls[count] += 1
+            if category is None:
+                return function(*args, **kwargs)
+            start = time.perf_counter()
+            try:
+                return function(*args, **kwargs)
+            finally:
+                self.seconds[category] += time.perf_counter() - start
+        return timed
+
+
+@contextlib.contextmanager
+def instrumented():
+    """Patch the solver's leaf functions with timers (restored on exit): tangent assembly
+    (``assembly.stiffness``), residuals (``ContinuumModel.respond``), solves (``condensation``,
+    ``Condensation.condense``, ``solve_contact``); Newton iterations count the condensations
+    each iteration asks for (``newton._condense``)."""
+    from upliftlab.continuum import assembly, model, newton
+
+    timers = Timers()
+    patches = [(assembly, "stiffness", "assembly", None),
+               (model.ContinuumModel, "respond", "residual", None),
+               (model, "condensation", "solve", None),
+               (model.Condensation, "condense", "solve", None),
+               (newton, "solve_contact", "solve", None),
+               (newton, "_condense", None, "newton")]
+    saved = []
+    try:
+        for owner, name, category, count in patches:
+            original = owner.__dict__[name] if isinstance(owner, type) else getattr(owner, name)
+            saved.append((owner, name, original))
+            setattr(owner, name, timers.wrap(original, category, count))
+        yield timers
+    finally:
+        for owner, name, original in reversed(saved):
+            setattr(owner, name, original)
+
+
+# ---------------------------------------------------------------------------------------------
+# Cases: each returns (model, errors dict) after one run
+# ---------------------------------------------------------------------------------------------
+
+
+def rocking(n: int):
+    model = make_model(ELASTIC, B, ContinuumOptions(elements_across=n))
+    return model, {"K_r / closed form - 1": footing_stiffness(model).rocking / K_R - 1.0}
+
+
+def prandtl(n: int):
+    model = make_model(CLAY, B, ContinuumOptions(elements_across=n))
+    path = vertical_pushover(model, np.linspace(0.0, 0.05 * B, 11)[1:])
+    return model, {"N_max / (2+pi) c_u B - 1": path.capacity / Q_U - 1.0}
+
+
+def uplift(n: int):
+    model = make_model(ELASTIC, B, ContinuumOptions(elements_across=n))
+    path = rotation_pushover(model, N, np.linspace(0.0, 10 * THETA_ON, 41)[1:])
+    onset = uplift_onset(path)
+    lifted = (path.status == OPEN).any(axis=1)
+    contact = np.max(np.abs(path.contact_fraction[lifted] - onset.theta / path.theta[lifted]))
+    return model, {"e_on / (B/4) - 1": onset.e / (0.25 * B) - 1.0,
+                   "max |c/B - theta_on/theta|": contact}
+
+
+def elcentro(n: int):
+    """10 s of El Centro; the error is filled in against the finest level afterwards."""
+    from dataclasses import replace
+
+    from upliftlab.continuum import build_model
+    from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
+    from upliftlab.motions import ELCENTRO
+    from upliftlab.scenes import load_scene
+
+    scene = load_scene("strip_footing_clay", motion=ELCENTRO,
+                       overrides=[f"continuum.elements_across={n}"])
+    motion = scene.build_motion()
+    motion = replace(motion, acceleration=motion.acceleration[:int(round(10.0 / motion.dt))])
+    model = build_model(scene)
+    result = run_dynamic(model, scene, motion, DynamicOptions())
+    peak = float(np.max(np.abs(np.asarray(result.footing)[:, 2])))
+    return model, {"peak theta": peak}
+
+
+CASES = {"rocking": rocking, "prandtl": prandtl, "uplift": uplift, "elcentro": elcentro}
+
+
+def unavailable(case: str) -> str | None:
+    """Why a case cannot run here (None if it can)."""
+    if case != "elcentro":
+        return None
+    try:
+        import upliftlab.continuum.dynamics  # noqa: F401
+    except ImportError as exc:
+        return f"upliftlab.continuum.dynamics is not importable ({exc})"
+    from upliftlab.motions import ELCENTRO, find_motion
+    try:
+        find_motion(ELCENTRO)
+    except InputError as exc:
+        return str(exc)
+    return None
+
+
+# ---------------------------------------------------------------------------------------------
+# Measuring
+# ---------------------------------------------------------------------------------------------
+
+
+def measure(case: str, n: int, repeats: int) -> dict:
+    """Run a case ``repeats`` times; medians of the times, the errors of the last run."""
+    runs = []
+    for _ in range(repeats):
+        with instrumented() as timers:
+            start = time.perf_counter()
+            model, errors = CASES[case](n)
+            total = time.perf_counter() - start
+        runs.append((total, dict(timers.seconds), timers.calls["newton"]))
+    return {"case": case, "n": n, "dofs": model.dofs, "repeats": repeats,
+            "runtime": statistics.median(r[0] for r in runs),
+            "assembly": statistics.median(r[1]["assembly"] for r in runs),
+            "residual": statistics.median(r[1]["residual"] for r in runs),
+            "solve": statistics.median(r[1]["solve"] for r in runs),
+            "newton": runs[-1][2], "errors": errors}
+
+
+def reference_elcentro(rows: list[dict]) -> None:
+    """Errors of the El Centro rows against the finest level (its own error is 0 by
+    definition and marked as the reference)."""
+    rows = [r for r in rows if r["case"] == "elcentro"]
+    if not rows:
+        return
+    finest = max(rows, key=lambda r: r["n"])["errors"]["peak theta"]
+    for r in rows:
+        peak = r["errors"].pop("peak theta")
+        r["errors"]["peak theta / finest - 1"] = peak / finest - 1.0
+        r["note"] = f"peak θ = {peak:.4g} rad" + (" (reference)" if r["errors"][
+            "peak theta / finest - 1"] == 0.0 else "")
+
+
+def _fmt_errors(errors: dict) -> str:
+    """Relative errors (names ending in ``- 1``) in percent, others as numbers."""
+    return "; ".join(f"{name} = {value:+.3%}" if name.endswith("- 1") else
+                     f"{name} = {value:.4f}" for name, value in errors.items())
+
+
+def table(rows: list[dict], skipped: dict[str, str]) -> str:
+    head = ("| case | n across | DOFs | runtime [s] | assembly [s] | residual [s] | solve [s] "
+            "| Newton its | error |")
+    lines = [head, "|" + "---|" * 9]
+    for r in rows:
+        note = f" ({r['note']})" if r.get("note") else ""
+        lines.append(f"| {r['case']} | {r['n']} | {r['dofs']} | {r['runtime']:.3f} | "
+                     f"{r['assembly']:.3f} | {r['residual']:.3f} | {r['solve']:.3f} | "
+                     f"{r['newton'] or '–'} | {_fmt_errors(r['errors'])}{note} |")
+    for case, why in skipped.items():
+        lines.append(f"| {case} | – | – | – | – | – | – | – | skipped: {why} |")
+    return "\n".join(lines)
+
+
+def figure(rows: list[dict], path: Path) -> Path:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from upliftlab.continuum.output import save_figure
+
+    fig, ax = plt.subplots(figsize=(7, 5))
+    markers = {"rocking": "o", "prandtl": "s", "uplift": "^", "elcentro": "D"}
+    for case in markers:
+        mine = [r for r in rows if r["case"] == case]
+        names = list(mine[0]["errors"]) if mine else []
+        for k, name in enumerate(names):
+            points = [(r["runtime"], abs(r["errors"][name]), r["n"]) for r in mine]
+            points = [p for p in points if p[1] > 0.0]  # the reference level of elcentro
+            if not points:
+                continue
+            ax.loglog([p[0] for p in points], [p[1] for p in points], marker=markers[case],
+                      ls="-" if k == 0 else "--", label=f"{case}: |{name}|")
+            for t, e, n in points:
+                ax.annotate(f"{n}", (t, e), textcoords="offset points", xytext=(4, 4),
+                            fontsize=8)
+    ax.set_xlabel("runtime [s] (median)")
+    ax.set_ylabel("error against the reference (relative; c/B in B)")
+    ax.set_title("upliftlab continuum: runtime against error (labels: elements across B)",
+                 fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    save_figure(fig, path)
+    plt.close(fig)
+    return path
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--quick", action="store_true", help="coarse levels, one repeat")
+    parser.add_argument("--out", default=str(Path(__file__).resolve().parent),
+                        help="folder for CONTINUUM.md and continuum_speed.png")
+    parser.add_argument("--repeats", type=int, default=None,
+                        help="repeats of the cheap runs (default 3; 1 with --quick)")
+    args = parser.parse_args(argv)
+    repeats = args.repeats or (1 if args.quick else 3)
+    levels = QUICK if args.quick else LEVELS
+    rows, skipped = [], {}
+    for case, ns in levels.items():
+        why = unavailable(case)
+        if why:
+            skipped[case] = why
+            print(f"{case}: skipped: {why}", file=sys.stderr)
+            continue
+        for n in ns:
+            # one run of the plastic and dynamic cases; the elastic ones are repeated
+            reps = repeats if case in ("rocking", "uplift") else 1
+            row = measure(case, n, reps)
+            rows.append(row)
+            print(f"{case:8s} n = {n:3d}: {row['dofs']:7d} DOFs, {row['runtime']:8.3f} s, "
+                  f"{_fmt_errors(row['errors'])}", file=sys.stderr, flush=True)
+    reference_elcentro(rows)
+    text = table(rows, skipped)
+    print(text)
+    out = Path(args.out)
+    header = (f"# Continuum speed against error\n\n"
+              f"`python benchmarks/continuum_speed.py{' --quick' if args.quick else ''}`, "
+              f"{datetime.date.today().isoformat()}, {platform.processor() or platform.machine()}"
+              f", Python {platform.python_version()}, one thread per solve "
+              f"(OMP_NUM_THREADS={os.environ['OMP_NUM_THREADS']}). Runtime is the median of "
+              f"{repeats} runs for the elastic cases (rocking, uplift) and one run otherwise; "
+              "assembly is the tangent stiffness, residual the return map and internal force, "
+              "solve the factorisation, Schur condensation, contact active set and "
+              "back-substitution; the rest (meshing, basis, bookkeeping) is runtime minus "
+              "these. Newton iterations include those of cut steps. The machine is shared: "
+              "compare ratios.\n\n"
+              "Q2 with 2×2 reduced integration, 10B × 10B box, grading 1; B = 2 m, E = 50 MPa, "
+              "ν = 0.3, c_u = 50 kPa. References: rocking π G B²/(8(1 − ν)); prandtl "
+              "(2 + π) c_u B (rough, Tresca, settlement 0.05 B); uplift: onset e = B/4 and "
+              "c/B = θ_on/θ of the elastic half-plane (the 10B box is −0.36 % on e); elcentro: "
+              "the finest level.\n\n")
+    write_text(out / "CONTINUUM.md", header + text + "\n")
+    if rows:
+        figure(rows, out / "continuum_speed.png")
+    print(f"wrote {out / 'CONTINUUM.md'} and {out / 'continuum_speed.png'}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

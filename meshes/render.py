@@ -1,0 +1,525 @@
+"""Off-screen pictures of a footing on a soil mesh: the uplift zone as a PNG and an animated GIF
+over a run's snapshots.
+
+**What a picture shows.** Top panel: the soil near the footing (a window of 3B × 1.6B by
+default), deformed with its displacements magnified by a stated factor, coloured by the
+element-averaged equivalent plastic strain (colour bar with its unit; logarithmic over
+:data:`DECADES` decades below the run's largest value, so the whole plastic zone shows and not
+only the peak at the footing edge), the element outlines,
+and the rigid footing drawn as a block of height B/5 moved by its (u, v, θ) with the same
+magnification. Bottom panel, on the same x axis: the contact pressure (filled) and the gap
+(line, right axis) along the base. The title names the scene, the step (static) or the time
+(dynamic), θ, M, N and the contact length. Axis limits and colour limits are fixed over all
+frames of a run, so an animation does not jump.
+
+**How.** pyvista renders the soil off screen (``pyvista.OFF_SCREEN``; when there is no display,
+VTK is pointed at EGL through ``VTK_DEFAULT_OPENGL_WINDOW=vtkEGLRenderWindow`` before it
+loads), with a parallel camera fitted to the window so the image maps exactly onto the
+window's coordinates. matplotlib lays out the page (axes in the scene's length unit, colour
+bar, footing, contact panel). imageio writes the GIF. Files appear complete or not at all.
+
+**Quadratic elements** are drawn on their linear sub-mesh (:func:`linear_submesh`): each Q2
+quad is split into 4 quads on its 9 nodes, each P2 triangle into 4 triangles on its 6 nodes,
+so every nodal displacement is drawn exactly; element values repeat on their sub-cells.
+
+**Results** are duck typed (the ``FieldHistory`` of :mod:`upliftlab.continuum.output`): a static
+path with recorded fields or a dynamic result, offering ``time``, ``footing`` (nt, 3),
+``x``, ``pressure`` and ``gap`` (nt, nc), ``contact_length``, ``N``, ``M``, ``snapshot_time``,
+``displacement`` (nk, ndofs), ``plastic_strain`` (nk, nelems) and ``metadata``; a static path
+also has ``snapshot_step``.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..checks import InputError
+from ..results import atomic_path
+
+__all__ = ["SubMesh", "linear_submesh", "View", "Frame", "uplift_view", "frames",
+           "snapshot_rows", "render_frame", "render_uplift", "animate_uplift",
+           "nice_scale"]
+
+#: Colour map of the equivalent plastic strain (zero is a pale yellow, distinct from white).
+CMAP = "YlOrRd"
+#: Footing block height drawn, as a fraction of B.
+FOOTING_HEIGHT = 0.2
+
+
+# ---------------------------------------------------------------------------------------------
+# The linear sub-mesh of a (quadratic) basis
+# ---------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class SubMesh:
+    """A linear mesh on the nodes of a Lagrange basis (see the module docstring).
+
+    ``points`` (np, 2) the basis nodes; ``cells`` (nc, k) with ``cell_type`` ``quad`` or
+    ``triangle``; ``parent`` (nc,) the element each sub-cell lies in; ``dofs`` (np, 2) the DOFs
+    of (ux, uy) at each point in the vector basis; ``edges`` (ne, 2) point pairs of the element
+    outlines (the geometric mesh's facets).
+    """
+
+    points: np.ndarray
+    cells: np.ndarray
+    cell_type: str
+    parent: np.ndarray
+    dofs: np.ndarray
+    edges: np.ndarray = field(repr=False)
+
+    @property
+    def nelements(self) -> int:
+        return int(self.parent.max()) + 1
+
+    def vectors(self, u: np.ndarray) -> np.ndarray:
+        """(…, np, 2) nodal displacement of a DOF vector (…, ndofs)."""
+        return np.asarray(u)[..., self.dofs]
+
+    def cell_values(self, per_element: np.ndarray) -> np.ndarray:
+        """(…, nc) the element values (…, nelems) repeated on each sub-cell."""
+        return np.asarray(per_element)[..., self.parent]
+
+
+def _lattice_cells(order: int, quad: bool) -> list[tuple]:
+    """Sub-cells of the reference cell as lattice points (i, j), counter-clockwise."""
+    if quad:
+        return [((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1))
+                for j in range(order) for i in range(order)]
+    cells = [((i, j), (i + 1, j), (i, j + 1)) for j in range(order) for i in range(order - j)]
+    cells += [((i + 1, j), (i + 1, j + 1), (i, j + 1))
+              for j in range(order) for i in range(order - j - 1)]
+    return cells
+
+
+def _signed_areas(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
+    """Shoelace areas of polygons ``cells`` (nc, k), positive counter-clockwise."""
+    x, y = points[cells, 0], points[cells, 1]
+    return 0.5 * np.sum(x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y, axis=1)
+
+
+def linear_submesh(basis) -> SubMesh:
+    """The :class:`SubMesh` of a scikit-fem vector (or scalar) Lagrange basis on triangles or
+    quads: P1/Q1 give the mesh itself, P2/Q2 four sub-cells per element; every sub-cell is
+    counter-clockwise."""
+    import skfem
+
+    vector = isinstance(basis.elem, skfem.ElementVector)
+    scalar = basis.split_bases()[0] if vector else basis
+    quad = isinstance(basis.mesh, skfem.MeshQuad1)
+    if not (quad or isinstance(basis.mesh, skfem.MeshTri1)):
+        raise InputError(f"mesh = {type(basis.mesh).__name__}: expected a linear triangle or "
+                         "quad mesh")
+    reference = np.asarray(getattr(scalar.elem, "doflocs", np.zeros((0, 2))), dtype=float)
+    order = 2 if (2.0 * reference % 2.0).any() else 1  # P2/Q2 have midpoint nodes
+    lattice = {tuple(np.rint(r * order).astype(int)): k for k, r in enumerate(reference)}
+    try:
+        local = np.array([[lattice[pt] for pt in cell] for cell in _lattice_cells(order, quad)])
+    except KeyError:
+        local = None
+    if local is None or len(lattice) != scalar.element_dofs.shape[0]:
+        raise InputError(f"element = {type(scalar.elem).__name__}: expected a Lagrange element "
+                         "of order 1 or 2 (P1, P2, Q1, Q2)")
+    element_dofs = np.asarray(scalar.element_dofs)  # (nloc, nelems)
+    cells = element_dofs[local]  # (nsub, k, nelems)
+    nsub, k, nelems = cells.shape
+    cells = cells.transpose(2, 0, 1).reshape(-1, k)
+    points = np.asarray(scalar.doflocs, dtype=float).T.copy()
+    clockwise = _signed_areas(points, cells) < 0.0  # skfem may sort a triangle's vertices
+    cells[clockwise] = cells[clockwise, ::-1]
+    parent = np.repeat(np.arange(nelems), nsub)
+    if vector:
+        dofs = np.column_stack(basis.split_indices())
+    else:
+        dofs = np.column_stack((np.arange(scalar.N), np.arange(scalar.N)))
+    vertex_point = np.asarray(scalar.nodal_dofs)[0]
+    edges = vertex_point[np.asarray(basis.mesh.facets)].T
+    return SubMesh(points=points, cells=cells,
+                   cell_type="quad" if quad else "triangle", parent=parent, dofs=dofs,
+                   edges=edges)
+
+
+# ---------------------------------------------------------------------------------------------
+# Frames and the view they share
+# ---------------------------------------------------------------------------------------------
+
+
+def snapshot_rows(result) -> np.ndarray:
+    """The history row of each snapshot: ``snapshot_step`` if the result has it (a static
+    path), else the row whose ``time`` is nearest each ``snapshot_time``."""
+    steps = getattr(result, "snapshot_step", None)
+    if steps is not None:
+        return np.asarray(steps, dtype=int)
+    time = np.asarray(result.time, dtype=float)
+    wanted = np.asarray(result.snapshot_time, dtype=float)
+    right = np.clip(np.searchsorted(time, wanted), 1, time.size - 1)
+    left = right - 1
+    return np.where(np.abs(time[left] - wanted) <= np.abs(time[right] - wanted), left, right)
+
+
+@dataclass(frozen=True, eq=False)
+class Frame:
+    """One picture's data: nodal ``displacement`` (np, 2) on the sub-mesh, element
+    ``plastic_strain`` (nelems), ``footing`` (u, v, θ), the contact ``x``, ``pressure`` and
+    ``gap`` along the base, ``M``, ``N``, ``contact_length`` and a ``label`` (step or time)."""
+
+    displacement: np.ndarray
+    plastic_strain: np.ndarray
+    footing: np.ndarray
+    x: np.ndarray
+    pressure: np.ndarray
+    gap: np.ndarray
+    M: float
+    N: float
+    contact_length: float
+    label: str
+
+
+def _label(result, k: int, row: int) -> str:
+    if getattr(result, "snapshot_step", None) is not None:
+        return f"step {row + 1} of {np.size(result.time)}"
+    return f"t = {float(np.asarray(result.snapshot_time)[k]):.3f} s"
+
+
+def frames(result, sub: SubMesh) -> list[Frame]:
+    """One :class:`Frame` per snapshot of a result (module docstring)."""
+    displacement = np.asarray(result.displacement)
+    plastic = np.asarray(result.plastic_strain)
+    if displacement.ndim != 2 or displacement.shape[0] == 0:
+        raise InputError("result: no soil fields recorded (pass record_fields=True to the "
+                         "pushover, or ask the dynamic run for snapshots)")
+    if displacement.shape[1] != sub.dofs.max() + 1 or plastic.shape[-1] != sub.nelements:
+        raise InputError(f"result: fields of shape {displacement.shape} and {plastic.shape} do "
+                         f"not fit the mesh ({sub.dofs.max() + 1} DOFs, {sub.nelements} "
+                         "elements)")
+    footing = np.asarray(result.footing)
+    out = []
+    for k, row in enumerate(snapshot_rows(result)):
+        out.append(Frame(displacement=sub.vectors(displacement[k]),
+                         plastic_strain=plastic[k], footing=footing[row],
+                         x=np.asarray(result.x), pressure=np.asarray(result.pressure)[row],
+                         gap=np.asarray(result.gap)[row], M=float(result.M[row]),
+                         N=float(result.N[row]),
+                         contact_length=float(result.contact_length[row]),
+                         label=_label(result, k, row)))
+    return out
+
+
+@dataclass(frozen=True)
+class View:
+    """What every frame of a run shares: the ``window`` (xmin, xmax, ymin, ymax) in length,
+    the magnification ``scale``, colour and axis limits, units and the ``title``."""
+
+    footing_width: float
+    window: tuple[float, float, float, float]
+    scale: float
+    plastic_max: float
+    pressure_max: float
+    gap_max: float
+    length_unit: str = ""
+    stress_unit: str = ""
+    moment_unit: str = ""
+    force_unit: str = ""
+    title: str = ""
+
+
+def nice_scale(target: float) -> float:
+    """The largest of 1, 2, 5 × 10^k not above ``target`` (≥ 1e-12)."""
+    if not target > 0.0 or not math.isfinite(target):
+        return 1.0
+    power = 10.0 ** math.floor(math.log10(target))
+    return max(step * power for step in (1.0, 2.0, 5.0) if step * power <= target * (1 + 1e-12))
+
+
+def _window(width: float) -> tuple[float, float, float, float]:
+    return (-1.5 * width, 1.5 * width, -1.25 * width, 0.35 * width)
+
+
+def _units(metadata: dict) -> dict:
+    units = metadata.get("units", {}) if isinstance(metadata, dict) else {}
+    if isinstance(units, str):
+        import json
+        try:
+            units = json.loads(units)
+        except ValueError:
+            units = {}
+    length = units.get("length", "")
+    force = units.get("force/length", "").split("/")[0] if units.get("force/length") else ""
+    stress = units.get("stress") or (f"{force}/{length}^2" if force and length else "")
+    return {"length_unit": length, "stress_unit": stress,
+            "moment_unit": units.get("moment/length", ""),
+            "force_unit": units.get("force/length", "")}
+
+
+def uplift_view(result, sub: SubMesh, footing_width: float, *, scale: float | None = None,
+                title: str = "") -> View:
+    """The :class:`View` of a run: limits over all its snapshots, and the magnification
+    ``scale`` (default: the :func:`nice_scale` that makes the largest displacement in the
+    window 8 % of B, at least 1)."""
+    if footing_width <= 0.0:
+        raise InputError(f"footing_width = {footing_width:g}: must be > 0")
+    window = _window(footing_width)
+    inside = ((sub.points[:, 0] >= window[0]) & (sub.points[:, 0] <= window[1])
+              & (sub.points[:, 1] >= window[2]))
+    u = sub.vectors(np.asarray(result.displacement))[:, inside]
+    largest = float(np.max(np.linalg.norm(u, axis=-1))) if u.size else 0.0
+    if scale is None:
+        scale = max(1.0, nice_scale(0.08 * footing_width / largest)) if largest > 0 else 1.0
+    elif not (scale > 0 and math.isfinite(scale)):
+        raise InputError(f"scale = {scale!r}: the magnification must be a number > 0")
+    rows = snapshot_rows(result)
+    plastic = float(np.max(result.plastic_strain)) if np.size(result.plastic_strain) else 0.0
+    pressure = float(np.max(np.asarray(result.pressure)[rows], initial=0.0))
+    gap = float(np.max(np.asarray(result.gap)[rows], initial=0.0))
+    metadata = getattr(result, "metadata", {}) or {}
+    return View(footing_width=footing_width, window=window, scale=float(scale),
+                plastic_max=plastic, pressure_max=pressure, gap_max=gap,
+                title=title or str(metadata.get("scene", "")), **_units(metadata))
+
+
+# ---------------------------------------------------------------------------------------------
+# Rendering
+# ---------------------------------------------------------------------------------------------
+
+
+def _pyvista():
+    """pyvista, off screen; EGL when there is no display (set before VTK loads)."""
+    if sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
+        os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+    try:
+        import pyvista
+    except ImportError as exc:  # the ``render`` extra
+        raise InputError("renders need pyvista and imageio: pip install 'upliftlab[render]'"
+                         ) from exc
+    pyvista.OFF_SCREEN = True
+    return pyvista
+
+
+#: Decades of equivalent plastic strain the colour map spans below the run's largest value.
+DECADES = 3
+
+
+def _colour_range(view: View) -> tuple[float, float]:
+    """(floor, top) of the logarithmic colour scale; (0, 1e-3) linear if nothing yielded."""
+    if view.plastic_max > 0.0:
+        return view.plastic_max * 10.0 ** -DECADES, view.plastic_max
+    return 0.0, 1e-3
+
+
+def _colour_values(view: View, plastic: np.ndarray) -> np.ndarray:
+    """What VTK colours linearly: log10 of ε̄p clipped to the floor (so that VTK's linear map
+    equals matplotlib's LogNorm on the colour bar)."""
+    floor, _ = _colour_range(view)
+    if floor == 0.0:
+        return np.asarray(plastic, dtype=float)
+    return np.log10(np.maximum(plastic, floor))
+
+
+def _colour_limits(view: View) -> tuple[float, float]:
+    floor, top = _colour_range(view)
+    return (0.0, top) if floor == 0.0 else (math.log10(floor), math.log10(top))
+
+
+class _SoilPainter:
+    """A pyvista plotter kept over the frames of a run: the soil grid coloured by plastic
+    strain and the element outlines, with a parallel camera fitted to the window."""
+
+    def __init__(self, sub: SubMesh, view: View, width_px: int):
+        pv = _pyvista()
+        xmin, xmax, ymin, ymax = view.window
+        self.height_px = max(2, int(round(width_px * (ymax - ymin) / (xmax - xmin))))
+        self.sub, self.view = sub, view
+        self.base = np.column_stack((sub.points, np.zeros(len(sub.points))))
+        kind = pv.CellType.QUAD if sub.cell_type == "quad" else pv.CellType.TRIANGLE
+        k = sub.cells.shape[1]
+        connectivity = np.hstack((np.full((len(sub.cells), 1), k), sub.cells)).ravel()
+        self.grid = pv.UnstructuredGrid(connectivity, np.full(len(sub.cells), kind),
+                                        self.base.copy())
+        self.grid.cell_data["plastic"] = np.zeros(len(sub.cells))
+        lines = np.hstack((np.full((len(sub.edges), 1), 2), sub.edges)).ravel()
+        self.outline = pv.PolyData(self.base.copy(), lines=lines)
+        self.plotter = pv.Plotter(off_screen=True, window_size=(width_px, self.height_px))
+        self.plotter.set_background("white")
+        self.plotter.add_mesh(self.grid, scalars="plastic", cmap=CMAP,
+                              clim=_colour_limits(view), lighting=False,
+                              show_scalar_bar=False)
+        self.plotter.add_mesh(self.outline, color=(0.45, 0.45, 0.45), line_width=1,
+                              lighting=False)
+        camera = self.plotter.camera
+        cx, cy = 0.5 * (xmin + xmax), 0.5 * (ymin + ymax)
+        camera.position, camera.focal_point, camera.up = (cx, cy, 10.0), (cx, cy, 0.0), (0, 1, 0)
+        self.plotter.enable_parallel_projection()
+        camera.parallel_scale = 0.5 * (ymax - ymin)
+        camera.clipping_range = (1.0, 100.0)
+
+    def paint(self, frame: Frame) -> np.ndarray:
+        moved = self.base.copy()
+        moved[:, :2] += self.view.scale * frame.displacement
+        self.grid.points = moved
+        self.outline.points = moved
+        self.grid.cell_data["plastic"] = self.sub.cell_values(
+            _colour_values(self.view, frame.plastic_strain))
+        self.plotter.render()
+        return np.asarray(self.plotter.screenshot(return_img=True))
+
+    def close(self) -> None:
+        self.plotter.close()
+
+
+def _footing_outline(frame: Frame, view: View) -> np.ndarray:
+    """Corners (5, 2) of the footing block moved by (u, v, θ) × scale: a point (x, y) of the
+    rigid footing moves by (u + θ y, v − θ x)."""
+    b, h = 0.5 * view.footing_width, FOOTING_HEIGHT * view.footing_width
+    corners = np.array([(-b, 0.0), (b, 0.0), (b, h), (-b, h), (-b, 0.0)])
+    u, v, theta = frame.footing
+    move = np.column_stack((u + theta * corners[:, 1], v - theta * corners[:, 0]))
+    return corners + view.scale * move
+
+
+def _unit(text: str) -> str:
+    """`` [unit]`` for a label, with kN*m/m^2 written kN·m/m²."""
+    text = text.replace("^2", "²").replace("^3", "³").replace("*", "·")
+    return f" [{text}]" if text else ""
+
+
+def _layout(fig_width: float, view: View):
+    """Axes rectangles (figure fractions) and the figure height: the soil panel keeps the
+    window's aspect ratio, the contact panel shares its x extent."""
+    xmin, xmax, ymin, ymax = view.window
+    left, width = 0.11, 1.0 - 0.11 - 0.13
+    soil_h_in = width * fig_width * (ymax - ymin) / (xmax - xmin)
+    contact_h_in, top_in, gap_in, bottom_in = 0.3 * fig_width, 0.95, 0.6, 0.6
+    height = top_in + soil_h_in + gap_in + contact_h_in + bottom_in
+    soil = (left, (bottom_in + contact_h_in + gap_in) / height, width, soil_h_in / height)
+    contact = (left, bottom_in / height, width, contact_h_in / height)
+    bar = (left + width + 0.015, soil[1], 0.022, soil[3])
+    return height, soil, contact, bar
+
+
+def _figure(frame: Frame, image: np.ndarray, view: View, dpi: int):
+    import matplotlib
+    from matplotlib.figure import Figure
+
+    fig_width = 9.0
+    height, soil_rect, contact_rect, bar_rect = _layout(fig_width, view)
+    fig = Figure(figsize=(fig_width, height), dpi=dpi)
+    soil = fig.add_axes(soil_rect)
+    xmin, xmax, ymin, ymax = view.window
+    soil.imshow(image, extent=view.window, origin="upper", interpolation="antialiased")
+    foot = _footing_outline(frame, view)
+    soil.fill(foot[:, 0], foot[:, 1], facecolor=(0.55, 0.6, 0.7), edgecolor="black",
+              linewidth=1.5, alpha=0.9, zorder=3)
+    soil.set_xlim(xmin, xmax)
+    soil.set_ylim(ymin, ymax)
+    soil.set_aspect("equal")
+    soil.set_ylabel(f"y{_unit(view.length_unit)}")
+    soil.tick_params(labelbottom=False)
+    soil.text(0.01, 0.02, f"deformation × {view.scale:g}", transform=soil.transAxes,
+              fontsize=10, va="bottom", bbox=dict(facecolor="white", alpha=0.8, lw=0))
+    floor, top = _colour_range(view)
+    norm = (matplotlib.colors.LogNorm(floor, top) if floor > 0.0
+            else matplotlib.colors.Normalize(floor, top))
+    mappable = matplotlib.cm.ScalarMappable(norm=norm, cmap=CMAP)
+    bar = fig.colorbar(mappable, cax=fig.add_axes(bar_rect), extend="min" if floor else None)
+    bar.set_label("equivalent plastic strain ε̄ᵖ [–]"
+                  + (f" (log; < {floor:.1e}: palest)" if floor else " (none: elastic)"))
+    _contact_panel(fig.add_axes(contact_rect), frame, view)
+    theta = frame.footing[2]
+    fig.suptitle(f"{view.title}: {frame.label}\nθ = {theta:.3g} rad,  M = {frame.M:.4g}"
+                 f"{_unit(view.moment_unit)},  N = {frame.N:.4g}{_unit(view.force_unit)},  "
+                 f"contact {frame.contact_length / view.footing_width:.0%} of B",
+                 fontsize=11, y=1.0 - 0.12 / height)
+    return fig
+
+
+def _contact_panel(ax, frame: Frame, view: View) -> None:
+    xmin, xmax = view.window[:2]
+    ax.fill_between(frame.x, 0.0, frame.pressure, color="tab:blue", alpha=0.35, step=None,
+                    label="pressure p")
+    ax.plot(frame.x, frame.pressure, color="tab:blue", lw=1.5)
+    ax.set_xlim(xmin, xmax)
+    ax.set_ylim(0.0, 1.1 * view.pressure_max if view.pressure_max > 0 else 1.0)
+    ax.set_xlabel(f"x{_unit(view.length_unit)}")
+    ax.set_ylabel(f"contact pressure p{_unit(view.stress_unit)}", color="tab:blue")
+    ax.axvspan(-0.5 * view.footing_width, 0.5 * view.footing_width, color="0.93", zorder=0)
+    twin = ax.twinx()
+    twin.plot(frame.x, frame.gap, color="tab:red", lw=1.8, label="gap g")
+    twin.set_ylim(0.0, 1.1 * view.gap_max if view.gap_max > 0 else 1.0)
+    twin.set_ylabel(f"gap g{_unit(view.length_unit)}", color="tab:red")
+    twin.ticklabel_format(axis="y", style="sci", scilimits=(-2, 3))
+    handles = ax.get_legend_handles_labels()[0] + twin.get_legend_handles_labels()[0]
+    ax.legend(handles, [h.get_label() for h in handles], loc="upper left", fontsize=9)
+    ax.grid(alpha=0.3)
+
+
+def _pixels(fig) -> np.ndarray:
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    return np.asarray(canvas.buffer_rgba())[..., :3].copy()
+
+
+def render_frame(painter: _SoilPainter, frame: Frame, view: View, dpi: int = 100
+                 ) -> np.ndarray:
+    """The RGB page (h, w, 3) of one frame."""
+    return _pixels(_figure(frame, painter.paint(frame), view, dpi))
+
+
+def _painter(sub: SubMesh, view: View, dpi: int) -> _SoilPainter:
+    _, soil_rect, _, _ = _layout(9.0, view)
+    return _SoilPainter(sub, view, width_px=int(round(1.5 * soil_rect[2] * 9.0 * dpi)))
+
+
+def render_uplift(path, result, basis, footing_width: float, *, snapshot: int = -1,
+                  scale: float | None = None, title: str = "", dpi: int = 100):
+    """Write the PNG of one snapshot (default the last) of a result on ``basis`` to ``path``.
+    Returns the path."""
+    sub = linear_submesh(basis)
+    all_frames = frames(result, sub)
+    if not -len(all_frames) <= snapshot < len(all_frames):
+        raise InputError(f"snapshot = {snapshot}: valid range is [{-len(all_frames)}, "
+                         f"{len(all_frames) - 1}]")
+    view = uplift_view(result, sub, footing_width, scale=scale, title=title)
+    painter = _painter(sub, view, dpi)
+    try:
+        fig = _figure(all_frames[snapshot], painter.paint(all_frames[snapshot]), view, dpi)
+    finally:
+        painter.close()
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    FigureCanvasAgg(fig)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png", dpi=dpi)
+    return path
+
+
+def animate_uplift(path, result, basis, footing_width: float, *, scale: float | None = None,
+                   title: str = "", seconds_per_frame: float = 0.25, dpi: int = 80,
+                   progress=None):
+    """Write an animated GIF with one frame per snapshot of a result to ``path`` (same view
+    and limits in every frame). ``progress(k, n)`` is called after each frame. Returns the
+    path."""
+    import imageio.v3 as iio
+
+    sub = linear_submesh(basis)
+    all_frames = frames(result, sub)
+    view = uplift_view(result, sub, footing_width, scale=scale, title=title)
+    painter = _painter(sub, view, dpi)
+    pages = []
+    try:
+        for k, frame in enumerate(all_frames):
+            pages.append(render_frame(painter, frame, view, dpi))
+            if progress is not None:
+                progress(k, len(all_frames))
+    finally:
+        painter.close()
+    with atomic_path(path) as tmp:
+        iio.imwrite(tmp, np.stack(pages), extension=".gif", loop=0,
+                    duration=int(round(1000 * seconds_per_frame)))
+    return path
