@@ -203,6 +203,8 @@ def _foundation_params(f, layout: SpringLayout, weight, rotary_mass, vertical_ma
     table["x"] = x
     if f.restitution < 1.0 and f.support == "uplift":
         meff = impact_effective_mass(x, rotary_mass, vertical_mass)
+        if f.impact_mass == "tributary":
+            meff = meff * k / layout.vertical_stiffness
         cstar = f.impact_multiple * 2.0 * np.sqrt(k * meff)
         table["cimp"] = cstar
         table["dzf"] = meff * (1.0 - f.restitution) / cstar

@@ -50,6 +50,7 @@ _MISSING = object()
 SUPPORTS = ("uplift", "bonded", "fixed")
 LAYOUTS = ("winkler", "edges", "equivalent", "end_stiffened", "custom")
 LAWS = ("elastic", "elastoplastic")
+IMPACT_MASSES = ("point", "tributary")
 MOTION_TYPES = ("record", "free", "sine", "cosine", "ricker", "harmonic")
 INTEGRATORS = ("events", "rk4", "abm4", "newmark", "hht")
 
@@ -219,7 +220,12 @@ class Foundation:
     the springs; ``stiffness`` is their total K_v (force/length). ``law`` is ``elastic`` or
     ``elastoplastic`` (yield at ``yield_multiple`` times the static compression). Dashpots in
     parallel carry ``damping_ratio`` of critical for the bonded vertical mode. ``restitution`` ε
-    < 1 adds Ewing's impact damper with c* = ``impact_multiple`` · c_cr.
+    < 1 adds Ewing's impact damper with c* = ``impact_multiple`` · c_cr. ``impact_mass``: the
+    mass behind a landing spring in c_cr and Δz — ``point`` (the paper's eq. 17: the structure's
+    effective mass at the spring's position, so each landing spring removes (1 − ε²) of that
+    mass's closing energy and a bed of N springs removes N times as much) or ``tributary``
+    (that mass times the spring's share k_i/K_v of the bed, so the energy removed per landing
+    of the whole base does not grow with N).
     """
 
     support: str
@@ -232,6 +238,7 @@ class Foundation:
     damping_ratio: float = 0.0
     restitution: float = 1.0
     impact_multiple: float = 10.0
+    impact_mass: str = "point"
     end_stiffness_ratio: float = 1.0
     end_length: float = 0.0
     positions: tuple[float, ...] = ()
@@ -297,6 +304,7 @@ def _foundation(data, vertical_mass: float) -> Foundation:
         damping_ratio=table.get("damping_ratio", _range(0.0, 2.0), 0.0),
         restitution=table.get("restitution", _range(0.0, 1.0), 1.0),
         impact_multiple=table.get("impact_multiple", _range(0.1, 1e4), 10.0),
+        impact_mass=table.get("impact_mass", _choice(IMPACT_MASSES), "point"),
         end_stiffness_ratio=end_ratio,
         end_length=end_length,
         positions=positions,
