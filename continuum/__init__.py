@@ -14,7 +14,9 @@ Analyses (results are frozen records with ``save()`` to NetCDF)
     :func:`footing_stiffness` -> :class:`FootingStiffness` (elastic, full contact);
     :func:`vertical_pushover`, :func:`rotation_pushover`, :func:`moment_pushover`
     -> :class:`StaticPath`; :func:`uplift_onset` -> :class:`UpliftOnset`;
-    :func:`vm_envelope` -> :class:`Envelope`.
+    :func:`vm_envelope` -> :class:`Envelope`; :func:`run_dynamic` (gravity, then a ground
+    motion; HHT-α / Newmark, Lysmer boundaries, rigid or compliant base, SDOF superstructure)
+    with :class:`DynamicOptions` -> :class:`DynamicResult`.
 Solver
     :func:`equilibrium` (one Newton step to a :class:`Control`), :func:`follow` (a load path
     with step cutting), :func:`footing_tangent` (dF/dq), :class:`NewtonOptions`,
@@ -23,9 +25,10 @@ Solver
 Pieces
     :mod:`.assembly` (B-matrices, einsum Bᵀ D B into a fixed CSR pattern), :mod:`.footing`
     (kinematics, contact solver), :mod:`.materials` (return maps), :mod:`.model`,
-    :mod:`.newton`, :mod:`.statics`.
+    :mod:`.newton`, :mod:`.statics`, :mod:`.dynamics`.
 """
 
+from .dynamics import DynamicOptions, DynamicResult, run_dynamic
 from .footing import (OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK, ContactError, Footing,
                       Interface)
 from .model import ContinuumModel, build_model, default_k0, make_model
@@ -45,4 +48,5 @@ __all__ = [
     "FootingStiffness", "footing_stiffness",
     "StaticPath", "vertical_pushover", "rotation_pushover", "moment_pushover",
     "UpliftOnset", "uplift_onset", "Envelope", "vm_envelope",
+    "DynamicOptions", "DynamicResult", "run_dynamic",
 ]

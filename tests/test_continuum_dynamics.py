@@ -1,0 +1,367 @@
+"""Dynamics of the continuum model (upliftlab.continuum.dynamics).
+
+References, one per test:
+- Lysmer–Kuhlemeyer boundary (anchors §4; Lysmer & Kuhlemeyer 1969): in a 1-D soil column on a
+  compliant base, a vertically incident S (or P) pulse doubles at the free surface (the 1-D wave
+  solution: surface velocity = 2 u̇_inc) and leaves through the base; the energy left in the
+  column after it has gone is the reflected energy, 0 for a perfect absorber, < 5 % required;
+- the fixed-base limit: on very stiff bonded soil the story deformation under El Centro
+  approaches Nigam & Jennings' exact SDOF solution (reduced/exact.py) within 1 % in peak u;
+- recontact without chattering: after every landing of a contact node it stays closed for
+  0.05 s (≤ 2 status changes in that window), with P ≥ −tol and g ≥ −tol at every step;
+  Newmark's average acceleration, which keeps the impact's high-frequency ringing, fails the
+  same measure (so the measure can fail);
+- energy: Newmark's average acceleration conserves the energy of a linear undamped system
+  exactly (the trapezoidal rule; Hughes, *The Finite Element Method*, §9.3); HHT-α dissipates
+  (Hilber, Hughes & Taylor 1977) and leaves the structure's low mode almost untouched;
+- bad input is refused before any work, naming the field, the value and the valid range.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import skfem
+from scipy.sparse.linalg import splu
+
+from upliftlab.checks import InputError
+from upliftlab.continuum import OPEN, assembly, build_model, make_model
+from upliftlab.continuum import dynamics as dyn
+from upliftlab.continuum.dynamics import (COURANT_LIMIT, DynamicOptions, DynamicResult,
+                                          dashpot_data, incident_load, mass_data,
+                                          newmark_parameters, run_dynamic, time_step_limit,
+                                          wave_speeds)
+from upliftlab.continuum.materials import Elastic, plane_strain_tangent
+from upliftlab.continuum.output import check_history
+from upliftlab.motions import free_vibration
+from upliftlab.reduced.exact import nigam_jennings
+from upliftlab.results import read_netcdf
+from upliftlab.scenes import ContinuumOptions, Soil, load_scene
+
+SCENE = "strip_footing_clay"
+COARSE = ["continuum.elements_across=4"]  # Q2, 10B x 10B, 1296 DOFs
+
+
+# ---------------------------------------------------------------------------------------------
+# 1. Lysmer–Kuhlemeyer boundary
+# ---------------------------------------------------------------------------------------------
+
+
+def _column(depth: float = 40.0, h: float = 0.5):
+    """A 2 m wide, ``depth`` deep column of uniform Q2 elements of size ``h`` (footing B = 1 m
+    on top, unused: the column is solved here without it)."""
+    x = np.linspace(-1.0, 1.0, int(round(2.0 / h)) + 1)
+    y = np.linspace(-depth, 0.0, int(round(depth / h)) + 1)
+    mesh = skfem.MeshQuad.init_tensor(x, y)
+    mid = mesh.p[:, mesh.facets].mean(axis=1)
+    top = np.isclose(mid[1], 0.0)
+    mesh = mesh.with_boundaries({
+        "footing": np.flatnonzero(top & (np.abs(mid[0]) < 0.5)),
+        "surface": np.flatnonzero(top & (np.abs(mid[0]) > 0.5)),
+        "sides": np.flatnonzero(np.isclose(np.abs(mid[0]), 1.0)),
+        "bottom": np.flatnonzero(np.isclose(mid[1], -depth))})
+    soil = Soil(youngs_modulus=50e3, poisson_ratio=0.3, density=1.8, model="elastic")
+    return make_model(soil, 1.0, ContinuumOptions(element="Q2"), mesh=mesh)
+
+
+def _ricker(t, f, t0):
+    a = (math.pi * f * (t - t0)) ** 2
+    return (1.0 - 2.0 * a) * np.exp(-a)
+
+
+@pytest.mark.parametrize("wave", ["S", "P"])
+def test_lysmer_base_absorbs_a_vertically_incident_pulse(wave):
+    # Reference: the 1-D wave solution in a column on an elastic half-space of the same soil:
+    # the incident pulse doubles at the free surface and leaves through the base entirely.
+    model = _column()
+    vp, vs = wave_speeds(model.soil)
+    speed, k = (vs, 0) if wave == "S" else (vp, 1)
+    basis = model.disc.basis
+    D = plane_strain_tangent(Elastic(50e3, 0.3)(np.zeros((3, 3, 1)))[1])[..., 0]
+    K = assembly.stiffness(model.disc, D)
+    M = model.disc.pattern.matrix(mass_data(model))
+    C = model.disc.pattern.matrix(dashpot_data(model, ["bottom"]))
+    load = incident_load(model, wave)
+    # sides: the free field of a vertically incident wave (S: u_y = 0; P: u_x = 0)
+    fixed = basis.get_dofs("sides").all("u^2" if wave == "S" else "u^1")
+    free = np.setdiff1d(np.arange(basis.N), fixed)
+    dt = 0.5 * 0.5 / vp
+    c = newmark_parameters(0.0, dt)
+    A = (c["a0"] * M + c["c0"] * C + K)[free][:, free].tocsc()
+    lu = splu(A)
+    f, t0, H = 10.0, 0.15, 40.0
+    t_end = t0 + 2.0 * H / speed + 0.15
+    steps = int(t_end / dt)
+    u, v, a = (np.zeros(basis.N) for _ in range(3))
+    top = basis.get_dofs("surface").all("u^1" if wave == "S" else "u^2")
+    energy, surface = [], []
+    for n in range(1, steps + 1):
+        rhs = load * _ricker(n * dt, f, t0) + M @ (c["a0"] * u + c["a1"] * v + c["a2"] * a) \
+            + C @ (c["c0"] * u - c["c1"] * v - c["c2"] * a)
+        new = np.zeros_like(u)
+        new[free] = lu.solve(rhs[free])
+        an = c["a0"] * (new - u) - c["a1"] * v - c["a2"] * a
+        v = v + dt * 0.5 * (a + an)
+        u, a = new, an
+        energy.append(0.5 * v @ (M @ v) + 0.5 * u @ (K @ u))
+        surface.append(np.mean(v[top]))
+    energy = np.array(energy)
+    reflected = energy[-1] / energy.max()
+    doubling = np.max(np.abs(surface)) / 2.0
+    print(f"{wave}: reflected energy {reflected:.2e}, surface/2 = {doubling:.4f}")
+    assert reflected < 0.05
+    assert doubling == pytest.approx(1.0, rel=0.05)
+
+
+def test_lysmer_dashpots_carry_rho_v_per_unit_length():
+    # Reference: σ_n = ρ V_p v_n and τ = ρ V_s v_t (anchors §4) integrated over the bottom
+    # (width 2 m): a uniform unit velocity gives the resultant ρ V 2 m in each direction.
+    model = _column(depth=4.0)
+    vp, vs = wave_speeds(model.soil)
+    C = model.disc.pattern.matrix(dashpot_data(model, ["bottom"]))
+    basis = model.disc.basis
+    for comp, speed in (("u^1", vs), ("u^2", vp)):
+        unit = np.zeros(basis.N)
+        unit[_component(basis, comp)] = 1.0
+        assert np.sum((C @ unit)[_component(basis, comp)]) == pytest.approx(
+            1.8 * speed * 2.0, rel=1e-12)
+    assert np.sum(incident_load(model, "S")) == pytest.approx(2 * 1.8 * vs * 2.0, rel=1e-12)
+
+
+def _component(basis, comp):
+    row = 0 if comp == "u^1" else 1
+    tables = (basis.nodal_dofs, basis.facet_dofs, basis.interior_dofs)
+    return np.concatenate([np.asarray(t[row]).ravel() for t in tables if np.size(t)])
+
+
+def test_compliant_base_reproduces_the_outcrop_motion_at_the_surface():
+    # Reference: the 1-D wave solution: on a homogeneous half-space the free surface moves with
+    # the outcrop motion (twice the incident wave), delayed by the travel time H/V_s from the
+    # base. A light story on a 171 kN/m footing (bonded, in contact throughout) follows it;
+    # the footing's own inertia adds the rest (measured: peak +5.7 %, largest difference 7.6 %).
+    overrides = COARSE + ["soil.model=elastic", "soil.interface=bonded",
+                          "continuum.base=compliant", "structure.weight=1.0",
+                          "structure.vertical_weight=171.39", "motion.duration=2.0"]
+    scene = load_scene(SCENE, overrides=overrides)
+    model = build_model(scene)
+    motion = scene.build_motion()
+    result = run_dynamic(model, scene, motion, DynamicOptions(snapshots=0))
+    assert result.metadata["sides"] == "shear" and not (result.status == OPEN).any()
+    a = np.append(motion.acceleration, 0.0) * scene.g
+    times = np.arange(a.size) * motion.dt
+    v = np.concatenate(([0.0], np.cumsum(0.5 * (a[1:] + a[:-1]) * motion.dt)))
+    x = np.concatenate(([0.0], np.cumsum(v[:-1] * motion.dt
+                                          + (a[:-1] / 3 + a[1:] / 6) * motion.dt ** 2)))
+    delay = 10.0 * model.width / wave_speeds(model.soil)[1]
+    outcrop = np.interp(result.time - delay, times, x, left=0.0)
+    u = result.footing[:, 0]
+    peak = np.max(np.abs(outcrop))
+    print(f"compliant base: peak {np.max(np.abs(u)) / peak - 1:+.2%}, "
+          f"largest difference {np.max(np.abs(u - outcrop)) / peak:.2%}")
+    assert np.max(np.abs(u)) == pytest.approx(peak, rel=0.10)
+    assert np.max(np.abs(u - outcrop)) < 0.10 * peak
+
+
+# ---------------------------------------------------------------------------------------------
+# 2. Fixed-base limit under El Centro
+# ---------------------------------------------------------------------------------------------
+
+
+def _stiff_scene(motion_name):
+    # Very stiff bonded soil (E = 50 GPa): k h²/K_r ~ 5e-4, a period shift of ~0.03 %. A heavy
+    # base (vertical weight 250 kN/m for a 17 kN/m story) keeps the whole base in contact.
+    # A dense soil (ρ = 20 t/m³) lengthens the admissible step (V_p = 1.8 km/s) without
+    # softening the foundation (the soil column's first mode is at 60 Hz, the structure's 3.3).
+    overrides = ["soil.model=elastic", "soil.youngs_modulus=5e7", "soil.density=20",
+                 "soil.interface=bonded", "continuum.elements_across=2",
+                 "continuum.domain_width=4", "continuum.domain_depth=2",
+                 "structure.weight=17.139", "structure.vertical_weight=250",
+                 "structure.rotary_inertia=8.6"]
+    return load_scene(SCENE, overrides=overrides, motion=motion_name)
+
+
+def _fixed_base_error(elcentro, duration):
+    scene = _stiff_scene(str(elcentro.source))
+    model = build_model(scene)
+    motion = scene.build_motion()
+    result = run_dynamic(model, scene, motion, DynamicOptions(duration=duration, snapshots=0,
+                                                              energy=False))
+    stride = int(round(motion.dt / result.metadata["dt"]))
+    u = result.structure_u[::stride]
+    story = scene.structure.stories[0]
+    omega = math.sqrt(story.stiffness * scene.g / story.weight)
+    ag = motion.acceleration[:u.size] * scene.g
+    ref, _ = nigam_jennings(ag, motion.dt, omega, scene.structure.damping_ratio)
+    assert not (result.status == OPEN).any()  # bonded and in contact throughout
+    return np.max(np.abs(u)) / np.max(np.abs(ref)) - 1.0, result
+
+
+def test_stiff_bonded_soil_approaches_the_fixed_base_response(elcentro):
+    # Reference: Nigam–Jennings' exact SDOF response (reduced/exact.py), first 2.5 s
+    # (measured +0.14 %).
+    error, result = _fixed_base_error(elcentro, 2.5)
+    print(f"fixed-base limit, 2.5 s: peak u error {error:+.3%}")
+    assert abs(error) < 0.01
+    assert np.max(np.abs(result.structure_u)) > 0.01  # a real response (m), not a trivial one
+
+
+@pytest.mark.slow
+def test_stiff_bonded_soil_approaches_the_fixed_base_response_full_record(elcentro):
+    # Reference: as above, the whole record.
+    error, _ = _fixed_base_error(elcentro, elcentro.duration)
+    print(f"fixed-base limit, full record: peak u error {error:+.3%}")
+    assert abs(error) < 0.01
+
+
+# ---------------------------------------------------------------------------------------------
+# 3. Recontact without chattering
+# ---------------------------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def rocking():
+    """The clay scene's Ricker pulse (0.3 g, 0.4 s) on elastic soil, frictionless footing,
+    coarse mesh, 2 s: the footing lifts off on both sides and lands repeatedly."""
+    scene = load_scene(SCENE, overrides=COARSE + ["soil.model=elastic", "motion.duration=2.0"])
+    model = build_model(scene)
+    motion = scene.build_motion()
+    hht = run_dynamic(model, scene, motion, DynamicOptions(scheme="hht", snapshots=5))
+    newmark = run_dynamic(model, scene, motion, DynamicOptions(scheme="newmark", snapshots=0))
+    return model, hht, newmark
+
+
+def _changes_after_landings(result, window: float = 0.05):
+    """(landings, worst number of status changes of a node within ``window`` s after one of
+    its landings, the closing included)."""
+    closed = result.status != OPEN
+    w = int(round(window / result.metadata["dt"]))
+    landings, worst = 0, 0
+    for node in closed.T:
+        for k in np.flatnonzero(node[1:] & ~node[:-1]) + 1:
+            segment = node[k - 1:k + w]
+            worst = max(worst, int(np.sum(segment[1:] != segment[:-1])))
+            landings += 1
+    return landings, worst
+
+
+def test_recontact_without_chattering(rocking):
+    model, hht, newmark = rocking
+    landings, worst = _changes_after_landings(hht)
+    print(f"HHT: {landings} landings, worst {worst} changes in 0.05 s after a landing; "
+          f"Newmark: {_changes_after_landings(newmark)}")
+    assert hht.contact_length.min() < 0.5 * model.width  # it really lifts off
+    assert landings >= 10
+    assert worst <= 2
+    scale = np.abs(hht.pressure).max()
+    assert hht.pressure.min() >= -1e-9 * scale
+    assert hht.gap.min() >= -1e-9 * model.width
+    # the same measure catches Newmark's impact ringing: it is not vacuous
+    assert _changes_after_landings(newmark)[1] > 2
+
+
+def test_dynamic_result_is_a_field_history(rocking, tmp_path):
+    # Reference: the FieldHistory protocol of continuum/output.py; save() round-trips.
+    model, hht, _ = rocking
+    assert isinstance(hht, DynamicResult)
+    check_history(hht, model)
+    assert hht.snapshot_time.size == 5 and hht.snapshot_time[-1] == hht.time[-1]
+    variables, attrs = read_netcdf(hht.save(tmp_path / "run.nc"))
+    np.testing.assert_array_equal(variables["theta"], hht.footing[:, 2])
+    np.testing.assert_array_equal(variables["pressure"], hht.pressure)
+    assert variables["displacement"].shape == hht.displacement.shape
+    assert attrs["kind"] == "dynamic" and attrs["scheme"] == "hht"
+    assert (hht.iterations[1:] >= 1).all()
+
+
+# ---------------------------------------------------------------------------------------------
+# 4. Energy
+# ---------------------------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def free_rocking():
+    """Free vibration of the clay scene's structure (elastic soil, bonded, no damping, rigid
+    box) from a story velocity of 0.05 m/s: linear, in full contact."""
+    scene = load_scene(SCENE, overrides=COARSE + ["soil.model=elastic", "soil.interface=bonded",
+                                                  "structure.damping_ratio=0.0"])
+    model = build_model(scene)
+    motion = free_vibration(0.6, 0.005, velocity=0.05)
+    runs = {alpha: run_dynamic(model, scene, motion,
+                               DynamicOptions(scheme="newmark" if alpha == 0 else "hht",
+                                              alpha=alpha, snapshots=0, sides="rollers",
+                                              base="rigid"))
+            for alpha in (0.0, -0.05, -0.3)}
+    return runs
+
+
+def test_newmark_conserves_energy_of_a_linear_undamped_system(free_rocking):
+    # Reference: the trapezoidal rule conserves the quadratic energy exactly (measured 7e-14).
+    run = free_rocking[0.0]
+    E = run.total_energy
+    assert not (run.status == OPEN).any()
+    assert E[0] > 0.0 and run.energy[:, 1].max() > 0.1 * E[0]  # energy moves into the soil
+    assert np.max(np.abs(E - E[0])) / E[0] < 1e-9
+
+
+def test_hht_dissipates_and_keeps_the_structural_mode(free_rocking):
+    # Reference: HHT-α is dissipative, more so for larger |α| (measured 0.21 % and 0.58 % of the
+    # energy in 0.6 s), while its damping of the well-resolved structural mode is tiny.
+    E0 = free_rocking[0.0].total_energy[0]
+    loss = {a: 1.0 - free_rocking[a].total_energy[-1] / E0 for a in (-0.05, -0.3)}
+    assert 0.0 < loss[-0.05] < loss[-0.3] < 0.05
+    peak = {a: np.max(np.abs(r.structure_u)) for a, r in free_rocking.items()}
+    assert peak[-0.3] == pytest.approx(peak[0.0], rel=0.01)
+
+
+# ---------------------------------------------------------------------------------------------
+# 5. Bad input
+# ---------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(dt=0.0), "DynamicOptions.dt = 0 s: must be > 0"),
+    (dict(dt=-1e-3), "DynamicOptions.dt = -0.001 s: must be > 0"),
+    (dict(alpha=-0.5), "DynamicOptions.alpha = -0.5: HHT α must lie in [-1/3, 0]"),
+    (dict(alpha=0.1), "DynamicOptions.alpha = 0.1: HHT α must lie in [-1/3, 0]"),
+    (dict(scheme="central"), "DynamicOptions.scheme"),
+    (dict(base="floating"), "DynamicOptions.base"),
+    (dict(snapshots=-1), "DynamicOptions.snapshots"),
+])
+def test_bad_options_are_refused(kwargs, message):
+    with pytest.raises(InputError, match=None) as info:
+        DynamicOptions(**kwargs)
+    assert message in str(info.value)
+
+
+def test_too_coarse_a_step_is_refused_before_any_work(monkeypatch):
+    # Reference: the limit 2 h_min/V_p (h_min = 0.5 m on the coarse mesh, V_p = 192.6 m/s).
+    scene = load_scene(SCENE, overrides=COARSE)
+    model = build_model(scene)
+    limit = time_step_limit(model)
+    vp = wave_speeds(model.soil)[0]
+    assert limit == pytest.approx(COURANT_LIMIT * 0.5 / vp, rel=1e-12)
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("work started before the input was checked")
+
+    monkeypatch.setattr(dyn, "_gravity", no_work)
+    with pytest.raises(InputError) as info:
+        run_dynamic(model, scene, scene.build_motion(), DynamicOptions(dt=1.5 * limit))
+    text = str(info.value)
+    assert "DynamicOptions.dt" in text and f"{1.5 * limit:g}" in text
+    assert f"valid range is (0, {limit:.4g}] s" in text
+
+
+@pytest.mark.parametrize("overrides, message", [
+    (["continuum.base=compliant"], "soil.interface = 'frictionless' with base = 'compliant'"),
+    (["structure.p_delta=true"], "structure.p_delta = true"),
+])
+def test_unsupported_scenes_are_refused_before_any_work(overrides, message, monkeypatch):
+    scene = load_scene(SCENE, overrides=COARSE + overrides)
+    model = build_model(scene)
+    monkeypatch.setattr(dyn, "_gravity", lambda *a, **k: pytest.fail("work started"))
+    with pytest.raises(InputError, match=None) as info:
+        run_dynamic(model, scene, scene.build_motion(), DynamicOptions())
+    assert message in str(info.value)
