@@ -3,6 +3,9 @@
     upliftlab run SCENE [--case C] [--motion NAME|PATH] [--set KEY=VALUE ...] [--out DIR] [--json]
     upliftlab paper [--out DIR] [--motion PATH]
     upliftlab scenes
+    upliftlab advise SCENE --quantity peak_u --tol 5% [--case C] [--set KEY=VALUE ...] [--fast]
+                     [--json]
+    upliftlab report [--fast] [--out DIR] [--scheduler ADDR]
     upliftlab continuum SCENE [--analysis pushover|dynamic] [--case C] [--set KEY=VALUE ...]
                         [--mesh KEY=VALUE[,KEY=VALUE ...] ...] [--theta-max RAD] [--steps N]
                         [--motion NAME|PATH] [--scale S] [--out DIR] [--no-render] [--json]
@@ -55,6 +58,24 @@ def parser() -> argparse.ArgumentParser:
                                      "UPLIFTLAB_MOTIONS")
 
     sub.add_parser("scenes", help="list the packaged scenes")
+
+    a = sub.add_parser("advise", help="measure a ladder of models and discretizations on a "
+                                      "scene and recommend the cheapest within a tolerance")
+    a.add_argument("scene", help="a packaged scene name or a TOML path")
+    a.add_argument("--quantity", default="peak_u",
+                   help="peak_u, peak_theta, peak_uplift or residual_settlement")
+    a.add_argument("--tol", default="5%", help="tolerance, e.g. 5%% or 0.05 (default 5%%)")
+    a.add_argument("--case", help="a case of the scene, e.g. A, B or C")
+    a.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                   help="override a scene field by its dotted TOML key (repeatable)")
+    a.add_argument("--fast", action="store_true", help="reference N = 160, ladder up to N = 80")
+    a.add_argument("--json", action="store_true", help="print the advice as one JSON object")
+
+    rp = sub.add_parser("report", help="one self-contained HTML report: verification anchors, "
+                                       "convergence orders and every comparison study")
+    rp.add_argument("--fast", action="store_true", help="small grids and coarse meshes")
+    rp.add_argument("--out", help="output directory (default results/report[-fast])")
+    rp.add_argument("--scheduler", help="Dask scheduler address for the studies' sweeps")
 
     c = sub.add_parser("continuum", help="run one scene in the continuum model: a rotation "
                                          "pushover or a dynamic run, with XDMF and pictures")
@@ -203,7 +224,7 @@ def _continuum(args) -> int:
     if args.analysis == "pushover":
         result = _pushover(model, scene, theta_max, steps)
     else:
-        result = run_dynamic(model, scene, motion, DynamicOptions())
+        result = run_dynamic(model, scene, motion, DynamicOptions(), progress=_dynamic_progress())
     _say(f"solved in {time.perf_counter() - started:.1f} s")
     from .continuum.output import (dynamic_summary, pushover_summary, summary_line,
                                    write_outputs)
@@ -219,6 +240,15 @@ def _continuum(args) -> int:
                  "moment/length": f"{scene.units.force}*{scene.units.length}/{scene.units.length}"}
         print(summary_line(summary, units))
     return 0
+
+
+def _dynamic_progress():
+    """A ``progress(k, n, state)`` that reports every 5 % of a dynamic run."""
+    def progress(k, n, state):
+        if k == n or k % max(1, n // 20) == 0:
+            _say(f"step {k}/{n}: θ = {state.q[2]:.4g} rad, N = {state.N:.4g}, "
+                 f"{state.iterations} Newton iterations")
+    return progress
 
 
 def _pushover(model, scene, theta_max, steps):
@@ -239,10 +269,25 @@ def _pushover(model, scene, theta_max, steps):
     return rotation_pushover(model, N, rotations, record_fields=True, progress=progress)
 
 
+def _report(args) -> int:
+    from .comparisons.report import command
+
+    return command(args)  # 0: verification passed; 1: a verification row failed
+
+
+def _advise(args) -> int:
+    from .comparisons.advise import advise, format_advice
+
+    advice = advise(args.scene, args.quantity, args.tol, case=args.case,
+                    overrides=args.overrides, fast=args.fast)
+    print(json.dumps(advice.to_dict()) if args.json else format_advice(advice))
+    return 0 if advice.recommendation is not None else EXIT_NUMERICS
+
+
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
-    handler = {"run": _run, "paper": _paper, "scenes": _scenes,
-               "continuum": _continuum}[args.command]
+    handler = {"run": _run, "paper": _paper, "scenes": _scenes, "report": _report,
+               "continuum": _continuum, "advise": _advise}[args.command]
     try:
         return handler(args)
     except InputError as exc:

@@ -1,0 +1,273 @@
+"""Which model and discretization does THIS scene need for a quantity within a tolerance?
+
+:func:`advise` measures, it does not guess. It runs the scene's converged reference (the event
+stepper on the finest Winkler bed at the finest step, checked against the next-finer levels),
+then a ladder of candidates from cheap to expensive — two springs at ±b and ±b/√3, Winkler
+beds of growing N, each with the event stepper and fixed-step RK4 at the coarsest stable steps —
+and recommends the candidate of least measured runtime whose error, plus the reference's own
+uncertainty (its change from the next-finer level), is within the tolerance. Runtimes are
+measured fresh in this process (median of repeats after a warm-up); nothing is stored.
+
+Used by ``upliftlab advise SCENE --quantity peak_u --tol 5% [--case C] [--set K=V] [--fast]``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import asdict, dataclass
+
+from .. import checks
+from ..checks import InputError
+from ..scenes import Scene, load_scene
+from . import speed_vs_error as sve
+
+__all__ = ["QUANTITIES", "Candidate", "Measured", "ReferenceCheck", "Advice", "advise",
+           "parse_tolerance", "ladder", "format_advice"]
+
+QUANTITIES = {"peak_u": "u", "peak_theta": "theta", "peak_uplift": "uplift",
+              "residual_settlement": "residual_settlement"}
+FULL = {"reference_springs": 640, "ladder_springs": (10, 20, 40, 80, 160, 320)}
+FAST = {"reference_springs": 160, "ladder_springs": (10, 20, 40, 80)}
+LADDER_INTEGRATORS = ("events", "rk4")
+RANKS = (0, 1)
+RECHECK_FACTOR = 2.0  # after the first pass, also run candidates estimated this much costlier
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """A model and discretization: ``model`` (edges, equivalent, winkler) with ``springs``,
+    ``integrator`` and ladder level ``rank`` (Δt = record Δt / 2^(k₀ + rank), k₀ the first
+    stable level), or an explicit step ``dt`` (s)."""
+
+    model: str
+    springs: int
+    integrator: str
+    rank: int | None = None
+    dt: float | None = None
+
+    def step(self) -> dict:
+        return {"dt": self.dt} if self.dt is not None else {"rank": self.rank}
+
+    @property
+    def name(self) -> str:
+        model = {"edges": "2 springs at ±b", "equivalent": "2 springs at ±b/√3"}.get(
+            self.model, f"Winkler N = {self.springs}")
+        return f"{model}, {self.integrator}"
+
+
+@dataclass(frozen=True)
+class Measured:
+    """A candidate as run: ``value`` (units of the scene), signed relative ``error``,
+    ``dt`` (s), ``runtime`` (s, median of ``repeats``), whether it ``meets`` the tolerance
+    (|error| + reference uncertainty ≤ tol), or ``failure``."""
+
+    candidate: Candidate
+    value: float
+    error: float
+    dt: float
+    runtime: float
+    repeats: int
+    meets: bool
+    failure: str | None = None
+
+
+@dataclass(frozen=True)
+class ReferenceCheck:
+    """The reference: ``value``, ``springs``, ``dt`` (s), ``runtime`` (s); the relative
+    changes from half the springs and from twice the step; ``uncertainty`` the larger."""
+
+    value: float
+    springs: int
+    dt: float
+    runtime: float
+    change_springs: float
+    change_dt: float
+    floor: float
+
+    @property
+    def uncertainty(self) -> float:
+        return max(self.change_springs, self.change_dt)
+
+
+@dataclass(frozen=True)
+class Advice:
+    """What :func:`advise` measured and recommends (``recommendation`` None when nothing can be
+    certified: ``reason`` says why)."""
+
+    scene: str
+    quantity: str
+    tolerance: float
+    units: str
+    reference: ReferenceCheck
+    measured: tuple[Measured, ...]
+    skipped: tuple[Candidate, ...]
+    recommendation: Measured | None
+    reason: str
+    continuum: str
+    fast: bool
+
+    def to_dict(self) -> dict:
+        out = asdict(self)
+        out["reference"]["uncertainty"] = self.reference.uncertainty
+        return out
+
+
+def parse_tolerance(text) -> float:
+    """A tolerance as a fraction: ``"5%"`` → 0.05, ``0.05`` → 0.05; valid range (0, 100 %)."""
+    raw = text
+    if isinstance(text, str):
+        s = text.strip()
+        percent = s.endswith("%")
+        try:
+            value = float(s[:-1] if percent else s)
+        except ValueError:
+            raise InputError(f"--tol = {raw!r}: expected a percentage such as 5% or a "
+                             "fraction such as 0.05; valid range (0 %, 100 %)") from None
+        value = value / 100.0 if percent else value
+    else:
+        value = checks.finite("--tol", text)
+    if not (math.isfinite(value) and 0.0 < value < 1.0):
+        raise InputError(f"--tol = {raw}: valid range is (0 %, 100 %) (a fraction in (0, 1))")
+    return value
+
+
+def _quantity(name: str) -> str:
+    if name not in QUANTITIES:
+        raise InputError(f"--quantity = {name!r}: must be one of "
+                         f"{', '.join(map(repr, QUANTITIES))}")
+    return QUANTITIES[name]
+
+
+def ladder(springs: Sequence[int]) -> list[Candidate]:
+    """The candidates, two springs first, then beds of growing N; each with the ladder's
+    integrators at ranks 0 and 1."""
+    models = [("edges", 2), ("equivalent", 2)] + [("winkler", n) for n in springs]
+    return [Candidate(m, n, name, rank) for m, n in models for name in LADDER_INTEGRATORS
+            for rank in RANKS]
+
+
+def _estimate(c: Candidate) -> float:
+    """A priori cost for ordering only: (springs + 3) × relative steps (RK4's smaller stable
+    step on large beds is not known before running; the measured runtime decides)."""
+    return (c.springs + 3) * 2.0 ** c.rank * (1.5 if c.integrator == "events" else 1.0)
+
+
+def _run(scene: Scene, data: Mapping, c: Candidate, repeats: int) -> dict:
+    point = {"scene": data["scene"], **data["motion"], "model": c.model, "springs": c.springs,
+             "integrator": c.integrator, "step": c.step(), "repeats": repeats,
+             "repeat_budget": 0.5}
+    return sve.evaluate_point(point)
+
+
+def _reference(scene, data, q, springs, dt, floor, repeats) -> ReferenceCheck:
+    runs = [_run(scene, data, Candidate("winkler", n, "events", dt=d), r) for n, d, r in
+            ((springs, dt, repeats), (springs // 2, dt, 1), (springs, 2 * dt, 1))]
+    for r in runs:
+        if "error" in r:
+            raise InputError(f"the reference runs of this scene failed: {r['error']}")
+    ref = runs[0][q]
+    change = [abs(r[q] - ref) / max(abs(ref), floor) for r in runs[1:]]
+    return ReferenceCheck(ref, springs, dt, runs[0]["runtime"], change[0], change[1], floor)
+
+
+def _measure(scene, data, c, q, ref: ReferenceCheck, tol, repeats) -> Measured:
+    r = _run(scene, data, c, repeats)
+    if "error" in r:
+        return Measured(c, math.nan, math.nan, math.nan, math.nan, 0, False, r["error"])
+    error = (r[q] - ref.value) / max(abs(ref.value), ref.floor)
+    meets = abs(error) + ref.uncertainty <= tol
+    return Measured(c, r[q], error, r["dt"], r["runtime"], len(r["runtimes"]), meets)
+
+
+def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str | None = None,
+           overrides: Sequence[str] = (), fast: bool = False, repeats: int = 3) -> Advice:
+    """Measure the ladder on ``scene`` and recommend the cheapest candidate within ``tol``.
+
+    ``quantity``: one of :data:`QUANTITIES`; ``tol``: ``"5%"`` or a fraction in (0, 1).
+    ``fast`` uses a reference bed of 160 springs and a ladder up to N = 80 (seconds) instead of
+    640 and 320. Every input is checked before any run.
+    """
+    q = _quantity(quantity)
+    tol = parse_tolerance(tol)
+    checks.boolean("fast", fast)
+    checks.integer_at_least("repeats", repeats, 1)
+    if not isinstance(scene, Scene):
+        scene = load_scene(scene, case=case, overrides=list(overrides))
+    if scene.foundation.support != "uplift" or len(scene.structure.stories) != 1:
+        raise InputError(f"scene {scene.name!r}: foundation.support = "
+                         f"{scene.foundation.support!r} with {len(scene.structure.stories)} "
+                         "stories; the advisor compares foundations of a one-story structure "
+                         "that may uplift (support = 'uplift')")
+    sizes = FAST if fast else FULL
+    data = {"scene": scene.data, "motion": sve.motion_entry(scene)}
+    floor = sve.FLOOR_FRACTION * sve.scales(scene)[q]
+    ref = _reference(scene, data, q, sizes["reference_springs"], sve.FULL_GRID.reference_dt,
+                     floor, repeats)
+    available, why = sve.continuum_status()
+    continuum = ("not in the ladder: " + ("the scene has no [soil] table" if scene.soil is None
+                                          else "the advisor ladders the reduced model only; "
+                                          "the speed_vs_error study times continuum meshes")
+                 if available else why)
+    if ref.uncertainty > tol / 2:
+        return Advice(scene.name, quantity, tol, scene.units.length, ref, (), (), None,
+                      f"the reference is not converged to what {100 * tol:g} % needs: it "
+                      f"changes by {100 * ref.uncertainty:.3g} % from the next-finer level "
+                      f"(more than half the tolerance); no candidate can be certified. Use a "
+                      "larger tolerance, or a scene whose reference converges (Case C's impact "
+                      "dashpots are sized per spring and do not converge in N)",
+                      continuum, fast)
+    measured, skipped, cap = [], [], math.inf
+    for c in sorted(ladder(sizes["ladder_springs"]), key=_estimate):
+        if _estimate(c) > cap:
+            skipped.append(c)
+            continue
+        m = _measure(scene, data, c, q, ref, tol, repeats)
+        measured.append(m)
+        if m.meets and cap == math.inf:
+            cap = RECHECK_FACTOR * _estimate(c)
+    passing = [m for m in measured if m.meets]
+    best = min(passing, key=lambda m: m.runtime) if passing else None
+    reason = ("the candidate of least measured runtime whose |error| plus the reference's "
+              "uncertainty is within the tolerance" if best else
+              f"no candidate up to N = {sizes['ladder_springs'][-1]} is within the tolerance; "
+              f"use the reference discretization (Winkler N = {ref.springs}, events, "
+              f"Δt = {ref.dt:g} s)")
+    return Advice(scene.name, quantity, tol, scene.units.length, ref, tuple(measured),
+                  tuple(skipped), best, reason, continuum, fast)
+
+
+def _pct(v: float) -> str:
+    return "n/a" if not math.isfinite(v) else f"{100 * v:.3g} %"
+
+
+def format_advice(a: Advice) -> str:
+    """The advice as text: the reference, every measured candidate, the recommendation."""
+    r = a.reference
+    lines = [f"upliftlab advise: {a.scene}, {a.quantity} within {_pct(a.tolerance)}"
+             f"{' (fast)' if a.fast else ''}",
+             f"reference: Winkler N = {r.springs}, events, dt = {r.dt:g} s: {a.quantity} = "
+             f"{r.value:.6g} {a.units}, runtime {r.runtime * 1e3:.4g} ms; change from "
+             f"N = {r.springs // 2}: {_pct(r.change_springs)}, from dt = {2 * r.dt:g} s: "
+             f"{_pct(r.change_dt)}",
+             "measured (cheap to expensive):"]
+    for m in a.measured:
+        c = m.candidate
+        if m.failure:
+            lines.append(f"  {c.name:34s} refused: {m.failure}")
+            continue
+        lines.append(f"  {c.name:34s} dt = {m.dt:<9.4g} error {_pct(m.error):>10s}  "
+                     f"runtime {m.runtime * 1e3:8.3f} ms  {'meets' if m.meets else 'fails'}")
+    if a.skipped:
+        lines.append(f"not run: {len(a.skipped)} candidates estimated more than "
+                     f"{RECHECK_FACTOR:g}× costlier than the first that met the tolerance")
+    if a.recommendation is None:
+        lines.append(f"recommendation: none — {a.reason}")
+    else:
+        m = a.recommendation
+        lines.append(f"recommendation: {m.candidate.name}, dt = {m.dt:.4g} s: error "
+                     f"{_pct(m.error)} (+ reference uncertainty {_pct(r.uncertainty)}) "
+                     f"≤ {_pct(a.tolerance)}, {m.runtime * 1e3:.3g} ms "
+                     f"({r.runtime / m.runtime:.3g}× faster than the reference)")
+    lines.append(f"continuum: {a.continuum}")
+    return "\n".join(lines)

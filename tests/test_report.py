@@ -1,0 +1,219 @@
+"""``upliftlab report --fast``: one self-contained HTML file from stored results.
+
+References: the verification anchors (verification-anchors.md, each row's own reference and
+tolerance, recomputed by upliftlab.comparisons.verification), anchor §2's two-spring ratios
+(uplift onset 0.288675/(1/6) = 1.73 reduced by the N-strip bed's (1 + 1/N); capacity
+0.288675/0.5 = 0.58), and the report's contract (comparisons/report.py): no external references,
+nothing re-run when the inputs are unchanged (asserted through the stores' records, never
+through time), exit 2 on bad options and 0 or 1 from the verification alone.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from upliftlab.checks import InputError
+from upliftlab.cli import main as cli_main
+from upliftlab.comparisons import report as rp
+
+
+def _cli() -> list[str]:
+    script = Path(sys.executable).with_name("upliftlab")
+    found = script if script.is_file() else shutil.which("upliftlab")
+    return [str(found)] if found else [sys.executable, "-m", "upliftlab"]
+
+
+def _report(out: Path) -> subprocess.CompletedProcess:
+    env = {**os.environ, "MPLBACKEND": "Agg"}
+    return subprocess.run(_cli() + ["report", "--fast", "--out", str(out)], env=env,
+                          capture_output=True, text=True, timeout=900)
+
+
+def _digests() -> list[str]:
+    """The content keys' source digests of every section (verification and studies)."""
+    from upliftlab.comparisons.verification import source_digest
+
+    return [source_digest()] + [rp._study_digest(e) for e in rp.REGISTRY]
+
+
+def _records(store: Path) -> dict[str, str]:
+    """{record file: its text} of a store directory."""
+    return {str(p.relative_to(store)): p.read_text() for p in sorted(store.glob("??/*.json"))}
+
+
+@pytest.fixture(scope="module")
+def reports(tmp_path_factory, elcentro):
+    """The fast report built twice into one directory (the El Centro rows need the record:
+    the ``elcentro`` fixture skips without it, and fails under CI)."""
+    out = tmp_path_factory.mktemp("report") / "fast"
+    digests = [_digests()]
+    first = _report(out)
+    after_first = _records(out / "store")
+    first_json = json.loads((out / "report.json").read_text())
+    second = _report(out)
+    digests.append(_digests())
+    return {"out": out, "sources_changed": digests[0] != digests[1], "first": first,
+            "second": second, "first_json": first_json,
+            "second_json": json.loads((out / "report.json").read_text()),
+            "records_first": after_first, "records_second": _records(out / "store")}
+
+
+def test_report_writes_one_self_contained_html(reports):
+    # Contract: exit 0 (verification passed), exactly one HTML file, every image embedded as
+    # base64 PNG, no scripts, style sheets, fonts or links that leave the page.
+    first, out = reports["first"], reports["out"]
+    assert first.returncode == 0, first.stderr[-3000:]
+    htmls = list(out.rglob("*.html"))
+    assert htmls == [out / "report.html"]
+    page = htmls[0].read_text()
+    sources = re.findall(r'src="([^"]*)"', page)
+    assert len(sources) >= 10  # the two-spring maps, the uplift zone and the M–θ figure
+    assert all(s.startswith("data:image/png;base64,") for s in sources)
+    assert all(h.startswith("#") for h in re.findall(r'href="([^"]*)"', page))
+    for forbidden in ("<script", "<link", "<iframe", "@import", "url(", "srcset"):
+        assert forbidden not in page.lower(), forbidden
+    for section in ("verification", "orders", "two_spring_equivalence", "paper",
+                    "uplift_zone", "winkler_vs_continuum", "speed_vs_error", "fixed_vs_uplift"):
+        assert f'id="{section}"' in page, section
+
+
+def test_every_verification_row_passes_with_its_tolerance(reports):
+    # Each row carries its measured value, reference and tolerance; every one passes. Only the
+    # continuum levels that fast mode skips by design may be skipped, and they say so.
+    numbers = json.loads((reports["out"] / "studies" / "verification-fast" / "summary.json")
+                         .read_text())["numbers"]
+    rows = {r["id"]: r for r in numbers["rows"]}
+    assert numbers["passed"] and numbers["counts"]["fail"] == 0
+    skipped = {k for k, r in rows.items() if r["status"] == "skipped"}
+    assert skipped == {"prandtl_16", "prandtl_richardson"}
+    assert all("full mode only" in rows[k]["note"] for k in skipped)
+    for r in rows.values():
+        if r["status"] == "skipped":
+            continue
+        assert r["status"] == "pass", r
+        if r["kind"] in ("relative", "absolute"):
+            tol = float(re.findall(r"[\d.e+-]+$", r["tolerance"])[0])
+            assert abs(r["error"]) <= tol, r
+    # numbers that must come through unchanged (anchor §2, §3, §5, §1, §4)
+    assert rows["K_thth"]["measured"] == pytest.approx(7.2576e7, rel=1e-12)
+    assert rows["K_Xth"]["measured"] == pytest.approx(-1.44e5, rel=1e-12)
+    assert rows["onset_edges"]["measured"] == pytest.approx(50.0, rel=1e-12)
+    assert abs(rows["pushover_M"]["error"]) <= 5e-3
+    assert rows["drop_dy_10"]["measured"] == pytest.approx(0.15540, rel=1e-4)
+    assert rows["housner_period"]["measured"] == pytest.approx(1.944300, rel=0.01)
+    for name in ("nj_short_period_elcentro", "nj_long_period_elcentro", "nj_wall_elcentro"):
+        assert abs(rows[name]["error"]) <= 1e-4
+    assert rows["K_r"]["expected"] == pytest.approx(math.pi * 50e3 / 2.6 * 4 / (8 * 0.7))
+    assert 0.0 <= rows["prandtl_8"]["measured"] <= 0.05
+    orders = {(o["case"].split(" ")[0], o["method"]): o for o in numbers["orders"]}
+    assert orders["smooth", "rk4"]["slope"] == pytest.approx(4.0, abs=0.15)
+    assert orders["uplifting", "events"]["slope"] > 3.7
+
+
+def test_two_spring_ratios_come_through(reports):
+    # Anchor §2: equivalent springs uplift at 0.288675 N B, the uniform bed at (1/6)(1 + 1/N)
+    # N B with N strips, so the onset ratio is 1.7321/(1 + 1/N); the capacity ratio as θ → ∞
+    # is 0.288675/0.5 = 0.5774 (the bed's extrapolated in θ^(-1/2)).
+    out = reports["out"]
+    numbers = json.loads((out / "studies" / "two_spring_equivalence-fast" / "summary.json")
+                         .read_text())["numbers"]
+    n = numbers["springs"]
+    onset = numbers["onset_ratio_equivalent_vs_winkler"]
+    capacity = numbers["capacity_ratio_equivalent_vs_winkler"]
+    assert onset == pytest.approx(math.sqrt(3) / (1 + 1 / n), rel=1e-3)
+    assert onset == pytest.approx(1.73, rel=0.02)
+    assert capacity == pytest.approx(0.58, rel=0.01)
+    page = (out / "report.html").read_text()
+    assert f"{onset:.4f}" in page and f"{capacity:.4f}" in page
+
+
+def test_second_report_reuses_stored_results(reports):
+    # The second run computes nothing: every section is read from a store, the verification
+    # record is the one written by the first run (same computation time stamp), and no record
+    # was added or rewritten. (Markers and records, never wall time.)
+    assert reports["second"].returncode == 0, reports["second"].stderr[-3000:]
+    if reports["sources_changed"]:  # only in a working tree that someone edits meanwhile
+        pytest.skip("upliftlab's sources changed between the two runs: recomputing was right")
+    first, second = reports["first_json"]["sections"], reports["second_json"]["sections"]
+    ok = [name for name, s in first.items() if s["status"] == "ok"]
+    assert {"verification", "two_spring_equivalence", "paper", "uplift_zone"} <= set(ok)
+    assert all(second[name]["source"] == "store" for name in ok), second
+    assert first["verification"]["source"] == "computed"
+    assert reports["records_second"] == reports["records_first"]
+    numbers = json.loads((reports["out"] / "studies" / "verification-fast" / "summary.json")
+                         .read_text())["numbers"]
+    assert numbers["reused"] is True
+    assert "read from the store" in (reports["out"] / "report.html").read_text()
+
+
+def test_missing_or_failing_study_is_reported_and_does_not_change_the_exit(reports):
+    # A study module that does not exist and one that raises each leave a section with the
+    # message; the status follows the verification alone (read from the same store: cheap).
+    def broken(module, ctx):
+        raise RuntimeError("deliberately broken study")
+
+    entries = (rp.REGISTRY[0],
+               rp.Entry("ghost", "no_such_study_module", "Ghost", "missing on purpose",
+                        rp._call_run),
+               rp.Entry("broken", "store", "Broken", "fails on purpose", broken))
+    report = rp.build_report(True, out=reports["out"], entries=entries)
+    assert report.code == rp.EXIT_OK and report.passed
+    assert report.section("verification").source == "store"
+    assert report.section("ghost").status == "missing"
+    assert report.section("broken").status == "error"
+    page = report.path.read_text()
+    assert "upliftlab.comparisons.no_such_study_module does not exist" in page
+    assert "deliberately broken study" in page
+
+
+def test_a_failing_verification_gives_exit_1(tmp_path, monkeypatch):
+    # The exit status is 1 when a verification row fails (a check that reports a failure).
+    from upliftlab.comparisons import verification as vf
+
+    def wrong(ctx):
+        return [vf._rel("reduced", "wrong", "a deliberately wrong anchor", "none", 1.1, 1.0,
+                        0.01)]
+
+    monkeypatch.setattr(vf, "CHECKS", (("reduced", "wrong", wrong),))
+    report = rp.build_report(True, out=tmp_path / "r", entries=(rp.REGISTRY[0],))
+    assert report.code == rp.EXIT_VERIFICATION and not report.passed
+    assert "a deliberately wrong anchor" in report.path.read_text()
+
+
+def test_bad_options_are_refused_with_exit_code_2(tmp_path, capsys):
+    # Bad input: a clear message naming the option, exit code 2, nothing written.
+    afile = tmp_path / "a_file"
+    afile.write_text("")
+    assert cli_main(["report", "--fast", "--out", str(afile)]) == 2
+    assert "--out" in capsys.readouterr().err
+    assert cli_main(["report", "--fast", "--scheduler", " ", "--out",
+                     str(tmp_path / "x")]) == 2
+    assert "--scheduler" in capsys.readouterr().err
+    assert not (tmp_path / "x").exists()
+    with pytest.raises(SystemExit) as exc:
+        cli_main(["report", "--no-such-option"])
+    assert exc.value.code == 2
+    with pytest.raises(InputError, match="fast"):
+        rp.build_report("yes", out=tmp_path / "y")
+
+
+def test_markdown_subset():
+    # The converter: headings shifted, tables (with |x| mended), lists, code, no raw HTML, no
+    # links (their text only).
+    text = ("# T\n\nA *b* **c** `d<e>` [x](https://example.org)\n\n- one\n- two\n\n"
+            "| a | |err| |\n|---|---|\n| 1 | pass |\n\n```\n<raw>\n```\n<b>no</b>")
+    out = rp.markdown_to_html(text, shift=2)
+    assert "<h3>T</h3>" in out and "<em>b</em>" in out and "<strong>c</strong>" in out
+    assert "<code>d&lt;e&gt;</code>" in out and "https" not in out
+    assert "<ul><li>one</li><li>two</li></ul>" in out
+    assert "<th>|err|</th>" in out and '<span class="ok">pass</span>' in out
+    assert "&lt;raw&gt;" in out and "<b>" not in out

@@ -1,0 +1,82 @@
+"""The verification study's bookkeeping (upliftlab.comparisons.verification).
+
+References: the study's contract (its module docstring): a row passes exactly when its error is
+within its tolerance; a check that raises becomes a failing row carrying the message; the table
+is stored under a content key (inputs, version, a digest of the library's sources) and is
+recomputed when, and only when, that key changes. The anchors' numbers themselves are asserted
+in tests/test_report.py through the fast report.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from upliftlab.comparisons import verification as vf
+
+
+def test_rows_pass_exactly_within_their_tolerance():
+    # |measured/expected − 1| ≤ tol passes, just beyond fails; bounds are inclusive.
+    assert vf._rel("g", "a", "q", "r", 1.0 + 0.9e-3, 1.0, 1e-3).passed
+    assert not vf._rel("g", "a", "q", "r", 1.0 + 1.1e-3, 1.0, 1e-3).passed
+    assert vf._abs("g", "a", "q", "r", -0.0204354, -0.0204, 1e-4).passed
+    assert not vf._abs("g", "a", "q", "r", -0.0206, -0.0204, 1e-4).passed
+    assert vf._bound("g", "a", "q", "r", 0.05, 0.0, 0.05).passed
+    assert not vf._bound("g", "a", "q", "r", -1e-9, 0.0, 0.05).passed
+    order = vf._order("g", "c", "m", [0.1, 0.05, 0.025], [1e-2, 2.5e-3, 6.25e-4], "2", 1.9, 2.1)
+    assert order.slope == pytest.approx(2.0, abs=1e-12) and order.status == vf.PASS
+
+
+def _counting_checks(calls):
+    def good(ctx):
+        calls.append("good")
+        return [vf._rel("reduced", "good", "a right anchor", "none", 2.0, 2.0, 1e-12)]
+
+    def crash(ctx):
+        raise ZeroDivisionError("a check that crashes")
+
+    return (("reduced", "good", good), ("reduced", "crash", crash))
+
+
+def test_store_key_follows_the_sources(tmp_path, monkeypatch):
+    # Same key: read from the store, nothing recomputed (the checks are not called again, the
+    # computation stamp is kept). A changed source digest: recomputed. A crashing check: a
+    # failing row with its message, so the study does not pass.
+    calls = []
+    monkeypatch.setattr(vf, "CHECKS", _counting_checks(calls))
+    monkeypatch.setattr(vf, "source_digest", lambda extra=(): "sources-v1")
+    first = vf.run(True, out=tmp_path / "out", store=tmp_path / "store")
+    again = vf.run(True, out=tmp_path / "out", store=tmp_path / "store")
+    assert calls == ["good"]
+    assert not first.reused and again.reused
+    assert again.key == first.key and again.computed_utc == first.computed_utc
+    assert [r.status for r in again.rows] == [vf.PASS, vf.FAIL]
+    assert "ZeroDivisionError: a check that crashes" in again.rows[1].note
+    assert not again.passed and "a check that crashes" in again.study.summary
+    monkeypatch.setattr(vf, "source_digest", lambda extra=(): "sources-v2")
+    edited = vf.run(True, out=tmp_path / "out", store=tmp_path / "store")
+    assert calls == ["good", "good"] and not edited.reused and edited.key != first.key
+    full = vf.run(False, out=tmp_path / "out", store=tmp_path / "store")
+    assert full.key != edited.key and calls == ["good"] * 3
+
+
+def test_source_digest_covers_the_library_and_not_the_command_line(tmp_path):
+    # The digest changes with any extra file's bytes, and is stable otherwise.
+    extra = tmp_path / "x.py"
+    extra.write_text("a = 1\n")
+    one = vf.source_digest([extra])
+    assert vf.source_digest([extra]) == one
+    extra.write_text("a = 2\n")
+    assert vf.source_digest([extra]) != one
+    assert len(vf.source_digest()) == 64
+
+
+def test_drop_mass_damper_alone_is_exact():
+    # Anchor §5, c* = 10, spring negligible: Δy = v0 m (1 − ε)/c* = 0.15540 in and
+    # Δt = (m/c*) ln(1/ε) = 0.018476 s, energy ½ m v0² (1 − ε²); ratio ε.
+    d = vf.drop_mass(10.0, k=1e-6)
+    assert d["ratio"] == pytest.approx(0.7, rel=1e-6)
+    assert d["dy"] == pytest.approx(10 * 0.518 * 0.3 / 10, rel=1e-6)
+    assert d["duration"] == pytest.approx(0.518 / 10 * math.log(1 / 0.7), rel=1e-4)
+    assert d["impact_energy"] == pytest.approx(0.5 * 0.518 * 100 * (1 - 0.49), rel=1e-6)
