@@ -3,6 +3,7 @@ valid range. Also the readers, scenes and result files that guard the inputs and
 
 import json
 import math
+import os
 
 import numpy as np
 import pytest
@@ -95,6 +96,22 @@ def test_motion_files_two_columns_one_column_and_at2(tmp_path):
         np.testing.assert_allclose(motion.acceleration, a, atol=1e-6)
     assert read_motion(two).scaled_to_pga(0.3).pga == pytest.approx(0.3)
 
+
+
+def test_a_motion_file_is_parsed_once_and_reread_when_it_changes(tmp_path):
+    # Reference: the file's own samples. read_motion caches a parsed file by its path, size
+    # and modification time: the same file gives the same (immutable) record, and a rewritten
+    # file is read again, never served stale.
+    path = tmp_path / "rec.txt"
+    path.write_text("0.00 0.1\n0.01 0.2\n0.02 0.3\n")
+    first = read_motion(path)
+    assert read_motion(path) is first
+    assert not first.acceleration.flags.writeable
+    path.write_text("0.00 0.5\n0.01 0.6\n0.02 0.7\n")
+    stat = path.stat()
+    os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns + 10**9))  # a later write
+    np.testing.assert_allclose(read_motion(path).acceleration, [0.5, 0.6, 0.7], rtol=1e-15)
+    np.testing.assert_allclose(first.acceleration, [0.1, 0.2, 0.3], rtol=1e-15)
 
 @pytest.mark.parametrize("content, message", [
     ("0.0 0.1\n0.01 nan\n", "line 2: value nan is not a finite number"),
