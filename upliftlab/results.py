@@ -25,9 +25,17 @@ __all__ = ["atomic_path", "write_netcdf", "read_netcdf", "write_csv", "write_tex
 Variable = tuple  # (dims: tuple[str, ...], values: array-like, attrs: dict)
 
 
+_UMASK = os.umask(0o022)  # read the process's umask once (setting it back at once)
+os.umask(_UMASK)
+
+
 @contextlib.contextmanager
 def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
-    """Yield a temporary path beside ``path``; move it into place only if the block succeeds."""
+    """Yield a temporary path beside ``path``; move it into place only if the block succeeds.
+
+    The file gets the permissions of an ordinary new file (0o666 less the umask), not the
+    owner-only mode of the temporary file it started as.
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
@@ -35,6 +43,7 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     tmp = Path(tmp)
     try:
         yield tmp
+        os.chmod(tmp, 0o666 & ~_UMASK)
         os.replace(tmp, path)
     finally:
         if tmp.exists():
