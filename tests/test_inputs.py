@@ -178,6 +178,9 @@ def test_results_are_written_atomically(tmp_path):
     assert path.read_bytes() == before
     assert not list(tmp_path.glob("*.part"))
     assert read_netcdf(path)[0]["a"].tolist() == [0.0, 1.0, 2.0]
+    umask = os.umask(0o022)
+    os.umask(umask)
+    assert path.stat().st_mode & 0o777 == 0o666 & ~umask  # an ordinary file's mode, not 0o600
 
 
 def test_cli_refuses_bad_input_before_writing(tmp_path, capsys):
