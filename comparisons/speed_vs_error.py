@@ -741,6 +741,7 @@ def _figure(s: SceneResult, path: Path) -> Path:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
 
     fig, axes = plt.subplots(1, len(QUANTITIES), figsize=(4.2 * len(QUANTITIES), 3.8),
                              constrained_layout=True)
@@ -759,6 +760,7 @@ def _figure(s: SceneResult, path: Path) -> Path:
         ax.set_ylabel(f"|error| in {LABELS[q]}")
         ax.set_title(f"{s.label}: {LABELS[q]}", fontsize=8)
         ax.grid(True, which="both", alpha=0.3)
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())  # decades only
     handles = [plt.Line2D([], [], color=c, marker="o", ls="", label=n)
                for n, c in _COLOURS.items()]
     handles += [plt.Line2D([], [], color="k", marker=m, ls="", mfc="none", label=n)

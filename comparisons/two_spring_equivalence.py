@@ -1213,6 +1213,7 @@ def _convergence_figure(conv: Convergence, path: Path) -> Path:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
 
     cases = list(conv.dynamic)
     fig, axes = plt.subplots(1, len(cases) + 1, figsize=(4 * (len(cases) + 1), 3.6),
@@ -1221,15 +1222,20 @@ def _convergence_figure(conv: Convergence, path: Path) -> Path:
     for key, values in conv.static.items():
         v = np.array(values)
         axes[0].semilogx(n, v / v[-1], "o-", label=key)
-    axes[0].set_title("statics (÷ value at largest N)")
+    axes[0].set_title("statics")
     for ax, case in zip(axes[1:], cases):
         for m, values in conv.dynamic[case].items():
             v = np.array(values, dtype=float)
             ax.semilogx(n, v / v[-1] if v[-1] else v, "o-", label=METRIC_LABELS[m])
-        ax.set_title(f"Case {case}, {conv.motion}")
+        ax.set_title(f"Case {case}")
+    fig.suptitle(f"Winkler bed against N: value ÷ value at the largest N; dynamics: "
+                 f"{conv.motion}", fontsize=9)
+    axes[0].set_ylabel("value / value at largest N")
     for ax in axes:
         ax.axvline(conv.springs, color="k", ls=":")
         ax.set_xlabel("N springs")
+        ax.set_xticks(n, [str(k) for k in conv.candidates])
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=6)
     return write_figure(path, fig)

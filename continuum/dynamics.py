@@ -93,7 +93,7 @@ from ..results import write_netcdf
 from . import assembly
 from .footing import OPEN, ContactError
 from .materials import plane_strain_stress
-from .model import ContinuumModel, _blocks
+from .model import ContinuumModel, _blocks, node_groups
 from .newton import (ContinuumState, Control, ConvergenceError, FootingTerm, NewtonOptions,
                      SoilTerm, equilibrium, follow)
 from .statics import _metadata, element_average, geostatic, max_shear_stress
@@ -386,12 +386,13 @@ class _FrozenTangent(ContinuumModel):
         cache = self._cache
         cache["calls"] = cache.get("calls", 0) + 1
         if cache["calls"] > self.SWITCH and tangent is not None and not cache.get("fresh"):
-            cache["fresh"] = (extra, self._condense(tangent, extra))
+            cache["fresh"] = (extra, self._condense(tangent, extra, reused=True))
         if cache.get("fresh") and cache["fresh"][0] is extra:
             return cache["fresh"][1]
         hit = cache.get("elastic")
         if hit is None or hit[0] is not extra:
-            hit = cache["elastic"] = (extra, self._condense(_elastic_tangent(self), extra))
+            hit = cache["elastic"] = (extra, self._condense(_elastic_tangent(self), extra,
+                                                            reused=True))
         return hit[1]
 
     def new_step(self) -> bool:
@@ -419,7 +420,8 @@ def _dynamic_model(model, settings: _Settings, cls=ContinuumModel):
     fixed = np.setdiff1d(fixed, contact)
     interior = np.setdiff1d(np.arange(model.disc.ndofs), np.union1d(fixed, contact))
     values = {f.name: getattr(model, f.name) for f in fields(model) if f.init}
-    values.update(blocks=_blocks(model.disc.pattern, interior, contact, fixed), _cache={})
+    values.update(blocks=_blocks(model.disc.pattern, interior, contact, fixed,
+                                 node_groups(basis)), _cache={})
     return cls(**values)
 
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 import skfem
@@ -93,75 +94,136 @@ class _Gather:
     indices: np.ndarray
     indptr: np.ndarray
     shape: tuple[int, int]
-    csc: bool
 
-    def matrix(self, data: np.ndarray):
-        cls = sparse.csc_matrix if self.csc else sparse.csr_matrix
-        return cls((data[self.take], self.indices, self.indptr), shape=self.shape)
+    def matrix(self, data: np.ndarray) -> sparse.csc_matrix:
+        return sparse.csc_matrix((data[self.take], self.indices, self.indptr), shape=self.shape)
 
 
-def _gather(marked: sparse.csr_matrix, rows, cols, csc: bool) -> _Gather:
-    """Where the block (rows, cols) of a matrix lives in its CSR data, from ``marked`` whose
-    data are 1, 2, …, nnz (never zero, so slicing keeps every entry)."""
-    sub = marked[rows][:, cols]
-    sub = sub.tocsc() if csc else sub.tocsr()
+def _gather(marked: sparse.csr_matrix, dofs: np.ndarray) -> _Gather:
+    """Where the block (dofs, dofs) of a matrix lives in its CSR data, as a CSC matrix, from
+    ``marked`` whose data are 1, 2, …, nnz (never zero, so slicing keeps every entry)."""
+    sub = marked[dofs][:, dofs].tocsc()
     sub.sort_indices()
     return _Gather(take=sub.data.astype(np.int64) - 1, indices=sub.indices.copy(),
-                   indptr=sub.indptr.copy(), shape=sub.shape, csc=csc)
+                   indptr=sub.indptr.copy(), shape=sub.shape)
+
+
+def fill_reducing_order(pattern: assembly.Pattern, dofs: np.ndarray,
+                        groups: np.ndarray | None = None) -> np.ndarray:
+    """``dofs`` reordered to keep the fill of a factorisation of their block small: SuperLU's
+    minimum degree on AᵀA + A, computed once on the graph of the DOF ``groups`` (the DOFs
+    sharing a node: one group per node, so the graph is a quarter of the matrix's size) and
+    expanded to the DOFs, each group's DOFs kept together in their given order."""
+    dofs = np.asarray(dofs)
+    if dofs.size < 3:
+        return dofs
+    groups = np.arange(pattern.size) if groups is None else np.asarray(groups)
+    labels, local = np.unique(groups[dofs], return_inverse=True)
+    Q = sparse.csr_matrix((np.ones(dofs.size), (np.arange(dofs.size), local)),
+                          shape=(dofs.size, labels.size))
+    A = pattern.matrix(np.ones(pattern.nnz))[dofs][:, dofs]
+    graph = (Q.T @ A @ Q).tocsr()
+    graph.data[:] = -1.0
+    degree = np.diff(graph.indptr).astype(float)
+    graph = (graph + sparse.diags(2.0 * degree + 1.0)).tocsc()  # diagonally dominant: no pivots
+    lu = splu(graph, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+              options=dict(SymmetricMode=True))
+    rank = np.argsort(lu.perm_c)  # elimination position -> group
+    position = np.empty(labels.size, dtype=np.int64)
+    position[rank] = np.arange(labels.size)
+    return dofs[np.argsort(position[local], kind="stable")]
 
 
 @dataclass(frozen=True, eq=False)
 class Blocks:
-    """Interior (i), contact (c) and fixed DOFs, and gathers from the full CSR data array into
-    K_ii (CSC, for the factorisation), K_ic, K_ci (CSR) and K_cc (dense)."""
+    """Interior (i), contact (c) and fixed DOFs, and a gather from the full CSR data array into
+    the free block F = [[K_ii, K_ic], [K_ci, K_cc]] (CSC, for the factorisation). ``interior``
+    is in fill-reducing order (:func:`fill_reducing_order`) and the contact DOFs come last, so
+    that the trailing block of F's LU factors is the Schur complement on the contact DOFs."""
 
     interior: np.ndarray
     contact: np.ndarray
     fixed: np.ndarray
-    ii: _Gather = field(repr=False)
-    ic: _Gather = field(repr=False)
-    ci: _Gather = field(repr=False)
-    cc: _Gather = field(repr=False)
+    free: _Gather = field(repr=False)
 
-    def split(self, data: np.ndarray):
-        """(K_ii, K_ic, K_ci, K_cc dense) of the full matrix with CSR ``data``."""
-        return (self.ii.matrix(data), self.ic.matrix(data), self.ci.matrix(data),
-                self.cc.matrix(data).toarray())
+    def matrix(self, data: np.ndarray) -> sparse.csc_matrix:
+        """F of the full matrix with CSR ``data``."""
+        return self.free.matrix(data)
 
 
-def _blocks(pattern: assembly.Pattern, interior, contact, fixed) -> Blocks:
+def _blocks(pattern: assembly.Pattern, interior, contact, fixed, groups=None) -> Blocks:
+    interior = fill_reducing_order(pattern, interior, groups)
     marked = pattern.matrix(np.arange(1.0, pattern.nnz + 1.0))
     return Blocks(interior=interior, contact=contact, fixed=fixed,
-                  ii=_gather(marked, interior, interior, csc=True),
-                  ic=_gather(marked, interior, contact, csc=False),
-                  ci=_gather(marked, contact, interior, csc=False),
-                  cc=_gather(marked, contact, contact, csc=False))
+                  free=_gather(marked, np.concatenate((interior, contact))))
+
+
+def node_groups(basis: skfem.CellBasis) -> np.ndarray:
+    """Group label of each DOF of a vector ``basis``: the DOFs at one location share it."""
+    _, groups = np.unique(np.round(basis.doflocs.T, 12), axis=0, return_inverse=True)
+    return groups.ravel()
 
 
 @dataclass(frozen=True, eq=False)
 class Condensation:
-    """A tangent condensed onto the contact DOFs: S = K_cc − K_ci K_ii⁻¹ K_ic, with
-    ``X`` = K_ii⁻¹ K_ic and the factorisation ``solve`` of K_ii."""
+    """A tangent condensed onto the contact DOFs: S = K_cc − K_ci K_ii⁻¹ K_ic, read from the
+    trailing block of the LU factors of F (one factorisation, no solves), and ``solve``, the
+    factorisation's F⁻¹ on free vectors (interior then contact).
+
+    ``reused``: the condensation serves many Newton iterations (elastic soil, a frozen tangent):
+    X = K_ii⁻¹ K_ic is then formed once (m solves) and every recovery is a product. Otherwise
+    each recovery costs one solve."""
 
     solve: object
-    X: np.ndarray
     S: np.ndarray
-    K_ci: sparse.csr_matrix
+    interior: int
+    reused: bool = False
 
     def condense(self, R_i: np.ndarray, R_c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(y, r): y = K_ii⁻¹ R_i and the condensed residual r = R_c − K_ci y."""
-        y = self.solve(R_i)
-        return y, R_c - self.K_ci @ y
+        """(z, r): z = F⁻¹ R and the condensed residual r = R_c − K_ci K_ii⁻¹ R_i = S z_c."""
+        z = self.solve(np.concatenate((R_i, R_c)))
+        return z, self.S @ z[self.interior:]
+
+    def interior_increment(self, z: np.ndarray, duc: np.ndarray) -> np.ndarray:
+        """Δu_i = −K_ii⁻¹ (R_i + K_ic Δu_c) from the ``z`` of :meth:`condense`: the first
+        block row of F z = R gives K_ii⁻¹ R_i = z_i + X z_c."""
+        return -z[:self.interior] - self.times_x(z[self.interior:] + duc)
+
+    def times_x(self, w: np.ndarray) -> np.ndarray:
+        """X w = K_ii⁻¹ K_ic w: from X if formed, else one solve, F⁻¹ [0; S w] = [−X w; w]."""
+        if self.reused or "X" in self.__dict__:
+            return self.X @ w
+        rhs = np.concatenate((np.zeros(self.interior), self.S @ w))
+        return -self.solve(rhs)[:self.interior]
+
+    @cached_property
+    def X(self) -> np.ndarray:
+        """K_ii⁻¹ K_ic (n_i, m), from F⁻¹ [0; S] = [−X; I]."""
+        m = self.S.shape[0]
+        rhs = np.zeros((self.interior + m, m), order="F")
+        rhs[self.interior:] = self.S
+        return -self.solve(rhs)[:self.interior]
 
 
-def condensation(blocks: Blocks, data: np.ndarray, symmetric: bool) -> Condensation:
-    """Factorise K_ii once and condense the matrix with CSR ``data`` onto the contact DOFs."""
-    K_ii, K_ic, K_ci, K_cc = blocks.split(data)
-    options = dict(permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                   options=dict(SymmetricMode=True)) if symmetric else {}
-    lu = splu(K_ii, **options)
-    X = lu.solve(K_ic.toarray())
-    return Condensation(solve=lu.solve, X=X, S=K_cc - K_ci @ X, K_ci=K_ci)
+def condensation(blocks: Blocks, data: np.ndarray, symmetric: bool,
+                 reused: bool = False) -> Condensation:
+    """Factorise F of the matrix with CSR ``data`` once and condense it onto the contact DOFs.
+
+    The fill-reducing order of :class:`Blocks` is kept (no column permutation) and pivots stay
+    on the diagonal (a non-symmetric tangent may pivot with threshold 0.1). S is then
+    L_cc U_cc; if pivoting moved a contact row, S is recovered as ((F⁻¹)_cc)⁻¹ instead."""
+    F = blocks.matrix(data)
+    lu = splu(F, permc_spec="NATURAL", diag_pivot_thresh=0.0 if symmetric else 0.1,
+              options=dict(SymmetricMode=True))
+    ni, n = blocks.interior.size, F.shape[0]
+    trailing = np.arange(ni, n)
+    if np.array_equal(lu.perm_r[ni:], trailing) and np.array_equal(lu.perm_c[ni:], trailing):
+        S = (lu.L[ni:, ni:] @ lu.U[ni:, ni:]).toarray()
+    else:
+        unit = np.zeros((n, n - ni), order="F")
+        unit[ni:] = np.eye(n - ni)
+        S = np.linalg.inv(lu.solve(unit)[ni:])
+    return Condensation(solve=lu.solve, S=S, interior=ni, reused=reused)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -251,14 +313,15 @@ class ContinuumModel:
             if len(self._cache) > 4:
                 self._cache.clear()
             D = plane_strain_tangent(self.material(np.zeros((3, 3, 1)))[1])[..., 0]
-            cached = self._cache[key] = (extra, self._condense(D, extra))
+            cached = self._cache[key] = (extra, self._condense(D, extra, reused=True))
         return cached[1]
 
-    def _condense(self, tangent: np.ndarray, extra: np.ndarray | None) -> Condensation:
+    def _condense(self, tangent: np.ndarray, extra: np.ndarray | None,
+                  reused: bool = False) -> Condensation:
         data = assembly.stiffness(self.disc, tangent).data
         if extra is not None:
             data = data + extra
-        return condensation(self.blocks, data, self.symmetric)
+        return condensation(self.blocks, data, self.symmetric, reused)
 
     def initial_material_state(self) -> State:
         return self.material.initial_state(self.disc.qp_shape)
@@ -307,7 +370,8 @@ def make_model(soil: Soil, footing_width: float, options: ContinuumOptions | Non
     body = assembly.body_force(disc, (0.0, -soil.density * gravity))
     return ContinuumModel(soil=soil, options=options, mesh=skmesh, mesh_parameters=parameters,
                           disc=disc, material=material_from_soil(soil), footing=footing,
-                          blocks=_blocks(disc.pattern, interior, contact, fixed),
+                          blocks=_blocks(disc.pattern, interior, contact, fixed,
+                                         node_groups(disc.basis)),
                           body_force=body, gravity=gravity, k0=default_k0(soil), scene=scene)
 
 

@@ -6,14 +6,15 @@ state, as :mod:`~upliftlab.continuum.materials` requires):
 
 1. Return map at the current displacement: stress, consistent tangent, residual
    R = f_int − f_body.
-2. Factorise the tangent's interior block K_ii and condense onto the contact DOFs
-   (S = K_cc − K_ci K_ii⁻¹ K_ic, r = R_c − K_ci K_ii⁻¹ R_i).
+2. Factorise the tangent's free block once, the contact DOFs last, and condense onto them
+   (S = K_cc − K_ci K_ii⁻¹ K_ic from the factors, r = R_c − K_ci K_ii⁻¹ R_i by one solve;
+   :func:`~upliftlab.continuum.model.condensation`).
 3. Solve the linearised contact problem **exactly** on that small dense system with the
    footing's equilibrium or prescribed motion (primal–dual active set,
    :func:`~upliftlab.continuum.footing.solve_contact`): a sequential linear complementarity
    (Newton–Josephy) method, so the contact state follows the current soil tangent inside the
    plastic Newton loop.
-4. Recover the interior increment Δu_i = −K_ii⁻¹(R_i + K_ic Δu_c).
+4. Recover the interior increment Δu_i = −K_ii⁻¹(R_i + K_ic Δu_c) (one more solve).
 5. Energy line search (from the second iteration, :func:`_line_search`).
 
 The first iteration of a step uses the tangent of the last converged state and imposes the whole
@@ -185,14 +186,14 @@ def equilibrium(model, state: ContinuumState, control: Control,
     for iteration in range(1, options.max_iterations + 1):
         cond = _condense(model, tangent, soil_term)
         R = response.residual
-        y, r = cond.condense(R[blocks.interior], R[blocks.contact])
+        z, r = cond.condense(R[blocks.interior], R[blocks.contact])
         Kq, rq = _footing_terms(footing_term, q)
         problem = ContactProblem(model.footing, cond.S, r, u[blocks.contact], q, slip0,
                                  prescribed, target, Kq, rq)
         sol, settled = _contact(problem, status, frozen, options)
         du = np.zeros_like(u)
         du[blocks.contact] = sol.duc
-        du[blocks.interior] = -y - cond.X @ sol.duc
+        du[blocks.interior] = cond.interior_increment(z, sol.duc)
         if not np.max(np.abs(du)) < model.width:  # NaN, or a node thrown a footing width
             relative = math.inf
             break
