@@ -18,7 +18,7 @@ Conventions (per unit out-of-plane length):
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import skfem
@@ -98,7 +98,9 @@ class Discretisation:
 
     ``B`` (3, nloc, nelems, nqp): rows (∂ux/∂x, ∂uy/∂y, ∂ux/∂y + ∂uy/∂x) of each local basis
     function; ``dx`` (nelems, nqp): quadrature weights times Jacobians (area); ``dofs``
-    (nloc, nelems): global DOF of each local function.
+    (nloc, nelems): global DOF of each local function. ``gradient`` (3·nelems·nqp, ndofs) is B
+    as one sparse matrix (strains of a DOF vector by one product) and ``divergence`` its
+    transpose (CSR), which sums Bᵀ σ into nodal forces.
     """
 
     basis: skfem.CellBasis
@@ -108,6 +110,8 @@ class Discretisation:
     dx: np.ndarray
     dofs: np.ndarray
     pattern: Pattern
+    gradient: sparse.csr_matrix = field(repr=False)
+    divergence: sparse.csr_matrix = field(repr=False)
 
     @property
     def ndofs(self) -> int:
@@ -148,8 +152,20 @@ def discretise(mesh: skfem.Mesh, element: str, intorder: int | None = None) -> D
     basis = skfem.Basis(mesh, skfem.ElementVector(ELEMENT_TYPES[element][1]()), intorder=intorder)
     B = np.stack([_b_rows(phi[0].grad) for phi in basis.basis], axis=1)
     dofs = np.asarray(basis.element_dofs)
+    gradient = _gradient(B, dofs, basis.N)
     return Discretisation(basis=basis, element=element, intorder=intorder, B=B,
-                          dx=np.asarray(basis.dx), dofs=dofs, pattern=_pattern(dofs, basis.N))
+                          dx=np.asarray(basis.dx), dofs=dofs, pattern=_pattern(dofs, basis.N),
+                          gradient=gradient, divergence=gradient.T.tocsr())
+
+
+def _gradient(B: np.ndarray, dofs: np.ndarray, ndofs: int) -> sparse.csr_matrix:
+    """B (3, nloc, nelems, nqp) as a sparse matrix: row (a, e, p), column dofs[i, e]."""
+    ncomp, nloc, nelems, nqp = B.shape
+    rows = np.broadcast_to(np.arange(ncomp * nelems * nqp).reshape(ncomp, 1, nelems, nqp),
+                           B.shape)
+    cols = np.broadcast_to(dofs[None, :, :, None], B.shape)
+    return sparse.csr_matrix((B.ravel(), (rows.ravel(), cols.ravel())),
+                             shape=(ncomp * nelems * nqp, ndofs))
 
 
 def _b_rows(grad: np.ndarray) -> np.ndarray:
@@ -159,7 +175,7 @@ def _b_rows(grad: np.ndarray) -> np.ndarray:
 
 def strain(disc: Discretisation, u: np.ndarray) -> np.ndarray:
     """Plane strain (εxx, εyy, γxy) of the DOF vector ``u`` at the quadrature points."""
-    return np.einsum("aiep,ie->aep", disc.B, u[disc.dofs], optimize=True)
+    return (disc.gradient @ u).reshape(3, *disc.dx.shape)
 
 
 def strain_tensor(eps: np.ndarray) -> np.ndarray:
@@ -181,8 +197,7 @@ def stiffness(disc: Discretisation, D: np.ndarray) -> sparse.csr_matrix:
 
 def internal_force(disc: Discretisation, stress: np.ndarray) -> np.ndarray:
     """∫ Bᵀ σ for the plane stress (σxx, σyy, σxy) ``(3, nelems, nqp)``."""
-    fe = np.einsum("aiep,aep->ie", disc.B, stress * disc.dx, optimize=True)
-    return np.bincount(disc.dofs.ravel(), weights=fe.ravel(), minlength=disc.ndofs)
+    return disc.divergence @ (stress * disc.dx).ravel()
 
 
 def body_force(disc: Discretisation, force_density) -> np.ndarray:

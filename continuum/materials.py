@@ -489,9 +489,9 @@ def _principal_return(strain, state, params, sin_phi, cos_phi, sin_psi, cohesion
     n = len(eps)
     sig_trial = _elastic_stress(eps - eps_p, params)
     k = 2.0 * cohesion * cos_phi
-    w = np.linalg.eigvalsh(sig_trial)  # ascending
-    f_trial = (w[:, 2] - w[:, 0]) + (w[:, 2] + w[:, 0]) * sin_phi - k
-    plastic = f_trial > _RTOL * (k + np.abs(w).max(axis=1))
+    high, low = _extreme_principal(sig_trial)
+    f_trial = (high - low) + (high + low) * sin_phi - k
+    plastic = f_trial > _RTOL * (k + np.maximum(np.abs(high), np.abs(low)))
     stress = sig_trial
     tangent = np.broadcast_to(_elastic_mandel(params), (n, 6, 6))
     eps_p_new, ebar_new = eps_p.copy(), ebar.copy()
@@ -508,6 +508,19 @@ def _principal_return(strain, state, params, sin_phi, cos_phi, sin_psi, cohesion
         tangent[plastic] = _spectral_tangent(vectors, d3, spin)
         region[plastic] = reg
     return _finish(batch, stress, tangent, eps_p_new, ebar_new, region)
+
+
+def _extreme_principal(sig):
+    """(σ1, σ3): the largest and smallest principal values of symmetric (n, 3, 3) tensors. In
+    plane strain (σxz = σyz = 0 everywhere) in closed form: σzz and the in-plane pair
+    (σxx + σyy)/2 ± √(((σxx − σyy)/2)² + σxy²); otherwise by LAPACK."""
+    if np.any(sig[:, 0, 2]) or np.any(sig[:, 1, 2]):
+        w = np.linalg.eigvalsh(sig)  # ascending
+        return w[:, 2], w[:, 0]
+    centre = 0.5 * (sig[:, 0, 0] + sig[:, 1, 1])
+    radius = np.hypot(0.5 * (sig[:, 0, 0] - sig[:, 1, 1]), sig[:, 0, 1])
+    zz = sig[:, 2, 2]
+    return np.maximum(centre + radius, zz), np.minimum(centre - radius, zz)
 
 
 def _principal_elasticity(params) -> np.ndarray:
