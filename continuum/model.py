@@ -145,6 +145,7 @@ class Blocks:
     contact: np.ndarray
     fixed: np.ndarray
     free: _Gather = field(repr=False)
+    contact_diagonal: np.ndarray = field(repr=False)
 
     def matrix(self, data: np.ndarray) -> sparse.csc_matrix:
         """F of the full matrix with CSR ``data``."""
@@ -154,8 +155,18 @@ class Blocks:
 def _blocks(pattern: assembly.Pattern, interior, contact, fixed, groups=None) -> Blocks:
     interior = fill_reducing_order(pattern, interior, groups)
     marked = pattern.matrix(np.arange(1.0, pattern.nnz + 1.0))
-    return Blocks(interior=interior, contact=contact, fixed=fixed,
-                  free=_gather(marked, np.concatenate((interior, contact))))
+    free = _gather(marked, np.concatenate((interior, contact)))
+    return Blocks(interior=interior, contact=contact, fixed=fixed, free=free,
+                  contact_diagonal=_diagonal_positions(free, interior.size))
+
+
+def _diagonal_positions(gather: _Gather, start: int) -> np.ndarray:
+    """Positions in the CSC data of the diagonal entries (j, j), j >= ``start``."""
+    positions = []
+    for j in range(start, gather.shape[1]):
+        lo, hi = gather.indptr[j], gather.indptr[j + 1]
+        positions.append(lo + np.searchsorted(gather.indices[lo:hi], j))
+    return np.asarray(positions, dtype=np.int64)
 
 
 def node_groups(basis: skfem.CellBasis) -> np.ndarray:
@@ -166,23 +177,34 @@ def node_groups(basis: skfem.CellBasis) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class Condensation:
-    """A tangent condensed onto the contact DOFs: S = K_cc − K_ci K_ii⁻¹ K_ic, read from the
-    trailing block of the LU factors of F (one factorisation, no solves), and ``solve``, the
-    factorisation's F⁻¹ on free vectors (interior then contact).
+    """A tangent condensed onto the contact DOFs: S = K_cc − K_ci K_ii⁻¹ K_ic.
+
+    The factorisation is of F_σ, F with ``shift`` σ added to the contact diagonal, and
+    ``solve`` is its F_σ⁻¹ on free vectors (interior then contact). Its Schur complement
+    S_σ = S + σ I (``S_shifted``) is the trailing block of the LU factors (no solves), and it
+    stays well conditioned when S itself becomes singular at collapse (the footing's vertical
+    stiffness vanishes), so that r = S_σ z_c keeps its precision. The shift changes neither
+    K_ii⁻¹ nor X, and S = S_σ − σ I.
 
     ``reused``: the condensation serves many Newton iterations (elastic soil, a frozen tangent):
     X = K_ii⁻¹ K_ic is then formed once (m solves) and every recovery is a product. Otherwise
     each recovery costs one solve."""
 
     solve: object
-    S: np.ndarray
+    S_shifted: np.ndarray
+    shift: float
     interior: int
     reused: bool = False
 
+    @cached_property
+    def S(self) -> np.ndarray:
+        """K_cc − K_ci K_ii⁻¹ K_ic (m, m)."""
+        return self.S_shifted - self.shift * np.eye(self.S_shifted.shape[0])
+
     def condense(self, R_i: np.ndarray, R_c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(z, r): z = F⁻¹ R and the condensed residual r = R_c − K_ci K_ii⁻¹ R_i = S z_c."""
+        """(z, r): z = F_σ⁻¹ R and the condensed residual r = R_c − K_ci K_ii⁻¹ R_i = S_σ z_c."""
         z = self.solve(np.concatenate((R_i, R_c)))
-        return z, self.S @ z[self.interior:]
+        return z, self.S_shifted @ z[self.interior:]
 
     def interior_increment(self, z: np.ndarray, duc: np.ndarray) -> np.ndarray:
         """Δu_i = −K_ii⁻¹ (R_i + K_ic Δu_c) from the ``z`` of :meth:`condense`: the first
@@ -190,18 +212,19 @@ class Condensation:
         return -z[:self.interior] - self.times_x(z[self.interior:] + duc)
 
     def times_x(self, w: np.ndarray) -> np.ndarray:
-        """X w = K_ii⁻¹ K_ic w: from X if formed, else one solve, F⁻¹ [0; S w] = [−X w; w]."""
+        """X w = K_ii⁻¹ K_ic w: from X if formed, else one solve, F_σ⁻¹ [0; S_σ w] =
+        [−X w; w]."""
         if self.reused or "X" in self.__dict__:
             return self.X @ w
-        rhs = np.concatenate((np.zeros(self.interior), self.S @ w))
+        rhs = np.concatenate((np.zeros(self.interior), self.S_shifted @ w))
         return -self.solve(rhs)[:self.interior]
 
     @cached_property
     def X(self) -> np.ndarray:
-        """K_ii⁻¹ K_ic (n_i, m), from F⁻¹ [0; S] = [−X; I]."""
-        m = self.S.shape[0]
+        """K_ii⁻¹ K_ic (n_i, m), from F_σ⁻¹ [0; S_σ] = [−X; I]."""
+        m = self.S_shifted.shape[0]
         rhs = np.zeros((self.interior + m, m), order="F")
-        rhs[self.interior:] = self.S
+        rhs[self.interior:] = self.S_shifted
         return -self.solve(rhs)[:self.interior]
 
 
@@ -210,9 +233,12 @@ def condensation(blocks: Blocks, data: np.ndarray, symmetric: bool,
     """Factorise F of the matrix with CSR ``data`` once and condense it onto the contact DOFs.
 
     The fill-reducing order of :class:`Blocks` is kept (no column permutation) and pivots stay
-    on the diagonal (a non-symmetric tangent may pivot with threshold 0.1). S is then
-    L_cc U_cc; if pivoting moved a contact row, S is recovered as ((F⁻¹)_cc)⁻¹ instead."""
+    on the diagonal (a non-symmetric tangent may pivot with threshold 0.1). The contact
+    diagonal is shifted by σ = the mean |K_cc| diagonal (:class:`Condensation`). S_σ is then
+    L_cc U_cc; if pivoting moved a contact row, it is recovered as ((F_σ⁻¹)_cc)⁻¹ instead."""
     F = blocks.matrix(data)
+    shift = float(np.mean(np.abs(F.data[blocks.contact_diagonal])))
+    F.data[blocks.contact_diagonal] += shift
     lu = splu(F, permc_spec="NATURAL", diag_pivot_thresh=0.0 if symmetric else 0.1,
               options=dict(SymmetricMode=True))
     ni, n = blocks.interior.size, F.shape[0]
@@ -223,7 +249,7 @@ def condensation(blocks: Blocks, data: np.ndarray, symmetric: bool,
         unit = np.zeros((n, n - ni), order="F")
         unit[ni:] = np.eye(n - ni)
         S = np.linalg.inv(lu.solve(unit)[ni:])
-    return Condensation(solve=lu.solve, S=S, interior=ni, reused=reused)
+    return Condensation(solve=lu.solve, S_shifted=S, shift=shift, interior=ni, reused=reused)
 
 
 # ---------------------------------------------------------------------------------------------
