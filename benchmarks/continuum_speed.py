@@ -2,8 +2,9 @@
 
     python benchmarks/continuum_speed.py [--quick] [--out DIR] [--repeats R]
 
-For each case and mesh level (elements across the footing B; Q2 with 2×2 reduced integration,
-10B × 10B box, grading 1) it prints the DOFs, the runtime (median of the repeats), the time in
+For each case and mesh level (elements across the footing B and the grading towards its
+edges, the centre-to-edge element size ratio; Q2 with 2×2 reduced integration, 10B × 10B box)
+it prints the DOFs, the runtime (median of the repeats), the time in
 tangent assembly, in residuals (return map and internal force), in linear solves (factorisation,
 Schur condensation, the contact active set and back-substitution), the Newton iterations, and
 the error against the reference:
@@ -11,7 +12,10 @@ the error against the reference:
 - ``rocking``: elastic rocking stiffness K_r of a frictionless strip in full contact
   (``footing_stiffness``) against π G B²/(8(1 − ν)) (anchors §4);
 - ``prandtl``: capacity of a rough (bonded) strip on Tresca clay, settlement pushed to 0.05 B
-  in 10 steps, against (2 + π) c_u B (anchors §4);
+  in 10 steps, against (2 + π) c_u B (anchors §4); uniform (grading 1) and graded (16) meshes.
+  ``prandtl-richardson`` rows extrapolate two measured rows of one grading, n and 2n, to
+  h → 0 for the O(h) convergence of the footing-edge singularity (2 q(2n) − q(n),
+  continuum-notes.md); their runtime is the sum of both runs, their DOFs those of both;
 - ``uplift``: rotation pushover of a frictionless strip on elastic soil at N = 171.39 kN/m to
   10 θ_on in 40 steps: the uplift-onset eccentricity against the half-plane B/4, and (second
   error) the largest |c/B − θ_on/θ| after uplift (tests/test_continuum_contact.py);
@@ -60,9 +64,17 @@ ELASTIC = Soil(youngs_modulus=E, poisson_ratio=NU, density=RHO, model="elastic")
 CLAY = Soil(youngs_modulus=E, poisson_ratio=NU, density=RHO, model="tresca",
             undrained_strength=CU, interface="bonded")
 
-LEVELS = {"rocking": (8, 16, 32), "prandtl": (8, 16), "uplift": (8, 16, 32),
-          "elcentro": (4, 8)}
-QUICK = {"rocking": (4, 8), "prandtl": (4, 8), "uplift": (4, 8), "elcentro": (4,)}
+#: Mesh levels per case: (elements across B, grading towards the footing edges).
+LEVELS = {"rocking": ((4, 1.0), (8, 1.0), (16, 1.0), (32, 1.0)),
+          "prandtl": ((4, 1.0), (8, 1.0), (16, 1.0), (8, 16.0), (10, 16.0), (16, 16.0)),
+          "uplift": ((8, 1.0), (16, 1.0), (32, 1.0)),
+          "elcentro": ((4, 1.0), (8, 1.0), (16, 1.0))}
+QUICK = {"rocking": ((4, 1.0), (8, 1.0)), "prandtl": ((4, 1.0), (8, 1.0), (8, 16.0)),
+         "uplift": ((4, 1.0), (8, 1.0)), "elcentro": ((4, 1.0),)}
+
+#: The issue's targets: (case, |error| bound, runtime bound [s], smallest DOFs).
+TARGETS = (("rocking", 0.01, 2.0, 0), ("prandtl", 0.01, 15.0, 0), ("prandtl", 0.005, 60.0, 0),
+           ("elcentro", math.inf, 600.0, 18000))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -123,19 +135,19 @@ def instrumented():
 # ---------------------------------------------------------------------------------------------
 
 
-def rocking(n: int):
-    model = make_model(ELASTIC, B, ContinuumOptions(elements_across=n))
+def rocking(n: int, grading: float = 1.0):
+    model = make_model(ELASTIC, B, ContinuumOptions(elements_across=n, grading=grading))
     return model, {"K_r / closed form - 1": footing_stiffness(model).rocking / K_R - 1.0}
 
 
-def prandtl(n: int):
-    model = make_model(CLAY, B, ContinuumOptions(elements_across=n))
+def prandtl(n: int, grading: float = 1.0):
+    model = make_model(CLAY, B, ContinuumOptions(elements_across=n, grading=grading))
     path = vertical_pushover(model, np.linspace(0.0, 0.05 * B, 11)[1:])
     return model, {"N_max / (2+pi) c_u B - 1": path.capacity / Q_U - 1.0}
 
 
-def uplift(n: int):
-    model = make_model(ELASTIC, B, ContinuumOptions(elements_across=n))
+def uplift(n: int, grading: float = 1.0):
+    model = make_model(ELASTIC, B, ContinuumOptions(elements_across=n, grading=grading))
     path = rotation_pushover(model, N, np.linspace(0.0, 10 * THETA_ON, 41)[1:])
     onset = uplift_onset(path)
     lifted = (path.status == OPEN).any(axis=1)
@@ -144,7 +156,7 @@ def uplift(n: int):
                    "max |c/B - theta_on/theta|": contact}
 
 
-def elcentro(n: int):
+def elcentro(n: int, grading: float = 1.0):
     """10 s of El Centro; the error is filled in against the finest level afterwards."""
     from dataclasses import replace
 
@@ -154,7 +166,8 @@ def elcentro(n: int):
     from upliftlab.scenes import load_scene
 
     scene = load_scene("strip_footing_clay", motion=ELCENTRO,
-                       overrides=[f"continuum.elements_across={n}"])
+                       overrides=[f"continuum.elements_across={n}",
+                                  f"continuum.grading={grading}"])
     motion = scene.build_motion()
     motion = replace(motion, acceleration=motion.acceleration[:int(round(10.0 / motion.dt))])
     model = build_model(scene)
@@ -187,16 +200,17 @@ def unavailable(case: str) -> str | None:
 # ---------------------------------------------------------------------------------------------
 
 
-def measure(case: str, n: int, repeats: int) -> dict:
+def measure(case: str, level: tuple[int, float], repeats: int) -> dict:
     """Run a case ``repeats`` times; medians of the times, the errors of the last run."""
+    n, grading = level
     runs = []
     for _ in range(repeats):
         with instrumented() as timers:
             start = time.perf_counter()
-            model, errors = CASES[case](n)
+            model, errors = CASES[case](n, grading)
             total = time.perf_counter() - start
         runs.append((total, dict(timers.seconds), timers.calls["newton"]))
-    return {"case": case, "n": n, "dofs": model.dofs, "repeats": repeats,
+    return {"case": case, "n": n, "grading": grading, "dofs": model.dofs, "repeats": repeats,
             "runtime": statistics.median(r[0] for r in runs),
             "assembly": statistics.median(r[1]["assembly"] for r in runs),
             "residual": statistics.median(r[1]["residual"] for r in runs),
@@ -210,12 +224,64 @@ def reference_elcentro(rows: list[dict]) -> None:
     rows = [r for r in rows if r["case"] == "elcentro"]
     if not rows:
         return
-    finest = max(rows, key=lambda r: r["n"])["errors"]["peak theta"]
+    finest = max(rows, key=lambda r: r["dofs"])["errors"]["peak theta"]
     for r in rows:
         peak = r["errors"].pop("peak theta")
         r["errors"]["peak theta / finest - 1"] = peak / finest - 1.0
         r["note"] = f"peak θ = {peak:.4g} rad" + (" (reference)" if r["errors"][
             "peak theta / finest - 1"] == 0.0 else "")
+
+
+def richardson(rows: list[dict]) -> list[dict]:
+    """``prandtl-richardson`` rows: 2 q(2n) − q(n) from each measured pair of one grading."""
+    prandtl = {(r["n"], r["grading"]): r for r in rows if r["case"] == "prandtl"}
+    name = "N_max / (2+pi) c_u B - 1"
+    out = []
+    for (n, grading), coarse in sorted(prandtl.items()):
+        fine = prandtl.get((2 * n, grading))
+        if fine is None:
+            continue
+        error = 2.0 * fine["errors"][name] - coarse["errors"][name]
+        out.append({"case": "prandtl-richardson", "n": f"{n}+{2 * n}", "grading": grading,
+                    "dofs": f"{coarse['dofs']}+{fine['dofs']}",
+                    "dofs_total": coarse["dofs"] + fine["dofs"],
+                    **{k: coarse[k] + fine[k] for k in ("runtime", "assembly", "residual",
+                                                          "solve", "newton")},
+                    "errors": {name: error}, "note": "2 q(2n) − q(n)"})
+    return out
+
+
+def targets(rows: list[dict]) -> str:
+    """Each target of :data:`TARGETS` with the fastest row that meets it (a raw mesh before a
+    Richardson pair), or the nearest row if none does."""
+    lines = ["| target | met | fastest row that meets it |", "|---|---|---|"]
+    for case, bound, seconds, dofs in TARGETS:
+        family = [r for r in rows if r["case"].startswith(case) and _size(r) >= dofs]
+        what = (f"{case}: error within {bound:.1%} in under {seconds:g} s"
+                if math.isfinite(bound) else f"{case}: {dofs}+ DOFs in under {seconds:g} s")
+        ok = [r for r in family if r["runtime"] <= seconds and abs(_error(r)) <= bound]
+        raw = [r for r in ok if "richardson" not in r["case"]]
+        if ok:
+            best = min(raw or ok, key=lambda r: r["runtime"])
+            lines.append(f"| {what} | yes{'' if raw else ' (Richardson only)'} | "
+                         f"{_label(best)} |")
+        else:
+            near = f"nearest: {_label(min(family, key=_size))}" if family else "no row"
+            lines.append(f"| {what} | no | {near} |")
+    return "\n".join(lines)
+
+
+def _size(row: dict) -> int:
+    return row.get("dofs_total", row["dofs"])
+
+
+def _error(row: dict) -> float:
+    return next(iter(row["errors"].values()))
+
+
+def _label(r: dict) -> str:
+    return (f"{r['case']}, n = {r['n']}, grading {r['grading']:g}: {r['dofs']} DOFs, "
+            f"{r['runtime']:.2f} s, error {_error(r):+.3%}")
 
 
 def _fmt_errors(errors: dict) -> str:
@@ -225,16 +291,17 @@ def _fmt_errors(errors: dict) -> str:
 
 
 def table(rows: list[dict], skipped: dict[str, str]) -> str:
-    head = ("| case | n across | DOFs | runtime [s] | assembly [s] | residual [s] | solve [s] "
-            "| Newton its | error |")
-    lines = [head, "|" + "---|" * 9]
+    head = ("| case | n across | grading | DOFs | runtime [s] | assembly [s] | residual [s] "
+            "| solve [s] | Newton its | error |")
+    lines = [head, "|" + "---|" * 10]
     for r in rows:
         note = f" ({r['note']})" if r.get("note") else ""
-        lines.append(f"| {r['case']} | {r['n']} | {r['dofs']} | {r['runtime']:.3f} | "
+        lines.append(f"| {r['case']} | {r['n']} | {r['grading']:g} | {r['dofs']} | "
+                     f"{r['runtime']:.3f} | "
                      f"{r['assembly']:.3f} | {r['residual']:.3f} | {r['solve']:.3f} | "
                      f"{r['newton'] or '–'} | {_fmt_errors(r['errors'])}{note} |")
     for case, why in skipped.items():
-        lines.append(f"| {case} | – | – | – | – | – | – | – | skipped: {why} |")
+        lines.append(f"| {case} | – | – | – | – | – | – | – | – | skipped: {why} |")
     return "\n".join(lines)
 
 
@@ -247,12 +314,14 @@ def figure(rows: list[dict], path: Path) -> Path:
     from upliftlab.continuum.output import save_figure
 
     fig, ax = plt.subplots(figsize=(7, 5))
-    markers = {"rocking": "o", "prandtl": "s", "uplift": "^", "elcentro": "D"}
+    markers = {"rocking": "o", "prandtl": "s", "prandtl-richardson": "x", "uplift": "^",
+               "elcentro": "D"}
     for case in markers:
         mine = [r for r in rows if r["case"] == case]
         names = list(mine[0]["errors"]) if mine else []
         for k, name in enumerate(names):
-            points = [(r["runtime"], abs(r["errors"][name]), r["n"]) for r in mine]
+            points = [(r["runtime"], abs(r["errors"][name]), f"{r['n']}/{r['grading']:g}")
+                      for r in mine]
             points = [p for p in points if p[1] > 0.0]  # the reference level of elcentro
             if not points:
                 continue
@@ -263,7 +332,7 @@ def figure(rows: list[dict], path: Path) -> Path:
                             fontsize=8)
     ax.set_xlabel("runtime [s] (median)")
     ax.set_ylabel("error against the reference (relative; c/B in B)")
-    ax.set_title("upliftlab continuum: runtime against error (labels: elements across B)",
+    ax.set_title("upliftlab continuum: runtime against error (labels: n across B / grading)",
                  fontsize=10)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
@@ -290,15 +359,17 @@ def main(argv: list[str] | None = None) -> int:
             skipped[case] = why
             print(f"{case}: skipped: {why}", file=sys.stderr)
             continue
-        for n in ns:
+        for level in ns:
             # one run of the plastic and dynamic cases; the elastic ones are repeated
             reps = repeats if case in ("rocking", "uplift") else 1
-            row = measure(case, n, reps)
+            row = measure(case, level, reps)
             rows.append(row)
-            print(f"{case:8s} n = {n:3d}: {row['dofs']:7d} DOFs, {row['runtime']:8.3f} s, "
-                  f"{_fmt_errors(row['errors'])}", file=sys.stderr, flush=True)
+            print(f"{case:8s} n = {level[0]:3d}, grading {level[1]:4g}: {row['dofs']:7d} DOFs, "
+                  f"{row['runtime']:8.3f} s, {_fmt_errors(row['errors'])}", file=sys.stderr,
+                  flush=True)
     reference_elcentro(rows)
-    text = table(rows, skipped)
+    rows += richardson(rows)
+    text = table(rows, skipped) + "\n\n## Targets (issue 3, section 4)\n\n" + targets(rows)
     print(text)
     out = Path(args.out)
     header = (f"# Continuum speed against error\n\n"
@@ -312,11 +383,14 @@ def main(argv: list[str] | None = None) -> int:
               "back-substitution; the rest (meshing, basis, bookkeeping) is runtime minus "
               "these. Newton iterations include those of cut steps. The machine is shared: "
               "compare ratios.\n\n"
-              "Q2 with 2×2 reduced integration, 10B × 10B box, grading 1; B = 2 m, E = 50 MPa, "
+              "Q2 with 2×2 reduced integration, 10B × 10B box, grading as listed (the ratio of "
+              "the centre element to the edge element across B); B = 2 m, E = 50 MPa, "
               "ν = 0.3, c_u = 50 kPa. References: rocking π G B²/(8(1 − ν)); prandtl "
               "(2 + π) c_u B (rough, Tresca, settlement 0.05 B); uplift: onset e = B/4 and "
               "c/B = θ_on/θ of the elastic half-plane (the 10B box is −0.36 % on e); elcentro: "
-              "the finest level.\n\n")
+              "the finest level (10 s of the record; the time step follows the smallest "
+              "element, dt ≤ 2 h_min/V_p). The Richardson rows are named extrapolations of "
+              "two measured rows, not raw meshes.\n\n")
     write_text(out / "CONTINUUM.md", header + text + "\n")
     if rows:
         figure(rows, out / "continuum_speed.png")

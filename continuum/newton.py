@@ -46,17 +46,22 @@ __all__ = ["NewtonOptions", "ConvergenceError", "ContinuumState", "Control", "Fo
 class NewtonOptions:
     """``rtol`` relative residual tolerance; ``max_iterations`` per step; ``line_search``;
     ``max_cuts`` bisections of a load step before giving up; ``max_contact_iterations`` of the
-    active set per Newton iteration."""
+    active set per Newton iteration; ``anderson`` the depth of the Anderson acceleration of the
+    iterations (0: off; for a frozen iteration matrix, :class:`_Anderson`)."""
 
     rtol: float = 1e-8
     max_iterations: int = 30
     line_search: bool = True
     max_cuts: int = 10
     max_contact_iterations: int = 100
+    anderson: int = 0
 
     def __post_init__(self):
         if not 0.0 < self.rtol < 1e-2:
             raise InputError(f"NewtonOptions.rtol = {self.rtol:g}: valid range is (0, 0.01)")
+        if not (isinstance(self.anderson, int) and 0 <= self.anderson <= 10):
+            raise InputError(f"NewtonOptions.anderson = {self.anderson!r}: valid range is an "
+                             "integer in [0, 10]")
         for name in ("max_iterations", "max_cuts", "max_contact_iterations"):
             value = getattr(self, name)
             if not (isinstance(value, int) and value >= 1):
@@ -182,7 +187,8 @@ def equilibrium(model, state: ContinuumState, control: Control,
     response = _respond(model, u, state, soil_term)
     scale = _scale(model)
     tangent = response.tangent if state.tangent is None else state.tangent
-    smallest = math.inf
+    smallest, merit = math.inf, math.inf
+    anderson = _Anderson(options.anderson)
     for iteration in range(1, options.max_iterations + 1):
         cond = _condense(model, tangent, soil_term)
         R = response.residual
@@ -197,8 +203,13 @@ def equilibrium(model, state: ContinuumState, control: Control,
         if not np.max(np.abs(du)) < model.width:  # NaN, or a node thrown a footing width
             relative = math.inf
             break
-        step = _line_search(model, state, soil_term, (u, q), (du, sol.dq, sol.force),
-                            response, options.line_search and iteration > 1)
+        mixed = anderson.mix(np.append(u, q), np.append(du, sol.dq), sol.force, sol.status)
+        step = None if mixed is None else _mixed_step(model, state, soil_term, mixed, merit)
+        if step is None:
+            if mixed is not None:
+                anderson.clear()  # the combination did not reduce the residual
+            step = _line_search(model, state, soil_term, (u, q), (du, sol.dq, sol.force),
+                                response, options.line_search and iteration > 1)
         (u, q, force), response, merit = step
         status, tangent = sol.status, response.tangent
         relative = merit / (scale + np.linalg.norm(force))
@@ -213,6 +224,58 @@ def equilibrium(model, state: ContinuumState, control: Control,
     raise ConvergenceError(f"Newton did not converge in {iteration} iterations: relative "
                            f"residual {relative:.3e} > rtol {options.rtol:g}",
                            residual=relative, iterations=iteration)
+
+
+class _Anderson:
+    """Anderson acceleration (type II, ``depth`` previous iterates) of a fixed-point iteration
+    x ← x + d(x): the next iterate is the affine combination of the recent x + d whose
+    combination of the d is smallest in the least-squares sense (Walker & Ni, SIAM J. Numer.
+    Anal. 49(4), 2011). With a frozen iteration matrix (modified Newton) the iteration converges
+    linearly, and this recovers most of Newton's rate at the cost of a small least-squares
+    problem. The contact forces are combined with the same weights, so the combination keeps
+    zero gaps at closed nodes and zero forces at open ones; the history restarts whenever the
+    contact status changes. ``depth`` 0 is off."""
+
+    def __init__(self, depth: int):
+        self.depth, self.status = depth, None
+        self.points, self.steps, self.forces = [], [], []
+
+    def clear(self) -> None:
+        self.points.clear()
+        self.steps.clear()
+        self.forces.clear()
+
+    def mix(self, x, d, force, status):
+        """The combined (x + d, force) from the history, or None (plain step)."""
+        if self.depth == 0:
+            return None
+        if self.status is None or not np.array_equal(status, self.status):
+            self.clear()
+            self.status = np.array(status)
+        self.points.append(x + d)
+        self.steps.append(d)
+        self.forces.append(force)
+        if len(self.steps) > self.depth + 1:
+            del self.points[0], self.steps[0], self.forces[0]
+        if len(self.steps) < 2:
+            return None
+        dD = np.diff(np.array(self.steps), axis=0).T
+        gamma = np.linalg.lstsq(dD, d, rcond=None)[0]
+        dG = np.diff(np.array(self.points), axis=0).T
+        dF = np.diff(np.array(self.forces), axis=0).T
+        return x + d - dG @ gamma, force - dF @ gamma
+
+
+def _mixed_step(model, state, soil_term, mixed, merit0):
+    """The step to an accelerated iterate, or None if its residual is not below ``merit0``."""
+    x, force = mixed
+    n = model.disc.ndofs
+    u, q = x[:n], x[n:]
+    response = _respond(model, u, state, soil_term)
+    merit = _merit(model, response, force)
+    if not merit < merit0:
+        return None
+    return (u, q, force), response, merit
 
 
 def _contact(problem, status, frozen, options):
