@@ -38,7 +38,7 @@ from ..checks import InputError
 from .footing import OPEN, ContactError, ContactProblem, solve_contact
 from .materials import State
 
-__all__ = ["NewtonOptions", "ConvergenceError", "ContinuumState", "Control", "FootingTerm",
+__all__ = ["Anderson", "NewtonOptions", "ConvergenceError", "ContinuumState", "Control", "FootingTerm",
            "SoilTerm", "equilibrium", "follow", "start_state", "footing_tangent"]
 
 
@@ -47,7 +47,7 @@ class NewtonOptions:
     """``rtol`` relative residual tolerance; ``max_iterations`` per step; ``line_search``;
     ``max_cuts`` bisections of a load step before giving up; ``max_contact_iterations`` of the
     active set per Newton iteration; ``anderson`` the depth of the Anderson acceleration of the
-    iterations (0: off; for a frozen iteration matrix, :class:`_Anderson`)."""
+    iterations (0: off; for a frozen iteration matrix, :class:`Anderson`)."""
 
     rtol: float = 1e-8
     max_iterations: int = 30
@@ -172,10 +172,13 @@ def start_state(model, stress: np.ndarray | None, eigenstrain: np.ndarray | None
 def equilibrium(model, state: ContinuumState, control: Control,
                 options: NewtonOptions = NewtonOptions(), *, frozen: bool = False,
                 soil_term: SoilTerm | None = None,
-                footing_term: FootingTerm | None = None) -> ContinuumState:
+                footing_term: FootingTerm | None = None,
+                anderson: Anderson | None = None) -> ContinuumState:
     """The converged state one step after ``state`` under ``control`` (module docstring).
 
-    ``frozen`` keeps the contact status of ``state`` (no active-set update). Raises
+    ``frozen`` keeps the contact status of ``state`` (no active-set update). ``anderson``
+    carries the acceleration's pairs from step to step (default: a fresh
+    :class:`Anderson` of depth ``options.anderson``). Raises
     :class:`ConvergenceError` (or :class:`~upliftlab.continuum.footing.ContactError`).
     """
     prescribed = np.asarray(control.prescribed, dtype=bool)
@@ -188,7 +191,9 @@ def equilibrium(model, state: ContinuumState, control: Control,
     scale = _scale(model)
     tangent = response.tangent if state.tangent is None else state.tangent
     smallest, merit = math.inf, math.inf
-    anderson = _Anderson(options.anderson)
+    if anderson is None:
+        anderson = Anderson(options.anderson)
+    anderson.new_step()
     for iteration in range(1, options.max_iterations + 1):
         cond = _condense(model, tangent, soil_term)
         R = response.residual
@@ -203,7 +208,8 @@ def equilibrium(model, state: ContinuumState, control: Control,
         if not np.max(np.abs(du)) < model.width:  # NaN, or a node thrown a footing width
             relative = math.inf
             break
-        mixed = anderson.mix(np.append(u, q), np.append(du, sol.dq), sol.force, sol.status)
+        mixed = anderson.mix(np.append(u, q), np.append(du, sol.dq), sol.force, sol.status,
+                             cond)
         step = None if mixed is None else _mixed_step(model, state, soil_term, mixed, merit)
         if step is None:
             if mixed is not None:
@@ -226,44 +232,49 @@ def equilibrium(model, state: ContinuumState, control: Control,
                            residual=relative, iterations=iteration)
 
 
-class _Anderson:
-    """Anderson acceleration (type II, ``depth`` previous iterates) of a fixed-point iteration
-    x ← x + d(x): the next iterate is the affine combination of the recent x + d whose
-    combination of the d is smallest in the least-squares sense (Walker & Ni, SIAM J. Numer.
-    Anal. 49(4), 2011). With a frozen iteration matrix (modified Newton) the iteration converges
-    linearly, and this recovers most of Newton's rate at the cost of a small least-squares
-    problem. The contact forces are combined with the same weights, so the combination keeps
-    zero gaps at closed nodes and zero forces at open ones; the history restarts whenever the
-    contact status changes. ``depth`` 0 is off."""
+class Anderson:
+    """Anderson acceleration (type II, Walker & Ni, SIAM J. Numer. Anal. 49(4), 2011) of the
+    fixed-point iteration x ← x + d(x) of modified Newton: the next iterate is x + d − ΔG γ,
+    with γ the least-squares fit of d by the recorded differences ΔD of d and ΔG of x + d,
+    ``depth`` pairs at most. With a frozen iteration matrix the iteration converges linearly,
+    and this recovers most of Newton's rate at the cost of a small least-squares problem.
+
+    The contact forces are combined with the same weights, so the combination keeps zero gaps
+    at closed nodes and zero forces at open ones. The pairs are secant information about the
+    map's Jacobian, which changes little from one time step to the next: one instance can serve
+    a whole run (:meth:`new_step` keeps the pairs, forgets the last point; the first iteration
+    of a step, the predictor, is always the plain step). The pairs are dropped whenever the
+    contact status or the iteration matrix changes."""
 
     def __init__(self, depth: int):
-        self.depth, self.status = depth, None
-        self.points, self.steps, self.forces = [], [], []
+        self.depth = depth
+        self.status = self.matrix = self.last = None
+        self.pairs = []
 
     def clear(self) -> None:
-        self.points.clear()
-        self.steps.clear()
-        self.forces.clear()
+        self.pairs, self.last = [], None
 
-    def mix(self, x, d, force, status):
-        """The combined (x + d, force) from the history, or None (plain step)."""
+    def new_step(self) -> None:
+        self.last = None
+
+    def mix(self, x, d, force, status, matrix=None):
+        """The combined (x + d, force), or None (take the plain step)."""
         if self.depth == 0:
             return None
-        if self.status is None or not np.array_equal(status, self.status):
+        if self.matrix is not matrix or self.status is None \
+                or not np.array_equal(status, self.status):
             self.clear()
-            self.status = np.array(status)
-        self.points.append(x + d)
-        self.steps.append(d)
-        self.forces.append(force)
-        if len(self.steps) > self.depth + 1:
-            del self.points[0], self.steps[0], self.forces[0]
-        if len(self.steps) < 2:
+            self.status, self.matrix = np.array(status), matrix
+        g = x + d
+        first, last = self.last is None, self.last
+        self.last = (g, d, force)
+        if first:  # a step's predictor: the plain step
             return None
-        dD = np.diff(np.array(self.steps), axis=0).T
+        self.pairs.append(tuple(a - b for a, b in zip((g, d, force), last)))
+        del self.pairs[:-self.depth]
+        dG, dD, dF = (np.array(column).T for column in zip(*self.pairs))
         gamma = np.linalg.lstsq(dD, d, rcond=None)[0]
-        dG = np.diff(np.array(self.points), axis=0).T
-        dF = np.diff(np.array(self.forces), axis=0).T
-        return x + d - dG @ gamma, force - dF @ gamma
+        return g - dG @ gamma, force - dF @ gamma
 
 
 def _mixed_step(model, state, soil_term, mixed, merit0):
