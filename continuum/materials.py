@@ -329,12 +329,34 @@ def _prepare(strain, state: State | None):
     return eps, eps_p, ebar, batch
 
 
+@dataclass(frozen=True, eq=False)
+class _Piecewise:
+    """N Mandel tangents that equal ``constant`` (6, 6) except at ``mask``, where they are
+    ``values`` (k, 6, 6) (None if the mask is empty)."""
+
+    constant: np.ndarray
+    mask: np.ndarray
+    values: np.ndarray | None
+
+
+def _voigt_tangent(tangent, batch) -> np.ndarray:
+    """The (6, 6, *batch) Voigt tangent of (N, 6, 6) Mandel tangents or a :class:`_Piecewise`
+    (filled in one pass, without an (N, 6, 6) intermediate)."""
+    if not isinstance(tangent, _Piecewise):
+        voigt = (tangent * _MANDEL_TO_VOIGT).transpose(1, 2, 0).reshape((6, 6) + batch)
+        return np.ascontiguousarray(voigt)
+    out = np.empty((6, 6, tangent.mask.size))
+    out[...] = (tangent.constant * _MANDEL_TO_VOIGT)[:, :, None]
+    if tangent.values is not None:
+        out[:, :, tangent.mask] = (tangent.values * _MANDEL_TO_VOIGT).transpose(1, 2, 0)
+    return out.reshape((6, 6) + batch)
+
+
 def _finish(batch, stress, tangent_mandel, eps_p, ebar, region):
     out_stress = stress.transpose(1, 2, 0).reshape((3, 3) + batch)
-    tangent = (tangent_mandel * _MANDEL_TO_VOIGT).transpose(1, 2, 0).reshape((6, 6) + batch)
     state = State(eps_p.transpose(1, 2, 0).reshape((3, 3) + batch), ebar.reshape(batch),
                   np.asarray(region, dtype=np.int8).reshape(batch))
-    return np.ascontiguousarray(out_stress), np.ascontiguousarray(tangent), state
+    return np.ascontiguousarray(out_stress), _voigt_tangent(tangent_mandel, batch), state
 
 
 def _mandel(t):
@@ -493,11 +515,10 @@ def _principal_return(strain, state, params, sin_phi, cos_phi, sin_psi, cohesion
     f_trial = (high - low) + (high + low) * sin_phi - k
     plastic = f_trial > _RTOL * (k + np.maximum(np.abs(high), np.abs(low)))
     stress = sig_trial
-    tangent = np.broadcast_to(_elastic_mandel(params), (n, 6, 6))
+    tangent = _Piecewise(_elastic_mandel(params), plastic, None)
     eps_p_new, ebar_new = eps_p.copy(), ebar.copy()
     region = np.zeros(n, dtype=np.int8)
     if plastic.any():
-        tangent = tangent.copy()
         values, vectors = np.linalg.eigh(sig_trial[plastic])
         values, vectors = values[:, ::-1], vectors[:, :, ::-1]  # σ1 >= σ2 >= σ3
         sig, d3, spin, reg = _mc_principal(values, params, sin_phi, cos_phi, sin_psi, cohesion)
@@ -505,7 +526,7 @@ def _principal_return(strain, state, params, sin_phi, cos_phi, sin_psi, cohesion
         stress[plastic] = np.einsum("nia,na,nja->nij", vectors, sig, vectors)
         eps_p_new[plastic] += np.einsum("nia,na,nja->nij", vectors, d_eps_p, vectors)
         ebar_new[plastic] += math.sqrt(2.0 / 3.0) * np.linalg.norm(d_eps_p, axis=1)
-        tangent[plastic] = _spectral_tangent(vectors, d3, spin)
+        tangent = _Piecewise(tangent.constant, plastic, _spectral_tangent(vectors, d3, spin))
         region[plastic] = reg
     return _finish(batch, stress, tangent, eps_p_new, ebar_new, region)
 
