@@ -15,7 +15,9 @@ state, as :mod:`~upliftlab.continuum.materials` requires):
    (Newton–Josephy) method, so the contact state follows the current soil tangent inside the
    plastic Newton loop.
 4. Recover the interior increment Δu_i = −K_ii⁻¹(R_i + K_ic Δu_c) (one more solve).
-5. Energy line search (from the second iteration, :func:`_line_search`).
+5. Energy line search (:func:`_line_search`), the predictor included: near collapse the last
+   converged tangent is nearly singular and its full step can overshoot (graded Prandtl mesh,
+   8 across: 132 → 89 factorisations, 5 → 1 step cuts, measured).
 
 The first iteration of a step uses the tangent of the last converged state and imposes the whole
 prescribed increment: the linearised predictor of ``continuum-notes.md``. Convergence is
@@ -215,7 +217,7 @@ def equilibrium(model, state: ContinuumState, control: Control,
             if mixed is not None:
                 anderson.clear()  # the combination did not reduce the residual
             step = _line_search(model, state, soil_term, (u, q), (du, sol.dq, sol.force),
-                                response, options.line_search and iteration > 1)
+                                response, options.line_search)
         (u, q, force), response, merit = step
         status, tangent = sol.status, response.tangent
         relative = merit / (scale + np.linalg.norm(force))
