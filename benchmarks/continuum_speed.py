@@ -313,11 +313,12 @@ def figure(rows: list[dict], path: Path) -> Path:
 
     from upliftlab.continuum.output import save_figure
 
-    fig, ax = plt.subplots(figsize=(7, 5))
+    fig, ax = plt.subplots(figsize=(7.5, 6.5))
     markers = {"rocking": "o", "prandtl": "s", "prandtl-richardson": "x", "uplift": "^",
                "elcentro": "D"}
-    for case in markers:
-        mine = [r for r in rows if r["case"] == case]
+    for case, grading in sorted({(r["case"], r["grading"]) for r in rows},
+                                key=lambda cg: (list(markers).index(cg[0]), cg[1])):
+        mine = [r for r in rows if r["case"] == case and r["grading"] == grading]
         names = list(mine[0]["errors"]) if mine else []
         for k, name in enumerate(names):
             points = [(r["runtime"], abs(r["errors"][name]), f"{r['n']}/{r['grading']:g}")
@@ -326,7 +327,9 @@ def figure(rows: list[dict], path: Path) -> Path:
             if not points:
                 continue
             ax.loglog([p[0] for p in points], [p[1] for p in points], marker=markers[case],
-                      ls="-" if k == 0 else "--", label=f"{case}: |{name}|")
+                      ls="-" if k == 0 else "--",
+                      label=f"{case}" + (f" (grading {grading:g})" if grading != 1.0 else "")
+                      + f": |{name}|")
             for t, e, n in points:
                 ax.annotate(f"{n}", (t, e), textcoords="offset points", xytext=(4, 4),
                             fontsize=8)
@@ -335,7 +338,7 @@ def figure(rows: list[dict], path: Path) -> Path:
     ax.set_title("upliftlab continuum: runtime against error (labels: n across B / grading)",
                  fontsize=10)
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=2)
     fig.tight_layout()
     save_figure(fig, path)
     plt.close(fig)
