@@ -324,6 +324,7 @@ def test_rerun_computes_nothing(study, tmp_path):
     ({"cycle_steps": 0}, "options.cycle_steps", ">= 1"),
     ({"settlement_ratio": 0.0}, "options.settlement_ratio", "(0, 0.5]"),
     ({"fast_overrides": "continuum.elements_across=8"}, "options.fast_overrides", "key=value"),
+    ({"dynamic_overrides": ("elements_across",)}, "options.dynamic_overrides", "key=value"),
     ({"figures": "yes"}, "options.figures", "true or false"),
 ])
 def test_bad_options_are_refused_before_any_work(tmp_path, change, field, text):
@@ -346,3 +347,15 @@ def test_bad_scenes_are_refused_before_any_work(tmp_path):
     with pytest.raises(InputError, match="fast = 1: expected true or false"):
         wvc.run(fast=1, out=tmp_path / "c")
     assert not any((tmp_path / s).exists() for s in "abc")
+
+
+def test_full_mode_runs_its_dynamics_on_the_benchmarked_8_across_mesh(elcentro):
+    """Full mode's continuum dynamics use 8 elements across B (benchmarks/CONTINUUM.md: on
+    10 s of El Centro its peak θ is within 1.1 % of 16 across, in 0.15 × the time); fast mode
+    adds its own coarser override on top."""
+    scene = load_scene("strip_footing_clay")
+    _, full, _ = wvc.dynamic_points(scene, wvc.FULL_OPTIONS, fast=False)
+    _, fast, _ = wvc.dynamic_points(scene, wvc.FAST_OPTIONS, fast=True)
+    assert {p["scene"]["continuum"]["elements_across"] for p in full} == {8}
+    assert {p["scene"]["continuum"]["elements_across"] for p in fast} == {4}
+    assert len(full) == 2  # the scene's pulse and El Centro
