@@ -22,7 +22,9 @@ the error against the reference:
 - ``elcentro``: 10 s of El Centro 1940 N-S on the clay scene (Tresca, unilateral contact),
   error of the peak footing rotation against the finest level run. It needs
   ``upliftlab.continuum.dynamics`` and the record on ``UPLIFTLAB_MOTIONS``; without either the row
-  is skipped with a message.
+  is skipped with a message. ``elcentro-strict`` runs one level again at the Newton tolerance
+  rtol = 1e-6 (the dynamic default is 1e-5); its error is the default run's peak over the
+  strict run's, minus one: the tolerance's share of the error.
 
 Soil: E = 50 MPa, ν = 0.3, ρ = 1.8 t/m³, c_u = 50 kPa, B = 2 m (the clay scene). The timers wrap
 the solver's functions for the duration of a run and change no result. One thread per solve
@@ -68,9 +70,12 @@ CLAY = Soil(youngs_modulus=E, poisson_ratio=NU, density=RHO, model="tresca",
 LEVELS = {"rocking": ((4, 1.0), (8, 1.0), (16, 1.0), (32, 1.0)),
           "prandtl": ((4, 1.0), (8, 1.0), (16, 1.0), (8, 16.0), (10, 16.0), (16, 16.0)),
           "uplift": ((8, 1.0), (16, 1.0), (32, 1.0)),
-          "elcentro": ((4, 1.0), (8, 1.0), (16, 1.0))}
+          "elcentro": ((4, 1.0), (8, 1.0), (16, 1.0)), "elcentro-strict": ((8, 1.0),)}
 QUICK = {"rocking": ((4, 1.0), (8, 1.0)), "prandtl": ((4, 1.0), (8, 1.0), (8, 16.0)),
-         "uplift": ((4, 1.0), (8, 1.0)), "elcentro": ((4, 1.0),)}
+         "uplift": ((4, 1.0), (8, 1.0)), "elcentro": ((4, 1.0),),
+         "elcentro-strict": ((4, 1.0),)}
+#: The Newton tolerance of the ``elcentro-strict`` rows (the dynamic default is 1e-5).
+STRICT_RTOL = 1e-6
 
 #: The issue's targets: (case, |error| bound, runtime bound [s], smallest DOFs).
 TARGETS = (("rocking", 0.01, 2.0, 0), ("prandtl", 0.01, 15.0, 0), ("prandtl", 0.005, 60.0, 0),
@@ -156,8 +161,9 @@ def uplift(n: int, grading: float = 1.0):
                    "max |c/B - theta_on/theta|": contact}
 
 
-def elcentro(n: int, grading: float = 1.0):
-    """10 s of El Centro; the error is filled in against the finest level afterwards."""
+def elcentro(n: int, grading: float = 1.0, rtol: float | None = None):
+    """10 s of El Centro; the error is filled in against the finest level afterwards.
+    ``rtol``: the Newton tolerance (None: the dynamic default)."""
     from dataclasses import replace
 
     from upliftlab.continuum import build_model
@@ -171,17 +177,26 @@ def elcentro(n: int, grading: float = 1.0):
     motion = scene.build_motion()
     motion = replace(motion, acceleration=motion.acceleration[:int(round(10.0 / motion.dt))])
     model = build_model(scene)
-    result = run_dynamic(model, scene, motion, DynamicOptions(snapshots=0, energy=False))
+    options = DynamicOptions(snapshots=0, energy=False)
+    if rtol is not None:
+        options = replace(options, newton=replace(options.newton, rtol=rtol))
+    result = run_dynamic(model, scene, motion, options)
     peak = float(np.max(np.abs(np.asarray(result.footing)[:, 2])))
     return model, {"peak theta": peak}
 
 
-CASES = {"rocking": rocking, "prandtl": prandtl, "uplift": uplift, "elcentro": elcentro}
+def elcentro_strict(n: int, grading: float = 1.0):
+    """``elcentro`` at rtol = :data:`STRICT_RTOL`: what the default tolerance costs in error."""
+    return elcentro(n, grading, rtol=STRICT_RTOL)
+
+
+CASES = {"rocking": rocking, "prandtl": prandtl, "uplift": uplift, "elcentro": elcentro,
+         "elcentro-strict": elcentro_strict}
 
 
 def unavailable(case: str) -> str | None:
     """Why a case cannot run here (None if it can)."""
-    if case != "elcentro":
+    if not case.startswith("elcentro"):
         return None
     try:
         import upliftlab.continuum.dynamics  # noqa: F401
@@ -220,7 +235,17 @@ def measure(case: str, level: tuple[int, float], repeats: int) -> dict:
 
 def reference_elcentro(rows: list[dict]) -> None:
     """Errors of the El Centro rows against the finest level (its own error is 0 by
-    definition and marked as the reference)."""
+    definition and marked as the reference); each ``elcentro-strict`` row gives the default
+    tolerance's error at its level, default peak / strict peak − 1."""
+    default = {(r["n"], r["grading"]): r["errors"]["peak theta"] for r in rows
+               if r["case"] == "elcentro"}
+    for r in rows:
+        if r["case"] == "elcentro-strict":
+            strict = r["errors"].pop("peak theta")
+            name = f"peak theta (default rtol) / (rtol {STRICT_RTOL:g}) - 1"
+            mine = default.get((r["n"], r["grading"]))
+            r["errors"][name] = math.nan if mine is None else mine / strict - 1.0
+            r["note"] = f"peak θ = {strict:.7g} rad at rtol {STRICT_RTOL:g}"
     rows = [r for r in rows if r["case"] == "elcentro"]
     if not rows:
         return
@@ -315,7 +340,7 @@ def figure(rows: list[dict], path: Path) -> Path:
 
     fig, ax = plt.subplots(figsize=(7.5, 6.5))
     markers = {"rocking": "o", "prandtl": "s", "prandtl-richardson": "x", "uplift": "^",
-               "elcentro": "D"}
+               "elcentro": "D", "elcentro-strict": "d"}
     for case, grading in sorted({(r["case"], r["grading"]) for r in rows},
                                 key=lambda cg: (list(markers).index(cg[0]), cg[1])):
         mine = [r for r in rows if r["case"] == case and r["grading"] == grading]
