@@ -310,8 +310,13 @@ def _label(r: dict) -> str:
 
 
 def _fmt_errors(errors: dict) -> str:
-    """Relative errors (names ending in ``- 1``) in percent, others as numbers."""
-    return "; ".join(f"{name} = {value:+.3%}" if name.endswith("- 1") else
+    """Relative errors (names ending in ``- 1``) in percent (below 0.001 %: two significant
+    digits, so that a small error does not print as zero), others as numbers."""
+    def percent(value: float) -> str:
+        if value != 0.0 and abs(value) < 1e-5:
+            return f"{100.0 * value:+.2g}%"
+        return f"{value:+.3%}"
+    return "; ".join(f"{name} = {percent(value)}" if name.endswith("- 1") else
                      f"{name} = {value:.4f}" for name, value in errors.items())
 
 

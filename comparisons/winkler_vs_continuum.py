@@ -104,7 +104,8 @@ class Options:
     ``dynamic_overrides`` for the continuum's dynamic runs in either mode, and
     ``fast_dynamic_overrides`` on top of them in fast mode. (Full mode runs its dynamics on 8
     elements across B, 5184 DOFs: on 10 s of El Centro its peak θ is 1.1 % below the 16-across
-    mesh's in 0.15 × the time, benchmarks/CONTINUUM.md; 16 across would take 17 minutes.)
+    mesh's in an eighth of the time, benchmarks/CONTINUUM.md; 16 across takes about 8 minutes
+    per record, which would take the full report near its 30-minute budget.)
     ``adequate``: the error within which the recommendation calls a calibration adequate.
     ``dynamic``: run the dynamic comparison when the continuum dynamics is available: the
     scene's pulse (cut to ``pulse_duration`` s if given) and, in full mode, the ``records``

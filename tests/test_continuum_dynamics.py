@@ -328,6 +328,7 @@ def test_hht_dissipates_and_keeps_the_structural_mode(free_rocking):
     (dict(scheme="central"), "DynamicOptions.scheme"),
     (dict(base="floating"), "DynamicOptions.base"),
     (dict(snapshots=-1), "DynamicOptions.snapshots"),
+    (dict(predict="yes"), "DynamicOptions.predict = 'yes': must be true or false"),
 ])
 def test_bad_options_are_refused(kwargs, message):
     with pytest.raises(InputError, match=None) as info:
