@@ -73,9 +73,9 @@ converged state is the same): its back-substitution, the largest cost of an iter
 rtol = 1e-5: on 10 s of El Centro (8 across) the footing's θ and v histories differ from
 rtol = 1e-6 by at most 4.5e-5 and 3.1e-5 of their peaks, for 21 % fewer iterations
 (measured). Every step starts with that elastic factorisation; a step still unconverged
-after ``_FrozenTangent.SWITCH`` = 20 iterations refactorises once at its current consistent tangent and finishes with it. A step that still
-fails is retried with the consistent tangent refactorised at every iteration. ``refactored``
-records the steps that refactorised.
+after ``_FrozenTangent.SWITCH`` = 20 iterations refactorises once at its current consistent
+tangent and finishes with it. A step that still fails is retried with the consistent tangent
+refactorised at every iteration. ``refactored`` records the steps that refactorised.
 
 **Time step.** The fastest wave must not cross more than :data:`COURANT_LIMIT` = 2 of the mesh's
 smallest elements per step: dt ≤ 2 h_min/V_p. At ν = 0.3, V_p ≈ 1.87 V_s, so this is a shear-wave
@@ -638,6 +638,7 @@ class _Run:
             ["bottom"] if settings.base == "compliant" else [])
         self.C = pattern.matrix(dashpot_data(dyn, boundaries))
         self.soil_data = c["a0"] / (1.0 + alpha) * self.M.data + c["c0"] * self.C.data
+        self.soil_matrix = pattern.matrix(self.soil_data)
         released = np.setdiff1d(_static_fixed(dyn), dyn.blocks.fixed)
         R0 = _residual(dyn, static.stress)
         self.release = np.zeros(dyn.disc.ndofs)
@@ -699,7 +700,7 @@ class _Run:
             if alpha != 0.0:
                 Xn = self.C @ soil.v + R - self.release - fc - F_soil
                 offset = offset - w * Xn
-            term = SoilTerm(soil_term_data, offset)
+            term = SoilTerm(soil_term_data, offset, self.soil_matrix)
             A, b = self.footing_affine(zk, state, F1_z, F_z)
             fterm = FootingTerm(A[:3, :3] - np.outer(A[:3, 3], A[3, :3]) / A[3, 3],
                                 b[:3] - A[:3, 3] * b[3] / A[3, 3])

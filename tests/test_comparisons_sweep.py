@@ -55,12 +55,13 @@ def _no_failures():
     FAIL_AFTER["calls"] = None
 
 
-def _pulse_points(springs=8):
-    """Four short reduced-model runs (Ewing's short-period building, 0.2 s sine pulse)."""
+def _pulse_points(springs=8, intensity=2.0):
+    """Four short reduced-model runs (Ewing's short-period building, 0.2 s sine pulse of
+    ``intensity`` times the uplift threshold)."""
     base = tse._base("short_period_elcentro")
     return [tse.make_point(base, bed="uniform", layout=layout, springs=springs,
                            options=tse.Options(), case=case,
-                           motion={"type": "sine", "period": 0.2, "intensity": 2.0})
+                           motion={"type": "sine", "period": 0.2, "intensity": intensity})
             for layout in ("winkler", "equivalent") for case in ("A", "C")]
 
 
@@ -171,8 +172,10 @@ def test_failing_point_stops_the_sweep_and_resume_loses_nothing(tmp_path):
 def test_interrupted_process_sweep_resumes_to_the_uninterrupted_result(tmp_path):
     """A KeyboardInterrupt from the progress hook after the first chunk stops a sweep on local
     processes; resuming completes it. Reference: the same reduced-model runs evaluated in this
-    process (equal to the last bit). Every point is stored exactly once."""
-    points = _pulse_points()
+    process (equal to the last bit). The interrupt leaves points unstored (at most the two
+    workers' running and queued points finish after the first), the resume computes exactly
+    those, and every point is stored exactly once."""
+    points = _pulse_points() + _pulse_points(intensity=3.0)
     reference = [tse.evaluate_point(p) for p in points]
     store = Store(tmp_path / "store")
 
@@ -183,9 +186,12 @@ def test_interrupted_process_sweep_resumes_to_the_uninterrupted_result(tmp_path)
     with pytest.raises(KeyboardInterrupt):
         run_sweep(tse.evaluate_point, points, store, chunk=1, workers=2, progress=interrupt)
     stored_before = len(store)
-    assert 1 <= stored_before <= len(points)
-    records = run_sweep(tse.evaluate_point, points, store, chunk=1, workers=2, progress=False)
+    assert 0 < stored_before < len(points)
+    seen = []
+    records = run_sweep(tse.evaluate_point, points, store, chunk=1, workers=2,
+                        progress=seen.append)
     assert records == reference
+    assert seen[-1].computed == len(points) - stored_before  # nothing lost, nothing redone
     assert len(store) == len(points)
 
 
