@@ -7,15 +7,17 @@ the compiled integrators in :mod:`.kernels`.
 
 from .compatibility import (SpringLayout, compatibility_matrix, custom_springs, edge_springs,
                             end_stiffened_bed, equivalent_springs, stiffness_matrix, winkler_bed)
-from .integrators import METHODS, stability_limit, time_step
+from .integrators import (METHODS, resolution_limit, stability_boundary, stability_limit,
+                          time_step)
 from .model import ReducedModel, build_model
 from .response import Response
-from .run import IntegrationError, run, run_model
+from .run import EnergyBalanceError, IntegrationError, run, run_model
 from .static import rocking_pushover, uplift_onset_force
 
 __all__ = [
     "SpringLayout", "compatibility_matrix", "custom_springs", "edge_springs",
     "end_stiffened_bed", "equivalent_springs", "stiffness_matrix", "winkler_bed",
-    "METHODS", "stability_limit", "time_step", "ReducedModel", "build_model", "Response",
-    "IntegrationError", "run", "run_model", "rocking_pushover", "uplift_onset_force",
+    "METHODS", "stability_limit", "stability_boundary", "resolution_limit", "time_step",
+    "ReducedModel", "build_model", "Response", "IntegrationError", "EnergyBalanceError", "run",
+    "run_model", "rocking_pushover", "uplift_onset_force",
 ]

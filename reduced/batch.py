@@ -29,15 +29,18 @@ from ..checks import InputError
 from ..motions import Motion
 from ..scenes import MotionSpec, Scene, build_motion
 from . import kernels as kn
-from .integrators import StepPlan, method, time_step
+from .integrators import StepPlan, method
 from .model import build_model
 from .response import energy_balance_error
-from .run import KernelInputs, ground_acceleration, initial_conditions, integrate
+from .run import KernelInputs, ground_acceleration, initial_conditions, integrate, plan_run
 
 __all__ = ["BatchResult", "run_batch", "STATUS_NAMES", "COLUMNS"]
 
+#: A run that finished with its energy balance beyond ``analysis.energy_tolerance``.
+ENERGY = 100
 STATUS_NAMES = {kn.OK: "ok", kn.CHATTER: "chattering", kn.NONFINITE: "non-finite state",
-                kn.NO_CONVERGENCE: "Newton did not converge"}
+                kn.NO_CONVERGENCE: "Newton did not converge", kn.OVERTURNED: "overturned",
+                kn.STEP_UNDERFLOW: "step underflow", ENERGY: "energy balance beyond tolerance"}
 COLUMNS = ("u", "theta", "uplift_left", "residual_settlement", "base_shear",
            "energy_balance_error", "dt")
 SINGLE_THREAD = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
@@ -52,8 +55,10 @@ class BatchResult:
     gap under the leftmost foundation spring, ``residual_settlement`` −V at the end (NaN without
     a foundation), ``base_shear`` peak base shear, ``energy_balance_error`` as
     :attr:`~.response.Response.energy_balance_error` over the first and last states, ``dt`` the
-    step taken (s), ``status`` 0 when the run finished (:data:`STATUS_NAMES`). ``info`` holds the
-    integrator, the pool, the wall time and the package version.
+    step taken (s), ``status`` 0 when the run finished (:data:`STATUS_NAMES`): an overturned
+    structure keeps its peaks up to the toppling; a failed run, or one whose energy balance is
+    beyond its ``analysis.energy_tolerance`` (:data:`ENERGY`), has NaN values. ``info`` holds
+    the integrator, the pool, the wall time and the package version.
     """
 
     u: np.ndarray
@@ -102,6 +107,8 @@ class _Job:
     g: float
     leftmost: int        # spring index of the leftmost foundation spring (−1: none)
     story_columns: np.ndarray  # A[:, :stories], for the base shear of the stored states
+    energy_tolerance: float
+    exact: bool
 
 
 def run_batch(scenes: Sequence[Scene], motion: Motion | None = None, *,
@@ -177,19 +184,16 @@ def _job(scene: Scene, motion, integrator, dt, bases, motions) -> _Job:
     index, factor, motion = _base_motion(scene, motion, bases, motions)
     a = scene.analysis
     name = integrator or a.integrator
-    method(name)
     duration = a.duration or motion.duration
-    plan = time_step(model, name, record_dt=motion.dt, duration=duration,
-                     dt=dt if dt is not None else a.dt, subcycle=a.subcycle,
-                     output_dt=a.output_dt)
-    plan = StepPlan(plan.dt, plan.steps, plan.steps, plan.limit, plan.substeps, plan.reason)
+    plan, _ = plan_run(model, motion, name, dt=dt, histories=False)
     q0, qd0 = initial_conditions(model, motion)
     samples = max(motion.acceleration.size, math.ceil(duration / motion.dt - 1e-9))
     found = model.foundation_slice
     leftmost = (model.story_count + int(np.argmin(model.params["x"][found]))
                 if model.layout is not None else -1)
-    return _Job(name, KernelInputs.of(model), plan, q0, qd0, index, factor, samples, motion.dt,
-                model.g, leftmost, model.A[:, :model.story_count])
+    return _Job(name, KernelInputs.of(model, plan), plan, q0, qd0, index, factor, samples,
+                motion.dt, model.g, leftmost, model.A[:, :model.story_count],
+                a.energy_tolerance, model.exact)
 
 
 def _base_motion(scene: Scene, motion: Motion | None, bases: dict, motions: list):
@@ -285,10 +289,19 @@ def _run_chunk(piece, accelerations, indices):
     values = np.full((len(piece), len(COLUMNS)), np.nan)
     codes = np.zeros(len(piece), np.int64)
     for r, job in enumerate(piece):
-        codes[r], out, _ = integrate(job.inputs, job.name, job.plan, job.q0, job.qd0,
-                                     _samples(job, base[job.motion]), job.dtg, impacts=False)
-        if codes[r] == kn.OK:
-            values[r] = _row(job, out)
+        codes[r], out, counters = integrate(job.inputs, job.name, job.plan, job.q0, job.qd0,
+                                            _samples(job, base[job.motion]), job.dtg,
+                                            impacts=False)
+        if codes[r] in (kn.OK, kn.OVERTURNED):
+            row = _row(job, out)
+            defined = [v for v, name in zip(row, COLUMNS) if job.leftmost >= 0
+                       or name not in ("uplift_left", "residual_settlement")]
+            if not row[COLUMNS.index("energy_balance_error")] <= job.energy_tolerance:
+                codes[r] = ENERGY
+            elif np.all(np.isfinite(defined)):
+                values[r] = row
+            else:
+                codes[r] = kn.NONFINITE
     return values, codes
 
 
@@ -314,9 +327,12 @@ def _row(job: _Job, out: dict) -> list[float]:
         rate = out["qd"] @ job.story_columns
         history = out["force"][:, :stories] + rate * inputs.params["c"][:stories]
         shear = max(float(pk[n0 + 1]), float(np.max(np.abs(history[:, 0]))))
+    if job.exact:
+        theta = math.asin(min(theta, 1.0))
     uplift = settlement = math.nan
     if job.leftmost >= 0:
         uplift = max(float(pk[n0 + 2 * job.leftmost]), 0.0)
         settlement = float(-out["q"][-1, inputs.v])
-    return [u, theta, uplift, settlement, shear, energy_balance_error(out["energy"]),
-            job.plan.dt]
+    tracked = pk[kn.P_ERES] / max(pk[kn.P_ESCALE], 1e-300)
+    energy = max(energy_balance_error(out["energy"]), float(tracked))
+    return [u, theta, uplift, settlement, shear, energy, job.plan.dt]

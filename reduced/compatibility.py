@@ -148,20 +148,27 @@ class DofMap:
         return len(self.names)
 
     @classmethod
-    def build(cls, story_count: int, *, rigid: bool, fixed: bool) -> DofMap:
+    def build(cls, story_count: int, *, rigid: bool, fixed: bool,
+              exact: bool = False) -> DofMap:
+        """Exact kinematics names its DOFs for what they hold: story deflections ``w`` in the
+        rotated frame and ``sin_theta``."""
         stories = () if rigid else tuple(range(story_count))
-        names = [f"x{j + 1}" for j in stories]
+        names = [f"{'w' if exact else 'x'}{j + 1}" for j in stories]
         theta = v = -1
         if not fixed:
             theta, v = len(names), len(names) + 1
-            names += ["theta", "V"]
+            names += ["sin_theta" if exact else "theta", "V"]
         return cls(stories, theta, v, tuple(names))
 
 
-def compatibility_matrix(dofs: DofMap, heights, layout: SpringLayout | None) -> np.ndarray:
+def compatibility_matrix(dofs: DofMap, heights, layout: SpringLayout | None, *,
+                         exact: bool = False) -> np.ndarray:
     """A (n_dof × n_spring): story springs first, then foundation springs (eqs. 3, 9).
 
     Story spring j: e = u_j − u_{j−1}, u_j = x_j − h_j θ. Foundation spring i: e = x_i θ − V.
+    With ``exact`` kinematics the story DOFs are the deflections w_j in the base's rotated frame
+    and the rotation DOF is sin θ: story spring j is e = w_j − w_{j−1} and foundation spring i
+    e = x_i sin θ − V, still linear.
     """
     heights = np.asarray(heights, dtype=float)
     n_story = len(dofs.stories)
@@ -171,7 +178,7 @@ def compatibility_matrix(dofs: DofMap, heights, layout: SpringLayout | None) -> 
         A[dof, j] = 1.0
         if j > 0:
             A[dofs.stories[j - 1], j] = -1.0
-        if dofs.theta >= 0:
+        if dofs.theta >= 0 and not exact:
             A[dofs.theta, j] = -(heights[j] - (heights[j - 1] if j > 0 else 0.0))
     if layout is not None:
         A[dofs.theta, n_story:] = layout.positions

@@ -13,16 +13,18 @@ A step beyond the limit is refused with the limit in the message, or subcycled o
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
+import scipy.linalg
 
 from ..checks import InputError
 from .model import ReducedModel
 
 GROWTH_TOL = 1e-7
 
-__all__ = ["GROWTH_TOL", "Method", "METHODS", "method", "stability_limit", "time_step", "StepPlan"]
+__all__ = ["GROWTH_TOL", "Method", "METHODS", "method", "stability_boundary", "stability_limit",
+           "resolution_limit", "shortest_mode", "time_step", "StepPlan", "RESOLUTION"]
 
 
 def _rk4_growth(z: np.ndarray) -> np.ndarray:
@@ -116,23 +118,31 @@ def _ray_limits(m: Method, lams: np.ndarray) -> np.ndarray:
     return limits
 
 
-def _eigenvalues(model: ReducedModel, all_impact: bool) -> np.ndarray:
-    """Eigenvalues of the bonded first-order system (P-Δ softening left out: it does not bound
-    the step), with every impact dashpot acting at once if ``all_impact``."""
+def _first_order(model: ReducedModel, all_impact: bool):
+    """(J, M, K, C) of the bonded system at rest (P-Δ softening left out: it does not bound the
+    step), ẏ = J y for y = (q, q̇), with every impact dashpot acting at once if
+    ``all_impact``. Exact kinematics is taken at its linearisation (:attr:`linearised`)."""
+    model = model.linearised
     K, C = model.bonded_matrices(with_impact=all_impact)
     K = K - model.geometric
     minv = 1.0 / model.mass
     n = model.mass.size
     J = np.block([[np.zeros((n, n)), np.eye(n)], [-minv[:, None] * K, -minv[:, None] * C]])
-    return np.linalg.eigvals(J)
+    return J, np.diag(model.mass), K, C
 
 
-def stability_limit(model: ReducedModel, name: str) -> float:
-    """Largest stable time step (s) of integrator ``name`` on ``model`` (inf if unconditional).
+def _eigenvalues(model: ReducedModel, all_impact: bool) -> np.ndarray:
+    return np.linalg.eigvals(_first_order(model, all_impact)[0])
+
+
+def stability_boundary(model: ReducedModel, name: str) -> float:
+    """Largest step (s) of integrator ``name`` at which no bonded mode grows (inf if
+    unconditional): the edge of the method's region of absolute stability. Beyond it a run
+    diverges; near it a fixed-step run is stable but inaccurate (see :func:`stability_limit`).
 
     Fixed-step explicit methods keep an impact dashpot on for whole steps, so several can act at
-    once: their limit assumes all of them do. The event stepper ends each stroke where it ends
-    and caps its steps while a dashpot acts (``IMPH``), so its limit is the bonded system's.
+    once: they assume all of them do. The event stepper ends each stroke where it ends and caps
+    its steps while a dashpot acts (``IMPH``), so its boundary is the bonded system's.
     """
     m = method(name)
     if not m.explicit:
@@ -142,10 +152,127 @@ def stability_limit(model: ReducedModel, name: str) -> float:
     return float(np.min(_ray_limits(m, lams), initial=math.inf))
 
 
+def _step_residual(m: Method, J, M, K, C, h: float, states: np.ndarray) -> float:
+    """Largest error of the energy balance that steps of ``m`` leave per step on the bonded
+    linear system, relative to each initial state's energy: the kernels' scheme (RK4, or ABM4
+    started by RK4) on y = (q, q̇) with the dashpots' dissipation integrated alongside, from
+    the columns of ``states`` (the modes' real and imaginary parts)."""
+    n = M.shape[0]
+
+    def energy(y):
+        q, v = y[:n], y[n:]
+        return 0.5 * np.einsum("ik,ij,jk->k", v, M, v) + 0.5 * np.einsum("ik,ij,jk->k", q, K, q)
+
+    def power(y):
+        v = y[n:]
+        return np.einsum("ik,ij,jk->k", v, C, v)
+
+    def rk4(y):
+        f1 = J @ y
+        f2 = J @ (y + 0.5 * h * f1)
+        f3 = J @ (y + 0.5 * h * f2)
+        f4 = J @ (y + h * f3)
+        d = h / 6 * (power(y) + 2 * power(y + 0.5 * h * f1) + 2 * power(y + 0.5 * h * f2)
+                     + power(y + h * f3))
+        return y + h / 6 * (f1 + 2 * f2 + 2 * f3 + f4), d
+
+    e0 = energy(states)
+    if m.name != "abm4":
+        y1, dissipated = rk4(states)
+        return float(np.max(np.abs(energy(y1) - e0 + dissipated) / e0))
+    # ABM4 (PECE on y and the dissipation) after its three RK4 starting steps: the residual it
+    # adds per step over the next eight
+    y, dis, f, p, marks = states, np.zeros(states.shape[1]), [], [], []
+    for step in range(11):
+        f.insert(0, J @ y)
+        p.insert(0, power(y))
+        if step < 3:
+            y, d = rk4(y)
+            dis = dis + d
+        else:
+            ys = y + h / 24 * (55 * f[0] - 59 * f[1] + 37 * f[2] - 9 * f[3])
+            fs, ps = J @ ys, power(ys)
+            y = y + h / 24 * (9 * fs + 19 * f[0] - 5 * f[1] + f[2])
+            dis = dis + h / 24 * (9 * ps + 19 * p[0] - 5 * p[1] + p[2])
+        marks.append(energy(y) - e0 + dis)
+    return float(np.max(np.abs(marks[-1] - marks[2]) / 8 / e0))
+
+
+def stability_limit(model: ReducedModel, name: str, *, duration: float | None = None,
+                    tolerance: float | None = None) -> float:
+    """Largest step (s) of a fixed-step explicit integrator at which the energy balance stays
+    within ``tolerance`` (default the scene's ``analysis.energy_tolerance``) over a run of
+    ``duration`` s (default the scene's): every step may add at most tolerance·h/duration of the
+    energy of any bonded mode (every impact dashpot on for the fixed-step methods), so that a
+    run whose energy sat in the worst mode would still close its balance. Never beyond the
+    :func:`stability_boundary`; inf for the implicit integrators, which are limited instead by
+    the periods they must resolve (:func:`resolution_limit`). For the event stepper under error
+    control (``analysis.rtol`` > 0) this is its boundary: the control keeps its accuracy."""
+    m = method(name)
+    boundary = stability_boundary(model, name)
+    a = model.scene.analysis
+    if not m.explicit or (name == "events" and a.rtol > 0):
+        return boundary
+    tolerance = a.energy_tolerance if tolerance is None else tolerance
+    if duration is None:
+        duration = a.duration or model.scene.build_motion().duration
+    J, M, K, C = _first_order(model, all_impact=name != "events")
+    lam, vectors = np.linalg.eig(J)
+    keep = np.abs(lam) > 0
+    states = np.concatenate([vectors[:, keep].real, vectors[:, keep].imag], axis=1)
+    norms = np.linalg.norm(states, axis=0)
+    states = states[:, norms > 1e-9 * norms.max()]
+    states = states / np.linalg.norm(states, axis=0)
+
+    def ok(h):
+        return _step_residual(m, J, M, K, C, h, states) <= tolerance * h / duration
+
+    grid = boundary * np.geomspace(1e-4, 1.0, 80)
+    bad = [h for h in grid if not ok(h)]
+    if not bad:
+        return boundary
+    hi = bad[0]
+    lo = grid[np.searchsorted(grid, hi) - 1] if hi > grid[0] else 0.0
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if ok(mid) else (lo, mid)
+    return float(lo)
+
+
+#: Steps per period an implicit integrator must take in the shortest bonded mode.
+RESOLUTION = 10
+
+
+def shortest_mode(model: ReducedModel) -> tuple[float, str]:
+    """The shortest bonded period (s) and what moves in it: a story, the rocking or the vertical
+    motion of the base (the DOF holding most of the mode's kinetic energy)."""
+    lin = model.linearised
+    K, _ = lin.bonded_matrices()
+    w2, vecs = scipy.linalg.eigh(K - lin.geometric, np.diag(lin.mass))
+    w2 = np.clip(w2, 1e-300, None)
+    mode = vecs[:, -1]
+    share = mode * mode * lin.mass
+    dof = lin.dofs.names[int(np.argmax(share))]
+    what = {"theta": "rocking", "V": "vertical"}.get(dof, f"story {dof[1:]}")
+    return float(2.0 * np.pi / np.sqrt(w2[-1])), what
+
+
+def resolution_limit(model: ReducedModel) -> tuple[float, str]:
+    """Largest step (s) of an implicit integrator: :data:`RESOLUTION` steps per shortest bonded
+    period, and that mode's description. Unconditional stability lets Newmark and HHT step
+    over a mode, but not resolve it: a mode crossed in a few steps is shifted and damped."""
+    period, what = shortest_mode(model)
+    return period / RESOLUTION, f"the bonded {what} mode, T = {period:.4g} s"
+
+
 @dataclass(frozen=True)
 class StepPlan:
-    """The time step chosen for a run: ``dt`` (s) taken by the integrator, ``output_dt`` (s),
-    ``substeps`` per requested step when subcycling, the ``limit`` and why ``dt`` was chosen."""
+    """The time step chosen for a run: ``dt`` (s) taken by the integrator (the event stepper
+    under error control: the spacing of the points every step meets), ``substeps`` per
+    requested step when subcycling, the ``limit`` the step is checked against and why ``dt``
+    was chosen; ``rtol`` of the error control (0: fixed steps), ``h0`` its first trial step,
+    ``hmax`` its longest and ``output_dt`` the spacing of the states it stores, interpolated
+    within its steps (s; 0: every ``stride`` steps instead)."""
 
     dt: float
     steps: int
@@ -153,22 +280,49 @@ class StepPlan:
     limit: float
     substeps: int
     reason: str
+    rtol: float = 0.0
+    h0: float = math.inf
+    hmax: float = math.inf
+    output_dt: float = 0.0
+
+    @property
+    def rows(self) -> int:
+        """Stored states: every ``stride`` steps, or every ``output_dt`` interpolated."""
+        if self.output_dt > 0:
+            return int(round(self.steps * self.dt / self.output_dt)) + 1
+        return self.steps // self.stride + 1
+
+    def without_histories(self) -> StepPlan:
+        """The same plan storing only the first and last states."""
+        return replace(self, stride=self.steps,
+                       output_dt=self.steps * self.dt if self.output_dt > 0 else 0.0)
 
 
 def time_step(model: ReducedModel, name: str, *, record_dt: float, duration: float,
               dt: float | None = None, subcycle: bool = False,
               output_dt: float | None = None, max_records: int = 20_000_000) -> StepPlan:
-    """Choose or check the step for integrator ``name``.
+    """Choose or check the step for integrator ``name`` over a run of ``duration`` s.
 
-    Automatic: the largest ``record_dt / n`` (n integer, so steps meet every record sample) below
-    both 0.9 times the stability limit and the shortest bonded period over the method's points per
-    period. Requested: refused beyond the stability limit, unless ``subcycle``.
+    Event stepper under error control (the default, ``analysis.rtol`` > 0): the steps meet every
+    multiple of ``dt`` (the record's step unless given), the control picks steps between them,
+    never beyond 0.9 times the stability boundary, and the stored states (every ``output_dt``,
+    default :data:`OUTPUT_DT`) are interpolated within the steps, so that what a run stores
+    does not change its numbers.
+    Fixed steps: automatic is the largest ``record_dt / n`` (n integer, so steps meet every
+    record sample) below both 0.9 times the stability limit and the shortest bonded period over
+    the method's points per period; a requested step beyond the limit is refused, unless
+    ``subcycle``. The implicit integrators refuse a step that cannot resolve the shortest
+    bonded period (:func:`resolution_limit`).
     """
     m = method(name)
-    limit = stability_limit(model, name)
+    a = model.scene.analysis
+    out = output_dt if output_dt is not None else None
+    if name == "events" and a.rtol > 0:
+        return _controlled(model, record_dt, duration, dt, out, max_records)
+    limit = stability_limit(model, name, duration=duration)
     substeps = 1
     if dt is None:
-        shortest = float(model.bonded_periods()[-1])
+        shortest = float(model.linearised.bonded_periods()[-1])
         target = min(shortest / m.points_per_period, 0.9 * limit)
         n = max(1, math.ceil(record_dt / target - 1e-9))
         dt = record_dt / n
@@ -176,16 +330,57 @@ def time_step(model: ReducedModel, name: str, *, record_dt: float, duration: flo
                   f"{shortest:.4g} s, {m.points_per_period} points per period")
     else:
         reason = "requested"
-        if dt > limit:
+        if not m.explicit:
+            largest, what = resolution_limit(model)
+            if dt > largest:
+                raise InputError(
+                    f"analysis.dt = {dt:g} s: integrator {name!r} cannot resolve {what} in "
+                    f"steps this long; valid range is (0, {largest:.4g}] s ({RESOLUTION} steps "
+                    "per period)")
+        elif dt > limit:
             if not subcycle:
                 raise InputError(
                     f"analysis.dt = {dt:g} s is beyond the stability limit {limit:.4g} s of "
-                    f"integrator {name!r} for this scene; use dt <= {limit:.4g} s, set "
-                    "analysis.subcycle = true, or use an implicit integrator (newmark, hht)")
+                    f"integrator {name!r} for this scene (the largest step that keeps the "
+                    f"energy balance within analysis.energy_tolerance = {a.energy_tolerance:g} "
+                    f"over {duration:g} s); use dt <= {limit:.4g} s, set analysis.subcycle = "
+                    "true, or use the event stepper (integrator 'events')")
             substeps = math.ceil(dt / (0.95 * limit))
             reason = f"requested {dt:g} s, subcycled {substeps}x (limit {limit:.4g} s)"
     step = dt / substeps
-    steps = max(1, int(round(duration / step)))
-    out = output_dt if output_dt is not None else max(dt, 0.005)
-    stride = max(1, int(round(out / step)))
+    steps, step = _steps(duration, step)
+    stride = max(1, int(round((out if out is not None else max(dt, 0.005)) / step)))
+    _check_records(steps // stride + 1, max_records)
     return StepPlan(step, steps, stride, limit, substeps, reason)
+
+
+def _steps(duration: float, step: float) -> tuple[int, float]:
+    """Steps that end exactly at ``duration``: ``step`` if it divides it (to round-off), else
+    the next shorter step that does."""
+    steps = max(1, math.ceil(duration / step - 1e-9))
+    return steps, duration / steps
+
+
+def _check_records(rows: int, max_records: int) -> None:
+    if rows > max_records:
+        raise InputError(f"analysis.output_dt: {rows} stored states exceed the limit of "
+                         f"{max_records}; set a longer analysis.output_dt")
+
+
+#: Spacing of the stored states of the event stepper under error control, by default (s).
+OUTPUT_DT = 0.005
+
+
+def _controlled(model, record_dt, duration, dt, output_dt, max_records) -> StepPlan:
+    """The event stepper's plan under error control (see :func:`time_step`)."""
+    a = model.scene.analysis
+    boundary = stability_boundary(model, "events")
+    steps, span = _steps(duration, dt if dt is not None else record_dt)
+    shortest = float(model.linearised.bonded_periods()[-1])
+    h0 = min(shortest / METHODS["events"].points_per_period, 0.9 * boundary, span)
+    rows = max(1, int(round(duration / (output_dt or OUTPUT_DT))))
+    _check_records(rows + 1, max_records)
+    reason = (f"error control: rtol {a.rtol:g}, steps meeting every {span:g} s, at most "
+              f"{0.9 * boundary:.4g} s (0.9 x the stability boundary)")
+    return StepPlan(span, steps, steps, boundary, 1, reason, rtol=a.rtol, h0=h0,
+                    hmax=0.9 * boundary, output_dt=duration / rows)

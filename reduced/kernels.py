@@ -68,6 +68,7 @@ SPRING_DTYPE = np.dtype([
     ("gs", np.float64),   # derived: 1/F0 (story: 1/Fy; 0 if elastic) (1/force)
     ("gd", np.float64),   # derived: 1/δ0 (1/length)
     ("share", np.float64),  # derived: c*/(c + c*), the impact dashpot's share
+    ("arm", np.float64),  # story: its height above the story below, the lever of its shear
 ], align=True)
 
 HISTORY_DTYPE = np.dtype([
@@ -85,11 +86,38 @@ ELASTIC, YIELD_POS, YIELD_NEG = 0, 1, 2  # story modes
 E_INPUT, E_VISCOUS, E_IMPACT, E_PLASTIC = range(4)
 N_ACC = 4
 N_ENERGY = 7  # input, kinetic, strain, gravity, viscous, impact, plastic
-# peaks: six scalars, then two per spring
+# peaks: scalars, then two per spring. P_MOT the largest |overturning moment| Σ arm·shear of
+# the stories; P_CMIN the least contact length of the base; P_ERES the largest |residual| of
+# the energy balance, P_ESCALE its scale (the largest |input| and the initial energy) and
+# P_ETOT0 the balance's value at the start (stored + dissipated − input)
 P_UMIN, P_UMAX, P_THMIN, P_THMAX, P_VMIN, P_VMAX = range(6)
-N_PEAK_SCALARS = 6
+P_MOT, P_CMIN, P_ERES, P_ESCALE, P_ETOT0 = range(6, 11)
+N_PEAK_SCALARS = 11
 
-OK, CHATTER, NONFINITE, NO_CONVERGENCE = 0, 1, 2, 3
+# the frame: constants of the scene's geometry and kinematics that every integrator takes (one
+# float array), and the pivot side of exact kinematics (the one entry that changes in a run)
+F_B = 0        # half-width b of the base (0: no foundation, nothing to overturn)
+F_ECHECK = 1   # steps between checks of the energy balance
+F_EXACT = 2    # 1: exact rocking kinematics (q holds sin θ), 0: small rotations
+F_WTOT = 3     # weight whose centre decides overturning: the stories' and the base's
+F_MB = 4       # mass of the base body at O beyond the stories' (exact kinematics)
+F_IB = 5       # rotary inertia of the base body about O (exact kinematics)
+F_SIDE = 6     # exact kinematics: the edge the base rocks about, +1 or −1
+F_ITH = 7      # index of θ (or sin θ) in q, −1 if the base is fixed
+F_IV = 8       # index of V in q
+F_NFLEX = 9    # story DOFs in q (0 for a rigid structure)
+F_RTOL = 10    # event stepper: relative tolerance of its error control (0: fixed steps)
+F_HMAX = 11    # event stepper: the largest step it takes (s)
+F_H0 = 12      # event stepper: its first trial step under error control (s)
+F_OUTDT = 13   # event stepper under error control: spacing of the stored states (s), which it
+               # interpolates within its steps (0: every ``stride`` steps)
+N_FRAME = 14
+
+OK, CHATTER, NONFINITE, NO_CONVERGENCE, OVERTURNED, STEP_UNDERFLOW = 0, 1, 2, 3, 4, 5
+# counters: [0] steps cut at a switch (events) or the failing step, [1] switches or halvings,
+# [2] right-hand sides or Newton iterations, [3] impacts logged, [4] output rows written,
+# [5] trial steps rejected by the error control
+N_COUNTERS = 6
 SWITCH_TOL = 1e-12
 OVERSHOOT_TOL = 1e-6
 N_SAMPLES = 4
@@ -310,11 +338,12 @@ def rates(q, qd, qdd, P, e, ed, edd):
 
 
 @njit(cache=True, inline="always")
-def accelerations(t, q, qd, natural, minv, P, KG, L, ag, dtg, modes, H, qdd):
+def accelerations(t, q, qd, natural, minv, P, KG, L, ag, dtg, modes, H, frame, story, Mw, qdd):
     """q̈ from the equation of motion; returns the powers (input, viscous, impact, plastic).
 
     ``natural``: each spring's mode is decided by its trial state (fixed-step methods, whose
-    plastic work is counted at the return map instead); otherwise modes are frozen. Springs on
+    plastic work is counted at the return map instead; with exact kinematics the base pivots
+    on the edge of θ's sign); otherwise modes are frozen. Springs on
     the same two DOFs as the last spring (the foundation bed, on θ and V) sum their forces
     locally instead of scattering each into q̈.
     """
@@ -361,8 +390,9 @@ def accelerations(t, q, qd, natural, minv, P, KG, L, ag, dtg, modes, H, qdd):
                 qdd[p.i2] -= p.a2 * f
     qdd[b0] -= fb0
     qdd[b1] -= fb1
-    for i in range(n):
-        qdd[i] *= minv[i]
+    if natural and frame[F_EXACT] > 0.0 and q[int(frame[F_ITH])] != 0.0:
+        frame[F_SIDE] = 1.0 if q[int(frame[F_ITH])] > 0.0 else -1.0
+    pin += finish_accelerations(a, q, qd, minv, frame, story, Mw, qdd)
     return pin, pv, pi, 0.0 if natural else pp
 
 
@@ -375,6 +405,165 @@ def geometric_or_nothing(KG):
             if KG[i, k] != 0.0:
                 return KG
     return np.zeros((KG.shape[0], 0))
+
+
+# ---------------------------------------------------------------------------------------------
+# Exact rocking kinematics
+# ---------------------------------------------------------------------------------------------
+#
+# With ``structure.kinematics = "exact"`` the base rotation enters through s = sin θ, which
+# keeps every spring deformation linear in q (foundation: e = x s − V; story: the drift
+# w_j − w_{j−1} in the base's rotated frame), so the laws, their tables and the switch location
+# are those of small rotations. The base rotates about the edge it leans towards (x = ±b, the
+# pivot of a rigid block): its centre O moves by u_O = ±b (1 − cos θ) horizontally and V
+# vertically, story mass j sits at X_j = u_O + w_j cos θ + h_j sin θ,
+# Y_j = V + h_j (cos θ − 1) − w_j sin θ, and the base body (mass m_b at O, rotary inertia I_b
+# about O) with it. Lagrange's equations in q give M(q) q̈ = Q − (velocity terms); gravity acts
+# on the exact configuration (P-Δ exact). The static compressions carry the weight, so the
+# springs' force increments and gravity's vertical part cancel at rest, as in small rotations.
+
+
+@njit(cache=True, inline="always")
+def pivot(s, frame):
+    """cos θ, and the base centre's horizontal displacement u_O = side·b (1 − cos θ) with its
+    first and second derivatives in s = sin θ."""
+    c = math.sqrt(max(1.0 - s * s, 1e-300))
+    sb = frame[F_SIDE] * frame[F_B]
+    return c, sb * (1.0 - c), sb * s / c, sb / (c * c * c)
+
+
+@njit(cache=True, inline="always")
+def exact_dynamics(a, q, qd, frame, story, R, M):
+    """Add to R (the springs' generalised forces) the inertia, gravity and ground terms of
+    exact kinematics and fill the mass matrix M(q); returns the ground's input power.
+
+    ``story`` rows are (h_j, m_j, W_j) of each story mass; ``a`` the ground acceleration."""
+    n = q.size
+    ith, iv, nflex = int(frame[F_ITH]), int(frame[F_IV]), int(frame[F_NFLEX])
+    s, sd = q[ith], qd[ith]
+    c, _, u1, u2 = pivot(s, frame)
+    c3 = c * c * c
+    for i in range(n):
+        for k in range(n):
+            M[i, k] = 0.0
+    mb, ib = frame[F_MB], frame[F_IB]
+    M[ith, ith] += mb * u1 * u1 + ib / (c * c)
+    M[iv, iv] += mb
+    R[ith] -= mb * u1 * u2 * sd * sd + ib * sd * sd * s / (c3 * c) + a * mb * u1
+    pin = -a * mb * u1 * sd
+    for j in range(story.shape[0]):
+        h, m, W = story[j, 0], story[j, 1], story[j, 2]
+        w = q[j] if j < nflex else 0.0
+        wd = qd[j] if j < nflex else 0.0
+        xs = u1 - w * s / c + h      # ∂X_j/∂s
+        ys = -h * s / c - w          # ∂Y_j/∂s
+        gx = (u2 - w / c3) * sd * sd - 2.0 * (s / c) * sd * wd   # the rest of Ẍ_j
+        gy = -h / c3 * sd * sd - 2.0 * sd * wd                    # the rest of Ÿ_j
+        M[ith, ith] += m * (xs * xs + ys * ys)
+        M[ith, iv] += m * ys
+        M[iv, ith] += m * ys
+        M[iv, iv] += m
+        R[ith] -= m * (xs * gx + ys * gy) + a * m * xs + W * ys
+        R[iv] -= m * gy
+        pin -= a * m * xs * sd
+        if j < nflex:
+            cross = m * (c * xs - s * ys)
+            M[j, j] += m
+            M[j, ith] += cross
+            M[ith, j] += cross
+            M[j, iv] -= m * s
+            M[iv, j] -= m * s
+            R[j] -= m * (c * gx - s * gy) + a * m * c - W * s
+            pin -= a * m * c * wd
+    return pin
+
+
+@njit(cache=True, inline="always")
+def solve_spd(M, r):
+    """Solve M x = r for a small symmetric positive definite M by Cholesky, in place: M is
+    overwritten by its factor and r by x."""
+    n = r.size
+    for k in range(n):
+        d = M[k, k]
+        for p in range(k):
+            d -= M[k, p] * M[k, p]
+        d = math.sqrt(d)
+        M[k, k] = d
+        for i in range(k + 1, n):
+            v = M[i, k]
+            for p in range(k):
+                v -= M[i, p] * M[k, p]
+            M[i, k] = v / d
+    for i in range(n):
+        v = r[i]
+        for p in range(i):
+            v -= M[i, p] * r[p]
+        r[i] = v / M[i, i]
+    for i in range(n - 1, -1, -1):
+        v = r[i]
+        for p in range(i + 1, n):
+            v -= M[p, i] * r[p]
+        r[i] = v / M[i, i]
+
+
+@njit(cache=True, inline="always")
+def finish_accelerations(a, q, qd, minv, frame, story, M, qdd):
+    """Turn the generalised forces in qdd into accelerations: M⁻¹ for small rotations (M
+    diagonal); the exact kinematics' terms and its M(q) otherwise. Returns the extra input
+    power (exact kinematics: the ground's; small: none, L a q̇ is counted by the caller)."""
+    if frame[F_EXACT] > 0.0:
+        pin = exact_dynamics(a, q, qd, frame, story, qdd, M)
+        solve_spd(M, qdd)
+        return pin
+    for i in range(q.size):
+        qdd[i] *= minv[i]
+    return 0.0
+
+
+@njit(cache=True)
+def exact_energy(q, qd, frame, story, weight):
+    """(kinetic, gravity) energy of exact kinematics: ½ Σ m |Ẋ|² + ½ I_b θ̇², and
+    W V + Σ W_j (h_j (cos θ − 1) − w_j sin θ) (W the weight on the foundation)."""
+    ith, iv, nflex = int(frame[F_ITH]), int(frame[F_IV]), int(frame[F_NFLEX])
+    s, sd, vd = q[ith], qd[ith], qd[iv]
+    c, _, u1, _ = pivot(s, frame)
+    mb, ib = frame[F_MB], frame[F_IB]
+    kinetic = 0.5 * mb * ((u1 * sd) ** 2 + vd * vd) + 0.5 * ib * (sd / c) ** 2
+    gravity = weight * q[iv]
+    for j in range(story.shape[0]):
+        h, m, W = story[j, 0], story[j, 1], story[j, 2]
+        w = q[j] if j < nflex else 0.0
+        wd = qd[j] if j < nflex else 0.0
+        xd = c * wd + (u1 - w * s / c + h) * sd
+        yd = -s * wd + (-h * s / c - w) * sd + vd
+        kinetic += 0.5 * m * (xd * xd + yd * yd)
+        gravity += W * (h * (c - 1.0) - w * s)
+    return kinetic, gravity
+
+
+@njit(cache=True)
+def overturn_ratio(q, frame, story):
+    """|x_G − x_O|/b, x_G the lateral position of the centre of the weight (the stories' and the
+    base's) in the exact geometry of the state, and x_O the base centre's rest position. At 1
+    the centre is over the edge the base rocks about: past the toppling angle (a rigid block:
+    θ = α = atan(b/h)). Small rotations are judged on the same geometry, their state read as
+    θ and deflections w_j = x_j − h_j θ: the model's own restoring moment vanishes only at
+    θ = b/h, past the real structure's toppling."""
+    b = frame[F_B]
+    if b <= 0.0:
+        return 0.0
+    ith, nflex = int(frame[F_ITH]), int(frame[F_NFLEX])
+    exact = frame[F_EXACT] > 0.0
+    s = q[ith] if exact else math.sin(q[ith])
+    c = math.sqrt(max(1.0 - s * s, 0.0))
+    moment = frame[F_WTOT] * b * (1.0 - c) * (1.0 if s >= 0.0 else -1.0)  # u_O of every weight
+    for j in range(story.shape[0]):
+        h = story[j, 0]
+        w = 0.0
+        if j < nflex:
+            w = q[j] if exact else q[j] - h * q[ith]
+        moment += story[j, 2] * (w * c + h * s)
+    return abs(moment / frame[F_WTOT]) / b
 
 
 @njit(cache=True, inline="always")
@@ -405,16 +594,20 @@ def rk4_combine(h, q, qd, acc, k1, k2, k3, k4, p1, p2, p3, p4, q1, qd1, acc1):
 
 
 @njit(cache=True, **HOT)
-def rk4_step(t, h, q, qd, acc, natural, minv, P, KG, L, ag, dtg, modes, H, k1, k2, k3, k4, qs,
-             qds, q1, qd1, acc1):
+def rk4_step(t, h, q, qd, acc, natural, minv, P, KG, L, ag, dtg, modes, H, frame, story, Mw,
+             k1, k2, k3, k4, qs, qds, q1, qd1, acc1):
     """One classical RK4 step of size h with the laws of :func:`accelerations`."""
-    p1 = accelerations(t, q, qd, natural, minv, P, KG, L, ag, dtg, modes, H, k1)
+    p1 = accelerations(t, q, qd, natural, minv, P, KG, L, ag, dtg, modes, H, frame, story, Mw,
+                       k1)
     rk4_stage_state(2, h, q, qd, k1, k2, k3, qs, qds)
-    p2 = accelerations(t + 0.5 * h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes, H, k2)
+    p2 = accelerations(t + 0.5 * h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes, H, frame,
+                       story, Mw, k2)
     rk4_stage_state(3, h, q, qd, k1, k2, k3, qs, qds)
-    p3 = accelerations(t + 0.5 * h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes, H, k3)
+    p3 = accelerations(t + 0.5 * h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes, H, frame,
+                       story, Mw, k3)
     rk4_stage_state(4, h, q, qd, k1, k2, k3, qs, qds)
-    p4 = accelerations(t + h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes, H, k4)
+    p4 = accelerations(t + h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes, H, frame, story,
+                       Mw, k4)
     rk4_combine(h, q, qd, acc, k1, k2, k3, k4, p1, p2, p3, p4, q1, qd1, acc1)
 
 
@@ -589,7 +782,7 @@ def bed_forces(T, x, xd, y, yd):
 
 
 @njit(cache=True, inline="always")
-def frozen_accelerations(t, q, qd, minv, P, KG, L, ag, dtg, Tg, Tb, qdd):
+def frozen_accelerations(t, q, qd, minv, P, KG, L, ag, dtg, Tg, Tb, frame, story, Mw, qdd):
     """q̈ with every spring held in its tabulated mode (event stepper); returns the powers
     (input, viscous, impact, plastic)."""
     n = q.size
@@ -626,23 +819,25 @@ def frozen_accelerations(t, q, qd, minv, P, KG, L, ag, dtg, Tg, Tb, qdd):
         pv += bv
         pi += bi
         pp += bp
-    for i in range(n):
-        qdd[i] *= minv[i]
+    pin += finish_accelerations(a, q, qd, minv, frame, story, Mw, qdd)
     return pin, pv, pi, pp
 
 
 @njit(cache=True, **HOT)
-def frozen_rk4_step(t, h, q, qd, acc, k1, p1, minv, P, KG, L, ag, dtg, Tg, Tb, k2, k3, k4, qs,
-                    qds, q1, qd1, acc1):
+def frozen_rk4_step(t, h, q, qd, acc, k1, p1, minv, P, KG, L, ag, dtg, Tg, Tb, frame, story, Mw,
+                    k2, k3, k4, qs, qds, q1, qd1, acc1):
     """RK4 step of the event stepper, every spring in its tabulated mode, from its first stage
     k1 (with its powers p1): the acceleration at the end of the step before (three
     right-hand sides a step, with the one at its end)."""
     rk4_stage_state(2, h, q, qd, k1, k2, k3, qs, qds)
-    p2 = frozen_accelerations(t + 0.5 * h, qs, qds, minv, P, KG, L, ag, dtg, Tg, Tb, k2)
+    p2 = frozen_accelerations(t + 0.5 * h, qs, qds, minv, P, KG, L, ag, dtg, Tg, Tb, frame, story,
+                              Mw, k2)
     rk4_stage_state(3, h, q, qd, k1, k2, k3, qs, qds)
-    p3 = frozen_accelerations(t + 0.5 * h, qs, qds, minv, P, KG, L, ag, dtg, Tg, Tb, k3)
+    p3 = frozen_accelerations(t + 0.5 * h, qs, qds, minv, P, KG, L, ag, dtg, Tg, Tb, frame, story,
+                              Mw, k3)
     rk4_stage_state(4, h, q, qd, k1, k2, k3, qs, qds)
-    p4 = frozen_accelerations(t + h, qs, qds, minv, P, KG, L, ag, dtg, Tg, Tb, k4)
+    p4 = frozen_accelerations(t + h, qs, qds, minv, P, KG, L, ag, dtg, Tg, Tb, frame, story, Mw,
+                              k4)
     rk4_combine(h, q, qd, acc, k1, k2, k3, k4, p1, p2, p3, p4, q1, qd1, acc1)
 
 
@@ -1053,7 +1248,8 @@ def hermite_extreme(y0, d0, y1, d1, h, current, find_max):
 def track_peaks(h, q0, qd0, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith, iv, peaks):
     """Update peaks over a step [t, t+h], refining interior extrema by Hermite interpolation.
 
-    Scalars: top deformation u (sum of story drifts), θ, V. Per spring j: slot A = max opening
+    Scalars: top deformation u (sum of story drifts), θ, V, and at the step's end the
+    overturning moment Σ arm·shear of the stories. Per spring j: slot A = max opening
     (foundation: gap −d; story: |drift|), slot B = max |force| at the step ends (foundation:
     spring compression; story: its shear, dashpot included, so story 0 gives the base shear).
     """
@@ -1073,6 +1269,7 @@ def track_peaks(h, q0, qd0, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith
         a, b, c, d = q0[iv], qd0[iv], q1[iv], qd1[iv]
         peaks[P_VMIN] = hermite_extreme(a, b, c, d, h, min(peaks[P_VMIN], c), False)
         peaks[P_VMAX] = hermite_extreme(a, b, c, d, h, max(peaks[P_VMAX], c), True)
+    moment = 0.0
     for j in range(e0.size):
         p = P[j]
         a = N_PEAK_SCALARS + 2 * j
@@ -1081,7 +1278,9 @@ def track_peaks(h, q0, qd0, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith
             low = hermite_extreme(e0[j], ed0[j], e1[j], ed1[j], h, min(e1[j], -peaks[a]), False)
             peaks[a] = max(top, -low)
             fep = min(max(p.k * (e1[j] - H[j].ep), -p.fy), p.fy)  # after the return map
-            peaks[a + 1] = max(peaks[a + 1], abs(p.kh * e1[j] + fep + p.c * ed1[j]))
+            shear = p.kh * e1[j] + fep + p.c * ed1[j]
+            peaks[a + 1] = max(peaks[a + 1], abs(shear))
+            moment += p.arm * shear
         else:
             # gap = −d = (ep − δ0) − e, largest where e is smallest
             offset = H[j].ep - p.d0
@@ -1091,6 +1290,7 @@ def track_peaks(h, q0, qd0, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith
             if modes[j] != SEPARATED:
                 d1 = p.d0 + e1[j] - H[j].ep
                 peaks[a + 1] = max(peaks[a + 1], min(p.k * max(d1, 0.0), p.fy))
+    peaks[P_MOT] = max(peaks[P_MOT], abs(moment))
 
 
 @njit(cache=True, fastmath=FAST, **HOT)
@@ -1122,39 +1322,54 @@ def current_plastic(mode, p, e, ep):
 
 
 @njit(cache=True, **HOT)
-def record(k, t, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e, ed, out_t,
+def spring_state(j, p, mode, h, e):
+    """(plastic deformation now, spring force without its dashpot, strain energy) of spring j
+    (foundation: total compression k d and ½ k d² while in contact)."""
+    ep = current_plastic(mode, p, e, h.ep)
+    if p.kind == STORY:
+        fep = p.k * (e - ep)
+        return ep, p.kh * e + fep, 0.5 * p.kh * e * e + 0.5 * fep * (e - ep)
+    d = p.d0 + e - ep
+    if mode == SEPARATED or (p.kind == UPLIFT and d <= 0.0):
+        return ep, 0.0, 0.0
+    return ep, p.k * d, 0.5 * p.k * d * d
+
+
+@njit(cache=True)
+def kinetic_gravity(q, qd, minv, KG, weight, frame, story):
+    """(kinetic, gravity) energy: ½ q̇ᵀ M q̇ and W V + ½ qᵀ K_G q, or exact kinematics'."""
+    if frame[F_EXACT] > 0.0:
+        return exact_energy(q, qd, frame, story, weight)
+    kinetic = 0.0
+    for i in range(q.size):
+        kinetic += 0.5 * qd[i] * qd[i] / minv[i]
+    iv = int(frame[F_IV])
+    gravity = weight * q[iv] if iv >= 0 else 0.0
+    for i in range(q.size):
+        for m in range(KG.shape[1]):
+            gravity += 0.5 * q[i] * KG[i, m] * q[m]
+    return kinetic, gravity
+
+
+@njit(cache=True, **HOT)
+def record(k, t, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story, out_t,
            out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy):
     """Store the state at output index k."""
     n = q.size
     deformations(q, qd, P, e, ed)
     out_t[k] = t
-    kinetic = 0.0
     for i in range(n):
         out_q[k, i] = q[i]
         out_qd[k, i] = qd[i]
-        kinetic += 0.5 * qd[i] * qd[i] / minv[i]
     strain = 0.0
     for j in range(e.size):
-        p = P[j]
-        ep = current_plastic(modes[j], p, e[j], H[j].ep)
+        ep, f, w = spring_state(j, P[j], modes[j], H[j], e[j])
         out_e[k, j] = e[j]
         out_mode[k, j] = modes[j]
         out_ep[k, j] = ep
-        if p.kind == STORY:
-            fep = p.k * (e[j] - ep)
-            out_f[k, j] = p.kh * e[j] + fep
-            strain += 0.5 * p.kh * e[j] * e[j] + 0.5 * fep * (e[j] - ep)
-        else:
-            d = p.d0 + e[j] - ep
-            if modes[j] == SEPARATED or (p.kind == UPLIFT and d <= 0.0):
-                out_f[k, j] = 0.0
-            else:
-                out_f[k, j] = p.k * d
-                strain += 0.5 * p.k * d * d
-    gravity = weight * q[iv] if iv >= 0 else 0.0
-    for i in range(n):
-        for m in range(KG.shape[1]):
-            gravity += 0.5 * q[i] * KG[i, m] * q[m]
+        out_f[k, j] = f
+        strain += w
+    kinetic, gravity = kinetic_gravity(q, qd, minv, KG, weight, frame, story)
     out_energy[k, 0] = acc[E_INPUT]
     out_energy[k, 1] = kinetic
     out_energy[k, 2] = strain - e_ref
@@ -1162,6 +1377,75 @@ def record(k, t, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e, ed, ou
     out_energy[k, 4] = acc[E_VISCOUS]
     out_energy[k, 5] = acc[E_IMPACT]
     out_energy[k, 6] = acc[E_PLASTIC]
+
+
+@njit(cache=True, **HOT)
+def energy_balance(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story):
+    """Stored + dissipated − input energy at a state: constant for an exact integration."""
+    deformations(q, qd, P, e, ed)
+    strain = 0.0
+    for j in range(e.size):
+        strain += spring_state(j, P[j], modes[j], H[j], e[j])[2]
+    kinetic, gravity = kinetic_gravity(q, qd, minv, KG, weight, frame, story)
+    return (kinetic + strain - e_ref + gravity + acc[E_VISCOUS] + acc[E_IMPACT] + acc[E_PLASTIC]
+            - acc[E_INPUT])
+
+
+@njit(cache=True, **HOT)
+def check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story, peaks):
+    """Update the largest residual of the energy balance and its scale (the largest |input|)."""
+    total = energy_balance(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story)
+    peaks[P_ERES] = max(peaks[P_ERES], abs(total - peaks[P_ETOT0]))
+    peaks[P_ESCALE] = max(peaks[P_ESCALE], abs(acc[E_INPUT]))
+
+
+@njit(cache=True, **HOT)
+def start_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story, peaks):
+    """The balance's datum at the start, and its scale: the initial stored energy."""
+    total = energy_balance(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story)
+    peaks[P_ETOT0] = total
+    peaks[P_ESCALE] = max(peaks[P_ESCALE], abs(total))
+
+
+@njit(cache=True, inline="always")
+def segment_contact(x0, x1, d0, d1):
+    """Length in contact of a piece of base between two springs, d linear between them."""
+    if d0 > 0.0 and d1 > 0.0:
+        return x1 - x0
+    if d0 > 0.0 or d1 > 0.0:
+        return max(d0, d1) / (abs(d0) + abs(d1)) * (x1 - x0)
+    return 0.0
+
+
+@njit(cache=True, **HOT)
+def bed_contact_length(T, x, y, b):
+    """Contact length of the bed (its springs by increasing x): where d = e − T_GAP > 0, d
+    linear between springs and constant beyond the outer ones to the edges ±b."""
+    total = 0.0
+    x_prev, d_prev = -b, 0.0
+    for k in range(T.shape[1]):
+        xk = T[T_A0, k]
+        dk = T[T_A0, k] * x + T[T_A1, k] * y - T[T_GAP, k]
+        if k == 0:
+            d_prev = dk
+        total += segment_contact(x_prev, xk, d_prev, dk)
+        x_prev, d_prev = xk, dk
+    return total + segment_contact(x_prev, b, d_prev, d_prev)
+
+
+@njit(cache=True, **HOT)
+def springs_contact_length(P, H, e, first, b):
+    """:func:`bed_contact_length` from the springs' records (foundation springs from
+    ``first`` on, by increasing x) and their deformations e."""
+    total = 0.0
+    x_prev, d_prev = -b, 0.0
+    for j in range(first, P.size):
+        dk = P[j].d0 + e[j] - H[j].ep
+        if j == first:
+            d_prev = dk
+        total += segment_contact(x_prev, P[j].x, d_prev, dk)
+        x_prev, d_prev = P[j].x, dk
+    return total + segment_contact(x_prev, b, d_prev, d_prev)
 
 
 @njit(cache=True, **HOT)
@@ -1218,13 +1502,65 @@ def advance(q, qd, a, acc, e, ed, edd, q1, qd1, a1, acc1, e1, ed1, edd1):
         edd[j] = edd1[j]
 
 
+@njit(cache=True, inline="always")
+def error_ratio(h, q, qd, q1, qd1, k3, k4, a1, floor, qpeak, rtol):
+    """The trial step's local error over its tolerance (≤ 1: accept). RK4 and its embedded
+    third-order companion that replaces the last stage by the acceleration at the step's end
+    (first same as last) differ by y₁ − y₁* = h/6 (F₄ − F₅): h/6 (q̇ + h k₃ − q̇₁) in q and
+    h/6 (k₄ − q̈₁) in q̇. Each component is measured against ``rtol`` times the largest
+    magnitude it has had in the run (or its floor, the scene's static scale)."""
+    n = q.size
+    worst = 0.0
+    for i in range(n):
+        eq = h / 6.0 * abs(qd[i] + h * k3[i] - qd1[i])
+        ev = h / 6.0 * abs(k4[i] - a1[i])
+        sq = rtol * max(abs(q1[i]), qpeak[i], floor[i])
+        sv = rtol * max(abs(qd1[i]), qpeak[n + i], floor[n + i])
+        worst = max(worst, eq / sq, ev / sv)
+    return worst
+
+
+@njit(cache=True, inline="always")
+def note_magnitudes(q, qd, qpeak):
+    """Largest |q| and |q̇| so far, per component (the error control's scale)."""
+    n = q.size
+    for i in range(n):
+        qpeak[i] = max(qpeak[i], abs(q[i]))
+        qpeak[n + i] = max(qpeak[n + i], abs(qd[i]))
+
+
+@njit(cache=True, inline="always")
+def stop_row(step, stride):
+    """Output row for a state that ends the run inside macro step ``step``: the next row."""
+    return step // stride + 1
+
+
+@njit(cache=True, **HOT)
+def record_between(row, t_out, t, h, q, qd, a0, q1, qd1, a1, acc, acc1, p0, p1, qs, qds, acc_s,
+                   P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story, out_t, out_q,
+                   out_qd, out_e, out_f, out_mode, out_ep, out_energy):
+    """Store the state at time t_out inside the accepted step [t, t + h], in which every spring
+    kept its mode: q and q̇ on the step's quintic interpolant (q, q̇, q̈ at both ends), the
+    energy accumulators on the cubic through their values and rates (the powers p0, p1)."""
+    s = (t_out - t) / h
+    for i in range(q.size):
+        m = quintic(h, q[i], qd[i], a0[i], q1[i], qd1[i], a1[i])
+        qs[i], qds[i] = quintic_at(m, s, h)
+    for c in range(N_ACC):
+        acc_s[c] = hermite(s, h, acc[c], p0[c], acc1[c], p1[c])[0]
+    record(row, t_out, qs, qds, acc_s, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story,
+           out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+
+
 @njit(cache=True)
-def integrate_events(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, ith,
-                     iv, n_story, max_switches, out_t, out_q, out_qd, out_e, out_f, out_mode,
+def integrate_events(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, frame,
+                     story, floor, max_switches, out_t, out_q, out_qd, out_e, out_f, out_mode,
                      out_ep, out_energy, peaks, counters, impacts, H):
-    """RK4 with switch location. ``counters`` = [steps cut at a switch, springs switched, rhs
-    calls, impacts logged]. ``H`` is the spring history (:data:`HISTORY_DTYPE`, zeros at rest);
-    it holds the final history on return, as in every integrator here.
+    """RK4 with switch location and, when ``frame[F_RTOL]`` > 0, error control.
+    ``counters`` (:data:`N_COUNTERS`): steps cut at a switch, springs switched, rhs calls,
+    impacts logged, output rows written, trial steps rejected. ``H`` is the spring history
+    (:data:`HISTORY_DTYPE`, zeros at rest); it holds the final history on return, as in every
+    integrator here. ``floor`` (2n) are the error control's smallest scales of q and q̇.
 
     ``impacts`` (rows × 5) logs each activation of an impact damper: time of recontact, spring,
     closing velocity v₀, and time and closing velocity when the damper locked (NaN if it never
@@ -1236,9 +1572,13 @@ def integrate_events(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weigh
     its start up to that switch, where every spring past its limit is switched. A cut that falls
     short of the switch is tried once more on the interpolant raised by what it missed
     (:func:`relocate`); if that too falls short, it ends a step without a switch, and the next
-    trial finds the switch at its start. The acceleration at the end of a step is the first stage of the next. While impact
-    dashpots act, steps are capped at their stable length. The springs off the bed keep
-    (e, ė, ë) in arrays; the bed's follow from the state of its two DOFs.
+    trial finds the switch at its start. With exact kinematics the base's change of pivot
+    (sin θ changing sign) is located the same way. Steps meet every multiple of ``dt`` (the
+    record's samples and the outputs); between them, under error control, a trial whose local
+    error (:func:`error_ratio`) exceeds the tolerance is retried shorter, and the next trial
+    grows or shrinks with (tolerance/error)^¼. While impact dashpots act, steps are capped at
+    their stable length. The springs off the bed keep (e, ė, ë) in arrays; the bed's follow
+    from the state of its two DOFs.
     """
     ns, n = P.size, q0.size
     KG = geometric_or_nothing(KG)
@@ -1255,42 +1595,96 @@ def integrate_events(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weigh
     open_impact = np.full(ns, -1, dtype=np.int64)
     a0, a1, k2, k3, k4 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
     qs, qds, q1, qd1 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
+    Mw, qpeak = np.zeros((n, n)), np.zeros(2 * n)
     q, qd = q0.copy(), qd0.copy()
-    acc, acc1 = np.zeros(N_ACC), np.zeros(N_ACC)
+    acc, acc1, acc_s = np.zeros(N_ACC), np.zeros(N_ACC), np.zeros(N_ACC)
     e_ref = static_strain_energy(P)
-    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e_all, ed_all, out_t,
-           out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+    start_side(q, qd, frame)
+    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e_all, ed_all, frame, story,
+           out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+    counters[4] = 1
+    start_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e_all, ed_all, frame, story,
+                 peaks)
     return march_events(q, qd, acc, modes, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight,
-                        ith, iv, n_story, max_switches, e_ref, Tg, Tb, e0, ed0, edd0, e1, ed1,
+                        frame, story, floor, max_switches, e_ref, Tg, Tb, e0, ed0, edd0, e1, ed1,
                         edd1, e_all, ed_all, margin, bed, a0, a1, k2, k3, k4, qs, qds, q1, qd1,
-                        acc1, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy,
-                        peaks, counters, impacts, open_impact)
+                        acc1, acc_s, Mw, qpeak, out_t, out_q, out_qd, out_e, out_f, out_mode,
+                        out_ep, out_energy, peaks, counters, impacts, open_impact)
+
+
+@njit(cache=True, **HOT)
+def start_side(q, qd, frame):
+    """Exact kinematics: the edge the base starts rocking about, from the sign of θ (or θ̇)."""
+    if frame[F_EXACT] > 0.0:
+        ith = int(frame[F_ITH])
+        lean = q[ith] if q[ith] != 0.0 else qd[ith]
+        frame[F_SIDE] = -1.0 if lean < 0.0 else 1.0
+
+
+@njit(cache=True, **HOT)
+def after_step(q, P, Tb, frame, story, peaks):
+    """Contact length of the bed at an accepted state, into its least; True if the state is
+    past the toppling angle (:func:`overturn_ratio`)."""
+    b = frame[F_B]
+    if b <= 0.0:
+        return False
+    if Tb.shape[1] > 0:
+        last = P[P.size - 1]
+        peaks[P_CMIN] = min(peaks[P_CMIN], bed_contact_length(Tb, q[last.i0], q[last.i1], b))
+    return overturn_ratio(q, frame, story) >= 1.0
 
 
 @njit(cache=True, **HOT)
 def march_events(q, qd, acc, modes, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight,
-                 ith, iv, n_story, max_switches, e_ref, Tg, Tb, e0, ed0, edd0, e1, ed1, edd1,
-                 e_all, ed_all, margin, bed, a0, a1, k2, k3, k4, qs, qds, q1, qd1, acc1, out_t,
-                 out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy, peaks, counters,
-                 impacts, open_impact):
+                 frame, story, floor, max_switches, e_ref, Tg, Tb, e0, ed0, edd0, e1, ed1, edd1,
+                 e_all, ed_all, margin, bed, a0, a1, k2, k3, k4, qs, qds, q1, qd1, acc1, acc_s,
+                 Mw, qpeak, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy,
+                 peaks, counters, impacts, open_impact):
     """The time loop of :func:`integrate_events`, in the workspace it allocated; every helper
-    is inlined and nothing is reference-counted (the loop never allocates)."""
+    is inlined and nothing is reference-counted (the loop never allocates). Under error
+    control the stored states are interpolated within the steps every ``frame[F_OUTDT]``
+    (:func:`record_between`), so that what is stored does not change the steps taken."""
     t = 0.0
-    p0 = frozen_accelerations(t, q, qd, minv, P, KG, L, ag, dtg, Tg, Tb, a0)
+    out_dt = frame[F_OUTDT]
+    dense = out_dt > 0.0
+    row = 1  # the next stored state
+    ith, iv, n_story = int(frame[F_ITH]), int(frame[F_IV]), int(frame[F_NFLEX])
+    exact = frame[F_EXACT] > 0.0
+    rtol, hmax = frame[F_RTOL], frame[F_HMAX]
+    h_adapt = frame[F_H0] if rtol > 0.0 else np.inf
+    echeck = max(1, int(frame[F_ECHECK]))
+    p0 = frozen_accelerations(t, q, qd, minv, P, KG, L, ag, dtg, Tg, Tb, frame, story, Mw, a0)
     counters[2] += 1
     rates(q, qd, a0, P, e0, ed0, edd0)
+    note_magnitudes(q, qd, qpeak)
+    if after_step(q, P, Tb, frame, story, peaks):
+        return OVERTURNED  # released past its toppling angle: the initial row is the result
     for step in range(nsteps):
         t_end = (step + 1) * dt
         t_tol = 1e-10 * dt + 8.0 * np.finfo(np.float64).eps * t_end
         switches = 0
         while t_end - t > t_tol:
-            h = min(t_end - t, impact_step_cap(P, H))
+            h = min(t_end - t, impact_step_cap(P, H), h_adapt, hmax)
             t1 = t + h if t_end - (t + h) > t_tol else t_end
-            frozen_rk4_step(t, h, q, qd, acc, a0, p0, minv, P, KG, L, ag, dtg, Tg, Tb, k2, k3,
-                            k4, qs, qds, q1, qd1, acc1)
-            p1 = frozen_accelerations(t1, q1, qd1, minv, P, KG, L, ag, dtg, Tg, Tb, a1)
+            frozen_rk4_step(t, h, q, qd, acc, a0, p0, minv, P, KG, L, ag, dtg, Tg, Tb, frame,
+                            story, Mw, k2, k3, k4, qs, qds, q1, qd1, acc1)
+            p1 = frozen_accelerations(t1, q1, qd1, minv, P, KG, L, ag, dtg, Tg, Tb, frame, story,
+                                      Mw, a1)
             counters[2] += 4
-            if not finite(q1, qd1):
+            good = finite(q1, qd1) and finite(a1, a1)
+            if rtol > 0.0:
+                ratio = error_ratio(h, q, qd, q1, qd1, k3, k4, a1, floor, qpeak, rtol) \
+                    if good else np.inf
+                if ratio > 1.0:
+                    counters[5] += 1
+                    h_adapt = h * (max(0.1, 0.9 * ratio ** -0.25) if good else 0.1)
+                    if h_adapt <= 1e-12 * max(dt, t_end):
+                        counters[0] = step
+                        return STEP_UNDERFLOW
+                    continue
+                grown = h * (min(4.0, 0.9 * ratio ** -0.25) if ratio > 0.0 else 4.0)
+                h_adapt = grown if h >= h_adapt else max(h_adapt, grown)
+            if not good:
                 counters[0] = step
                 return NONFINITE
             rates(q1, qd1, a1, P, e1, ed1, edd1)
@@ -1298,20 +1692,31 @@ def march_events(q, qd, acc, modes, H, dt, nsteps, stride, minv, P, KG, L, ag, d
             x1, y1 = bed_state(P, q1, qd1, a1)
             s, spring = first_crossing(h, P, Tg, Tb, x0, y0, x1, y1, e0, ed0, edd0, e1, ed1,
                                        edd1, margin)
-            if spring >= 0:  # re-integrate up to the switch
-                m = spring_quintic(spring, h, Tb, x0, y0, x1, y1, e0, ed0, edd0, e1, ed1, edd1)
+            flip = False
+            if exact:  # the base changes pivot where sin θ changes sign
+                m = quintic(h, q[ith], qd[ith], a0[ith], q1[ith], qd1[ith], a1[ith])
+                c = condition_polynomial(0.0, frame[F_SIDE], 0.0, m, h)
+                sp = condition_crossing(c, s)
+                if sp < s:
+                    s, spring, flip = sp, -1, True
+            if spring >= 0 or flip:  # re-integrate up to the switch
+                if spring >= 0:
+                    m = spring_quintic(spring, h, Tb, x0, y0, x1, y1, e0, ed0, edd0, e1, ed1,
+                                       edd1)
                 tau = min(max(s * h, t_tol), h)
-                frozen_rk4_step(t, tau, q, qd, acc, a0, p0, minv, P, KG, L, ag, dtg, Tg, Tb, k2,
-                                k3, k4, qs, qds, q1, qd1, acc1)
+                frozen_rk4_step(t, tau, q, qd, acc, a0, p0, minv, P, KG, L, ag, dtg, Tg, Tb,
+                                frame, story, Mw, k2, k3, k4, qs, qds, q1, qd1, acc1)
                 counters[2] += 3
-                e, ed = deformation(P[spring], q1, qd1)
-                if validity(modes[spring], P[spring], e, ed, H[spring]) >= -SWITCH_TOL:
-                    s = relocate(spring, tau / h, m, h, P, modes, H, Tg, Tb, q1, qd1)
-                    if s < 1.0:  # once more, on the interpolant raised by what it missed
-                        tau = min(max(s * h, t_tol), h)
-                        frozen_rk4_step(t, tau, q, qd, acc, a0, p0, minv, P, KG, L, ag, dtg, Tg,
-                                        Tb, k2, k3, k4, qs, qds, q1, qd1, acc1)
-                        counters[2] += 3
+                if spring >= 0:
+                    e, ed = deformation(P[spring], q1, qd1)
+                    if validity(modes[spring], P[spring], e, ed, H[spring]) >= -SWITCH_TOL:
+                        s = relocate(spring, tau / h, m, h, P, modes, H, Tg, Tb, q1, qd1)
+                        if s < 1.0:  # once more, on the interpolant raised by what it missed
+                            tau = min(max(s * h, t_tol), h)
+                            frozen_rk4_step(t, tau, q, qd, acc, a0, p0, minv, P, KG, L, ag, dtg,
+                                            Tg, Tb, frame, story, Mw, k2, k3, k4, qs, qds, q1,
+                                            qd1, acc1)
+                            counters[2] += 3
                 h = tau
                 t1 = t + h if t_end - (t + h) > t_tol else t_end
                 deformations(q1, qd1, P, e1, ed1)
@@ -1319,42 +1724,87 @@ def march_events(q, qd, acc, modes, H, dt, nsteps, stride, minv, P, KG, L, ag, d
             track_peaks(h, q, qd, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith, iv,
                         peaks)
             bed_peaks(Tb, h, x0, y0, x1, y1, bed)
+            if dense and row < out_t.size and row * out_dt <= t1 + t_tol:
+                if spring >= 0 or flip:  # q̈ at the cut, in the modes of the step
+                    p1 = frozen_accelerations(t1, q1, qd1, minv, P, KG, L, ag, dtg, Tg, Tb,
+                                              frame, story, Mw, a1)
+                    counters[2] += 1
+                while row < out_t.size and row * out_dt <= t1 + t_tol:
+                    record_between(row, min(row * out_dt, t1), t, h, q, qd, a0, q1, qd1, a1, acc,
+                                   acc1, p0, p1, qs, qds, acc_s, P, modes, H, minv, KG, weight,
+                                   e_ref, e_all, ed_all, frame, story, out_t, out_q, out_qd,
+                                   out_e, out_f, out_mode, out_ep, out_energy)
+                    row += 1
+                counters[4] = row
             t = t1
-            if spring < 0:  # the whole step, without a switch
+            if spring < 0 and not flip:  # the whole step, without a switch
                 advance(q, qd, a0, acc, e0, ed0, edd0, q1, qd1, a1, acc1, e1, ed1, edd1)
                 p0 = p1
-                continue
-            copy(q, q1)
-            copy(qd, qd1)
-            copy(acc, acc1)
-            switched = apply_switches(t, P, modes, H, q, qd, Tg, Tb, impacts, open_impact,
-                                      counters)
-            counters[0] += 1
-            counters[1] += switched
-            switches += max(switched, 1)
-            if switches > max_switches:
-                counters[1] = step
-                return CHATTER
-            p0 = frozen_accelerations(t, q, qd, minv, P, KG, L, ag, dtg, Tg, Tb, a0)
-            counters[2] += 1
-            rates(q, qd, a0, P, e0, ed0, edd0)
-        if (step + 1) % stride == 0:
-            record((step + 1) // stride, t_end, q, qd, acc, P, modes, H, minv, KG,
-                   weight, iv, e_ref, e_all, ed_all, out_t, out_q, out_qd, out_e, out_f,
-                   out_mode, out_ep, out_energy)
+            else:
+                copy(q, q1)
+                copy(qd, qd1)
+                copy(acc, acc1)
+                if flip:
+                    frame[F_SIDE] = -frame[F_SIDE]
+                switched = apply_switches(t, P, modes, H, q, qd, Tg, Tb, impacts, open_impact,
+                                          counters)
+                counters[0] += 1
+                counters[1] += switched
+                switches += max(switched, 1)
+                if switches > max_switches:
+                    counters[1] = step
+                    return CHATTER
+                p0 = frozen_accelerations(t, q, qd, minv, P, KG, L, ag, dtg, Tg, Tb, frame,
+                                          story, Mw, a0)
+                counters[2] += 1
+                rates(q, qd, a0, P, e0, ed0, edd0)
+            note_magnitudes(q, qd, qpeak)
+            if after_step(q, P, Tb, frame, story, peaks):
+                last = row if dense else stop_row(step, stride)
+                if last < out_t.size:
+                    record(last, t, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e_all,
+                           ed_all, frame, story, out_t, out_q, out_qd, out_e, out_f, out_mode,
+                           out_ep, out_energy)
+                    counters[4] = last + 1
+                check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e_all, ed_all,
+                             frame, story, peaks)
+                return OVERTURNED
+        if not dense and (step + 1) % stride == 0:
+            record((step + 1) // stride, t_end, q, qd, acc, P, modes, H, minv, KG, weight, e_ref,
+                   e_all, ed_all, frame, story, out_t, out_q, out_qd, out_e, out_f, out_mode,
+                   out_ep, out_energy)
+            counters[4] = (step + 1) // stride + 1
+        if (step + 1) % echeck == 0 or step == nsteps - 1:
+            check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e_all, ed_all, frame,
+                         story, peaks)
     return OK
 
 
+@njit(cache=True, **HOT)
+def after_fixed_step(q, P, H, e, frame, story, peaks):
+    """:func:`after_step` for the fixed-step integrators, whose springs keep e in an array."""
+    b = frame[F_B]
+    if b <= 0.0:
+        return False
+    first = P.size
+    while first > 0 and P[first - 1].kind != STORY:
+        first -= 1
+    if first < P.size:
+        peaks[P_CMIN] = min(peaks[P_CMIN], springs_contact_length(P, H, e, first, b))
+    return overturn_ratio(q, frame, story) >= 1.0
+
+
 @njit(cache=True)
-def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, ith, iv,
-                  n_story, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy,
-                  peaks, counters, H):
+def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, frame, story,
+                  out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy, peaks,
+                  counters, H):
     """Classical RK4 with trial spring laws and end-of-step return mapping."""
     ns, n = P.size, q0.size
     KG = geometric_or_nothing(KG)
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
     k1, k2, k3, k4 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
     qs, qds, q1, qd1 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
+    Mw = np.zeros((n, n))
     q, qd = q0.copy(), qd0.copy()
     acc, acc1 = np.zeros(N_ACC), np.zeros(N_ACC)
     modes = np.zeros(ns, dtype=np.int64)
@@ -1362,23 +1812,55 @@ def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, 
     deformations(q, qd, P, e0, ed0)
     initial_modes(P, H, modes, e0, ed0)
     e_ref = static_strain_energy(P)
-    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e1, ed1, out_t,
-           out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+    start_side(q, qd, frame)
+    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story,
+           out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+    counters[4] = 1
+    start_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story, peaks)
+    deformations(q, qd, P, e0, ed0)
+    if after_fixed_step(q, P, H, e0, frame, story, peaks):
+        return OVERTURNED  # released past its toppling angle: the initial row is the result
     return march_rk4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg,
-                     weight, ith, iv, n_story, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds,
+                     weight, frame, story, Mw, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds,
                      q1, qd1, acc1, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep,
                      out_energy, peaks, counters)
 
 
 @njit(cache=True, **HOT)
+def end_fixed_step(step, t, stride, q, qd, acc, modes, H, minv, P, KG, weight, frame, story,
+                   e_ref, e0, e1, ed1, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep,
+                   out_energy, peaks, counters):
+    """After a fixed step (committed): contact length, overturning, outputs and the energy
+    check. Returns OVERTURNED if the run ends here, else OK."""
+    if after_fixed_step(q, P, H, e0, frame, story, peaks):
+        row = stop_row(step, stride)
+        record(row, t, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story,
+               out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+        counters[4] = row + 1
+        check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story,
+                     peaks)
+        return OVERTURNED
+    if (step + 1) % stride == 0:
+        record((step + 1) // stride, t, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1,
+               ed1, frame, story, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep,
+               out_energy)
+        counters[4] = (step + 1) // stride + 1
+    if (step + 1) % max(1, int(frame[F_ECHECK])) == 0:
+        check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story,
+                     peaks)
+    return OK
+
+
+@njit(cache=True, **HOT)
 def march_rk4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg,
-              weight, ith, iv, n_story, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds, q1,
+              weight, frame, story, Mw, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds, q1,
               qd1, acc1, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy,
               peaks, counters):
     """The time loop of :func:`integrate_rk4`, in the workspace it allocated."""
+    ith, iv, n_story = int(frame[F_ITH]), int(frame[F_IV]), int(frame[F_NFLEX])
     for step in range(nsteps):
-        rk4_step(step * dt, dt, q, qd, acc, True, minv, P, KG, L, ag, dtg, modes, H, k1, k2, k3,
-                 k4, qs, qds, q1, qd1, acc1)
+        rk4_step(step * dt, dt, q, qd, acc, True, minv, P, KG, L, ag, dtg, modes, H, frame, story,
+                 Mw, k1, k2, k3, k4, qs, qds, q1, qd1, acc1)
         counters[2] += 4
         if not finite(q1, qd1):
             counters[0] = step
@@ -1391,17 +1873,18 @@ def march_rk4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L,
         copy(e0, e1)
         copy(ed0, ed1)
         acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
-        if (step + 1) % stride == 0:
-            record((step + 1) // stride, (step + 1) * dt, q, qd, acc, P, modes, H, minv,
-                   KG, weight, iv, e_ref, e1, ed1, out_t, out_q, out_qd, out_e, out_f, out_mode,
-                   out_ep, out_energy)
+        if end_fixed_step(step, (step + 1) * dt, stride, q, qd, acc, modes, H, minv, P, KG,
+                          weight, frame, story, e_ref, e0, e1, ed1, out_t, out_q, out_qd, out_e,
+                          out_f, out_mode, out_ep, out_energy, peaks, counters) != OK:
+            return OVERTURNED
+    check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story, peaks)
     return OK
 
 
 @njit(cache=True)
-def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, ith, iv,
-                   n_story, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy,
-                   peaks, counters, H):
+def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, frame, story,
+                   out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy, peaks,
+                   counters, H):
     """Adams–Bashforth–Moulton 4 (PECE) on y = (q, q̇, energy), started by three RK4 steps.
 
     Predictor AB4: y* = yₙ + h/24 (55fₙ − 59fₙ₋₁ + 37fₙ₋₂ − 9fₙ₋₃).
@@ -1413,6 +1896,7 @@ def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight,
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
     k1, k2, k3, k4 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
     qs, qds, q1, qd1 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
+    Mw = np.zeros((n, n))
     q, qd = q0.copy(), qd0.copy()
     acc, acc1 = np.zeros(N_ACC), np.zeros(N_ACC)
     F = np.zeros((4, m))  # derivative history, F[0] newest
@@ -1423,24 +1907,32 @@ def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight,
     deformations(q, qd, P, e0, ed0)
     initial_modes(P, H, modes, e0, ed0)
     e_ref = static_strain_energy(P)
-    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e1, ed1, out_t,
-           out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+    start_side(q, qd, frame)
+    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story,
+           out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+    counters[4] = 1
+    start_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story, peaks)
+    deformations(q, qd, P, e0, ed0)
+    if after_fixed_step(q, P, H, e0, frame, story, peaks):
+        return OVERTURNED  # released past its toppling angle: the initial row is the result
     return march_abm4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg,
-                      weight, ith, iv, n_story, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds,
+                      weight, frame, story, Mw, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds,
                       q1, qd1, acc1, F, ystar, fstar, out_t, out_q, out_qd, out_e, out_f,
                       out_mode, out_ep, out_energy, peaks, counters)
 
 
 @njit(cache=True, **HOT)
 def march_abm4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg,
-               weight, ith, iv, n_story, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds, q1,
+               weight, frame, story, Mw, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds, q1,
                qd1, acc1, F, ystar, fstar, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep,
                out_energy, peaks, counters):
     """The time loop of :func:`integrate_abm4`, in the workspace it allocated."""
     n, m = q.size, F.shape[1]
+    ith, iv, n_story = int(frame[F_ITH]), int(frame[F_IV]), int(frame[F_NFLEX])
     for step in range(nsteps):
         t = step * dt
-        pw = accelerations(t, q, qd, True, minv, P, KG, L, ag, dtg, modes, H, k1)
+        pw = accelerations(t, q, qd, True, minv, P, KG, L, ag, dtg, modes, H, frame, story, Mw,
+                           k1)
         counters[2] += 1
         for r in range(3, 0, -1):
             for c in range(m):
@@ -1451,8 +1943,8 @@ def march_abm4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L
         for c in range(N_ACC):
             F[0, 2 * n + c] = pw[c]
         if step < 3:
-            rk4_step(t, dt, q, qd, acc, True, minv, P, KG, L, ag, dtg, modes, H, k1, k2, k3, k4,
-                     qs, qds, q1, qd1, acc1)
+            rk4_step(t, dt, q, qd, acc, True, minv, P, KG, L, ag, dtg, modes, H, frame, story,
+                     Mw, k1, k2, k3, k4, qs, qds, q1, qd1, acc1)
             counters[2] += 4
         else:
             for c in range(m):
@@ -1462,7 +1954,8 @@ def march_abm4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L
             for i in range(n):
                 qs[i] = ystar[i]
                 qds[i] = ystar[n + i]
-            pw = accelerations(t + dt, qs, qds, True, minv, P, KG, L, ag, dtg, modes, H, k2)
+            pw = accelerations(t + dt, qs, qds, True, minv, P, KG, L, ag, dtg, modes, H, frame,
+                               story, Mw, k2)
             counters[2] += 1
             for i in range(n):
                 fstar[i] = qds[i]
@@ -1488,10 +1981,11 @@ def march_abm4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L
         copy(e0, e1)
         copy(ed0, ed1)
         acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
-        if (step + 1) % stride == 0:
-            record((step + 1) // stride, (step + 1) * dt, q, qd, acc, P, modes, H, minv,
-                   KG, weight, iv, e_ref, e1, ed1, out_t, out_q, out_qd, out_e, out_f, out_mode,
-                   out_ep, out_energy)
+        if end_fixed_step(step, (step + 1) * dt, stride, q, qd, acc, modes, H, minv, P, KG,
+                          weight, frame, story, e_ref, e0, e1, ed1, out_t, out_q, out_qd, out_e,
+                          out_f, out_mode, out_ep, out_energy, peaks, counters) != OK:
+            return OVERTURNED
+    check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story, peaks)
     return OK
 
 
@@ -1619,8 +2113,8 @@ def newmark_substep(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, P, KG, L,
 
 
 @njit(cache=True)
-def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, ith,
-                      iv, n_story, alpha, tol, fscale, max_iter, max_halvings, out_t, out_q,
+def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, frame,
+                      story, alpha, tol, fscale, max_iter, max_halvings, out_t, out_q,
                       out_qd, out_e, out_f, out_mode, out_ep, out_energy, peaks, counters, H):
     """HHT-α (α in [−1/3, 0]; α = 0 is Newmark average acceleration), Newton, step halving.
 
@@ -1631,6 +2125,7 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weig
     from switches; HHT's own numerical dissipation is what its balance leaves open.
     """
     ns, n = P.size, q0.size
+    ith, iv, n_story = int(frame[F_ITH]), int(frame[F_IV]), int(frame[F_NFLEX])
     beta = (1.0 - alpha) ** 2 / 4.0
     gamma = 0.5 - alpha
     e, ed = np.zeros(ns), np.zeros(ns)
@@ -1648,8 +2143,12 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weig
     for i in range(n):
         qdd[i] = (L[i] * a0 - fint0[i]) * minv[i]
     e_ref = static_strain_energy(P)
-    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, iv, e_ref, e, ed, out_t,
-           out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story,
+           out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+    counters[4] = 1
+    start_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story, peaks)
+    if after_fixed_step(q, P, H, e0, frame, story, peaks):
+        return OVERTURNED  # released past its toppling angle: the initial row is the result
     for step in range(nsteps):
         t = step * dt
         t_end = (step + 1) * dt
@@ -1697,8 +2196,9 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weig
         if not finite(q, qd):
             counters[0] = step
             return NONFINITE
-        if (step + 1) % stride == 0:
-            record((step + 1) // stride, t_end, q, qd, acc, P, modes, H, minv, KG,
-                   weight, iv, e_ref, e, ed, out_t, out_q, out_qd, out_e, out_f, out_mode,
-                   out_ep, out_energy)
+        if end_fixed_step(step, t_end, stride, q, qd, acc, modes, H, minv, P, KG, weight, frame,
+                          story, e_ref, e0, e, ed, out_t, out_q, out_qd, out_e, out_f, out_mode,
+                          out_ep, out_energy, peaks, counters) != OK:
+            return OVERTURNED
+    check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story, peaks)
     return OK

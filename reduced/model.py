@@ -49,6 +49,23 @@ class ReducedModel:
     notes: tuple[str, ...] = field(default=())
 
     @property
+    def exact(self) -> bool:
+        """True with exact rocking kinematics (q holds the rotated-frame deflections and
+        sin θ; ``mass`` is then the mass matrix's diagonal at rest)."""
+        return self.scene.structure.kinematics == "exact"
+
+    @property
+    def linearised(self) -> ReducedModel:
+        """The model of small rotations with P-Δ that exact kinematics linearises to at rest:
+        its eigenvalues are this model's at rest (the same system in other coordinates), and
+        they set the stability limits and time steps."""
+        if not self.exact:
+            return self
+        from dataclasses import replace
+        s = replace(self.scene.structure, kinematics="small", p_delta=True)
+        return build_model(replace(self.scene, structure=s))
+
+    @property
     def story_count(self) -> int:
         return len(self.dofs.stories)
 
@@ -95,12 +112,19 @@ def build_model(scene: Scene) -> ReducedModel:
     """The :class:`ReducedModel` of ``scene``."""
     s, f, g = scene.structure, scene.foundation, scene.g
     fixed = f.support == "fixed"
-    dofs = DofMap.build(len(s.stories), rigid=s.rigid, fixed=fixed)
+    exact = s.kinematics == "exact"
+    if exact and fixed:
+        raise InputError("structure.kinematics = 'exact' with foundation.support = 'fixed': "
+                         "exact kinematics is that of a rocking base; valid: 'small'")
+    dofs = DofMap.build(len(s.stories), rigid=s.rigid, fixed=fixed, exact=exact)
     heights = np.array([st.height for st in s.stories])
     masses = np.array([st.weight for st in s.stories]) / g
     layout = None if fixed else layout_for(f)
-    A = compatibility_matrix(dofs, heights, layout)
+    A = compatibility_matrix(dofs, heights, layout, exact=exact)
     mass, load = _masses(dofs, s, masses, heights, g)
+    if exact:  # the kernels build M(q); mass is its diagonal at rest, for the energy scale
+        mass = np.diag(_exact_mass_at_rest(dofs, s, masses, heights, g))
+        load = np.zeros_like(load)
     tables = [_story_params(s, masses)]
     weight, theta_s = 0.0, 0.0
     if layout is not None:
@@ -109,9 +133,29 @@ def build_model(scene: Scene) -> ReducedModel:
         tables.append(found)
         weight = s.vertical_weight
     params = _attach_columns(sp.derive_columns(np.concatenate(tables)), A)
+    geometric = np.zeros((dofs.size, dofs.size)) if exact else _geometric(dofs, s, masses,
+                                                                             heights, g, A)
+    if not s.rigid:  # story springs come first; each shear acts over its story's height
+        params["arm"][:len(s.stories)] = np.diff(np.concatenate([[0.0], heights]))
     return ReducedModel(scene=scene, dofs=dofs, mass=mass, A=A, params=params, ground_load=load,
-                        geometric=_geometric(dofs, s, masses, heights, g, A), weight=weight,
-                        heights=heights, layout=layout, static_rotation=theta_s)
+                        geometric=geometric, weight=weight, heights=heights, layout=layout,
+                        static_rotation=theta_s)
+
+
+def _exact_mass_at_rest(dofs: DofMap, s, masses, heights, g) -> np.ndarray:
+    """Mass matrix of exact kinematics at rest (θ = 0, no deflection): each story mass moves by
+    ẇ_j + h_j ṡ laterally and V̇ vertically; the base body adds I_b on sin θ and its mass on V."""
+    n = dofs.size
+    M = np.zeros((n, n))
+    M[dofs.theta, dofs.theta] = s.rotary_inertia
+    M[dofs.v, dofs.v] = s.vertical_weight / g
+    for j, (m, h) in enumerate(zip(masses, heights)):
+        if dofs.stories:
+            M[j, j] += m
+            M[j, dofs.theta] += m * h
+            M[dofs.theta, j] += m * h
+        M[dofs.theta, dofs.theta] += m * h * h
+    return M
 
 
 def _attach_columns(params: np.ndarray, A: np.ndarray) -> np.ndarray:

@@ -20,7 +20,7 @@ from ..results import write_csv, write_netcdf
 from . import kernels as kn
 from . import springs as sp
 from .model import ReducedModel
-from .static import contact_length
+from .static import contact_lengths
 
 __all__ = ["Response", "ENERGY_NAMES", "energy_balance_error"]
 
@@ -66,8 +66,16 @@ class Response:
 
     @property
     def x(self) -> np.ndarray:
-        """Lateral displacement of the top mass relative to the ground, X − X_g (length)."""
+        """Lateral displacement of the top mass relative to the ground, X − X_g (length).
+        Exact kinematics: u_O + w cos θ + h sin θ, the base's centre moving by u_O = ±b (1 −
+        cos θ) as it rocks on the edge it leans towards."""
         d = self.dofs
+        if self.model.exact:
+            s = self.q[:, d.theta]
+            c = np.sqrt(1.0 - s * s)
+            w = self.q[:, d.stories[-1]] if d.stories else 0.0
+            return (self.model.layout.half_width * np.sign(s) * (1.0 - c) + w * c
+                    + self.model.heights[-1] * s)
         if d.stories:
             return self.q[:, d.stories[-1]]
         return self.model.heights[-1] * self.theta
@@ -79,9 +87,11 @@ class Response:
 
     @property
     def theta(self) -> np.ndarray:
-        """Base rotation θ (rad)."""
+        """Base rotation θ (rad) (exact kinematics: arcsin of the DOF sin θ)."""
         i = self.dofs.theta
-        return self.q[:, i] if i >= 0 else np.zeros(self.time.size)
+        if i < 0:
+            return np.zeros(self.time.size)
+        return np.arcsin(self.q[:, i]) if self.model.exact else self.q[:, i]
 
     @property
     def V(self) -> np.ndarray:
@@ -147,8 +157,7 @@ class Response:
         if self.model.layout is None:
             return np.zeros(self.time.size)
         f = self.foundation_slice
-        return np.array([contact_length(self.model, e, ep) for e, ep in
-                         zip(self.deformation[:, f], self.plastic[:, f])])
+        return contact_lengths(self.model, self.deformation[:, f], self.plastic[:, f])
 
     @property
     def settlement(self) -> np.ndarray:
@@ -181,29 +190,41 @@ class Response:
 
     @property
     def energy_balance_error(self) -> float:
-        """max |residual| / max(max input, initial energy): the balance's relative error."""
-        return energy_balance_error(self.energy)
+        """max |residual| / max(max input, initial energy): the balance's relative error, over
+        the stored states and the checks the integrator made between them."""
+        pk = self.raw_peaks
+        tracked = pk[kn.P_ERES] / max(pk[kn.P_ESCALE], 1e-300)
+        return max(energy_balance_error(self.energy), float(tracked))
+
+    @property
+    def verdict(self) -> str:
+        """``completed``, or ``overturned``: the structure passed its toppling angle (its
+        centre of weight over the edge of the base) and the run ended there."""
+        return self.info.get("verdict", "completed")
 
     # ---- peaks ------------------------------------------------------------------------------
     @cached_property
     def peaks(self) -> dict[str, float]:
-        """Peak values over the whole run, tracked at every step (u, θ, V and the gaps with
-        cubic interpolation between steps; the base shear at the step ends). The overturning
-        moment is the largest of the stored states only (``histories=False`` keeps two)."""
+        """Peak values over the whole run, tracked at every step whatever is stored (u, θ, V
+        and the gaps with cubic interpolation between steps; the base shear, the overturning
+        moment and the contact length at the step ends)."""
         pk = self.raw_peaks
         f = self.foundation_slice
         n0 = kn.N_PEAK_SCALARS
         gap = pk[n0::2][f]
         force = pk[n0 + 1::2]
+        theta = max(abs(pk[kn.P_THMIN]), abs(pk[kn.P_THMAX])) if self.dofs.theta >= 0 else 0.0
+        if self.model.exact:
+            theta = math.asin(min(theta, 1.0))
         out = {
             "u": max(abs(pk[kn.P_UMIN]), abs(pk[kn.P_UMAX])) if self.model.story_count else 0.0,
-            "theta": (max(abs(pk[kn.P_THMIN]), abs(pk[kn.P_THMAX]))
-                      if self.dofs.theta >= 0 else 0.0),
+            "theta": theta,
             "V_min": pk[kn.P_VMIN] if self.dofs.v >= 0 else 0.0,
             "V_max": pk[kn.P_VMAX] if self.dofs.v >= 0 else 0.0,
             "base_shear": (max(float(pk[n0 + 1]), float(np.max(np.abs(self.base_shear))))
                            if self.model.story_count else 0.0),
-            "overturning_moment": float(np.max(np.abs(self.overturning_moment))),
+            "overturning_moment": max(float(pk[kn.P_MOT]),
+                                      float(np.max(np.abs(self.overturning_moment)))),
         }
         if self.model.story_count:
             out["story_drift"] = [float(v) for v in pk[n0::2][:self.model.story_count]]
@@ -214,7 +235,8 @@ class Response:
             out["residual_settlement"] = float(-self.V[-1])
             out["plastic_settlement_max"] = float(np.max(self.plastic[-1, f]))
             out["plastic_settlement_mean"] = float(np.mean(self.plastic[-1, f]))
-            out["min_contact_length"] = float(np.min(self.contact_length))
+            out["min_contact_length"] = min(float(pk[kn.P_CMIN]),
+                                            float(np.min(self.contact_length)))
         out["energy_balance_error"] = self.energy_balance_error
         return {k: (float(v) if not isinstance(v, list) else v) for k, v in out.items()}
 
@@ -224,8 +246,14 @@ class Response:
         pk = self.peaks
         out = {
             "scene": self.model.scene.name,
+            "verdict": self.verdict,
+            "overturned_at": self.info.get("overturned_at"),
+            "kinematics": self.model.scene.structure.kinematics,
             "integrator": self.info.get("integrator"),
             "dt": self.info.get("dt"),
+            "rtol": self.info.get("rtol"),
+            "stability_limit": self.info.get("stability_limit"),
+            "energy_tolerance": self.info.get("energy_tolerance"),
             "units": u.name,
             "peak_u": pk["u"],
             "peak_theta": pk["theta"],
@@ -235,13 +263,18 @@ class Response:
             out["peak_uplift_left"] = pk["uplift_left"]
             out["residual_settlement"] = pk["residual_settlement"]
         out["energy_balance_error"] = pk["energy_balance_error"]
-        return out
+        # valid JSON: an unbounded limit (implicit integrators) is null, never Infinity
+        return {k: (None if isinstance(v, float) and not math.isfinite(v) else v)
+                for k, v in out.items()}
 
     def summary_line(self) -> str:
         s = self.summary()
         u = self.model.scene.units
-        text = (f"{s['scene']}: peak u = {s['peak_u']:.4g} {u.length}, "
-                f"peak theta = {s['peak_theta']:.4g} rad")
+        text = f"{s['scene']}: "
+        if s["verdict"] == "overturned":
+            text += f"OVERTURNED at t = {s['overturned_at']:.4g} s (peaks up to then): "
+        text += (f"peak u = {s['peak_u']:.4g} {u.length}, "
+                 f"peak theta = {s['peak_theta']:.4g} rad")
         if "peak_uplift_left" in s:
             text += (f", uplift of leftmost spring = {s['peak_uplift_left']:.4g} {u.length}, "
                      f"residual settlement = {s['residual_settlement']:.4g} {u.length}")

@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import math
 import time as _time
 from dataclasses import dataclass
 
 import numpy as np
 
+from ..checks import InputError
 from ..motions import Motion
 from ..results import provenance
 from ..scenes import Scene
@@ -17,25 +19,42 @@ from .model import ReducedModel, build_model
 from .response import Response, ground_displacement
 from .static import initial_state
 
-__all__ = ["run", "run_model", "initial_conditions", "IntegrationError", "KernelInputs",
-           "integrate", "ground_acceleration"]
+__all__ = ["run", "run_model", "initial_conditions", "IntegrationError", "EnergyBalanceError",
+           "KernelInputs", "integrate", "ground_acceleration", "frame_of", "story_table"]
 
 
 class IntegrationError(RuntimeError):
     """The integration could not proceed (chattering, divergence, Newton failure)."""
 
 
+class EnergyBalanceError(IntegrationError):
+    """The run finished, but its energy balance is beyond ``analysis.energy_tolerance``: its
+    numbers cannot be trusted to that tolerance."""
+
+
 def initial_conditions(model: ReducedModel, motion: Motion) -> tuple[np.ndarray, np.ndarray]:
-    """(q₀, q̇₀) from the motion's free-vibration state; at rest otherwise."""
+    """(q₀, q̇₀) from the motion's free-vibration state; at rest otherwise. The initial velocity
+    is the top mass's lateral velocity Ẋ(0)."""
+    if model.exact and motion.initial_displacement:
+        raise InputError("motion.displacement with structure.kinematics = 'exact': the static "
+                         "push that holds it is solved in small rotations only; valid: 0 (use "
+                         "motion.rotation or motion.velocity)")
     q0 = initial_state(model, displacement=motion.initial_displacement,
                        rotation=motion.initial_rotation)
     qd0 = np.zeros_like(q0)
     if motion.initial_velocity:
-        d = model.dofs
-        if d.stories:
-            qd0[d.stories[-1]] = motion.initial_velocity
+        d, v0 = model.dofs, motion.initial_velocity
+        if d.stories and model.exact:  # Ẋ = ẇ cos θ with the base at rest
+            qd0[d.stories[-1]] = v0 / math.cos(motion.initial_rotation)
+        elif d.stories:
+            qd0[d.stories[-1]] = v0
+        elif model.exact:  # Ẋ = (u_O' + h) ṡ for a rigid body on its pivot
+            s0 = q0[d.theta]
+            lever = model.heights[-1] + (model.layout.half_width * abs(s0)
+                                         / math.sqrt(1.0 - s0 * s0))
+            qd0[d.theta] = v0 / lever
         else:
-            qd0[d.theta] = motion.initial_velocity / model.heights[-1]
+            qd0[d.theta] = v0 / model.heights[-1]
     return q0, qd0
 
 
@@ -46,7 +65,10 @@ def run(scene: Scene, *, motion: Motion | None = None, integrator: str | None = 
 
     Every input is checked, and the step chosen or checked against the stability limit, before
     the integration starts. ``histories=False`` stores only the first and last states (peaks
-    are tracked at every step either way).
+    are tracked at every step either way). A structure that passes its toppling angle ends the
+    run there, with ``info["verdict"] = "overturned"``. Raises :class:`EnergyBalanceError` if
+    the energy balance ends beyond ``analysis.energy_tolerance``, and
+    :class:`IntegrationError` if the integration fails.
     """
     model = build_model(scene)
     motion = motion if motion is not None else scene.build_motion()
@@ -60,34 +82,79 @@ def run_model(model: ReducedModel, motion: Motion, *, integrator: str | None = N
     """As :func:`run`, for an already built model."""
     a = model.scene.analysis
     name = integrator or a.integrator
-    method(name)
-    duration = a.duration or motion.duration
-    motion = motion.extended(duration)
-    plan = time_step(model, name, record_dt=motion.dt, duration=duration,
-                     dt=dt if dt is not None else a.dt, subcycle=a.subcycle,
-                     output_dt=output_dt if output_dt is not None else a.output_dt)
-    if not histories:
-        plan = StepPlan(plan.dt, plan.steps, plan.steps, plan.limit, plan.substeps, plan.reason)
+    plan, motion = plan_run(model, motion, name, dt=dt, output_dt=output_dt,
+                            histories=histories)
     q0, qd0 = initial_conditions(model, motion)
     start = _time.perf_counter()
-    arrays, counters = _integrate(model, motion, name, plan, q0, qd0)
+    status, out, counters = integrate(KernelInputs.of(model, plan), name, plan, q0, qd0,
+                                      ground_acceleration(motion.acceleration, model.g),
+                                      motion.dt)
     elapsed = _time.perf_counter() - start
+    _check_status(status, counters, plan, name)
+    arrays = out
     t = arrays["time"]
     info = {"integrator": name, "dt": plan.dt, "steps": plan.steps, "output_stride": plan.stride,
-            "stability_limit": plan.limit, "step_choice": plan.reason,
+            "output_dt": plan.output_dt,
+            "stability_limit": plan.limit, "step_choice": plan.reason, "rtol": plan.rtol,
+            "energy_tolerance": a.energy_tolerance,
+            "kinematics": model.scene.structure.kinematics,
+            "verdict": "overturned" if status == kn.OVERTURNED else "completed",
+            "overturned_at": float(t[-1]) if status == kn.OVERTURNED else None,
             "counters": [int(c) for c in counters], "wall_time_s": elapsed,
             "motion": motion.name, "motion_source": motion.source, "pga_g": motion.pga}
     prov = provenance(model="reduced", scene=model.scene.name, scene_file=model.scene.source,
                       case=model.scene.case, overrides=list(model.scene.overrides),
                       scene_digest=model.scene.digest, scene_data=model.scene.data)
     xg = ground_displacement(motion.acceleration, motion.dt, model.g, t)
-    return Response(model=model, ground_displacement=xg, info=info, provenance=prov, **arrays)
+    response = Response(model=model, ground_displacement=xg, info=info, provenance=prov,
+                        **arrays)
+    check_response(response)
+    return response
+
+
+def plan_run(model: ReducedModel, motion: Motion, name: str, *, dt: float | None = None,
+             output_dt: float | None = None, histories: bool = True):
+    """(StepPlan, the motion extended to the run's duration): every check of integrator, step
+    and kinematics a run makes before it starts. Without ``histories`` the plan stores the
+    first and last states only."""
+    a = model.scene.analysis
+    m = method(name)
+    if model.exact and not m.explicit:
+        raise InputError(f"analysis.integrator = {name!r} with structure.kinematics = 'exact': "
+                         "exact kinematics has a mass matrix that changes with θ, integrated by "
+                         "the explicit integrators; valid: 'events', 'rk4', 'abm4'")
+    duration = a.duration or motion.duration
+    motion = motion.extended(duration)
+    plan = time_step(model, name, record_dt=motion.dt, duration=duration,
+                     dt=dt if dt is not None else a.dt, subcycle=a.subcycle,
+                     output_dt=output_dt if output_dt is not None else a.output_dt)
+    return (plan if histories else plan.without_histories()), motion
+
+
+def check_response(response: Response) -> None:
+    """Refuse a response whose numbers cannot be trusted: non-finite values, or an energy
+    balance beyond ``analysis.energy_tolerance``."""
+    tol = response.model.scene.analysis.energy_tolerance
+    error = response.energy_balance_error
+    info = response.info
+    where = f"{info['integrator']}, dt = {info['dt']:.4g} s"
+    bad = [k for k, v in response.peaks.items()
+           if not np.all(np.isfinite(np.asarray(v, dtype=float)))]
+    if bad or not np.all(np.isfinite(response.q)):
+        raise IntegrationError(f"{where}: the run produced non-finite values "
+                               f"({', '.join(bad) or 'state'}); nothing is reported")
+    if not error <= tol:
+        raise EnergyBalanceError(
+            f"{where}: the energy balance closes to {error:.3g} of the input, beyond "
+            f"analysis.energy_tolerance = {tol:g}; refine the step (analysis.dt, or "
+            "analysis.rtol for the event stepper) or relax the tolerance")
 
 
 @dataclass(frozen=True, eq=False)
 class KernelInputs:
     """What the compiled integrators take from a model: masses, the spring table, K_G, the
-    ground load and the DOFs that peaks are tracked on (no motion, no step)."""
+    ground load, the frame (:data:`~.kernels.N_FRAME` constants of geometry, kinematics and
+    control), the story masses and the error control's floors (no motion)."""
 
     params: np.ndarray     # one record of SPRING_DTYPE per spring
     minv: np.ndarray       # inverse masses
@@ -99,14 +166,85 @@ class KernelInputs:
     stories: int
     newmark_scale: float   # force scale of the Newton tolerance: the weights
     hht_alpha: float
+    frame: np.ndarray
+    story: np.ndarray      # (h, m, W) of each story mass
+    floor: np.ndarray      # smallest scales of q and q̇ of the error control
 
     @classmethod
-    def of(cls, model: ReducedModel) -> KernelInputs:
+    def of(cls, model: ReducedModel, plan: StepPlan | None = None) -> KernelInputs:
         d = model.dofs
         scale = model.g * float(np.sum(model.mass[list(d.stories)])) + model.weight
         return cls(model.params, 1.0 / model.mass, model.geometric, model.ground_load,
                    model.weight, d.theta, d.v, model.story_count, scale,
-                   model.scene.analysis.hht_alpha)
+                   model.scene.analysis.hht_alpha, frame_of(model, plan), story_table(model),
+                   error_floors(model))
+
+
+    @classmethod
+    def springs_only(cls, params: np.ndarray, mass: np.ndarray, *, v: int,
+                     weight: float = 0.0) -> KernelInputs:
+        """Inputs for a system of point masses on springs (no structure, no base to rock or
+        overturn): ``mass`` per DOF, V at index ``v`` carrying ``weight``. Used to drive one
+        spring law through the integrators (the drop mass of the impact damper)."""
+        n = mass.size
+        frame = np.zeros(kn.N_FRAME)
+        frame[kn.F_ITH], frame[kn.F_IV], frame[kn.F_ECHECK], frame[kn.F_SIDE] = -1, v, 1, 1
+        frame[kn.F_HMAX] = frame[kn.F_H0] = math.inf
+        return cls(params, 1.0 / mass, np.zeros((n, n)), np.zeros(n), weight, -1, v, 0, 1.0,
+                   0.0, frame, np.zeros((0, 3)), np.full(2 * n, 1e-12))
+
+
+def story_table(model: ReducedModel) -> np.ndarray:
+    """(h_j, m_j, W_j) of each story mass."""
+    s = model.scene.structure
+    return np.array([[st.height, st.weight / model.g, st.weight] for st in s.stories])
+
+
+def frame_of(model: ReducedModel, plan: StepPlan | None = None) -> np.ndarray:
+    """The kernels' frame (:data:`~.kernels.N_FRAME` constants; see its slots)."""
+    s, d = model.scene.structure, model.dofs
+    frame = np.zeros(kn.N_FRAME)
+    base_weight = max(s.vertical_weight - s.weight, 0.0)
+    if model.layout is not None:
+        frame[kn.F_B] = model.layout.half_width
+    frame[kn.F_EXACT] = 1.0 if model.exact else 0.0
+    frame[kn.F_WTOT] = s.weight + base_weight
+    frame[kn.F_MB] = base_weight / model.g
+    frame[kn.F_IB] = s.rotary_inertia
+    frame[kn.F_SIDE] = 1.0
+    frame[kn.F_ITH], frame[kn.F_IV] = d.theta, d.v
+    frame[kn.F_NFLEX] = len(d.stories)
+    frame[kn.F_ECHECK] = 1
+    frame[kn.F_HMAX] = frame[kn.F_H0] = math.inf
+    if plan is not None:
+        frame[kn.F_ECHECK] = max(1, min(plan.stride, math.ceil(plan.steps / 2000)))
+        if plan.output_dt > 0:  # interpolated outputs: a check every 2000th of the run
+            frame[kn.F_ECHECK] = max(1, math.ceil(plan.steps / 2000))
+        frame[kn.F_RTOL], frame[kn.F_HMAX], frame[kn.F_H0] = plan.rtol, plan.hmax, plan.h0
+        frame[kn.F_OUTDT] = plan.output_dt
+    return frame
+
+
+def error_floors(model: ReducedModel) -> np.ndarray:
+    """Smallest scales (q, then q̇) of the error control: 1e-3 of each DOF's static scale —
+    the story's drift under its own weight, the base's settlement δ = W/K_v and its rotation
+    δ/b — and those over the shortest bonded period for the rates."""
+    d, g = model.dofs, model.g
+    floor = np.zeros(2 * model.mass.size)
+    s = model.scene.structure
+    for j, dof in enumerate(d.stories):
+        floor[dof] = s.stories[j].weight / s.stories[j].stiffness
+    if d.theta >= 0:
+        settle = model.weight / model.layout.vertical_stiffness
+        floor[d.v] = settle
+        floor[d.theta] = settle / model.layout.half_width
+    if not np.any(floor[:model.mass.size]):
+        floor[:model.mass.size] = g * 1e-6
+    floor[:model.mass.size] = np.where(floor[:model.mass.size] > 0, floor[:model.mass.size],
+                                       np.max(floor[:model.mass.size]))
+    omega = 2.0 * np.pi / float(model.linearised.bonded_periods()[-1])
+    floor[model.mass.size:] = floor[:model.mass.size] * omega
+    return 1e-3 * floor
 
 
 def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
@@ -114,12 +252,12 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
     """Run the compiled integrator ``name``; returns (status, output arrays, counters).
 
     ``ag`` is the ground acceleration (length/s², samples dtg apart, an appended zero). The
-    arrays: histories at every ``plan.stride`` steps, ``raw_peaks`` and, for the event stepper
-    when ``impacts``, the impact log.
+    arrays: histories at every ``plan.stride`` steps (rows up to ``counters[4]`` written),
+    ``raw_peaks`` and, for the event stepper when ``impacts``, the impact log.
     """
     P = inputs.params
     n, ns = q0.size, P.size
-    nout = plan.steps // plan.stride + 1
+    nout = plan.rows + 1  # a row more for a run that ends between outputs
     out = {
         "time": np.zeros(nout), "q": np.zeros((nout, n)), "qd": np.zeros((nout, n)),
         "deformation": np.zeros((nout, ns)), "force": np.zeros((nout, ns)),
@@ -127,15 +265,16 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
         "energy": np.zeros((nout, kn.N_ENERGY)),
     }
     peaks = np.zeros(kn.N_PEAK_SCALARS + 2 * ns)
-    peaks[[kn.P_UMIN, kn.P_THMIN, kn.P_VMIN]] = np.inf
+    peaks[[kn.P_UMIN, kn.P_THMIN, kn.P_VMIN, kn.P_CMIN]] = np.inf
     peaks[[kn.P_UMAX, kn.P_THMAX, kn.P_VMAX]] = -np.inf
     gaps = peaks[kn.N_PEAK_SCALARS::2]  # a view: the gap at rest is −δ0
     gaps[inputs.stories:] = -P["d0"][inputs.stories:]
-    counters = np.zeros(4, np.int64)
+    counters = np.zeros(kn.N_COUNTERS, np.int64)
     params = P.view(np.recarray)  # records read as p.k in compiled and plain code
     history = np.zeros(ns, dtype=sp.HISTORY_DTYPE).view(np.recarray)
+    frame = inputs.frame.copy()  # its pivot side changes during a run
     common = (q0, qd0, plan.dt, plan.steps, plan.stride, inputs.minv, params, inputs.geometric,
-              inputs.ground_load, ag, dtg, inputs.weight, inputs.theta, inputs.v, inputs.stories)
+              inputs.ground_load, ag, dtg, inputs.weight, frame, inputs.story)
     outs = (out["time"], out["q"], out["qd"], out["deformation"], out["force"], out["mode"],
             out["plastic"], out["energy"], peaks, counters)
     log = np.zeros((0, 5))
@@ -143,7 +282,7 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
         max_switches = 50 * ns + 1000
         rows = max(1000, 20 * ns * int(plan.steps * plan.dt + 1)) if impacts else 0
         log = np.full((rows, 5), np.nan)
-        status = kn.integrate_events(*common, max_switches, *outs, log, history)
+        status = kn.integrate_events(*common, inputs.floor, max_switches, *outs, log, history)
     elif name == "rk4":
         status = kn.integrate_rk4(*common, *outs, history)
     elif name == "abm4":
@@ -152,6 +291,8 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
         alpha = 0.0 if name == "newmark" else inputs.hht_alpha
         status = kn.integrate_newmark(*common, alpha, 1e-10, inputs.newmark_scale, 50, 12,
                                       *outs, history)
+    rows = int(counters[4])  # the run may end between outputs (overturned, failed)
+    out = {k: v[:rows] for k, v in out.items()}
     out["raw_peaks"] = peaks
     out["impacts"] = log[:min(int(counters[3]), log.shape[0])].copy()
     return status, out, counters
@@ -163,17 +304,8 @@ def ground_acceleration(acceleration: np.ndarray, g: float) -> np.ndarray:
     return np.append(acceleration * g, 0.0)
 
 
-def _integrate(model: ReducedModel, motion: Motion, name: str, plan: StepPlan,
-               q0: np.ndarray, qd0: np.ndarray):
-    status, out, counters = integrate(KernelInputs.of(model), name, plan, q0, qd0,
-                                      ground_acceleration(motion.acceleration, model.g),
-                                      motion.dt)
-    _check_status(status, counters, plan, name)
-    return out, counters
-
-
 def _check_status(status: int, counters: np.ndarray, plan: StepPlan, name: str) -> None:
-    if status == kn.OK:
+    if status in (kn.OK, kn.OVERTURNED):
         return
     if status == kn.CHATTER:
         t = counters[1] * plan.dt
@@ -188,5 +320,9 @@ def _check_status(status: int, counters: np.ndarray, plan: StepPlan, name: str) 
         t = counters[0] * plan.dt
         raise IntegrationError(f"{name}: Newton did not converge at t = {t:.6g} s even after "
                                "12 step halvings")
+    if status == kn.STEP_UNDERFLOW:
+        t = counters[0] * plan.dt
+        raise IntegrationError(f"{name}: the error control cut the step to round-off at "
+                               f"t = {t:.6g} s (analysis.rtol = {plan.rtol:g}); relax "
+                               "analysis.rtol or check the scene's stiffness")
     raise IntegrationError(f"{name}: unknown status {status}")
-

@@ -23,7 +23,7 @@ from . import springs as sp
 from .model import ReducedModel
 
 __all__ = ["Pushover", "rocking_pushover", "uplift_onset_force", "initial_state",
-           "contact_length", "foundation_moment"]
+           "contact_length", "contact_lengths", "foundation_moment"]
 
 
 def _forces(model: ReducedModel, q: np.ndarray, hist: np.ndarray):
@@ -52,20 +52,23 @@ def contact_length(model: ReducedModel, e: np.ndarray, ep: np.ndarray) -> float:
     d_i = δ0_i + e_i − ep_i at each spring; beyond the outer springs d is held constant to the
     edge. Exact for a rigid base on a uniform elastic bed away from the edge strips.
     """
+    return float(contact_lengths(model, np.atleast_2d(e), np.atleast_2d(ep))[0])
+
+
+def contact_lengths(model: ReducedModel, e: np.ndarray, ep: np.ndarray) -> np.ndarray:
+    """:func:`contact_length` of many states at once: rows of foundation deformations ``e`` and
+    plastic settlements ``ep`` (length)."""
     layout = model.layout
     d = model.params["d0"][model.foundation_slice] + e - ep
-    x = layout.positions
     b = layout.half_width
-    xs = np.concatenate([[-b], x, [b]])
-    ds = np.concatenate([[d[0]], d, [d[-1]]])
-    total = 0.0
-    for x0, x1, d0, d1 in zip(xs[:-1], xs[1:], ds[:-1], ds[1:]):
-        if d0 > 0 and d1 > 0:
-            total += x1 - x0
-        elif d0 > 0 or d1 > 0:
-            frac = max(d0, d1) / (abs(d0) + abs(d1))
-            total += frac * (x1 - x0)
-    return total
+    xs = np.concatenate([[-b], layout.positions, [b]])
+    ds = np.concatenate([d[:, :1], d, d[:, -1:]], axis=1)
+    d0, d1, width = ds[:, :-1], ds[:, 1:], np.diff(xs)
+    both = (d0 > 0) & (d1 > 0)
+    one = (d0 > 0) ^ (d1 > 0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        frac = np.where(one, np.maximum(d0, d1) / (np.abs(d0) + np.abs(d1)), 0.0)
+    return np.sum(np.where(both, 1.0, frac) * width, axis=1)
 
 
 @dataclass(frozen=True)
@@ -160,7 +163,7 @@ def initial_state(model: ReducedModel, *, displacement: float = 0.0,
     """Displacements a free vibration starts from, at rest.
 
     ``rotation`` θ₀ (rad): the base rotated with the superstructure undeformed, V from vertical
-    equilibrium (e.g. a block released on its corner). ``displacement`` (length): the top mass
+    equilibrium (e.g. a block released on its corner; exact kinematics holds sin θ₀). ``displacement`` (length): the top mass
     displaced relative to the ground and held there by a lateral force at the top, every other
     DOF in static equilibrium.
     """
@@ -169,9 +172,15 @@ def initial_state(model: ReducedModel, *, displacement: float = 0.0,
     if rotation:
         if d.theta < 0:
             raise InputError("motion.rotation needs a rocking base (foundation.support is 'fixed')")
-        q[d.theta] = rotation
-        for j, dof in enumerate(d.stories):
-            q[dof] = model.heights[j] * rotation
+        if model.exact:  # q holds sin θ and the deflections in the rotated frame (zero)
+            if not abs(rotation) < 0.5 * np.pi:
+                raise InputError(f"motion.rotation = {rotation:g} rad: valid range is "
+                                 "(-pi/2, pi/2) with exact kinematics")
+            q[d.theta] = np.sin(rotation)
+        else:
+            q[d.theta] = rotation
+            for j, dof in enumerate(d.stories):
+                q[dof] = model.heights[j] * rotation
         if model.layout is not None:
             q[d.v] = _vertical_equilibrium(model, q, np.zeros(model.spring_count,
                                                                  dtype=sp.HISTORY_DTYPE))

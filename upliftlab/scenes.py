@@ -53,6 +53,11 @@ LAWS = ("elastic", "elastoplastic")
 IMPACT_MASSES = ("point", "tributary")
 MOTION_TYPES = ("record", "free", "sine", "cosine", "ricker", "harmonic")
 INTEGRATORS = ("events", "rk4", "abm4", "newmark", "hht")
+KINEMATICS = ("small", "exact")
+#: Default relative tolerance of the event stepper's error control (``analysis.rtol``).
+DEFAULT_RTOL = 1e-5
+#: Default largest relative error of a run's energy balance (``analysis.energy_tolerance``).
+DEFAULT_ENERGY_TOLERANCE = 1e-3
 
 
 class _Table:
@@ -136,7 +141,10 @@ class Structure:
     (mass·length²), excluding the story masses, which enter through their lateral DOFs.
     ``vertical_weight`` (force) is carried by the foundation and gives the vertical mass.
     ``rigid`` ties every story to the base rotation (u = 0). ``p_delta`` adds the P-Δ effect of
-    the story weights: about the rocking base and on the story drifts.
+    the story weights: about the rocking base and on the story drifts. ``kinematics`` is
+    ``small`` (the paper's small rotations) or ``exact``: the base rotates about the edge it
+    leans towards, every mass moves on its exact path and gravity acts on the exact
+    configuration (P-Δ exact, so ``p_delta`` is true).
     """
 
     stories: tuple[Story, ...]
@@ -145,6 +153,7 @@ class Structure:
     vertical_weight: float
     rigid: bool = False
     p_delta: bool = False
+    kinematics: str = "small"
 
     @property
     def weight(self) -> float:
@@ -193,6 +202,11 @@ def _structure(data, g: float) -> Structure:
             raise InputError(f"structure.story.{i}.height = {heights[i]:g}: must exceed the "
                              f"story below ({heights[i - 1]:g})")
     rigid = table.get("rigid", checks.boolean, False)
+    kinematics = table.get("kinematics", _choice(KINEMATICS), "small")
+    p_delta = table.get("p_delta", checks.boolean, kinematics == "exact")
+    if kinematics == "exact" and not p_delta:
+        raise InputError("structure.p_delta = false with structure.kinematics = 'exact': exact "
+                         "kinematics carries the weight's P-Δ exactly; valid: true (or remove it)")
     structure = Structure(
         stories=stories,
         damping_ratio=table.get("damping_ratio", _range(0.0, 1.0), 0.0),
@@ -200,9 +214,14 @@ def _structure(data, g: float) -> Structure:
         vertical_weight=table.get("vertical_weight", checks.positive,
                                   sum(s.weight for s in stories)),
         rigid=rigid,
-        p_delta=table.get("p_delta", checks.boolean, False),
+        p_delta=p_delta,
+        kinematics=kinematics,
     )
     table.done()
+    if kinematics == "exact" and structure.vertical_weight < structure.weight * (1 - 1e-12):
+        raise InputError(f"structure.vertical_weight = {structure.vertical_weight:g}: with exact "
+                         f"kinematics the story weights ride on the base; valid range is >= "
+                         f"their sum {structure.weight:g}")
     return structure
 
 
@@ -403,9 +422,13 @@ def build_motion(spec: MotionSpec) -> Motion:
 
 @dataclass(frozen=True)
 class Analysis:
-    """How to integrate: ``integrator``, time step ``dt`` (s; None = automatic), ``subcycle``
-    (split a step beyond the stability limit instead of refusing it), ``duration`` (s; None = the
-    motion's), ``output_dt`` (s; None = automatic), ``hht_alpha`` in [−1/3, 0] for ``hht``.
+    """How to integrate: ``integrator``, time step ``dt`` (s; None = automatic; for the event
+    stepper under error control the longest step), ``subcycle`` (split a step beyond the
+    stability limit instead of refusing it), ``duration`` (s; None = the motion's),
+    ``output_dt`` (s; None = automatic), ``hht_alpha`` in [−1/3, 0] for ``hht``. ``rtol`` is
+    the event stepper's relative tolerance per step (0: fixed steps of ``dt``);
+    ``energy_tolerance`` the largest relative error of the energy balance a run may end with
+    before it is reported as failed.
     """
 
     integrator: str = "events"
@@ -414,6 +437,8 @@ class Analysis:
     duration: float | None = None
     output_dt: float | None = None
     hht_alpha: float = -0.1
+    rtol: float = DEFAULT_RTOL
+    energy_tolerance: float = DEFAULT_ENERGY_TOLERANCE
 
 
 def _analysis(data) -> Analysis:
@@ -426,6 +451,8 @@ def _analysis(data) -> Analysis:
         duration=table.get("duration", positive_or_none, None),
         output_dt=table.get("output_dt", positive_or_none, None),
         hht_alpha=table.get("hht_alpha", _range(-1.0 / 3.0, 0.0), -0.1),
+        rtol=table.get("rtol", _range(0.0, 1e-2), DEFAULT_RTOL),
+        energy_tolerance=table.get("energy_tolerance", _range(1e-12, 1.0), DEFAULT_ENERGY_TOLERANCE),
     )
     table.done()
     return analysis
