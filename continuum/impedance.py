@@ -321,7 +321,7 @@ def _pml(model, options: ImpedanceOptions) -> _PML:
     e = layer.elements
     nloc = model.disc.dofs.shape[0]
     scatter = model.disc.pattern.scatter.reshape(-1, nloc, nloc)[e].ravel()
-    values = np.stack([phi[0].value for phi in full.basis], axis=1)[:, :, e]
+    values = np.stack([np.asarray(phi[0]) for phi in full.basis], axis=1)[:, :, e]
     return _PML(layer=layer, grad=_gradient_rows(model.disc.basis)[:, :, e],
                 dx_k=model.disc.dx[e], values=values, dx_m=np.asarray(full.dx)[e],
                 C=_lame_gradient_matrix(model.soil), rho=model.soil.density,
