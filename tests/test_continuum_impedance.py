@@ -341,7 +341,7 @@ def test_free_rocking_decay_agrees_with_the_computed_impedance():
     # Measured (8 across): time domain ω_d = 51.711 rad/s, σ = 3.066 1/s (ζ = 0.059); predicted
     # from the FE K_r(ω) with the same elements across: 51.861, 3.075 (−0.29 %, −0.28 %).
     # Asserted: ω_d within 1 %, σ within 5 % (the decay is radiation only: Newmark adds none,
-    # and its period error at 1/50 of the period is 0.07 %).
+    # and its period error at 1/49 of the period is 0.14 %).
     scene = load_scene("strip_footing_clay", overrides=DECAY + ["continuum.elements_across=8"])
     omega, sigma = measured_rocking(scene)
     root = predicted_rocking(scene, 8)
