@@ -241,9 +241,10 @@ def geofound_crosscheck() -> dict:
         vs = math.sqrt(G / RHO)
         omega = np.asarray(BOX_A0[2:]) * vs / (B / 2)
         for k, a0 in enumerate(BOX_A0[2:]):
-            rows.append({"nu": nu, "a0": a0,
-                         "C_h_geofound": gd.calc_horz_strip_via_gazetas_1991(
-                             sl, fd, a0, ip_axis="width") / 1e3,
+            c_h = gd.calc_horz_strip_via_gazetas_1991(sl, fd, a0, ip_axis="width") / 1e3
+            rows.append({"nu": nu, "a0": a0, "C_h_geofound": c_h,
+                         "cy_geofound": c_h / (RHO * vs * B),
+                         "cy_exact": float(exact.horizontal[k].imag / omega[k]) / (RHO * vs * B),
                          "C_h_exact": float(exact.horizontal[k].imag / omega[k]),
                          "C_v_geofound": gd.calc_vert_strip_via_gazetas_1991(
                              sl, fd, a0, ip_axis="width") / 1e3,
@@ -331,10 +332,11 @@ def markdown(data: dict) -> str:
                    "`get_cy_gazetas_v_e_0p3` and `get_cy_gazetas_v_e_0p3` (the ν = 0.3 table "
                    "at both ends), so its horizontal strip dashpot is the same at every ν. "
                    "kN s/m² per m, bonded exact.\n")
-        out += ["| ν | a0 | C_h geofound | C_h exact | C_v geofound | C_v exact |",
-                "|---|---|---|---|---|---|"]
+        out += ["| ν | a0 | c̃_y = C_h/(ρV_sB) geofound | exact | C_h geofound | C_h exact | "
+                "C_v geofound | C_v exact |", "|---|---|---|---|---|---|---|---|"]
         for r in geo["rows"]:
-            out.append(f"| {r['nu']:.3g} | {r['a0']:g} | {r['C_h_geofound']:.1f} | "
+            out.append(f"| {r['nu']:.3g} | {r['a0']:g} | {r['cy_geofound']:.3f} | "
+                       f"{r['cy_exact']:.3f} | {r['C_h_geofound']:.1f} | "
                        f"{r['C_h_exact']:.1f} | {r['C_v_geofound']:.1f} | "
                        f"{r['C_v_exact']:.1f} |")
     out.append(f"\nV_La/V_p: {data['vla_over_vp']}\n")
