@@ -256,7 +256,7 @@ def geofound_crosscheck() -> dict:
 
 
 def markdown(data: dict) -> str:
-    out = [f"# Impedance of the rigid strip\n",
+    out = ["# Impedance of the rigid strip\n",
            f"`python benchmarks/impedance.py`, {data['date']}, {data['machine']}, one thread. "
            "Soil E = 50 MPa, ρ = 1.8 t/m³, B = 2 m; Q2, 16 elements across B, PML box 6B × 3B "
            "with a 1.5B layer unless stated. Errors are |K − K_exact|/|K_exact|, the exact "

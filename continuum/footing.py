@@ -39,7 +39,8 @@ from ..checks import InputError, nonnegative, one_of
 from ..scenes import INTERFACES
 
 __all__ = ["OPEN", "STICK", "SLIP_POSITIVE", "SLIP_NEGATIVE", "Interface", "Footing",
-           "footing_on", "separation_fraction", "ContactProblem", "ContactSolution", "ContactError", "solve_contact"]
+           "footing_on", "separation_fraction", "ContactProblem", "ContactSolution",
+           "ContactError", "solve_contact"]
 
 #: Relative round-off allowance of the contact conditions: P ≥ −tol and g ≥ −tol/c with
 #: tol = RTOL_CONTACT × the largest contact force.
