@@ -16,7 +16,12 @@ Analyses (results are frozen records with ``save()`` to NetCDF)
     -> :class:`StaticPath`; :func:`uplift_onset` -> :class:`UpliftOnset`;
     :func:`vm_envelope` -> :class:`Envelope`; :func:`run_dynamic` (gravity, then a ground
     motion; HHT-α / Newmark, Lysmer boundaries, rigid or compliant base, SDOF superstructure)
-    with :class:`DynamicOptions` -> :class:`DynamicResult`.
+    with :class:`DynamicOptions` -> :class:`DynamicResult`; :func:`impedance` (the footing's
+    complex impedance per unit length in the frequency domain, PML or Lysmer box) with
+    :class:`ImpedanceOptions` on :func:`impedance_model` -> :class:`Impedance`.
+Independent references
+    :mod:`.halfplane` (the exact impedance of the rigid strip on the half-plane, no FE code),
+    :mod:`.gazetas` (the handbook formulas of Gazetas 1991).
 Solver
     :func:`equilibrium` (one Newton step to a :class:`Control`), :func:`follow` (a load path
     with step cutting), :func:`footing_tangent` (dF/dq), :class:`NewtonOptions`,
@@ -25,12 +30,13 @@ Solver
 Pieces
     :mod:`.assembly` (B-matrices, einsum Bᵀ D B into a fixed CSR pattern), :mod:`.footing`
     (kinematics, contact solver), :mod:`.materials` (return maps), :mod:`.model`,
-    :mod:`.newton`, :mod:`.statics`, :mod:`.dynamics`.
+    :mod:`.newton`, :mod:`.statics`, :mod:`.dynamics`, :mod:`.impedance`.
 """
 
 from .dynamics import DynamicOptions, DynamicResult, run_dynamic
 from .footing import (OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK, ContactError, Footing,
                       Interface)
+from .impedance import Impedance, ImpedanceOptions, impedance, impedance_model
 from .model import ContinuumModel, build_model, default_k0, make_model
 from .newton import (ContinuumState, Control, ConvergenceError, FootingTerm, NewtonOptions,
                      SoilTerm, equilibrium, follow, footing_tangent)
@@ -49,4 +55,5 @@ __all__ = [
     "StaticPath", "vertical_pushover", "rotation_pushover", "moment_pushover",
     "UpliftOnset", "uplift_onset", "Envelope", "vm_envelope",
     "DynamicOptions", "DynamicResult", "run_dynamic",
+    "Impedance", "ImpedanceOptions", "impedance", "impedance_model",
 ]

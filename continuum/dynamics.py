@@ -845,7 +845,7 @@ class _Recorder:
         self.pressure[k] = -state.force[:f.nodes] / f.weight
         self.gap[k] = f.gap(state.u, state.q)
         self.status[k] = state.status
-        self.length[k] = f.contact_length(state.status != OPEN)
+        self.length[k] = f.contact_length(state.status != OPEN, self.pressure[k], self.gap[k])
         self.iterations[k], self.refactored[k] = iterations, refactored
         self.energy[k] = energy
         self.energy[k, 0] = kinetic

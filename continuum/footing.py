@@ -29,6 +29,7 @@ converged answer satisfies P ≥ 0, g ≥ 0, P g = 0 to round-off.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -38,7 +39,8 @@ from ..checks import InputError, nonnegative, one_of
 from ..scenes import INTERFACES
 
 __all__ = ["OPEN", "STICK", "SLIP_POSITIVE", "SLIP_NEGATIVE", "Interface", "Footing",
-           "footing_on", "ContactProblem", "ContactSolution", "ContactError", "solve_contact"]
+           "footing_on", "separation_fraction", "ContactProblem", "ContactSolution",
+           "ContactError", "solve_contact"]
 
 #: Relative round-off allowance of the contact conditions: P ≥ −tol and g ≥ −tol/c with
 #: tol = RTOL_CONTACT × the largest contact force.
@@ -94,8 +96,9 @@ class Footing:
     """The contact nodes of the footing base, sorted by x.
 
     ``x`` (length), soil DOFs ``ux`` and ``uy``, weights ``weight`` = ∫ φ_i ds (length; they
-    sum to B), footing ``width`` B, and the ``interface``. The contact DOFs c are ``uy`` then,
-    for a tangential interface, ``ux``.
+    sum to B), footing ``width`` B, the ``interface``, and the soil's plane-strain modulus
+    ``modulus`` E* = E/(1 − ν²) (force/length²; locates the ends of contact patches). The
+    contact DOFs c are ``uy`` then, for a tangential interface, ``ux``.
     """
 
     x: np.ndarray
@@ -104,6 +107,7 @@ class Footing:
     weight: np.ndarray
     width: float
     interface: Interface
+    modulus: float = math.nan
 
     @property
     def nodes(self) -> int:
@@ -131,15 +135,65 @@ class Footing:
         """Tangential displacement of the soil relative to the footing, ux_i − u (length)."""
         return u[self.ux] - q[0]
 
-    def contact_length(self, closed: np.ndarray) -> float:
-        """Length of the base in contact: each closed node owns half of each interval to its
-        neighbours (midpoint rule; B for full contact, O(h) accurate at a contact edge)."""
-        mid = np.concatenate(([self.x[0]], 0.5 * (self.x[1:] + self.x[:-1]), [self.x[-1]]))
-        return float(np.sum((mid[1:] - mid[:-1])[np.asarray(closed, dtype=bool)]))
+    def contact_length(self, closed: np.ndarray, pressure: np.ndarray | None = None,
+                       gap: np.ndarray | None = None) -> float:
+        """Length of the base in contact (length): the sum over the contact patches (runs of
+        ``closed`` nodes) of the distance between their two ends. A patch ending at a footing
+        edge ends there; elsewhere it ends at the separation point between its last closed
+        node i and the first open one j, :func:`separation_fraction` of the way from x_i to
+        x_j, interpolated from the closed node's ``pressure`` p_i and the open node's ``gap``
+        g_j. Without ``pressure`` and ``gap`` each patch ends half-way (the midpoint rule: off
+        by up to about one node spacing however fine the mesh)."""
+        closed = np.asarray(closed, dtype=bool)
+        if not closed.any():
+            return 0.0
+        x, n = self.x, self.nodes
+        starts = np.flatnonzero(closed & ~np.concatenate(([False], closed[:-1])))
+        ends = np.flatnonzero(closed & ~np.concatenate((closed[1:], [False])))
+        left = np.where(starts == 0, x[0], x[np.maximum(starts, 1)])
+        right = np.where(ends == n - 1, x[-1], x[np.minimum(ends, n - 2)])
+        inner_l, inner_r = starts > 0, ends < n - 1
+        for inner, i, j, side in ((inner_l, starts, starts - 1, left),
+                                  (inner_r, ends, ends + 1, right)):
+            if not inner.any():
+                continue
+            i, j = i[inner], j[inner]
+            if pressure is None or gap is None:
+                t = np.full(i.size, 0.5)
+            else:
+                t = separation_fraction(np.asarray(pressure)[i], np.asarray(gap)[j],
+                                        np.abs(x[j] - x[i]), self.modulus)
+            side[inner] = x[i] + t * (x[j] - x[i])
+        return float(np.sum(right - left))
 
 
-def footing_on(basis: skfem.CellBasis, interface: Interface) -> Footing:
-    """The :class:`Footing` on the ``footing`` boundary of a two-component vector ``basis``."""
+def separation_fraction(pressure, gap, spacing, modulus) -> np.ndarray:
+    """Where contact ends between a closed node (``pressure`` p ≥ 0, force/length²) and the next
+    open one (``gap`` g ≥ 0, length) a ``spacing`` h apart, as the fraction t = d/h of the way
+    from the closed node, for soil of plane-strain modulus E* = ``modulus``.
+
+    On the elastic half-plane the pressure vanishes at a smooth separation point as p = α√d at
+    a distance d inside the contact, and the gap opens as g = (4α/(3E*)) e^{3/2} at a distance e
+    outside (the surface displacement's second derivative is the Hilbert transform of p″,
+    α/(E*√e)). With d = t h and e = (1 − t) h the two nodal values give
+    (1 − t)^{3/2}/√t = 3E* g/(4 p h), monotonic in t ∈ [0, 1]: solved by bisection. p = 0
+    puts the end at the closed node (t = 0), g = 0 at the open one (t = 1)."""
+    p, g = np.maximum(np.asarray(pressure, dtype=float), 0.0), np.maximum(gap, 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r2 = (3.0 * modulus * g / (4.0 * p * np.asarray(spacing, dtype=float))) ** 2
+    lo, hi = np.zeros(p.shape), np.ones(p.shape)
+    for _ in range(60):  # (1 − t)³ − r² t is decreasing on [0, 1]
+        t = 0.5 * (lo + hi)
+        inside = (1.0 - t) ** 3 - r2 * t > 0.0
+        lo, hi = np.where(inside, t, lo), np.where(inside, hi, t)
+    t = 0.5 * (lo + hi)
+    return np.where(p <= 0.0, 0.0, np.where(g <= 0.0, 1.0, t))
+
+
+def footing_on(basis: skfem.CellBasis, interface: Interface,
+               modulus: float = math.nan) -> Footing:
+    """The :class:`Footing` on the ``footing`` boundary of a two-component vector ``basis``,
+    on soil of plane-strain modulus ``modulus`` E*."""
     from ..meshes import footing_dofs
 
     dofs = footing_dofs(basis)
@@ -148,7 +202,7 @@ def footing_on(basis: skfem.CellBasis, interface: Interface) -> Footing:
     facet_basis = skfem.FacetBasis(basis.mesh, basis.elem, facets=facets, intorder=order)
     weight = skfem.LinearForm(lambda v, w: v[1]).assemble(facet_basis)[dofs.uy]
     return Footing(x=dofs.x, ux=dofs.ux, uy=dofs.uy, weight=weight,
-                   width=float(dofs.x[-1] - dofs.x[0]), interface=interface)
+                   width=float(dofs.x[-1] - dofs.x[0]), interface=interface, modulus=modulus)
 
 
 @dataclass(frozen=True, eq=False)

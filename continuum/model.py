@@ -403,7 +403,8 @@ def make_model(soil: Soil, footing_width: float, options: ContinuumOptions | Non
         skmesh, element, parameters = mesh, options.element, {"element": options.element}
     _check_boundaries(skmesh)
     disc = assembly.discretise(skmesh, element, options.intorder)
-    footing = footing_on(disc.basis, Interface(soil.interface, soil.interface_friction))
+    footing = footing_on(disc.basis, Interface(soil.interface, soil.interface_friction),
+                         modulus=soil.youngs_modulus / (1.0 - soil.poisson_ratio ** 2))
     _check_footing(footing, footing_width, skmesh)
     fixed = _dirichlet(disc.basis)
     contact = footing.contact_dofs

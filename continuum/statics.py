@@ -363,12 +363,15 @@ def _path(model, kind: str, states, extra=None, snapshots=None) -> StaticPath:
     q = np.array([s.q for s in states])
     reaction = np.array([s.reaction for s in states])
     status = np.array([s.status for s in states])
+    pressure = normal / f.weight
+    gap = np.array([f.gap(s.u, s.q) for s in states])
     return StaticPath(
         kind=kind, u=q[:, 0], v=q[:, 1], theta=q[:, 2], H=reaction[:, 0], N=-reaction[:, 1],
         M=reaction[:, 2],
-        contact_length=np.array([f.contact_length(st != OPEN) for st in status]),
-        x=f.x, pressure=normal / f.weight, shear=shear / f.weight,
-        gap=np.array([f.gap(s.u, s.q) for s in states]), status=status,
+        contact_length=np.array([f.contact_length(st != OPEN, p, g)
+                                 for st, p, g in zip(status, pressure, gap)]),
+        x=f.x, pressure=pressure, shear=shear / f.weight,
+        gap=gap, status=status,
         iterations=np.array([s.iterations for s in states]),
         cuts=np.array([s.cuts for s in states]), width=f.width,
         metadata=_metadata(model, kind, extra), **_fields(model, states, snapshots))

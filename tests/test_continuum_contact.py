@@ -23,7 +23,7 @@ import pytest
 from upliftlab.checks import InputError
 from upliftlab.continuum import (OPEN, STICK, Control, follow, geostatic, make_model,
                                  moment_pushover, rotation_pushover, uplift_onset)
-from upliftlab.continuum.footing import SLIP_NEGATIVE, SLIP_POSITIVE
+from upliftlab.continuum.footing import SLIP_NEGATIVE, SLIP_POSITIVE, separation_fraction
 from upliftlab.scenes import ContinuumOptions, Soil
 
 E, NU, B, N = 50e3, 0.3, 2.0, 171.39  # kPa, -, m, kN/m (the scene's FS_v = 3)
@@ -74,16 +74,53 @@ def test_uplift_onset_eccentricity_is_a_quarter_width_not_a_sixth(pushovers):
 
 def test_contact_length_follows_the_half_plane_law_and_converges(pushovers):
     # Reference: c/B = θ_on/θ after uplift (module docstring), θ_on measured on the same mesh.
-    # The contact length counts half of each interval to a neighbour of a closed node, an O(h)
-    # measure: the largest error is 0.052 B (8 across) and 0.035 B (16), asserted within 1.5
-    # node spacings (B/(2n) for Q2) and falling with refinement.
+    # The contact length ends at the separation point interpolated between the last closed
+    # and the first open node: the largest error is 0.024 B (8 across) and 0.019 B (16)
+    # (the midpoint rule gave 0.052 and 0.035 B), asserted within one node spacing (B/(2n)
+    # for Q2) and falling with refinement.
     errors = {}
     for n, path in pushovers.items():
         theta_on = uplift_onset(path).theta
         expected = np.minimum(1.0, theta_on / path.theta)
         errors[n] = np.max(np.abs(path.contact_fraction - expected))
-        assert errors[n] <= 1.5 / (2 * n)
+        assert errors[n] <= 1.0 / (2 * n)
     assert errors[16] < errors[8]
+
+
+@pytest.mark.parametrize("n", [8, 16])
+def test_contact_length_is_measured_where_the_contact_ends(n):
+    # Reference: the half-plane's contact length after onset, L_c = 4(B/2 − e) with e = M/N
+    # (module docstring), at the FE's own eccentricity, at every one of 24 steps from just
+    # past onset to 10 θ_on. Measured: largest error 0.78 node spacings (8 across), 0.67 (16)
+    # and 0.69 (32); the midpoint rule it replaces: 0.75, 1.17 and 1.19 spacings (rms 0.54,
+    # 0.57, 0.63 against 0.46, 0.36, 0.32 now). Asserted: within one node spacing B/(2n) at
+    # every step, and a smaller rms error than the midpoint rule's. On 8 across the largest error
+    # is at 10 θ_on, where the patch is three elements long and both rules are off by the
+    # FE's own O(h) error of the patch.
+    ratios = np.concatenate(([0.5], np.linspace(1.05, 10.0, 24)))
+    path = rotation_pushover(model_for(n), N, ratios * THETA_ON)
+    e = path.M / path.N
+    after = e > B / 4
+    assert after.sum() >= 23
+    error = (path.contact_length - 4 * (B / 2 - e))[after] / (B / (2 * n))
+    assert np.max(np.abs(error)) <= 1.0, error
+    midpoint = np.array([model_for(n).footing.contact_length(st != OPEN)
+                         for st in path.status])
+    old = (midpoint - 4 * (B / 2 - e))[after] / (B / (2 * n))
+    assert np.sqrt(np.mean(error ** 2)) < np.sqrt(np.mean(old ** 2))
+
+
+def test_separation_point_inverts_the_half_plane_edge_asymptotics():
+    # Reference: p = α√d inside and g = 4α e^{3/2}/(3E*) outside a smooth separation point
+    # (footing.separation_fraction): nodal values built from a known end t recover it to the
+    # bisection's precision; p = 0 puts the end at the closed node, g = 0 at the open one.
+    E_star, h, alpha = E / (1 - NU ** 2), 0.1, 37.0
+    t = np.array([0.01, 0.2, 0.5, 0.8, 0.99])
+    p = alpha * np.sqrt(t * h)
+    g = 4 * alpha * ((1 - t) * h) ** 1.5 / (3 * E_star)
+    assert np.allclose(separation_fraction(p, g, h, E_star), t, atol=1e-12)
+    assert separation_fraction(np.array([0.0]), np.array([1e-3]), h, E_star)[0] == 0.0
+    assert separation_fraction(np.array([5.0]), np.array([0.0]), h, E_star)[0] == 1.0
 
 
 def test_moment_after_uplift_matches_the_half_plane(pushovers):
@@ -162,7 +199,9 @@ def test_uplift_refinement_study():
     # Reference: as the fast tests. 8, 16, 32, 64 across B on the 10B box (5 184 … 313 584
     # DOFs): the onset e/B = 0.249293, 0.249099, 0.249056, 0.249015 (within 0.3 % of 1/4, the
     # box's share; spread 0.12 %, asserted 0.2 %); the largest contact-length error against
-    # θ_on/θ is 0.055, 0.035, 0.018, 0.0076 B, a fitted rate 0.94 (asserted 0.6–1.6); M after
+    # θ_on/θ is 0.024, 0.019, 0.0097, 0.0038 B (the contact ends at the interpolated separation
+    # point; the midpoint rule gave 0.055, 0.035, 0.018, 0.0076 B), a fitted rate 0.90
+    # (asserted 0.6–1.6); M after
     # uplift within 0.35 % of the half-plane law from 16 across (measured 0.34, 0.28, 0.29 %:
     # the box's share).
     ns = np.array([8, 16, 32, 64])

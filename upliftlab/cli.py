@@ -6,9 +6,10 @@
     upliftlab advise SCENE --quantity peak_u --tol 5% [--case C] [--set KEY=VALUE ...] [--fast]
                      [--json]
     upliftlab report [--fast] [--out DIR] [--scheduler ADDR]
-    upliftlab continuum SCENE [--analysis pushover|dynamic] [--case C] [--set KEY=VALUE ...]
-                        [--mesh KEY=VALUE[,KEY=VALUE ...] ...] [--theta-max RAD] [--steps N]
-                        [--motion NAME|PATH] [--scale S] [--out DIR] [--no-render] [--json]
+    upliftlab continuum SCENE [--analysis pushover|dynamic|impedance] [--case C]
+                        [--set KEY=VALUE ...] [--mesh KEY=VALUE[,KEY=VALUE ...] ...]
+                        [--theta-max RAD] [--steps N] [--motion NAME|PATH] [--a0 LIST]
+                        [--boundary pml|lysmer] [--scale S] [--out DIR] [--no-render] [--json]
 
 Bad input ends with one line naming the field, the value and the valid range (exit code 2),
 before any file is written.
@@ -95,6 +96,9 @@ def parser() -> argparse.ArgumentParser:
                                                  "two more below uplift if they are coarse)")
     c.add_argument("--motion", help="dynamic: a record name on UPLIFTLAB_MOTIONS or a path; "
                                     "replaces the scene's motion")
+    c.add_argument("--a0", help="impedance: frequencies a0 = ω B/(2 V_s), comma separated "
+                                "(default 0.1, 0.2, …, 2)")
+    c.add_argument("--boundary", help="impedance: absorbing boundary pml (default) or lysmer")
     c.add_argument("--scale", help="displacement magnification of the pictures (default: "
                                    "automatic, stated in each picture)")
     c.add_argument("--out", help="output directory (default results/<scene>-continuum-"
@@ -104,7 +108,7 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
-CONTINUUM_ANALYSES = ("pushover", "dynamic")
+CONTINUUM_ANALYSES = ("pushover", "dynamic", "impedance")
 #: ``--mesh`` keys: the [continuum] fields that shape the mesh and its quadrature.
 MESH_KEYS = ("elements_across", "grading", "element", "domain_width", "domain_depth",
              "intorder")
@@ -200,13 +204,17 @@ def _continuum(args) -> int:
     theta_max = _number("--theta-max", args.theta_max)
     steps = _number("--steps", args.steps, integer=True, low=2)
     scale = _number("--scale", args.scale)
-    if args.analysis == "pushover" and args.motion is not None:
+    if args.analysis != "dynamic" and args.motion is not None:
         raise InputError("--motion: only the dynamic analysis takes a motion")
+    if args.analysis != "impedance" and (args.a0 is not None or args.boundary is not None):
+        raise InputError("--a0/--boundary: only the impedance analysis takes them")
     scene = load_scene(args.scene, case=args.case, overrides=overrides,
                        motion=args.motion if args.analysis == "dynamic" else None)
     if scene.soil is None:
         raise InputError(f"scene {scene.name!r}: soil is missing; the continuum model needs a "
                          "[soil] table")
+    if args.analysis == "impedance":
+        return _impedance(args, scene)
     if args.analysis == "dynamic":
         try:
             from .continuum.dynamics import DynamicOptions, run_dynamic
@@ -239,6 +247,70 @@ def _continuum(args) -> int:
         units = {"length": scene.units.length,
                  "moment/length": f"{scene.units.force}*{scene.units.length}/{scene.units.length}"}
         print(summary_line(summary, units))
+    return 0
+
+
+def _impedance_options(args):
+    """ImpedanceOptions from --a0, --boundary and a --mesh domain_width/domain_depth (the
+    impedance meshes its own box; the scene's is a static one)."""
+    from .continuum.impedance import ImpedanceOptions
+
+    kwargs = {}
+    if args.a0 is not None:
+        try:
+            kwargs["a0"] = tuple(float(x) for x in args.a0.split(",") if x.strip())
+        except ValueError:
+            raise InputError(f"--a0 = {args.a0!r}: expected comma-separated numbers > 0") from None
+    if args.boundary is not None:
+        kwargs["boundary"] = args.boundary
+    for pair in _mesh_overrides(args.mesh):
+        key, _, value = pair.partition("=")
+        if key in ("continuum.domain_width", "continuum.domain_depth"):
+            kwargs[key.split(".")[1]] = _number(f"--mesh {key.split('.')[1]}", value)
+    return ImpedanceOptions(**kwargs)
+
+
+def _impedance(args, scene) -> int:
+    """``--analysis impedance``: the FE impedance, checked against the exact half-plane."""
+    from .continuum.impedance import impedance, impedance_model
+
+    options = _impedance_options(args)
+    model = impedance_model(scene.soil, scene.foundation.width, scene.continuum, options,
+                            scene=scene)
+    out = Path(args.out or Path("results") / f"{scene.name}-continuum-impedance")
+    _say(f"{scene.name}: impedance, {model.disc.element}, {model.mesh.nelements} elements, "
+         f"{model.dofs} DOFs, {options.boundary} box {options.domain_width:g}B x "
+         f"{options.domain_depth:g}B, {scene.soil.interface} interface, "
+         f"{len(options.a0)} frequencies")
+    started = time.perf_counter()
+
+    def progress(k, n, a0):
+        elapsed = time.perf_counter() - started
+        _say(f"a0 = {a0:.3g} ({k + 1}/{n}), {elapsed:.1f} s elapsed, "
+             f"ETA {elapsed / (k + 1) * (n - k - 1):.0f} s")
+
+    result = impedance(model, options, progress=progress)
+    from .continuum.impedance_output import (impedance_figure, impedance_summary,
+                                             reference_for, verify)
+
+    reference = reference_for(result)
+    errors = verify(result, reference)  # ImpedanceAccuracyError (exit 3) before any file
+    out.mkdir(parents=True, exist_ok=True)
+    written = [result.save(out / "impedance.nc")]
+    if not args.no_render:
+        from .reduced.figures import save
+        written.append(save(impedance_figure(result, reference), out / "impedance.png"))
+    for path in written:
+        _say(f"wrote {path}")
+    summary = impedance_summary(result, reference, errors)
+    if args.json:
+        print(json.dumps(summary))
+    else:
+        worst = ", ".join(f"{k} {100 * v:.2f} %" for k, v in summary["max_error"].items())
+        print(f"impedance of {scene.name}: {len(result.a0)} frequencies a0 = "
+              f"{result.a0.min():g}-{result.a0.max():g}, {result.dofs} DOFs, "
+              f"{summary['wall_time_s']:.1f} s; largest error against the exact half-plane: "
+              f"{worst}")
     return 0
 
 
