@@ -92,7 +92,10 @@ N_ENERGY = 7  # input, kinetic, strain, gravity, viscous, impact, plastic
 # P_ETOT0 the balance's value at the start (stored + dissipated − input)
 P_UMIN, P_UMAX, P_THMIN, P_THMAX, P_VMIN, P_VMAX = range(6)
 P_MOT, P_CMIN, P_ERES, P_ESCALE, P_ETOT0 = range(6, 11)
-N_PEAK_SCALARS = 11
+# toppling: the overturning ratio and time at the last accepted state, and the time at which
+# the ratio reached 1 (interpolated linearly between the last two accepted states)
+P_RPREV, P_TPREV, P_TOVER = range(11, 14)
+N_PEAK_SCALARS = 14
 
 # the frame: constants of the scene's geometry and kinematics that every integrator takes (one
 # float array), and the pivot side of exact kinematics (the one entry that changes in a run)
@@ -120,6 +123,12 @@ OK, CHATTER, NONFINITE, NO_CONVERGENCE, OVERTURNED, STEP_UNDERFLOW = 0, 1, 2, 3,
 N_COUNTERS = 6
 SWITCH_TOL = 1e-12
 OVERSHOOT_TOL = 1e-6
+# A condition is computed from e, which carries an absolute rounding error ~ eps·|e|: for a
+# very stiff spring (δ0 of micrometres under a settlement of centimetres) that exceeds
+# SWITCH_TOL once scaled by 1/δ0. ROUNDING · (the size of the condition's terms) is allowed on
+# top of SWITCH_TOL, the same in the crossing search and in the switch, so the two never
+# disagree about a spring that sits on its limit.
+ROUNDING = 32.0 * 2.220446049250313e-16
 N_SAMPLES = 4
 
 # ---------------------------------------------------------------------------------------------
@@ -203,6 +212,20 @@ def validity(mode, p, e, ed, h):
     if mode == CLIPPED:
         return min(g, d * p.gd, -force)
     return min(g, d * p.gd, (p.fy - p.k * d) * p.gs, force)
+
+
+@njit(cache=True)
+def past_limit(mode, p, e, ed, h):
+    """True if a spring has crossed a limit of its mode: one of its conditions α + β e + γ ė
+    (:func:`condition`) below −SWITCH_TOL by more than its rounding, ROUNDING times the size
+    of its terms. The crossing search (:func:`column_crossing`) allows the same."""
+    for k in range(N_CONDITIONS):
+        alpha, beta, gamma = condition(k, mode, p, h)
+        value = alpha + beta * e + gamma * ed
+        size = abs(alpha) + abs(beta * e) + abs(gamma * ed)
+        if value + ROUNDING * size < -SWITCH_TOL:
+            return True
+    return False
 
 
 @njit(cache=True)
@@ -1121,7 +1144,11 @@ def column_crossing(T, col, m, h, s_max, shift):
         gamma = T[T_COND + 3 * k + 2, col]
         if (beta == 0.0 and gamma == 0.0) or not math.isfinite(alpha):
             continue  # a constant, or a limit at infinity (elastic)
-        c = condition_polynomial(alpha, beta, gamma, m, h)
+        e_end = m[0] + m[1] + m[2] + m[3] + m[4] + m[5]
+        ed_end = (m[1] + 2.0 * m[2] + 3.0 * m[3] + 4.0 * m[4] + 5.0 * m[5]) / h
+        size = (abs(T[T_COND + 3 * k, col]) + abs(beta) * max(abs(m[0]), abs(e_end))
+                + abs(gamma) * max(abs(m[1] / h), abs(ed_end)))
+        c = condition_polynomial(alpha + ROUNDING * size, beta, gamma, m, h)
         best = min(best, condition_crossing(c, min(best, s_max)))
     return best
 
@@ -1214,7 +1241,7 @@ def apply_switches(t, P, modes, H, q, qd, Tg, Tb, impacts, open_impact, counters
         was_imp = H[j].imp
         switched = False
         for _ in range(4):
-            if validity(modes[j], p, e, ed, H[j]) >= -SWITCH_TOL:
+            if not past_limit(modes[j], p, e, ed, H[j]):
                 break
             modes[j] = switch_mode(modes[j], p, e, ed, H[j])
             switches += 1
@@ -1291,6 +1318,33 @@ def track_peaks(h, q0, qd0, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith
                 d1 = p.d0 + e1[j] - H[j].ep
                 peaks[a + 1] = max(peaks[a + 1], min(p.k * max(d1, 0.0), p.fy))
     peaks[P_MOT] = max(peaks[P_MOT], abs(moment))
+
+
+@njit(cache=True, **HOT)
+def story_peaks(h, T, P, e0, ed0, edd0, e1, ed1, edd1, peaks):
+    """Refine the story shears' and the overturning moment's peaks inside an event-stepper
+    step, where every story keeps its tabulated law f = K e + C ė + F: the extremes of the
+    cubic through f and ḟ = K ė + C ë at the step's ends (:func:`track_peaks` has the ends)."""
+    m0 = md0 = m1 = md1 = 0.0
+    for j in range(T.shape[1]):
+        if P[j].kind != STORY:
+            continue
+        f0 = T[T_K, j] * e0[j] + T[T_C, j] * ed0[j] + T[T_F, j]
+        f1 = T[T_K, j] * e1[j] + T[T_C, j] * ed1[j] + T[T_F, j]
+        fd0 = T[T_K, j] * ed0[j] + T[T_C, j] * edd0[j]
+        fd1 = T[T_K, j] * ed1[j] + T[T_C, j] * edd1[j]
+        a = N_PEAK_SCALARS + 2 * j + 1
+        top = hermite_extreme(f0, fd0, f1, fd1, h, peaks[a], True)
+        low = hermite_extreme(f0, fd0, f1, fd1, h, -peaks[a], False)
+        peaks[a] = max(top, -low)
+        arm = P[j].arm
+        m0 += arm * f0
+        m1 += arm * f1
+        md0 += arm * fd0
+        md1 += arm * fd1
+    top = hermite_extreme(m0, md0, m1, md1, h, peaks[P_MOT], True)
+    low = hermite_extreme(m0, md0, m1, md1, h, -peaks[P_MOT], False)
+    peaks[P_MOT] = max(top, -low)
 
 
 @njit(cache=True, fastmath=FAST, **HOT)
@@ -1622,16 +1676,29 @@ def start_side(q, qd, frame):
 
 
 @njit(cache=True, **HOT)
-def after_step(q, P, Tb, frame, story, peaks):
-    """Contact length of the bed at an accepted state, into its least; True if the state is
-    past the toppling angle (:func:`overturn_ratio`)."""
+def toppled(t, q, frame, story, peaks):
+    """True if the state at time t is past the toppling angle (:func:`overturn_ratio` ≥ 1),
+    with the time it got there, interpolated from the last accepted state, in P_TOVER."""
+    ratio = overturn_ratio(q, frame, story)
+    if ratio >= 1.0:
+        r0, t0 = peaks[P_RPREV], peaks[P_TPREV]
+        peaks[P_TOVER] = t0 + (1.0 - r0) / (ratio - r0) * (t - t0) if ratio > r0 else t
+        return True
+    peaks[P_RPREV], peaks[P_TPREV] = ratio, t
+    return False
+
+
+@njit(cache=True, **HOT)
+def after_step(t, q, P, Tb, frame, story, peaks):
+    """Contact length of the bed at an accepted state at time t, into its least; True if the
+    state is past the toppling angle (:func:`toppled`)."""
     b = frame[F_B]
     if b <= 0.0:
         return False
     if Tb.shape[1] > 0:
         last = P[P.size - 1]
         peaks[P_CMIN] = min(peaks[P_CMIN], bed_contact_length(Tb, q[last.i0], q[last.i1], b))
-    return overturn_ratio(q, frame, story) >= 1.0
+    return toppled(t, q, frame, story, peaks)
 
 
 @njit(cache=True, **HOT)
@@ -1657,7 +1724,7 @@ def march_events(q, qd, acc, modes, H, dt, nsteps, stride, minv, P, KG, L, ag, d
     counters[2] += 1
     rates(q, qd, a0, P, e0, ed0, edd0)
     note_magnitudes(q, qd, qpeak)
-    if after_step(q, P, Tb, frame, story, peaks):
+    if after_step(0.0, q, P, Tb, frame, story, peaks):
         return OVERTURNED  # released past its toppling angle: the initial row is the result
     for step in range(nsteps):
         t_end = (step + 1) * dt
@@ -1709,7 +1776,7 @@ def march_events(q, qd, acc, modes, H, dt, nsteps, stride, minv, P, KG, L, ag, d
                 counters[2] += 3
                 if spring >= 0:
                     e, ed = deformation(P[spring], q1, qd1)
-                    if validity(modes[spring], P[spring], e, ed, H[spring]) >= -SWITCH_TOL:
+                    if not past_limit(modes[spring], P[spring], e, ed, H[spring]):
                         s = relocate(spring, tau / h, m, h, P, modes, H, Tg, Tb, q1, qd1)
                         if s < 1.0:  # once more, on the interpolant raised by what it missed
                             tau = min(max(s * h, t_tol), h)
@@ -1719,16 +1786,17 @@ def march_events(q, qd, acc, modes, H, dt, nsteps, stride, minv, P, KG, L, ag, d
                             counters[2] += 3
                 h = tau
                 t1 = t + h if t_end - (t + h) > t_tol else t_end
-                deformations(q1, qd1, P, e1, ed1)
-                x1, y1 = bed_state(P, q1, qd1, a1)  # (the peaks take values and rates only)
+                # q̈ at the cut, in the modes of the step: its end for the peaks and outputs
+                p1 = frozen_accelerations(t1, q1, qd1, minv, P, KG, L, ag, dtg, Tg, Tb, frame,
+                                          story, Mw, a1)
+                counters[2] += 1
+                rates(q1, qd1, a1, P, e1, ed1, edd1)
+                x1, y1 = bed_state(P, q1, qd1, a1)
             track_peaks(h, q, qd, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith, iv,
                         peaks)
+            story_peaks(h, Tg, P, e0, ed0, edd0, e1, ed1, edd1, peaks)
             bed_peaks(Tb, h, x0, y0, x1, y1, bed)
             if dense and row < out_t.size and row * out_dt <= t1 + t_tol:
-                if spring >= 0 or flip:  # q̈ at the cut, in the modes of the step
-                    p1 = frozen_accelerations(t1, q1, qd1, minv, P, KG, L, ag, dtg, Tg, Tb,
-                                              frame, story, Mw, a1)
-                    counters[2] += 1
                 while row < out_t.size and row * out_dt <= t1 + t_tol:
                     record_between(row, min(row * out_dt, t1), t, h, q, qd, a0, q1, qd1, a1, acc,
                                    acc1, p0, p1, qs, qds, acc_s, P, modes, H, minv, KG, weight,
@@ -1759,7 +1827,7 @@ def march_events(q, qd, acc, modes, H, dt, nsteps, stride, minv, P, KG, L, ag, d
                 counters[2] += 1
                 rates(q, qd, a0, P, e0, ed0, edd0)
             note_magnitudes(q, qd, qpeak)
-            if after_step(q, P, Tb, frame, story, peaks):
+            if after_step(t, q, P, Tb, frame, story, peaks):
                 last = row if dense else stop_row(step, stride)
                 if last < out_t.size:
                     record(last, t, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e_all,
@@ -1781,7 +1849,7 @@ def march_events(q, qd, acc, modes, H, dt, nsteps, stride, minv, P, KG, L, ag, d
 
 
 @njit(cache=True, **HOT)
-def after_fixed_step(q, P, H, e, frame, story, peaks):
+def after_fixed_step(t, q, P, H, e, frame, story, peaks):
     """:func:`after_step` for the fixed-step integrators, whose springs keep e in an array."""
     b = frame[F_B]
     if b <= 0.0:
@@ -1791,7 +1859,7 @@ def after_fixed_step(q, P, H, e, frame, story, peaks):
         first -= 1
     if first < P.size:
         peaks[P_CMIN] = min(peaks[P_CMIN], springs_contact_length(P, H, e, first, b))
-    return overturn_ratio(q, frame, story) >= 1.0
+    return toppled(t, q, frame, story, peaks)
 
 
 @njit(cache=True)
@@ -1818,7 +1886,7 @@ def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, 
     counters[4] = 1
     start_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story, peaks)
     deformations(q, qd, P, e0, ed0)
-    if after_fixed_step(q, P, H, e0, frame, story, peaks):
+    if after_fixed_step(0.0, q, P, H, e0, frame, story, peaks):
         return OVERTURNED  # released past its toppling angle: the initial row is the result
     return march_rk4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg,
                      weight, frame, story, Mw, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds,
@@ -1832,7 +1900,7 @@ def end_fixed_step(step, t, stride, q, qd, acc, modes, H, minv, P, KG, weight, f
                    out_energy, peaks, counters):
     """After a fixed step (committed): contact length, overturning, outputs and the energy
     check. Returns OVERTURNED if the run ends here, else OK."""
-    if after_fixed_step(q, P, H, e0, frame, story, peaks):
+    if after_fixed_step(t, q, P, H, e0, frame, story, peaks):
         row = stop_row(step, stride)
         record(row, t, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story,
                out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
@@ -1913,7 +1981,7 @@ def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight,
     counters[4] = 1
     start_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story, peaks)
     deformations(q, qd, P, e0, ed0)
-    if after_fixed_step(q, P, H, e0, frame, story, peaks):
+    if after_fixed_step(0.0, q, P, H, e0, frame, story, peaks):
         return OVERTURNED  # released past its toppling angle: the initial row is the result
     return march_abm4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg,
                       weight, frame, story, Mw, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds,
@@ -2147,7 +2215,7 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weig
            out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
     counters[4] = 1
     start_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story, peaks)
-    if after_fixed_step(q, P, H, e0, frame, story, peaks):
+    if after_fixed_step(0.0, q, P, H, e0, frame, story, peaks):
         return OVERTURNED  # released past its toppling angle: the initial row is the result
     for step in range(nsteps):
         t = step * dt

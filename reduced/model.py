@@ -139,7 +139,25 @@ def build_model(scene: Scene) -> ReducedModel:
         params["arm"][:len(s.stories)] = np.diff(np.concatenate([[0.0], heights]))
     return ReducedModel(scene=scene, dofs=dofs, mass=mass, A=A, params=params, ground_load=load,
                         geometric=geometric, weight=weight, heights=heights, layout=layout,
-                        static_rotation=theta_s)
+                        static_rotation=theta_s, notes=_notes(f, layout))
+
+
+#: Springs beyond which the paper's per-spring impact damper is warned about (Fig. 1b's 12).
+PAPER_SPRINGS = 12
+
+
+def _notes(f, layout: SpringLayout | None) -> tuple[str, ...]:
+    """What a user should know about this model before trusting its numbers."""
+    notes = []
+    if (layout is not None and f.support == "uplift" and f.restitution < 1.0
+            and f.impact_mass == "point" and layout.count > PAPER_SPRINGS):
+        notes.append(
+            f"foundation.springs = {layout.count} with the paper's per-spring impact damper "
+            "(foundation.impact_mass = 'point'): every landing spring removes (1 - eps^2) of "
+            "the closing energy of the whole base's effective mass, so the impact dissipation "
+            "grows with the number of springs and this response does not converge in N; "
+            "foundation.impact_mass = 'tributary' converges")
+    return tuple(notes)
 
 
 def _exact_mass_at_rest(dofs: DofMap, s, masses, heights, g) -> np.ndarray:

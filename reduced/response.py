@@ -205,9 +205,11 @@ class Response:
     # ---- peaks ------------------------------------------------------------------------------
     @cached_property
     def peaks(self) -> dict[str, float]:
-        """Peak values over the whole run, tracked at every step whatever is stored (u, θ, V
-        and the gaps with cubic interpolation between steps; the base shear, the overturning
-        moment and the contact length at the step ends)."""
+        """Peak values over the whole run, tracked at every step whatever is stored: u, θ, V,
+        the gaps and (event stepper) the story shears and the overturning moment with cubic
+        interpolation inside the steps; with the fixed-step integrators the shears and moment
+        at the step ends; the least contact length at the step ends. The residual
+        settlement and the plastic settlements are those of the last state."""
         pk = self.raw_peaks
         f = self.foundation_slice
         n0 = kn.N_PEAK_SCALARS
@@ -221,10 +223,8 @@ class Response:
             "theta": theta,
             "V_min": pk[kn.P_VMIN] if self.dofs.v >= 0 else 0.0,
             "V_max": pk[kn.P_VMAX] if self.dofs.v >= 0 else 0.0,
-            "base_shear": (max(float(pk[n0 + 1]), float(np.max(np.abs(self.base_shear))))
-                           if self.model.story_count else 0.0),
-            "overturning_moment": max(float(pk[kn.P_MOT]),
-                                      float(np.max(np.abs(self.overturning_moment)))),
+            "base_shear": float(pk[n0 + 1]) if self.model.story_count else 0.0,
+            "overturning_moment": float(pk[kn.P_MOT]),
         }
         if self.model.story_count:
             out["story_drift"] = [float(v) for v in pk[n0::2][:self.model.story_count]]
@@ -235,8 +235,7 @@ class Response:
             out["residual_settlement"] = float(-self.V[-1])
             out["plastic_settlement_max"] = float(np.max(self.plastic[-1, f]))
             out["plastic_settlement_mean"] = float(np.mean(self.plastic[-1, f]))
-            out["min_contact_length"] = min(float(pk[kn.P_CMIN]),
-                                            float(np.min(self.contact_length)))
+            out["min_contact_length"] = float(pk[kn.P_CMIN])
         out["energy_balance_error"] = self.energy_balance_error
         return {k: (float(v) if not isinstance(v, list) else v) for k, v in out.items()}
 
@@ -263,6 +262,7 @@ class Response:
             out["peak_uplift_left"] = pk["uplift_left"]
             out["residual_settlement"] = pk["residual_settlement"]
         out["energy_balance_error"] = pk["energy_balance_error"]
+        out["notes"] = list(self.info.get("notes", []))
         # valid JSON: an unbounded limit (implicit integrators) is null, never Infinity
         return {k: (None if isinstance(v, float) and not math.isfinite(v) else v)
                 for k, v in out.items()}

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import time as _time
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -20,6 +21,7 @@ from .response import Response, ground_displacement
 from .static import initial_state
 
 __all__ = ["run", "run_model", "initial_conditions", "IntegrationError", "EnergyBalanceError",
+           "ModelWarning",
            "KernelInputs", "integrate", "ground_acceleration", "frame_of", "story_table"]
 
 
@@ -99,7 +101,9 @@ def run_model(model: ReducedModel, motion: Motion, *, integrator: str | None = N
             "energy_tolerance": a.energy_tolerance,
             "kinematics": model.scene.structure.kinematics,
             "verdict": "overturned" if status == kn.OVERTURNED else "completed",
-            "overturned_at": float(t[-1]) if status == kn.OVERTURNED else None,
+            "overturned_at": (float(out["raw_peaks"][kn.P_TOVER]) if status == kn.OVERTURNED
+                              else None),
+            "notes": list(model.notes),
             "counters": [int(c) for c in counters], "wall_time_s": elapsed,
             "motion": motion.name, "motion_source": motion.source, "pga_g": motion.pga}
     prov = provenance(model="reduced", scene=model.scene.name, scene_file=model.scene.source,
@@ -109,7 +113,14 @@ def run_model(model: ReducedModel, motion: Motion, *, integrator: str | None = N
     response = Response(model=model, ground_displacement=xg, info=info, provenance=prov,
                         **arrays)
     check_response(response)
+    for note in model.notes:
+        warnings.warn(note, ModelWarning, stacklevel=3)
     return response
+
+
+class ModelWarning(UserWarning):
+    """The run's numbers are right for its model, but the model has a property a user should
+    know (e.g. a response that does not converge in the number of springs)."""
 
 
 def plan_run(model: ReducedModel, motion: Motion, name: str, *, dt: float | None = None,
@@ -169,6 +180,7 @@ class KernelInputs:
     frame: np.ndarray
     story: np.ndarray      # (h, m, W) of each story mass
     floor: np.ndarray      # smallest scales of q and q̇ of the error control
+    shortest_period: float = 0.0  # of the bonded system (s): the chattering budget's clock
 
     @classmethod
     def of(cls, model: ReducedModel, plan: StepPlan | None = None) -> KernelInputs:
@@ -177,7 +189,7 @@ class KernelInputs:
         return cls(model.params, 1.0 / model.mass, model.geometric, model.ground_load,
                    model.weight, d.theta, d.v, model.story_count, scale,
                    model.scene.analysis.hht_alpha, frame_of(model, plan), story_table(model),
-                   error_floors(model))
+                   error_floors(model), float(model.linearised.bonded_periods()[-1]))
 
 
     @classmethod
@@ -265,8 +277,9 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
         "energy": np.zeros((nout, kn.N_ENERGY)),
     }
     peaks = np.zeros(kn.N_PEAK_SCALARS + 2 * ns)
-    peaks[[kn.P_UMIN, kn.P_THMIN, kn.P_VMIN, kn.P_CMIN]] = np.inf
-    peaks[[kn.P_UMAX, kn.P_THMAX, kn.P_VMAX]] = -np.inf
+    peaks[kn.P_CMIN] = np.inf
+    start = _initial_values(P, inputs, q0)  # the extremes start at the initial state
+    peaks[[kn.P_UMIN, kn.P_UMAX, kn.P_THMIN, kn.P_THMAX, kn.P_VMIN, kn.P_VMAX]] = start
     gaps = peaks[kn.N_PEAK_SCALARS::2]  # a view: the gap at rest is −δ0
     gaps[inputs.stories:] = -P["d0"][inputs.stories:]
     counters = np.zeros(kn.N_COUNTERS, np.int64)
@@ -279,7 +292,7 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
             out["plastic"], out["energy"], peaks, counters)
     log = np.zeros((0, 5))
     if name == "events":
-        max_switches = 50 * ns + 1000
+        max_switches = switch_budget(ns, plan.dt, inputs.shortest_period)
         rows = max(1000, 20 * ns * int(plan.steps * plan.dt + 1)) if impacts else 0
         log = np.full((rows, 5), np.nan)
         status = kn.integrate_events(*common, inputs.floor, max_switches, *outs, log, history)
@@ -296,6 +309,26 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
     out["raw_peaks"] = peaks
     out["impacts"] = log[:min(int(counters[3]), log.shape[0])].copy()
     return status, out, counters
+
+
+def switch_budget(springs: int, dt: float, shortest_period: float) -> int:
+    """Switches the event stepper allows within one step of ``dt`` before it calls the run
+    chattering: 50 per spring and 1000, plus 20 per spring for every shortest bonded period
+    the step spans (a stiff bed bounces legitimately that often). A spring that switches
+    without end (a Zeno cycle) exhausts any finite budget."""
+    periods = dt / shortest_period if shortest_period > 0 else 0.0
+    return int(50 * springs + 1000 + 20 * springs * math.ceil(periods))
+
+
+def _initial_values(P: np.ndarray, inputs: KernelInputs, q0: np.ndarray) -> list[float]:
+    """(u, u, θ, θ, V, V) at the initial state: the top deformation as the sum of the story
+    springs' e = aᵀq₀, the base's θ (or sin θ) and V (0 for a fixed base)."""
+    u = sum(P["a0"][j] * q0[P["i0"][j]] + P["a1"][j] * q0[P["i1"][j]]
+            + (P["a2"][j] * q0[P["i2"][j]] if P["nnz"][j] == 3 else 0.0)
+            for j in range(inputs.stories))
+    th = q0[inputs.theta] if inputs.theta >= 0 else 0.0
+    v = q0[inputs.v] if inputs.v >= 0 else 0.0
+    return [u, u, th, th, v, v]
 
 
 def ground_acceleration(acceleration: np.ndarray, g: float) -> np.ndarray:

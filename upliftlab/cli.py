@@ -22,6 +22,7 @@ import json
 import math
 import sys
 import time
+import warnings
 from pathlib import Path
 
 from . import __version__
@@ -122,7 +123,11 @@ def _run(args) -> int:
     scene = load_scene(args.scene, case=args.case, overrides=args.overrides, motion=args.motion)
     if args.dt is not None and not args.dt > 0:
         raise InputError(f"--dt = {args.dt:g}: must be > 0")
-    response = run(scene, integrator=args.integrator, dt=args.dt)
+    with warnings.catch_warnings():  # the model's notes are printed as notes, below
+        warnings.simplefilter("ignore")
+        response = run(scene, integrator=args.integrator, dt=args.dt)
+    for note in response.info.get("notes", []):
+        print(f"upliftlab run: note: {note}", file=sys.stderr)
     out = Path(args.out) if args.out else Path("results") / scene.name
     written = response.save(out / f"{scene.name}.nc", csv=args.csv)
     if not args.no_figure:
@@ -130,7 +135,7 @@ def _run(args) -> int:
     for path in written:
         print(f"upliftlab run: wrote {path}", file=sys.stderr)
     if args.json:
-        print(json.dumps(response.summary()))
+        print(json.dumps(response.summary(), allow_nan=False))
     else:
         print(response.summary_line())
     return 0
