@@ -164,7 +164,7 @@ DT = {_num(s.dt)}  # s, Newmark step
 DURATION = {_num(s.duration)}  # s
 MOTION_FILE = {(motion_file or '')!r}  # ground acceleration beside this script ('' for none)
 INITIAL_VELOCITY = {_num(s.initial_velocity)}  # {L}/s, of the top mass relative to the ground
-TOLERANCE = {_num(1e-8 * scale)}  # {L}: Newton's displacement increment, 1e-8 of W/K
+TOLERANCE = {_num(1e-6 * scale)}  # {L}: Newton's displacement increment, 1e-6 of W/K
 # {F}·{L}/rad: ties a floor's rotation to the footing's, 1e7 times the stiffest k_j Δh_j²
 # (a story drift is then off by 1e-7 of itself)
 TIE_STIFFNESS = {_num(tie)}
