@@ -49,7 +49,7 @@ def command(args) -> int:
         extra = f" and {files.motion}" if files.motion else ""
         print(f"upliftlab opensees: wrote {files.script}{extra}: {len(spec.springs)} "
               f"foundation springs, {len(spec.stories)} stories, {spec.steps} Newmark steps of "
-              f"{spec.dt:g} s; run it with `python {files.script}` (needs openseespy)")
+              f"{spec.dt:.4g} s; run it with `python {files.script}` (needs openseespy)")
         return 0
     result = compare(scene, out, dt=dt, dashpots=args.dashpots, timeout=timeout)
     for path in write_comparison(result, out):

@@ -126,7 +126,7 @@ def _measured_notes(spec: OpenSeesSpec, mine: dict, same: dict, theirs: dict) ->
     """What the numbers say: how much of the difference is the time step, how much the models."""
     step = _rel(same["peak_u"], mine["peak_u"])
     models = _rel(theirs["peak_u"], same["peak_u"])
-    notes = [f"Measured: upliftlab's Newmark at the OpenSees step Δt = {spec.dt:g} s differs "
+    notes = [f"Measured: upliftlab's Newmark at the OpenSees step Δt = {spec.dt:.4g} s differs "
              f"from upliftlab at the scene's settings by {step:+.3%} in peak u (the time "
              f"discretisation); OpenSees differs from that same-step run by {models:+.3%} "
              "(the models)."]
@@ -147,8 +147,8 @@ def comparison_table(c: Comparison) -> str:
     mine, same, theirs = c.upliftlab, c.same_step, summary_of(c.opensees.summary)
     L = c.spec.length
     head = (f"| quantity | upliftlab ({mine['integrator'].split()[-1]}, Δt = {mine['dt']:.3g} s) "
-            f"| upliftlab newmark, Δt = {c.spec.dt:g} s | OpenSees newmark, Δt = {c.spec.dt:g} s "
-            "| OpenSees − upliftlab | OpenSees − same step |")
+            f"| upliftlab newmark, Δt = {c.spec.dt:.4g} s | OpenSees newmark, Δt = "
+            f"{c.spec.dt:.4g} s | OpenSees vs upliftlab | OpenSees vs same step |")
     lines = [head, "|" + "---|" * 6]
     for key in PEAK_KEYS:
         if key not in mine:

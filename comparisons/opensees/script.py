@@ -42,7 +42,7 @@ def _command(spec: OpenSeesSpec) -> str:
     if spec.case:
         parts += ["--case", spec.case]
     parts += [f"--set {o}" for o in spec.overrides]
-    return " ".join(parts + [f"--dt {spec.dt:g}", f"--dashpots {spec.dashpots}"])
+    return " ".join(parts + [f"--dt {spec.dt!r}", f"--dashpots {spec.dashpots}"])
 
 
 def modelling_notes(spec: OpenSeesSpec) -> list[str]:
@@ -50,14 +50,22 @@ def modelling_notes(spec: OpenSeesSpec) -> list[str]:
     reduced model (the same notes go into the script and the comparison)."""
     notes = []
     if spec.has_foundation:
-        law = ("elastic-perfectly-plastic in compression (ElasticPP, yield at "
-               "yield_multiple x F0, the plastic settlement kept so that the spring separates "
-               "from its settled surface)" if spec.law == "elastoplastic" else "elastic (Elastic)")
-        tension = ("carry tension (bonded)" if spec.support == "bonded" else
-                   "carry no tension (Elastic with no stiffness in tension, or ElasticPPGap, the "
-                   "deformation being the soil's compression)")
+        plastic = spec.law == "elastoplastic"
+        if spec.support == "bonded":
+            law = ("ElasticPP, yielding in compression at yield_multiple x F0" if plastic
+                   else "Elastic") + ", carrying tension (a bonded base)"
+        elif spec.has_dashpots and spec.dashpots == "clipped":
+            law = ("ElasticPP, yielding in compression at yield_multiple x F0 (no yield in "
+                   "tension)" if plastic else "Elastic") + (
+                ", inside TensionOnly with its dashpot: it carries no tension, and it pulls "
+                "inside the wrapper while open so that the dashpot cannot push in the air")
+        else:
+            law = ("ElasticPPGap with damage: yield at yield_multiple x F0, the settlement kept, "
+                   "so that it separates from its settled surface" if plastic else
+                   "Elastic with no stiffness in tension") + ": it carries no tension"
         notes.append(f"Foundation springs: {len(spec.springs)} zeroLength springs under a rigid "
-                     f"footing (rigid links), {law}; they {tension}. The same law as upliftlab's.")
+                     f"footing (rigid links), their deformation the soil's compression; {law}. "
+                     "The same law as upliftlab's.")
     if spec.has_dashpots and spec.support == "uplift":
         beta = spec.dashpot_time
         text = {
@@ -97,7 +105,7 @@ def modelling_notes(spec: OpenSeesSpec) -> list[str]:
                      "negative stiffness (no geometric transformation).")
     notes.append(f"Time stepping: gravity in 10 static load steps, then Newmark average "
                  f"acceleration with Newton (line search, modified Newton and step halving "
-                 f"when a step fails) at Δt = {spec.dt:g} s; peaks at every step with the "
+                 f"when a step fails) at Δt = {spec.dt:.4g} s; peaks at every step with the "
                  "cubic between steps, as upliftlab's. Rotations are small (as upliftlab's "
                  "'small' kinematics): no overturning.")
     return notes
