@@ -106,6 +106,24 @@ def parser() -> argparse.ArgumentParser:
                                  "<analysis>)")
     c.add_argument("--no-render", action="store_true", help="skip the PNG and GIF renders")
     c.add_argument("--json", action="store_true", help="print the summary as one JSON object")
+
+    o = sub.add_parser("opensees", help="write a standalone OpenSeesPy script of the scene (a "
+                                        "BNWF model); with --run, run it beside upliftlab")
+    o.add_argument("scene", help="a packaged scene name or a TOML path")
+    o.add_argument("--case", help="a case of the scene: A or B (C has no OpenSees equivalent)")
+    o.add_argument("--motion", help="a record name on UPLIFTLAB_MOTIONS or a file path")
+    o.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                   help="override a scene field by its dotted TOML key (repeatable)")
+    o.add_argument("--out", help="output directory (default results/<scene>-opensees)")
+    o.add_argument("--dt", help="OpenSees Newmark step (s; default analysis.dt, else the record "
+                                "step / n, 60 steps per shortest bonded period)")
+    o.add_argument("--dashpots", default="clipped", help="foundation dashpots in OpenSees: "
+                   "clipped (default, as upliftlab's), detaching or parallel")
+    o.add_argument("--run", action="store_true", help="run it (the 'opensees' extra) and "
+                   "upliftlab; write both models' peaks and histories side by side")
+    o.add_argument("--timeout", default="3600", help="of the OpenSees run (s, default 3600)")
+    o.add_argument("--json", action="store_true", help="with --run: print one JSON object "
+                   "{\"upliftlab\": {...}, \"opensees\": {...}}")
     return p
 
 
@@ -361,10 +379,16 @@ def _advise(args) -> int:
     return 0 if advice.recommendation is not None else EXIT_NUMERICS
 
 
+def _opensees(args) -> int:
+    from .comparisons.opensees.command import command
+
+    return command(args)  # 3 (RuntimeError) when a run fails
+
+
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     handler = {"run": _run, "paper": _paper, "scenes": _scenes, "report": _report,
-               "continuum": _continuum, "advise": _advise}[args.command]
+               "continuum": _continuum, "advise": _advise, "opensees": _opensees}[args.command]
     try:
         return handler(args)
     except InputError as exc:

@@ -1,0 +1,61 @@
+"""``upliftlab opensees SCENE [--case X] [--set ...] [--out DIR] [--run [--json]]``.
+
+Without ``--run``: write the standalone script (and the motion beside it) and say where. With
+``--run``: also run upliftlab and OpenSees and write the comparison; ``--json`` prints
+``{"upliftlab": {...}, "opensees": {...}}``. Bad input (Case C, exact kinematics, a missing
+openseespy) ends with one line before any file is written.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from pathlib import Path
+
+from ...checks import InputError
+from ...scenes import load_scene
+from .compare import comparison_table, compare, write_comparison
+from .script import write_script
+from .spec import opensees_spec
+
+__all__ = ["command"]
+
+
+def _positive(name: str, text: str | None) -> float | None:
+    if text is None:
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputError(f"{name} = {text!r}: expected a number > 0 (s)") from None
+    if not (math.isfinite(value) and value > 0.0):
+        raise InputError(f"{name} = {text}: must be a finite number > 0 (s)")
+    return value
+
+
+def command(args) -> int:
+    """Run the subcommand; 0 when the script was written (and, with --run, both runs
+    finished)."""
+    if args.json and not args.run:
+        raise InputError("--json: only with --run (it prints both models' summaries)")
+    dt = _positive("--dt", args.dt)
+    timeout = _positive("--timeout", args.timeout)
+    scene = load_scene(args.scene, case=args.case, overrides=args.overrides, motion=args.motion)
+    out = Path(args.out) if args.out else Path("results") / f"{scene.name}-opensees"
+    if not args.run:
+        spec = opensees_spec(scene, dt=dt, dashpots=args.dashpots)
+        files = write_script(spec, out)
+        extra = f" and {files.motion}" if files.motion else ""
+        print(f"upliftlab opensees: wrote {files.script}{extra}: {len(spec.springs)} "
+              f"foundation springs, {len(spec.stories)} stories, {spec.steps} Newmark steps of "
+              f"{spec.dt:.4g} s; run it with `python {files.script}` (needs openseespy)")
+        return 0
+    result = compare(scene, out, dt=dt, dashpots=args.dashpots, timeout=timeout)
+    for path in write_comparison(result, out):
+        print(f"upliftlab opensees: wrote {path}", file=sys.stderr)
+    if args.json:
+        print(json.dumps(result.to_json()))
+    else:
+        print(comparison_table(result))
+    return 0

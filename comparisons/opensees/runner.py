@@ -1,0 +1,127 @@
+"""Run the standalone OpenSees script in a subprocess, with a timeout, and read what it wrote.
+
+openseespy lives in a subprocess: its global state and its ``exit()`` on some errors can then
+never touch the caller, and a run that hangs is ended at the timeout. The child's progress
+lines (stderr) are passed through as they come.
+"""
+
+from __future__ import annotations
+
+import csv
+import importlib.util
+import json
+import os
+import subprocess
+import sys
+import threading
+import time
+from collections import deque
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ...checks import InputError
+
+__all__ = ["OPENSEES_EXTRA", "OpenSeesRun", "OpenSeesError", "opensees_available",
+           "require_opensees", "run_script"]
+
+OPENSEES_EXTRA = 'pip install "upliftlab[opensees]"'
+_PROBE = ("import importlib.util, os, ctypes\n"
+          "try:\n    import openseespy.opensees\n"
+          "except Exception:\n"
+          "    s = importlib.util.find_spec('openseespylinux')\n"
+          "    lib = os.path.join(list(s.submodule_search_locations)[0], 'lib', 'libblas.so.3')\n"
+          "    ctypes.CDLL(lib, mode=ctypes.RTLD_GLOBAL)\n"
+          "    import openseespy.opensees\n")
+
+
+class OpenSeesError(RuntimeError):
+    """The OpenSees run failed, timed out or wrote nothing readable."""
+
+
+@dataclass(frozen=True)
+class OpenSeesRun:
+    """What the script wrote: its ``summary`` (the peaks, ``runtime_s`` of the time-step loop,
+    ``setup_s``), its ``histories`` (columns by name, each an array over time) and the ``wall``
+    time of the whole subprocess (s)."""
+
+    summary: dict
+    histories: dict = field(repr=False)
+    wall: float = 0.0
+
+
+def opensees_available() -> bool:
+    """True when openseespy imports here (a subprocess tries, with the same fallback for its
+    BLAS as the script's), False when it is missing or broken."""
+    if importlib.util.find_spec("openseespy") is None:
+        return False
+    try:
+        probe = subprocess.run([sys.executable, "-c", _PROBE], capture_output=True, text=True,
+                               timeout=120, env=_environment())
+    except subprocess.TimeoutExpired:
+        return False
+    return probe.returncode == 0
+
+
+def require_opensees() -> None:
+    """Raise :class:`InputError` (one line naming the extra) unless openseespy imports."""
+    if not opensees_available():
+        raise InputError(f"openseespy is not installed or does not import: {OPENSEES_EXTRA}")
+
+
+def _environment() -> dict:
+    return dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
+
+
+def _relay(stream, keep: deque, echo: bool) -> None:
+    for line in stream:
+        keep.append(line.rstrip("\n"))
+        if echo:
+            print(line, end="", file=sys.stderr, flush=True)
+
+
+def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True) -> OpenSeesRun:
+    """Run ``script`` (``python model.py`` in its folder) and read its two output files.
+
+    Raises :class:`OpenSeesError` when it times out, exits non-zero, or its summary says the
+    run did not complete.
+    """
+    script = Path(script).resolve()
+    folder = script.parent
+    for name in ("opensees_summary.json", "opensees_histories.csv"):
+        (folder / name).unlink(missing_ok=True)  # never read a previous run's files
+    start = time.perf_counter()
+    child = subprocess.Popen([sys.executable, script.name], cwd=folder, env=_environment(),
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    tail: deque = deque(maxlen=20)
+    relay = threading.Thread(target=_relay, args=(child.stderr, tail, echo), daemon=True)
+    relay.start()
+    try:
+        child.wait(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        child.kill()
+        child.wait()
+        raise OpenSeesError(f"OpenSees run of {script} timed out after {timeout:g} s "
+                            "(--timeout)") from None
+    relay.join(timeout=5)
+    child.stdout.close()
+    wall = time.perf_counter() - start
+    summary_path = folder / "opensees_summary.json"
+    if not summary_path.exists():
+        last = next((line for line in reversed(tail) if line.strip()), "no message")
+        raise OpenSeesError(f"OpenSees run of {script} exited with code {child.returncode} "
+                            f"and wrote no summary: {last[:300]}")
+    summary = json.loads(summary_path.read_text())
+    if child.returncode != 0 or summary.get("verdict") != "completed":
+        raise OpenSeesError(f"OpenSees run of {script}: {summary.get('verdict')} "
+                            f"(exit code {child.returncode})")
+    return OpenSeesRun(summary, read_histories(folder / "opensees_histories.csv"), wall)
+
+
+def read_histories(path: Path) -> dict:
+    """The script's CSV: a comment line, a header, then one row per step."""
+    with open(path) as f:
+        rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))]
+    names, data = rows[0], np.array(rows[1:], dtype=float)
+    return {name: data[:, i] for i, name in enumerate(names)}
