@@ -12,6 +12,7 @@ from ..results import provenance
 from ..scenes import Scene
 from . import kernels as kn
 from . import springs as sp
+from .cost import check_run_cost
 from .integrators import StepPlan, method, time_step
 from .model import ReducedModel, build_model
 from .response import Response, ground_displacement
@@ -68,6 +69,7 @@ def run_model(model: ReducedModel, motion: Motion, *, integrator: str | None = N
                      output_dt=output_dt if output_dt is not None else a.output_dt)
     if not histories:
         plan = StepPlan(plan.dt, plan.steps, plan.steps, plan.limit, plan.substeps, plan.reason)
+    check_run_cost(model, plan, duration, name, histories)  # refused above the scene's budget
     q0, qd0 = initial_conditions(model, motion)
     start = _time.perf_counter()
     arrays, counters = _integrate(model, motion, name, plan, q0, qd0)
