@@ -1,13 +1,14 @@
 """The reduced model against OpenSeesPy: the short-period building on El Centro, side by side.
 
     python benchmarks/opensees_reduced.py [--springs N ...] [--dt DT ...] [--case A|B ...]
-                                          [--timeout S] [--quick]
+                                          [--timeout S] [--quick] [--out DIR | --write]
 
 The same scene (``short_period_elcentro``, N Winkler springs, the whole 31.2 s record) is built
 once by upliftlab (:func:`upliftlab.reduced.model.build_model`), and its numbers — masses,
 heights, spring positions, stiffnesses, dashpots, yield forces, the record — are handed as JSON
-to an OpenSeesPy model that runs in a subprocess (with a timeout; without openseespy the
-comparison is skipped with a message). The OpenSees model, 2D, three DOFs per node:
+to an OpenSeesPy model that runs in a subprocess (with a timeout; without openseespy the script
+stops before any work, naming the extra to install). The OpenSees model, 2D, three DOFs per
+node:
 
 - base node O at the origin: u_x fixed, vertical mass W_v/g and rotary inertia I₀ (the
   foundation carries W_v); a node at height h tied to O by ``rigidLink beam`` (Lagrange
@@ -40,9 +41,9 @@ upliftlab runs, in this process and in the same run: the event stepper at its de
 converged (Δt = 0.02/1024 s), and its Newmark (average acceleration, Newton) at each OpenSees Δt.
 Times: OpenSees's is the analysis loop in the child (model build and gravity excluded, and
 reported apart); upliftlab's is the median of 3 calls of ``run(..., histories=False)``.
-Prints Markdown tables and puts them in their own section of ``--out`` (default
-``benchmarks/REDUCED.md``, between markers that ``reduced_speed.py`` keeps when it rewrites
-the file).
+Prints Markdown tables and puts them in their own section of ``REDUCED.md`` in ``--out``
+(default ``results/bench/opensees_reduced``), or of the committed ``benchmarks/REDUCED.md`` with
+``--write`` (between markers that ``reduced_speed.py`` keeps when it rewrites the file).
 """
 
 from __future__ import annotations
@@ -56,6 +57,8 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+
+from bench_output import add_output_arguments, output_folder, require
 
 SCENE = "short_period_elcentro"
 
@@ -322,27 +325,28 @@ def main(argv: list[str] | None = None) -> int:
                         help="also Case A with these foundation damping ratios ζ_f (default 0 "
                              "and 0.1): 0 checks the mapping of the model free of any dashpot "
                              "definition; the others show how the difference grows with ζ_f")
-    parser.add_argument("--out", default=str(Path(__file__).resolve().parent / "REDUCED.md"),
-                        help="Markdown file whose OpenSees section this run replaces "
-                             "(default benchmarks/REDUCED.md; '' for none)")
+    add_output_arguments(parser, "opensees_reduced")
     args = parser.parse_args(argv)
     if args.child:
         print(json.dumps(child(json.loads(sys.stdin.read()))))
         return 0
+    require("openseespy", "opensees", "opensees_reduced")
+    out = output_folder(args, "opensees_reduced") / "REDUCED.md"
     if args.quick:
         args.case, args.springs, args.dt, args.check = ["A"], [12], [0.002], [0.0]
     env = opensees_environment()
     if env is None:
-        print("openseespy is not importable (pip install 'upliftlab[opensees]'): the OpenSees "
-              "runs are skipped", file=sys.stderr)
+        print("opensees_reduced: error: openseespy does not run in a subprocess here (pip "
+              "install 'upliftlab[opensees]'); nothing was written", file=sys.stderr)
+        return 2
     runs = [("A", (f"foundation.damping_ratio={z:g}",)) for z in args.check]
     runs += [(case, ()) for case in args.case]
     parts = [compare(case, n, args.dt, args.dashpots, env, args.timeout, extra)
              for case, extra in runs for n in args.springs]
     text = "\n\n".join(parts)
     print(text)
-    if args.out:
-        write_section(Path(args.out), SECTION_HEAD + text)
+    write_section(out, SECTION_HEAD + text)
+    print(f"opensees_reduced: wrote the OpenSees section of {out}", file=sys.stderr)
     return 0
 
 

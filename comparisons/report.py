@@ -614,7 +614,9 @@ def _verification_tables(study: StudyResult) -> str:
     counts = numbers["counts"]
     mark = {"pass": '<span class="ok">pass</span>', "fail": '<span class="bad">FAIL</span>',
             "skipped": '<span class="skip">skipped</span>'}
-    head = (f"<p>{counts['pass']} pass, {counts['fail']} fail, {counts['skipped']} skipped "
+    head = ('<p>A reference "anchor §N" is section N of the appendix <a href="#anchors">'
+            "the verification anchors</a> at the end of this report.</p>"
+            f"<p>{counts['pass']} pass, {counts['fail']} fail, {counts['skipped']} skipped "
             f"(rows and orders). Computed {html.escape(str(numbers['computed_utc']))} in "
             f"{numbers['compute_seconds']:.1f} s"
             + (", read from the store: nothing was recomputed." if numbers.get("reused")
@@ -683,6 +685,22 @@ def _section_html(s: Section) -> str:
     return "".join(parts)
 
 
+def anchors_text() -> str:
+    """The verification anchors (``upliftlab/docs/anchors.md``, shipped with the package): the
+    closed forms that the verification table's "anchor §N" references name."""
+    from importlib import resources
+
+    return resources.files("upliftlab").joinpath("docs/anchors.md").read_text(encoding="utf-8")
+
+
+def _anchors_appendix() -> str:
+    """The anchors as the report's last section, so that the report names no document it does
+    not contain."""
+    return ('<h2 id="anchors">Appendix: the verification anchors</h2>'
+            '<p class="meta">"anchor §N" in the tables refers to the sections below.</p>'
+            + markdown_to_html(_without_title(anchors_text()), shift=1))
+
+
 def _without_title(markdown: str) -> str:
     """The summary without its first ``# `` heading (the section has its own)."""
     lines = markdown.lstrip().split("\n")
@@ -718,8 +736,9 @@ def render_html(sections: Sequence[Section], *, fast: bool, passed: bool,
                      "</li>")
         if s.entry.name == "verification" and s.status == "ok":
             items.append('<li><a href="#orders">Observed convergence orders</a></li>')
+    items.append('<li><a href="#anchors">Appendix: the verification anchors</a></li>')
     nav = "".join(items)
-    body = "".join(_section_html(s) for s in sections)
+    body = "".join(_section_html(s) for s in sections) + _anchors_appendix()
     return (
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"

@@ -7,6 +7,23 @@ Models: :mod:`upliftlab.reduced` (Ewing's compatibility-matrix model) and
 
 __version__ = "0.1.0"
 
+
+def _checkout_subpackages() -> None:
+    """In a source checkout the subpackages are folders beside this one (``reduced/`` is
+    ``upliftlab.reduced``; ``pyproject.toml`` maps them). When this folder is imported as it is
+    — ``python -m upliftlab`` from the repository root finds it before any installed copy — the
+    checkout joins the package path, so that the subpackages import from the same checkout."""
+    from pathlib import Path
+
+    here = Path(__file__).resolve().parent
+    root = here.parent
+    if ((root / "pyproject.toml").is_file() and (root / "reduced" / "__init__.py").is_file()
+            and str(root) not in __path__):
+        __path__.append(str(root))
+
+
+_checkout_subpackages()
+
 from .checks import InputError  # noqa: E402
 from .motions import Motion, load_motion  # noqa: E402
 from .scenes import Scene, load_scene  # noqa: E402

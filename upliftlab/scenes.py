@@ -868,8 +868,12 @@ def _index(part: str, node: list, where: str) -> int:
 
 
 def packaged_scenes() -> dict[str, Path]:
-    """The scene files shipped with upliftlab, by name."""
-    root = resources.files("upliftlab.scene_files")
+    """The scene files shipped with upliftlab, by name (in a source checkout imported as it is,
+    the ``scenes/`` folder beside the package)."""
+    try:
+        root = resources.files("upliftlab.scene_files")
+    except ModuleNotFoundError:
+        root = Path(__file__).resolve().parent.parent / "scenes"
     return {Path(p.name).stem: Path(str(p)) for p in root.iterdir() if p.name.endswith(".toml")}
 
 
