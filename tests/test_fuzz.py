@@ -29,6 +29,7 @@ import io
 import json
 import math
 import os
+import subprocess
 import sys
 import tomllib
 import traceback
@@ -474,14 +475,30 @@ BEFORE = {"refused": 1005, "ran": 128, "failed": 101}
 AFTER = {"refused": 1135, "ran": 99, "failed": 0}
 
 
+#: Limits of the child process that runs the fuzz list: a case that hangs or allocates without
+#: bound fails the test instead of stalling or swapping the suite.
+CHILD_TIMEOUT, CHILD_MEMORY_GB = 900.0, 6.0
+
+
 @pytest.fixture(scope="module")
 def outcomes(tmp_path_factory, elcentro):
-    """Every case, run in this process (a few seconds of continuum meshes in all)."""
+    """Every case, run one after another in one child process (about a minute, most of it
+    the continuum's runs), with a timeout and a memory limit."""
     root = tmp_path_factory.mktemp("fuzz")
-    results = {}
-    for i, case in enumerate(all_cases()):
-        results[case.id] = run_case(case, root / f"c{i:04d}")
-    return results
+    verdicts = root / "verdicts.json"
+    cmd = [sys.executable, __file__, "--json", str(verdicts), "--verbose",
+           "--memory-gb", str(CHILD_MEMORY_GB)]
+    env = {**os.environ, "MPLBACKEND": "Agg"}
+    try:
+        result = subprocess.run(cmd, cwd=root, env=env, capture_output=True, text=True,
+                                timeout=CHILD_TIMEOUT)
+    except subprocess.TimeoutExpired as exc:
+        started = (exc.stderr or b"").decode(errors="replace").strip().splitlines()
+        pytest.fail(f"the fuzz list did not finish in {CHILD_TIMEOUT:g} s; last case started: "
+                    f"{started[-1] if started else '?'}")
+    assert result.returncode == 0, result.stderr[-3000:]
+    print(result.stdout.strip().splitlines()[-3:])
+    return {k: tuple(v) for k, v in json.loads(verdicts.read_text()).items()}
 
 
 def test_every_fuzz_case_runs_admissibly_or_is_refused_in_one_line(outcomes):
@@ -550,12 +567,17 @@ def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description="count the fuzz outcomes")
     p.add_argument("--fork", action="store_true", help="each case in a forked child")
     p.add_argument("--timeout", type=float, default=60.0)
-    p.add_argument("--memory-gb", type=float, default=6.0)
+    p.add_argument("--memory-gb", type=float, default=6.0,
+                   help="address-space limit (GiB) of each forked child, or of this process")
     p.add_argument("--only", default="", help="run the cases whose id contains this text")
     p.add_argument("--json", help="write every verdict to this file")
     p.add_argument("--verbose", action="store_true", help="print each case as it starts")
     args = p.parse_args(argv)
     os.environ.setdefault("MPLBACKEND", "Agg")
+    if not args.fork and args.memory_gb:
+        import resource
+        limit = int(args.memory_gb * 2**30)
+        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
     cases = [c for c in all_cases() if args.only in c.id]
     counts = {"refused": 0, "ran": 0, "failed": 0}
     verdicts = {}

@@ -248,9 +248,20 @@ def _report(args) -> int:
     return command(args)  # 0: report written, every section ok; 1: a section failed
 
 
+#: What the advisor reads of a scene: it chooses the foundation model, integrator and step.
+ADVISE_KEYS = ("schema", "units", "title", "description", "reference", "structure*",
+               *(f"foundation.{k}" for k in ("support", "half_width", "stiffness",
+                                             "vertical_period", "law", "yield_multiple",
+                                             "damping_ratio", "restitution", "impact_multiple",
+                                             "impact_mass")),
+               "motion*", "analysis.duration", "analysis.max_steps", "analysis.max_memory")
+
+
 def _advise(args) -> int:
     from .comparisons.advise import advise, format_advice
 
+    refuse_without_effect(args.overrides, "upliftlab advise (it chooses the integrator and "
+                          "step of the reduced model)", ADVISE_KEYS)
     advice = advise(args.scene, args.quantity, args.tol, case=args.case,
                     overrides=args.overrides, fast=args.fast)
     print(json.dumps(advice.to_dict()) if args.json else format_advice(advice))
@@ -278,6 +289,10 @@ def main(argv: list[str] | None = None) -> int:
         print("upliftlab: error: out of memory; the run's estimate was within "
               "analysis.max_memory, lower it or make the run smaller", file=sys.stderr)
         return EXIT_NUMERICS
+    except BrokenPipeError:  # `upliftlab scenes | head`: the reader has gone
+        import os
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
 
 
 def _one_line(exc: BaseException) -> str:
