@@ -261,7 +261,7 @@ Notes. Plain `quad` (2×2) and `quad9n` (3×3) are fully integrated: they lock o
 flow is isochoric, which shows as a capacity far above Prandtl's that falls slowly with h.
 `SSPquad` (one point, stabilised) is stabilised with the full elastic stiffness. `bbarQuad`
 removes volumetric locking. The graded upliftlab rows put smaller elements at the footing
-edges, where the error is O(h) (continuum-notes.md); OpenSees keeps the uniform grid lines, so
+edges, where the error is O(h) (a singular pressure); OpenSees keeps the uniform grid lines, so
 those rows compare methods as a user would run them, not the same mesh. The limit load does not depend on the elastic constants, so the
 ν = 0.49 rows show what near-incompressibility changes in convergence and cost only. The
 issue's figures (scikit-fem Q2 + CHOLMOD 0.7 % in 13 s; bbarQuad 5.1 % in 5 s; quad9n 5.7 %

@@ -258,9 +258,10 @@ def test_continuum_physics_is_checked_before_meshing(tmp_path, capsys):
     # FS_v = 3 on (2 + π) c_u B: a load of 3.1 times the scene's is beyond the capacity
     assert cli([*base, "--set", "structure.vertical_weight=540"]) == 2
     assert "at or above the strip's bearing capacity (2 + π) c_u B = 514.2" in _error(capsys)
-    # N/(E B) = 1e-3 * 1.7e-3 = 1.7e-6 kN: resolved; 1e-6 of that is not
-    assert cli([*base, "--set", "structure.vertical_weight=1e-6"]) == 2
-    assert "below 1e-07 the footing's response is lost" in _error(capsys)
+    # N/(E B) = 1e-9/(5e4 * 2) = 1e-14: below the 1e-12 the pushover resolves
+    assert cli([*base, "--set", "structure.vertical_weight=1e-9"]) == 2
+    assert "1e-14 of the soil's E·B = 1e+05; below 1e-12 the footing's response" in \
+        _error(capsys)
     assert cli([*base, "--analysis", "dynamic", "--set", "soil.density="]) == 2
     assert "soil.density = 0 (0 when it is missing)" in _error(capsys)
     assert cli([*base, "--mesh", "elements_across=1024"]) == 2

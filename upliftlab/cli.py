@@ -160,6 +160,14 @@ def number(name: str, text: str | None, *, integer: bool = False, low: float = 0
     return value
 
 
+def say_if_rounded(command: str, duration: float, steps: int, dt: float) -> None:
+    """Say on stderr when a run's length differs from the duration asked for (it is a whole
+    number of steps)."""
+    if abs(steps * dt - duration) > 1e-9 * max(duration, 1.0):
+        print(f"{command}: note: the duration {duration:g} s runs as {steps} steps of "
+              f"{dt:.6g} s = {steps * dt:.6g} s", file=sys.stderr)
+
+
 def _short(settings: dict) -> str:
     return settings_digest(settings)[:8]
 
@@ -193,10 +201,13 @@ def _run(args) -> int:
     settings = {"command": "run", "scene": scene.name, "scene_digest": scene.digest,
                 "overrides": list(scene.overrides), "motion": args.motion, "dt": dt,
                 "integrator": args.integrator}
+    motion = scene.build_motion()  # the record is read and checked before the folder
     with claim(args.out, _default_out(scene.name, variant), settings=settings,
                force=args.force) as out:
         from .reduced import run
-        response = run(scene, integrator=args.integrator, dt=dt)
+        response = run(scene, motion=motion, integrator=args.integrator, dt=dt)
+        say_if_rounded("upliftlab run", scene.analysis.duration or motion.duration,
+                       response.info["steps"], response.info["dt"])
         out.start_writing()
         written = response.save(out.path / f"{scene.name}.nc", csv=args.csv)
         if not args.no_figure:
