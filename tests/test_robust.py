@@ -396,3 +396,23 @@ def _running(pid: int) -> bool:
             return fh.read().split()[2] != "Z"
     except FileNotFoundError:
         return False
+
+
+def test_default_continuum_folder_without_options_is_the_plain_name(tmp_path, monkeypatch,
+                                                                    capsys):
+    """Only what the user gives names a digest: the default pushover goes to
+    results/<scene>-continuum-pushover, a run with --steps to a folder of its own."""
+    import upliftlab.cli_continuum as cc
+
+    folders = []
+
+    def record(out, default, **_):
+        folders.append(Path(default))
+        raise InputError("stop before any work")
+
+    monkeypatch.setattr(cc, "claim", record)
+    assert cli(["continuum", "strip_footing_clay", "--no-render"]) == 2
+    assert cli(["continuum", "strip_footing_clay", "--no-render", "--steps", "6"]) == 2
+    assert folders[0] == Path("results") / "strip_footing_clay-continuum-pushover"
+    assert folders[1].name.startswith("strip_footing_clay-continuum-pushover-")
+    assert len(folders[1].name) == len(folders[0].name) + 9  # "-" and 8 hex digits

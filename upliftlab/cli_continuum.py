@@ -170,6 +170,7 @@ def continuum(args) -> int:
     _physics(scene, args.analysis)
     if args.analysis == "dynamic":
         motion = scene.build_motion()  # reads and checks the record before any meshing
+    given = dict(options)  # as the user gave them: they name the default folder
     cont = scene.continuum or ContinuumOptions()
     budget = scene.analysis
     dofs, h_min = _grid(scene, cont)  # from the grid lines: nothing is meshed yet
@@ -180,11 +181,11 @@ def continuum(args) -> int:
         (steps, dt), snapshots = _dynamic_steps(scene, motion, h_min), 41
     check_budget(continuum_cost(analysis=args.analysis, steps=steps, step=dt, dofs=dofs,
                                 snapshots=snapshots), budget.max_steps, budget.max_memory)
-    variant = {"overrides": overrides, "motion": args.motion, **options}
+    variant = {"overrides": overrides, "motion": args.motion, **given}
     settings = {"command": f"continuum {args.analysis}", "scene": scene.name,
                 "scene_digest": scene.digest, "overrides": list(scene.overrides),
-                "motion": args.motion, "theta_max": options["theta_max"],
-                "steps": options["steps"]}
+                "motion": args.motion, "theta_max": given["theta_max"],
+                "steps": given["steps"]}
     default = _default_out(f"{scene.name}-continuum-{args.analysis}", variant)
     with claim(args.out, default, settings=settings, force=args.force) as out:
         from .continuum import build_model
