@@ -170,3 +170,21 @@ def test_python_m_upliftlab_from_the_repository_root_uses_the_checkout(tmp_path)
     where, count = result.stdout.split()
     assert where == str(ROOT / "reduced" / "__init__.py")
     assert int(count) == len(list((ROOT / "scenes").glob("*.toml")))
+
+
+def test_compiled_kernels_are_cached_outside_the_installed_package(tmp_path):
+    """The README's first command (a non-editable install) ran the kernels, numba cached them
+    in site-packages/upliftlab, ``pip uninstall`` left that folder, and the README's test
+    command then imported it as an empty namespace package. The cache now goes to
+    $XDG_CACHE_HOME/upliftlab/numba, also when numba was imported first."""
+    code = ("import numba, os, upliftlab\n"
+            "print(os.environ['NUMBA_CACHE_DIR'], numba.config.CACHE_DIR)\n")
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+    env["XDG_CACHE_HOME"] = str(tmp_path)
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == [str(tmp_path / "upliftlab" / "numba")] * 2
+    env["NUMBA_CACHE_DIR"] = str(tmp_path / "mine")  # a user's own choice is kept
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == [str(tmp_path / "mine")] * 2
