@@ -1,4 +1,4 @@
-"""Contact load cases after one factorisation (issue 3, target: each under 10 ms).
+"""Contact load cases after one factorisation (target: each under 10 ms).
 
     python benchmarks/contact_cases.py [--cases N] [--across N ...]
 

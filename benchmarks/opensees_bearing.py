@@ -1,15 +1,16 @@
 """Prandtl's strip-footing capacity with OpenSeesPy quads against upliftlab's continuum model.
 
     python benchmarks/opensees_bearing.py [--levels M ...] [--elements E ...] [--upliftlab N ...]
-                                          [--timeout S] [--quick] [--out DIR]
+                                          [--timeout S] [--quick] [--out DIR | --write]
 
-The bearing problem of ``scenes/strip_footing_clay.toml`` (issue 3): a rough rigid strip
+The bearing problem of ``scenes/strip_footing_clay.toml``: a rough rigid strip
 B = 2 m on weightless undrained clay, E = 50 MPa, ν = 0.3, c_u = 50 kPa, in a 10B × 10B box
 (sides on rollers, base fixed), the footing pushed down uniformly to 0.05 B in 10 equal steps;
 the capacity is the largest total footing reaction, against Prandtl's (2 + π) c_u B =
 514.16 kN/m.
 
-OpenSees (in a subprocess with a timeout; skipped with a message without openseespy): plane
+OpenSees (in a subprocess with a timeout; without openseespy the script stops before any work,
+naming the extra to install): plane
 strain, ``nDMaterial J2Plasticity`` with K, G of (E, ν) and a von Mises yield stress
 σ_y = √3 c_u (the von Mises surface through Tresca's in plane-strain shear: k = c_u), perfectly
 plastic; elements ``bbarQuad`` (B-bar, 2×2), ``SSPquad`` (stabilised single point), ``quad``
@@ -23,7 +24,9 @@ grading 1): M bilinear elements across B have the node spacing of upliftlab's Q2
 M/2 across (``quad9n`` with M/2 across has the same nodes). Also runs upliftlab's continuum
 model on the same problem in this process (``benchmarks/continuum_speed.py``'s ``prandtl``
 case: Q2 with 2×2 reduced integration, Tresca, the same pushover), so that the runtimes are
-measured in one run: compare ratios. Writes ``OPENSEES_BEARING.md`` to ``--out``.
+measured in one run: compare ratios. Writes ``OPENSEES_BEARING.md`` to ``--out`` (default
+``results/bench/opensees_bearing``), or over the committed one in ``benchmarks/`` with
+``--write``.
 """
 
 from __future__ import annotations
@@ -43,6 +46,8 @@ import subprocess  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
+
+from bench_output import add_output_arguments, output_folder, require  # noqa: E402
 
 E, NU, CU, B = 50e3, 0.3, 50.0, 2.0  # kPa, -, kPa, m
 Q_U = (2 + math.pi) * CU * B          # kN/m
@@ -256,7 +261,7 @@ Notes. Plain `quad` (2×2) and `quad9n` (3×3) are fully integrated: they lock o
 flow is isochoric, which shows as a capacity far above Prandtl's that falls slowly with h.
 `SSPquad` (one point, stabilised) is stabilised with the full elastic stiffness. `bbarQuad`
 removes volumetric locking. The graded upliftlab rows put smaller elements at the footing
-edges, where the error is O(h) (continuum-notes.md); OpenSees keeps the uniform grid lines, so
+edges, where the error is O(h) (a singular pressure); OpenSees keeps the uniform grid lines, so
 those rows compare methods as a user would run them, not the same mesh. The limit load does not depend on the elastic constants, so the
 ν = 0.49 rows show what near-incompressibility changes in convergence and cost only. The
 issue's figures (scikit-fem Q2 + CHOLMOD 0.7 % in 13 s; bbarQuad 5.1 % in 5 s; quad9n 5.7 %
@@ -302,11 +307,18 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--system", default="UmfPack", help="OpenSees linear solver")
     parser.add_argument("--quick", action="store_true", help="levels 8 and 16, bbarQuad, "
                         "upliftlab 4 and 8")
-    parser.add_argument("--out", default=str(HERE))
+    add_output_arguments(parser, "opensees_bearing")
     args = parser.parse_args(argv)
     if args.child:
         print(json.dumps(child(json.loads(sys.stdin.read()))))
         return 0
+    require("openseespy", "opensees", "opensees_bearing")
+    env = opensees_environment()
+    if env is None:
+        print("opensees_bearing: error: openseespy does not run in a subprocess here (pip "
+              "install 'upliftlab[opensees]'); nothing was run or written", file=sys.stderr)
+        return 2
+    out = output_folder(args, "opensees_bearing")
     if args.quick:
         args.levels, args.elements, args.nu, args.upliftlab = [8, 16], ["bbarQuad"], [NU], [4, 8]
         args.graded = [8]
@@ -317,18 +329,13 @@ def main(argv: list[str] | None = None) -> int:
             rows.append((label, f"{n} across (≈ {2 * n} bilinear)",
                          upliftlab_prandtl(n, grading)))
             print(line(*rows[-1], None), file=sys.stderr, flush=True)
-    env = opensees_environment()
-    if env is None:
-        print("openseespy is not importable (pip install 'upliftlab[opensees]'): the OpenSees "
-              "runs are skipped", file=sys.stderr)
     for element in args.elements:
         for nu in args.nu if element == "bbarQuad" else args.nu[:1]:
             for level in args.levels:
                 label = f"OpenSees {element}, J2, ν = {nu:g}"
                 size = f"{level // 2} nine-node across" if element == "quad9n" else \
                     f"{level} across"
-                r = ({"status": "skipped: openseespy is not importable"} if env is None else
-                     run_child(spec_of(element, level, nu, args.system), env, args.timeout))
+                r = run_child(spec_of(element, level, nu, args.system), env, args.timeout)
                 rows.append((label, size, r))
                 print(line(*rows[-1], None), file=sys.stderr, flush=True)
     ours = [r for label, _, r in rows if label == UNIFORM and r.get("status") == "ok"]
@@ -345,10 +352,10 @@ def main(argv: list[str] | None = None) -> int:
               "footing reaction; reference (2 + π) c_u B = 514.16 kN/m. OpenSees runtime: the "
               "10 load steps in the child (model build apart); upliftlab's: the whole pushover "
               "including meshing. The machine is shared: compare the ratios.\n\n")
-    if args.out:
-        from upliftlab.results import write_text
-        write_text(Path(args.out) / "OPENSEES_BEARING.md",
-                   header + text + "\n\n" + summary(rows) + "\n\n" + NOTES + "\n")
+    from upliftlab.results import write_text
+    path = write_text(out / "OPENSEES_BEARING.md",
+                      header + text + "\n\n" + summary(rows) + "\n\n" + NOTES + "\n")
+    print(f"opensees_bearing: wrote {path}", file=sys.stderr)
     return 0
 
 

@@ -1,7 +1,7 @@
 """Speed against error of the reduced model, per integrator, step and number of springs.
 
-    python benchmarks/reduced_speed.py [--quick] [--out DIR] [--repeats R] [--workers W]
-                                       [--batch-scenes S]
+    python benchmarks/reduced_speed.py [--quick] [--out DIR | --write] [--repeats R]
+                                       [--workers W] [--batch-scenes S]
 
 Scene: the short-period masonry building on El Centro 1940 N-S, Case C (elasto-plastic Winkler
 bed, 10 % dashpots, impact damper ε = 0.7), the whole 31.2 s record, on N = 2, 10, 40, 160
@@ -27,7 +27,8 @@ limit. Then the batch API: ``run_batch`` on S scenes (default 10,000) of N = 20 
 varied yield multiple, foundation damping and structure period, at the event stepper's default
 step and at Δt = 0.01 s (the stepper locates every switch inside its steps), against a loop of
 single ``run`` calls on a subset, measured in the same process. Writes ``REDUCED.md`` and
-``reduced_speed.png`` to ``--out`` (default: this folder). The machine is shared: compare ratios.
+``reduced_speed.png`` to ``--out`` (default ``results/bench/reduced_speed``), or over the
+committed ones in ``benchmarks/`` with ``--write``. The machine is shared: compare ratios.
 """
 
 from __future__ import annotations
@@ -47,6 +48,7 @@ from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
+from bench_output import add_output_arguments, output_folder  # noqa: E402
 from upliftlab.checks import InputError  # noqa: E402
 from upliftlab.reduced.batch import run_batch  # noqa: E402
 from upliftlab.reduced.run import IntegrationError, run  # noqa: E402
@@ -374,12 +376,13 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--quick", action="store_true",
                         help="N = 2 and 40, a few steps, reference on 160 springs, 400 scenes")
-    parser.add_argument("--out", default=str(Path(__file__).resolve().parent))
+    add_output_arguments(parser, "reduced_speed")
     parser.add_argument("--repeats", type=int, default=5, help="timed runs per point (5)")
     parser.add_argument("--workers", type=int, default=2, help="run_batch processes (2)")
     parser.add_argument("--batch-scenes", type=int, default=None,
                         help="scenes in the batch (10,000; 400 with --quick)")
     args = parser.parse_args(argv)
+    out = output_folder(args, "reduced_speed")
     config = dict(QUICK if args.quick else FULL)
     if args.batch_scenes:
         config["batch_scenes"] = args.batch_scenes
@@ -411,7 +414,6 @@ def main(argv: list[str] | None = None) -> int:
             "\n\n## Batch (`run_batch`, N = 20, Case C, varied yield multiple, ζ_f, period)\n\n"
             + batch_text(batches) + "\n")
     print(text)
-    out = Path(args.out)
     write_text(out / "REDUCED.md", text + kept_section(out / "REDUCED.md"))
     figure(rows, rows_t, out / "reduced_speed.png")
     print(f"wrote {out / 'REDUCED.md'} and {out / 'reduced_speed.png'}", file=sys.stderr)

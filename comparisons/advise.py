@@ -93,7 +93,8 @@ class ReferenceCheck:
 @dataclass(frozen=True)
 class Advice:
     """What :func:`advise` measured and recommends (``recommendation`` None when nothing can be
-    certified: ``reason`` says why)."""
+    certified: ``reason`` says why). ``certified_against`` says what the errors are measured
+    against: the reduced model's own finest bed, never the continuum."""
 
     scene: str
     quantity: str
@@ -106,6 +107,7 @@ class Advice:
     reason: str
     continuum: str
     fast: bool
+    certified_against: str = ""
 
     def to_dict(self) -> dict:
         out = asdict(self)
@@ -204,6 +206,7 @@ def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str 
     floor = sve.FLOOR_FRACTION * sve.scales(scene)[q]
     ref = _reference(scene, data, q, sizes["reference_springs"], sve.FULL_GRID.reference_dt,
                      floor, repeats)
+    against = certified_against(scene, ref)
     available, why = sve.continuum_status()
     continuum = ("not in the ladder: " + ("the scene has no [soil] table" if scene.soil is None
                                           else "the advisor ladders the reduced model only; "
@@ -216,7 +219,7 @@ def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str 
                       f"(more than half the tolerance); no candidate can be certified. Use a "
                       "larger tolerance, or a scene whose reference converges (Case C's impact "
                       "dashpots are sized per spring and do not converge in N)",
-                      continuum, fast)
+                      continuum, fast, against)
     measured, skipped, cap = [], [], math.inf
     for c in sorted(ladder(sizes["ladder_springs"]), key=_estimate):
         if _estimate(c) > cap:
@@ -234,7 +237,20 @@ def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str 
               f"use the reference discretization (Winkler N = {ref.springs}, events, "
               f"Δt = {ref.dt:g} s)")
     return Advice(scene.name, quantity, tol, scene.units.length, ref, tuple(measured),
-                  tuple(skipped), best, reason, continuum, fast)
+                  tuple(skipped), best, reason, continuum, fast, against)
+
+
+def certified_against(scene: Scene, ref: ReferenceCheck) -> str:
+    """What a recommendation is certified against, in words: the reduced model's finest bed
+    (and, for a scene with soil, what it is *not* certified against)."""
+    text = (f"the reduced model's own Winkler bed of N = {ref.springs} springs (events, "
+            f"Δt = {ref.dt:g} s), itself checked against N = {ref.springs // 2} and "
+            f"Δt = {2 * ref.dt:g} s")
+    if scene.soil is not None:
+        text += ("; NOT against the soil of the scene's [soil] table: the continuum model is "
+                 "not in the ladder, and how far any bed is from it is measured by "
+                 "`upliftlab continuum` and the winkler_vs_continuum study")
+    return text
 
 
 def _pct(v: float) -> str:
@@ -261,6 +277,7 @@ def format_advice(a: Advice) -> str:
     if a.skipped:
         lines.append(f"not run: {len(a.skipped)} candidates estimated more than "
                      f"{RECHECK_FACTOR:g}× costlier than the first that met the tolerance")
+    lines.append(f"certified against: {a.certified_against}")
     if a.recommendation is None:
         lines.append(f"recommendation: none — {a.reason}")
     else:

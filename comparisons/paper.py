@@ -1,7 +1,7 @@
 """Every conclusion of Ewing's study, one by one, with the evidence from our models.
 
-The founding study (``../shared/reference/ewing-foundation-model-uplift.md``) states these in its
-Conclusions, Results and Introduction. Each becomes a :class:`Conclusion` whose verdict is
+The founding study (R. D. Ewing, "Influence of foundation model on uplifting of structures",
+1988) states these in its Conclusions, Results and Introduction. Each becomes a :class:`Conclusion` whose verdict is
 computed from runs:
 
 1. Case A (elastic spring, 40 % viscous damping) overestimates the peak superstructure

@@ -31,12 +31,17 @@ the study runs again. The verification table is cached the same way by :mod:`.ve
 two-core machine a two-thread BLAS under the continuum's small dense kernels ran the fast
 Prandtl check 3–6 times slower.
 
-**Exit status** (:func:`main`): 0 when the report is written and every verification row passes
-(skipped rows, e.g. fast mode's costly continuum levels, do not fail); 1 when the report is
-written but a verification row fails or the verification could not run; 2 for bad options
-(nothing written). A comparison study that is missing or fails does *not* change the status:
-those studies compare models and are reported, while the verification is what the suite
-guarantees; their failures are listed in the report's status box and on stderr.
+**Exit status** (:func:`main`): 0 when the report is written, every section has its results
+and every verification row passes (skipped rows, e.g. fast mode's costly continuum levels, do
+not fail); 1 when the report is written but a section failed or is missing, or a verification
+row fails: a report with a failed section is a failed command, whatever the section (the
+failures are listed in the report's status box and on stderr); 2 for bad options (nothing
+written, nothing run).
+
+**Output folder.** ``--out`` is checked before any section runs (:func:`upliftlab.outdir.claim`:
+not a file, writable, not being written by another report), stale temporary files of a killed
+report are removed, and ``upliftlab-run.json`` is written last, naming the files, when every
+section has its results.
 """
 
 from __future__ import annotations
@@ -64,9 +69,10 @@ from .study import StudyResult, _json_default
 from .verification import single_threaded
 
 __all__ = ["REGISTRY", "Entry", "Section", "Report", "build_report", "markdown_to_html",
-           "EXIT_OK", "EXIT_VERIFICATION", "EXIT_INPUT"]
+           "EXIT_OK", "EXIT_FAILED", "EXIT_VERIFICATION", "EXIT_INPUT"]
 
-EXIT_OK, EXIT_VERIFICATION, EXIT_INPUT = 0, 1, 2
+EXIT_OK, EXIT_FAILED, EXIT_INPUT = 0, 1, 2
+EXIT_VERIFICATION = EXIT_FAILED  # the earlier name of the same exit code
 REPORT = "report"
 
 
@@ -130,8 +136,9 @@ def _pushover(module, ctx: _Context):
 
 REGISTRY: tuple[Entry, ...] = (
     Entry("verification", "verification", "Verification anchors",
-          "Every anchor of verification-anchors.md recomputed through the library, with its "
-          "measured error against its tolerance.", _verification, cached=False),
+          "Every verification anchor (closed forms, published values and converged runs, "
+          "listed in the table with their references) recomputed through the library, with "
+          "its measured error against its tolerance.", _verification, cached=False),
     Entry("two_spring_equivalence", "two_spring_equivalence", "Two-spring equivalence",
           "When can a Winkler bed be replaced by two springs? Maps of the relative error of "
           "each two-spring layout against a converged bed.", _equivalence),
@@ -354,17 +361,26 @@ def _failed(entry: Entry, start: float, exc: BaseException) -> Section:
 
 def build_report(fast: bool = False, *, out: str | Path | None = None,
                  scheduler: str | None = None, entries: Sequence[Entry] = REGISTRY,
-                 progress=None) -> Report:
+                 progress=None, force: bool = False) -> Report:
     """Run (or read from the stores) every section and write ``<out>/report.html`` and
-    ``report.json``. Options are checked before anything runs (:class:`InputError`)."""
+    ``report.json``. Options and the output folder are checked before anything runs
+    (:class:`InputError`)."""
+    from ..outdir import claim
+
     start = time.perf_counter()
     checks.boolean("fast", fast)
-    out = Path(out) if out is not None else Path("results") / (REPORT + ("-fast" if fast else ""))
-    if out.exists() and not out.is_dir():
-        raise InputError(f"--out = {str(out)!r}: exists and is not a directory")
     if scheduler is not None and (not isinstance(scheduler, str) or not scheduler.strip()):
         raise InputError(f"--scheduler = {scheduler!r}: expected a Dask scheduler address such "
                          "as tcp://host:8786")
+    default = Path("results") / (REPORT + ("-fast" if fast else ""))
+    with claim(out, default, settings={"command": "report", "fast": fast},
+               force=force) as folder:
+        report = _build(fast, folder, scheduler, entries, progress, start)
+    return report
+
+
+def _build(fast, folder, scheduler, entries, progress, start) -> Report:
+    out = folder.path
     os.environ.setdefault("MPLBACKEND", "Agg")
     say = progress or (lambda message: None)
     ctx = _Context(fast, out, Store(out / "store"), scheduler)
@@ -374,16 +390,21 @@ def build_report(fast: bool = False, *, out: str | Path | None = None,
     passed = bool(verification and verification.status == "ok"
                   and verification.study.numbers.get("passed"))
     elapsed = time.perf_counter() - start
+    failed = [s.entry.name for s in sections if s.status != "ok"]
     page = render_html(sections, fast=fast, passed=passed, elapsed=elapsed)
+    folder.start_writing()
     path = write_text(out / "report.html", page)
-    write_text(out / "report.json", json.dumps({
+    summary = write_text(out / "report.json", json.dumps({
         "passed": passed, "fast": fast, "elapsed_s": elapsed, "html": str(path),
         "sections": {s.entry.name: {"status": s.status, "source": s.source,
                                     "seconds": s.seconds,
                                     "error": s.error.split("\n", 1)[0]}
                      for s in sections},
         "provenance": provenance(study=REPORT, fast=fast)}, indent=2, default=str) + "\n")
-    return Report(path, sections, passed, EXIT_OK if passed else EXIT_VERIFICATION, elapsed)
+    ok = passed and not failed
+    if ok:
+        folder.complete([path, summary])
+    return Report(path, sections, passed, EXIT_OK if ok else EXIT_FAILED, elapsed)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -593,7 +614,9 @@ def _verification_tables(study: StudyResult) -> str:
     counts = numbers["counts"]
     mark = {"pass": '<span class="ok">pass</span>', "fail": '<span class="bad">FAIL</span>',
             "skipped": '<span class="skip">skipped</span>'}
-    head = (f"<p>{counts['pass']} pass, {counts['fail']} fail, {counts['skipped']} skipped "
+    head = ('<p>A reference "anchor §N" is section N of the appendix <a href="#anchors">'
+            "the verification anchors</a> at the end of this report.</p>"
+            f"<p>{counts['pass']} pass, {counts['fail']} fail, {counts['skipped']} skipped "
             f"(rows and orders). Computed {html.escape(str(numbers['computed_utc']))} in "
             f"{numbers['compute_seconds']:.1f} s"
             + (", read from the store: nothing was recomputed." if numbers.get("reused")
@@ -662,6 +685,22 @@ def _section_html(s: Section) -> str:
     return "".join(parts)
 
 
+def anchors_text() -> str:
+    """The verification anchors (``upliftlab/docs/anchors.md``, shipped with the package): the
+    closed forms that the verification table's "anchor §N" references name."""
+    from importlib import resources
+
+    return resources.files("upliftlab").joinpath("docs/anchors.md").read_text(encoding="utf-8")
+
+
+def _anchors_appendix() -> str:
+    """The anchors as the report's last section, so that the report names no document it does
+    not contain."""
+    return ('<h2 id="anchors">Appendix: the verification anchors</h2>'
+            '<p class="meta">"anchor §N" in the tables refers to the sections below.</p>'
+            + markdown_to_html(_without_title(anchors_text()), shift=1))
+
+
 def _without_title(markdown: str) -> str:
     """The summary without its first ``# `` heading (the section has its own)."""
     lines = markdown.lstrip().split("\n")
@@ -697,8 +736,9 @@ def render_html(sections: Sequence[Section], *, fast: bool, passed: bool,
                      "</li>")
         if s.entry.name == "verification" and s.status == "ok":
             items.append('<li><a href="#orders">Observed convergence orders</a></li>')
+    items.append('<li><a href="#anchors">Appendix: the verification anchors</a></li>')
     nav = "".join(items)
-    body = "".join(_section_html(s) for s in sections)
+    body = "".join(_section_html(s) for s in sections) + _anchors_appendix()
     return (
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
@@ -725,6 +765,7 @@ def add_arguments(parser) -> None:
                         help="small grids and coarse meshes (about a minute)")
     parser.add_argument("--out", help="output directory (default results/report[-fast])")
     parser.add_argument("--scheduler", help="Dask scheduler address for the studies' sweeps")
+    parser.add_argument("--force", action="store_true", help="replace a different run in --out")
 
 
 def command(args) -> int:
@@ -733,12 +774,15 @@ def command(args) -> int:
     def say(message):
         print(f"upliftlab report: {message}", file=sys.stderr, flush=True)
 
-    report = build_report(args.fast, out=args.out, scheduler=args.scheduler, progress=say)
-    for s in report.sections:
-        if s.status != "ok":
-            say(f"section {s.entry.name}: {s.status}: {s.error.split(chr(10), 1)[0]}")
+    report = build_report(args.fast, out=args.out, scheduler=args.scheduler, progress=say,
+                          force=getattr(args, "force", False))
+    failed = [s for s in report.sections if s.status != "ok"]
+    for s in failed:
+        say(f"section {s.entry.name}: {s.status}: {s.error.split(chr(10), 1)[0]}")
     verdict = "verification passed" if report.passed else "verification FAILED"
-    print(f"upliftlab report: wrote {report.path} in {report.elapsed:.1f} s; {verdict}")
+    sections = (f"; {len(failed)} of {len(report.sections)} sections FAILED "
+                f"({', '.join(s.entry.name for s in failed)})" if failed else "")
+    print(f"upliftlab report: wrote {report.path} in {report.elapsed:.1f} s; {verdict}{sections}")
     return report.code
 
 

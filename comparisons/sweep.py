@@ -25,6 +25,7 @@ import math
 import multiprocessing
 import os
 import sys
+import threading
 import time
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
@@ -82,9 +83,32 @@ class StderrProgress:
               f"{p.elapsed:.0f} s{eta}", file=self.stream or sys.stderr, flush=True)
 
 
+#: How often (s) a worker checks that the process that started it is still alive.
+PARENT_POLL = 0.5
+
+
 def _single_threaded_worker() -> None:
-    """Process-pool initializer: one thread per worker for OpenMP/BLAS/numba."""
+    """Process-pool initializer: one thread per worker for OpenMP/BLAS/numba, and a watchdog
+    that ends the worker when its parent dies (a killed sweep or report must not leave workers
+    computing, writing to the store and then idling forever)."""
     os.environ.update(SINGLE_THREAD_ENVIRONMENT)
+    watch_parent()
+
+
+def watch_parent(poll: float = PARENT_POLL) -> threading.Thread:
+    """Start a daemon thread that ends this process (exit status 1) as soon as the process
+    that started it has gone (it is re-parented: ``os.getppid()`` changes)."""
+    parent = os.getppid()
+
+    def watch():
+        while True:
+            time.sleep(poll)
+            if os.getppid() != parent:
+                os._exit(1)
+
+    thread = threading.Thread(target=watch, name="upliftlab-parent-watch", daemon=True)
+    thread.start()
+    return thread
 
 
 @contextlib.contextmanager

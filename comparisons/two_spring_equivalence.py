@@ -1409,6 +1409,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     options = Options(threshold=args.threshold, records=args.records,
                       figures=not args.no_figures)
     try:
+        if options.figures:
+            from ..cli import need_extra
+            need_extra(f"python -m upliftlab.comparisons.{STUDY}", "matplotlib",
+                       why="or add --no-figures")
         result = run(args.scene, fast=args.fast, out=args.out, store=args.store,
                      options=options, scheduler=args.scheduler)
     except InputError as exc:

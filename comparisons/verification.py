@@ -1,9 +1,9 @@
 """Every verification anchor, computed by the library, with its measured error and verdict.
 
-Each row of the table is one number of ``verification-anchors.md`` (or a closed form the tests
-name) recomputed through the public APIs of :mod:`upliftlab.reduced` and
-:mod:`upliftlab.continuum`: the measured value, the reference, the error, the tolerance and
-whether it passes. The observed convergence orders (slopes of ``np.polyfit(log Δt, log
+Each row of the table is one number of the verification anchors (``upliftlab/docs/anchors.md``,
+the report's appendix; or a closed form the tests name) recomputed through the public APIs of
+:mod:`upliftlab.reduced` and :mod:`upliftlab.continuum`: the measured value, the reference, the
+error, the tolerance and whether it passes. The observed convergence orders (slopes of ``np.polyfit(log Δt, log
 error)`` for the reduced integrators, ``log h`` for the continuum) are a second table.
 
 Reduced model: the two-spring K entries (eq. 6), static reactions, bonded periods against

@@ -31,7 +31,8 @@ from scipy.optimize import brentq
 from ..checks import InputError, in_range, integer_at_least, one_of, positive
 from ..scenes import ELEMENTS, ContinuumOptions
 
-__all__ = ["BOUNDARIES", "SoilMesh", "FootingDofs", "soil_mesh", "from_options", "footing_dofs"]
+__all__ = ["BOUNDARIES", "SoilMesh", "FootingDofs", "soil_mesh", "from_options", "footing_dofs",
+           "grid_lines"]
 
 #: The named boundaries of a soil mesh: footing base, free surface, lateral sides, base.
 BOUNDARIES = ("footing", "surface", "sides", "bottom")
@@ -154,6 +155,19 @@ def from_options(footing_width: float, options: ContinuumOptions,
                      domain_depth=options.domain_depth, element=options.element,
                      elements_across=options.elements_across, grading=options.grading,
                      layer_depth=layer_depth)
+
+
+def grid_lines(footing_width: float, options: ContinuumOptions,
+               layer_depth: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(x, y) of the grid lines of the mesh :func:`from_options` would build, without building
+    it (for estimating a run's size and time step before meshing): the mesh has
+    ``(x.size - 1)(y.size - 1)`` quads, and its shortest edge is the smallest spacing."""
+    params = _checked(footing_width, options.domain_width, options.domain_depth,
+                      options.element, options.elements_across, options.grading, layer_depth)
+    b, n = params["footing_width"], params["elements_across"]
+    depth = params["layer_depth"] or params["domain_depth"] * b
+    x = _x_lines(b, params["domain_width"] * b, n, params["grading"])
+    return x, _y_lines(b, depth, n, first=float(np.diff(x).min()))
 
 
 def footing_dofs(basis: skfem.Basis, boundary: str = "footing") -> FootingDofs:

@@ -290,7 +290,7 @@ class StepPlan:
         """Stored states: every ``stride`` steps, or every ``output_dt`` interpolated."""
         if self.output_dt > 0:
             return int(round(self.steps * self.dt / self.output_dt)) + 1
-        return self.steps // self.stride + 1
+        return self.steps // self.stride + 1 + (1 if self.steps % self.stride else 0)
 
     def without_histories(self) -> StepPlan:
         """The same plan storing only the first and last states."""

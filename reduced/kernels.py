@@ -1584,6 +1584,13 @@ def note_magnitudes(q, qd, qpeak):
 
 
 @njit(cache=True, inline="always")
+def output_row(step, stride):
+    """Output row of the state after step ``step``: every ``stride`` steps, and the last state
+    in the row after them when ``stride`` does not divide the run."""
+    return (step + 1) // stride + (0 if (step + 1) % stride == 0 else 1)
+
+
+@njit(cache=True, inline="always")
 def stop_row(step, stride):
     """Output row for a state that ends the run inside macro step ``step``: the next row."""
     return step // stride + 1
@@ -1837,11 +1844,12 @@ def march_events(q, qd, acc, modes, H, dt, nsteps, stride, minv, P, KG, L, ag, d
                 check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e_all, ed_all,
                              frame, story, peaks)
                 return OVERTURNED
-        if not dense and (step + 1) % stride == 0:
-            record((step + 1) // stride, t_end, q, qd, acc, P, modes, H, minv, KG, weight, e_ref,
-                   e_all, ed_all, frame, story, out_t, out_q, out_qd, out_e, out_f, out_mode,
-                   out_ep, out_energy)
-            counters[4] = (step + 1) // stride + 1
+        if not dense and ((step + 1) % stride == 0 or step == nsteps - 1):
+            row = output_row(step, stride)
+            record(row, t_end, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e_all, ed_all,
+                   frame, story, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep,
+                   out_energy)
+            counters[4] = row + 1
         if (step + 1) % echeck == 0 or step == nsteps - 1:
             check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e_all, ed_all, frame,
                          story, peaks)
@@ -1895,7 +1903,8 @@ def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, 
 
 
 @njit(cache=True, **HOT)
-def end_fixed_step(step, t, stride, q, qd, acc, modes, H, minv, P, KG, weight, frame, story,
+def end_fixed_step(step, t, nsteps, stride, q, qd, acc, modes, H, minv, P, KG, weight, frame,
+                   story,
                    e_ref, e0, e1, ed1, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep,
                    out_energy, peaks, counters):
     """After a fixed step (committed): contact length, overturning, outputs and the energy
@@ -1908,11 +1917,11 @@ def end_fixed_step(step, t, stride, q, qd, acc, modes, H, minv, P, KG, weight, f
         check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story,
                      peaks)
         return OVERTURNED
-    if (step + 1) % stride == 0:
-        record((step + 1) // stride, t, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1,
-               ed1, frame, story, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep,
-               out_energy)
-        counters[4] = (step + 1) // stride + 1
+    if (step + 1) % stride == 0 or step == nsteps - 1:
+        row = output_row(step, stride)
+        record(row, t, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story,
+               out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+        counters[4] = row + 1
     if (step + 1) % max(1, int(frame[F_ECHECK])) == 0:
         check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story,
                      peaks)
@@ -1941,9 +1950,9 @@ def march_rk4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L,
         copy(e0, e1)
         copy(ed0, ed1)
         acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
-        if end_fixed_step(step, (step + 1) * dt, stride, q, qd, acc, modes, H, minv, P, KG,
-                          weight, frame, story, e_ref, e0, e1, ed1, out_t, out_q, out_qd, out_e,
-                          out_f, out_mode, out_ep, out_energy, peaks, counters) != OK:
+        if end_fixed_step(step, (step + 1) * dt, nsteps, stride, q, qd, acc, modes, H, minv, P,
+                          KG, weight, frame, story, e_ref, e0, e1, ed1, out_t, out_q, out_qd,
+                          out_e, out_f, out_mode, out_ep, out_energy, peaks, counters) != OK:
             return OVERTURNED
     check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story, peaks)
     return OK
@@ -2049,9 +2058,9 @@ def march_abm4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L
         copy(e0, e1)
         copy(ed0, ed1)
         acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
-        if end_fixed_step(step, (step + 1) * dt, stride, q, qd, acc, modes, H, minv, P, KG,
-                          weight, frame, story, e_ref, e0, e1, ed1, out_t, out_q, out_qd, out_e,
-                          out_f, out_mode, out_ep, out_energy, peaks, counters) != OK:
+        if end_fixed_step(step, (step + 1) * dt, nsteps, stride, q, qd, acc, modes, H, minv, P,
+                          KG, weight, frame, story, e_ref, e0, e1, ed1, out_t, out_q, out_qd,
+                          out_e, out_f, out_mode, out_ep, out_energy, peaks, counters) != OK:
             return OVERTURNED
     check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story, peaks)
     return OK
@@ -2264,9 +2273,9 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weig
         if not finite(q, qd):
             counters[0] = step
             return NONFINITE
-        if end_fixed_step(step, t_end, stride, q, qd, acc, modes, H, minv, P, KG, weight, frame,
-                          story, e_ref, e0, e, ed, out_t, out_q, out_qd, out_e, out_f, out_mode,
-                          out_ep, out_energy, peaks, counters) != OK:
+        if end_fixed_step(step, t_end, nsteps, stride, q, qd, acc, modes, H, minv, P, KG, weight,
+                          frame, story, e_ref, e0, e, ed, out_t, out_q, out_qd, out_e, out_f,
+                          out_mode, out_ep, out_energy, peaks, counters) != OK:
             return OVERTURNED
     check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story, peaks)
     return OK

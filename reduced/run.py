@@ -15,6 +15,7 @@ from ..results import provenance
 from ..scenes import Scene
 from . import kernels as kn
 from . import springs as sp
+from .cost import check_run_cost
 from .integrators import StepPlan, method, time_step
 from .model import ReducedModel, build_model
 from .response import Response, ground_displacement
@@ -139,7 +140,9 @@ def plan_run(model: ReducedModel, motion: Motion, name: str, *, dt: float | None
     plan = time_step(model, name, record_dt=motion.dt, duration=duration,
                      dt=dt if dt is not None else a.dt, subcycle=a.subcycle,
                      output_dt=output_dt if output_dt is not None else a.output_dt)
-    return (plan if histories else plan.without_histories()), motion
+    plan = plan if histories else plan.without_histories()
+    check_run_cost(model, plan, duration, name, histories)  # refused above the scene's budget
+    return plan, motion
 
 
 def check_response(response: Response) -> None:

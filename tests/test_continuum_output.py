@@ -229,7 +229,7 @@ def test_cli_pushover_writes_every_file_and_prints_the_summary(tmp_path, capsys)
     assert code == 0, captured.err
     names = sorted(p.name for p in out.iterdir())
     assert names == ["fields.h5", "fields.xdmf", "moment_rotation.png", "result.nc",
-                     "uplift.gif", "uplift.png"]
+                     "uplift.gif", "uplift.png", "upliftlab-run.json"]
     lines = captured.out.strip().splitlines()
     assert len(lines) == 1 and "uplift onset at e = " in lines[0] and "peak M = " in lines[0]
     assert "max contact loss" in lines[0]
@@ -243,7 +243,7 @@ def test_cli_pushover_writes_every_file_and_prints_the_summary(tmp_path, capsys)
     (["--mesh", "elemnts_across=4"], "--mesh 'elemnts_across': unknown mesh key"),
     (["--mesh", "elements_across"], "--mesh 'elements_across': expected KEY=VALUE"),
     (["--mesh", "elements_across=1"], "continuum.elements_across"),
-    (["--theta-max", "0"], "--theta-max = 0: must be a finite number > 0"),
+    (["--theta-max", "0"], "--theta-max = 0: valid range is (0, 0.1]"),
     (["--theta-max", "-0.01"], "--theta-max = -0.01"),
     (["--theta-max", "big"], "--theta-max = 'big': expected a number"),
     (["--analysis", "static"], "--analysis = 'static': must be one of pushover, dynamic"),

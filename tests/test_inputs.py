@@ -17,11 +17,15 @@ from upliftlab.results import read_netcdf, write_netcdf
 from upliftlab.scenes import load_scene, packaged_scenes
 
 BAD_FIELDS = [
-    ("structure.weight=0", "structure.weight = 0: must be > 0"),
-    ("structure.weight=-5", "structure.weight = -5: must be > 0"),
+    ("structure.weight=0", "structure.weight = 0: outside the physical range [2.25e-10, "
+                           "2.25e+09] kip ([1e-06, 1e+13] N)"),
+    ("structure.weight=-5", "structure.weight = -5: outside the physical range"),
+    ("structure.weight=1e300", "structure.weight = 1e+300: outside the physical range"),
     ("structure.stiffness=-1", "structure: give stiffness or period, not both"),
     ("foundation.stiffness=0", "foundation: give stiffness or vertical_period, not both"),
-    ("foundation.vertical_period=0", "foundation.vertical_period = 0: must be > 0"),
+    ("foundation.vertical_period=0", "foundation.vertical_period = 0: outside the physical "
+                                     "range [1e-05, 1e+04] s"),
+    ("foundation.springs=100001", "foundation.springs = 100001: valid range is [2, 100000]"),
     ("foundation.restitution=1.2", "foundation.restitution = 1.2: valid range is [0, 1]"),
     ("foundation.restitution=-0.1", "foundation.restitution = -0.1: valid range is [0, 1]"),
     ("foundation.yield_multiple=1.0", "foundation.yield_multiple = 1: valid range is (1, 1e+06]"),

@@ -1,11 +1,11 @@
 """``upliftlab report --fast``: one self-contained HTML file from stored results.
 
-References: the verification anchors (verification-anchors.md, each row's own reference and
+References: the verification anchors (upliftlab/docs/anchors.md, each row's own reference and
 tolerance, recomputed by upliftlab.comparisons.verification), anchor §2's two-spring ratios
 (uplift onset 0.288675/(1/6) = 1.73 reduced by the N-strip bed's (1 + 1/N); capacity
 0.288675/0.5 = 0.58), and the report's contract (comparisons/report.py): no external references,
 nothing re-run when the inputs are unchanged (asserted through the stores' records, never
-through time), exit 2 on bad options and 0 or 1 from the verification alone.
+through time), exit 2 on bad options, 1 when a verification row or any section fails, else 0.
 """
 
 from __future__ import annotations
@@ -82,8 +82,13 @@ def test_report_writes_one_self_contained_html(reports):
     for forbidden in ("<script", "<link", "<iframe", "@import", "url(", "srcset"):
         assert forbidden not in page.lower(), forbidden
     for section in ("verification", "orders", "two_spring_equivalence", "paper",
-                    "uplift_zone", "winkler_vs_continuum", "speed_vs_error", "fixed_vs_uplift"):
+                    "uplift_zone", "winkler_vs_continuum", "speed_vs_error", "fixed_vs_uplift",
+                    "anchors"):
         assert f'id="{section}"' in page, section
+    # the report names no document it does not hold: its "anchor §N" are in its appendix
+    for name in ("verification-anchors.md", "design.md", "../shared"):
+        assert name not in page, name
+    assert "Prandtl's bearing capacity" in page.split('id="anchors"')[1]
 
 
 def test_every_verification_row_passes_with_its_tolerance(reports):
@@ -156,9 +161,10 @@ def test_second_report_reuses_stored_results(reports):
     assert "read from the store" in (reports["out"] / "report.html").read_text()
 
 
-def test_missing_or_failing_study_is_reported_and_does_not_change_the_exit(reports):
+def test_missing_or_failing_study_is_reported_and_fails_the_command(reports, capsys):
     # A study module that does not exist and one that raises each leave a section with the
-    # message; the status follows the verification alone (read from the same store: cheap).
+    # message, and make the command fail: `upliftlab report` exited 0 with 3 of 7 sections
+    # failed (an unreachable scheduler). The verification is read from the same store: cheap.
     def broken(module, ctx):
         raise RuntimeError("deliberately broken study")
 
@@ -167,13 +173,17 @@ def test_missing_or_failing_study_is_reported_and_does_not_change_the_exit(repor
                         rp._call_run),
                rp.Entry("broken", "store", "Broken", "fails on purpose", broken))
     report = rp.build_report(True, out=reports["out"], entries=entries)
-    assert report.code == rp.EXIT_OK and report.passed
+    assert report.code == rp.EXIT_FAILED == 1 and report.passed
     assert report.section("verification").source == "store"
     assert report.section("ghost").status == "missing"
     assert report.section("broken").status == "error"
     page = report.path.read_text()
     assert "upliftlab.comparisons.no_such_study_module does not exist" in page
     assert "deliberately broken study" in page
+    from upliftlab.outdir import read_marker
+    assert read_marker(reports["out"]) is None  # a failed report is not marked complete
+    ok = rp.build_report(True, out=reports["out"], entries=entries[:1])
+    assert ok.code == rp.EXIT_OK and read_marker(reports["out"])["complete"]
 
 
 def test_a_failing_verification_gives_exit_1(tmp_path, monkeypatch):
@@ -186,7 +196,7 @@ def test_a_failing_verification_gives_exit_1(tmp_path, monkeypatch):
 
     monkeypatch.setattr(vf, "CHECKS", (("reduced", "wrong", wrong),))
     report = rp.build_report(True, out=tmp_path / "r", entries=(rp.REGISTRY[0],))
-    assert report.code == rp.EXIT_VERIFICATION and not report.passed
+    assert report.code == rp.EXIT_FAILED and not report.passed
     assert "a deliberately wrong anchor" in report.path.read_text()
 
 
@@ -200,9 +210,10 @@ def test_bad_options_are_refused_with_exit_code_2(tmp_path, capsys):
                      str(tmp_path / "x")]) == 2
     assert "--scheduler" in capsys.readouterr().err
     assert not (tmp_path / "x").exists()
-    with pytest.raises(SystemExit) as exc:
-        cli_main(["report", "--no-such-option"])
-    assert exc.value.code == 2
+    assert cli_main(["report", "--no-such-option"]) == 2
+    assert capsys.readouterr().err.count("\n") == 1  # one line, not the usage
+    assert cli_main(["report", "--fast", "--out", str(afile / "under")]) == 2
+    assert "lies under" in capsys.readouterr().err
     with pytest.raises(InputError, match="fast"):
         rp.build_report("yes", out=tmp_path / "y")
 

@@ -7,6 +7,50 @@ Models: :mod:`upliftlab.reduced` (Ewing's compatibility-matrix model) and
 
 __version__ = "0.1.0"
 
+
+def _checkout_subpackages() -> None:
+    """In a source checkout the subpackages are folders beside this one (``reduced/`` is
+    ``upliftlab.reduced``; ``pyproject.toml`` maps them). When this folder is imported as it is
+    — ``python -m upliftlab`` from the repository root finds it before any installed copy — the
+    checkout joins the package path, so that the subpackages import from the same checkout."""
+    from pathlib import Path
+
+    here = Path(__file__).resolve().parent
+    root = here.parent
+    if ((root / "pyproject.toml").is_file() and (root / "reduced" / "__init__.py").is_file()
+            and str(root) not in __path__):
+        __path__.append(str(root))
+
+
+_checkout_subpackages()
+
+
+def _numba_cache_outside_the_package() -> None:
+    """Compiled kernels are cached in ``$XDG_CACHE_HOME/upliftlab/numba`` (``~/.cache/...``;
+    ``NUMBA_CACHE_DIR`` if set), not beside the installed sources: a cache written inside an
+    installed ``site-packages/upliftlab`` survives ``pip uninstall`` and leaves a folder that
+    shadows a later install as an empty namespace package (the README's test command after
+    its first command failed so). Left alone when the folder cannot be written."""
+    import os
+    import sys
+
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        return
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    folder = os.path.join(base, "upliftlab", "numba")
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except OSError:
+        return
+    if not os.access(folder, os.W_OK):
+        return
+    os.environ["NUMBA_CACHE_DIR"] = folder
+    if "numba" in sys.modules:  # imported before upliftlab: its config has been read
+        sys.modules["numba"].config.CACHE_DIR = folder
+
+
+_numba_cache_outside_the_package()
+
 from .checks import InputError  # noqa: E402
 from .motions import Motion, load_motion  # noqa: E402
 from .scenes import Scene, load_scene  # noqa: E402

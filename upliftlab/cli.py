@@ -1,43 +1,64 @@
 """The ``upliftlab`` command (also ``python -m upliftlab``).
 
     upliftlab run SCENE [--case C] [--motion NAME|PATH] [--set KEY=VALUE ...] [--out DIR] [--json]
-    upliftlab paper [--out DIR] [--motion PATH]
+                  [--force]
+    upliftlab paper [--out DIR] [--motion PATH] [--force]
     upliftlab scenes
     upliftlab advise SCENE --quantity peak_u --tol 5% [--case C] [--set KEY=VALUE ...] [--fast]
                      [--json]
-    upliftlab report [--fast] [--out DIR] [--scheduler ADDR]
+    upliftlab report [--fast] [--out DIR] [--scheduler ADDR] [--force]
     upliftlab continuum SCENE [--analysis pushover|dynamic|impedance] [--case C]
                         [--set KEY=VALUE ...] [--mesh KEY=VALUE[,KEY=VALUE ...] ...]
                         [--theta-max RAD] [--steps N] [--motion NAME|PATH] [--a0 LIST]
                         [--boundary pml|lysmer] [--scale S] [--out DIR] [--no-render] [--json]
+                        [--force]
+    upliftlab opensees SCENE [--case A|B] [--set KEY=VALUE ...] [--out DIR] [--run] [--json]
 
 Bad input ends with one line naming the field, the value and the valid range (exit code 2),
-before any file is written.
+before any work and before any file is written: the scene, the options, the overrides (one
+that the command would ignore is refused), the output folder (:mod:`upliftlab.outdir`) and the
+run's cost (:mod:`upliftlab.budget`) are all checked first. A command that needs an optional
+dependency says which extra to install. Every output folder gets a completion marker written
+last (``upliftlab-run.json``); a folder that holds a different run is not overwritten without
+``--force``. Exit codes: 0 done, 1 a verification or report section failed, 2 bad input,
+3 a numerical failure (the message names the step).
 """
 
 from __future__ import annotations
 
 import argparse
+import fnmatch
+import importlib.util
 import json
 import math
 import sys
-import time
 import warnings
 from pathlib import Path
 
-from . import __version__
+from . import __version__, bounds
 from .checks import InputError
+from .outdir import claim, settings_digest
 
-__all__ = ["main", "parser"]
+__all__ = ["main", "parser", "EXIT_INPUT", "EXIT_FAILED", "EXIT_NUMERICS", "need_extra"]
 
-EXIT_INPUT, EXIT_NUMERICS = 2, 3
+EXIT_FAILED, EXIT_INPUT, EXIT_NUMERICS = 1, 2, 3
+
+
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line (``upliftlab: error: ...``), exit 2."""
+
+    def error(self, message):
+        self.exit(EXIT_INPUT, f"upliftlab: error: {self.prog}: {message} (see {self.prog} "
+                              "--help)\n")
 
 
 def parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="upliftlab", description=(
+    from .cli_continuum import add_continuum
+
+    p = _Parser(prog="upliftlab", description=(
         "Verification suite for structures that rock and uplift on flexible foundations."))
     p.add_argument("--version", action="version", version=f"upliftlab {__version__}")
-    sub = p.add_subparsers(dest="command", required=True)
+    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     r = sub.add_parser("run", help="run one scene in the reduced model")
     r.add_argument("scene", help="a packaged scene name (see `upliftlab scenes`) or a TOML path")
@@ -47,17 +68,20 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
                    help="override a scene field by its dotted TOML key (repeatable)")
     r.add_argument("--integrator", choices=["events", "rk4", "abm4", "newmark", "hht"])
-    r.add_argument("--dt", type=float, help="time step (s); default: chosen from the scene")
-    r.add_argument("--out", help="output directory (default results/<scene>)")
+    r.add_argument("--dt", help="time step (s); default: chosen from the scene")
+    r.add_argument("--out", help="output directory (default results/<scene>-<case>, with a "
+                                 "digest of the overrides when there are any)")
     r.add_argument("--csv", action="store_true", help="also write the histories as CSV")
     r.add_argument("--no-figure", action="store_true", help="skip the PNG figure")
     r.add_argument("--json", action="store_true", help="print the summary as one JSON object")
+    r.add_argument("--force", action="store_true", help="replace a different run in --out")
 
     pp = sub.add_parser("paper", help="Ewing's reduced-model study: Figs. 4, 5, 7-12 and a "
                                       "summary of the peaks (the main job)")
-    pp.add_argument("--out", default="results/paper", help="output directory")
+    pp.add_argument("--out", default=None, help="output directory (default results/paper)")
     pp.add_argument("--motion", help="path of the El Centro 1940 N-S record, if it is not on "
                                      "UPLIFTLAB_MOTIONS")
+    pp.add_argument("--force", action="store_true", help="replace a different run in --out")
 
     sub.add_parser("scenes", help="list the packaged scenes")
 
@@ -65,7 +89,8 @@ def parser() -> argparse.ArgumentParser:
                                       "scene and recommend the cheapest within a tolerance")
     a.add_argument("scene", help="a packaged scene name or a TOML path")
     a.add_argument("--quantity", default="peak_u",
-                   help="peak_u, peak_theta, peak_uplift or residual_settlement")
+                   help="peak_u, peak_theta, peak_uplift or residual_settlement "
+                        "(the permanent settlement Σ k_i ε_p,i / Σ k_i)")
     a.add_argument("--tol", default="5%", help="tolerance, e.g. 5%% or 0.05 (default 5%%)")
     a.add_argument("--case", help="a case of the scene, e.g. A, B or C")
     a.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
@@ -78,34 +103,9 @@ def parser() -> argparse.ArgumentParser:
     rp.add_argument("--fast", action="store_true", help="small grids and coarse meshes")
     rp.add_argument("--out", help="output directory (default results/report[-fast])")
     rp.add_argument("--scheduler", help="Dask scheduler address for the studies' sweeps")
+    rp.add_argument("--force", action="store_true", help="replace a different run in --out")
 
-    c = sub.add_parser("continuum", help="run one scene in the continuum model: a rotation "
-                                         "pushover or a dynamic run, with XDMF and pictures")
-    c.add_argument("scene", help="a packaged scene name or a TOML path (needs a [soil] table)")
-    c.add_argument("--analysis", default="pushover",
-                   help=f"{' or '.join(CONTINUUM_ANALYSES)} (default pushover: rotation at "
-                        "constant N = the structure's vertical weight)")
-    c.add_argument("--case", help="a case of the scene")
-    c.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
-                   help="override a scene field by its dotted TOML key (repeatable)")
-    c.add_argument("--mesh", action="append", default=[], metavar="KEY=VALUE[,KEY=VALUE]",
-                   help=f"mesh options ({', '.join(MESH_KEYS)}), e.g. "
-                        "elements_across=8,grading=2,element=Q2 (repeatable)")
-    c.add_argument("--theta-max", help="largest rotation of the pushover (rad, > 0; default "
-                                       "10 times the elastic half-plane's uplift rotation)")
-    c.add_argument("--steps", default="40", help="rotation steps of the pushover (default 40; "
-                                                 "two more below uplift if they are coarse)")
-    c.add_argument("--motion", help="dynamic: a record name on UPLIFTLAB_MOTIONS or a path; "
-                                    "replaces the scene's motion")
-    c.add_argument("--a0", help="impedance: frequencies a0 = ω B/(2 V_s), comma separated "
-                                "(default 0.1, 0.2, …, 2)")
-    c.add_argument("--boundary", help="impedance: absorbing boundary pml (default) or lysmer")
-    c.add_argument("--scale", help="displacement magnification of the pictures (default: "
-                                   "automatic, stated in each picture)")
-    c.add_argument("--out", help="output directory (default results/<scene>-continuum-"
-                                 "<analysis>)")
-    c.add_argument("--no-render", action="store_true", help="skip the PNG and GIF renders")
-    c.add_argument("--json", action="store_true", help="print the summary as one JSON object")
+    add_continuum(sub)
 
     o = sub.add_parser("opensees", help="write a standalone OpenSeesPy script of the scene (a "
                                         "BNWF model); with --run, run it beside upliftlab")
@@ -127,29 +127,118 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
-CONTINUUM_ANALYSES = ("pushover", "dynamic", "impedance")
-#: ``--mesh`` keys: the [continuum] fields that shape the mesh and its quadrature.
-MESH_KEYS = ("elements_across", "grading", "element", "domain_width", "domain_depth",
-             "intorder")
+# ---------------------------------------------------------------------------------------------
+# Shared checks
+# ---------------------------------------------------------------------------------------------
+
+#: The optional dependencies: import name -> (extra, what needs it).
+EXTRAS = {"matplotlib": "plot", "skfem": "continuum", "meshio": "continuum",
+          "h5py": "continuum", "pyvista": "render", "imageio": "render",
+          "openseespy": "opensees", "distributed": "dask"}
+
+
+def need_extra(command: str, *modules: str, why: str = "") -> None:
+    """Refuse, in one line naming the extra to install, a command whose optional dependencies
+    are missing."""
+    missing = [m for m in modules if importlib.util.find_spec(m) is None]
+    if missing:
+        extras = sorted({EXTRAS[m] for m in missing})
+        spec = ",".join(extras)
+        raise InputError(f"{command} needs {', '.join(missing)} (the optional extra "
+                         f"{' and '.join(extras)}): pip install 'upliftlab[{spec}]'"
+                         + (f"; {why}" if why else ""))
+
+
+def _key(item: str) -> str:
+    return item.split("=", 1)[0].strip()
+
+
+def refuse_without_effect(overrides, command: str, used: tuple[str, ...]) -> None:
+    """Refuse an override whose key the command does not read (``used``: glob patterns of
+    dotted keys): it would be applied to the scene and then ignored."""
+    for item in overrides:
+        key = _key(item)
+        if "=" in item and key and not key.startswith("cases.") and \
+                not any(fnmatch.fnmatchcase(key, pattern) for pattern in used):
+            raise InputError(f"--set {item!r}: has no effect: {command} does not use {key}")
+
+
+def number(name: str, text: str | None, *, integer: bool = False, low: float = 0.0,
+           high: float = math.inf):
+    """A number in (``low``, ``high``] (an integer in [``low``, ``high``]) given on the
+    command line, or None."""
+    if text is None:
+        return None
+    try:
+        value = int(text) if integer else float(text)
+    except ValueError:
+        kind = "an integer" if integer else "a number"
+        raise InputError(f"{name} = {text!r}: expected {kind}") from None
+    if integer and not low <= value <= high:
+        raise InputError(f"{name} = {value}: valid range is [{low:g}, {high:g}]")
+    if not integer and not (low < value <= high and math.isfinite(value)):
+        raise InputError(f"{name} = {text}: valid range is ({low:g}, {high:g}]")
+    return value
+
+
+def say_if_rounded(command: str, duration: float, steps: int, dt: float) -> None:
+    """Say on stderr when a run's length differs from the duration asked for (it is a whole
+    number of steps)."""
+    if abs(steps * dt - duration) > 1e-9 * max(duration, 1.0):
+        print(f"{command}: note: the duration {duration:g} s runs as {steps} steps of "
+              f"{dt:.6g} s = {steps * dt:.6g} s", file=sys.stderr)
+
+
+def _short(settings: dict) -> str:
+    return settings_digest(settings)[:8]
+
+
+def _default_out(stem: str, variant: dict) -> Path:
+    """``results/<stem>``, with a digest of ``variant`` when it changes the scene's defaults
+    (overrides, motion, step), so that different runs do not share a folder."""
+    extra = {k: v for k, v in variant.items() if v}
+    return Path("results") / (f"{stem}-{_short(extra)}" if extra else stem)
+
+
+# ---------------------------------------------------------------------------------------------
+# Commands
+# ---------------------------------------------------------------------------------------------
+
+#: What the reduced model reads of a scene (the continuum's tables are not its business).
+REDUCED_KEYS = ("schema", "units", "title", "description", "reference", "structure*",
+                "foundation*", "motion*", "analysis*")
 
 
 def _run(args) -> int:
-    from .reduced import run
-    from .reduced.figures import response_figure, save
     from .scenes import load_scene
 
-    scene = load_scene(args.scene, case=args.case, overrides=args.overrides, motion=args.motion)
-    if args.dt is not None and not args.dt > 0:
-        raise InputError(f"--dt = {args.dt:g}: must be > 0")
-    with warnings.catch_warnings():  # the model's notes are printed as notes, below
-        warnings.simplefilter("ignore")
-        response = run(scene, integrator=args.integrator, dt=args.dt)
-    for note in response.info.get("notes", []):
-        print(f"upliftlab run: note: {note}", file=sys.stderr)
-    out = Path(args.out) if args.out else Path("results") / scene.name
-    written = response.save(out / f"{scene.name}.nc", csv=args.csv)
     if not args.no_figure:
-        written.append(save(response_figure(response), out / f"{scene.name}.png"))
+        need_extra("upliftlab run", "matplotlib", why="or add --no-figure")
+    scene = load_scene(args.scene, case=args.case, overrides=args.overrides, motion=args.motion)
+    refuse_without_effect(args.overrides, "the reduced model", REDUCED_KEYS)
+    dt = number("--dt", args.dt, high=bounds.KINDS["step"].high)
+    variant = {"overrides": list(args.overrides), "motion": args.motion, "dt": dt,
+               "integrator": args.integrator}
+    settings = {"command": "run", "scene": scene.name, "scene_digest": scene.digest,
+                "overrides": list(scene.overrides), "motion": args.motion, "dt": dt,
+                "integrator": args.integrator}
+    motion = scene.build_motion()  # the record is read and checked before the folder
+    with claim(args.out, _default_out(scene.name, variant), settings=settings,
+               force=args.force) as out:
+        from .reduced import run
+        with warnings.catch_warnings():  # the model's notes are printed as notes, below
+            warnings.simplefilter("ignore")
+            response = run(scene, motion=motion, integrator=args.integrator, dt=dt)
+        for note in response.info.get("notes", []):
+            print(f"upliftlab run: note: {note}", file=sys.stderr)
+        say_if_rounded("upliftlab run", scene.analysis.duration or motion.duration,
+                       response.info["steps"], response.info["dt"])
+        out.start_writing()
+        written = response.save(out.path / f"{scene.name}.nc", csv=args.csv)
+        if not args.no_figure:
+            from .reduced.figures import response_figure, save
+            written.append(save(response_figure(response), out.path / f"{scene.name}.png"))
+        out.complete(written)
     for path in written:
         print(f"upliftlab run: wrote {path}", file=sys.stderr)
     if args.json:
@@ -160,11 +249,15 @@ def _run(args) -> int:
 
 
 def _paper(args) -> int:
-    from .reduced.paper import main as paper_main
+    from .reduced.paper import main as paper_main, record_for
 
-    summary = paper_main(args.out, motion=args.motion)
+    need_extra("upliftlab paper", "matplotlib")
+    record = record_for(args.motion)  # the record is read and checked before any work
+    settings = {"command": "paper", "motion": None if record is None else record.source}
+    with claim(args.out, "results/paper", settings=settings, force=args.force) as out:
+        summary = paper_main(out.path, record=record, claim=out)
     holds = sum(c["holds"] for c in summary["claims"])
-    print(f"upliftlab paper: {len(summary['figures'])} figures and summary.md in {args.out}; "
+    print(f"upliftlab paper: {len(summary['figures'])} figures and summary.md in {out.path}; "
           f"{holds} of {len(summary['claims'])} statements of the paper hold")
     if summary["note"]:
         print(f"upliftlab paper: {summary['note']}")
@@ -181,198 +274,30 @@ def _scenes(_args) -> int:
     return 0
 
 
-def _mesh_overrides(items: list[str]) -> list[str]:
-    """``--mesh a=1,b=2`` -> ``continuum.a=1``, ``continuum.b=2``; unknown keys refused."""
-    overrides = []
-    for item in items:
-        for pair in filter(None, (p.strip() for p in item.split(","))):
-            key, sep, value = pair.partition("=")
-            if not sep or not value.strip():
-                raise InputError(f"--mesh {pair!r}: expected KEY=VALUE with KEY one of "
-                                 f"{', '.join(MESH_KEYS)}")
-            if key.strip() not in MESH_KEYS:
-                raise InputError(f"--mesh {key.strip()!r}: unknown mesh key (valid: "
-                                 f"{', '.join(MESH_KEYS)})")
-            overrides.append(f"continuum.{key.strip()}={value.strip()}")
-    return overrides
-
-
-def _number(name: str, text: str | None, *, integer: bool = False, low: float = 0.0):
-    """A number > ``low`` (or an integer >= ``low``) given on the command line, or None."""
-    if text is None:
-        return None
-    try:
-        value = int(text) if integer else float(text)
-    except ValueError:
-        kind = "an integer" if integer else "a number"
-        raise InputError(f"{name} = {text!r}: expected {kind}") from None
-    if integer and value < low:
-        raise InputError(f"{name} = {value}: must be an integer >= {low:g}")
-    if not integer and not (value > low and math.isfinite(value)):
-        raise InputError(f"{name} = {text}: must be a finite number > {low:g}")
-    return value
-
-
-def _say(message: str) -> None:
-    print(f"upliftlab continuum: {message}", file=sys.stderr, flush=True)
-
-
-def _continuum(args) -> int:
-    from .scenes import load_scene
-
-    if args.analysis not in CONTINUUM_ANALYSES:
-        raise InputError(f"--analysis = {args.analysis!r}: must be one of "
-                         f"{', '.join(CONTINUUM_ANALYSES)}")
-    overrides = list(args.overrides) + _mesh_overrides(args.mesh)
-    theta_max = _number("--theta-max", args.theta_max)
-    steps = _number("--steps", args.steps, integer=True, low=2)
-    scale = _number("--scale", args.scale)
-    if args.analysis != "dynamic" and args.motion is not None:
-        raise InputError("--motion: only the dynamic analysis takes a motion")
-    if args.analysis != "impedance" and (args.a0 is not None or args.boundary is not None):
-        raise InputError("--a0/--boundary: only the impedance analysis takes them")
-    scene = load_scene(args.scene, case=args.case, overrides=overrides,
-                       motion=args.motion if args.analysis == "dynamic" else None)
-    if scene.soil is None:
-        raise InputError(f"scene {scene.name!r}: soil is missing; the continuum model needs a "
-                         "[soil] table")
-    if args.analysis == "impedance":
-        return _impedance(args, scene)
-    if args.analysis == "dynamic":
-        try:
-            from .continuum.dynamics import DynamicOptions, run_dynamic
-        except ImportError as exc:
-            raise InputError(f"--analysis dynamic: upliftlab.continuum.dynamics cannot be "
-                             f"imported ({exc})") from None
-        motion = scene.build_motion()  # reads and checks the record before any meshing
-    from .continuum import build_model
-
-    out = Path(args.out or Path("results") / f"{scene.name}-continuum-{args.analysis}")
-    started = time.perf_counter()
-    model = build_model(scene)
-    _say(f"{scene.name}: {model.disc.element}, {model.mesh.nelements} elements, "
-         f"{model.dofs} DOFs, soil {scene.soil.model}")
-    if args.analysis == "pushover":
-        result = _pushover(model, scene, theta_max, steps)
-    else:
-        result = run_dynamic(model, scene, motion, DynamicOptions(), progress=_dynamic_progress())
-    _say(f"solved in {time.perf_counter() - started:.1f} s")
-    from .continuum.output import (dynamic_summary, pushover_summary, summary_line,
-                                   write_outputs)
-
-    write_outputs(out, model, result, scene=scene, renders=not args.no_render, scale=scale,
-                  progress=_say)
-    summary = (pushover_summary(result) if args.analysis == "pushover"
-               else dynamic_summary(result, width=model.width))
-    if args.json:
-        print(json.dumps(summary))
-    else:
-        units = {"length": scene.units.length,
-                 "moment/length": f"{scene.units.force}*{scene.units.length}/{scene.units.length}"}
-        print(summary_line(summary, units))
-    return 0
-
-
-def _impedance_options(args):
-    """ImpedanceOptions from --a0, --boundary and a --mesh domain_width/domain_depth (the
-    impedance meshes its own box; the scene's is a static one)."""
-    from .continuum.impedance import ImpedanceOptions
-
-    kwargs = {}
-    if args.a0 is not None:
-        try:
-            kwargs["a0"] = tuple(float(x) for x in args.a0.split(",") if x.strip())
-        except ValueError:
-            raise InputError(f"--a0 = {args.a0!r}: expected comma-separated numbers > 0") from None
-    if args.boundary is not None:
-        kwargs["boundary"] = args.boundary
-    for pair in _mesh_overrides(args.mesh):
-        key, _, value = pair.partition("=")
-        if key in ("continuum.domain_width", "continuum.domain_depth"):
-            kwargs[key.split(".")[1]] = _number(f"--mesh {key.split('.')[1]}", value)
-    return ImpedanceOptions(**kwargs)
-
-
-def _impedance(args, scene) -> int:
-    """``--analysis impedance``: the FE impedance, checked against the exact half-plane."""
-    from .continuum.impedance import impedance, impedance_model
-
-    options = _impedance_options(args)
-    model = impedance_model(scene.soil, scene.foundation.width, scene.continuum, options,
-                            scene=scene)
-    out = Path(args.out or Path("results") / f"{scene.name}-continuum-impedance")
-    _say(f"{scene.name}: impedance, {model.disc.element}, {model.mesh.nelements} elements, "
-         f"{model.dofs} DOFs, {options.boundary} box {options.domain_width:g}B x "
-         f"{options.domain_depth:g}B, {scene.soil.interface} interface, "
-         f"{len(options.a0)} frequencies")
-    started = time.perf_counter()
-
-    def progress(k, n, a0):
-        elapsed = time.perf_counter() - started
-        _say(f"a0 = {a0:.3g} ({k + 1}/{n}), {elapsed:.1f} s elapsed, "
-             f"ETA {elapsed / (k + 1) * (n - k - 1):.0f} s")
-
-    result = impedance(model, options, progress=progress)
-    from .continuum.impedance_output import (impedance_figure, impedance_summary,
-                                             reference_for, verify)
-
-    reference = reference_for(result)
-    errors = verify(result, reference)  # ImpedanceAccuracyError (exit 3) before any file
-    out.mkdir(parents=True, exist_ok=True)
-    written = [result.save(out / "impedance.nc")]
-    if not args.no_render:
-        from .reduced.figures import save
-        written.append(save(impedance_figure(result, reference), out / "impedance.png"))
-    for path in written:
-        _say(f"wrote {path}")
-    summary = impedance_summary(result, reference, errors)
-    if args.json:
-        print(json.dumps(summary))
-    else:
-        worst = ", ".join(f"{k} {100 * v:.2f} %" for k, v in summary["max_error"].items())
-        print(f"impedance of {scene.name}: {len(result.a0)} frequencies a0 = "
-              f"{result.a0.min():g}-{result.a0.max():g}, {result.dofs} DOFs, "
-              f"{summary['wall_time_s']:.1f} s; largest error against the exact half-plane: "
-              f"{worst}")
-    return 0
-
-
-def _dynamic_progress():
-    """A ``progress(k, n, state)`` that reports every 5 % of a dynamic run."""
-    def progress(k, n, state):
-        if k == n or k % max(1, n // 20) == 0:
-            _say(f"step {k}/{n}: θ = {state.q[2]:.4g} rad, N = {state.N:.4g}, "
-                 f"{state.iterations} Newton iterations")
-    return progress
-
-
-def _pushover(model, scene, theta_max, steps):
-    from .continuum import rotation_pushover
-    from .continuum.output import rotation_schedule
-
-    soil, N, B = scene.soil, scene.structure.vertical_weight, model.width
-    theta_on = 2.0 * N * (1.0 - soil.poisson_ratio) / (math.pi * soil.shear_modulus * B)
-    theta_max = 10.0 * theta_on if theta_max is None else theta_max
-    rotations = rotation_schedule(theta_max, steps, theta_on)
-    _say(f"rotation pushover at N = {N:g} to θ = {theta_max:.4g} rad in {rotations.size - 1} "
-         f"steps (elastic half-plane uplift at θ_on = {theta_on:.4g} rad)")
-
-    def progress(k, n, state):
-        _say(f"step {k + 1}/{n}: θ = {state.q[2]:.4g} rad, M = {state.M:.4g}, "
-             f"{state.iterations} Newton iterations")
-
-    return rotation_pushover(model, N, rotations, record_fields=True, progress=progress)
-
-
 def _report(args) -> int:
+    need_extra("upliftlab report", "matplotlib", "skfem", "meshio", "h5py", "pyvista",
+               "imageio")
+    if args.scheduler is not None:
+        need_extra("upliftlab report --scheduler", "distributed")
     from .comparisons.report import command
 
-    return command(args)  # 0: verification passed; 1: a verification row failed
+    return command(args)  # 0: report written, every section ok; 1: a section failed
+
+
+#: What the advisor reads of a scene: it chooses the foundation model, integrator and step.
+ADVISE_KEYS = ("schema", "units", "title", "description", "reference", "structure*",
+               *(f"foundation.{k}" for k in ("support", "half_width", "stiffness",
+                                             "vertical_period", "law", "yield_multiple",
+                                             "damping_ratio", "restitution", "impact_multiple",
+                                             "impact_mass")),
+               "motion*", "analysis.duration", "analysis.max_steps", "analysis.max_memory")
 
 
 def _advise(args) -> int:
     from .comparisons.advise import advise, format_advice
 
+    refuse_without_effect(args.overrides, "upliftlab advise (it chooses the integrator and "
+                          "step of the reduced model)", ADVISE_KEYS)
     advice = advise(args.scene, args.quantity, args.tol, case=args.case,
                     overrides=args.overrides, fast=args.fast)
     print(json.dumps(advice.to_dict()) if args.json else format_advice(advice))
@@ -386,14 +311,31 @@ def _opensees(args) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = parser().parse_args(argv)
+    try:
+        args = parser().parse_args(argv)
+    except SystemExit as exc:  # --help, --version, or a one-line usage error
+        return exc.code if isinstance(exc.code, int) else 0
+    from .cli_continuum import continuum
+
     handler = {"run": _run, "paper": _paper, "scenes": _scenes, "report": _report,
-               "continuum": _continuum, "advise": _advise, "opensees": _opensees}[args.command]
+               "continuum": continuum, "advise": _advise, "opensees": _opensees}[args.command]
     try:
         return handler(args)
     except InputError as exc:
-        print(f"upliftlab: error: {exc}", file=sys.stderr)
+        print(f"upliftlab: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_INPUT
     except RuntimeError as exc:  # integration or Newton failures name step and residual
-        print(f"upliftlab: error: {exc}", file=sys.stderr)
+        print(f"upliftlab: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_NUMERICS
+    except MemoryError:
+        print("upliftlab: error: out of memory; the run's estimate was within "
+              "analysis.max_memory, lower it or make the run smaller", file=sys.stderr)
+        return EXIT_NUMERICS
+    except BrokenPipeError:  # `upliftlab scenes | head`: the reader has gone
+        import os
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split())

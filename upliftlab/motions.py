@@ -50,6 +50,10 @@ ELCENTRO_DESCRIPTION = (
 )
 _SUFFIXES = ("", ".txt", ".dat", ".csv", ".acc", ".AT2", ".at2")
 _UNIFORM_DT_RTOL = 1e-6
+#: Largest motion file read (bytes): a record of ten million samples is about 200 MB of text.
+MAX_FILE_BYTES = 256 * 2**20
+#: Most samples a motion may have (400 MB of float64).
+MAX_SAMPLES = 50_000_000
 
 
 @dataclass(frozen=True)
@@ -130,9 +134,28 @@ class Motion:
 
     def extended(self, duration: float) -> Motion:
         """This motion padded with zero acceleration to at least ``duration`` (s)."""
-        n = int(math.ceil(duration / self.dt - 1e-9))
+        n = _sample_count(duration, self.dt, "the run's duration")
         if n <= self.acceleration.size:
             return self
+        acc = np.concatenate([self.acceleration, np.zeros(n - self.acceleration.size)])
+        return replace(self, acceleration=acc)
+
+    def with_duration(self, duration: float) -> Motion:
+        """This motion cut, or padded with zero acceleration, to exactly ``duration`` (s): a
+        whole number of its steps, at least one (else an :class:`InputError` says which
+        durations are valid)."""
+        positive("motion.duration", duration)
+        steps = duration / self.dt
+        n = max(int(round(steps)), 1)
+        if steps < 1.0 - 1e-9 or abs(steps - n) > 1e-6 * max(steps, 1.0):
+            below, above = max(math.floor(steps), 1) * self.dt, math.ceil(steps) * self.dt
+            valid = (f"{above:g} s" if below == above or steps < 1.0
+                     else f"{below:g} or {above:g} s")
+            raise InputError(f"motion.duration = {duration:g} s: not a whole number of the "
+                             f"motion's steps of {self.dt:g} s; use {valid}")
+        _sample_count(duration, self.dt)
+        if n <= self.acceleration.size:
+            return replace(self, acceleration=self.acceleration[:n])
         acc = np.concatenate([self.acceleration, np.zeros(n - self.acceleration.size)])
         return replace(self, acceleration=acc)
 
@@ -142,6 +165,16 @@ class Motion:
         times = np.arange(n + 1) * self.dt
         values = np.append(self.acceleration, 0.0)
         return np.interp(t, times, values, right=0.0)
+
+
+def _sample_count(duration: float, dt: float, what: str = "motion.duration") -> int:
+    """Samples of ``duration`` (s) at ``dt`` (s), refused above :data:`MAX_SAMPLES`."""
+    n = math.ceil(duration / dt - 1e-9)
+    if n > MAX_SAMPLES:
+        raise InputError(f"{what} = {duration:g} s at the motion's step of {dt:g} s: "
+                         f"{n:.3g} samples; at most {MAX_SAMPLES:.0e} (a longer step or a "
+                         "shorter motion)")
+    return max(int(n), 1)
 
 
 def motion_search_path() -> list[Path]:
@@ -193,6 +226,12 @@ def read_motion(path: str | os.PathLike, dt: float | None = None) -> Motion:
         stat = path.stat()
     except OSError as exc:
         raise InputError(f"motion file {str(path)!r}: cannot read it ({exc.strerror})") from None
+    if not path.is_file():
+        raise InputError(f"motion file {str(path)!r}: not a file")
+    if stat.st_size > MAX_FILE_BYTES:
+        raise InputError(f"motion file {str(path)!r}: {stat.st_size / 2**20:.0f} MiB; a motion "
+                         f"file may hold at most {MAX_FILE_BYTES // 2**20} MiB (about ten "
+                         "million samples of text)")
     return _read_motion_cached(str(path), str(path.resolve()), stat.st_mtime_ns, stat.st_size,
                                dt)
 
@@ -207,8 +246,11 @@ def _read_motion_cached(given: str, resolved: str, mtime_ns: int, size: int,
         text = path.read_text(errors="replace")
     except OSError as exc:
         raise InputError(f"motion file {str(path)!r}: cannot read it ({exc.strerror})") from None
+    if "\x00" in text:
+        raise InputError(f"motion file {str(path)!r}: binary data, not a text record")
     if path.suffix.lower() == ".at2" or text.lstrip().upper().startswith("PEER"):
         step, acc = _parse_at2(text, path)
+        _no_dt(dt, step, path)
     else:
         step, acc = _parse_columns(text, path, dt)
     return Motion(name=path.stem, dt=step, acceleration=acc, source=resolved)
@@ -244,7 +286,16 @@ def _parse_columns(text: str, path: Path, dt: float | None) -> tuple[float, np.n
             raise InputError(f"motion file {str(path)!r} has one column: give its dt "
                              "(motion.dt in the scene)")
         return positive("motion.dt", dt), data[:, 0]
-    return _uniform_step(data[:, 0], path, lines), data[:, 1]
+    step = _uniform_step(data[:, 0], path, lines)
+    _no_dt(dt, step, path)
+    return step, data[:, 1]
+
+
+def _no_dt(dt: float | None, step: float, path: Path) -> None:
+    """A file that gives its own step takes no ``motion.dt``: it would be ignored."""
+    if dt is not None:
+        raise InputError(f"motion.dt = {dt:g}: motion file {str(path)!r} gives its own time "
+                         f"step ({step:g} s); motion.dt is for one-column files only (remove it)")
 
 
 def _refuse_nan(data: np.ndarray, path: Path, lines: list[int]) -> None:
@@ -306,7 +357,7 @@ def free_vibration(duration: float, dt: float = 0.01, *, velocity: float = 0.0,
     if velocity == 0.0 and displacement == 0.0 and rotation == 0.0:
         raise InputError("free vibration needs a nonzero motion.velocity, motion.displacement "
                          "or motion.rotation")
-    n = max(int(math.ceil(duration / dt - 1e-9)), 1)
+    n = _sample_count(duration, dt)
     return Motion(name="free", dt=dt, acceleration=np.zeros(n), initial_velocity=velocity,
                   initial_displacement=displacement, initial_rotation=rotation,
                   source=f"builtin:free(v0={velocity:g}, x0={displacement:g}, theta0={rotation:g})")
@@ -315,7 +366,7 @@ def free_vibration(duration: float, dt: float = 0.01, *, velocity: float = 0.0,
 def _pulse_samples(duration: float, dt: float) -> np.ndarray:
     positive("motion.duration", duration)
     positive("motion.dt", dt)
-    return np.arange(max(int(math.ceil(duration / dt - 1e-9)), 1)) * dt
+    return np.arange(_sample_count(duration, dt)) * dt
 
 
 def sine_pulse(amplitude: float, period: float, cycles: float = 1.0, *,

@@ -15,16 +15,16 @@ import hashlib
 import json
 import math
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import InitVar, dataclass, field
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from . import checks
+from . import bounds, checks
 from .checks import InputError
 from .motions import (Motion, cosine_pulse, free_vibration, harmonic, load_motion, ricker_pulse,
                       sine_pulse)
-from .units import UnitSystem, unit_system
+from .units import UNIT_SYSTEMS, UnitSystem, unit_system
 
 __all__ = [
     "SCHEMA_VERSION",
@@ -46,6 +46,8 @@ __all__ = [
 
 SCHEMA_VERSION = 1
 _MISSING = object()
+#: Default budget of a run (``analysis.max_steps``, ``analysis.max_memory`` in GiB).
+DEFAULT_MAX_STEPS, DEFAULT_MAX_MEMORY = 10_000_000, 4.0
 
 SUPPORTS = ("uplift", "bonded", "fixed")
 LAYOUTS = ("winkler", "edges", "equivalent", "end_stiffened", "custom")
@@ -165,24 +167,29 @@ class Structure:
         return self.stories[-1].height
 
 
-def _story(table: _Table, sdof: bool, g: float) -> Story:
-    weight = table.get("weight", checks.positive)
-    height = table.get("height", checks.positive)
+def _story(table: _Table, sdof: bool, units: UnitSystem) -> Story:
+    weight = table.get("weight", bounds.checker("force", units))
+    height = table.get("height", bounds.checker("length", units))
     if table.has("stiffness") and table.has("period"):
         raise InputError(f"{table.path}: give stiffness or period, not both")
     if table.has("period") and sdof:
-        period = table.get("period", checks.positive)
-        stiffness = (weight / g) * (2.0 * math.pi / period) ** 2
+        period = table.get("period", bounds.checker("period", units))
+        stiffness = (weight / units.gravity) * (2.0 * math.pi / period) ** 2
     else:
-        stiffness = table.get("stiffness", checks.positive)
-    yield_force = table.get("yield_force", lambda n, v: checks.positive(n, v, allow_inf=True),
-                            math.inf)
+        stiffness = table.get("stiffness", bounds.checker("stiffness", units))
+    yield_force = table.get("yield_force", lambda n, v: _force_or_inf(n, v, units), math.inf)
     ratio = table.get("post_yield_ratio", _range(0.0, 1.0, high_open=True), 0.0)
     damping = None if sdof else table.get("damping_ratio", _range(0.0, 1.0), None)
     return Story(weight, height, stiffness, yield_force, ratio, damping)
 
 
-def _structure(data, g: float) -> Structure:
+def _force_or_inf(name: str, value, units: UnitSystem) -> float:
+    """A force within the physical range, or inf (no yield)."""
+    value = checks.positive(name, value, allow_inf=True)
+    return value if math.isinf(value) else bounds.check(name, value, "force", units)
+
+
+def _structure(data, units: UnitSystem) -> Structure:
     table = _Table(data, "structure")
     if table.has("story"):
         stories_data = table.get("story")
@@ -191,11 +198,11 @@ def _structure(data, g: float) -> Structure:
         stories = []
         for i, item in enumerate(stories_data):
             sub = _Table(item, f"structure.story.{i}")
-            stories.append(_story(sub, sdof=False, g=g))
+            stories.append(_story(sub, sdof=False, units=units))
             sub.done()
         stories = tuple(stories)
     else:
-        stories = (_story(table, sdof=True, g=g),)
+        stories = (_story(table, sdof=True, units=units),)
     heights = [s.height for s in stories]
     for i in range(1, len(heights)):
         if heights[i] <= heights[i - 1]:
@@ -210,8 +217,8 @@ def _structure(data, g: float) -> Structure:
     structure = Structure(
         stories=stories,
         damping_ratio=table.get("damping_ratio", _range(0.0, 1.0), 0.0),
-        rotary_inertia=table.get("rotary_inertia", checks.nonnegative),
-        vertical_weight=table.get("vertical_weight", checks.positive,
+        rotary_inertia=table.get("rotary_inertia", bounds.checker("rotary_inertia", units)),
+        vertical_weight=table.get("vertical_weight", bounds.checker("force", units),
                                   sum(s.weight for s in stories)),
         rigid=rigid,
         p_delta=p_delta,
@@ -269,10 +276,23 @@ class Foundation:
         return 2.0 * self.half_width
 
 
-def _foundation(data, vertical_mass: float) -> Foundation:
+#: Most springs a foundation may have: a bed finer than b/50000 resolves nothing more, and its
+#: histories outgrow any memory (the run's memory is estimated by :mod:`upliftlab.budget`).
+MAX_SPRINGS = 100_000
+
+
+def _spring_count(name: str, value) -> int:
+    count = checks.integer_at_least(name, value, 2)
+    if count > MAX_SPRINGS:
+        shown = f"{count:.3g}" if count > 10**12 else str(count)
+        raise InputError(f"{name} = {shown}: valid range is [2, {MAX_SPRINGS}]")
+    return count
+
+
+def _foundation(data, vertical_mass: float, units: UnitSystem) -> Foundation:
     table = _Table(data, "foundation")
     support = table.get("support", _choice(SUPPORTS), "uplift")
-    half_width = table.get("half_width", checks.positive)
+    half_width = table.get("half_width", bounds.checker("length", units))
     layout = table.get("layout", _choice(LAYOUTS), "winkler")
     positions, stiffnesses = (), ()
     if layout == "custom":
@@ -283,9 +303,9 @@ def _foundation(data, vertical_mass: float) -> Foundation:
                              f"foundation.positions has {len(positions)}: give one per spring")
         for i, (x, k) in enumerate(zip(positions, stiffnesses)):
             checks.in_range(f"foundation.positions[{i}]", x, -half_width, half_width)
-            checks.positive(f"foundation.stiffnesses[{i}]", k)
+            bounds.check(f"foundation.stiffnesses[{i}]", k, "stiffness", units)
         springs, stiffness = len(positions), float(sum(stiffnesses))
-        checks.integer_at_least("foundation.springs (number of custom positions)", springs, 2)
+        _spring_count("foundation.springs (number of custom positions)", springs)
         given = table.get("springs", None, springs)
         if given != springs:
             raise InputError(f"foundation.springs = {given!r}: a custom layout has one spring "
@@ -297,17 +317,17 @@ def _foundation(data, vertical_mass: float) -> Foundation:
                                  f"(--set foundation.{key}= removes a key)")
     else:
         default_n = 2 if layout in ("edges", "equivalent") else _MISSING
-        springs = table.get("springs", lambda n, v: checks.integer_at_least(n, v, 2), default_n)
+        springs = table.get("springs", _spring_count, default_n)
         if layout in ("edges", "equivalent") and springs != 2:
             raise InputError(f"foundation.springs = {springs}: layout {layout!r} has exactly 2 "
                              "springs; set foundation.springs = 2 or remove it")
         if table.has("stiffness") and table.has("vertical_period"):
             raise InputError("foundation: give stiffness or vertical_period, not both")
         if table.has("vertical_period"):
-            period = table.get("vertical_period", checks.positive)
+            period = table.get("vertical_period", bounds.checker("period", units))
             stiffness = vertical_mass * (2.0 * math.pi / period) ** 2
         else:
-            stiffness = table.get("stiffness", checks.positive)
+            stiffness = table.get("stiffness", bounds.checker("stiffness", units))
     end_ratio, end_length = 1.0, 0.0
     if layout == "end_stiffened":
         end_ratio = table.get("end_stiffness_ratio", _range(1.0, 1e6))
@@ -363,60 +383,100 @@ class MotionSpec:
     delay: float | None = None
 
 
-def _motion_spec(data) -> MotionSpec:
+#: Largest factor a record may be scaled by (its PGA is then checked against 100 g).
+MAX_SCALE = 1e4
+
+
+def _motion_spec(data, units: UnitSystem) -> MotionSpec:
     table = _Table(data, "motion")
     kind = table.get("type", _choice(MOTION_TYPES))
-    positive_or_none = lambda n, v: checks.positive(n, v)  # noqa: E731
     spec: dict[str, Any] = {"type": kind,
-                            "duration": table.get("duration", positive_or_none, None),
-                            "dt": table.get("dt", positive_or_none, None)}
+                            "duration": table.get("duration", bounds.checker("duration", units),
+                                                  None),
+                            "dt": table.get("dt", bounds.checker("step", units), None)}
     if kind == "record":
-        spec["name"] = table.get("name", _string)
+        spec["name"] = table.get("name", _record_name)
         if table.has("scale") and table.has("pga"):
             raise InputError("motion: give scale or pga, not both")
-        spec["scale"] = table.get("scale", checks.finite, 1.0)
-        spec["pga"] = table.get("pga", positive_or_none, None)
+        spec["scale"] = table.get("scale", _range(-MAX_SCALE, MAX_SCALE), 1.0)
+        spec["pga"] = table.get("pga", _positive_g(units), None)
     elif kind == "free":
+        kinds = {"velocity": "velocity", "displacement": "displacement", "rotation": "rotation"}
         for key in ("velocity", "displacement", "rotation"):
-            spec[key] = table.get(key, checks.finite, 0.0)
+            spec[key] = table.get(key, bounds.checker(kinds[key], units), 0.0)
         if not any(spec[k] for k in ("velocity", "displacement", "rotation")):
             raise InputError("motion.type = 'free' needs a nonzero motion.velocity, "
                              "motion.displacement or motion.rotation")
         if spec["duration"] is None:
             raise InputError("motion.duration is missing: free vibration needs a duration (s)")
     else:
-        spec["amplitude"] = table.get("amplitude", checks.finite)
-        spec["period"] = table.get("period", checks.positive)
+        spec["amplitude"] = table.get("amplitude", bounds.checker("acceleration_g", units))
+        spec["period"] = table.get("period", bounds.checker("period", units))
         if kind in ("sine", "cosine"):
-            spec["cycles"] = table.get("cycles", checks.positive, 1.0)
+            spec["cycles"] = table.get("cycles", _range(0.0, 1e4, low_open=True), 1.0)
         if kind == "ricker":
-            spec["delay"] = table.get("delay", checks.nonnegative, None)
+            spec["delay"] = table.get("delay", _range(0.0, 1e6), None)
         if kind == "harmonic" and spec["duration"] is None:
             raise InputError("motion.duration is missing: a harmonic motion needs a duration (s)")
     table.done()
     return MotionSpec(**spec)
 
 
+def _record_name(name: str, value) -> str:
+    value = _string(name, value)
+    if not value.strip():
+        raise InputError(f"{name} = {value!r}: expected a record name on UPLIFTLAB_MOTIONS or "
+                         "a file path")
+    return value
+
+
+def _positive_g(units: UnitSystem):
+    def check(name, value):
+        return bounds.check(name, checks.positive(name, value), "acceleration_g", units)
+    return check
+
+
+def _default_step(duration: float | None, step: float) -> float:
+    """The default sample step of a built-in motion: ``step``, or the nearest smaller one that
+    divides ``duration`` into whole steps (so that the motion lasts exactly ``duration``)."""
+    if duration is None:
+        return step
+    return duration / max(1, math.ceil(duration / step - 1e-9))
+
+
 def build_motion(spec: MotionSpec) -> Motion:
-    """The :class:`Motion` a spec describes (reads the record file if it names one)."""
+    """The :class:`Motion` a spec describes (reads the record file if it names one).
+
+    ``duration`` is the motion's length: a record or pulse is cut or padded with zero
+    acceleration to it. It must be a whole number of the motion's steps: of the file's step for
+    a record, of ``dt`` when given, else the default step (0.01 s for free vibration, 0.005 s
+    for pulses) is shortened to divide it. A scaled record whose PGA exceeds 100 g is refused.
+    """
     dt = spec.dt
     if spec.type == "record":
         motion = load_motion(spec.name, dt=dt)
         motion = motion.scaled_to_pga(spec.pga) if spec.pga is not None else motion.scaled(spec.scale)
+        if motion.pga > 100.0:
+            which = (f"motion.pga = {spec.pga:g}" if spec.pga is not None
+                     else f"motion.scale = {spec.scale:g}")
+            raise InputError(f"{which}: the scaled record's PGA would be {motion.pga:.3g} g; "
+                             "valid: a PGA up to 100 g")
     elif spec.type == "free":
-        motion = free_vibration(spec.duration, dt or 0.01, velocity=spec.velocity,
-                                displacement=spec.displacement, rotation=spec.rotation)
+        motion = free_vibration(spec.duration, dt or _default_step(spec.duration, 0.01),
+                                velocity=spec.velocity, displacement=spec.displacement,
+                                rotation=spec.rotation)
     elif spec.type == "harmonic":
-        motion = harmonic(spec.amplitude, spec.period, spec.duration, dt=dt or 0.005)
+        motion = harmonic(spec.amplitude, spec.period, spec.duration,
+                          dt=dt or _default_step(spec.duration, 0.005))
     elif spec.type == "ricker":
-        motion = ricker_pulse(spec.amplitude, spec.period, duration=spec.duration,
-                              dt=dt or 0.005, delay=spec.delay)
+        motion = ricker_pulse(spec.amplitude, spec.period,
+                              dt=dt or _default_step(spec.duration, 0.005), delay=spec.delay)
     else:
         pulse = sine_pulse if spec.type == "sine" else cosine_pulse
-        motion = pulse(spec.amplitude, spec.period, spec.cycles, duration=spec.duration,
-                       dt=dt or 0.005)
+        motion = pulse(spec.amplitude, spec.period, spec.cycles,
+                       dt=dt or _default_step(spec.duration, 0.005))
     if spec.duration is not None:
-        motion = motion.extended(spec.duration)
+        motion = motion.with_duration(spec.duration)
     return motion
 
 
@@ -429,6 +489,10 @@ class Analysis:
     the event stepper's relative tolerance per step (0: fixed steps of ``dt``);
     ``energy_tolerance`` the largest relative error of the energy balance a run may end with
     before it is reported as failed.
+
+    The run's budget (:mod:`upliftlab.budget`): a run that needs more than ``max_steps`` time
+    or load steps, or more than ``max_memory`` GiB for its arrays, is refused before it starts
+    with what it would cost; raise them to run it anyway.
     """
 
     integrator: str = "events"
@@ -439,20 +503,27 @@ class Analysis:
     hht_alpha: float = -0.1
     rtol: float = DEFAULT_RTOL
     energy_tolerance: float = DEFAULT_ENERGY_TOLERANCE
+    max_steps: int = DEFAULT_MAX_STEPS
+    max_memory: float = DEFAULT_MAX_MEMORY
 
 
-def _analysis(data) -> Analysis:
+def _analysis(data, units: UnitSystem) -> Analysis:
     table = _Table(data, "analysis")
-    positive_or_none = lambda n, v: checks.positive(n, v)  # noqa: E731
+    step = bounds.checker("step", units)
     analysis = Analysis(
         integrator=table.get("integrator", _choice(INTEGRATORS), "events"),
-        dt=table.get("dt", positive_or_none, None),
+        dt=table.get("dt", step, None),
         subcycle=table.get("subcycle", checks.boolean, False),
-        duration=table.get("duration", positive_or_none, None),
-        output_dt=table.get("output_dt", positive_or_none, None),
+        duration=table.get("duration", bounds.checker("duration", units), None),
+        output_dt=table.get("output_dt", step, None),
         hht_alpha=table.get("hht_alpha", _range(-1.0 / 3.0, 0.0), -0.1),
         rtol=table.get("rtol", _range(0.0, 1e-2), DEFAULT_RTOL),
-        energy_tolerance=table.get("energy_tolerance", _range(1e-12, 1.0), DEFAULT_ENERGY_TOLERANCE),
+        energy_tolerance=table.get("energy_tolerance", _range(1e-12, 1.0),
+                                   DEFAULT_ENERGY_TOLERANCE),
+        max_steps=table.get("max_steps", lambda n, v: checks.integer_at_least(n, v, 1),
+                            DEFAULT_MAX_STEPS),
+        max_memory=table.get("max_memory", _range(0.0, 1e6, low_open=True),
+                             DEFAULT_MAX_MEMORY),
     )
     table.done()
     return analysis
@@ -498,23 +569,31 @@ class Soil:
         return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
 
 
-def _soil(data) -> Soil:
+def _positive_strength(units: UnitSystem):
+    def check(name, value):
+        return bounds.check(name, checks.positive(name, value), "strength", units)
+    return check
+
+
+def _soil(data, units: UnitSystem) -> Soil:
     table = _Table(data, "soil")
     model = table.get("model", _choice(SOIL_MODELS), "elastic")
+    strength = bounds.checker("strength", units)
     soil = Soil(
-        youngs_modulus=table.get("youngs_modulus", checks.positive),
+        youngs_modulus=table.get("youngs_modulus", bounds.checker("modulus", units)),
         poisson_ratio=table.get("poisson_ratio", _range(-1.0, 0.5, low_open=True, high_open=True)),
-        density=table.get("density", checks.nonnegative, 0.0),
+        density=table.get("density", bounds.checker("density", units), 0.0),
         model=model,
-        undrained_strength=table.get("undrained_strength", checks.positive,
+        undrained_strength=table.get("undrained_strength", _positive_strength(units),
                                      _MISSING if model in ("tresca", "von_mises") else None),
-        cohesion=table.get("cohesion", checks.nonnegative, 0.0),
+        cohesion=table.get("cohesion", strength, 0.0),
         friction_angle=table.get("friction_angle", _range(0.0, 60.0, high_open=True), 0.0),
         dilation_angle=table.get("dilation_angle", _range(0.0, 60.0, high_open=True), 0.0),
-        hardening_modulus=table.get("hardening_modulus", checks.nonnegative, 0.0),
-        layer_depth=table.get("layer_depth", checks.positive, None),
+        hardening_modulus=table.get("hardening_modulus", bounds.checker("hardening", units),
+                                    0.0),
+        layer_depth=table.get("layer_depth", bounds.checker("length", units), None),
         interface=table.get("interface", _choice(INTERFACES), "frictionless"),
-        interface_friction=table.get("interface_friction", checks.nonnegative, 0.0),
+        interface_friction=table.get("interface_friction", _range(0.0, 10.0), 0.0),
         k0=table.get("k0", _range(0.0, 10.0, low_open=True), None),
     )
     if soil.dilation_angle > soil.friction_angle:
@@ -542,18 +621,31 @@ class ContinuumOptions:
     intorder: int | None = None
 
 
+#: Most elements across the footing: 1024 gives about 10⁸ DOFs (the run's memory is estimated
+#: and refused above its budget well before that; this bound keeps the estimate itself cheap).
+MAX_ELEMENTS_ACROSS = 1024
+
+
+def _integer(low: int, high: int):
+    def check(name, value):
+        value = checks.integer_at_least(name, value, low)
+        if value > high:
+            raise InputError(f"{name} = {value}: valid range is [{low}, {high}]")
+        return value
+    return check
+
+
 def _continuum(data) -> ContinuumOptions:
     table = _Table(data, "continuum")
     options = ContinuumOptions(
         domain_width=table.get("domain_width", _range(1.0, 1e4, low_open=True), 10.0),
-        domain_depth=table.get("domain_depth", _range(0.0, 1e4, low_open=True), 10.0),
+        domain_depth=table.get("domain_depth", _range(0.25, 1e4), 10.0),
         element=table.get("element", _choice(ELEMENTS), "Q2"),
-        elements_across=table.get("elements_across",
-                                  lambda n, v: checks.integer_at_least(n, v, 2), 16),
+        elements_across=table.get("elements_across", _integer(2, MAX_ELEMENTS_ACROSS), 16),
         grading=table.get("grading", _range(1.0, 100.0), 1.0),
         base=table.get("base", _choice(("rigid", "compliant")), "rigid"),
         boundary=table.get("boundary", _choice(("fixed", "lysmer")), "fixed"),
-        intorder=table.get("intorder", lambda n, v: checks.integer_at_least(n, v, 1), None),
+        intorder=table.get("intorder", _integer(1, 10), None),
     )
     table.done()
     return options
@@ -566,7 +658,15 @@ def _continuum(data) -> ContinuumOptions:
 
 @dataclass(frozen=True)
 class Scene:
-    """A validated scene. ``data`` is the merged table it came from (for provenance)."""
+    """A validated scene. ``data`` is the merged table it came from (for provenance).
+
+    The fields are the scene; ``data``, :attr:`digest` and :attr:`table` describe them. A scene
+    made otherwise than by :func:`scene_from_dict` (``dataclasses.replace``, or the typed
+    :meth:`replace`) is validated again from its fields, with the same checks and messages as
+    a file; if its fields no longer match ``data``, ``data`` becomes the fields' own table and
+    the changes are added to ``overrides``, so that the provenance of a run always describes
+    the scene that ran (:mod:`upliftlab.scene_edit`).
+    """
 
     title: str
     units: UnitSystem
@@ -583,6 +683,12 @@ class Scene:
     source: str = ""
     overrides: tuple[str, ...] = ()
     data: dict = field(default_factory=dict, repr=False, compare=False)
+    validated: InitVar[bool] = False
+
+    def __post_init__(self, validated: bool) -> None:
+        if not validated:
+            from .scene_edit import revalidate
+            revalidate(self)
 
     @property
     def g(self) -> float:
@@ -595,9 +701,18 @@ class Scene:
         return f"{stem}-{self.case}" if self.case else stem
 
     @property
+    def table(self) -> dict:
+        """The scene's own table, derived from its fields: every value explicit (defaults
+        and derived stiffnesses included), in the scene's units; validating it gives back
+        this scene."""
+        from .scene_edit import scene_table
+        return scene_table(self)
+
+    @property
     def digest(self) -> str:
-        """SHA-256 of the merged scene table: equal digests mean equal inputs."""
-        text = json.dumps(self.data, sort_keys=True, default=str)
+        """SHA-256 of :attr:`table`: equal digests mean equal inputs, however the scene was
+        written or changed."""
+        text = json.dumps(self.table, sort_keys=True, default=str)
         return hashlib.sha256(text.encode()).hexdigest()
 
     def build_motion(self) -> Motion:
@@ -606,10 +721,18 @@ class Scene:
     def with_overrides(self, *overrides: str) -> Scene:
         """This scene with more ``key=value`` overrides (dotted TOML keys)."""
         data = copy.deepcopy(self.data)
-        for item in overrides:
-            apply_override(data, item)
+        _apply_overrides(data, overrides)
         return scene_from_dict(data, source=self.source, case=self.case,
                                overrides=self.overrides + tuple(overrides), merged=True)
+
+    def replace(self, table: str, **fields) -> Scene:
+        """This scene with ``fields`` of one record changed, validated as a file would be:
+        ``scene.replace("foundation", springs=40)``. ``table`` is ``structure``, ``story``
+        (the one story of an SDOF; ``story.1`` for a story of a building), ``foundation``,
+        ``motion``, ``analysis``, ``soil`` or ``continuum``; each field is a field of that
+        record, in the scene's units. The change is recorded in ``overrides``."""
+        from .scene_edit import replace_fields
+        return replace_fields(self, table, fields)
 
 
 def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
@@ -622,20 +745,24 @@ def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
     applied, in that order.
     """
     data = copy.deepcopy(data)
-    cases_table = data.get("cases", {})
     if not merged:
+        in_cases = [o for o in overrides if _override_key(o).split(".")[0] == "cases"]
+        for item in in_cases:  # edit the case table itself, before it is merged
+            _check_case_override(item, case, data.get("cases"))
+            apply_override(data, item)
+        cases_table = data.get("cases", {})
         data = _merge_case(data, case)
         if motion is not None:
             data["motion"] = {"type": "record", "name": str(motion)}
-        for item in overrides:
-            apply_override(data, item)
+        _apply_overrides(data, [o for o in overrides if o not in in_cases])
+    cases_table = data.get("cases", {}) if merged else cases_table
     table = _Table(data, "")
     schema = table.get("schema", lambda n, v: checks.integer_at_least(n, v, 1))
     if schema != SCHEMA_VERSION:
         raise InputError(f"schema = {schema}: this upliftlab reads schema {SCHEMA_VERSION}")
     units = unit_system(table.get("units", _string))
     g = units.gravity
-    structure = _structure(table.get("structure"), g)
+    structure = _structure(table.get("structure"), units)
     vertical_mass = structure.vertical_weight / g
     scene = Scene(
         title=table.get("title", _string, ""),
@@ -643,16 +770,17 @@ def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
         reference=table.get("reference", _string, ""),
         units=units,
         structure=structure,
-        foundation=_foundation(table.get("foundation"), vertical_mass),
-        motion=_motion_spec(table.get("motion")),
-        analysis=_analysis(table.get("analysis", None, {})),
-        soil=_soil(table.get("soil")) if table.has("soil") else None,
+        foundation=_foundation(table.get("foundation"), vertical_mass, units),
+        motion=_motion_spec(table.get("motion"), units),
+        analysis=_analysis(table.get("analysis", None, {}), units),
+        soil=_soil(table.get("soil"), units) if table.has("soil") else None,
         continuum=_continuum(table.get("continuum")) if table.has("continuum") else None,
         cases=tuple(cases_table) if isinstance(cases_table, dict) else (),
         case=case,
         source=source,
         overrides=tuple(overrides),
         data=data,
+        validated=True,
     )
     table.get("cases", None, None)
     table.done()
@@ -689,6 +817,39 @@ def _deep_merge(base: dict, patch: dict, path: str) -> None:
             _deep_merge(base[key], value, f"{path}.{key}")
         else:
             base[key] = copy.deepcopy(value)
+
+
+def _override_key(item: str) -> str:
+    return item.split("=", 1)[0].strip()
+
+
+def _check_case_override(item: str, case: str | None, cases) -> None:
+    """An override of ``cases.X...`` only means something for the case that runs."""
+    parts = [p for p in _override_key(item).split(".") if p]
+    if len(parts) < 3 or parts[1] != case:
+        running = f"case {case!r}" if case is not None else "no case (--case is not given)"
+        raise InputError(f"--set {item!r}: has no effect: this run uses {running}; "
+                         f"override the scene's fields directly (e.g. --set "
+                         f"{'.'.join(parts[2:]) or 'foundation.restitution'}=...), or select "
+                         f"the case with --case {parts[1] if len(parts) > 1 else 'X'}")
+    if not isinstance(cases, dict) or not isinstance(cases.get(case), dict):
+        raise InputError(f"--set {item!r}: the scene has no table cases.{case}")
+
+
+def _apply_overrides(data: dict, overrides) -> None:
+    """Apply ``overrides`` in order; refuse one that changes the unit system, which would
+    reinterpret every number of the scene in other units."""
+    declared = data.get("units")
+    for item in overrides:
+        if _override_key(item).split(".")[0] == "cases":
+            raise InputError(f"--set {item!r}: has no effect: the scene's case is already "
+                             "merged; override the scene's fields directly")
+        apply_override(data, item)
+    new = data.get("units")
+    if declared is not None and isinstance(new, str) and new != declared and new in UNIT_SYSTEMS:
+        raise InputError(f"units = {data.get('units')!r}: every number of this scene is in "
+                         f"{declared!r}; an override cannot convert them. Write the values in "
+                         f"{data.get('units')!r} in a scene file of its own")
 
 
 def _parse_value(text: str):
@@ -735,9 +896,17 @@ def _index(part: str, node: list, where: str) -> int:
 
 
 def packaged_scenes() -> dict[str, Path]:
-    """The scene files shipped with upliftlab, by name."""
-    root = resources.files("upliftlab.scene_files")
+    """The scene files shipped with upliftlab, by name (in a source checkout imported as it is,
+    the ``scenes/`` folder beside the package)."""
+    try:
+        root = resources.files("upliftlab.scene_files")
+    except ModuleNotFoundError:
+        root = Path(__file__).resolve().parent.parent / "scenes"
     return {Path(p.name).stem: Path(str(p)) for p in root.iterdir() if p.name.endswith(".toml")}
+
+
+#: Largest scene file read (bytes).
+MAX_SCENE_BYTES = 16 * 2**20
 
 
 def find_scene(name_or_path: str) -> Path:
@@ -758,7 +927,16 @@ def load_scene(name_or_path: str, case: str | None = None,
     """Read, merge, override and validate a scene file (see :func:`scene_from_dict`)."""
     path = find_scene(str(name_or_path))
     try:
-        data = tomllib.loads(path.read_text())
+        size = path.stat().st_size
+        if size > MAX_SCENE_BYTES:
+            raise InputError(f"scene {str(path)!r}: {size / 2**20:.0f} MiB; a scene file may "
+                             f"hold at most {MAX_SCENE_BYTES // 2**20} MiB of TOML")
+        data = tomllib.loads(path.read_bytes().decode("utf-8"))
+    except UnicodeDecodeError as exc:
+        raise InputError(f"scene {str(path)!r}: not UTF-8 text (byte {exc.start}); a scene is "
+                         "a TOML file") from None
+    except OSError as exc:
+        raise InputError(f"scene {str(path)!r}: cannot read it ({exc.strerror})") from None
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"scene {str(path)!r}: not valid TOML ({exc})") from None
     return scene_from_dict(data, source=str(path), case=case, overrides=tuple(overrides),

@@ -18,6 +18,8 @@ class UnitSystem:
     """A consistent (force, length, time) system.
 
     ``gravity`` is g in length/s². Mass is force·s²/length (kip·s²/in, tonne, kg).
+    ``newtons`` and ``metres`` are the SI values of one force and one length unit (for the
+    physical bounds of :mod:`upliftlab.bounds`, which are stated in SI).
     """
 
     name: str
@@ -25,6 +27,8 @@ class UnitSystem:
     length: str
     time: str
     gravity: float
+    newtons: float = 1.0
+    metres: float = 1.0
 
     @property
     def mass(self) -> str:
@@ -36,9 +40,9 @@ class UnitSystem:
 
 
 UNIT_SYSTEMS = {
-    "kip-in-s": UnitSystem("kip-in-s", "kip", "in", "s", 386.09),
-    "kN-m-s": UnitSystem("kN-m-s", "kN", "m", "s", 9.80665),
-    "N-m-s": UnitSystem("N-m-s", "N", "m", "s", 9.80665),
+    "kip-in-s": UnitSystem("kip-in-s", "kip", "in", "s", 386.09, 4448.2216152605, 0.0254),
+    "kN-m-s": UnitSystem("kN-m-s", "kN", "m", "s", 9.80665, 1000.0, 1.0),
+    "N-m-s": UnitSystem("N-m-s", "N", "m", "s", 9.80665, 1.0, 1.0),
 }
 
 

@@ -1,0 +1,202 @@
+"""Every shell command in the README's code blocks works as written, and is exercised.
+
+:data:`EXERCISED` says, for each command of the README's ``bash`` blocks, what runs it: ``ci``
+(``.ci/run`` holds it verbatim), ``here`` (:func:`test_readme_command` runs it as written, in a
+scratch working directory so that its ``results/`` land there), ``slow`` (the same, marked
+slow: minutes), or the test that runs it with only ``--out`` added. A command added to the
+README without an entry here fails :func:`test_every_readme_command_is_exercised`, and so does
+an entry whose command left the README. Reference: the README itself and the files the
+commands are documented to write.
+"""
+
+from __future__ import annotations
+
+import ast
+import os
+import re
+import shlex
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from upliftlab.cli import main as cli
+from upliftlab.outdir import read_marker
+
+ROOT = Path(__file__).resolve().parents[1]
+
+AT2 = ("PEER NGA STRONG MOTION DATABASE RECORD\nan example record\nACCELERATION TIME SERIES IN "
+       "UNITS OF G\nNPTS=   6, DT=   .0200 SEC\n0.0 0.05 0.1 -0.1 -0.05 0.0\n")
+
+#: README command -> how it is exercised, and the files it must leave (relative to its cwd).
+EXERCISED = {
+    'python3 -m venv .venv && .venv/bin/python -m pip install ".[plot]" && '
+    '.venv/bin/upliftlab paper --out results/paper': ("ci", ()),
+    'python3 -m venv .venv && .venv/bin/python -m pip install -e ".[test]" && '
+    '.venv/bin/python -m pytest': ("ci", ()),
+    "upliftlab run short_period_elcentro --case C":
+        ("here", ("results/short_period_elcentro-C/short_period_elcentro-C.nc",
+                  "results/short_period_elcentro-C/short_period_elcentro-C.png")),
+    "upliftlab run short_period_elcentro --case C --set foundation.springs=40 --json":
+        ("here", ()),
+    "upliftlab run wall_free --case e07 --csv --out results/wall":
+        ("here", ("results/wall/wall_free-e07.nc", "results/wall/wall_free-e07.csv",
+                  "results/wall/wall_free-e07.png")),
+    "upliftlab run my_scene.toml --motion path/to/record.AT2 --set motion.pga=0.4":
+        ("here", ()),
+    "upliftlab continuum strip_footing_clay --analysis pushover --out results/clay":
+        ("slow", ("results/clay/result.nc", "results/clay/uplift.png",
+                  "results/clay/moment_rotation.png", "results/clay/fields.xdmf")),
+    "upliftlab continuum strip_footing_clay --analysis dynamic --motion elcentro_1940_ns "
+    "--set analysis.duration=2 --out results/clay-ec-2s":
+        ("slow", ("results/clay-ec-2s/result.nc", "results/clay-ec-2s/uplift.gif")),
+    "upliftlab report --out results/report": ("slow", ("results/report/report.html",)),
+    "upliftlab report --fast": ("tests/test_report.py::test_report_writes_one_self_contained_html",
+                                ()),
+    "upliftlab advise short_period_elcentro --case B --quantity peak_u --tol 1%": ("slow", ()),
+    "python -m upliftlab.comparisons.two_spring_equivalence --fast --out "
+    "results/two_spring_equivalence-fast":
+        ("slow", ("results/two_spring_equivalence-fast/summary.md",)),
+    "upliftlab continuum strip_footing_clay --analysis impedance --set soil.model=elastic "
+    "--json": ("here", ()),
+    "upliftlab opensees short_period_elcentro --case A --out results/opensees-A && "
+    "python results/opensees-A/model.py":
+        ("slow", ("results/opensees-A/model.py", "results/opensees-A/motion.txt")),
+    "upliftlab opensees short_period_elcentro --case B --run --out results/opensees-B":
+        ("slow", ("results/opensees-B/comparison.md",)),
+    "upliftlab opensees three_story_frame --set foundation.restitution=1 --run --json":
+        ("slow", ()),
+}
+
+
+def readme_commands(text: str | None = None) -> list[str]:
+    """The commands of the README's ``bash`` code blocks, one per line, comments removed."""
+    text = (ROOT / "README.md").read_text() if text is None else text
+    commands = []
+    for block in re.findall(r"```bash\n(.*?)```", text, flags=re.S):
+        for line in block.splitlines():
+            command = line.split(" #", 1)[0].strip() if not line.lstrip().startswith("#") else ""
+            if command:
+                commands.append(command)
+    return commands
+
+
+def test_every_readme_command_is_exercised():
+    commands = readme_commands()
+    assert len(commands) >= 10
+    missing = [c for c in commands if c not in EXERCISED]
+    assert not missing, f"README commands that no test or CI runs: {missing}"
+    stale = [c for c in EXERCISED if c not in commands]
+    assert not stale, f"entries for commands no longer in the README: {stale}"
+    ci = (ROOT / ".ci" / "run").read_text()
+    for command, (how, _) in EXERCISED.items():
+        if how == "ci":
+            assert command in ci.splitlines(), command
+        elif "::" in how:
+            path, name = how.split("::")
+            tree = ast.parse((ROOT / path).read_text())
+            assert name in {n.name for n in ast.walk(tree) if isinstance(n, ast.FunctionDef)}
+            argv = shlex.split(command)[1:] + ["--out"]  # the test adds only --out
+            fragment = ", ".join(f'"{a}"' for a in argv)
+            assert fragment in (ROOT / path).read_text(), (how, fragment)
+
+
+def test_ci_reads_the_record_from_the_environment_when_set():
+    """``.ci/run`` works from any clone: $UPLIFTLAB_MOTIONS first, ../shared beside it else."""
+    script = (ROOT / ".ci" / "run").read_text()
+    line = next(x for x in script.splitlines() if x.startswith("export UPLIFTLAB_MOTIONS="))
+    for env, expected in (({"UPLIFTLAB_MOTIONS": "/somewhere/motions"}, "/somewhere/motions"),
+                          ({}, str(ROOT.parent / "shared" / "data" / "motions"))):
+        env = {"PATH": os.environ["PATH"], **env}
+        out = subprocess.run(["bash", "-c", f"{line}; echo $UPLIFTLAB_MOTIONS"], cwd=ROOT,
+                             env=env, capture_output=True, text=True, check=True).stdout
+        assert out.strip() == expected
+
+
+def _prepare(cwd: Path) -> None:
+    """The files the README's examples name: ``my_scene.toml`` (a scene of the user's: here a
+    copy of a packaged one) and ``path/to/record.AT2``."""
+    shutil.copy(ROOT / "scenes" / "short_period_free.toml", cwd / "my_scene.toml")
+    (cwd / "path" / "to").mkdir(parents=True)
+    (cwd / "path" / "to" / "record.AT2").write_text(AT2)
+
+
+def _run(command: str, cwd: Path, monkeypatch) -> None:
+    """Run a README command as written: ``upliftlab ...`` in this process, ``python ...`` in a
+    child, commands joined by ``&&`` one after the other."""
+    monkeypatch.chdir(cwd)
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    for part in command.split(" && "):
+        argv = shlex.split(part)
+        if argv[0] == "upliftlab":
+            assert cli(argv[1:]) == 0, part
+            continue
+        assert argv[0] == "python", part
+        result = subprocess.run([sys.executable, *argv[1:]], cwd=cwd, capture_output=True,
+                                text=True, timeout=3600)
+        assert result.returncode == 0, result.stderr[-2000:]
+
+
+def _check_files(command: str, files, cwd: Path) -> None:
+    """The files exist; a folder written by ``upliftlab`` holds its completion marker (a study
+    run by ``python -m`` writes its summary last instead)."""
+    for name in files:
+        assert (cwd / name).is_file(), f"{command}: {name} was not written"
+    if command.startswith("upliftlab "):
+        for folder in {(cwd / f).parent for f in files}:
+            assert (read_marker(folder) or {}).get("complete"), folder
+
+
+@pytest.mark.parametrize("command", [c for c, (how, _) in EXERCISED.items() if how == "here"])
+def test_readme_command(command, tmp_path, monkeypatch, elcentro):
+    _prepare(tmp_path)
+    _run(command, tmp_path, monkeypatch)
+    _check_files(command, EXERCISED[command][1], tmp_path)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("command", [c for c, (how, _) in EXERCISED.items() if how == "slow"])
+def test_readme_command_slow(command, tmp_path, monkeypatch, elcentro):
+    _prepare(tmp_path)
+    _run(command, tmp_path, monkeypatch)
+    _check_files(command, EXERCISED[command][1], tmp_path)
+
+
+def test_python_m_upliftlab_from_the_repository_root_uses_the_checkout(tmp_path):
+    """``python -m upliftlab`` from the root imports the source folder ``upliftlab/`` first; it
+    failed there with a non-editable install (``upliftlab.scene_files`` and the subpackages
+    are elsewhere in a checkout). Simulated without any installed copy: the editable finder is
+    removed, the root put first on the path."""
+    code = ("import sys\n"
+            "sys.meta_path[:] = [f for f in sys.meta_path if 'editable' not in repr(f).lower()]\n"
+            "sys.modules.pop('upliftlab', None)\n"
+            f"sys.path.insert(0, {str(ROOT)!r})\n"
+            "import upliftlab.reduced, upliftlab.continuum, upliftlab.comparisons\n"
+            "from upliftlab.scenes import packaged_scenes\n"
+            "print(upliftlab.reduced.__file__, len(packaged_scenes()))\n")
+    result = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True,
+                            text=True)
+    assert result.returncode == 0, result.stderr[-2000:]
+    where, count = result.stdout.split()
+    assert where == str(ROOT / "reduced" / "__init__.py")
+    assert int(count) == len(list((ROOT / "scenes").glob("*.toml")))
+
+
+def test_compiled_kernels_are_cached_outside_the_installed_package(tmp_path):
+    """The README's first command (a non-editable install) ran the kernels, numba cached them
+    in site-packages/upliftlab, ``pip uninstall`` left that folder, and the README's test
+    command then imported it as an empty namespace package. The cache now goes to
+    $XDG_CACHE_HOME/upliftlab/numba, also when numba was imported first."""
+    code = ("import numba, os, upliftlab\n"
+            "print(os.environ['NUMBA_CACHE_DIR'], numba.config.CACHE_DIR)\n")
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+    env["XDG_CACHE_HOME"] = str(tmp_path)
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == [str(tmp_path / "upliftlab" / "numba")] * 2
+    env["NUMBA_CACHE_DIR"] = str(tmp_path / "mine")  # a user's own choice is kept
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == [str(tmp_path / "mine")] * 2

@@ -1,0 +1,102 @@
+"""What a run will cost, estimated before it starts, and refused above the scene's budget.
+
+A scene can be valid and still ask for a run of 10¹³ steps or an array of 700 GiB (a step of
+1e-12 s, a foundation a million times too stiff, 100 000 elements across a footing). Such a
+run used to end in a memory error after minutes, or run for days with no end in sight. Here
+the steps and the memory of a run are estimated from its sizes before any of it is done, and
+a run above ``analysis.max_steps`` steps or ``analysis.max_memory`` GiB is refused with an
+:class:`~upliftlab.checks.InputError` that says what it would cost and which key raises the
+limit (``--set analysis.max_steps=...``).
+
+The memory is that of the arrays the run keeps (histories, snapshots, a factorisation's fill,
+estimated); the time is a rough figure from per-step rates measured on the project's 2-core
+machine (``benchmarks/REDUCED.md``, ``benchmarks/CONTINUUM.md``), given to make the message
+useful, never used to refuse.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .checks import InputError
+
+__all__ = ["Cost", "check", "reduced_cost", "continuum_cost", "GIB"]
+
+GIB = 2.0 ** 30
+
+#: Seconds per step of the reduced model: a fixed part and a part per spring (event stepper:
+#: 6 µs per step with 40 springs, 22 µs with 160).
+REDUCED_SECONDS_PER_STEP = (1.0e-6, 1.3e-7)
+#: Seconds per step and DOF of the continuum (dynamics: 509 s for 8000 steps on 20 160 DOFs;
+#: a pushover step takes several Newton iterations: 31.5 s for 42 steps on 20 160 DOFs).
+CONTINUUM_SECONDS_PER_DOF_STEP = {"dynamic": 3.2e-6, "pushover": 3.7e-5}
+
+
+@dataclass(frozen=True)
+class Cost:
+    """The estimated cost of a run: ``steps`` of ``step`` (s; 0 for load steps), ``memory``
+    (bytes), ``seconds`` (rough), and what was counted (``sizes``, e.g. "12 springs")."""
+
+    what: str
+    steps: int
+    step: float
+    memory: float
+    seconds: float
+    sizes: str
+
+
+def _time(seconds: float) -> str:
+    if seconds < 120:
+        return f"{seconds:.2g} s"
+    if seconds < 7200:
+        return f"{seconds / 60:.3g} min"
+    if seconds < 3 * 86400:
+        return f"{seconds / 3600:.3g} h"
+    return f"{seconds / 86400:.3g} days"
+
+
+def check(cost: Cost, max_steps: int, max_memory: float) -> Cost:
+    """Refuse ``cost`` above ``max_steps`` steps or ``max_memory`` GiB (the scene's
+    ``analysis.max_steps`` and ``analysis.max_memory``); return it otherwise."""
+    step = f" of {cost.step:.3g} s" if cost.step else ""
+    about = (f"{cost.what} would take {cost.steps:.4g} steps{step} ({cost.sizes}), "
+             f"{cost.memory / GIB:.3g} GiB and roughly {_time(cost.seconds)}")
+    if cost.steps > max_steps:
+        raise InputError(f"analysis.max_steps = {max_steps}: {about}; raise it (--set "
+                         f"analysis.max_steps={cost.steps:.0f}) to run it anyway, or take a "
+                         "larger step or a shorter duration" if cost.steps < 1e15 else
+                         f"analysis.max_steps = {max_steps}: {about}; take a larger step or a "
+                         "shorter duration")
+    if cost.memory > max_memory * GIB:
+        need = math.ceil(cost.memory / GIB * 10) / 10
+        raise InputError(f"analysis.max_memory = {max_memory:g} GiB: {about}; raise it "
+                         f"(--set analysis.max_memory={need:g}) if the machine has the "
+                         "memory, or make the run smaller")
+    return cost
+
+
+def reduced_cost(*, steps: int, step: float, stride: int, dofs: int, springs: int,
+                 events: bool, histories: bool = True) -> Cost:
+    """The reduced model's run: ``steps`` of ``step`` (s), histories every ``stride`` steps
+    (only the ends without ``histories``), ``dofs`` and ``springs`` (story springs included);
+    the event stepper (``events``) keeps a log of impacts."""
+    outputs = (steps // max(stride, 1) + 1) if histories else 2
+    per_output = 8.0 * (2 * dofs + 6 * springs + 8)  # q, q̇, spring arrays, derived, energy
+    duration = steps * step
+    log = 40.0 * max(1000, 20 * springs * int(duration + 1)) if events else 0.0
+    memory = outputs * per_output + log + 8.0 * dofs * springs + 200.0 * springs
+    a, b = REDUCED_SECONDS_PER_STEP
+    return Cost("the reduced run", int(steps), float(step), memory,
+                steps * (a + b * springs), f"{springs} springs, {dofs} DOFs")
+
+
+def continuum_cost(*, analysis: str, steps: int, step: float, dofs: int,
+                   snapshots: int) -> Cost:
+    """The continuum's run (``analysis`` pushover or dynamic): ``steps`` on ``dofs`` DOFs,
+    ``snapshots`` of the soil fields kept. A factorisation's fill is taken as 150 numbers per
+    DOF and a kept state as 12 per DOF (stresses and plastic state at the quadrature points)."""
+    memory = 8.0 * dofs * (150 + 12 * snapshots) + 400.0 * steps
+    rate = CONTINUUM_SECONDS_PER_DOF_STEP[analysis]
+    return Cost(f"the continuum {analysis}", int(steps), float(step), memory,
+                rate * steps * dofs, f"{dofs} DOFs")

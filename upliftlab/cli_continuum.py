@@ -1,0 +1,397 @@
+"""``upliftlab continuum``: a rotation pushover or a dynamic run of a scene in the continuum.
+
+Everything is checked before the mesh is built: the scene and its ``[soil]``, the options,
+overrides the analysis would ignore (a pushover takes no motion; the continuum has no springs),
+the physics the model can carry (a small-strain model: rotations up to
+:data:`MAX_ROTATION`; a load below the strip's bearing capacity; a soil with mass for the
+dynamics; a load that is not lost in the solver's tolerance against the soil's stiffness),
+the output folder, and the size of the mesh and of the run against the scene's budget
+(:mod:`upliftlab.budget`), first estimated from the grid lines, then counted on the mesh.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+
+from . import bounds
+from .budget import check as check_budget
+from .budget import continuum_cost
+from .checks import InputError
+from .cli import _default_out, need_extra, number, refuse_without_effect, say_if_rounded
+from .outdir import claim
+
+__all__ = ["add_continuum", "continuum", "CONTINUUM_ANALYSES", "MESH_KEYS", "MAX_ROTATION"]
+
+CONTINUUM_ANALYSES = ("pushover", "dynamic", "impedance")
+#: ``--mesh`` keys: the [continuum] fields that shape the mesh and its quadrature.
+MESH_KEYS = ("elements_across", "grading", "element", "domain_width", "domain_depth",
+             "intorder")
+#: Largest rotation of a pushover (rad): the continuum is small-strain and small-rotation
+#: (sin θ ≈ θ to 0.2 %, the footing's corners move by θ²B/2 ≈ 0.005 B).
+MAX_ROTATION = 0.1
+#: Smallest load N/(E B) the pushover resolves: below it the moment is lost in the Newton
+#: tolerance (relative to the soil's stiffness forces). Measured on the strip on clay, 4
+#: elements across: M/(N B) = 0.4525 at every N/(E B) from 1e-7 down to 1e-14, and 0.84 to 2.5
+#: (impossible: at most 1/2) at 1e-15 to 1e-19; the bound keeps a factor 100.
+MIN_LOAD_RATIO = 1e-12
+#: Least soil density of a dynamic run (kg/m³; air is 1.2).
+MIN_DENSITY = 1.0
+_META = ("schema", "units", "title", "description", "reference")
+#: What each analysis reads of a scene.
+USED = {
+    "pushover": (*_META, "structure.weight", "structure.vertical_weight",
+                 "structure.story.*.weight", "foundation.half_width", "foundation.support",
+                 "foundation.layout", "foundation.stiffness", "foundation.vertical_period",
+                 "foundation.springs", "soil*", "continuum*", "analysis.max_steps",
+                 "analysis.max_memory"),
+    "dynamic": (*_META, "structure*", "foundation.half_width", "motion*", "analysis.duration",
+                "analysis.hht_alpha", "analysis.max_steps", "analysis.max_memory", "soil*",
+                "continuum*"),
+    "impedance": (*_META, "foundation.half_width", "soil*", "continuum*"),
+}
+
+
+def add_continuum(sub) -> None:
+    c = sub.add_parser("continuum", help="run one scene in the continuum model: a rotation "
+                                         "pushover or a dynamic run, with XDMF and pictures")
+    c.add_argument("scene", help="a packaged scene name or a TOML path (needs a [soil] table)")
+    c.add_argument("--analysis", default="pushover",
+                   help=f"{' or '.join(CONTINUUM_ANALYSES)} (default pushover: rotation at "
+                        "constant N = the structure's vertical weight)")
+    c.add_argument("--case", help="a case of the scene")
+    c.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                   help="override a scene field by its dotted TOML key (repeatable), e.g. "
+                        "analysis.duration=2 runs the first 2 s of the motion")
+    c.add_argument("--mesh", action="append", default=[], metavar="KEY=VALUE[,KEY=VALUE]",
+                   help=f"mesh options ({', '.join(MESH_KEYS)}), e.g. "
+                        "elements_across=8,grading=2,element=Q2 (repeatable)")
+    c.add_argument("--theta-max", help="pushover: largest rotation (rad, in (0, "
+                                       f"{MAX_ROTATION:g}]; default 10 times the elastic "
+                                       "half-plane's uplift rotation)")
+    c.add_argument("--steps", help="pushover: rotation steps (default 40; two more below "
+                                   "uplift if they are coarse)")
+    c.add_argument("--motion", help="dynamic: a record name on UPLIFTLAB_MOTIONS or a path; "
+                                    "replaces the scene's motion")
+    c.add_argument("--a0", help="impedance: frequencies a0 = ω B/(2 V_s), comma separated "
+                                "(default 0.1, 0.2, …, 2)")
+    c.add_argument("--boundary", help="impedance: absorbing boundary pml (default) or lysmer")
+    c.add_argument("--scale", help="displacement magnification of the pictures (default: "
+                                   "automatic, stated in each picture)")
+    c.add_argument("--out", help="output directory (default results/<scene>-continuum-"
+                                 "<analysis>, with a digest of the overrides when there are "
+                                 "any)")
+    c.add_argument("--no-render", action="store_true", help="skip the PNG and GIF renders")
+    c.add_argument("--json", action="store_true", help="print the summary as one JSON object")
+    c.add_argument("--force", action="store_true", help="replace a different run in --out")
+
+
+def _mesh_overrides(items: list[str]) -> list[str]:
+    """``--mesh a=1,b=2`` -> ``continuum.a=1``, ``continuum.b=2``; unknown keys refused."""
+    overrides = []
+    for item in items:
+        for pair in filter(None, (p.strip() for p in item.split(","))):
+            key, sep, value = pair.partition("=")
+            if not sep or not value.strip():
+                raise InputError(f"--mesh {pair!r}: expected KEY=VALUE with KEY one of "
+                                 f"{', '.join(MESH_KEYS)}")
+            if key.strip() not in MESH_KEYS:
+                raise InputError(f"--mesh {key.strip()!r}: unknown mesh key (valid: "
+                                 f"{', '.join(MESH_KEYS)})")
+            overrides.append(f"continuum.{key.strip()}={value.strip()}")
+    return overrides
+
+
+def _say(message: str) -> None:
+    print(f"upliftlab continuum: {message}", file=sys.stderr, flush=True)
+
+
+def _options(args) -> dict:
+    """The command-line options, checked (each refused where the analysis ignores it)."""
+    if args.analysis not in CONTINUUM_ANALYSES:
+        raise InputError(f"--analysis = {args.analysis!r}: must be one of "
+                         f"{', '.join(CONTINUUM_ANALYSES)}")
+    pushover = args.analysis == "pushover"
+    for flag, value in (("--theta-max", args.theta_max), ("--steps", args.steps)):
+        if value is not None and not pushover:
+            raise InputError(f"{flag} = {value}: has no effect: only the pushover takes it")
+    if args.no_render and args.scale is not None:
+        raise InputError(f"--scale = {args.scale}: has no effect with --no-render (it "
+                         "magnifies the renders' displacements)")
+    if args.analysis != "dynamic" and args.motion is not None:
+        raise InputError("--motion: has no effect: only the dynamic analysis takes a motion")
+    for flag, value in (("--a0", args.a0), ("--boundary", args.boundary)):
+        if value is not None and args.analysis != "impedance":
+            raise InputError(f"{flag} = {value}: has no effect: only the impedance analysis "
+                             "takes it")
+    return {"theta_max": number("--theta-max", args.theta_max, high=MAX_ROTATION),
+            "steps": number("--steps", args.steps, integer=True, low=2, high=10**9),
+            "scale": number("--scale", args.scale, high=1e9)}
+
+
+def _physics(scene, analysis: str) -> None:
+    """What the continuum can carry, checked on the scene before meshing."""
+    soil, N, B = scene.soil, scene.structure.vertical_weight, scene.foundation.width
+    if soil.model in ("tresca", "von_mises"):
+        capacity = (2.0 + math.pi) * soil.undrained_strength * B
+        if N >= capacity:
+            raise InputError(f"structure.vertical_weight = {N:g}: at or above the strip's "
+                             f"bearing capacity (2 + π) c_u B = {capacity:.4g} (FS_v = "
+                             f"{capacity / N:.3g}); the footing cannot stand on this soil; "
+                             f"valid range is (0, {capacity:.4g})")
+    if N < MIN_LOAD_RATIO * soil.youngs_modulus * B:
+        raise InputError(f"structure.vertical_weight = {N:g}: {N / (soil.youngs_modulus * B):.3g}"
+                         f" of the soil's E·B = {soil.youngs_modulus * B:.4g}; below "
+                         f"{MIN_LOAD_RATIO:g} the footing's response is lost in the solver's "
+                         "tolerance (a stiffer soil needs a heavier load)")
+    density = bounds.KINDS["density"]
+    low = MIN_DENSITY / density.factor(scene.units)
+    if analysis == "dynamic" and not soil.density >= low:
+        raise InputError(f"soil.density = {soil.density:g} (0 when it is missing): the "
+                         f"continuum dynamics needs the soil's mass; valid range is "
+                         f"[{low:.3g}, {density.high / density.factor(scene.units):.3g}] "
+                         f"{density.unit(scene.units)}")
+    depth = soil.layer_depth
+    if depth is not None and depth < 0.25 * B:
+        raise InputError(f"soil.layer_depth = {depth:g}: a layer thinner than B/4 = "
+                         f"{0.25 * B:g} is not meshed; valid range is [{0.25 * B:g}, ...)")
+
+
+def continuum(args) -> int:
+    from .scenes import ContinuumOptions, load_scene
+
+    options = _options(args)
+    need_extra("upliftlab continuum", "skfem", "meshio", "h5py")
+    if args.analysis == "pushover":  # the M-θ figure
+        need_extra("upliftlab continuum", "matplotlib")
+    if not args.no_render:
+        need_extra("upliftlab continuum", "matplotlib", "pyvista", "imageio",
+                   why="or add --no-render")
+    overrides = list(args.overrides) + _mesh_overrides(args.mesh)
+    scene = load_scene(args.scene, case=args.case, overrides=overrides,
+                       motion=args.motion if args.analysis == "dynamic" else None)
+    refuse_without_effect(overrides, f"the continuum {args.analysis}", USED[args.analysis])
+    if scene.soil is None:
+        raise InputError(f"scene {scene.name!r}: soil is missing; the continuum model needs a "
+                         "[soil] table")
+    if args.analysis == "impedance":
+        return _impedance(args, scene, overrides)
+    _physics(scene, args.analysis)
+    if args.analysis == "dynamic":
+        motion = scene.build_motion()  # reads and checks the record before any meshing
+    given = dict(options)  # as the user gave them: they name the default folder
+    cont = scene.continuum or ContinuumOptions()
+    budget = scene.analysis
+    dofs, h_min = _grid(scene, cont)  # from the grid lines: nothing is meshed yet
+    if args.analysis == "pushover":
+        options["theta_max"] = _theta_max(scene, options["theta_max"])
+        steps, dt, snapshots = (options["steps"] or 40) + 3, 0.0, (options["steps"] or 40) + 3
+    else:
+        (steps, dt), snapshots = _dynamic_steps(scene, motion, h_min), 41
+    check_budget(continuum_cost(analysis=args.analysis, steps=steps, step=dt, dofs=dofs,
+                                snapshots=snapshots), budget.max_steps, budget.max_memory)
+    variant = {"overrides": overrides, "motion": args.motion, **given}
+    settings = {"command": f"continuum {args.analysis}", "scene": scene.name,
+                "scene_digest": scene.digest, "overrides": list(scene.overrides),
+                "motion": args.motion, "theta_max": given["theta_max"],
+                "steps": given["steps"]}
+    default = _default_out(f"{scene.name}-continuum-{args.analysis}", variant)
+    with claim(args.out, default, settings=settings, force=args.force) as out:
+        from .continuum import build_model
+
+        started = time.perf_counter()
+        model = build_model(scene)
+        _say(f"{scene.name}: {model.disc.element}, {model.mesh.nelements} elements, "
+             f"{model.dofs} DOFs, soil {scene.soil.model}")
+        if args.analysis == "pushover":
+            result = _pushover(model, scene, options["theta_max"], options["steps"])
+        else:
+            result = _dynamic(model, scene, motion)
+            say_if_rounded("upliftlab continuum", scene.analysis.duration or motion.duration,
+                           steps, dt)
+        _say(f"solved in {time.perf_counter() - started:.1f} s")
+        from .continuum.output import (dynamic_summary, pushover_summary, summary_line,
+                                       write_outputs)
+
+        summary = (pushover_summary(result) if args.analysis == "pushover"
+                   else dynamic_summary(result, width=model.width))
+        _admissible(summary, args.analysis)
+        out.start_writing()
+        written = write_outputs(out.path, model, result, scene=scene,
+                                renders=not args.no_render, scale=options["scale"],
+                                progress=_say)
+        out.complete(written.values() if isinstance(written, dict) else written)
+    if args.json:
+        import json
+        print(json.dumps(summary))
+    else:
+        units = {"length": scene.units.length,
+                 "moment/length": f"{scene.units.force}*{scene.units.length}/{scene.units.length}"}
+        print(summary_line(summary, units))
+    return 0
+
+
+def _grid(scene, options) -> tuple[int, float]:
+    """(DOFs, shortest element edge) of the mesh the scene asks for, from its grid lines."""
+    import numpy as np
+
+    from .meshes.soil import grid_lines
+
+    x, y = grid_lines(scene.foundation.width, options, scene.soil.layer_depth)
+    order = 2 if options.element in ("P2", "Q2") else 1
+    dofs = 2 * (order * (x.size - 1) + 1) * (order * (y.size - 1) + 1)
+    return dofs, float(min(np.diff(x).min(), np.diff(y).min()))
+
+
+def _dynamic_steps(scene, motion, h_min: float) -> tuple[int, float]:
+    """(steps, dt) of the continuum dynamics on a mesh whose shortest edge is ``h_min``: the
+    record step divided down to the Courant limit (as :func:`run_dynamic` does)."""
+    from .continuum.dynamics import COURANT_LIMIT, wave_speeds
+
+    limit = COURANT_LIMIT * h_min / wave_speeds(scene.soil)[0]
+    dt = motion.dt / max(1, math.ceil(motion.dt / limit * (1.0 - 1e-12)))
+    duration = scene.analysis.duration or motion.duration
+    if duration < 0.5 * dt:
+        raise InputError(f"analysis.duration = {duration:g} s: shorter than one time step "
+                         f"of this mesh ({dt:.4g} s, V_p dt/h_min = {COURANT_LIMIT:g})")
+    return max(1, int(round(duration / dt))), dt
+
+
+def _admissible(summary: dict, analysis: str) -> None:
+    """A result that no tensionless footing can give is a failure, not a result."""
+    bad = [k for k, v in summary.items() if isinstance(v, float) and not math.isfinite(v)]
+    if bad:
+        raise RuntimeError(f"the continuum {analysis} gave a non-finite {bad[0]}")
+    ratio = summary.get("peak_M_over_NB")
+    if ratio is not None and ratio > 0.5 * 1.005:
+        raise RuntimeError(f"the continuum pushover gave M/(N B) = {ratio:.4g}, above the 1/2 "
+                           "that a footing on a tensionless interface can carry")
+
+
+def _theta_on(scene) -> float:
+    """The rigid strip's uplift rotation on the elastic half-plane, 2N(1 − ν)/(πGB) (rad)."""
+    soil, N, B = scene.soil, scene.structure.vertical_weight, scene.foundation.width
+    return 2.0 * N * (1.0 - soil.poisson_ratio) / (math.pi * soil.shear_modulus * B)
+
+
+def _theta_max(scene, given: float | None) -> float:
+    """The pushover's largest rotation: ``given``, or 10 θ_on, within :data:`MAX_ROTATION`."""
+    if given is not None:
+        return given
+    theta_max = 10.0 * _theta_on(scene)
+    if theta_max > MAX_ROTATION:
+        raise InputError(f"--theta-max: the default 10 θ_on = {theta_max:.4g} rad is beyond "
+                         f"the small-rotation model's {MAX_ROTATION:g} rad; give --theta-max "
+                         f"in (0, {MAX_ROTATION:g}]")
+    return theta_max
+
+
+def _pushover(model, scene, theta_max, steps):
+    from .continuum import rotation_pushover
+    from .continuum.output import rotation_schedule
+
+    N, theta_on = scene.structure.vertical_weight, _theta_on(scene)
+    rotations = rotation_schedule(theta_max, 40 if steps is None else steps, theta_on)
+    _say(f"rotation pushover at N = {N:g} to θ = {theta_max:.4g} rad in {rotations.size - 1} "
+         f"steps (elastic half-plane uplift at θ_on = {theta_on:.4g} rad)")
+    started = time.perf_counter()
+
+    def progress(k, n, state):
+        _say(f"step {k + 1}/{n}: θ = {state.q[2]:.4g} rad, M = {state.M:.4g}, "
+             f"{state.iterations} Newton iterations{_eta(started, k + 1, n)}")
+
+    return rotation_pushover(model, N, rotations, record_fields=True, progress=progress)
+
+
+def _eta(started: float, done: int, total: int) -> str:
+    elapsed = time.perf_counter() - started
+    left = elapsed / max(done, 1) * (total - done)
+    return f"; {elapsed:.0f} s, about {left:.0f} s left" if done < total else \
+        f"; {elapsed:.0f} s"
+
+
+def _dynamic(model, scene, motion):
+    from .continuum.dynamics import DynamicOptions, run_dynamic
+
+    started = time.perf_counter()
+
+    def progress(k, n, state):
+        if k == n or k % max(1, n // 20) == 0:
+            _say(f"step {k}/{n}: θ = {state.q[2]:.4g} rad, N = {state.N:.4g}, "
+                 f"{state.iterations} Newton iterations{_eta(started, k, n)}")
+
+    return run_dynamic(model, scene, motion, DynamicOptions(), progress=progress)
+
+
+def _impedance_options(args):
+    """ImpedanceOptions from --a0, --boundary and a --mesh domain_width/domain_depth (the
+    impedance meshes its own box; the scene's is a static one)."""
+    from .continuum.impedance import ImpedanceOptions
+
+    kwargs = {}
+    if args.a0 is not None:
+        try:
+            kwargs["a0"] = tuple(float(x) for x in args.a0.split(",") if x.strip())
+        except ValueError:
+            raise InputError(f"--a0 = {args.a0!r}: expected comma-separated numbers > 0") from None
+    if args.boundary is not None:
+        kwargs["boundary"] = args.boundary
+    for pair in _mesh_overrides(args.mesh):
+        key, _, value = pair.partition("=")
+        if key in ("continuum.domain_width", "continuum.domain_depth"):
+            name = key.split(".")[1]
+            kwargs[name] = number(f"--mesh {name}", value, high=1e4)
+    return ImpedanceOptions(**kwargs)
+
+
+def _impedance(args, scene, overrides) -> int:
+    """``--analysis impedance``: the FE impedance, checked against the exact half-plane
+    (exit 3 beyond the stated tolerances, before any file is written)."""
+    import json
+
+    from .continuum.impedance import impedance, impedance_model
+
+    options = _impedance_options(args)
+    model = impedance_model(scene.soil, scene.foundation.width, scene.continuum, options,
+                            scene=scene)
+    settings = {"command": "continuum impedance", "scene": scene.name,
+                "scene_digest": scene.digest, "overrides": list(scene.overrides),
+                "a0": args.a0, "boundary": args.boundary}
+    default = _default_out(f"{scene.name}-continuum-impedance",
+                           {"overrides": overrides, "a0": args.a0, "boundary": args.boundary})
+    _say(f"{scene.name}: impedance, {model.disc.element}, {model.mesh.nelements} elements, "
+         f"{model.dofs} DOFs, {options.boundary} box {options.domain_width:g}B x "
+         f"{options.domain_depth:g}B, {scene.soil.interface} interface, "
+         f"{len(options.a0)} frequencies")
+    with claim(args.out, default, settings=settings, force=args.force) as out:
+        started = time.perf_counter()
+
+        def progress(k, n, a0):
+            _say(f"a0 = {a0:.3g} ({k + 1}/{n}){_eta(started, k + 1, n)}")
+
+        result = impedance(model, options, progress=progress)
+        from .continuum.impedance_output import (impedance_figure, impedance_summary,
+                                                 reference_for, verify)
+
+        reference = reference_for(result)
+        errors = verify(result, reference)  # ImpedanceAccuracyError (exit 3) before any file
+        out.start_writing()
+        written = [result.save(out.path / "impedance.nc")]
+        if not args.no_render:
+            from .reduced.figures import save
+            written.append(save(impedance_figure(result, reference),
+                                out.path / "impedance.png"))
+        out.complete(written)
+    for path in written:
+        _say(f"wrote {path}")
+    summary = impedance_summary(result, reference, errors)
+    if args.json:
+        print(json.dumps(summary, allow_nan=False))
+    else:
+        worst = ", ".join(f"{k} {100 * v:.2f} %" for k, v in summary["max_error"].items())
+        print(f"impedance of {scene.name}: {len(result.a0)} frequencies a0 = "
+              f"{result.a0.min():g}-{result.a0.max():g}, {result.dofs} DOFs, "
+              f"{summary['wall_time_s']:.1f} s; largest error against the exact half-plane: "
+              f"{worst}")
+    return 0
