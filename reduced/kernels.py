@@ -1904,9 +1904,8 @@ def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, 
 
 @njit(cache=True, **HOT)
 def end_fixed_step(step, t, nsteps, stride, q, qd, acc, modes, H, minv, P, KG, weight, frame,
-                   story,
-                   e_ref, e0, e1, ed1, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep,
-                   out_energy, peaks, counters):
+                   story, e_ref, e0, e1, ed1, out_t, out_q, out_qd, out_e, out_f, out_mode,
+                   out_ep, out_energy, peaks, counters):
     """After a fixed step (committed): contact length, overturning, outputs and the energy
     check. Returns OVERTURNED if the run ends here, else OK."""
     if after_fixed_step(t, q, P, H, e0, frame, story, peaks):
