@@ -344,7 +344,9 @@ def time_step(model: ReducedModel, name: str, *, record_dt: float, duration: flo
                     f"integrator {name!r} for this scene (the largest step that keeps the "
                     f"energy balance within analysis.energy_tolerance = {a.energy_tolerance:g} "
                     f"over {duration:g} s); use dt <= {limit:.4g} s, set analysis.subcycle = "
-                    "true, or use the event stepper (integrator 'events')")
+                    "true, or " + ("let the error control choose the steps (analysis.rtol "
+                                   "> 0)" if name == "events" else "use the event stepper "
+                                   "(integrator 'events')"))
             substeps = math.ceil(dt / (0.95 * limit))
             reason = f"requested {dt:g} s, subcycled {substeps}x (limit {limit:.4g} s)"
     step = dt / substeps
