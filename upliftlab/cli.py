@@ -8,27 +8,41 @@
     upliftlab report [--fast] [--out DIR] [--scheduler ADDR]
     upliftlab continuum SCENE [--analysis pushover|dynamic] [--case C] [--set KEY=VALUE ...]
                         [--mesh KEY=VALUE[,KEY=VALUE ...] ...] [--theta-max RAD] [--steps N]
-                        [--motion NAME|PATH] [--scale S] [--out DIR] [--no-render] [--json]
+                        [--motion NAME|PATH] [--scale S] [--threads N] [--out DIR]
+                        [--no-render] [--json]
 
 Bad input ends with one line naming the field, the value and the valid range (exit code 2),
-before any file is written.
+before any file is written. A failed computation (Newton, contact, or an energy balance beyond
+its tolerance) ends with one line and exit code 3; an interrupted continuum dynamic run
+(Ctrl-C or SIGTERM) writes what it computed, marked incomplete, and exits with code 130.
+
+BLAS and OpenMP use one thread unless the user set ``OMP_NUM_THREADS``,
+``OPENBLAS_NUM_THREADS`` or ``MKL_NUM_THREADS``: the solves here are small and the machines
+shared, where threaded BLAS is slower (continuum-notes: 2–4 times on a loaded 2-core machine).
+They are set before numpy loads (``import upliftlab`` loads nothing yet).
 """
 
 from __future__ import annotations
 
-import argparse
-import json
-import math
-import sys
-import time
-from pathlib import Path
+import os
 
-from . import __version__
-from .checks import InputError
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import argparse  # noqa: E402
+import json  # noqa: E402
+import math  # noqa: E402
+import signal  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+from . import __version__  # noqa: E402
+from .checks import InputError  # noqa: E402
 
 __all__ = ["main", "parser"]
 
-EXIT_INPUT, EXIT_NUMERICS = 2, 3
+EXIT_INPUT, EXIT_NUMERICS, EXIT_INTERRUPTED = 2, 3, 130
 
 
 def parser() -> argparse.ArgumentParser:
@@ -97,6 +111,9 @@ def parser() -> argparse.ArgumentParser:
                                     "replaces the scene's motion")
     c.add_argument("--scale", help="displacement magnification of the pictures (default: "
                                    "automatic, stated in each picture)")
+    c.add_argument("--threads", default="1",
+                   help="dynamic, explicit: threads of the compiled soil kernels (default 1; "
+                        "more pays only on an otherwise idle machine)")
     c.add_argument("--out", help="output directory (default results/<scene>-continuum-"
                                  "<analysis>)")
     c.add_argument("--no-render", action="store_true", help="skip the PNG and GIF renders")
@@ -200,6 +217,7 @@ def _continuum(args) -> int:
     theta_max = _number("--theta-max", args.theta_max)
     steps = _number("--steps", args.steps, integer=True, low=2)
     scale = _number("--scale", args.scale)
+    threads = _number("--threads", args.threads, integer=True, low=1)
     if args.analysis == "pushover" and args.motion is not None:
         raise InputError("--motion: only the dynamic analysis takes a motion")
     scene = load_scene(args.scene, case=args.case, overrides=overrides,
@@ -209,7 +227,7 @@ def _continuum(args) -> int:
                          "[soil] table")
     if args.analysis == "dynamic":
         try:
-            from .continuum.dynamics import DynamicOptions, run_dynamic
+            from .continuum.dynamics import DynamicOptions
         except ImportError as exc:
             raise InputError(f"--analysis dynamic: upliftlab.continuum.dynamics cannot be "
                              f"imported ({exc})") from None
@@ -224,7 +242,13 @@ def _continuum(args) -> int:
     if args.analysis == "pushover":
         result = _pushover(model, scene, theta_max, steps)
     else:
-        result = run_dynamic(model, scene, motion, DynamicOptions(), progress=_dynamic_progress())
+        duration = scene.analysis.duration or motion.duration
+        _say(f"{model.options.dynamics} dynamics, {duration:g} s of {motion.name} "
+             f"(continuum.dynamics; --set analysis.duration=T runs the first T s)")
+        result = _dynamic(model, scene, motion, DynamicOptions(threads=threads), out,
+                          _dynamic_progress(duration, started))
+        if isinstance(result, int):
+            return result
     _say(f"solved in {time.perf_counter() - started:.1f} s")
     from .continuum.output import (dynamic_summary, pushover_summary, summary_line,
                                    write_outputs)
@@ -242,12 +266,55 @@ def _continuum(args) -> int:
     return 0
 
 
-def _dynamic_progress():
-    """A ``progress(k, n, state)`` that reports every 5 % of a dynamic run."""
+def _dynamic(model, scene, motion, options, out: Path, progress):
+    """The dynamic run, or the exit code of a run that was interrupted (its partial result
+    written, marked incomplete) or failed its energy check (its result written, marked
+    failed)."""
+    from .continuum.dynamics import run_dynamic
+    from .continuum.run_control import EnergyBalanceError, Interrupted
+
+    def terminate(signum, frame):
+        raise KeyboardInterrupt(f"signal {signum}")
+
+    previous = signal.signal(signal.SIGTERM, terminate)
+    try:
+        return run_dynamic(model, scene, motion, options, progress=progress)
+    except Interrupted as exc:
+        path = exc.result.save(out / "result.nc")
+        until = exc.result.metadata["completed_until"]
+        print(f"upliftlab: interrupted at t = {until:.4g} s of the motion; wrote the rows "
+              f"computed so far to {path} (attribute incomplete = 1, completed_until = "
+              f"{until:.4g} s)", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except EnergyBalanceError as exc:
+        exc.result.metadata["energy_check"] = "failed"
+        path = exc.result.save(out / "result.nc")
+        print(f"upliftlab: error: {exc} (result written to {path}, energy_check = failed)",
+              file=sys.stderr)
+        return EXIT_NUMERICS
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _dynamic_progress(duration: float, started: float):
+    """A ``progress(k, n, state)`` that reports every 5 % of a dynamic run: simulated time,
+    elapsed wall time and the ETA from the rate of the time loop so far."""
+    first = {}
+
     def progress(k, n, state):
-        if k == n or k % max(1, n // 20) == 0:
-            _say(f"step {k}/{n}: θ = {state.q[2]:.4g} rad, N = {state.N:.4g}, "
-                 f"{state.iterations} Newton iterations")
+        now = time.perf_counter()
+        first.setdefault("time", (now, k))
+        tick = 20 * k // max(n, 1)
+        if k and k != n and tick <= first.get("tick", -1):
+            return
+        first["tick"] = tick
+        t0, k0 = first["time"]
+        rate = (now - t0) / (k - k0) if k > k0 else math.nan
+        eta = rate * (n - k)
+        _say(f"t = {duration * k / max(n, 1):.3f} of {duration:g} s ({k / max(n, 1):.0%}), "
+             f"elapsed {now - started:.1f} s, ETA {eta:.0f} s"
+             + ("" if math.isfinite(eta) else " (measuring)")
+             + f": θ = {state.q[2]:.4g} rad, N = {state.N:.4g}")
     return progress
 
 
@@ -293,6 +360,10 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as exc:
         print(f"upliftlab: error: {exc}", file=sys.stderr)
         return EXIT_INPUT
+    except KeyboardInterrupt:
+        print("upliftlab: interrupted before any result was computed; nothing written",
+              file=sys.stderr)
+        return EXIT_INTERRUPTED
     except RuntimeError as exc:  # integration or Newton failures name step and residual
         print(f"upliftlab: error: {exc}", file=sys.stderr)
         return EXIT_NUMERICS
