@@ -51,11 +51,12 @@ import skfem
 
 from ..checks import InputError
 from .contact_step import footing_schur, frictionless_step, tangential_forces
-from .dynamics import (DynamicResult, _check_scene, _gravity, _ground_velocity, _Recorder,
-                       _residual, _static_fixed, _x_dofs, _full_basis, boundaries,
-                       dashpot_data, dynamic_fixed, incident_load, structure_matrices,
-                       time_step_limit)
+from . import dynamics as _dynamics
+from .dynamics import (DynamicResult, _check_scene, _ground_velocity, _Recorder, _residual,
+                       _static_fixed, _x_dofs, _full_basis, boundaries, dashpot_data,
+                       dynamic_fixed, incident_load, structure_matrices, time_step_limit)
 from .footing import OPEN, STICK
+from .explicit_loop import run_steps
 from .kernels import soil_predict
 from .run_control import Interrupted
 from .soil_force import SoilForce
@@ -65,6 +66,9 @@ __all__ = ["STABILITY_FRACTION", "ExplicitSettings", "lumped_mass", "lumped_dash
 
 #: The admissible step as a fraction of the central-difference limit 2/ω_max.
 STABILITY_FRACTION = 0.9
+#: Run frictionless contact with a compiled material in the compiled loop
+#: (:mod:`~upliftlab.continuum.explicit_loop`; False: the Python loop, for comparison).
+COMPILED_LOOP = True
 
 
 @dataclass(frozen=True)
@@ -112,6 +116,12 @@ def critical_step(model, mass: np.ndarray, free: np.ndarray) -> tuple[float, flo
     top = float(eigsh(A, k=1, which="LA", tol=1e-8, v0=start, return_eigenvectors=False)[0])
     omega = math.sqrt(top)
     return 2.0 / omega, omega
+
+
+def recorded_steps(settings: ExplicitSettings) -> np.ndarray:
+    """The steps recorded as rows: every ``record_every``-th and the last."""
+    return np.unique(np.append(np.arange(0, settings.steps, settings.record_every),
+                               settings.steps))
 
 
 def explicit_settings(model, scene, motion, options, mass, free) -> ExplicitSettings:
@@ -191,7 +201,7 @@ def run_explicit(model, scene, motion, options, *, progress=None) -> DynamicResu
     free = np.setdiff1d(np.arange(model.disc.ndofs), fixed)
     settings = explicit_settings(model, scene, motion, options, mass, free)
     started = _time.perf_counter()
-    static = _gravity(model, scene, options, settings.prescribe_u)
+    static = _dynamics._gravity(model, scene, options, settings.prescribe_u)
     threads = numba.get_num_threads()
     numba.set_num_threads(min(options.threads, numba.config.NUMBA_NUM_THREADS))
     try:
@@ -237,6 +247,9 @@ class _Explicit:
         self.L = f.kinematics
         self.free_q = np.array([not settings.prescribe_u, True, True])
         self.soil = SoilForce(model, static)
+        #: the compiled loop serves frictionless contact with a compiled material
+        self.compiled = COMPILED_LOOP and self.soil.compiled \
+            and not model.footing.interface.tangential
 
     def structure_affine(self, zn, vz, Fz, first: bool):
         """(A, b): A z_{n+1} + b + [Lᵀ f_c; 0] = 0 for the footing and story (module
@@ -254,9 +267,12 @@ class _Explicit:
 
     def loop(self, progress) -> DynamicResult:
         st = self.settings
-        rec = _Recorder(self.model, st.steps // st.record_every, self.options.snapshots)
+        rec = _Recorder(self.model, recorded_steps(st).size - 1, self.options.snapshots)
         try:
-            self.steps(rec, progress)
+            if self.compiled:
+                self.compiled_steps(rec, progress)
+            else:
+                self.steps(rec, progress)
         except KeyboardInterrupt:
             raise Interrupted(rec.result(self.model, self.motion, self.metadata(),
                                          rows=rec.rows)) from None
@@ -319,14 +335,14 @@ class _Explicit:
                 energy[1:] += self.structure_increment(z_prev, zn, Fz_prev, Fz, vz)
                 energy[4] += self.contact_work(force_prev, force, u_prev, u, z_prev, zn)
             iterations += its
-            if k % every == 0:
+            if k % every == 0 or k == n_steps:
                 vbar = v if first else 0.5 * (v + v_next)
                 zbar = vz if first else 0.5 * (vz + vz_new)
                 energy[0] = 0.5 * float(np.dot(self.mass * vbar, vbar)) + 0.5 * float(
                     zbar @ z.M @ zbar)
                 state = self.static if first else _Row(
                     u, zn[:3], force_prev, recorded, self.L.T @ force_prev, self.soil)
-                rec.record(k // every, k * dt, state, _Structure(zn, zbar), ag, energy,
+                rec.record(rec.rows, k * dt, state, _Structure(zn, zbar), ag, energy,
                            iterations, False, kinetic=energy[0])
                 if progress is not None:
                     progress(k, n_steps, state)
@@ -339,6 +355,64 @@ class _Explicit:
             u_prev, u, u_next = u, u_next, u_prev
             v, v_next = v_next, v
             zn, vz = z_new, vz_new
+
+    def compiled_steps(self, rec, progress) -> None:
+        """The steps of :meth:`steps` in the compiled loop
+        (:func:`~upliftlab.continuum.explicit_loop.run_steps`), called once per recorded row."""
+        st, z, f, soil = self.settings, self.z, self.model.footing, self.soil
+        dt, n_steps = st.dt, st.steps
+        times = np.arange(n_steps + 1) * dt
+        ag_all = np.asarray(self.motion.acceleration_at(times), dtype=float) * self.scene.g
+        vinc_all = 0.5 * self.vg[:n_steps + 1] * self.scene.g
+        n, nc = self.model.disc.ndofs, f.nodes
+        U = np.empty((3, n))
+        U[:] = self.static.u
+        V = np.zeros((2, n))
+        R_prev, F_prev, fint = np.zeros(n), np.zeros(n), np.zeros(n)
+        Z = np.empty((3, 4))
+        Z[:] = np.append(self.static.q, 0.0)
+        VZ = np.zeros((2, 4))
+        VZ[0, 3] = self.motion.initial_velocity
+        FC = np.zeros((2, nc))
+        FC[0] = self.static.force
+        CL = np.zeros((2, nc), dtype=bool)
+        CL[0] = self.static.status != OPEN
+        energy, counters = np.zeros(5), np.zeros(1, dtype=np.int64)
+        lay, m_step = soil.layout, self.mass + 0.5 * dt * self.c
+        lam, G, strength, hardening = soil.params
+        free = np.flatnonzero(self.free_q)
+        Lf = np.ascontiguousarray(self.L[:nc][:, self.free_q])
+        parallel = numba.get_num_threads() > 1
+        done, Fz_prev = -1, np.zeros(4)
+        for k in recorded_steps(st):
+            run_steps(done + 1, k, dt, U, V, R_prev, F_prev, Z, VZ, Fz_prev, FC, CL, energy,
+                      counters, lay.nodes, lay.dNdx, lay.dNdy,
+                      lay.dx, soil.eigenstrain, soil.plastic, soil.ebar, soil.kind, lam, G,
+                      strength, hardening, soil.stress, soil.work, fint, lay.ptr, lay.entries,
+                      parallel, self.datum, self.keep, self.ground_soil, self.incident,
+                      ag_all, vinc_all, self.mass, self.c, m_step, z.M, z.C, z.K, z.gravity,
+                      self.ground_z, free, Lf, f.uy.astype(np.int64), f.x)
+            done = k
+            self.record(rec, progress, k, U, V, Z, VZ, FC, CL, energy, counters, ag_all[k])
+
+    def record(self, rec, progress, k, U, V, Z, VZ, FC, CL, energy, counters, ag) -> None:
+        """Row of step k from the rings of :meth:`compiled_steps`."""
+        st, z = self.settings, self.z
+        u, zk = U[k % 3], Z[k % 3].copy()
+        vbar = V[0] if k == 0 else 0.5 * (V[k % 2] + V[(k + 1) % 2])
+        zbar = VZ[0] if k == 0 else 0.5 * (VZ[k % 2] + VZ[(k + 1) % 2])
+        energy[0] = 0.5 * float(np.dot(self.mass * vbar, vbar)) + 0.5 * float(zbar @ z.M @ zbar)
+        if k == 0:
+            state = self.static
+        else:
+            force = FC[k % 2].copy()
+            status = np.where(CL[k % 2], STICK, OPEN).astype(np.int8)
+            state = _Row(u, zk[:3], force, status, self.L.T @ force, self.soil)
+        rec.record(rec.rows, k * st.dt, state, _Structure(zk, zbar), ag, energy,
+                   int(counters[0]), False, kinetic=energy[0])
+        counters[0] = 0
+        if progress is not None:
+            progress(k, st.steps, state)
 
     def structure_increment(self, z0, z1, F0, F1, vz):
         """(strain, damping, input, 0) of the footing and story over one step: story spring
