@@ -19,9 +19,11 @@ has exactly one solution. It is found by a primal–dual active set (each set so
 the Sherman–Morrison–Woodbury form of W, the footing's 2×2 system), warm-started from the last
 step's set, and by Murty's least-index rule if the sets cycle (finite for P-matrices).
 
-**Bonded or Coulomb** (:func:`tangential_forces`): the same conditions with tangential forces,
-solved by :func:`~upliftlab.continuum.footing.solve_contact` on the diagonal "stiffness"
-S = m̃/h of the contact DOFs (not compiled: for tests and small meshes).
+**Bonded or Coulomb** (:func:`tangential_step`): the same conditions with tangential forces:
+the primal–dual active set of :func:`~upliftlab.continuum.footing.solve_contact` (closed,
+sticking or slipping nodes; bonded is Coulomb with μ = 1000), compiled for the diagonal
+"stiffness" S = m̃/h of the contact DOFs, with the footing's motion as unknowns (a footing
+without horizontal mass of its own, once the story is eliminated, is no obstacle).
 """
 
 from __future__ import annotations
@@ -29,9 +31,9 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from .footing import OPEN, STICK, ContactError, ContactProblem, solve_contact
+from .footing import OPEN, RTOL_CONTACT, SLIP_NEGATIVE, SLIP_POSITIVE, STICK
 
-__all__ = ["normal_forces", "tangential_forces", "footing_schur"]
+__all__ = ["normal_forces", "frictionless_step", "tangential_step", "footing_schur"]
 
 #: Active-set sweeps before the least-index rule takes over.
 _SWEEPS = 50
@@ -133,32 +135,6 @@ def normal_forces(gstar, d, L, Kq, closed):
     raise RuntimeError("normal contact forces: the active set did not settle")
 
 
-def tangential_forces(footing, Kq: np.ndarray, offset: np.ndarray, q: np.ndarray,
-                      stiffness: np.ndarray, uc_star: np.ndarray, slip0: np.ndarray,
-                      prescribed: np.ndarray, status: np.ndarray):
-    """The contact forces of one explicit step on a bonded or Coulomb interface (module
-    docstring): (force on the soil at the contact DOFs, footing q at n+1, status, iterations).
-
-    ``Kq`` (3, 3), ``offset`` (3): the footing's affine form on (u, v, θ) with the story
-    eliminated (zero rows and columns for a ``prescribed`` component); ``q`` its current
-    displacement (a prescribed component keeps its value); ``stiffness`` (m) = m̃/h of the
-    contact DOFs; ``uc_star`` their displacement without contact forces; ``slip0`` (nodes)
-    the tangential slip at the start of the step."""
-    S = np.diag(stiffness)
-    m = stiffness.size
-    target = np.where(prescribed, q, 0.0)
-    problem = ContactProblem(footing, S, np.zeros(m), uc_star, q, slip0, prescribed, target,
-                             Kq, Kq @ q + offset)
-    if not (status != OPEN).any():
-        status = np.full(status.shape, STICK, dtype=np.int8)
-    try:
-        sol = solve_contact(problem, status)
-    except ContactError as exc:
-        raise ContactError(f"explicit contact step: {exc}") from None
-    force = sol.force
-    return force, q + sol.dq, sol.status, sol.iterations
-
-
 @nb.njit(cache=True)
 def frictionless_step(A, b, free, Lf, uy, u, u_next, v_next, m_eff, h, dt, closed):
     """The frictionless contact of one step (module docstring), applied in place: the soil's
@@ -195,3 +171,114 @@ def frictionless_step(A, b, free, Lf, uy, u, u_next, v_next, m_eff, h, dt, close
         v_next[j] = (u_next[j] - u[j]) / dt
     s = -(A[3, 0] * q[0] + A[3, 1] * q[1] + A[3, 2] * q[2] + b[3]) / a_ss
     return P, q, s, its
+
+
+@nb.njit(cache=True)
+def _tangential_system(s, uc, q, slip0, x, prescribed, target, Kq, rq, mu, status):
+    """The linear system of :func:`~upliftlab.continuum.footing.solve_contact` for the sets
+    ``status`` with a diagonal soil S = diag(s) and r = 0 (contact DOFs: u_y then u_x of
+    each node; unknowns Δu_c then Δq)."""
+    n = x.size
+    m = 2 * n
+    A = np.zeros((m + 3, m + 3))
+    b = np.zeros(m + 3)
+    for i in range(n):
+        closed = status[i] != OPEN
+        t = n + i
+        if closed:  # zero gap after the step: Δuy − (Δv − x Δθ) = (v − x θ) − uy
+            A[i, i] = 1.0
+            A[i, m + 1] = -1.0
+            A[i, m + 2] = x[i]
+            b[i] = q[1] - x[i] * q[2] - uc[i]
+        else:  # no normal force
+            A[i, i] = s[i]
+        if status[i] == STICK:  # no slip relative to the start of the step
+            A[t, t] = 1.0
+            A[t, m] = -1.0
+            b[t] = slip0[i] - (uc[t] - q[0])
+        elif status[i] == OPEN:
+            A[t, t] = s[t]
+        else:  # slip: T + μ σ (−P) ... f_x + μ σ f_y = 0
+            sign = 1.0 if status[i] == SLIP_POSITIVE else -1.0
+            A[t, t] = s[t]
+            A[t, i] = mu * sign * s[i]
+    for k in range(3):
+        row = m + k
+        if prescribed[k]:
+            A[row, row] = 1.0
+            b[row] = target[k] - q[k]
+        else:
+            for i in range(n):
+                if k == 0:
+                    A[row, n + i] = s[n + i]
+                elif k == 1:
+                    A[row, i] = s[i]
+                else:
+                    A[row, i] = -x[i] * s[i]
+            for j in range(3):
+                A[row, m + j] += Kq[k, j]
+            b[row] = target[k] - rq[k]
+    return A, b
+
+
+@nb.njit(cache=True)
+def _tangential_sets(s, uc, q, slip0, x, mu, width, duc, dq, force):
+    n = x.size
+    c_n = 0.0
+    c_t = 0.0
+    top = 0.0
+    for i in range(n):
+        c_n += abs(s[i]) / n
+        c_t += abs(s[n + i]) / n
+    for j in range(2 * n):
+        top = max(top, abs(force[j]))
+    tol = RTOL_CONTACT * max(top, 1e-6 * c_n * width)
+    status = np.empty(n, dtype=np.int8)
+    for i in range(n):
+        pressure = -force[i]
+        gap = (q[1] + dq[1]) - x[i] * (q[2] + dq[2]) - (uc[i] + duc[i])
+        if pressure - c_n * gap >= -tol:
+            trial = force[n + i] - c_t * ((uc[n + i] + duc[n + i] - q[0] - dq[0]) - slip0[i])
+            if abs(trial) > mu * pressure + tol:
+                status[i] = SLIP_POSITIVE if trial > 0.0 else SLIP_NEGATIVE
+            else:
+                status[i] = STICK
+        else:
+            status[i] = OPEN
+    return status
+
+
+@nb.njit(cache=True)
+def tangential_step(s, uc, q, slip0, x, prescribed, target, Kq, rq, mu, width, status):
+    """:func:`~upliftlab.continuum.footing.solve_contact` compiled for the explicit step's
+    diagonal soil S = diag(``s``) (r = 0): a bonded (μ = 1000) or Coulomb interface. Contact
+    DOFs are u_y then u_x of the nodes at ``x``; ``status`` (int8) is the warm start,
+    overwritten. Returns (Δu_c, Δq, the forces on the soil S Δu_c, iterations)."""
+    n = x.size
+    m = 2 * n
+    any_closed = False
+    for i in range(n):
+        any_closed = any_closed or status[i] != OPEN
+    if not any_closed:
+        status[:] = STICK
+    least_index = False
+    for iteration in range(1, 10 * n + _SWEEPS + 2):
+        A, b = _tangential_system(s, uc, q, slip0, x, prescribed, target, Kq, rq, mu, status)
+        z = np.linalg.solve(A, b)
+        duc, dq = z[:m], z[m:]
+        force = s * duc
+        new = _tangential_sets(s, uc, q, slip0, x, mu, width, duc, dq, force)
+        first = -1
+        for i in range(n):
+            if new[i] != status[i]:
+                first = i
+                break
+        if first < 0:
+            return duc, dq, force, iteration
+        if iteration > _SWEEPS:
+            least_index = True
+        if least_index:
+            status[first] = new[first]
+        else:
+            status[:] = new
+    raise RuntimeError("tangential contact forces: the active set did not settle")

@@ -50,7 +50,7 @@ import numpy as np
 import skfem
 
 from ..checks import InputError
-from .contact_step import footing_schur, frictionless_step, tangential_forces
+from .contact_step import footing_schur, frictionless_step, tangential_step
 from . import dynamics as _dynamics
 from .dynamics import (DynamicResult, _check_scene, _ground_velocity, _Recorder, _residual,
                        _static_fixed, _x_dofs, _full_basis, boundaries, dashpot_data,
@@ -247,9 +247,8 @@ class _Explicit:
         self.L = f.kinematics
         self.free_q = np.array([not settings.prescribe_u, True, True])
         self.soil = SoilForce(model, static)
-        #: the compiled loop serves frictionless contact with a compiled material
-        self.compiled = COMPILED_LOOP and self.soil.compiled \
-            and not model.footing.interface.tangential
+        #: the compiled loop serves every interface with a compiled material
+        self.compiled = COMPILED_LOOP and self.soil.compiled
 
     def structure_affine(self, zn, vz, Fz, first: bool):
         """(A, b): A z_{n+1} + b + [Lᵀ f_c; 0] = 0 for the footing and story (module
@@ -373,10 +372,10 @@ class _Explicit:
         Z[:] = np.append(self.static.q, 0.0)
         VZ = np.zeros((2, 4))
         VZ[0, 3] = self.motion.initial_velocity
-        FC = np.zeros((2, nc))
+        FC = np.zeros((2, self.contact.size))
         FC[0] = self.static.force
-        CL = np.zeros((2, nc), dtype=bool)
-        CL[0] = self.static.status != OPEN
+        ST = np.zeros((2, nc), dtype=np.int8)
+        ST[0] = self.static.status
         energy, counters = np.zeros(5), np.zeros(1, dtype=np.int64)
         lay, m_step = soil.layout, self.mass + 0.5 * dt * self.c
         lam, G, strength, hardening = soil.params
@@ -385,17 +384,18 @@ class _Explicit:
         parallel = numba.get_num_threads() > 1
         done, Fz_prev = -1, np.zeros(4)
         for k in recorded_steps(st):
-            run_steps(done + 1, k, dt, U, V, R_prev, F_prev, Z, VZ, Fz_prev, FC, CL, energy,
+            run_steps(done + 1, k, dt, U, V, R_prev, F_prev, Z, VZ, Fz_prev, FC, ST, energy,
                       counters, lay.nodes, lay.dNdx, lay.dNdy,
                       lay.dx, soil.eigenstrain, soil.plastic, soil.ebar, soil.kind, lam, G,
                       strength, hardening, soil.stress, soil.work, fint, lay.ptr, lay.entries,
                       parallel, self.datum, self.keep, self.ground_soil, self.incident,
                       ag_all, vinc_all, self.mass, self.c, m_step, z.M, z.C, z.K, z.gravity,
-                      self.ground_z, free, Lf, f.uy.astype(np.int64), f.x)
+                      self.ground_z, free, Lf, f.uy.astype(np.int64), f.ux.astype(np.int64), f.x,
+                      f.interface.mu, f.width, f.interface.tangential)
             done = k
-            self.record(rec, progress, k, U, V, Z, VZ, FC, CL, energy, counters, ag_all[k])
+            self.record(rec, progress, k, U, V, Z, VZ, FC, ST, energy, counters, ag_all[k])
 
-    def record(self, rec, progress, k, U, V, Z, VZ, FC, CL, energy, counters, ag) -> None:
+    def record(self, rec, progress, k, U, V, Z, VZ, FC, ST, energy, counters, ag) -> None:
         """Row of step k from the rings of :meth:`compiled_steps`."""
         st, z = self.settings, self.z
         u, zk = U[k % 3], Z[k % 3].copy()
@@ -406,7 +406,7 @@ class _Explicit:
             state = self.static
         else:
             force = FC[k % 2].copy()
-            status = np.where(CL[k % 2], STICK, OPEN).astype(np.int8)
+            status = ST[k % 2].copy()
             state = _Row(u, zk[:3], force, status, self.L.T @ force, self.soil)
         rec.record(rec.rows, k * st.dt, state, _Structure(zk, zbar), ag, energy,
                    int(counters[0]), False, kinetic=energy[0])
@@ -439,8 +439,12 @@ class _Explicit:
         K3[np.ix_(self.free_q, self.free_q)] = Kq
         o3[self.free_q] = o
         q = zn[:3].copy()
-        return tangential_forces(f, K3, o3, q, m_eff[self.contact] / h, u_star[self.contact],
-                                 f.slip(u, q), ~self.free_q, status)
+        prescribed = ~self.free_q
+        status = status.copy()
+        duc, dq, force, its = tangential_step(
+            m_eff[self.contact] / h, u_star[self.contact], q, f.slip(u, q), f.x, prescribed,
+            np.where(prescribed, q, 0.0), K3, K3 @ q + o3, f.interface.mu, f.width, status)
+        return force, q + dq, status, its
 
     def metadata(self) -> dict:
         """The run's settings for the result's metadata."""
