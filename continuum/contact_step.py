@@ -253,7 +253,8 @@ def tangential_step(s, uc, q, slip0, x, prescribed, target, Kq, rq, mu, width, s
     """:func:`~upliftlab.continuum.footing.solve_contact` compiled for the explicit step's
     diagonal soil S = diag(``s``) (r = 0): a bonded (μ = 1000) or Coulomb interface. Contact
     DOFs are u_y then u_x of the nodes at ``x``; ``status`` (int8) is the warm start,
-    overwritten. Returns (Δu_c, Δq, the forces on the soil S Δu_c, iterations)."""
+    overwritten. As there, a set seen before switches to Murty's least-index rule. Returns
+    (Δu_c, Δq, the forces on the soil S Δu_c, iterations)."""
     n = x.size
     m = 2 * n
     any_closed = False
@@ -262,7 +263,9 @@ def tangential_step(s, uc, q, slip0, x, prescribed, target, Kq, rq, mu, width, s
     if not any_closed:
         status[:] = STICK
     least_index = False
-    for iteration in range(1, 10 * n + _SWEEPS + 2):
+    limit = 100 + 10 * n
+    seen = np.empty((limit, n), dtype=np.int8)
+    for iteration in range(1, limit + 1):
         A, b = _tangential_system(s, uc, q, slip0, x, prescribed, target, Kq, rq, mu, status)
         z = np.linalg.solve(A, b)
         duc, dq = z[:m], z[m:]
@@ -275,8 +278,10 @@ def tangential_step(s, uc, q, slip0, x, prescribed, target, Kq, rq, mu, width, s
                 break
         if first < 0:
             return duc, dq, force, iteration
-        if iteration > _SWEEPS:
-            least_index = True
+        for j in range(iteration - 1):  # a set seen before: the sets cycle
+            if not least_index and np.array_equal(seen[j], new):
+                least_index = True
+        seen[iteration - 1] = new
         if least_index:
             status[first] = new[first]
         else:

@@ -89,6 +89,23 @@ makes the elastic iteration matrix a good one shrinks as 1/dt²), so the total i
 by 34 % and 60 %. The rule stays: a step in which the waves cross several elements is what
 it exists to refuse, and the issue's runtime target is met without relaxing it.
 
+**A smallest step.** The step must not fall below :data:`MIN_SHEAR_COURANT` h_min/V_s either.
+Below it the end-of-step contact resolves the footing nodes' own ringing after a landing (their
+period is set by the shear stiffness of the locking-free element), the HHT dissipation no longer
+removes it, the nodes chatter and the contact pumps energy into the system. Measured on the
+clay scene's Ricker pulse, elastic soil at ν = 0.3, 4 across: V_s dt/h_min = 0.52 … 0.21 keep
+the energy balance within 2.2e-4 of the input (52–82 status changes); 0.17 gives 1.8e-2 with
+417 changes and the contact creating energy; 0.13 and 0.065 end with 18 and 45 times the input
+(8 across: 0.21 still 9e-5). This is what made nearly incompressible soil gain energy: the P-wave
+rule shrinks the step as V_p/V_s grows, to V_s dt/h_min = 0.20, 0.094 and 0.030 at ν = 0.495,
+0.499 and 0.4999 (energy 2.5, 57 and 765 times the input, the footing ending 1.4 m up at 0.4999),
+while ν ≤ 0.49 (0.28) stayed within 1e-3. Neither mass lumping (58 times at 0.499) nor a finer
+step (63 times) helps; 3×3 integration does not gain (6e-4 at 0.4999) only because it locks,
+which stiffens the nodes' ringing back out of the resolved range. The two rules leave no step
+once V_p/V_s > 2/:data:`MIN_SHEAR_COURANT` = 8, i.e. ν > 0.492: such soil is refused here
+(InputError naming ν) and runs on the explicit route (:mod:`~upliftlab.continuum.explicit`),
+whose contact only dissipates.
+
 **Results.** :class:`DynamicResult` (a :class:`~upliftlab.continuum.output.FieldHistory`): per
 step the footing motion, structure deformation, contact forces and status, Newton iterations and
 an energy account; soil fields at ``snapshots`` evenly spaced steps.
@@ -122,6 +139,8 @@ __all__ = ["DynamicOptions", "DynamicResult", "run_dynamic", "COURANT_LIMIT", "S
 
 #: Largest P-wave Courant number V_p dt / h_min (module docstring).
 COURANT_LIMIT = 2.0
+#: Smallest shear-wave Courant number V_s dt / h_min of the implicit route (module docstring).
+MIN_SHEAR_COURANT = 0.25
 #: Factorise the elastic iteration matrix of plastic soil in single precision (module docstring).
 SINGLE = True
 SCHEMES = ("newmark", "hht")
@@ -411,10 +430,32 @@ def _settings(model, scene, motion, options: DynamicOptions) -> _Settings:
                 f"(h_min = {smallest_element(model):.4g}, V_p = {vp:.4g}, h_min/V_p = "
                 f"{limit / COURANT_LIMIT:.4g} s); valid range is (0, {limit:.4g}] s "
                 f"(V_p dt/h_min ≤ {COURANT_LIMIT:g})")
+    _check_smallest_step(model, dt, limit, automatic=options.dt is None)
     duration = options.duration or scene.analysis.duration or motion.duration
     steps = max(1, int(round(duration / dt)))
     return _Settings(alpha=alpha, dt=dt, steps=steps, base=base, sides=sides,
                      prescribe_u=not tangential, limit=limit)
+
+
+def _check_smallest_step(model, dt: float, limit: float, automatic: bool) -> None:
+    """Refuse a step below :data:`MIN_SHEAR_COURANT` h_min/V_s (module docstring): naming ν
+    when the P-wave rule forced it, else the step."""
+    vp, vs = wave_speeds(model.soil)
+    floor = MIN_SHEAR_COURANT * smallest_element(model) / vs
+    if dt >= floor * (1.0 - 1e-12):
+        return
+    why = (f"below {floor:.4g} s = {MIN_SHEAR_COURANT:g} h_min/V_s the implicit route's "
+           "end-of-step contact chatters and gains energy")
+    if automatic:
+        nu = model.soil.poisson_ratio
+        raise InputError(
+            f"soil.poisson_ratio = {nu:g}: the implicit step follows the P wave (dt ≤ "
+            f"{limit:.4g} s, V_p/V_s = {vp / vs:.3g}) and {why}; valid range for "
+            "continuum.dynamics = 'implicit' is ν ≤ 0.492 (V_p/V_s ≤ 8); use "
+            "continuum.dynamics = 'explicit'")
+    valid = (f"[{floor:.4g}, {limit:.4g}] s" if floor <= limit else
+             "empty for this soil (use continuum.dynamics = 'explicit')")
+    raise InputError(f"DynamicOptions.dt = {dt:g} s: {why}; valid range is {valid}")
 
 
 # ---------------------------------------------------------------------------------------------

@@ -41,6 +41,7 @@ mesh, so both give histories on comparable grids and of comparable size); soil f
 
 from __future__ import annotations
 
+import contextlib
 import math
 import time as _time
 from dataclasses import dataclass
@@ -58,6 +59,7 @@ from .dynamics import (DynamicResult, _check_scene, _ground_velocity, _Recorder,
 from .footing import OPEN, STICK
 from .explicit_loop import run_steps
 from .kernels import soil_predict
+from .newton import ConvergenceError
 from .run_control import Interrupted
 from .soil_force import SoilForce
 
@@ -131,7 +133,7 @@ def explicit_settings(model, scene, motion, options, mass, free) -> ExplicitSett
     if options.mass not in (None, "lumped"):
         raise InputError(f"DynamicOptions.mass = {options.mass!r}: the explicit route needs a "
                          "diagonal mass; valid: 'lumped' (or continuum.dynamics = 'implicit')")
-    bad = free[mass[free] <= 0.0]
+    bad = free[mass[free] <= 1e-12 * np.abs(mass).max()]  # zero up to round-off
     if bad.size:
         raise InputError(f"continuum.element = {model.disc.element!r}: its row-sum lumped mass "
                          f"is not positive at {bad.size} DOFs; the explicit route needs Q2, Q1 or "
@@ -303,7 +305,8 @@ class _Explicit:
         recorded = status
         for k in range(n_steps + 1):
             first = k == 0
-            fint = self.soil(u)
+            with self.diverging(k, k, u):
+                fint = self.soil(u)
             ag = ag_all[k]
             Fz = self.ground_z * ag + z.gravity
             increments = soil_predict(u, u_prev, v, fint, self.datum, self.keep,
@@ -383,17 +386,40 @@ class _Explicit:
         Lf = np.ascontiguousarray(self.L[:nc][:, self.free_q])
         parallel = numba.get_num_threads() > 1
         done, Fz_prev = -1, np.zeros(4)
+        constants = (lay.nodes, lay.dNdx, lay.dNdy, lay.dx, soil.eigenstrain, soil.plastic,
+                     soil.ebar, soil.kind, lam, G, strength, hardening, soil.stress, soil.work,
+                     fint, lay.ptr, lay.entries, parallel, self.datum, self.keep,
+                     self.ground_soil, self.incident, ag_all, vinc_all, self.mass, self.c,
+                     m_step, z.M, z.C, z.K, z.gravity, self.ground_z, free, Lf,
+                     f.uy.astype(np.int64), f.ux.astype(np.int64), f.x, f.interface.mu, f.width,
+                     f.interface.tangential)
         for k in recorded_steps(st):
-            run_steps(done + 1, k, dt, U, V, R_prev, F_prev, Z, VZ, Fz_prev, FC, ST, energy,
-                      counters, lay.nodes, lay.dNdx, lay.dNdy,
-                      lay.dx, soil.eigenstrain, soil.plastic, soil.ebar, soil.kind, lam, G,
-                      strength, hardening, soil.stress, soil.work, fint, lay.ptr, lay.entries,
-                      parallel, self.datum, self.keep, self.ground_soil, self.incident,
-                      ag_all, vinc_all, self.mass, self.c, m_step, z.M, z.C, z.K, z.gravity,
-                      self.ground_z, free, Lf, f.uy.astype(np.int64), f.ux.astype(np.int64), f.x,
-                      f.interface.mu, f.width, f.interface.tangential)
+            with self.diverging(done + 1, k, U[k % 3]):
+                run_steps(done + 1, k, dt, U, V, R_prev, F_prev, Z, VZ, Fz_prev, FC, ST, energy,
+                          counters, *constants)
             done = k
             self.record(rec, progress, k, U, V, Z, VZ, FC, ST, energy, counters, ag_all[k])
+
+    @contextlib.contextmanager
+    def diverging(self, k0, k1, u):
+        """Turn a diverged solution in steps k0…k1 (a failed contact solve, or ``u``, the
+        displacement after them, not finite or beyond a footing width) into a
+        :class:`ConvergenceError` naming the time."""
+        st = self.settings
+        why = None
+        try:
+            yield
+        except (np.linalg.LinAlgError, RuntimeError, FloatingPointError, ZeroDivisionError) as exc:
+            why = f"{type(exc).__name__}: {exc}"
+        if why is None:
+            top = float(np.max(np.abs(u))) if np.isfinite(u).all() else math.inf
+            if top <= self.model.width:
+                return
+            why = f"a displacement of {top:.3g} (the footing is {self.model.width:g} wide)"
+        raise ConvergenceError(
+            f"explicit steps {k0}…{k1} (t = {k0 * st.dt:.6g}…{k1 * st.dt:.6g} s) diverged: "
+            f"{why}; dt = {st.dt:.4g} s is {st.dt / st.critical:.3g} of the stability limit "
+            f"2/ω_max = {st.critical:.4g} s", step=k1) from None
 
     def record(self, rec, progress, k, U, V, Z, VZ, FC, ST, energy, counters, ag) -> None:
         """Row of step k from the rings of :meth:`compiled_steps`."""
