@@ -89,22 +89,23 @@ makes the elastic iteration matrix a good one shrinks as 1/dt²), so the total i
 by 34 % and 60 %. The rule stays: a step in which the waves cross several elements is what
 it exists to refuse, and the issue's runtime target is met without relaxing it.
 
-**A smallest step.** The step must not fall below :data:`MIN_SHEAR_COURANT` h_min/V_s either.
-Below it the end-of-step contact resolves the footing nodes' own ringing after a landing (their
-period is set by the shear stiffness of the locking-free element), the HHT dissipation no longer
-removes it, the nodes chatter and the contact pumps energy into the system. Measured on the
-clay scene's Ricker pulse, elastic soil at ν = 0.3, 4 across: V_s dt/h_min = 0.52 … 0.21 keep
-the energy balance within 2.2e-4 of the input (52–82 status changes); 0.17 gives 1.8e-2 with
-417 changes and the contact creating energy; 0.13 and 0.065 end with 18 and 45 times the input
-(8 across: 0.21 still 9e-5). This is what made nearly incompressible soil gain energy: the P-wave
-rule shrinks the step as V_p/V_s grows, to V_s dt/h_min = 0.20, 0.094 and 0.030 at ν = 0.495,
-0.499 and 0.4999 (energy 2.5, 57 and 765 times the input, the footing ending 1.4 m up at 0.4999),
-while ν ≤ 0.49 (0.28) stayed within 1e-3. Neither mass lumping (58 times at 0.499) nor a finer
-step (63 times) helps; 3×3 integration does not gain (6e-4 at 0.4999) only because it locks,
-which stiffens the nodes' ringing back out of the resolved range. The two rules leave no step
-once V_p/V_s > 2/:data:`MIN_SHEAR_COURANT` = 8, i.e. ν > 0.492: such soil is refused here
-(InputError naming ν) and runs on the explicit route (:mod:`~upliftlab.continuum.explicit`),
-whose contact only dissipates.
+**A smallest step.** The step must not fall below :data:`MIN_SHEAR_COURANT` h_min/V_s either. Below
+it the end-of-step contact resolves the footing nodes' own ringing after a landing (their period is
+set by the shear stiffness of the locking-free element), the HHT dissipation no longer removes it,
+the nodes chatter and the contact pumps energy into the system. Measured on the clay scene's Ricker
+pulse, elastic soil at ν = 0.3, 4 across: V_s dt/h_min = 0.52 … 0.21 keep the energy balance within
+2.2e-4 of the input (52–82 status changes); 0.17 gives 1.8e-2 with 417 changes and the contact
+creating energy; 0.13 and 0.065 end with 18 and 45 times the input (8 across: 0.21 still 9e-5, 0.17
+gives 0.14 with 2663 changes). This is what made nearly incompressible soil gain energy: the P-wave
+rule shrinks the step as V_p/V_s grows, to V_s dt/h_min = 0.19, 0.088 and 0.028 at ν = 0.495, 0.499
+and 0.4999 (energy 2.5, 57 and 765 times the input, the footing ending 1.4 m up at 0.4999), while ν
+≤ 0.49 (0.24) stayed within 1e-3. Neither mass lumping (58 times at 0.499) nor a finer step (63
+times) helps; 3×3 integration does not gain (6e-4 at 0.4999) only because it locks, which stiffens
+the nodes' ringing back out of the resolved range. The bound, 0.21, lies above every failing case
+(0.19 and below) and admits ν = 0.49 (0.24). The two rules leave no step once V_p/V_s >
+2/:data:`MIN_SHEAR_COURANT` = 9.5, i.e. ν > 0.494 (somewhat less where the step is rounded down to
+a divisor of the record's): such soil is refused here (InputError naming ν) and runs on the
+explicit route (:mod:`~upliftlab.continuum.explicit`), whose contact only dissipates.
 
 **Results.** :class:`DynamicResult` (a :class:`~upliftlab.continuum.output.FieldHistory`): per
 step the footing motion, structure deformation, contact forces and status, Newton iterations and
@@ -140,7 +141,7 @@ __all__ = ["DynamicOptions", "DynamicResult", "run_dynamic", "COURANT_LIMIT", "S
 #: Largest P-wave Courant number V_p dt / h_min (module docstring).
 COURANT_LIMIT = 2.0
 #: Smallest shear-wave Courant number V_s dt / h_min of the implicit route (module docstring).
-MIN_SHEAR_COURANT = 0.25
+MIN_SHEAR_COURANT = 0.21
 #: Factorise the elastic iteration matrix of plastic soil in single precision (module docstring).
 SINGLE = True
 SCHEMES = ("newmark", "hht")
@@ -449,9 +450,10 @@ def _check_smallest_step(model, dt: float, limit: float, automatic: bool) -> Non
     if automatic:
         nu = model.soil.poisson_ratio
         raise InputError(
-            f"soil.poisson_ratio = {nu:g}: the implicit step follows the P wave (dt ≤ "
-            f"{limit:.4g} s, V_p/V_s = {vp / vs:.3g}) and {why}; valid range for "
-            "continuum.dynamics = 'implicit' is ν ≤ 0.492 (V_p/V_s ≤ 8); use "
+            f"soil.poisson_ratio = {nu:g}: the implicit step follows the P wave (dt = {dt:.4g} "
+            f"s ≤ {limit:.4g} s, V_p/V_s = {vp / vs:.3g}) and {why}; valid range for "
+            f"continuum.dynamics = 'implicit' is V_p/V_s ≤ {2.0 / MIN_SHEAR_COURANT:.3g} "
+            "(ν ≤ 0.494, less where the step rounds down to the record's); use "
             "continuum.dynamics = 'explicit'")
     valid = (f"[{floor:.4g}, {limit:.4g}] s" if floor <= limit else
              "empty for this soil (use continuum.dynamics = 'explicit')")
