@@ -1,5 +1,11 @@
 """Time histories of the soil, the rigid footing and the superstructure under a ground motion.
 
+Two routes share this module's unknowns, loads, gravity state, results and energy account:
+the explicit one (:mod:`~upliftlab.continuum.explicit`, central differences with a lumped mass,
+the default) and the implicit one described here (HHT-α with Newton), chosen by the scene's
+``continuum.dynamics`` or :attr:`DynamicOptions.method`. Every run's energy balance error is
+checked against ``continuum.energy_tolerance`` (:mod:`~upliftlab.continuum.run_control`).
+
 **Unknowns.** The soil DOF vector u (from the geostatic state), the footing q = (u, v, θ) and the
 deformation s of the superstructure's story spring (the reduced model's u = X − Xg − hθ; design.md,
 Ewing eq. 7). The story mass m = W/g sits at height h on a shear spring k with a dashpot
@@ -567,8 +573,9 @@ class DynamicResult:
     ``structure_velocity`` (length/s); ``ground_acceleration`` (nt, length/s²); ``H``, ``N``
     (compression), ``M`` (force/length); ``contact_length`` (length); per contact node at ``x``:
     ``pressure`` (force/length², compression +), ``gap`` (length), ``status``; ``iterations``
-    Newton iterations per step, ``refactored`` (bool) the steps that refactorised the iteration
-    matrix (plastic soil: a slow step, or a retry with the consistent tangent);
+    Newton iterations per step (explicit route: contact active-set iterations since the last
+    row), ``refactored`` (bool) the steps that refactorised the iteration matrix (plastic soil:
+    a slow step, or a retry with the consistent tangent; never on the explicit route);
     ``energy`` (nt, 5): kinetic, strain (soil work ∫(f_int − f_body)·du, story spring, footing
     weight), damping (dissipated by dashpots), input (work of the ground loads), contact (the
     energy the contact forces took out of the soil and the footing), all cumulative from the
