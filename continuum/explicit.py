@@ -58,7 +58,7 @@ from .dynamics import (DynamicResult, _check_scene, _ground_velocity, _Recorder,
                        dynamic_fixed, incident_load, structure_matrices, time_step_limit)
 from .footing import OPEN, STICK
 from .explicit_loop import run_steps
-from .kernels import soil_predict
+from .kernels import compiled_pair, soil_predict
 from .newton import ConvergenceError
 from .run_control import Interrupted
 from .soil_force import SoilForce
@@ -384,11 +384,11 @@ class _Explicit:
         lam, G, strength, hardening = soil.params
         free = np.flatnonzero(self.free_q)
         Lf = np.ascontiguousarray(self.L[:nc][:, self.free_q])
-        parallel = numba.get_num_threads() > 1
+        elements, gather = compiled_pair(numba.get_num_threads() > 1)
         done, Fz_prev = -1, np.zeros(4)
         constants = (lay.nodes, lay.dNdx, lay.dNdy, lay.dx, soil.eigenstrain, soil.plastic,
                      soil.ebar, soil.kind, lam, G, strength, hardening, soil.stress, soil.work,
-                     fint, lay.ptr, lay.entries, parallel, self.datum, self.keep,
+                     fint, lay.ptr, lay.entries, elements, gather, self.datum, self.keep,
                      self.ground_soil, self.incident, ag_all, vinc_all, self.mass, self.c,
                      m_step, z.M, z.C, z.K, z.gravity, self.ground_z, free, Lf,
                      f.uy.astype(np.int64), f.ux.astype(np.int64), f.x, f.interface.mu, f.width,

@@ -2,20 +2,21 @@
 the steps between two recorded rows in one call, with no Python in between.
 
 :func:`run_steps` performs exactly the steps of :meth:`upliftlab.continuum.explicit._Explicit`'s
-Python loop (which serves the materials without a compiled return map; a test runs both on one scene and
-compares them): the internal force (:mod:`~upliftlab.continuum.kernels`), the diagonal soil
-update (:func:`~upliftlab.continuum.kernels.soil_predict`), the footing and story form, the
+Python loop (which serves the materials without a compiled return map; a test runs both on one
+scene and compares them): the internal force (:mod:`~upliftlab.continuum.kernels`), the diagonal
+soil update (:func:`~upliftlab.continuum.kernels.soil_predict`), the footing and story form, the
 contact forces (:func:`~upliftlab.continuum.contact_step.frictionless_step`, or
-:func:`~upliftlab.continuum.contact_step.tangential_step` for a bonded or Coulomb interface)
-and the energy increments.
+:func:`~upliftlab.continuum.contact_step.tangential_step` for a bonded or Coulomb interface) and
+the energy increments.
 
 The state lives in rings indexed by the step k, so that nothing is copied from step to step:
 ``U[k % 3]`` is u_k (``U[(k ± 1) % 3]`` its neighbours), ``V[k % 2]`` is v_{k−½} and
 ``V[(k + 1) % 2]`` v_{k+½}; the same for the footing and story z (``Z``, ``VZ``); ``FC[k % 2]``
 holds the contact forces of step k − 1 (at u_y, then u_x for a tangential interface) and
-``ST[k % 2]`` its node status, which the recorded row k pairs with the gaps of u_k. ``R_prev``, ``F_prev`` and ``Fz_prev`` carry the last step's
-internal and external forces; ``energy`` (kinetic, strain, damping, input, contact) and
-``counters`` (active-set iterations) accumulate in place.
+``ST[k % 2]`` its node status, which the recorded row k pairs with the gaps of u_k. ``R_prev``,
+``F_prev`` and ``Fz_prev`` carry the last step's internal and external forces; ``energy``
+(kinetic, strain, damping, input, contact) and ``counters`` (active-set iterations) accumulate
+in place.
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ import numpy as np
 
 from .contact_step import frictionless_step, tangential_step
 from .footing import OPEN, STICK
-from .kernels import _elements, _elements_parallel, _gather, _gather_serial, soil_predict
+from .kernels import soil_predict
 
 __all__ = ["run_steps"]
 
@@ -84,10 +85,12 @@ def _tangential(A, b, prescribed, z, u, u_next, v_next, m_eff, h, dt, uy, ux, x,
 @nb.njit(cache=True)
 def run_steps(k0, k1, dt, U, V, R_prev, F_prev, Z, VZ, Fz_prev, FC, ST, energy, counters,
               nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, lam, G, strength, H, stress, work,
-              fint, ptr, entries, parallel, datum, keep, ground, incident, ag_all, vinc_all,
-              mass, damping, m_step, Mz, Cz, Kz, gravity_z, ground_z, free, Lf, uy, ux, x, mu,
-              width, tangential):
-    """Steps k0…k1 (module docstring); returns nothing, the rings hold the state."""
+              fint, ptr, entries, elements, gather, datum, keep, ground, incident, ag_all,
+              vinc_all, mass, damping, m_step, Mz, Cz, Kz, gravity_z, ground_z, free, Lf, uy, ux,
+              x, mu, width, tangential):
+    """Steps k0…k1 (module docstring); returns nothing, the rings hold the state. ``elements``
+    and ``gather``: the serial or parallel kernels (:func:`~upliftlab.continuum.kernels.
+    compiled_pair`), passed in so that the serial loop never compiles the parallel ones."""
     nc = uy.size
     prescribed = np.ones(3, dtype=np.bool_)
     for i in free:
@@ -98,15 +101,9 @@ def run_steps(k0, k1, dt, U, V, R_prev, F_prev, Z, VZ, Fz_prev, FC, ST, energy, 
         v, v_next = V[k % 2], V[(k + 1) % 2]
         z, z_prev = Z[k % 3], Z[(k + 2) % 3]
         vz = VZ[k % 2]
-        u2 = u.reshape(-1, 2)
-        if parallel:
-            _elements_parallel(u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, lam, G,
-                               strength, H, stress, work)
-            _gather(work, ptr, entries, fint)
-        else:
-            _elements(0, nodes.shape[0], u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind,
-                      lam, G, strength, H, stress, work)
-            _gather_serial(work, nodes, fint.reshape(-1, 2))
+        elements(u.reshape(-1, 2), nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, lam, G,
+                 strength, H, stress, work)
+        gather(work, nodes, ptr, entries, fint)
         ag = ag_all[k]
         strain, work_in, dissipated = soil_predict(
             u, u_prev, v, fint, datum, keep, ground, incident, ag, vinc_all[k], mass, damping,

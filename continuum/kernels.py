@@ -55,8 +55,9 @@ _FAST = {"contract", "reassoc", "nsz", "arcp"}
 
 class Layout:
     """The arrays the kernels read (module docstring): ``dNdx``, ``dNdy`` (nel, nqp, nnode),
-    ``dx`` (nel, nqp), ``dofs`` (nel, nnode, 2), ``nodes`` (nel, nnode) = dofs // 2, and the gather map ``ptr``/``entries`` (for
-    DOF d, the flat element-force entries ptr[d]:ptr[d+1])."""
+    ``dx`` (nel, nqp), ``dofs`` (nel, nnode, 2), ``nodes`` (nel, nnode) = dofs // 2, and the
+    gather map ``ptr``/``entries`` (for DOF d, the flat element-force entries
+    ptr[d]:ptr[d+1])."""
 
     def __init__(self, dNdx, dNdy, dx, dofs, ptr, entries, ndofs):
         self.dNdx, self.dNdy, self.dx, self.dofs = dNdx, dNdy, dx, dofs
@@ -80,7 +81,8 @@ def layout(disc) -> Layout:
           and np.array_equal(B[0, x], B[2, y]) and np.array_equal(B[1, y], B[2, x]))
     if not ok:
         raise InputError(f"continuum.element = {disc.element!r}: its vector basis does not "
-                         "interleave (u_x, u_y) per node as DOFs (2k, 2k + 1); the explicit kernels need it")
+                         "interleave (u_x, u_y) per node as DOFs (2k, 2k + 1); the explicit "
+                         "kernels need it")
     dNdx = np.ascontiguousarray(B[0, x].transpose(1, 2, 0))
     dNdy = np.ascontiguousarray(B[1, y].transpose(1, 2, 0))
     local = np.ascontiguousarray(dofs.T.reshape(dofs.shape[1], nloc // 2, 2))
@@ -237,6 +239,31 @@ def _elements_parallel(u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, lam,
 
 
 @nb.njit(cache=True)
+def _elements_serial(u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, lam, G, strength, H,
+                     stress, fe):
+    _elements(0, dNdx.shape[0], u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, lam, G,
+              strength, H, stress, fe)
+
+
+@nb.njit(cache=True)
+def _gather_nodes(fe, nodes, ptr, entries, out):
+    """The serial sum of element forces (the node-wise scatter; ``ptr``, ``entries`` unused:
+    the signature of :func:`_gather_parallel`)."""
+    _gather_serial(fe, nodes, out.reshape(-1, 2))
+
+
+@nb.njit(cache=True, parallel=True)
+def _gather_parallel(fe, nodes, ptr, entries, out):
+    """The sum of element forces split among the threads by DOF (``nodes`` unused)."""
+    flat = fe.ravel()
+    for d in nb.prange(out.size):
+        total = 0.0
+        for j in range(ptr[d], ptr[d + 1]):
+            total += flat[entries[j]]
+        out[d] = total
+
+
+@nb.njit(cache=True)
 def _gather_serial(fe, nodes, out2):
     out2[:] = 0.0
     nel, nn, _ = fe.shape
@@ -247,16 +274,6 @@ def _gather_serial(fe, nodes, out2):
             out2[k, 1] += fe[e, a, 1]
 
 
-@nb.njit(cache=True, parallel=True)
-def _gather(fe, ptr, entries, out):
-    flat = fe.ravel()
-    for d in nb.prange(out.size):
-        total = 0.0
-        for j in range(ptr[d], ptr[d + 1]):
-            total += flat[entries[j]]
-        out[d] = total
-
-
 def internal_force(lay: Layout, u, eigenstrain, plastic, ebar, kind: int, lam: float, G: float,
                    strength: float, hardening: float, stress, work, out) -> np.ndarray:
     """∫ Bᵀ σ (ndofs) into ``out`` for the displacement ``u``: the return map at every
@@ -265,15 +282,18 @@ def internal_force(lay: Layout, u, eigenstrain, plastic, ebar, kind: int, lam: f
     ``stress`` (nel, nqp, 4). ``eigenstrain`` (nel, nqp, 4) is added to the strain of u (the
     geostatic stress); ``work`` (nel, nnode, 2) is scratch. With more than one numba thread
     (``numba.get_num_threads()``) the elements and the DOFs are split among the threads."""
-    args = (u.reshape(-1, 2), lay.nodes, lay.dNdx, lay.dNdy, lay.dx, eigenstrain, plastic, ebar,
-            kind, lam, G, strength, hardening, stress, work)
-    if nb.get_num_threads() > 1:
-        _elements_parallel(*args)
-        _gather(work, lay.ptr, lay.entries, out)
-    else:
-        _elements(0, lay.shape[0], *args)
-        _gather_serial(work, lay.nodes, out.reshape(-1, 2))
+    elements, gather = compiled_pair(nb.get_num_threads() > 1)
+    elements(u.reshape(-1, 2), lay.nodes, lay.dNdx, lay.dNdy, lay.dx, eigenstrain, plastic, ebar,
+             kind, lam, G, strength, hardening, stress, work)
+    gather(work, lay.nodes, lay.ptr, lay.entries, out)
     return out
+
+
+def compiled_pair(parallel: bool):
+    """(element forces, gather) kernels, serial or parallel; both pairs share a signature, so
+    that a caller compiled for one never compiles the other."""
+    return (_elements_parallel, _gather_parallel) if parallel else \
+        (_elements_serial, _gather_nodes)
 
 
 # ---------------------------------------------------------------------------------------------
