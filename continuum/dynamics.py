@@ -176,7 +176,8 @@ class DynamicOptions:
     ``wave`` S or P (compliant base: the incident wave); ``mass`` consistent or lumped (None:
     consistent for the implicit route, lumped for the explicit one, which needs it);
     ``snapshots`` soil-field snapshots, evenly spaced (0: none); ``energy`` records the energy
-    account (costs one internal-force assembly per step); ``load_steps`` of the gravity ramp;
+    account (implicit: one internal-force assembly per step; the explicit route always keeps
+    it, at no cost); ``load_steps`` of the gravity ramp;
     ``predict`` starts each step's Newton iteration from the constant-acceleration
     extrapolation d + dt v + dt² a/2 instead of the last converged state (module docstring);
     ``newton`` the Newton options of each step. ``method`` explicit (central differences,
@@ -719,6 +720,10 @@ def run_dynamic(model, scene, motion, options: DynamicOptions = DynamicOptions()
     """
     method = options.method or model.options.dynamics
     tolerance = options.energy_tolerance or model.options.energy_tolerance
+    if method == "explicit" and (options.scheme != "hht" or options.alpha is not None):
+        raise InputError(f"DynamicOptions.scheme = {options.scheme!r}, alpha = {options.alpha}: "
+                         "the scheme and α are the implicit route's; valid with the explicit "
+                         "route: scheme 'hht', alpha None (or method = 'implicit')")
     if method == "explicit":
         from .explicit import run_explicit
         result = run_explicit(model, scene, motion, options, progress=progress)

@@ -340,3 +340,14 @@ def test_compiled_loop_repeats_the_python_loop(overrides, monkeypatch):
         assert np.abs(x - y).max() <= 1e-9 * max(np.abs(x).max(), 1e-30), name
     assert np.array_equal(a.status, b.status)
     assert np.abs(a.energy - b.energy).max() <= 1e-9 * np.abs(a.energy).max()
+
+
+def test_implicit_scheme_options_are_refused_on_the_explicit_route():
+    # An option that the explicit route would ignore is refused, not dropped.
+    scene = load_scene(SCENE, overrides=COARSE)
+    model = build_model(scene)
+    for options in (DynamicOptions(method="explicit", scheme="newmark"),
+                    DynamicOptions(method="explicit", alpha=-0.2),
+                    DynamicOptions(method="explicit", mass="consistent")):
+        with pytest.raises(InputError, match="DynamicOptions"):
+            run_dynamic(model, scene, scene.build_motion(), options)
