@@ -303,7 +303,7 @@ def test_contact_complementarity_holds_at_every_step(pulse):
 
 def test_energy_balance_closes_on_a_plastic_pulse(pulse):
     # Reference: conservation; central differences close the account to O(dt²) (measured
-    # 3e-5 of the input on this pulse). The contact forces only take energy out (a landing
+    # 7.8e-5 of the input on this pulse). The contact forces only take energy out (a landing
     # node stops with the footing) and the soil's plastic work is in the strain term.
     model, explicit, _ = pulse
     e = explicit.energy
@@ -314,7 +314,7 @@ def test_energy_balance_closes_on_a_plastic_pulse(pulse):
 
 def test_energy_is_conserved_by_an_undamped_elastic_system():
     # Reference: the undamped linear system conserves its energy exactly; central differences
-    # to O((ω dt)²) of the modes carrying it (measured 1e-6 of the initial kinetic energy).
+    # to O((ω dt)²) of the modes carrying it (measured 5.7e-5 of the initial kinetic energy).
     scene, model, motion = _free_rocking(duration=0.6)
     result = run_dynamic(model, scene, motion, DynamicOptions(method="explicit", snapshots=0))
     E = result.total_energy
