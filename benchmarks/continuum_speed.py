@@ -313,6 +313,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--repeats", type=int, default=None,
                         help="repeats of the cheap runs (default 3; 1 with --quick)")
     args = parser.parse_args(argv)
+    if args.write and (args.only or args.quick):
+        parser.error("--write rewrites the committed tables: run every case (no --only, "
+                     "no --quick)")
     repeats = args.repeats or (1 if args.quick else 3)
     levels = QUICK if args.quick else LEVELS
     say = (lambda message: print(message, file=sys.stderr, flush=True))
