@@ -1,6 +1,7 @@
 """Speed against error of the continuum model, per mesh level.
 
-    python benchmarks/continuum_speed.py [--quick] [--out DIR] [--repeats R]
+    python benchmarks/continuum_speed.py [--quick] [--only static|elcentro] [--out DIR]
+                                         [--repeats R] [--write]
 
 For each case and mesh level (elements across the footing B and the grading towards its
 edges, the centre-to-edge element size ratio; Q2 with 2×2 reduced integration, 10B × 10B box)
@@ -19,17 +20,18 @@ the error against the reference:
 - ``uplift``: rotation pushover of a frictionless strip on elastic soil at N = 171.39 kN/m to
   10 θ_on in 40 steps: the uplift-onset eccentricity against the half-plane B/4, and (second
   error) the largest |c/B − θ_on/θ| after uplift (tests/test_continuum_contact.py);
-- ``elcentro``: 10 s of El Centro 1940 N-S on the clay scene (Tresca, unilateral contact),
-  error of the peak footing rotation against the finest level run. It needs
-  ``upliftlab.continuum.dynamics`` and the record on ``UPLIFTLAB_MOTIONS``; without either the row
-  is skipped with a message. ``elcentro-strict`` runs one level again at the Newton tolerance
-  rtol = 1e-6 (the dynamic default is 1e-5); its error is the default run's peak over the
-  strict run's, minus one: the tolerance's share of the error.
+- ``elcentro``: El Centro 1940 N-S on the clay scene, the explicit and the implicit route in
+  the same invocation (``benchmarks/continuum_elcentro.py``: runtime, speed-up, and the errors
+  of peak θ, peak edge uplift, residual settlement and the θ and v histories against the
+  implicit route at rtol 1e-6 on the same mesh). It needs the record on ``UPLIFTLAB_MOTIONS``;
+  without it the section is skipped with a message.
 
 Soil: E = 50 MPa, ν = 0.3, ρ = 1.8 t/m³, c_u = 50 kPa, B = 2 m (the clay scene). The timers wrap
 the solver's functions for the duration of a run and change no result. One thread per solve
-(``OMP_NUM_THREADS=1``, continuum-notes.md). Writes ``CONTINUUM.md`` (the table) and
-``continuum_speed.png`` (runtime against error) to ``--out`` (default: this folder).
+(``OMP_NUM_THREADS=1``, continuum-notes.md). Writes ``CONTINUUM.md`` (the tables) and
+``continuum_speed.png`` (runtime against error of the static cases) to ``--out`` (default
+``results/bench/continuum``); ``--write`` rewrites the committed ``benchmarks/CONTINUUM.md``
+and ``benchmarks/continuum_speed.png`` instead.
 """
 
 from __future__ import annotations
@@ -51,7 +53,6 @@ from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from upliftlab.checks import InputError  # noqa: E402
 from upliftlab.continuum import (OPEN, footing_stiffness, make_model,  # noqa: E402
                                  rotation_pushover, uplift_onset, vertical_pushover)
 from upliftlab.results import write_text  # noqa: E402
@@ -69,17 +70,14 @@ CLAY = Soil(youngs_modulus=E, poisson_ratio=NU, density=RHO, model="tresca",
 #: Mesh levels per case: (elements across B, grading towards the footing edges).
 LEVELS = {"rocking": ((4, 1.0), (8, 1.0), (16, 1.0), (32, 1.0)),
           "prandtl": ((4, 1.0), (8, 1.0), (16, 1.0), (8, 16.0), (10, 16.0), (16, 16.0)),
-          "uplift": ((8, 1.0), (16, 1.0), (32, 1.0)),
-          "elcentro": ((4, 1.0), (8, 1.0), (16, 1.0)), "elcentro-strict": ((8, 1.0),)}
+          "uplift": ((8, 1.0), (16, 1.0), (32, 1.0))}
 QUICK = {"rocking": ((4, 1.0), (8, 1.0)), "prandtl": ((4, 1.0), (8, 1.0), (8, 16.0)),
-         "uplift": ((4, 1.0), (8, 1.0)), "elcentro": ((4, 1.0),),
-         "elcentro-strict": ((4, 1.0),)}
-#: The Newton tolerance of the ``elcentro-strict`` rows (the dynamic default is 1e-5).
-STRICT_RTOL = 1e-6
+         "uplift": ((4, 1.0), (8, 1.0))}
 
+#: Default output folder (``--write``: this folder, the committed tables).
+OUT = Path("results") / "bench" / "continuum"
 #: The issue's targets: (case, |error| bound, runtime bound [s], smallest DOFs).
-TARGETS = (("rocking", 0.01, 2.0, 0), ("prandtl", 0.01, 15.0, 0), ("prandtl", 0.005, 60.0, 0),
-           ("elcentro", math.inf, 600.0, 18000))
+TARGETS = (("rocking", 0.01, 2.0, 0), ("prandtl", 0.01, 15.0, 0), ("prandtl", 0.005, 60.0, 0))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -161,53 +159,7 @@ def uplift(n: int, grading: float = 1.0):
                    "max |c/B - theta_on/theta|": contact}
 
 
-def elcentro(n: int, grading: float = 1.0, rtol: float | None = None):
-    """10 s of El Centro; the error is filled in against the finest level afterwards.
-    ``rtol``: the Newton tolerance (None: the dynamic default)."""
-    from dataclasses import replace
-
-    from upliftlab.continuum import build_model
-    from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
-    from upliftlab.motions import ELCENTRO
-    from upliftlab.scenes import load_scene
-
-    scene = load_scene("strip_footing_clay", motion=ELCENTRO,
-                       overrides=[f"continuum.elements_across={n}",
-                                  f"continuum.grading={grading}"])
-    motion = scene.build_motion()
-    motion = replace(motion, acceleration=motion.acceleration[:int(round(10.0 / motion.dt))])
-    model = build_model(scene)
-    options = DynamicOptions(snapshots=0, energy=False)
-    if rtol is not None:
-        options = replace(options, newton=replace(options.newton, rtol=rtol))
-    result = run_dynamic(model, scene, motion, options)
-    peak = float(np.max(np.abs(np.asarray(result.footing)[:, 2])))
-    return model, {"peak theta": peak}
-
-
-def elcentro_strict(n: int, grading: float = 1.0):
-    """``elcentro`` at rtol = :data:`STRICT_RTOL`: what the default tolerance costs in error."""
-    return elcentro(n, grading, rtol=STRICT_RTOL)
-
-
-CASES = {"rocking": rocking, "prandtl": prandtl, "uplift": uplift, "elcentro": elcentro,
-         "elcentro-strict": elcentro_strict}
-
-
-def unavailable(case: str) -> str | None:
-    """Why a case cannot run here (None if it can)."""
-    if not case.startswith("elcentro"):
-        return None
-    try:
-        import upliftlab.continuum.dynamics  # noqa: F401
-    except ImportError as exc:
-        return f"upliftlab.continuum.dynamics is not importable ({exc})"
-    from upliftlab.motions import ELCENTRO, find_motion
-    try:
-        find_motion(ELCENTRO)
-    except InputError as exc:
-        return str(exc)
-    return None
+CASES = {"rocking": rocking, "prandtl": prandtl, "uplift": uplift}
 
 
 # ---------------------------------------------------------------------------------------------
@@ -231,30 +183,6 @@ def measure(case: str, level: tuple[int, float], repeats: int) -> dict:
             "residual": statistics.median(r[1]["residual"] for r in runs),
             "solve": statistics.median(r[1]["solve"] for r in runs),
             "newton": runs[-1][2], "errors": errors}
-
-
-def reference_elcentro(rows: list[dict]) -> None:
-    """Errors of the El Centro rows against the finest level (its own error is 0 by
-    definition and marked as the reference); each ``elcentro-strict`` row gives the default
-    tolerance's error at its level, default peak / strict peak − 1."""
-    default = {(r["n"], r["grading"]): r["errors"]["peak theta"] for r in rows
-               if r["case"] == "elcentro"}
-    for r in rows:
-        if r["case"] == "elcentro-strict":
-            strict = r["errors"].pop("peak theta")
-            name = f"peak theta (default rtol) / (rtol {STRICT_RTOL:g}) - 1"
-            mine = default.get((r["n"], r["grading"]))
-            r["errors"][name] = math.nan if mine is None else mine / strict - 1.0
-            r["note"] = f"peak θ = {strict:.7g} rad at rtol {STRICT_RTOL:g}"
-    rows = [r for r in rows if r["case"] == "elcentro"]
-    if not rows:
-        return
-    finest = max(rows, key=lambda r: r["dofs"])["errors"]["peak theta"]
-    for r in rows:
-        peak = r["errors"].pop("peak theta")
-        r["errors"]["peak theta / finest - 1"] = peak / finest - 1.0
-        r["note"] = f"peak θ = {peak:.4g} rad" + (" (reference)" if r["errors"][
-            "peak theta / finest - 1"] == 0.0 else "")
 
 
 def richardson(rows: list[dict]) -> list[dict]:
@@ -344,8 +272,7 @@ def figure(rows: list[dict], path: Path) -> Path:
     from upliftlab.continuum.output import save_figure
 
     fig, ax = plt.subplots(figsize=(7.5, 6.5))
-    markers = {"rocking": "o", "prandtl": "s", "prandtl-richardson": "x", "uplift": "^",
-               "elcentro": "D", "elcentro-strict": "d"}
+    markers = {"rocking": "o", "prandtl": "s", "prandtl-richardson": "x", "uplift": "^"}
     for case, grading in sorted({(r["case"], r["grading"]) for r in rows},
                                 key=lambda cg: (list(markers).index(cg[0]), cg[1])):
         mine = [r for r in rows if r["case"] == case and r["grading"] == grading]
@@ -353,7 +280,7 @@ def figure(rows: list[dict], path: Path) -> Path:
         for k, name in enumerate(names):
             points = [(r["runtime"], abs(r["errors"][name]), f"{r['n']}/{r['grading']:g}")
                       for r in mine]
-            points = [p for p in points if p[1] > 0.0]  # the reference level of elcentro
+            points = [p for p in points if p[1] > 0.0]
             if not points:
                 continue
             ax.loglog([p[0] for p in points], [p[1] for p in points], marker=markers[case],
@@ -378,56 +305,74 @@ def figure(rows: list[dict], path: Path) -> Path:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--quick", action="store_true", help="coarse levels, one repeat")
-    parser.add_argument("--out", default=str(Path(__file__).resolve().parent),
-                        help="folder for CONTINUUM.md and continuum_speed.png")
+    parser.add_argument("--only", choices=("static", "elcentro"),
+                        help="run only the static cases or only El Centro")
+    parser.add_argument("--out", default=str(OUT), help=f"output folder (default {OUT})")
+    parser.add_argument("--write", action="store_true",
+                        help="write CONTINUUM.md and continuum_speed.png into benchmarks/")
     parser.add_argument("--repeats", type=int, default=None,
                         help="repeats of the cheap runs (default 3; 1 with --quick)")
     args = parser.parse_args(argv)
+    if args.write and (args.only or args.quick):
+        parser.error("--write rewrites the committed tables: run every case (no --only, "
+                     "no --quick)")
     repeats = args.repeats or (1 if args.quick else 3)
     levels = QUICK if args.quick else LEVELS
-    rows, skipped = [], {}
-    for case, ns in levels.items():
-        why = unavailable(case)
+    say = (lambda message: print(message, file=sys.stderr, flush=True))
+    rows, sections = [], []
+    if args.only != "elcentro":
+        for case, ns in levels.items():
+            for level in ns:
+                # one run of the plastic cases; the elastic ones are repeated
+                reps = repeats if case in ("rocking", "uplift") else 1
+                row = measure(case, level, reps)
+                rows.append(row)
+                say(f"{case:8s} n = {level[0]:3d}, grading {level[1]:4g}: {row['dofs']:7d} "
+                    f"DOFs, {row['runtime']:8.3f} s, {_fmt_errors(row['errors'])}")
+        rows += richardson(rows)
+        sections.append("## Statics\n\n" + table(rows, {}) + "\n\n### Targets (issue 3, "
+                        "section 4)\n\n" + targets(rows))
+    if args.only != "static":
+        import continuum_elcentro as ec
+
+        why = ec.unavailable()
         if why:
-            skipped[case] = why
-            print(f"{case}: skipped: {why}", file=sys.stderr)
-            continue
-        for level in ns:
-            # one run of the plastic and dynamic cases; the elastic ones are repeated
-            reps = repeats if case in ("rocking", "uplift") else 1
-            row = measure(case, level, reps)
-            rows.append(row)
-            print(f"{case:8s} n = {level[0]:3d}, grading {level[1]:4g}: {row['dofs']:7d} DOFs, "
-                  f"{row['runtime']:8.3f} s, {_fmt_errors(row['errors'])}", file=sys.stderr,
-                  flush=True)
-    reference_elcentro(rows)
-    rows += richardson(rows)
-    text = table(rows, skipped) + "\n\n## Targets (issue 3, section 4)\n\n" + targets(rows)
+            say(f"elcentro: skipped: {why}")
+            sections.append(f"## El Centro\n\nskipped: {why}")
+        else:
+            dynamic = ec.measure(args.quick, say=say)
+            sections.append("## El Centro: explicit and implicit dynamics\n\n"
+                            + (ec.__doc__.split("\n\n", 2)[2].strip()) + "\n\n"
+                            + ec.table(dynamic) + "\n\n### Targets (issue 11, section 1)\n\n"
+                            + ec.targets(dynamic))
+    text = "\n\n".join(sections)
     print(text)
-    out = Path(args.out)
+    out = Path(__file__).resolve().parent if args.write else Path(args.out)
     header = (f"# Continuum speed against error\n\n"
-              f"`python benchmarks/continuum_speed.py{' --quick' if args.quick else ''}`, "
+              f"`python benchmarks/continuum_speed.py{' --quick' if args.quick else ''}"
+              f"{f' --only {args.only}' if args.only else ''}`, "
               f"{datetime.date.today().isoformat()}, {platform.processor() or platform.machine()}"
-              f", Python {platform.python_version()}, one thread per solve "
-              f"(OMP_NUM_THREADS={os.environ['OMP_NUM_THREADS']}). Runtime is the median of "
-              f"{repeats} runs for the elastic cases (rocking, uplift) and one run otherwise; "
-              "assembly is the tangent stiffness, residual the return map and internal force, "
-              "solve the factorisation, Schur condensation, contact active set and "
-              "back-substitution; the rest (meshing, basis, bookkeeping) is runtime minus "
+              f", Python {platform.python_version()}, one BLAS thread per solve "
+              f"(OMP_NUM_THREADS={os.environ['OMP_NUM_THREADS']}). Static cases: runtime is the "
+              f"median of {repeats} runs for the elastic cases (rocking, uplift) and one run "
+              "otherwise; assembly is the tangent stiffness, residual the return map and "
+              "internal force, solve the factorisation, Schur condensation, contact active set "
+              "and back-substitution; the rest (meshing, basis, bookkeeping) is runtime minus "
               "these. Newton iterations include those of cut steps. The machine is shared: "
-              "compare ratios.\n\n"
+              "compare ratios measured in one invocation (the dynamic rows also give the "
+              "process's CPU time, which the other processes' load does not inflate).\n\n"
               "Q2 with 2×2 reduced integration, 10B × 10B box, grading as listed (the ratio of "
               "the centre element to the edge element across B); B = 2 m, E = 50 MPa, "
               "ν = 0.3, c_u = 50 kPa. References: rocking π G B²/(8(1 − ν)); prandtl "
               "(2 + π) c_u B (rough, Tresca, settlement 0.05 B); uplift: onset e = B/4 and "
-              "c/B = θ_on/θ of the elastic half-plane (the 10B box is −0.36 % on e); elcentro: "
-              "the finest level (10 s of the record; the time step follows the smallest "
-              "element, dt ≤ 2 h_min/V_p). The Richardson rows are named extrapolations of "
-              "two measured rows, not raw meshes.\n\n")
+              "c/B = θ_on/θ of the elastic half-plane (the 10B box is −0.36 % on e). The "
+              "Richardson rows are named extrapolations of two measured rows, not raw "
+              "meshes.\n\n")
     write_text(out / "CONTINUUM.md", header + text + "\n")
+    written = [out / "CONTINUUM.md"]
     if rows:
-        figure(rows, out / "continuum_speed.png")
-    print(f"wrote {out / 'CONTINUUM.md'} and {out / 'continuum_speed.png'}", file=sys.stderr)
+        written.append(figure(rows, out / "continuum_speed.png"))
+    say(f"wrote {', '.join(map(str, written))}")
     return 0
 
 

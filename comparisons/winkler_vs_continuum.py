@@ -1405,8 +1405,9 @@ def _error_markdown(table: ErrorTable) -> list[str]:
 def _dynamic_markdown(dyn: DynamicComparison, options: Options, fast: bool) -> str:
     """Peaks per motion: the continuum's and each bed's (errors are in the error table)."""
     overrides = ", ".join(_dynamic_overrides(options, fast))
-    lines = ["The continuum's dynamic runs: `run_dynamic` with its default options (HHT, "
-             "automatic step), the scene's boundaries"
+    lines = ["The continuum's dynamic runs: `run_dynamic` with its default options (the "
+             "scene's `continuum.dynamics`, explicit central differences by default; automatic "
+             "step), the scene's boundaries"
              + (f", and the overrides {overrides}" if overrides else "")
              + ". The beds: the reduced model with the scene's foundation damping "
              "and impact settings. Peak edge uplift is the larger gap at x = ±b; residual "

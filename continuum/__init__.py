@@ -15,7 +15,8 @@ Analyses (results are frozen records with ``save()`` to NetCDF)
     :func:`vertical_pushover`, :func:`rotation_pushover`, :func:`moment_pushover`
     -> :class:`StaticPath`; :func:`uplift_onset` -> :class:`UpliftOnset`;
     :func:`vm_envelope` -> :class:`Envelope`; :func:`run_dynamic` (gravity, then a ground
-    motion; HHT-α / Newmark, Lysmer boundaries, rigid or compliant base, SDOF superstructure)
+    motion; explicit central differences by default, or HHT-α / Newmark with Newton
+    (``continuum.dynamics``); Lysmer boundaries, rigid or compliant base, SDOF superstructure)
     with :class:`DynamicOptions` -> :class:`DynamicResult`; :func:`impedance` (the footing's
     complex impedance per unit length in the frequency domain, PML or Lysmer box) with
     :class:`ImpedanceOptions` on :func:`impedance_model` -> :class:`Impedance`.
@@ -30,7 +31,10 @@ Solver
 Pieces
     :mod:`.assembly` (B-matrices, einsum Bᵀ D B into a fixed CSR pattern), :mod:`.footing`
     (kinematics, contact solver), :mod:`.materials` (return maps), :mod:`.model`,
-    :mod:`.newton`, :mod:`.statics`, :mod:`.dynamics`, :mod:`.impedance`.
+    :mod:`.newton`, :mod:`.statics`, :mod:`.dynamics` (implicit route, results), :mod:`.impedance`, :mod:`.explicit`
+    (explicit route) with :mod:`.kernels`, :mod:`.soil_force`, :mod:`.contact_step` and
+    :mod:`.explicit_loop` (its compiled pieces), :mod:`.run_control` (energy check,
+    interruption).
 """
 
 from .dynamics import DynamicOptions, DynamicResult, run_dynamic

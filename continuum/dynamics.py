@@ -1,5 +1,11 @@
 """Time histories of the soil, the rigid footing and the superstructure under a ground motion.
 
+Two routes share this module's unknowns, loads, gravity state, results and energy account:
+the explicit one (:mod:`~upliftlab.continuum.explicit`, central differences with a lumped mass,
+the default) and the implicit one described here (HHT-α with Newton), chosen by the scene's
+``continuum.dynamics`` or :attr:`DynamicOptions.method`. Every run's energy balance error is
+checked against ``continuum.energy_tolerance`` (:mod:`~upliftlab.continuum.run_control`).
+
 **Unknowns.** The soil DOF vector u (from the geostatic state), the footing q = (u, v, θ) and the
 deformation s of the superstructure's story spring (the reduced model's u = X − Xg − hθ; design.md,
 Ewing eq. 7). The story mass m = W/g sits at height h on a shear spring k with a dashpot
@@ -89,6 +95,24 @@ makes the elastic iteration matrix a good one shrinks as 1/dt²), so the total i
 by 34 % and 60 %. The rule stays: a step in which the waves cross several elements is what
 it exists to refuse, and the issue's runtime target is met without relaxing it.
 
+**A smallest step.** The step must not fall below :data:`MIN_SHEAR_COURANT` h_min/V_s either. Below
+it the end-of-step contact resolves the footing nodes' own ringing after a landing (their period is
+set by the shear stiffness of the locking-free element), the HHT dissipation no longer removes it,
+the nodes chatter and the contact pumps energy into the system. Measured on the clay scene's Ricker
+pulse, elastic soil at ν = 0.3, 4 across: V_s dt/h_min = 0.52 … 0.21 keep the energy balance within
+2.2e-4 of the input (52–82 status changes); 0.17 gives 1.8e-2 with 417 changes and the contact
+creating energy; 0.13 and 0.065 end with 18 and 45 times the input (8 across: 0.21 still 9e-5, 0.17
+gives 0.14 with 2663 changes). This is what made nearly incompressible soil gain energy: the P-wave
+rule shrinks the step as V_p/V_s grows, to V_s dt/h_min = 0.19, 0.088 and 0.028 at ν = 0.495, 0.499
+and 0.4999 (energy 2.5, 57 and 765 times the input, the footing ending 1.4 m up at 0.4999), while ν
+≤ 0.49 (0.24) stayed within 1e-3. Neither mass lumping (58 times at 0.499) nor a finer step (63
+times) helps; 3×3 integration does not gain (6e-4 at 0.4999) only because it locks, which stiffens
+the nodes' ringing back out of the resolved range. The bound, 0.21, lies above every failing case
+(0.19 and below) and admits ν = 0.49 (0.24). The two rules leave no step once V_p/V_s >
+2/:data:`MIN_SHEAR_COURANT` = 9.5, i.e. ν > 0.494 (somewhat less where the step is rounded down to
+a divisor of the record's): such soil is refused here (InputError naming ν) and runs on the
+explicit route (:mod:`~upliftlab.continuum.explicit`), whose contact only dissipates.
+
 **Results.** :class:`DynamicResult` (a :class:`~upliftlab.continuum.output.FieldHistory`): per
 step the footing motion, structure deformation, contact forces and status, Newton iterations and
 an energy account; soil fields at ``snapshots`` evenly spaced steps.
@@ -113,6 +137,7 @@ from .materials import plane_strain_stress
 from .model import ContinuumModel, _blocks, node_groups
 from .newton import (Anderson, ContinuumState, Control, ConvergenceError, FootingTerm,
                      NewtonOptions, SoilTerm, equilibrium, follow)
+from .run_control import Interrupted, check_energy, energy_floor
 from .statics import _metadata, element_average, geostatic, max_shear_stress
 
 __all__ = ["DynamicOptions", "DynamicResult", "run_dynamic", "COURANT_LIMIT", "SCHEMES",
@@ -121,6 +146,8 @@ __all__ = ["DynamicOptions", "DynamicResult", "run_dynamic", "COURANT_LIMIT", "S
 
 #: Largest P-wave Courant number V_p dt / h_min (module docstring).
 COURANT_LIMIT = 2.0
+#: Smallest shear-wave Courant number V_s dt / h_min of the implicit route (module docstring).
+MIN_SHEAR_COURANT = 0.21
 #: Factorise the elastic iteration matrix of plastic soil in single precision (module docstring).
 SINGLE = True
 SCHEMES = ("newmark", "hht")
@@ -128,6 +155,7 @@ BASES = ("rigid", "compliant")
 SIDES = ("rollers", "shear", "lysmer")
 WAVES = ("S", "P")
 MASSES = ("consistent", "lumped")
+METHODS = ("explicit", "implicit")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -145,12 +173,22 @@ class DynamicOptions:
     ``base`` rigid or compliant and ``sides`` rollers, shear or lysmer (None: from the scene's
     ``continuum.base`` and ``continuum.boundary``: lysmer -> lysmer; fixed -> rollers on a
     rigid base, shear on a compliant one, where rollers would block the S wave);
-    ``wave`` S or P (compliant base: the incident wave); ``mass`` consistent or lumped;
+    ``wave`` S or P (compliant base: the incident wave); ``mass`` consistent or lumped (None:
+    consistent for the implicit route, lumped for the explicit one, which needs it);
     ``snapshots`` soil-field snapshots, evenly spaced (0: none); ``energy`` records the energy
-    account (costs one internal-force assembly per step); ``load_steps`` of the gravity ramp;
+    account (implicit: one internal-force assembly per step; the explicit route always keeps
+    it, at no cost); ``load_steps`` of the gravity ramp;
     ``predict`` starts each step's Newton iteration from the constant-acceleration
     extrapolation d + dt v + dt² a/2 instead of the last converged state (module docstring);
-    ``newton`` the Newton options of each step.
+    ``newton`` the Newton options of each step. ``method`` explicit (central differences,
+    :mod:`~upliftlab.continuum.explicit`) or implicit (this module's HHT-α); None: the scene's
+    ``continuum.dynamics``. ``record_every`` (explicit route): steps per recorded row (None:
+    the implicit route's step). ``energy_tolerance``: the largest admissible energy balance
+    error (:func:`~upliftlab.continuum.run_control.balance_error`; None: the scene's
+    ``continuum.energy_tolerance``); a run beyond it raises
+    :class:`~upliftlab.continuum.run_control.EnergyBalanceError`. ``threads`` (explicit route):
+    numba threads of the internal-force kernels (1: serial; more split the elements, which
+    pays only on an otherwise idle machine; at most numba's ``NUMBA_NUM_THREADS``).
     """
 
     scheme: str = "hht"
@@ -160,12 +198,16 @@ class DynamicOptions:
     base: str | None = None
     sides: str | None = None
     wave: str = "S"
-    mass: str = "consistent"
+    mass: str | None = None
     snapshots: int = 41
     energy: bool = True
     load_steps: int = 4
     predict: bool = True
     newton: NewtonOptions = NewtonOptions(rtol=1e-5, max_iterations=60, anderson=4)
+    method: str | None = None
+    record_every: int | None = None
+    energy_tolerance: float | None = None
+    threads: int = 1
 
     def __post_init__(self):
         checks.one_of("DynamicOptions.scheme", self.scheme, SCHEMES)
@@ -188,7 +230,16 @@ class DynamicOptions:
         if self.sides is not None:
             checks.one_of("DynamicOptions.sides", self.sides, SIDES)
         checks.one_of("DynamicOptions.wave", self.wave, WAVES)
-        checks.one_of("DynamicOptions.mass", self.mass, MASSES)
+        if self.mass is not None:
+            checks.one_of("DynamicOptions.mass", self.mass, MASSES)
+        if self.method is not None:
+            checks.one_of("DynamicOptions.method", self.method, METHODS)
+        if self.record_every is not None:
+            checks.integer_at_least("DynamicOptions.record_every", self.record_every, 1)
+        if self.energy_tolerance is not None:
+            checks.in_range("DynamicOptions.energy_tolerance", self.energy_tolerance, 0.0, 1.0,
+                            low_open=True)
+        checks.integer_at_least("DynamicOptions.threads", self.threads, 1)
         checks.integer_at_least("DynamicOptions.snapshots", self.snapshots, 0)
         checks.integer_at_least("DynamicOptions.load_steps", self.load_steps, 1)
         if not isinstance(self.predict, bool):
@@ -349,8 +400,9 @@ def _check_scene(scene, motion) -> None:
                              "supported)")
 
 
-def _settings(model, scene, motion, options: DynamicOptions) -> _Settings:
-    _check_scene(scene, motion)
+def boundaries(model, options: DynamicOptions) -> tuple[str, str]:
+    """(base, sides) of a dynamic run (:class:`DynamicOptions`, else the scene's
+    ``continuum.base`` and ``continuum.boundary``), checked against the interface."""
     cont = model.options
     base = options.base or cont.base
     sides = options.sides or ("lysmer" if cont.boundary == "lysmer" else
@@ -363,6 +415,13 @@ def _settings(model, scene, motion, options: DynamicOptions) -> _Settings:
     if base == "compliant" and model.soil.density <= 0.0:
         raise InputError(f"soil.density = {model.soil.density:g}: a compliant base radiates "
                          "through ρV; valid range is > 0")
+    return base, sides
+
+
+def _settings(model, scene, motion, options: DynamicOptions) -> _Settings:
+    _check_scene(scene, motion)
+    base, sides = boundaries(model, options)
+    tangential = model.footing.interface.tangential
     alpha = 0.0 if options.scheme == "newmark" else (
         scene.analysis.hht_alpha if options.alpha is None else options.alpha)
     if not -1.0 / 3.0 <= alpha <= 0.0:
@@ -379,10 +438,33 @@ def _settings(model, scene, motion, options: DynamicOptions) -> _Settings:
                 f"(h_min = {smallest_element(model):.4g}, V_p = {vp:.4g}, h_min/V_p = "
                 f"{limit / COURANT_LIMIT:.4g} s); valid range is (0, {limit:.4g}] s "
                 f"(V_p dt/h_min ≤ {COURANT_LIMIT:g})")
+    _check_smallest_step(model, dt, limit, automatic=options.dt is None)
     duration = options.duration or scene.analysis.duration or motion.duration
     steps = max(1, int(round(duration / dt)))
     return _Settings(alpha=alpha, dt=dt, steps=steps, base=base, sides=sides,
                      prescribe_u=not tangential, limit=limit)
+
+
+def _check_smallest_step(model, dt: float, limit: float, automatic: bool) -> None:
+    """Refuse a step below :data:`MIN_SHEAR_COURANT` h_min/V_s (module docstring): naming ν
+    when the P-wave rule forced it, else the step."""
+    vp, vs = wave_speeds(model.soil)
+    floor = MIN_SHEAR_COURANT * smallest_element(model) / vs
+    if dt >= floor * (1.0 - 1e-12):
+        return
+    why = (f"below {floor:.4g} s = {MIN_SHEAR_COURANT:g} h_min/V_s the implicit route's "
+           "end-of-step contact chatters and gains energy")
+    if automatic:
+        nu = model.soil.poisson_ratio
+        raise InputError(
+            f"soil.poisson_ratio = {nu:g}: the implicit step follows the P wave (dt = {dt:.4g} "
+            f"s ≤ {limit:.4g} s, V_p/V_s = {vp / vs:.3g}) and {why}; valid range for "
+            f"continuum.dynamics = 'implicit' is V_p/V_s ≤ {2.0 / MIN_SHEAR_COURANT:.3g} "
+            "(ν ≤ 0.494, less where the step rounds down to the record's); use "
+            "continuum.dynamics = 'explicit'")
+    valid = (f"[{floor:.4g}, {limit:.4g}] s" if floor <= limit else
+             "empty for this soil (use continuum.dynamics = 'explicit')")
+    raise InputError(f"DynamicOptions.dt = {dt:g} s: {why}; valid range is {valid}")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -432,16 +514,23 @@ def _elastic_tangent(model) -> np.ndarray:
     return np.ascontiguousarray(np.broadcast_to(D[..., None, None], (3, 3) + model.disc.qp_shape))
 
 
-def _dynamic_model(model, settings: _Settings, cls=ContinuumModel):
+def dynamic_fixed(model, base: str, sides: str) -> np.ndarray:
+    """The DOFs held in a dynamic run: the bottom on a rigid ``base``; u_x of the sides for
+    ``rollers``, u_y for ``shear`` (none for ``lysmer``); never a contact DOF."""
     basis = model.disc.basis
-    fixed = [basis.get_dofs("bottom").all()] if settings.base == "rigid" else []
-    if settings.sides == "rollers":
+    fixed = [basis.get_dofs("bottom").all()] if base == "rigid" else []
+    if sides == "rollers":
         fixed.append(basis.get_dofs("sides").all("u^1"))
-    elif settings.sides == "shear":
+    elif sides == "shear":
         fixed.append(basis.get_dofs("sides").all("u^2"))
     fixed = np.unique(np.concatenate(fixed)) if fixed else np.zeros(0, dtype=np.int64)
+    return np.setdiff1d(fixed, model.footing.contact_dofs)
+
+
+def _dynamic_model(model, settings: _Settings, cls=ContinuumModel):
+    fixed = dynamic_fixed(model, settings.base, settings.sides)
     contact = model.footing.contact_dofs
-    fixed = np.setdiff1d(fixed, contact)
+    basis = model.disc.basis
     interior = np.setdiff1d(np.arange(model.disc.ndofs), np.union1d(fixed, contact))
     values = {f.name: getattr(model, f.name) for f in fields(model) if f.init}
     values.update(blocks=_blocks(model.disc.pattern, interior, contact, fixed,
@@ -473,7 +562,7 @@ def _gravity(model, scene, options: DynamicOptions, prescribe_u: bool) -> Contin
 # Result
 # ---------------------------------------------------------------------------------------------
 
-ENERGY = ("kinetic", "strain", "damping", "input")
+ENERGY = ("kinetic", "strain", "damping", "input", "contact")
 
 
 @dataclass(frozen=True, eq=False)
@@ -485,13 +574,16 @@ class DynamicResult:
     ``structure_velocity`` (length/s); ``ground_acceleration`` (nt, length/s²); ``H``, ``N``
     (compression), ``M`` (force/length); ``contact_length`` (length); per contact node at ``x``:
     ``pressure`` (force/length², compression +), ``gap`` (length), ``status``; ``iterations``
-    Newton iterations per step, ``refactored`` (bool) the steps that refactorised the iteration
-    matrix (plastic soil: a slow step, or a retry with the consistent tangent);
-    ``energy`` (nt, 4): kinetic, strain (soil work ∫(f_int − f_body)·du, story spring, footing
-    weight), damping (dissipated by dashpots), input (work of the ground loads), all cumulative
-    from the static state (force·length/length; with ``energy`` off: NaN). For Newmark
-    (α = 0), kinetic + strain + damping − input is constant to the Newton tolerance as long as
-    the contact set does not change (an impact dissipates).
+    Newton iterations per step (explicit route: contact active-set iterations since the last
+    row), ``refactored`` (bool) the steps that refactorised the iteration matrix (plastic soil:
+    a slow step, or a retry with the consistent tangent; never on the explicit route);
+    ``energy`` (nt, 5): kinetic, strain (soil work ∫(f_int − f_body)·du, story spring, footing
+    weight), damping (dissipated by dashpots), input (work of the ground loads), contact (the
+    energy the contact forces took out of the soil and the footing), all cumulative from the
+    static state by the trapezoidal rule (force·length/length; with ``energy`` off: NaN). For
+    Newmark (α = 0), kinetic + strain + damping + contact − input is constant to the Newton
+    tolerance; HHT's dissipation and central differences' O(dt²) make it drift
+    (:attr:`energy_balance_error`).
     Soil fields at ``snapshot_step``: ``displacement`` (nk, ndofs), ``plastic_strain`` and
     ``max_shear_stress`` (nk, nelems) element averages. ``width`` B; ``metadata`` provenance.
     """
@@ -530,9 +622,16 @@ class DynamicResult:
 
     @property
     def total_energy(self) -> np.ndarray:
-        """kinetic + strain + damping − input (constant for an exact balance)."""
+        """kinetic + strain + damping + contact − input (constant for an exact balance)."""
         e = self.energy
-        return e[:, 0] + e[:, 1] + e[:, 2] - e[:, 3]
+        return e[:, 0] + e[:, 1] + e[:, 2] + e[:, 4] - e[:, 3]
+
+    @property
+    def energy_balance_error(self) -> float:
+        """The balance's relative error (:func:`~upliftlab.continuum.run_control.balance_error`;
+        NaN without an energy account)."""
+        from .run_control import balance_error
+        return balance_error(self.energy, self.metadata.get("energy_floor", 0.0))
 
     def switches(self) -> np.ndarray:
         """Open/closed status changes per node over the run (nc)."""
@@ -609,18 +708,35 @@ def run_dynamic(model, scene, motion, options: DynamicOptions = DynamicOptions()
                 progress=None) -> DynamicResult:
     """Gravity, then ``motion`` on ``model`` (built from ``scene``): see the module docstring.
 
-    Every input is checked before any work (InputError naming the field, the value and the
-    valid range). ``progress(k, n, state)`` is called after each step if given. Raises
-    :class:`~upliftlab.continuum.newton.ConvergenceError` naming the time if a step fails.
+    ``options.method`` (else the scene's ``continuum.dynamics``) chooses the explicit route
+    (:func:`~upliftlab.continuum.explicit.run_explicit`) or this module's implicit one. Every
+    input is checked before any work (InputError naming the field, the value and the valid
+    range). ``progress(k, n, state)`` is called after each step (explicit: each recorded row)
+    if given. Raises :class:`~upliftlab.continuum.newton.ConvergenceError` naming the time if a
+    step fails, :class:`~upliftlab.continuum.run_control.EnergyBalanceError` if the energy
+    balance error exceeds the tolerance, and
+    :class:`~upliftlab.continuum.run_control.Interrupted` (with the partial result) on a
+    KeyboardInterrupt.
     """
-    settings = _settings(model, scene, motion, options)
-    started = _time.perf_counter()
-    static = _gravity(model, scene, options, settings.prescribe_u)
-    dyn = _dynamic_model(model, settings)
-    frozen = dyn if model.linear else _dynamic_model(model, settings, _FrozenTangent)
-    run = _Run(dyn, frozen, scene, motion, options, settings, static)
-    result = run.loop(progress)
-    result.metadata["wall_time_s"] = _time.perf_counter() - started
+    method = options.method or model.options.dynamics
+    tolerance = options.energy_tolerance or model.options.energy_tolerance
+    if method == "explicit" and (options.scheme != "hht" or options.alpha is not None):
+        raise InputError(f"DynamicOptions.scheme = {options.scheme!r}, alpha = {options.alpha}: "
+                         "the scheme and α are the implicit route's; valid with the explicit "
+                         "route: scheme 'hht', alpha None (or method = 'implicit')")
+    if method == "explicit":
+        from .explicit import run_explicit
+        result = run_explicit(model, scene, motion, options, progress=progress)
+    else:
+        settings = _settings(model, scene, motion, options)
+        started = _time.perf_counter()
+        static = _gravity(model, scene, options, settings.prescribe_u)
+        dyn = _dynamic_model(model, settings)
+        frozen = dyn if model.linear else _dynamic_model(model, settings, _FrozenTangent)
+        run = _Run(dyn, frozen, scene, motion, options, settings, static)
+        result = run.loop(progress)
+        result.metadata["wall_time_s"] = _time.perf_counter() - started
+    check_energy(result, tolerance, energy_floor(scene, model.width))
     return result
 
 
@@ -633,7 +749,7 @@ class _Run:
         self.c = newmark_parameters(settings.alpha, settings.dt)
         c, alpha = self.c, settings.alpha
         pattern = dyn.disc.pattern
-        self.M = pattern.matrix(mass_data(dyn, options.mass))
+        self.M = pattern.matrix(mass_data(dyn, options.mass or "consistent"))
         boundaries = (["sides"] if settings.sides == "lysmer" else []) + (
             ["bottom"] if settings.base == "compliant" else [])
         self.C = pattern.matrix(dashpot_data(dyn, boundaries))
@@ -672,9 +788,7 @@ class _Run:
         return f
 
     def loop(self, progress) -> DynamicResult:
-        dyn, c, st, opts = self.dyn, self.c, self.settings, self.options
-        alpha = st.alpha
-        w = alpha / (1.0 + alpha)
+        dyn, st, opts = self.dyn, self.settings, self.options
         n = st.steps
         state = self.static
         soil = _Kinematics(state.u.copy(), np.zeros_like(state.u), np.zeros_like(state.u))
@@ -684,14 +798,37 @@ class _Run:
         za = np.zeros(4)
         za[3] = -self.z.C[3, 3] * zv[3] / self.z.story_mass
         zk = _Kinematics(z0, zv, za)
-        F_soil, F_z, ag = self.load(0)
+        ag = self.load(0)[2]
         R = _residual(dyn, state.stress) if self.need_R else None
         rec = _Recorder(dyn, n, opts.snapshots)
-        energy = np.zeros(4) if opts.energy else np.full(4, np.nan)
+        energy = np.zeros(5) if opts.energy else np.full(5, np.nan)
         rec.record(0, 0.0, state, zk, ag, energy, 0, False,
                    kinetic=self.kinetic(soil.v, zk.v) if opts.energy else math.nan)
         soil_term_data = self.soil_data
         control = Control((st.prescribe_u, False, False), (0.0, 0.0, 0.0))
+        try:
+            self.steps(rec, state, soil, zk, R, energy, soil_term_data, control, progress)
+        except KeyboardInterrupt:
+            raise Interrupted(rec.result(dyn, self.motion, self.metadata(), rows=rec.rows)) \
+                from None
+        return rec.result(dyn, self.motion, self.metadata())
+
+    def metadata(self) -> dict:
+        """The run's settings for the result's metadata."""
+        st, options = self.settings, self.options
+        return {"method": "implicit", "scheme": options.scheme, "alpha": st.alpha,
+                "dt": st.dt, "steps": st.steps, "base": st.base, "sides": st.sides,
+                "wave": options.wave, "mass": options.mass or "consistent",
+                "dt_limit": st.limit, "courant_limit": COURANT_LIMIT,
+                "newton_rtol": options.newton.rtol}
+
+    def steps(self, rec, state, soil, zk, R, energy, soil_term_data, control, progress):
+        """Steps 1…n, recorded into ``rec``."""
+        dyn, c, st, opts = self.dyn, self.c, self.settings, self.options
+        alpha = st.alpha
+        w = alpha / (1.0 + alpha)
+        n = st.steps
+        F_soil, F_z, _ = self.load(0)
         for k in range(1, n + 1):
             F1_soil, F1_z, ag = self.load(k)
             fc = self.contact_vector(state)
@@ -720,14 +857,14 @@ class _Run:
                 if opts.energy:
                     energy += self.energy_increment(R, R1, new.u - u_old, v_old, soil.v,
                                                     (z_old, zk.d), zv_old, zk.v,
-                                                    F_soil, F1_soil, F_z, F1_z)
+                                                    F_soil, F1_soil, F_z, F1_z,
+                                                    (state.force, new.force))
                 R = R1
             state, F_soil, F_z = new, F1_soil, F1_z
             rec.record(k, k * st.dt, state, zk, ag, energy, new.iterations, refactored,
                        kinetic=self.kinetic(soil.v, zk.v) if opts.energy else math.nan)
             if progress is not None:
                 progress(k, n, state)
-        return rec.result(dyn, self.scene, opts, st, self.motion)
 
     def footing_affine(self, zk, state, F1, F0):
         """(A, b): A z_{n+1} + b + [Lᵀ f_c; 0] = 0, the footing and story equations."""
@@ -765,10 +902,11 @@ class _Run:
     def kinetic(self, v, zv) -> float:
         return 0.5 * float(v @ (self.M @ v)) + 0.5 * float(zv @ self.z.M @ zv)
 
-    def energy_increment(self, R0, R1, du, v0, v1, zz, zv0, zv1, Fs0, Fs1, Fz0, Fz1):
-        """(0, strain, damping, input) increments by the trapezoidal rule over the free DOFs:
-        soil work of f_int − f_body (less the released reactions), story spring, footing
-        weight; dashpot dissipation; work of the ground loads."""
+    def energy_increment(self, R0, R1, du, v0, v1, zz, zv0, zv1, Fs0, Fs1, Fz0, Fz1, forces):
+        """(0, strain, damping, input, contact) increments by the trapezoidal rule over the
+        free DOFs: soil work of f_int − f_body (less the released reactions), story spring,
+        footing weight; dashpot dissipation; work of the ground loads; the work the contact
+        forces (``forces`` at both ends, on the soil) take out of the soil and the footing."""
         free = np.concatenate((self.dyn.blocks.interior, self.dyn.blocks.contact))
         d = du[free]
         z = self.z
@@ -779,7 +917,10 @@ class _Run:
             (z.C @ (zv0 + zv1)) @ dz)
         inputs = 0.5 * float((Fs0 + Fs1)[free] @ d) + 0.5 * float(
             (Fz0 + Fz1 - 2.0 * z.gravity) @ dz)
-        return np.array([0.0, strain, damping, inputs])
+        mean = 0.5 * (forces[0] + forces[1])
+        L = self.dyn.footing.kinematics
+        contact = -(float(mean @ du[self.dyn.blocks.contact]) - float((L.T @ mean) @ dz[:3]))
+        return np.array([0.0, strain, damping, inputs, contact])
 
 
 def _static_fixed(model) -> np.ndarray:
@@ -827,10 +968,11 @@ class _Recorder:
         self.length = np.zeros(nt)
         self.iterations = np.zeros(nt, dtype=np.int64)
         self.refactored = np.zeros(nt, dtype=bool)
-        self.energy = np.zeros((nt, 4))
+        self.energy = np.zeros((nt, len(ENERGY)))
         chosen = np.unique(np.round(np.linspace(0, steps, snapshots)).astype(np.int64)) \
             if snapshots else np.zeros(0, dtype=np.int64)
         self.snap_steps = chosen
+        self.rows = 0
         self.snap_index = {int(k): i for i, k in enumerate(chosen)}
         ne = model.mesh.nelements
         self.disp = np.zeros((chosen.size, model.disc.ndofs))
@@ -839,6 +981,7 @@ class _Recorder:
 
     def record(self, k, t, state, zk, ag, energy, iterations, refactored, kinetic=0.0):
         f = self.f
+        self.rows = k + 1
         self.time[k], self.q[k] = t, state.q
         self.s[k], self.sv[k], self.ag[k] = zk.d[3], zk.v[3], ag
         self.reaction[k] = state.reaction
@@ -855,19 +998,22 @@ class _Recorder:
             self.eps[i] = element_average(self.model, state.material.equivalent_plastic_strain)
             self.shear[i] = element_average(self.model, max_shear_stress(state.stress))
 
-    def result(self, model, scene, options, settings, motion) -> DynamicResult:
-        extra = {"scheme": options.scheme, "alpha": settings.alpha, "dt": settings.dt,
-                 "steps": settings.steps, "base": settings.base, "sides": settings.sides,
-                 "wave": options.wave, "mass": options.mass, "dt_limit": settings.limit,
-                 "courant_limit": COURANT_LIMIT, "motion": motion.name,
-                 "motion_source": motion.source, "width": model.width,
-                 "newton_rtol": options.newton.rtol}
+    def result(self, model, motion, extra: dict, rows: int | None = None) -> DynamicResult:
+        """The :class:`DynamicResult` with ``extra`` metadata; ``rows``: only the first rows
+        were recorded (an interrupted run), marked ``incomplete`` with ``completed_until``."""
+        n = self.time.size if rows is None else rows
+        extra = {**extra, "motion": motion.name, "motion_source": motion.source,
+                 "width": model.width}
+        if n < self.time.size:
+            extra.update(incomplete=True, completed_until=float(self.time[n - 1]))
+        snaps = self.snap_steps < n
         return DynamicResult(
-            time=self.time, footing=self.q, structure_u=self.s, structure_velocity=self.sv,
-            ground_acceleration=self.ag, H=self.reaction[:, 0], N=-self.reaction[:, 1],
-            M=self.reaction[:, 2], contact_length=self.length, x=self.f.x,
-            pressure=self.pressure, gap=self.gap, status=self.status,
-            iterations=self.iterations, refactored=self.refactored, energy=self.energy,
-            width=model.width, snapshot_step=self.snap_steps, displacement=self.disp,
-            plastic_strain=self.eps, max_shear_stress=self.shear,
+            time=self.time[:n], footing=self.q[:n], structure_u=self.s[:n],
+            structure_velocity=self.sv[:n], ground_acceleration=self.ag[:n],
+            H=self.reaction[:n, 0], N=-self.reaction[:n, 1], M=self.reaction[:n, 2],
+            contact_length=self.length[:n], x=self.f.x, pressure=self.pressure[:n],
+            gap=self.gap[:n], status=self.status[:n], iterations=self.iterations[:n],
+            refactored=self.refactored[:n], energy=self.energy[:n], width=model.width,
+            snapshot_step=self.snap_steps[snaps], displacement=self.disp[snaps],
+            plastic_strain=self.eps[snaps], max_shear_stress=self.shear[snaps],
             metadata=_metadata(model, "dynamic", extra))

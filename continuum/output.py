@@ -337,23 +337,49 @@ def pushover_summary(path) -> dict:
 
 def dynamic_summary(result, width: float | None = None) -> dict:
     """Peaks of a dynamic run: footing θ and superstructure u (absolute value, with times),
-    and the largest contact loss 1 − c/B (``width`` B defaults to ``result.width`` or
-    ``metadata['width']``)."""
+    the largest contact loss 1 − c/B (``width`` B defaults to ``result.width`` or
+    ``metadata['width']``), the largest gap at either edge of the footing
+    (``peak_edge_uplift``), the settlement the motion left (``residual_settlement``, v at
+    t = 0 less v at the end, down positive), the energy balance error and its tolerance, the
+    time integration (``method``, ``dt``) and, for an interrupted run, ``completed_until``."""
     time = np.asarray(result.time)
-    theta = np.asarray(result.footing)[:, 2]
+    footing = np.asarray(result.footing)
+    theta = footing[:, 2]
     u = np.asarray(result.structure_u).reshape(time.size, -1)
     kt, ku = int(np.argmax(np.abs(theta))), int(np.argmax(np.max(np.abs(u), axis=1)))
     if width is None:
         width = getattr(result, "width", None) or result.metadata.get("width", math.nan)
     width = float(width)
-    return {
+    out = {
         "scene": result.metadata.get("scene", ""), "analysis": "dynamic",
         "duration": float(time[-1] - time[0]), "steps": int(time.size),
         "peak_theta": float(abs(theta[kt])), "time_of_peak_theta": float(time[kt]),
         "peak_structure_u": float(np.max(np.abs(u[ku]))), "time_of_peak_u": float(time[ku]),
         "max_contact_loss": float(1.0 - np.min(result.contact_length) / width)
         if math.isfinite(width) else None,
+        "peak_edge_uplift": _edge_uplift(result),
+        "residual_settlement": float(footing[0, 1] - footing[-1, 1]),
+        "energy_balance_error": _energy_error(result),
+        "energy_tolerance": result.metadata.get("energy_tolerance"),
+        "method": result.metadata.get("method"), "dt": result.metadata.get("dt"),
     }
+    if result.metadata.get("incomplete"):
+        out["completed_until"] = result.metadata.get("completed_until")
+    return out
+
+
+def _edge_uplift(result) -> float | None:
+    gap = np.asarray(getattr(result, "gap", np.zeros((0, 0))))
+    if gap.ndim != 2 or gap.shape[1] == 0:
+        return None
+    return float(max(np.max(gap[:, 0]), np.max(gap[:, -1]), 0.0))
+
+
+def _energy_error(result) -> float | None:
+    error = getattr(result, "energy_balance_error", None)
+    if error is None:
+        error = result.metadata.get("energy_balance_error")
+    return None if error is None or not math.isfinite(float(error)) else float(error)
 
 
 def summary_line(summary: dict, units: dict | None = None) -> str:
@@ -376,11 +402,13 @@ def summary_line(summary: dict, units: dict | None = None) -> str:
                 f"{summary['settlement_final']:.3g} {length}; {summary['dofs']} DOFs, "
                 f"{summary['steps']} steps")
     loss = summary.get("max_contact_loss")
+    energy = summary.get("energy_balance_error")
     return (f"{summary['scene']} dynamic: peak footing θ = {summary['peak_theta']:.3g} rad at "
             f"t = {summary['time_of_peak_theta']:.2f} s; peak superstructure u = "
             f"{summary['peak_structure_u']:.3g} {length} at t = "
             f"{summary['time_of_peak_u']:.2f} s"
-            + ("" if loss is None else f"; max contact loss {loss:.0%} of B"))
+            + ("" if loss is None else f"; max contact loss {loss:.0%} of B")
+            + ("" if energy is None else f"; energy balance error {energy:.2g} of the input"))
 
 
 # ---------------------------------------------------------------------------------------------

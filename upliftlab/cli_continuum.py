@@ -12,6 +12,7 @@ the output folder, and the size of the mesh and of the run against the scene's b
 from __future__ import annotations
 
 import math
+import signal
 import sys
 import time
 
@@ -19,7 +20,8 @@ from . import bounds
 from .budget import check as check_budget
 from .budget import continuum_cost
 from .checks import InputError
-from .cli import _default_out, need_extra, number, refuse_without_effect, say_if_rounded
+from .cli import (EXIT_INTERRUPTED, EXIT_NUMERICS, _default_out, need_extra, number,
+                  refuse_without_effect, say_if_rounded)
 from .outdir import claim
 
 __all__ = ["add_continuum", "continuum", "CONTINUUM_ANALYSES", "MESH_KEYS", "MAX_ROTATION"]
@@ -79,6 +81,9 @@ def add_continuum(sub) -> None:
     c.add_argument("--boundary", help="impedance: absorbing boundary pml (default) or lysmer")
     c.add_argument("--scale", help="displacement magnification of the pictures (default: "
                                    "automatic, stated in each picture)")
+    c.add_argument("--threads", help="dynamic, explicit route: threads of the compiled soil "
+                                     "kernels (default 1; more pays only on an otherwise idle "
+                                     "machine)")
     c.add_argument("--out", help="output directory (default results/<scene>-continuum-"
                                  "<analysis>, with a digest of the overrides when there are "
                                  "any)")
@@ -121,13 +126,17 @@ def _options(args) -> dict:
                          "magnifies the renders' displacements)")
     if args.analysis != "dynamic" and args.motion is not None:
         raise InputError("--motion: has no effect: only the dynamic analysis takes a motion")
+    if args.threads is not None and args.analysis != "dynamic":
+        raise InputError(f"--threads = {args.threads}: has no effect: only the dynamic "
+                         "analysis takes it")
     for flag, value in (("--a0", args.a0), ("--boundary", args.boundary)):
         if value is not None and args.analysis != "impedance":
             raise InputError(f"{flag} = {value}: has no effect: only the impedance analysis "
                              "takes it")
     return {"theta_max": number("--theta-max", args.theta_max, high=MAX_ROTATION),
             "steps": number("--steps", args.steps, integer=True, low=2, high=10**9),
-            "scale": number("--scale", args.scale, high=1e9)}
+            "scale": number("--scale", args.scale, high=1e9),
+            "threads": number("--threads", args.threads, integer=True, low=1, high=256)}
 
 
 def _physics(scene, analysis: str) -> None:
@@ -152,6 +161,11 @@ def _physics(scene, analysis: str) -> None:
                          f"continuum dynamics needs the soil's mass; valid range is "
                          f"[{low:.3g}, {density.high / density.factor(scene.units):.3g}] "
                          f"{density.unit(scene.units)}")
+    if analysis == "dynamic" and (scene.continuum is None
+                                  or scene.continuum.dynamics == "explicit"):
+        from .continuum.explicit import check_footing_mass
+
+        check_footing_mass(scene)
     depth = soil.layer_depth
     if depth is not None and depth < 0.25 * B:
         raise InputError(f"soil.layer_depth = {depth:g}: a layer thinner than B/4 = "
@@ -180,7 +194,7 @@ def continuum(args) -> int:
     _physics(scene, args.analysis)
     if args.analysis == "dynamic":
         motion = scene.build_motion()  # reads and checks the record before any meshing
-    given = dict(options)  # as the user gave them: they name the default folder
+    given = {k: v for k, v in options.items() if k != "threads"}  # name the default folder
     cont = scene.continuum or ContinuumOptions()
     budget = scene.analysis
     dofs, h_min = _grid(scene, cont)  # from the grid lines: nothing is meshed yet
@@ -207,7 +221,9 @@ def continuum(args) -> int:
         if args.analysis == "pushover":
             result = _pushover(model, scene, options["theta_max"], options["steps"])
         else:
-            result = _dynamic(model, scene, motion)
+            result = _dynamic(model, scene, motion, options["threads"] or 1, out, started)
+            if isinstance(result, int):
+                return result
             say_if_rounded("upliftlab continuum", scene.analysis.duration or motion.duration,
                            steps, dt)
         _say(f"solved in {time.perf_counter() - started:.1f} s")
@@ -246,15 +262,20 @@ def _grid(scene, options) -> tuple[int, float]:
 
 def _dynamic_steps(scene, motion, h_min: float) -> tuple[int, float]:
     """(steps, dt) of the continuum dynamics on a mesh whose shortest edge is ``h_min``: the
-    record step divided down to the Courant limit (as :func:`run_dynamic` does)."""
+    record step divided down to the route's limit (as :func:`run_dynamic` does; the explicit
+    route's exact limit needs the mesh, :data:`~upliftlab.continuum.explicit.COURANT_ESTIMATE`
+    estimates it from below)."""
     from .continuum.dynamics import COURANT_LIMIT, wave_speeds
+    from .continuum.explicit import COURANT_ESTIMATE
 
-    limit = COURANT_LIMIT * h_min / wave_speeds(scene.soil)[0]
+    explicit = (scene.continuum.dynamics if scene.continuum else "explicit") == "explicit"
+    courant = COURANT_ESTIMATE if explicit else COURANT_LIMIT
+    limit = courant * h_min / wave_speeds(scene.soil)[0]
     dt = motion.dt / max(1, math.ceil(motion.dt / limit * (1.0 - 1e-12)))
     duration = scene.analysis.duration or motion.duration
     if duration < 0.5 * dt:
         raise InputError(f"analysis.duration = {duration:g} s: shorter than one time step "
-                         f"of this mesh ({dt:.4g} s, V_p dt/h_min = {COURANT_LIMIT:g})")
+                         f"of this mesh ({dt:.4g} s, V_p dt/h_min = {courant:g})")
     return max(1, int(round(duration / dt))), dt
 
 
@@ -311,17 +332,64 @@ def _eta(started: float, done: int, total: int) -> str:
         f"; {elapsed:.0f} s"
 
 
-def _dynamic(model, scene, motion):
+def _dynamic(model, scene, motion, threads: int, out, started: float):
+    """The dynamic run, or the exit code of a run that was interrupted (Ctrl-C or SIGTERM: the
+    rows computed so far written to ``result.nc``, marked incomplete, no completion marker) or
+    that failed its energy check (its result written, marked failed)."""
     from .continuum.dynamics import DynamicOptions, run_dynamic
+    from .continuum.run_control import EnergyBalanceError, Interrupted
 
-    started = time.perf_counter()
+    duration = scene.analysis.duration or motion.duration
+    _say(f"{model.options.dynamics} dynamics (continuum.dynamics), {duration:g} s of "
+         f"{motion.name} (--set analysis.duration=T runs the first T s)")
+
+    def terminate(signum, frame):
+        raise KeyboardInterrupt(f"signal {signum}")
+
+    previous = signal.signal(signal.SIGTERM, terminate)
+    try:
+        return run_dynamic(model, scene, motion, DynamicOptions(threads=threads),
+                           progress=_dynamic_progress(duration, started))
+    except Interrupted as exc:
+        out.start_writing()
+        path = exc.result.save(out.path / "result.nc")
+        until = exc.result.metadata["completed_until"]
+        print(f"upliftlab: interrupted at t = {until:.4g} s of the motion; wrote the rows "
+              f"computed so far to {path} (attribute incomplete = 1, completed_until = "
+              f"{until:.4g} s)", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except EnergyBalanceError as exc:
+        out.start_writing()
+        exc.result.metadata["energy_check"] = "failed"
+        path = exc.result.save(out.path / "result.nc")
+        print(f"upliftlab: error: {exc} (result written to {path}, energy_check = failed)",
+              file=sys.stderr)
+        return EXIT_NUMERICS
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _dynamic_progress(duration: float, started: float):
+    """A ``progress(k, n, state)`` that reports every 5 % of a dynamic run: simulated time,
+    elapsed wall time and the ETA from the rate of the time loop so far."""
+    first = {}
 
     def progress(k, n, state):
-        if k == n or k % max(1, n // 20) == 0:
-            _say(f"step {k}/{n}: θ = {state.q[2]:.4g} rad, N = {state.N:.4g}, "
-                 f"{state.iterations} Newton iterations{_eta(started, k, n)}")
+        now = time.perf_counter()
+        first.setdefault("time", (now, k))
+        tick = 20 * k // max(n, 1)
+        if k and k != n and tick <= first.get("tick", -1):
+            return
+        first["tick"] = tick
+        t0, k0 = first["time"]
+        rate = (now - t0) / (k - k0) if k > k0 else math.nan
+        eta = rate * (n - k)
+        _say(f"t = {duration * k / max(n, 1):.3f} of {duration:g} s ({k / max(n, 1):.0%}), "
+             f"elapsed {now - started:.1f} s, ETA {eta:.0f} s"
+             + ("" if math.isfinite(eta) else " (measuring)")
+             + f": θ = {state.q[2]:.4g} rad, N = {state.N:.4g}")
 
-    return run_dynamic(model, scene, motion, DynamicOptions(), progress=progress)
+    return progress
 
 
 def _impedance_options(args):

@@ -536,6 +536,7 @@ def _analysis(data, units: UnitSystem) -> Analysis:
 SOIL_MODELS = ("elastic", "tresca", "von_mises", "drucker_prager", "mohr_coulomb")
 INTERFACES = ("frictionless", "bonded", "coulomb")
 ELEMENTS = ("P1", "P2", "Q1", "Q2")
+DYNAMICS = ("explicit", "implicit")
 
 
 @dataclass(frozen=True)
@@ -609,6 +610,10 @@ class ContinuumOptions:
     footing width B), ``element`` type, ``elements_across`` the footing, ``grading`` towards the
     footing edges, ``base`` (rigid or compliant) and side/bottom ``boundary`` (fixed or lysmer).
     ``intorder`` is the quadrature order (None: the element's default, Q2 2×2 reduced).
+    ``dynamics``: the time integration of a dynamic run, ``explicit`` (central differences,
+    lumped mass; the default) or ``implicit`` (HHT-α with Newton). ``energy_tolerance``: the
+    largest energy balance error (fraction of the input energy) a dynamic run may have before
+    it counts as failed, in (0, 1].
     """
 
     domain_width: float = 10.0
@@ -619,6 +624,8 @@ class ContinuumOptions:
     base: str = "rigid"
     boundary: str = "fixed"
     intorder: int | None = None
+    dynamics: str = "explicit"
+    energy_tolerance: float = 0.05
 
 
 #: Most elements across the footing: 1024 gives about 10⁸ DOFs (the run's memory is estimated
@@ -646,6 +653,8 @@ def _continuum(data) -> ContinuumOptions:
         base=table.get("base", _choice(("rigid", "compliant")), "rigid"),
         boundary=table.get("boundary", _choice(("fixed", "lysmer")), "fixed"),
         intorder=table.get("intorder", _integer(1, 10), None),
+        dynamics=table.get("dynamics", _choice(DYNAMICS), "explicit"),
+        energy_tolerance=table.get("energy_tolerance", _range(0.0, 1.0, low_open=True), 0.05),
     )
     table.done()
     return options

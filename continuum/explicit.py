@@ -1,0 +1,507 @@
+"""Explicit time histories of the soil, the rigid footing and the superstructure: central
+differences with a lumped mass and the footing's contact solved exactly at every step.
+
+**Scheme.** Central differences (Newmark β = 0, γ = 1/2) with the velocity at half steps:
+M (v_{n+½} − v_{n−½})/dt + C (v_{n+½} + v_{n−½})/2 = F_n − R(u_n) + f_c,n and
+u_{n+1} = u_n + dt v_{n+½}, started by a half step v_{½} = v_0 + (dt/2) a_0 from the static
+state at rest. M is the soil's row-sum lumped mass (∫ ρ φ_i, positive for Q2, Q1 and P1; a
+basis with a non-positive lumped mass, e.g. P2, is refused) and C the row sums of the
+Lysmer–Kuhlemeyer dashpots, so each step is one evaluation of the internal force R(u_n) with
+the return map (:class:`~upliftlab.continuum.soil_force.SoilForce`, compiled) and a diagonal
+update: no Newton iteration and no factorisation. The loads and the unknowns are those of the
+implicit route (:mod:`~upliftlab.continuum.dynamics`): the same gravity state, relative motion
+on a rigid base (−M r a_g) or the incident-wave traction on a compliant one, released static
+reactions as constant loads, and the footing with the story DOF of an SDOF superstructure.
+
+**Contact.** The contact forces of step n are those that make the positions at n+1 satisfy the
+contact conditions exactly (:mod:`~upliftlab.continuum.contact_step`): with a lumped mass this
+couples only the footing nodes, the footing's (u, v, θ) and the story DOF, a complementarity
+problem of the size of the footing. A node that lands stops with the footing in that step (an
+inelastic impact of its lumped mass), and the contact forces only ever dissipate. The recorded
+contact force of row n is the one of the step that ends at t_n, paired with the gap at t_n: the
+complementarity g ≥ 0, P ≥ 0, P g = 0 holds for every recorded pair to round-off.
+
+**Stable step.** Central differences are stable for dt ω_max ≤ 2, ω_max² the largest
+eigenvalue of M⁻¹K of the elastic soil on its free DOFs (computed by Lanczos, scipy's
+``eigsh``, on M^{-1/2} K M^{-1/2}; a plastic tangent is softer and the exact contact does not
+restrict the step). The admissible step is :data:`STABILITY_FRACTION` of that limit; the
+default dt is the largest divisor of the record's step below it, and a larger dt is refused
+with the limit in the message.
+
+**Energy.** Kinetic energy ½ v̄ᵀ M v̄ at whole steps (v̄_n the mean of the half-step velocities);
+the work of the soil's internal force less its weight, the story spring and the footing weight
+(``strain``), of the dashpots (``damping``), of the ground loads (``input``) and of the contact
+forces (``contact``, the energy they take out) by the trapezoidal rule over each step, as in
+the implicit route. For a stable central-difference run the balance closes to O(dt²).
+
+**Recording.** Every ``record_every`` steps (default: the implicit route's step for the same
+mesh, so both give histories on comparable grids and of comparable size); soil fields at
+``snapshots`` evenly spaced recorded rows.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import time as _time
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+import skfem
+
+from ..checks import InputError
+from .contact_step import footing_schur, frictionless_step, tangential_step
+from . import dynamics as _dynamics
+from .dynamics import (DynamicResult, _check_scene, _ground_velocity, _Recorder, _residual,
+                       _static_fixed, _x_dofs, _full_basis, boundaries, dashpot_data,
+                       dynamic_fixed, incident_load, structure_matrices, time_step_limit)
+from .footing import OPEN, STICK
+from .explicit_loop import run_steps
+from .kernels import compiled_pair, soil_predict
+from .newton import ConvergenceError
+from .run_control import Interrupted
+from .soil_force import SoilForce
+
+__all__ = ["STABILITY_FRACTION", "ExplicitSettings", "lumped_mass", "lumped_dashpots",
+           "critical_step", "check_footing_mass", "explicit_settings", "run_explicit"]
+
+#: The admissible step as a fraction of the central-difference limit 2/ω_max.
+STABILITY_FRACTION = 0.9
+#: V_p dt / h_min of the explicit step, to estimate a run's cost before the mesh exists (the
+#: step itself comes from the mesh's largest eigenvalue). Below the measured values so that the
+#: estimate errs on the cost's side: Q2, 2×2 reduced, lumped: 0.36 (clay scene, 4 to 16 across).
+COURANT_ESTIMATE = 0.3
+#: Run frictionless contact with a compiled material in the compiled loop
+#: (:mod:`~upliftlab.continuum.explicit_loop`; False: the Python loop, for comparison).
+COMPILED_LOOP = True
+
+
+@dataclass(frozen=True)
+class ExplicitSettings:
+    """``dt`` (s), ``steps``, ``record_every`` (steps per recorded row), ``base``, ``sides``,
+    ``prescribe_u`` (frictionless: the footing's u follows the base), the admissible step
+    ``limit`` = :data:`STABILITY_FRACTION` × ``critical`` = 2/``omega_max`` (s, rad/s)."""
+
+    dt: float
+    steps: int
+    record_every: int
+    base: str
+    sides: str
+    prescribe_u: bool
+    limit: float
+    critical: float
+    omega_max: float
+
+
+def lumped_mass(model) -> np.ndarray:
+    """Row sums of the consistent soil mass, ∫ ρ φ_i (mass per length, per DOF)."""
+    rho = model.soil.density
+    return skfem.LinearForm(lambda v, w: rho * (v[0] + v[1])).assemble(_full_basis(model))
+
+
+def lumped_dashpots(model, names) -> np.ndarray:
+    """Row sums of the Lysmer–Kuhlemeyer dashpot matrix on the boundaries ``names``."""
+    data = dashpot_data(model, names)
+    return np.asarray(model.disc.pattern.matrix(data).sum(axis=1)).ravel()
+
+
+def critical_step(model, mass: np.ndarray, free: np.ndarray) -> tuple[float, float]:
+    """(2/ω_max, ω_max): the central-difference limit of the elastic soil with the diagonal
+    ``mass`` on the ``free`` DOFs (module docstring)."""
+    from scipy import sparse
+    from scipy.sparse.linalg import eigsh
+
+    from . import assembly
+    from .dynamics import _elastic_tangent
+
+    K = assembly.stiffness(model.disc, _elastic_tangent(model))[free][:, free]
+    scale = sparse.diags(1.0 / np.sqrt(mass[free]))
+    A = (scale @ K @ scale).tocsr()
+    start = np.random.default_rng(0).standard_normal(free.size)
+    top = float(eigsh(A, k=1, which="LA", tol=1e-8, v0=start, return_eigenvectors=False)[0])
+    omega = math.sqrt(top)
+    return 2.0 / omega, omega
+
+
+def recorded_steps(settings: ExplicitSettings) -> np.ndarray:
+    """The steps recorded as rows: every ``record_every``-th and the last."""
+    return np.unique(np.append(np.arange(0, settings.steps, settings.record_every),
+                               settings.steps))
+
+
+#: Smallest rotary inertia I₀ of the footing, relative to the story's m h², that the explicit
+#: route integrates: its footing and story are advanced with their mass matrix, whose θ row is
+#: h times the story's when I₀ = 0 (singular; the implicit route adds the soil's stiffness and
+#: runs it).
+MIN_ROTARY_INERTIA = 1e-9
+
+
+def check_footing_mass(scene) -> None:
+    """Refuse a footing whose rotary inertia the explicit route cannot advance."""
+    s = scene.structure
+    story = s.stories[0]
+    low = MIN_ROTARY_INERTIA * story.weight / scene.g * story.height ** 2
+    if not s.rotary_inertia >= low:
+        raise InputError(f"structure.rotary_inertia = {s.rotary_inertia:g}: the explicit route "
+                         "needs the footing's mass matrix positive definite; valid range is "
+                         f"[{low:.3g}, ...) ({MIN_ROTARY_INERTIA:g} m h²), or set "
+                         "continuum.dynamics = 'implicit'")
+
+
+def explicit_settings(model, scene, motion, options, mass, free) -> ExplicitSettings:
+    """The explicit run's step, duration and boundaries, checked before any work."""
+    _check_scene(scene, motion)
+    base, sides = boundaries(model, options)
+    if options.mass not in (None, "lumped"):
+        raise InputError(f"DynamicOptions.mass = {options.mass!r}: the explicit route needs a "
+                         "diagonal mass; valid: 'lumped' (or continuum.dynamics = 'implicit')")
+    bad = free[mass[free] <= 1e-12 * np.abs(mass).max()]  # zero up to round-off
+    if bad.size:
+        raise InputError(f"continuum.element = {model.disc.element!r}: its row-sum lumped mass "
+                         f"is not positive at {bad.size} DOFs; the explicit route needs Q2, Q1 or "
+                         "P1 (or continuum.dynamics = 'implicit')")
+    check_footing_mass(scene)
+    critical, omega = critical_step(model, mass, free)
+    limit = STABILITY_FRACTION * critical
+    if options.dt is None:
+        dt = motion.dt / max(1, math.ceil(motion.dt / limit * (1.0 - 1e-12)))
+    else:
+        dt = options.dt
+        if dt > limit:
+            raise InputError(
+                f"DynamicOptions.dt = {dt:g} s: beyond the explicit stability limit of the mesh "
+                f"(2/ω_max = {critical:.4g} s, ω_max = {omega:.4g} rad/s); valid range is "
+                f"(0, {limit:.4g}] s ({STABILITY_FRACTION:g} of 2/ω_max)")
+    duration = options.duration or scene.analysis.duration or motion.duration
+    steps = max(1, int(round(duration / dt)))
+    if options.record_every is not None:
+        every = options.record_every
+    else:
+        implicit = motion.dt / max(1, math.ceil(motion.dt / time_step_limit(model)
+                                                * (1.0 - 1e-12)))
+        every = max(1, int(math.floor(implicit / dt * (1.0 + 1e-9))))
+    return ExplicitSettings(dt=dt, steps=steps, record_every=min(every, steps), base=base,
+                            sides=sides, prescribe_u=not model.footing.interface.tangential,
+                            limit=limit, critical=critical, omega_max=omega)
+
+
+class _Row:
+    """What :class:`~upliftlab.continuum.dynamics._Recorder` reads of a state (duck type);
+    the material and the stress are formed only for a snapshot."""
+
+    iterations = 0
+
+    def __init__(self, u, q, force, status, reaction, soil):
+        self.u, self.q, self.force, self.status, self.reaction = u, q, force, status, reaction
+        self._soil = soil
+
+    @property
+    def N(self) -> float:
+        return float(-self.reaction[1])
+
+    @property
+    def M(self) -> float:
+        return float(self.reaction[2])
+
+    @property
+    def material(self):
+        return self._soil.material
+
+    @property
+    def stress(self):
+        return self._soil.stress_tensor
+
+
+class _Structure:
+    def __init__(self, z, v):
+        self.d, self.v = z, v
+
+
+def run_explicit(model, scene, motion, options, *, progress=None) -> DynamicResult:
+    """Gravity, then ``motion`` by central differences (module docstring); the arguments and
+    the result are those of :func:`~upliftlab.continuum.dynamics.run_dynamic`."""
+    mass = lumped_mass(model)
+    base, sides = boundaries(model, options)
+    fixed = dynamic_fixed(model, base, sides)
+    free = np.setdiff1d(np.arange(model.disc.ndofs), fixed)
+    settings = explicit_settings(model, scene, motion, options, mass, free)
+    started = _time.perf_counter()
+    static = _dynamics._gravity(model, scene, options, settings.prescribe_u)
+    threads = numba.get_num_threads()
+    numba.set_num_threads(min(options.threads, numba.config.NUMBA_NUM_THREADS))
+    try:
+        run = _Explicit(model, scene, motion, options, settings, static, mass, fixed)
+        result = run.loop(progress)
+    finally:
+        numba.set_num_threads(threads)
+    result.metadata["wall_time_s"] = _time.perf_counter() - started
+    return result
+
+
+class _Explicit:
+    """The time loop's constant pieces (module docstring)."""
+
+    def __init__(self, model, scene, motion, options, settings, static, mass, fixed):
+        self.model, self.scene, self.motion = model, scene, motion
+        self.options, self.settings, self.static = options, settings, static
+        n = model.disc.ndofs
+        self.keep = np.ones(n)
+        self.keep[fixed] = 0.0
+        self.mass = np.where(self.keep > 0.0, mass, 1.0)
+        names = (["sides"] if settings.sides == "lysmer" else []) + (
+            ["bottom"] if settings.base == "compliant" else [])
+        self.c = lumped_dashpots(model, names) * self.keep
+        released = np.setdiff1d(_static_fixed(model), fixed)
+        R0 = _residual(model, static.stress)
+        release = np.zeros(n)
+        release[released] = R0[released]
+        self.datum = model.body_force + release  # R = f_int − datum
+        if settings.base == "rigid":
+            r = np.zeros(n)
+            r[_x_dofs(model)] = 1.0
+            self.ground_soil = -(mass * r) * self.keep
+            self.incident = np.zeros(n)
+        else:
+            self.ground_soil = np.zeros(n)
+            self.incident = incident_load(model, options.wave) * self.keep
+        self.z = structure_matrices(scene)
+        self.ground_z = -(self.z.M @ self.z.r) if settings.base == "rigid" else np.zeros(4)
+        self.vg = _ground_velocity(motion, settings.dt, settings.steps + 1)
+        f = model.footing
+        self.contact = f.contact_dofs
+        self.L = f.kinematics
+        self.free_q = np.array([not settings.prescribe_u, True, True])
+        self.soil = SoilForce(model, static)
+        #: the compiled loop serves every interface with a compiled material
+        self.compiled = COMPILED_LOOP and self.soil.compiled
+
+    def structure_affine(self, zn, vz, Fz, first: bool):
+        """(A, b): A z_{n+1} + b + [Lᵀ f_c; 0] = 0 for the footing and story (module
+        docstring of :mod:`~upliftlab.continuum.contact_step`)."""
+        z, dt = self.z, self.settings.dt
+        if first:
+            h = 0.5 * dt * dt
+            A = z.M / h
+            b = -A @ zn - z.M @ vz / (0.5 * dt) - Fz + z.K @ zn + z.C @ vz
+        else:
+            h = dt * dt
+            A = (z.M + 0.5 * dt * z.C) / h
+            b = -A @ zn - (z.M - 0.5 * dt * z.C) @ vz / dt - Fz + z.K @ zn
+        return A, b
+
+    def loop(self, progress) -> DynamicResult:
+        st = self.settings
+        rec = _Recorder(self.model, recorded_steps(st).size - 1, self.options.snapshots)
+        try:
+            if self.compiled:
+                self.compiled_steps(rec, progress)
+            else:
+                self.steps(rec, progress)
+        except KeyboardInterrupt:
+            raise Interrupted(rec.result(self.model, self.motion, self.metadata(),
+                                         rows=rec.rows)) from None
+        return rec.result(self.model, self.motion, self.metadata())
+
+    def steps(self, rec, progress) -> None:
+        """Steps 0…n (the last only to complete row n), recorded into ``rec``."""
+        st, z, f = self.settings, self.z, self.model.footing
+        dt, n_steps, every = st.dt, st.steps, st.record_every
+        times = np.arange(n_steps + 1) * dt
+        ag_all = np.asarray(self.motion.acceleration_at(times), dtype=float) * self.scene.g
+        vinc_all = 0.5 * self.vg[:n_steps + 1] * self.scene.g
+        u = self.static.u.copy()
+        u_prev, u_next = u.copy(), np.empty_like(u)
+        v, v_next = np.zeros_like(u), np.empty_like(u)
+        R_prev, F_prev = np.zeros_like(u), np.zeros_like(u)
+        m_first, m_step = self.mass, self.mass + 0.5 * dt * self.c
+        zn = np.append(self.static.q, 0.0)
+        vz = np.zeros(4)
+        vz[3] = self.motion.initial_velocity
+        force = self.static.force.copy()
+        status = self.static.status.copy()
+        closed = status != OPEN
+        energy = np.zeros(5)
+        z_prev, Fz_prev, iterations = zn, None, 0
+        free = np.flatnonzero(self.free_q)
+        Lf = np.ascontiguousarray(self.L[:f.nodes][:, self.free_q])
+        uy = np.asarray(f.uy, dtype=np.int64)
+        recorded = status
+        for k in range(n_steps + 1):
+            first = k == 0
+            with self.diverging(k, k, u):
+                fint = self.soil(u)
+            ag = ag_all[k]
+            Fz = self.ground_z * ag + z.gravity
+            increments = soil_predict(u, u_prev, v, fint, self.datum, self.keep,
+                                      self.ground_soil, self.incident, ag, vinc_all[k],
+                                      self.mass, self.c, dt, first, R_prev, F_prev, u_next,
+                                      v_next)
+            A, b = self.structure_affine(zn, vz, Fz, first)
+            h = dt * (0.5 * dt if first else dt)
+            m_eff = m_first if first else m_step
+            force_prev = force
+            if not f.interface.tangential:
+                P, q, s, its = frictionless_step(A, b, free, Lf, uy, u, u_next, v_next,
+                                                 m_eff, h, dt, closed)
+                force = -P
+                z_new = np.array([q[0], q[1], q[2], s])
+            else:
+                force, q, status, its = self.contact_step(A, b, zn, u_next, m_eff, h,
+                                                          status, u)
+                c = self.contact
+                u_next[c] += h * force / m_eff[c]
+                v_next[c] = (u_next[c] - u[c]) / dt
+                z_new = np.append(q, -(A[3, :3] @ q + b[3]) / A[3, 3])
+                closed = status != OPEN
+            vz_new = (z_new - zn) / dt
+            if not first:
+                strain, work, dissipated = increments
+                energy[1:4] += (strain, dissipated, work)
+                energy[1:] += self.structure_increment(z_prev, zn, Fz_prev, Fz, vz)
+                energy[4] += self.contact_work(force_prev, force, u_prev, u, z_prev, zn)
+            iterations += its
+            if k % every == 0 or k == n_steps:
+                vbar = v if first else 0.5 * (v + v_next)
+                zbar = vz if first else 0.5 * (vz + vz_new)
+                energy[0] = 0.5 * float(np.dot(self.mass * vbar, vbar)) + 0.5 * float(
+                    zbar @ z.M @ zbar)
+                state = self.static if first else _Row(
+                    u, zn[:3], force_prev, recorded, self.L.T @ force_prev, self.soil)
+                rec.record(rec.rows, k * dt, state, _Structure(zn, zbar), ag, energy,
+                           iterations, False, kinetic=energy[0])
+                if progress is not None:
+                    progress(k, n_steps, state)
+                iterations = 0
+            recorded = np.where(closed, STICK, OPEN).astype(np.int8) \
+                if not f.interface.tangential else status.copy()
+            if k == n_steps:
+                break
+            z_prev, Fz_prev = zn, Fz
+            u_prev, u, u_next = u, u_next, u_prev
+            v, v_next = v_next, v
+            zn, vz = z_new, vz_new
+
+    def compiled_steps(self, rec, progress) -> None:
+        """The steps of :meth:`steps` in the compiled loop
+        (:func:`~upliftlab.continuum.explicit_loop.run_steps`), called once per recorded row."""
+        st, z, f, soil = self.settings, self.z, self.model.footing, self.soil
+        dt, n_steps = st.dt, st.steps
+        times = np.arange(n_steps + 1) * dt
+        ag_all = np.asarray(self.motion.acceleration_at(times), dtype=float) * self.scene.g
+        vinc_all = 0.5 * self.vg[:n_steps + 1] * self.scene.g
+        n, nc = self.model.disc.ndofs, f.nodes
+        U = np.empty((3, n))
+        U[:] = self.static.u
+        V = np.zeros((2, n))
+        R_prev, F_prev, fint = np.zeros(n), np.zeros(n), np.zeros(n)
+        Z = np.empty((3, 4))
+        Z[:] = np.append(self.static.q, 0.0)
+        VZ = np.zeros((2, 4))
+        VZ[0, 3] = self.motion.initial_velocity
+        FC = np.zeros((2, self.contact.size))
+        FC[0] = self.static.force
+        ST = np.zeros((2, nc), dtype=np.int8)
+        ST[0] = self.static.status
+        energy, counters = np.zeros(5), np.zeros(1, dtype=np.int64)
+        lay, m_step = soil.layout, self.mass + 0.5 * dt * self.c
+        lam, G, strength, hardening = soil.params
+        free = np.flatnonzero(self.free_q)
+        Lf = np.ascontiguousarray(self.L[:nc][:, self.free_q])
+        elements, gather = compiled_pair(numba.get_num_threads() > 1)
+        done, Fz_prev = -1, np.zeros(4)
+        constants = (lay.nodes, lay.dNdx, lay.dNdy, lay.dx, soil.eigenstrain, soil.plastic,
+                     soil.ebar, soil.kind, lam, G, strength, hardening, soil.stress, soil.work,
+                     fint, lay.ptr, lay.entries, elements, gather, self.datum, self.keep,
+                     self.ground_soil, self.incident, ag_all, vinc_all, self.mass, self.c,
+                     m_step, z.M, z.C, z.K, z.gravity, self.ground_z, free, Lf,
+                     f.uy.astype(np.int64), f.ux.astype(np.int64), f.x, f.interface.mu, f.width,
+                     f.interface.tangential)
+        for k in recorded_steps(st):
+            with self.diverging(done + 1, k, U[k % 3]):
+                run_steps(done + 1, k, dt, U, V, R_prev, F_prev, Z, VZ, Fz_prev, FC, ST, energy,
+                          counters, *constants)
+            done = k
+            self.record(rec, progress, k, U, V, Z, VZ, FC, ST, energy, counters, ag_all[k])
+
+    @contextlib.contextmanager
+    def diverging(self, k0, k1, u):
+        """Turn a diverged solution in steps k0…k1 (a failed contact solve, or ``u``, the
+        displacement after them, not finite or beyond a footing width) into a
+        :class:`ConvergenceError` naming the time."""
+        st = self.settings
+        why = None
+        try:
+            yield
+        except (np.linalg.LinAlgError, RuntimeError, FloatingPointError, ZeroDivisionError) as exc:
+            why = f"{type(exc).__name__}: {exc}"
+        if why is None:
+            top = float(np.max(np.abs(u))) if np.isfinite(u).all() else math.inf
+            if top <= self.model.width:
+                return
+            why = f"a displacement of {top:.3g} (the footing is {self.model.width:g} wide)"
+        raise ConvergenceError(
+            f"explicit steps {k0}…{k1} (t = {k0 * st.dt:.6g}…{k1 * st.dt:.6g} s) diverged: "
+            f"{why}; dt = {st.dt:.4g} s is {st.dt / st.critical:.3g} of the stability limit "
+            f"2/ω_max = {st.critical:.4g} s", step=k1) from None
+
+    def record(self, rec, progress, k, U, V, Z, VZ, FC, ST, energy, counters, ag) -> None:
+        """Row of step k from the rings of :meth:`compiled_steps`."""
+        st, z = self.settings, self.z
+        u, zk = U[k % 3], Z[k % 3].copy()
+        vbar = V[0] if k == 0 else 0.5 * (V[k % 2] + V[(k + 1) % 2])
+        zbar = VZ[0] if k == 0 else 0.5 * (VZ[k % 2] + VZ[(k + 1) % 2])
+        energy[0] = 0.5 * float(np.dot(self.mass * vbar, vbar)) + 0.5 * float(zbar @ z.M @ zbar)
+        if k == 0:
+            state = self.static
+        else:
+            force = FC[k % 2].copy()
+            status = ST[k % 2].copy()
+            state = _Row(u, zk[:3], force, status, self.L.T @ force, self.soil)
+        rec.record(rec.rows, k * st.dt, state, _Structure(zk, zbar), ag, energy,
+                   int(counters[0]), False, kinetic=energy[0])
+        counters[0] = 0
+        if progress is not None:
+            progress(k, st.steps, state)
+
+    def structure_increment(self, z0, z1, F0, F1, vz):
+        """(strain, damping, input, 0) of the footing and story over one step: story spring
+        and footing weight; story dashpot at the mid-step velocity; ground loads."""
+        z, dz = self.z, z1 - z0
+        strain = 0.5 * float((z.K @ (z0 + z1)) @ dz) - float(z.gravity @ dz)
+        damping = float((z.C @ vz) @ dz)
+        inputs = 0.5 * float((F0 + F1 - 2.0 * z.gravity) @ dz)
+        return np.array([strain, damping, inputs, 0.0])
+
+    def contact_work(self, f0, f1, u0, u1, z0, z1) -> float:
+        """The energy the contact forces (``f0``, ``f1`` on the soil at both ends of a step)
+        take out of the soil and the footing over it (trapezoidal rule)."""
+        mean = 0.5 * (f0 + f1)
+        c = self.contact
+        return -(float(mean @ (u1[c] - u0[c])) - float((self.L.T @ mean) @ (z1[:3] - z0[:3])))
+
+    def contact_step(self, A, b, zn, u_star, m_eff, h, status, u):
+        """Bonded or Coulomb: (force on the soil at the contact DOFs, footing q at n+1,
+        status, iterations)."""
+        f = self.model.footing
+        Kq, o = footing_schur(A, b, self.free_q)
+        K3, o3 = np.zeros((3, 3)), np.zeros(3)
+        K3[np.ix_(self.free_q, self.free_q)] = Kq
+        o3[self.free_q] = o
+        q = zn[:3].copy()
+        prescribed = ~self.free_q
+        status = status.copy()
+        duc, dq, force, its = tangential_step(
+            m_eff[self.contact] / h, u_star[self.contact], q, f.slip(u, q), f.x, prescribed,
+            np.where(prescribed, q, 0.0), K3, K3 @ q + o3, f.interface.mu, f.width, status)
+        return force, q + dq, status, its
+
+    def metadata(self) -> dict:
+        """The run's settings for the result's metadata."""
+        st = self.settings
+        return {"method": "explicit", "scheme": "central_difference", "dt": st.dt,
+                "steps": st.steps, "record_every": st.record_every, "base": st.base,
+                "sides": st.sides, "wave": self.options.wave, "mass": "lumped",
+                "dt_limit": st.limit, "dt_critical": st.critical,
+                "stability_fraction": STABILITY_FRACTION, "omega_max": st.omega_max,
+                "compiled": self.soil.compiled, "threads": numba.get_num_threads()}

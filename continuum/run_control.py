@@ -1,0 +1,85 @@
+"""What ends a dynamic run early or fails it: an interruption, and the energy check.
+
+**Interruption.** A run stopped by the user (KeyboardInterrupt; the command line turns SIGTERM
+into one) raises :class:`Interrupted`, which carries the :class:`DynamicResult` of the rows
+computed so far, marked ``incomplete`` with ``completed_until`` (s) in its metadata, so that the
+caller can write it.
+
+**Energy.** :func:`balance_error` is the relative error of a run's energy account (the columns
+of :data:`~upliftlab.continuum.dynamics.ENERGY`): the largest drift of kinetic + strain +
+damping + contact − input from its value at t = 0, over the larger of the largest input and the
+initial kinetic energy, the measure of the reduced model
+(:func:`upliftlab.reduced.response.energy_balance_error`), with a floor of :data:`ENERGY_FLOOR`
+N B (the footing's weight times its width): below it an energy is round-off of the sums, e.g.
+in the first milliseconds of a pulse. A run whose error exceeds its tolerance
+(``continuum.energy_tolerance``) raises :class:`EnergyBalanceError`, which carries the result
+and the figure.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["ENERGY_FLOOR", "Interrupted", "EnergyBalanceError", "balance_error",
+           "check_energy", "energy_floor"]
+
+#: The energy below which a balance is round-off, as a fraction of N B (module docstring).
+ENERGY_FLOOR = 1e-9
+
+
+class Interrupted(KeyboardInterrupt):
+    """A dynamic run stopped by the user; ``result`` holds what was computed (module
+    docstring)."""
+
+    def __init__(self, result):
+        until = result.metadata.get("completed_until", math.nan)
+        super().__init__(f"interrupted at t = {until:.4g} s")
+        self.result = result
+
+
+class EnergyBalanceError(RuntimeError):
+    """A run's energy balance error exceeds its tolerance: ``result``, ``error``,
+    ``tolerance``."""
+
+    def __init__(self, result, error: float, tolerance: float):
+        super().__init__(
+            f"energy balance error {error:.3g} of the input exceeds continuum.energy_tolerance "
+            f"= {tolerance:g} ({result.metadata.get('method', '')} dynamics, dt = "
+            f"{result.metadata.get('dt', math.nan):.3g} s); the run is not trustworthy: "
+            "refine the step or the mesh, or relax the tolerance if the loss is understood")
+        self.result, self.error, self.tolerance = result, error, tolerance
+
+
+def energy_floor(scene, width: float) -> float:
+    """:data:`ENERGY_FLOOR` × the structure's vertical weight × the footing width."""
+    return ENERGY_FLOOR * abs(scene.structure.vertical_weight) * width
+
+
+def balance_error(energy: np.ndarray, floor: float = 0.0) -> float:
+    """max_t |E(t) − E(0)| / max(max |input|, initial kinetic energy, ``floor``) with E =
+    kinetic + strain + damping + contact − input (rows of the five cumulative columns); NaN
+    without an account."""
+    energy = np.asarray(energy, dtype=float)
+    if energy.size == 0 or not np.isfinite(energy).all():
+        return math.nan
+    total = energy[:, 0] + energy[:, 1] + energy[:, 2] + energy[:, 4] - energy[:, 3]
+    scale = max(float(np.max(np.abs(energy[:, 3]))), abs(float(energy[0, 0])), floor, 1e-300)
+    return float(np.max(np.abs(total - total[0])) / scale)
+
+
+def check_energy(result, tolerance: float, floor: float = 0.0) -> float:
+    """The run's :func:`balance_error` (also stored in its metadata as
+    ``energy_balance_error``, with ``energy_tolerance`` and ``energy_floor``); raises
+    :class:`EnergyBalanceError` beyond ``tolerance``. A NaN error (no energy account) is not
+    checked; a NaN in the histories is a failure."""
+    result.metadata["energy_floor"] = floor
+    error = balance_error(result.energy, floor)
+    result.metadata["energy_balance_error"] = error
+    result.metadata["energy_tolerance"] = tolerance
+    if math.isnan(error) and not np.isnan(result.energy).all():
+        raise EnergyBalanceError(result, math.inf, tolerance)
+    if error > tolerance:
+        raise EnergyBalanceError(result, error, tolerance)
+    return error
