@@ -8,7 +8,9 @@ bed, 10 % dashpots, impact damper ε = 0.7), the whole 31.2 s record, on N = 2, 
 foundation springs. For every integrator (events, rk4, abm4, newmark, hht) at fixed steps
 Δt = 0.02/2^k (error control off, energy guard relaxed so that every admissible step is
 measured), and for the default — the event stepper under error control at rtol = 1e-3 … 1e-7,
-1e-5 being the default — it prints the median wall time of ``run(scene, integrator=..., dt=..., histories=False)`` over
+1e-5 being the default — it prints the median CPU time of this process (one thread: the
+run's own cost, which the load of other processes on a shared machine does not inflate as it
+inflates wall time) of ``run(scene, integrator=..., dt=..., histories=False)`` over
 the repeats (after one warm-up run, which also compiles or loads the numba cache), the kernel's
 share of it, and the errors in peak u and in the peak uplift of the leftmost spring against two
 references:
@@ -113,9 +115,9 @@ def measure(sc, integrator: str, dt: float | None, repeats: int) -> dict:
         return {**row, "status": f"failed: {exc}"}
     calls, kernels = [], []
     for _ in range(repeats):
-        start = time.perf_counter()
+        start = time.process_time()  # this process's CPU: other processes' load aside
         response = run(sc, integrator=integrator, dt=dt, histories=False)
-        calls.append(time.perf_counter() - start)
+        calls.append(time.process_time() - start)
         kernels.append(response.info["wall_time_s"])
     counters = response.info["counters"]
     steps = (counters[2] // 4 if integrator == "events" else response.info["steps"])
@@ -400,9 +402,10 @@ def header(args, repeats: int, config: dict) -> str:
             f"{platform.processor() or platform.machine()}, {os.cpu_count()} CPUs (shared), "
             f"Python {platform.python_version()}, one thread. Scene `{SCENE}`, Case {CASE} "
             f"(elasto-plastic springs yielding at 3 F0, ζ_f = 10 %, impact damper ε = 0.7, "
-            f"c* = 10 c_cr), El Centro 1940 N-S, 31.2 s. Runtime: median of {repeats} calls of "
+            f"c* = 10 c_cr), El Centro 1940 N-S, 31.2 s. Runtime: median process CPU time of "
+            f"{repeats} calls of "
             f"`run(scene, integrator, dt, histories=False)` after one warm-up call (model "
-            f"build, step check and kernel); kernel: the integration alone "
+            f"build, step check and kernel); kernel: the integration alone, wall clock "
             f"(`info['wall_time_s']`). Errors are relative, in peak u (superstructure "
             f"deformation) and peak uplift of the leftmost spring, against the event stepper "
             f"at Δt = {RECORD_DT / 2 ** config['reference_k']:.4g} s on the same N and on "
