@@ -7,11 +7,12 @@ the default) and the implicit one described here (HHT-α with Newton), chosen by
 checked against ``continuum.energy_tolerance`` (:mod:`~upliftlab.continuum.run_control`).
 
 **Unknowns.** The soil DOF vector u (from the geostatic state), the footing q = (u, v, θ) and the
-deformation s of the superstructure's story spring (the reduced model's u = X − Xg − hθ; design.md,
-Ewing eq. 7). The story mass m = W/g sits at height h on a shear spring k with a dashpot
-c = 2 ζ_s √(k m) (ζ_s of the fixed-base mode, as in :mod:`upliftlab.reduced`); its lateral position
-is u + h θ + s. The footing carries the vertical mass ``vertical_weight``/g, the rotary inertia
-I₀ (``structure.rotary_inertia``, about O, story mass excluded) and, horizontally, the base's own
+deformation s of the superstructure's story spring (the reduced model's u = X − Xg − hθ: the
+story's lateral position less the ground's and the footing's rigid rotation). The story mass
+m = W/g sits at height h on a shear spring k with a dashpot c = 2 ζ_s √(k m) (ζ_s of the
+fixed-base mode, as in :mod:`upliftlab.reduced`); its lateral position is u + h θ + s. The
+footing carries the vertical mass ``vertical_weight``/g, the rotary inertia I₀
+(``structure.rotary_inertia``, about O, story mass excluded) and, horizontally, the base's own
 mass ``vertical_weight``/g − m (zero when the structure's weight is all in the story). P-Δ is off.
 
 **Time stepping.** HHT-α (Hilber, Hughes & Taylor 1977) with β = (1 − α)²/4, γ = 1/2 − α;
@@ -33,18 +34,18 @@ overestimate of the high frequencies partly cancels the period elongation of the
 **Boundaries.** ``base = "rigid"`` (default: the scene's ``continuum.base``): the bottom moves with
 the ground; the relative formulation loads every DOF with −M r a_g (r the unit horizontal rigid
 motion), the footing and structure with −M_z r_z a_g. ``base = "compliant"``: an absolute
-formulation on an elastic half-space; the bottom carries Lysmer–Kuhlemeyer dashpots and the
+formulation on an elastic half-space; the bottom carries Lysmer–Kuhlemeyer dashpots (normal
+ρ V_p, tangential ρ V_s: they absorb a normally incident plane wave exactly) and the
 vertically incident wave enters as the traction 2 ρ V u̇_inc (V = V_s for an S wave, V_p for a P
-wave; anchors §4), with u̇_inc = v_g/2: the record is taken as the *outcrop* motion of the
-underlying rock, twice the incident wave. ``sides``: ``rollers`` (u_x = 0, statics' condition),
-``shear`` (u_y = 0, u_x free: exact for a vertically incident S wave in a layered column) or
-``lysmer`` (free, with dashpots ρ V_p normal, ρ V_s tangential). There are no free-field
-columns: on a compliant base (absolute motion) lysmer sides also damp the free field itself
-(measured: the surface motion of a 10B box drops to 5 % of the outcrop's), so use ``shear``
-sides there; on a rigid base they act on the motion relative to the base, the usual
-approximation. Dashpot matrices are assembled on
-the facets (consistent). DOFs released for dynamics carry their static reaction as a constant
-load, so the gravity state stays in equilibrium at t = 0.
+wave), with u̇_inc = v_g/2: the record is taken as the *outcrop* motion of the underlying rock,
+twice the incident wave. ``sides``: ``rollers`` (u_x = 0, statics' condition), ``shear``
+(u_y = 0, u_x free: exact for a vertically incident S wave in a layered column) or ``lysmer``
+(free, with dashpots ρ V_p normal, ρ V_s tangential). There are no free-field columns: on a
+compliant base (absolute motion) lysmer sides also damp the free field itself, so use
+``shear`` sides there; on a rigid base they act on the motion relative to the base, the usual
+approximation. Dashpot matrices are assembled on the facets (consistent). DOFs released for
+dynamics carry their static reaction as a constant load, so the gravity state stays in
+equilibrium at t = 0.
 
 **Gravity first.** The geostatic state (:func:`~upliftlab.continuum.statics.geostatic`), then the
 weight ``vertical_weight`` ramped on the footing in ``load_steps`` statics steps (θ held, then
@@ -57,61 +58,45 @@ the last converged set; a step converges only with a settled set. A landing is a
 impact of the footing's nodes, absorbed by the implicit scheme in the step where the gap closes
 (no penalty, no restitution law, no velocity-jump rule, no set held from step to step). The HHT
 dissipation (α < 0, the default: the scene's ``analysis.hht_alpha``) removes the spurious
-high-frequency ringing after an impact that makes a node reopen and close again: measured on the
-clay scene's pulse (tests), a node changes status at most once within 0.05 s of any of its
-landings with α = −0.1, while Newmark's average acceleration (α = 0) chatters (up to 10 changes
-in that window). A bonded interface whose edge lifts off can make the active set cycle at a node
-where P and g both vanish; such a step raises :class:`ConvergenceError` rather than guess a set.
+high-frequency ringing after an impact that makes a node reopen and close again; Newmark's
+average acceleration (α = 0) does not, and chatters. A bonded interface whose edge lifts off can
+make the active set cycle at a node where P and g both vanish; such a step raises
+:class:`ConvergenceError` rather than guess a set.
 
 **Newton.** Elastic soil: the tangent (with a0 M/(1+α) + c0 C) is factorised once per run
 (constant dt), so each step is one back-substitution per iteration, usually one iteration.
 Plastic soil: modified Newton (:class:`_FrozenTangent`), accelerated by Anderson mixing
 (:class:`~upliftlab.continuum.newton.Anderson`, depth ``NewtonOptions.anderson`` = 4) whose
 secant pairs are carried from step to step (the map's Jacobian changes little in one dt);
-each step's first iteration is the plain predictor. On the clay scene's first 0.3 s at 20k
-DOFs this took 10.2 → 2.9 iterations per step (measured). The iteration starts from the
+each step's first iteration is the plain predictor. The iteration starts from the
 constant-acceleration extrapolation d + dt v + dt² a/2 of the soil and the footing
-(``DynamicOptions.predict``), not from the last converged state: 10 s of El Centro on 8
-across took 26233 instead of 28688 iterations (measured). The elastic iteration matrix of
-plastic soil is factorised in single precision (:data:`SINGLE`; residuals stay double, so the
-converged state is the same): its back-substitution, the largest cost of an iteration, took
-2.7–3.5 ms instead of 4.2–4.5 ms at 20k DOFs (measured). The default tolerance is
-rtol = 1e-5: on 10 s of El Centro (8 across) the footing's θ and v histories differ from
-rtol = 1e-6 by at most 4.5e-5 and 3.1e-5 of their peaks, for 21 % fewer iterations
-(measured). Every step starts with that elastic factorisation; a step still unconverged
-after ``_FrozenTangent.SWITCH`` = 20 iterations refactorises once at its current consistent
-tangent and finishes with it. A step that still fails is retried with the consistent tangent
-refactorised at every iteration. ``refactored`` records the steps that refactorised.
+(``DynamicOptions.predict``), not from the last converged state. The elastic iteration matrix
+of plastic soil is factorised in single precision (:data:`SINGLE`; residuals stay double, so the
+converged state is the same), which halves the bytes of its back-substitution, the largest cost
+of an iteration. The default tolerance is rtol = 1e-5. Every step starts with that elastic
+factorisation; a step still unconverged after ``_FrozenTangent.SWITCH`` = 20 iterations
+refactorises once at its current consistent tangent and finishes with it. A step that still
+fails is retried with the consistent tangent refactorised at every iteration. ``refactored``
+records the steps that refactorised. What each of these choices saves is measured in
+``benchmarks/CONTINUUM_DESIGN.md``.
 
 **Time step.** The fastest wave must not cross more than :data:`COURANT_LIMIT` = 2 of the mesh's
 smallest elements per step: dt ≤ 2 h_min/V_p. At ν = 0.3, V_p ≈ 1.87 V_s, so this is a shear-wave
 Courant number ≤ 1.07: the shear waves that carry the input and the rocking radiation advance about
 one element per step, and the implicit scheme (unconditionally stable) only smooths the faster P
 waves in the fine elements under the footing. h_min is the shortest element edge. The default dt is
-the largest divisor of the record's step below that limit. What the rule costs (measured, clay
-scene, 16 across, El Centro's first 3 s): twice and four times the step change the peak θ by
-−0.03 % and −0.11 %; the iterations per step rise from 7.5 to 9.9 and 12 (the mass term that
-makes the elastic iteration matrix a good one shrinks as 1/dt²), so the total iterations fall
-by 34 % and 60 %. The rule stays: a step in which the waves cross several elements is what
-it exists to refuse, and the issue's runtime target is met without relaxing it.
+the largest divisor of the record's step below that limit. A step in which the waves cross several
+elements is what the rule exists to refuse.
 
 **A smallest step.** The step must not fall below :data:`MIN_SHEAR_COURANT` h_min/V_s either. Below
 it the end-of-step contact resolves the footing nodes' own ringing after a landing (their period is
 set by the shear stiffness of the locking-free element), the HHT dissipation no longer removes it,
-the nodes chatter and the contact pumps energy into the system. Measured on the clay scene's Ricker
-pulse, elastic soil at ν = 0.3, 4 across: V_s dt/h_min = 0.52 … 0.21 keep the energy balance within
-2.2e-4 of the input (52–82 status changes); 0.17 gives 1.8e-2 with 417 changes and the contact
-creating energy; 0.13 and 0.065 end with 18 and 45 times the input (8 across: 0.21 still 9e-5, 0.17
-gives 0.14 with 2663 changes). This is what made nearly incompressible soil gain energy: the P-wave
-rule shrinks the step as V_p/V_s grows, to V_s dt/h_min = 0.19, 0.088 and 0.028 at ν = 0.495, 0.499
-and 0.4999 (energy 2.5, 57 and 765 times the input, the footing ending 1.4 m up at 0.4999), while ν
-≤ 0.49 (0.24) stayed within 1e-3. Neither mass lumping (58 times at 0.499) nor a finer step (63
-times) helps; 3×3 integration does not gain (6e-4 at 0.4999) only because it locks, which stiffens
-the nodes' ringing back out of the resolved range. The bound, 0.21, lies above every failing case
-(0.19 and below) and admits ν = 0.49 (0.24). The two rules leave no step once V_p/V_s >
-2/:data:`MIN_SHEAR_COURANT` = 9.5, i.e. ν > 0.494 (somewhat less where the step is rounded down to
-a divisor of the record's): such soil is refused here (InputError naming ν) and runs on the
-explicit route (:mod:`~upliftlab.continuum.explicit`), whose contact only dissipates.
+the nodes chatter and the contact pumps energy into the system. This is what made nearly
+incompressible soil gain energy: the P-wave rule shrinks the step as V_p/V_s grows. The bound,
+0.21, lies above every case measured to fail and admits ν = 0.49. The two rules leave no step once
+V_p/V_s > 2/:data:`MIN_SHEAR_COURANT` = 9.5, i.e. ν > 0.494 (somewhat less where the step is
+rounded down to a divisor of the record's): such soil is refused here (InputError naming ν) and
+runs on the explicit route (:mod:`~upliftlab.continuum.explicit`), whose contact only dissipates.
 
 **Results.** :class:`DynamicResult` (a :class:`~upliftlab.continuum.output.FieldHistory`): per
 step the footing motion, structure deformation, contact forces and status, Newton iterations and
@@ -483,9 +468,9 @@ class _FrozenTangent(ContinuumModel):
     mix of yielding and unloading points. Residuals use the true return map, so the converged
     state is the same as full Newton's."""
 
-    #: Iterations before a slow step refactorises. On the clay scene's 20k DOFs one
-    #: refactorisation and Schur condensation took 1.5 s against 25 ms per iteration
-    #: (measured), so the elastic matrix is kept for many iterations.
+    #: Iterations before a slow step refactorises: a refactorisation and Schur condensation
+    #: costs tens of iterations (``benchmarks/CONTINUUM_DESIGN.md``), so the elastic matrix is
+    #: kept for many iterations.
     SWITCH = 20
 
     def condense(self, tangent, extra=None):

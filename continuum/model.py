@@ -237,8 +237,8 @@ def condensation(blocks: Blocks, data: np.ndarray, symmetric: bool,
     diagonal is shifted by σ = the mean |K_cc| diagonal (:class:`Condensation`). S_σ is then
     L_cc U_cc; if pivoting moved a contact row, it is recovered as ((F_σ⁻¹)_cc)⁻¹ instead.
 
-    ``single`` factorises in single precision: half the bytes of every back-substitution (20k
-    DOFs: 2.7–3.5 ms instead of 4.2–4.5 ms, measured), for an *iteration matrix* only
+    ``single`` factorises in single precision: half the bytes of every back-substitution
+    (timed in ``benchmarks/CONTINUUM_DESIGN.md``), for an *iteration matrix* only
     (modified Newton), whose residuals stay double; its relative error (about 1e-3 on the
     static tangent) is far below the elastic-for-plastic mismatch such a matrix already has."""
     F = blocks.matrix(data)

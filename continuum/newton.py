@@ -16,11 +16,12 @@ state, as :mod:`~upliftlab.continuum.materials` requires):
    plastic Newton loop.
 4. Recover the interior increment Δu_i = −K_ii⁻¹(R_i + K_ic Δu_c) (one more solve).
 5. Energy line search (:func:`_line_search`), the predictor included: near collapse the last
-   converged tangent is nearly singular and its full step can overshoot (graded Prandtl mesh,
-   8 across: 132 → 89 factorisations, 5 → 1 step cuts, measured).
+   converged tangent is nearly singular and its full step can overshoot (what the search saves:
+   ``benchmarks/CONTINUUM_DESIGN.md``).
 
 The first iteration of a step uses the tangent of the last converged state and imposes the whole
-prescribed increment: the linearised predictor of ``continuum-notes.md``. Convergence is
+prescribed increment: the linearised (tangent) predictor, so the first iterate is already
+consistent with the prescribed footing motion. Convergence is
 ‖R − f_c‖ ≤ ``rtol`` × (‖f_body‖ + ‖f_c‖ + E·B·1e-6) over the unconstrained DOFs. For elastic
 soil the tangent is factorised once per model and each step is one small dense solve.
 
@@ -282,8 +283,8 @@ class Anderson:
         self.pairs.append(tuple(a - b for a, b in zip((g, d, force), last)))
         del self.pairs[:-self.depth]
         dG, dD, dF = (np.array(column).T for column in zip(*self.pairs))
-        # the k×k normal equations (k = depth ≤ 10): 0.14 ms against 0.72 ms for the SVD of the
-        # (n, 4) block at 20k DOFs (measured); the mixed iterate is only taken if it lowers the
+        # the k×k normal equations (k = depth ≤ 10), cheaper than an SVD of the (n, k) block
+        # (benchmarks/CONTINUUM_DESIGN.md); the mixed iterate is only taken if it lowers the
         # residual (_mixed_step), so their poorer conditioning costs no accuracy
         gamma = np.linalg.lstsq(dD.T @ dD, dD.T @ d, rcond=None)[0]
         return g - dG @ gamma, force - dF @ gamma

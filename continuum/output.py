@@ -25,10 +25,11 @@ written to the working directory (meshio 5.3.5 would put the ``.h5`` there).
 
 **M–θ figure** (:func:`moment_rotation_figure`): M, contact length c/B and settlement against θ,
 with the closed forms computed here (``upliftlab.continuum`` never imports the reduced
-model): the tensionless uniform Winkler bed of a scene whose foundation is one (anchors §3:
+model): the tensionless uniform Winkler bed of a scene whose foundation is one (the rigid strip on compression-only springs:
 M/M_up = 3 − 2√(θ_up/θ), c/B = √(θ_up/θ), θ_up = 2N/(kB²), k = K_v/B), the rigid strip on an
 elastic half-plane (M = K_r θ to θ_on = 2N(1 − ν)/(πGB), then M/(NB) = 1/2 − θ_on/(4θ),
-c/B = θ_on/θ), and for undrained soil the V–M capacity M = B V_ult v(1 − v)/2 (anchors §4).
+c/B = θ_on/θ), and for undrained soil the V–M capacity M = B V_ult v(1 − v)/2
+(the effective-width capacity of a strip on Tresca soil, Meyerhof 1953).
 """
 
 from __future__ import annotations
@@ -179,7 +180,7 @@ def read_xdmf(path) -> dict:
 
 def winkler_rocking(theta, N: float, B: float, k: float) -> dict:
     """Rigid footing on a tensionless uniform Winkler bed of modulus ``k`` (force/length² per
-    unit length), anchors §3: ``M``, contact length ``c`` and centre ``settlement`` (down) at
+    unit length), the closed form of compression-only springs: ``M``, contact length ``c`` and centre ``settlement`` (down) at
     rotations ``theta`` (the closed form of a monotonic pushover, odd in θ)."""
     theta = np.asarray(theta, dtype=float)
     a = np.abs(theta)
@@ -252,7 +253,7 @@ def moment_rotation_figure(path, scene=None):
     if foundation is not None and foundation.layout == "winkler" and foundation.support == "uplift":
         k = foundation.stiffness / foundation.width
         ref = winkler_rocking(fine, N, B, k)
-        label = f"tensionless Winkler bed, k = K_v/B = {k:.4g} (anchors §3)"
+        label = f"tensionless Winkler bed, k = K_v/B = {k:.4g}"
         ax_m.plot(fine, ref["M"], "--", color="tab:red", lw=1.5, label=label)
         ax_c.plot(fine, ref["c"] / B, "--", color="tab:red", lw=1.5, label=label)
         ax_s.plot(fine, ref["settlement"], "--", color="tab:red", lw=1.5, label=label)
@@ -262,7 +263,7 @@ def moment_rotation_figure(path, scene=None):
         v = N / V_ult
         if 0.0 < v < 1.0:
             ax_m.axhline(B * V_ult * v * (1 - v) / 2, color="tab:green", ls="-.",
-                         label=f"V–M capacity at v = {v:.2f} (anchors §4)")
+                         label=f"V–M capacity at v = {v:.2f}")
     ax_m.set_ylabel(f"M{_brackets(units.get('moment/length', ''))}")
     ax_c.set_ylabel("contact length c/B [–]")
     ax_c.set_ylim(0.0, 1.05)

@@ -1,7 +1,7 @@
 """Dynamics of the continuum model (upliftlab.continuum.dynamics).
 
 References, one per test:
-- Lysmer–Kuhlemeyer boundary (anchors §4; Lysmer & Kuhlemeyer 1969): in a 1-D soil column on a
+- Lysmer–Kuhlemeyer boundary (Lysmer & Kuhlemeyer 1969): in a 1-D soil column on a
   compliant base, a vertically incident S (or P) pulse doubles at the free surface (the 1-D wave
   solution: surface velocity = 2 u̇_inc) and leaves through the base; the energy left in the
   column after it has gone is the reflected energy, 0 for a perfect absorber, < 5 % required;
@@ -121,7 +121,7 @@ def test_lysmer_base_absorbs_a_vertically_incident_pulse(wave):
 
 
 def test_lysmer_dashpots_carry_rho_v_per_unit_length():
-    # Reference: σ_n = ρ V_p v_n and τ = ρ V_s v_t (anchors §4) integrated over the bottom
+    # Reference: σ_n = ρ V_p v_n and τ = ρ V_s v_t (Lysmer & Kuhlemeyer 1969) integrated over the bottom
     # (width 2 m): a uniform unit velocity gives the resultant ρ V 2 m in each direction.
     model = _column(depth=4.0)
     vp, vs = wave_speeds(model.soil)

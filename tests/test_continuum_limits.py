@@ -3,7 +3,7 @@
 
 References, one per test:
 - rocking stiffness of a frictionless strip on the elastic half-plane, K_r = π G B²/(8(1 − ν))
-  (anchors §4), which holds up to ν = 1/2: the reduced-integration Q2 does not lock;
+  (Muskhelishvili's rigid punch), which holds up to ν = 1/2: the reduced-integration Q2 does not lock;
 - the incompressible limit of the dynamic response: the footing's peak rotation is continuous
   as ν → 1/2 (ν = 0.499 against 0.4999, measured 0.02 %), with the energy balance closing;
 - bad input is refused with one line naming the field, the value and the valid range (exit 2).

@@ -466,7 +466,7 @@ def run_case(case: Case, tmp: Path) -> tuple[str, str]:
 # The tests
 # ---------------------------------------------------------------------------------------------
 
-#: Counts measured with this list on the code before the fixes of issue 10
+#: Counts measured with this list on the code before its input checks were added
 #: (``python tests/test_fuzz.py --fork --timeout 60``): 1234 cases, 101 failures (47
 #: tracebacks, 21 inputs without effect that ran, 19 garbage inputs that reached the solvers
 #: and failed there with exit 3, 7 usage errors of many lines, 5 NaN or inadmissible results,
