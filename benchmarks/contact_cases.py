@@ -13,7 +13,8 @@ For each mesh level it prints the DOFs, the one-off factorisation + condensation
 median time per load case (contact alone; contact + field), with the active-set iterations, and
 checks each case against the exact equilibrium it must satisfy: the contact forces resultant
 equals (−N, M) to round-off, no tensile force, and no negative gap. Also the reference check of
-Muskhelishvili's rigid punch: the full-contact rotation over M gives K_r = π G B²/(8(1 − ν)) (error printed).
+Muskhelishvili's rigid punch: the full-contact rotation over M gives K_r = π G B²/(8(1 − ν))
+(error printed).
 """
 
 from __future__ import annotations

@@ -13,10 +13,10 @@ the error against the reference:
 - ``rocking``: elastic rocking stiffness K_r of a frictionless strip in full contact
   (``footing_stiffness``) against π G B²/(8(1 − ν)) (Muskhelishvili's rigid punch);
 - ``prandtl``: capacity of a rough (bonded) strip on Tresca clay, settlement pushed to 0.05 B
-  in 10 steps, against (2 + π) c_u B (Muskhelishvili's rigid punch); uniform (grading 1) and graded (16) meshes.
+  in 10 steps, against Prandtl's (2 + π) c_u B; uniform (grading 1) and graded (16) meshes.
   ``prandtl-richardson`` rows extrapolate two measured rows of one grading, n and 2n, to
-  h → 0 for the O(h) convergence of the footing-edge singularity (2 q(2n) − q(n),
-  the linear element locks under isochoric flow); their runtime is the sum of both runs, their DOFs those of both;
+  h → 0 for the O(h) convergence of the footing-edge singularity (2 q(2n) − q(n)); their
+  runtime is the sum of both runs, their DOFs those of both;
 - ``uplift``: rotation pushover of a frictionless strip on elastic soil at N = 171.39 kN/m to
   10 θ_on in 40 steps: the uplift-onset eccentricity against the half-plane B/4, and (second
   error) the largest |c/B − θ_on/θ| after uplift (tests/test_continuum_contact.py);

@@ -51,20 +51,24 @@ import numpy as np
 import skfem
 
 from ..checks import InputError
+from . import ground
 from .contact_step import footing_schur, frictionless_step, tangential_step
-from . import dynamics as _dynamics
-from .dynamics import (DynamicResult, _check_scene, _ground_velocity, _Recorder, _residual,
-                       _static_fixed, _x_dofs, _full_basis, boundaries, dashpot_data,
-                       dynamic_fixed, incident_load, structure_matrices, time_step_limit)
-from .footing import OPEN, STICK
+from .dynamic_result import DynamicResult, Recorder
 from .explicit_loop import run_steps
+from .footing import OPEN, STICK
+from .ground import boundaries, dynamic_fixed, ground_velocity, static_fixed, x_dofs
+from .iteration_matrix import elastic_plane_tangent, soil_residual
 from .kernels import compiled_pair, soil_predict
 from .newton import ConvergenceError
 from .run_control import Interrupted
 from .soil_force import SoilForce
+from .superstructure import (MIN_ROTARY_INERTIA, central_difference_form, check_footing_mass,
+                             check_superstructure, structure_matrices, structure_work)
+from .waves import dashpot_data, full_basis, incident_load, time_step_limit
 
 __all__ = ["STABILITY_FRACTION", "ExplicitSettings", "lumped_mass", "lumped_dashpots",
-           "critical_step", "check_footing_mass", "explicit_settings", "run_explicit"]
+           "critical_step", "check_footing_mass", "MIN_ROTARY_INERTIA", "explicit_settings",
+           "run_explicit"]
 
 #: The admissible step as a fraction of the central-difference limit 2/ω_max.
 STABILITY_FRACTION = 0.9
@@ -97,7 +101,7 @@ class ExplicitSettings:
 def lumped_mass(model) -> np.ndarray:
     """Row sums of the consistent soil mass, ∫ ρ φ_i (mass per length, per DOF)."""
     rho = model.soil.density
-    return skfem.LinearForm(lambda v, w: rho * (v[0] + v[1])).assemble(_full_basis(model))
+    return skfem.LinearForm(lambda v, w: rho * (v[0] + v[1])).assemble(full_basis(model))
 
 
 def lumped_dashpots(model, names) -> np.ndarray:
@@ -113,9 +117,8 @@ def critical_step(model, mass: np.ndarray, free: np.ndarray) -> tuple[float, flo
     from scipy.sparse.linalg import eigsh
 
     from . import assembly
-    from .dynamics import _elastic_tangent
 
-    K = assembly.stiffness(model.disc, _elastic_tangent(model))[free][:, free]
+    K = assembly.stiffness(model.disc, elastic_plane_tangent(model))[free][:, free]
     scale = sparse.diags(1.0 / np.sqrt(mass[free]))
     A = (scale @ K @ scale).tocsr()
     start = np.random.default_rng(0).standard_normal(free.size)
@@ -130,28 +133,9 @@ def recorded_steps(settings: ExplicitSettings) -> np.ndarray:
                                settings.steps))
 
 
-#: Smallest rotary inertia I₀ of the footing, relative to the story's m h², that the explicit
-#: route integrates: its footing and story are advanced with their mass matrix, whose θ row is
-#: h times the story's when I₀ = 0 (singular; the implicit route adds the soil's stiffness and
-#: runs it).
-MIN_ROTARY_INERTIA = 1e-9
-
-
-def check_footing_mass(scene) -> None:
-    """Refuse a footing whose rotary inertia the explicit route cannot advance."""
-    s = scene.structure
-    story = s.stories[0]
-    low = MIN_ROTARY_INERTIA * story.weight / scene.g * story.height ** 2
-    if not s.rotary_inertia >= low:
-        raise InputError(f"structure.rotary_inertia = {s.rotary_inertia:g}: the explicit route "
-                         "needs the footing's mass matrix positive definite; valid range is "
-                         f"[{low:.3g}, ...) ({MIN_ROTARY_INERTIA:g} m h²), or set "
-                         "continuum.dynamics = 'implicit'")
-
-
 def explicit_settings(model, scene, motion, options, mass, free) -> ExplicitSettings:
     """The explicit run's step, duration and boundaries, checked before any work."""
-    _check_scene(scene, motion)
+    check_superstructure(scene, motion)
     base, sides = boundaries(model, options)
     if options.mass not in (None, "lumped"):
         raise InputError(f"DynamicOptions.mass = {options.mass!r}: the explicit route needs a "
@@ -187,7 +171,7 @@ def explicit_settings(model, scene, motion, options, mass, free) -> ExplicitSett
 
 
 class _Row:
-    """What :class:`~upliftlab.continuum.dynamics._Recorder` reads of a state (duck type);
+    """What :class:`~upliftlab.continuum.dynamic_result.Recorder` reads of a state (duck type);
     the material and the stress are formed only for a snapshot."""
 
     iterations = 0
@@ -227,7 +211,7 @@ def run_explicit(model, scene, motion, options, *, progress=None) -> DynamicResu
     free = np.setdiff1d(np.arange(model.disc.ndofs), fixed)
     settings = explicit_settings(model, scene, motion, options, mass, free)
     started = _time.perf_counter()
-    static = _dynamics._gravity(model, scene, options, settings.prescribe_u)
+    static = ground.gravity_state(model, scene, options, settings.prescribe_u)
     threads = numba.get_num_threads()
     numba.set_num_threads(min(options.threads, numba.config.NUMBA_NUM_THREADS))
     try:
@@ -252,14 +236,14 @@ class _Explicit:
         names = (["sides"] if settings.sides == "lysmer" else []) + (
             ["bottom"] if settings.base == "compliant" else [])
         self.c = lumped_dashpots(model, names) * self.keep
-        released = np.setdiff1d(_static_fixed(model), fixed)
-        R0 = _residual(model, static.stress)
+        released = np.setdiff1d(static_fixed(model), fixed)
+        R0 = soil_residual(model, static.stress)
         release = np.zeros(n)
         release[released] = R0[released]
         self.datum = model.body_force + release  # R = f_int − datum
         if settings.base == "rigid":
             r = np.zeros(n)
-            r[_x_dofs(model)] = 1.0
+            r[x_dofs(model)] = 1.0
             self.ground_soil = -(mass * r) * self.keep
             self.incident = np.zeros(n)
         else:
@@ -267,7 +251,7 @@ class _Explicit:
             self.incident = incident_load(model, options.wave) * self.keep
         self.z = structure_matrices(scene)
         self.ground_z = -(self.z.M @ self.z.r) if settings.base == "rigid" else np.zeros(4)
-        self.vg = _ground_velocity(motion, settings.dt, settings.steps + 1)
+        self.vg = ground_velocity(motion, settings.dt, settings.steps + 1)
         f = model.footing
         self.contact = f.contact_dofs
         self.L = f.kinematics
@@ -277,22 +261,13 @@ class _Explicit:
         self.compiled = COMPILED_LOOP and self.soil.compiled
 
     def structure_affine(self, zn, vz, Fz, first: bool):
-        """(A, b): A z_{n+1} + b + [Lᵀ f_c; 0] = 0 for the footing and story (module
-        docstring of :mod:`~upliftlab.continuum.contact_step`)."""
-        z, dt = self.z, self.settings.dt
-        if first:
-            h = 0.5 * dt * dt
-            A = z.M / h
-            b = -A @ zn - z.M @ vz / (0.5 * dt) - Fz + z.K @ zn + z.C @ vz
-        else:
-            h = dt * dt
-            A = (z.M + 0.5 * dt * z.C) / h
-            b = -A @ zn - (z.M - 0.5 * dt * z.C) @ vz / dt - Fz + z.K @ zn
-        return A, b
+        """(A, b): A z_{n+1} + b + [Lᵀ f_c; 0] = 0 for the footing and story
+        (:func:`~upliftlab.continuum.superstructure.central_difference_form`)."""
+        return central_difference_form(self.z, self.settings.dt, zn, vz, Fz, first)
 
     def loop(self, progress) -> DynamicResult:
         st = self.settings
-        rec = _Recorder(self.model, recorded_steps(st).size - 1, self.options.snapshots)
+        rec = Recorder(self.model, recorded_steps(st).size - 1, self.options.snapshots)
         try:
             if self.compiled:
                 self.compiled_steps(rec, progress)
@@ -467,10 +442,7 @@ class _Explicit:
     def structure_increment(self, z0, z1, F0, F1, vz):
         """(strain, damping, input, 0) of the footing and story over one step: story spring
         and footing weight; story dashpot at the mid-step velocity; ground loads."""
-        z, dz = self.z, z1 - z0
-        strain = 0.5 * float((z.K @ (z0 + z1)) @ dz) - float(z.gravity @ dz)
-        damping = float((z.C @ vz) @ dz)
-        inputs = 0.5 * float((F0 + F1 - 2.0 * z.gravity) @ dz)
+        strain, damping, inputs = structure_work(self.z, z0, z1, F0, F1, vz, 1.0)
         return np.array([strain, damping, inputs, 0.0])
 
     def contact_work(self, f0, f1, u0, u1, z0, z1) -> float:

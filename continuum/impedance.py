@@ -13,7 +13,7 @@ The usual normalisation K_j = K_j,static [k_j(a0) + i a0 c_j(a0)], a0 = ω (B/2)
 DOFs follow its rigid motion (both components if the interface is bonded; the vertical only if
 frictionless, whose base then carries no shear), and the reactions give K(ω) = Lᵀ f_c. The
 stiffness is the model's (:func:`~upliftlab.continuum.assembly.stiffness`, its quadrature), the
-mass :func:`~upliftlab.continuum.dynamics.mass_data` (consistent).
+mass :func:`~upliftlab.continuum.waves.mass_data` (consistent).
 
 **The unbounded soil.** Two absorbing boundaries (``ImpedanceOptions.boundary``):
 
@@ -30,7 +30,7 @@ mass :func:`~upliftlab.continuum.dynamics.mass_data` (consistent).
   stretch grows as 1/a0, so the layer stands for an ever longer soil: the logarithmic growth
   of the 2D vertical and horizontal compliance is represented, not cut off by the box.
 - ``lysmer``: viscous dashpots ρV_p (normal) and ρV_s (tangential) on the box's sides and
-  bottom (:func:`~upliftlab.continuum.dynamics.dashpot_data`), nothing fixed. Exact for a plane
+  bottom (:func:`~upliftlab.continuum.waves.dashpot_data`), nothing fixed. Exact for a plane
   wave at normal incidence only; what it reflects (oblique and surface waves, and everything at
   low frequency, where the box is a fraction of a wavelength) comes back to the footing.
 
@@ -53,9 +53,10 @@ from ..checks import InputError
 from ..results import write_netcdf
 from ..scenes import ContinuumOptions
 from . import assembly
-from .dynamics import _full_basis, dashpot_data, mass_data, wave_speeds
+from .waves import dashpot_data, full_basis, mass_data, wave_speeds
 from .materials import plane_strain_tangent
-from .statics import _elastic_tangent, _metadata
+from .fields import result_metadata
+from .geostatic import elastic_tangent
 
 __all__ = ["ImpedanceOptions", "Impedance", "impedance", "impedance_model", "BOUNDARIES",
            "DEFAULT_A0", "DEFAULT_BOX", "static_normalisers"]
@@ -316,7 +317,7 @@ class _PML:
 
 
 def _pml(model, options: ImpedanceOptions) -> _PML:
-    full = _full_basis(model)
+    full = full_basis(model)
     layer = _layer(model, options, full)
     e = layer.elements
     nloc = model.disc.dofs.shape[0]
@@ -384,7 +385,7 @@ def impedance(model, options: ImpedanceOptions = ImpedanceOptions(), *,
     started = _time.perf_counter()
     pml = _pml(model, options) if options.boundary == "pml" else None
     pattern = model.disc.pattern
-    D = plane_strain_tangent(_elastic_tangent(model))
+    D = plane_strain_tangent(elastic_tangent(model))
     K0 = assembly.stiffness(model.disc, D).data
     M0 = mass_data(model)
     C0 = dashpot_data(model, ["sides", "bottom"]) if options.boundary == "lysmer" \
@@ -411,7 +412,7 @@ def impedance(model, options: ImpedanceOptions = ImpedanceOptions(), *,
     extra = {"boundary": options.boundary, "pml_thickness": options.pml_thickness,
              "pml_reflection": options.pml_reflection, "pml_order": options.pml_order,
              "wall_time_s": _time.perf_counter() - started, "free_dofs": int(free.size)}
-    metadata = _metadata(model, "impedance", extra)
+    metadata = result_metadata(model, "impedance", extra)
     metadata["units"] = _units(model)
     return Impedance(a0=a0, matrix=mats, soil=model.soil, width=model.width,
                      interface=model.soil.interface, mesh=dict(model.mesh_parameters),

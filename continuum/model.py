@@ -31,7 +31,7 @@ from .materials import (DruckerPrager, Elastic, MohrCoulomb, State, material_fro
                         plane_strain, plane_strain_stress, plane_strain_tangent)
 
 __all__ = ["ContinuumModel", "Blocks", "Condensation", "Response", "build_model", "make_model",
-           "default_k0", "validate"]
+           "default_k0", "validate", "make_blocks", "node_groups"]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -152,7 +152,9 @@ class Blocks:
         return self.free.matrix(data)
 
 
-def _blocks(pattern: assembly.Pattern, interior, contact, fixed, groups=None) -> Blocks:
+def make_blocks(pattern: assembly.Pattern, interior, contact, fixed, groups=None) -> Blocks:
+    """The :class:`Blocks` of ``pattern`` with these ``interior``, ``contact`` and ``fixed``
+    DOFs; the interior in a fill-reducing order (node ``groups`` kept together)."""
     interior = fill_reducing_order(pattern, interior, groups)
     marked = pattern.matrix(np.arange(1.0, pattern.nnz + 1.0))
     free = _gather(marked, np.concatenate((interior, contact)))
@@ -412,7 +414,7 @@ def make_model(soil: Soil, footing_width: float, options: ContinuumOptions | Non
     body = assembly.body_force(disc, (0.0, -soil.density * gravity))
     return ContinuumModel(soil=soil, options=options, mesh=skmesh, mesh_parameters=parameters,
                           disc=disc, material=material_from_soil(soil), footing=footing,
-                          blocks=_blocks(disc.pattern, interior, contact, fixed,
+                          blocks=make_blocks(disc.pattern, interior, contact, fixed,
                                          node_groups(disc.basis)),
                           body_force=body, gravity=gravity, k0=default_k0(soil), scene=scene)
 

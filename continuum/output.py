@@ -25,11 +25,11 @@ written to the working directory (meshio 5.3.5 would put the ``.h5`` there).
 
 **M–θ figure** (:func:`moment_rotation_figure`): M, contact length c/B and settlement against θ,
 with the closed forms computed here (``upliftlab.continuum`` never imports the reduced
-model): the tensionless uniform Winkler bed of a scene whose foundation is one (the rigid strip on compression-only springs:
-M/M_up = 3 − 2√(θ_up/θ), c/B = √(θ_up/θ), θ_up = 2N/(kB²), k = K_v/B), the rigid strip on an
-elastic half-plane (M = K_r θ to θ_on = 2N(1 − ν)/(πGB), then M/(NB) = 1/2 − θ_on/(4θ),
-c/B = θ_on/θ), and for undrained soil the V–M capacity M = B V_ult v(1 − v)/2
-(the effective-width capacity of a strip on Tresca soil, Meyerhof 1953).
+model): the tensionless uniform Winkler bed of a scene whose foundation is one (the rigid strip on
+compression-only springs: M/M_up = 3 − 2√(θ_up/θ), c/B = √(θ_up/θ), θ_up = 2N/(kB²), k = K_v/B),
+the rigid strip on an elastic half-plane (M = K_r θ to θ_on = 2N(1 − ν)/(πGB), then M/(NB) = 1/2 −
+θ_on/(4θ), c/B = θ_on/θ), and for undrained soil the V–M capacity M = B V_ult v(1 − v)/2 (the
+effective-width capacity of a strip on Tresca soil, Meyerhof 1953).
 """
 
 from __future__ import annotations
@@ -180,8 +180,9 @@ def read_xdmf(path) -> dict:
 
 def winkler_rocking(theta, N: float, B: float, k: float) -> dict:
     """Rigid footing on a tensionless uniform Winkler bed of modulus ``k`` (force/length² per
-    unit length), the closed form of compression-only springs: ``M``, contact length ``c`` and centre ``settlement`` (down) at
-    rotations ``theta`` (the closed form of a monotonic pushover, odd in θ)."""
+    unit length), the closed form of compression-only springs: ``M``, contact length ``c`` and
+    centre ``settlement`` (down) at rotations ``theta`` (the closed form of a monotonic pushover,
+    odd in θ)."""
     theta = np.asarray(theta, dtype=float)
     a = np.abs(theta)
     theta_up = 2.0 * N / (k * B ** 2)

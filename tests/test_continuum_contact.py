@@ -60,8 +60,8 @@ def test_full_contact_then_uplift_with_exact_complementarity(pushovers):
 
 
 def test_uplift_onset_eccentricity_is_a_quarter_width_not_a_sixth(pushovers):
-    # Reference: half-plane onset e = B/4 (module docstring); Winkler's is B/6 (compression-only springs).
-    # Measured on the 10B box: e/B = 0.24929 (8 across), 0.24910 (16), 0.24906 (32); the
+    # Reference: half-plane onset e = B/4 (module docstring); Winkler's is B/6 (compression-only
+    # springs). Measured on the 10B box: e/B = 0.24929 (8 across), 0.24910 (16), 0.24906 (32); the
     # −0.36 % from 1/4 is the box (20B: 0.24993, 40B: 0.25012). Asserted within 1 % of B/4,
     # converging (|Δe| from 8 to 16 below 0.1 %), and 49 % above Winkler's B/6.
     e8, e16 = (uplift_onset(pushovers[n]).e / B for n in (8, 16))

@@ -35,8 +35,8 @@ def rocking(n=16, intorder=None, interface="frictionless", **kw):
 
 
 def test_rocking_stiffness_on_default_mesh_within_1_percent():
-    # Reference: K_r = π G B²/(8(1 − ν)) (Muskhelishvili's rigid punch). Default mesh: Q2 2×2 reduced, 16
-    # elements across B, 10B × 10B box, 20 160 DOFs. Measured: −0.018 %.
+    # Reference: K_r = π G B²/(8(1 − ν)) (Muskhelishvili's rigid punch). Default mesh: Q2 2×2
+    # reduced, 16 elements across B, 10B × 10B box, 20 160 DOFs. Measured: −0.018 %.
     error = rocking() / K_R - 1.0
     assert abs(error) <= 0.01, error
 
@@ -73,8 +73,9 @@ def test_rocking_stiffness_refinement_study():
 
 
 def test_bonded_footing_is_about_five_percent_stiffer_in_rocking():
-    # Reference: the half-plane solutions of bonded and frictionless strips, "a bonded (rough) footing is about 5 % stiffer at ν = 0.3".
-    # Measured on the default mesh: +5.6 %; asserted 4–7 %.
+    # Reference: the half-plane solutions of bonded and frictionless strips, "a bonded (rough)
+    # footing is about 5 % stiffer at ν = 0.3". Measured on the default mesh: +5.6 %; asserted 4–7
+    # %.
     ratio = rocking(interface="bonded") / rocking()
     assert abs(ratio - 1.055) <= 0.015, ratio
 

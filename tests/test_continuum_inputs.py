@@ -1,9 +1,9 @@
 """Bad input, the strip-footing scene, and result files of upliftlab.continuum.
 
-References: the project's input rule ("a scene or motion that makes no sense gets an error that names the
-field, the value and the valid range, before any work starts"; results are records saved
-atomically with provenance); the scene's stated design numbers (FS_v = 3 on (2 + π) c_u B,
-T = 0.3 s, I0 of a 2 m × 4 m block, a Winkler bed with the continuum's K_r).
+References: the project's input rule ("a scene or motion that makes no sense gets an error that
+names the field, the value and the valid range, before any work starts"; results are records saved
+atomically with provenance); the scene's stated design numbers (FS_v = 3 on (2 + π) c_u B, T = 0.3
+s, I0 of a 2 m × 4 m block, a Winkler bed with the continuum's K_r).
 """
 
 from __future__ import annotations
@@ -53,7 +53,8 @@ def test_bad_soil_is_refused_before_meshing(no_meshing, change, message):
 
 
 def test_footing_wider_than_the_domain_is_refused(no_meshing):
-    # Reference: the project's input rule; the domain must be wider than the footing (domain_width > 1 B).
+    # Reference: the project's input rule; the domain must be wider than the footing (domain_width
+    # > 1 B).
     with pytest.raises(InputError, match=r"^continuum.domain_width = 0.8: the footing"):
         make_model(SOIL, B, ContinuumOptions(domain_width=0.8))
 
@@ -130,8 +131,8 @@ def test_build_model_needs_soil():
 
 
 def test_pushover_saves_netcdf_with_provenance(tmp_path):
-    # Reference: the project's rule for results: a record saved atomically (no partial files), readable,
-    # carrying provenance (scene digest, mesh, DOFs).
+    # Reference: the project's rule for results: a record saved atomically (no partial files),
+    # readable, carrying provenance (scene digest, mesh, DOFs).
     scene = load_scene("strip_footing_clay", overrides=(
         "soil.model=elastic", "soil.undrained_strength=", "continuum.elements_across=4"))
     model = build_model(scene)
@@ -145,7 +146,8 @@ def test_pushover_saves_netcdf_with_provenance(tmp_path):
 
 
 def test_envelope_saves_netcdf(tmp_path):
-    # Reference: the project's rule for results; the normalised envelope v = V/V_ult, m = M/(B V_ult).
+    # Reference: the project's rule for results; the normalised envelope v = V/V_ult, m = M/(B
+    # V_ult).
     envelope = Envelope(V=np.array([100.0, 200.0]), M=np.array([30.0, 40.0]), V_ult=400.0,
                         width=2.0, metadata={"analysis": "vm_envelope"})
     variables, attrs = read_netcdf(envelope.save(tmp_path / "envelope.nc"))
