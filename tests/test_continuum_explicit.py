@@ -29,6 +29,7 @@ from upliftlab.continuum import dynamics as dyn
 from upliftlab.continuum import ground
 from upliftlab.continuum.iteration_matrix import elastic_plane_tangent
 from upliftlab.continuum import explicit as ex
+from upliftlab.continuum import explicit_step
 from upliftlab.continuum.contact_step import normal_forces, tangential_step
 from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
 from upliftlab.continuum.footing import (ContactError, ContactProblem, Footing, Interface,
@@ -173,7 +174,7 @@ def test_central_differences_are_stable_up_to_two_over_omega_max(fraction, stabl
     # by allowing that fraction of the limit; a diverged run fails naming the time and the
     # step's share of the limit.
     scene, model, motion = _free_rocking()
-    monkeypatch.setattr(ex, "STABILITY_FRACTION", fraction)
+    monkeypatch.setattr(explicit_step, "STABILITY_FRACTION", fraction)
     mass = ex.lumped_mass(model)
     free = np.setdiff1d(np.arange(model.disc.ndofs), dyn.dynamic_fixed(model, "rigid",
                                                                      "rollers"))

@@ -33,7 +33,7 @@ import subprocess
 import sys
 import tomllib
 import traceback
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
