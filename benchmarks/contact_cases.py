@@ -13,7 +13,8 @@ For each mesh level it prints the DOFs, the one-off factorisation + condensation
 median time per load case (contact alone; contact + field), with the active-set iterations, and
 checks each case against the exact equilibrium it must satisfy: the contact forces resultant
 equals (−N, M) to round-off, no tensile force, and no negative gap. Also the reference check of
-anchors §4: the full-contact rotation over M gives K_r = π G B²/(8(1 − ν)) (error printed).
+Muskhelishvili's rigid punch: the full-contact rotation over M gives K_r = π G B²/(8(1 − ν))
+(error printed).
 """
 
 from __future__ import annotations
@@ -94,7 +95,7 @@ def level(across: int, cases: int, repeats: int) -> dict:
         worst["tension"] = max(worst["tension"], float(np.max(-normal)) / N)
         gap = footing.gap(du, sol.dq)
         worst["gap"] = max(worst["gap"], float(np.max(-gap)) / B)
-    # anchor §4: K_r in full contact, from a small moment
+    # the rigid punch: K_r in full contact, from a small moment
     G = soil.youngs_modulus / (2 * (1 + soil.poisson_ratio))
     kr_exact = math.pi * G * B ** 2 / (8 * (1 - soil.poisson_ratio))
     p = ContactProblem(footing, cond.S, zero_m, zero_m, zero_q, np.zeros(footing.nodes),
@@ -121,7 +122,7 @@ def main(argv=None) -> int:
     print("| elements across B | soil DOFs | contact DOFs | factorise + condense [s] | "
           "per case, contact [ms] (median / max) | per case, + field [ms] | active-set "
           "iterations (max) | resultant error | max tension / N | max overlap / B | K_r error "
-          "(anchor §4) |")
+          "(rigid punch) |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         print(f"| {r['across']} | {r['dofs']} | {r['contact_dofs']} | {r['factorise_s']:.2f} | "

@@ -45,7 +45,7 @@ RUNS = (("implicit", 16, 10.0, 1e-6, 1, 1.0), ("implicit", 16, 10.0, None, 1, 1.
 QUICK = (("implicit", 4, 10.0, 1e-6, 1, 1.0), ("implicit", 4, 10.0, None, 1, 1.0),
          ("explicit", 4, 10.0, None, 1, 1.0), ("explicit", 4, 10.0, None, 2, 1.0),
          ("explicit", 4, None, None, 1, 1.0), ("implicit", 4, 10.0, 1e-6, 1, 0.5))
-#: Targets (issue 11 §1): explicit 10 s on 16 across within 60 s and 8 times faster than the
+#: Targets: explicit 10 s on 16 across within 60 s and 8 times faster than the
 #: implicit run of the same invocation; the whole record within 180 s; peaks and residual
 #: settlement within 0.5 %, histories within 1 % of their peaks.
 TARGET_10S, TARGET_FULL, TARGET_SPEEDUP, TARGET_PEAKS, TARGET_HISTORY = 60.0, 180.0, 8.0, \

@@ -11,12 +11,12 @@ Schur condensation, the contact active set and back-substitution), the Newton it
 the error against the reference:
 
 - ``rocking``: elastic rocking stiffness K_r of a frictionless strip in full contact
-  (``footing_stiffness``) against π G B²/(8(1 − ν)) (anchors §4);
+  (``footing_stiffness``) against π G B²/(8(1 − ν)) (Muskhelishvili's rigid punch);
 - ``prandtl``: capacity of a rough (bonded) strip on Tresca clay, settlement pushed to 0.05 B
-  in 10 steps, against (2 + π) c_u B (anchors §4); uniform (grading 1) and graded (16) meshes.
+  in 10 steps, against Prandtl's (2 + π) c_u B; uniform (grading 1) and graded (16) meshes.
   ``prandtl-richardson`` rows extrapolate two measured rows of one grading, n and 2n, to
-  h → 0 for the O(h) convergence of the footing-edge singularity (2 q(2n) − q(n),
-  continuum-notes.md); their runtime is the sum of both runs, their DOFs those of both;
+  h → 0 for the O(h) convergence of the footing-edge singularity (2 q(2n) − q(n)); their
+  runtime is the sum of both runs, their DOFs those of both;
 - ``uplift``: rotation pushover of a frictionless strip on elastic soil at N = 171.39 kN/m to
   10 θ_on in 40 steps: the uplift-onset eccentricity against the half-plane B/4, and (second
   error) the largest |c/B − θ_on/θ| after uplift (tests/test_continuum_contact.py);
@@ -28,7 +28,7 @@ the error against the reference:
 
 Soil: E = 50 MPa, ν = 0.3, ρ = 1.8 t/m³, c_u = 50 kPa, B = 2 m (the clay scene). The timers wrap
 the solver's functions for the duration of a run and change no result. One thread per solve
-(``OMP_NUM_THREADS=1``, continuum-notes.md). Writes ``CONTINUUM.md`` (the tables) and
+(``OMP_NUM_THREADS=1``). Writes ``CONTINUUM.md`` (the tables) and
 ``continuum_speed.png`` (runtime against error of the static cases) to ``--out`` (default
 ``results/bench/continuum``); ``--write`` rewrites the committed ``benchmarks/CONTINUUM.md``
 and ``benchmarks/continuum_speed.png`` instead.

@@ -31,10 +31,15 @@ Solver
 Pieces
     :mod:`.assembly` (B-matrices, einsum Bᵀ D B into a fixed CSR pattern), :mod:`.footing`
     (kinematics, contact solver), :mod:`.materials` (return maps), :mod:`.model`,
-    :mod:`.newton`, :mod:`.statics`, :mod:`.dynamics` (implicit route, results), :mod:`.impedance`, :mod:`.explicit`
-    (explicit route) with :mod:`.kernels`, :mod:`.soil_force`, :mod:`.contact_step` and
-    :mod:`.explicit_loop` (its compiled pieces), :mod:`.run_control` (energy check,
-    interruption).
+    :mod:`.newton`, :mod:`.geostatic` (initial state), :mod:`.statics` (analyses),
+    :mod:`.static_results` (their records), :mod:`.fields` (soil fields, provenance),
+    :mod:`.dynamics` (entry point) with :mod:`.dynamic_options`, :mod:`.dynamic_result`,
+    :mod:`.waves` (wave speeds, mass, dashpots), :mod:`.ground` (boundaries, ground motion,
+    gravity state) and :mod:`.superstructure` (the SDOF superstructure and its coupling);
+    :mod:`.implicit` (HHT-α route) with :mod:`.step_rules` and :mod:`.iteration_matrix`;
+    :mod:`.explicit` (central-difference route) with :mod:`.kernels`, :mod:`.soil_force`,
+    :mod:`.contact_step` and :mod:`.explicit_loop` (its compiled pieces);
+    :mod:`.impedance`; :mod:`.run_control` (energy check, interruption).
 """
 
 from .dynamics import DynamicOptions, DynamicResult, run_dynamic

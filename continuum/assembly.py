@@ -2,7 +2,8 @@
 
 The soil's tangent changes at every Newton iteration, so the stiffness is not assembled through
 ``skfem.BilinearForm`` but as one ``np.einsum`` of Bᵀ D B over (element, quadrature point),
-scattered into a CSR pattern that is built once per mesh (``continuum-notes.md``, Assembly).
+scattered into a CSR pattern that is built once per mesh, so each assembly is one product and one
+scatter.
 
 Conventions (per unit out-of-plane length):
 

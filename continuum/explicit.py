@@ -21,12 +21,8 @@ inelastic impact of its lumped mass), and the contact forces only ever dissipate
 contact force of row n is the one of the step that ends at t_n, paired with the gap at t_n: the
 complementarity g ≥ 0, P ≥ 0, P g = 0 holds for every recorded pair to round-off.
 
-**Stable step.** Central differences are stable for dt ω_max ≤ 2, ω_max² the largest
-eigenvalue of M⁻¹K of the elastic soil on its free DOFs (computed by Lanczos, scipy's
-``eigsh``, on M^{-1/2} K M^{-1/2}; a plastic tangent is softer and the exact contact does not
-restrict the step). The admissible step is :data:`STABILITY_FRACTION` of that limit; the
-default dt is the largest divisor of the record's step below it, and a larger dt is refused
-with the limit in the message.
+:mod:`~upliftlab.continuum.explicit_step` sets the stable step, the lumped mass and dashpots and
+checks a run's settings; its names are importable from here.
 
 **Energy.** Kinetic energy ½ v̄ᵀ M v̄ at whole steps (v̄_n the mean of the half-step velocities);
 the work of the soil's internal force less its weight, the story spring and the footing weight
@@ -44,150 +40,39 @@ from __future__ import annotations
 import contextlib
 import math
 import time as _time
-from dataclasses import dataclass
 
 import numba
 import numpy as np
-import skfem
 
-from ..checks import InputError
+from . import explicit_step, ground
 from .contact_step import footing_schur, frictionless_step, tangential_step
-from . import dynamics as _dynamics
-from .dynamics import (DynamicResult, _check_scene, _ground_velocity, _Recorder, _residual,
-                       _static_fixed, _x_dofs, _full_basis, boundaries, dashpot_data,
-                       dynamic_fixed, incident_load, structure_matrices, time_step_limit)
-from .footing import OPEN, STICK
+from .dynamic_result import DynamicResult, Recorder
 from .explicit_loop import run_steps
+from .explicit_step import (COURANT_ESTIMATE, STABILITY_FRACTION,  # noqa: F401
+                            ExplicitSettings, critical_step, explicit_settings, lumped_dashpots,
+                            lumped_mass, recorded_steps)
+from .footing import OPEN, STICK
+from .ground import boundaries, dynamic_fixed, ground_velocity, static_fixed, x_dofs
+from .iteration_matrix import soil_residual
 from .kernels import compiled_pair, soil_predict
 from .newton import ConvergenceError
 from .run_control import Interrupted
 from .soil_force import SoilForce
+from .superstructure import (MIN_ROTARY_INERTIA, central_difference_form, check_footing_mass,
+                             structure_matrices, structure_work)
+from .waves import incident_load
 
 __all__ = ["STABILITY_FRACTION", "ExplicitSettings", "lumped_mass", "lumped_dashpots",
-           "critical_step", "check_footing_mass", "explicit_settings", "run_explicit"]
+           "critical_step", "check_footing_mass", "MIN_ROTARY_INERTIA", "explicit_settings",
+           "run_explicit", "COURANT_ESTIMATE", "recorded_steps"]
 
-#: The admissible step as a fraction of the central-difference limit 2/ω_max.
-STABILITY_FRACTION = 0.9
-#: V_p dt / h_min of the explicit step, to estimate a run's cost before the mesh exists (the
-#: step itself comes from the mesh's largest eigenvalue). Below the measured values so that the
-#: estimate errs on the cost's side: Q2, 2×2 reduced, lumped: 0.36 (clay scene, 4 to 16 across).
-COURANT_ESTIMATE = 0.3
 #: Run frictionless contact with a compiled material in the compiled loop
 #: (:mod:`~upliftlab.continuum.explicit_loop`; False: the Python loop, for comparison).
 COMPILED_LOOP = True
 
 
-@dataclass(frozen=True)
-class ExplicitSettings:
-    """``dt`` (s), ``steps``, ``record_every`` (steps per recorded row), ``base``, ``sides``,
-    ``prescribe_u`` (frictionless: the footing's u follows the base), the admissible step
-    ``limit`` = :data:`STABILITY_FRACTION` × ``critical`` = 2/``omega_max`` (s, rad/s)."""
-
-    dt: float
-    steps: int
-    record_every: int
-    base: str
-    sides: str
-    prescribe_u: bool
-    limit: float
-    critical: float
-    omega_max: float
-
-
-def lumped_mass(model) -> np.ndarray:
-    """Row sums of the consistent soil mass, ∫ ρ φ_i (mass per length, per DOF)."""
-    rho = model.soil.density
-    return skfem.LinearForm(lambda v, w: rho * (v[0] + v[1])).assemble(_full_basis(model))
-
-
-def lumped_dashpots(model, names) -> np.ndarray:
-    """Row sums of the Lysmer–Kuhlemeyer dashpot matrix on the boundaries ``names``."""
-    data = dashpot_data(model, names)
-    return np.asarray(model.disc.pattern.matrix(data).sum(axis=1)).ravel()
-
-
-def critical_step(model, mass: np.ndarray, free: np.ndarray) -> tuple[float, float]:
-    """(2/ω_max, ω_max): the central-difference limit of the elastic soil with the diagonal
-    ``mass`` on the ``free`` DOFs (module docstring)."""
-    from scipy import sparse
-    from scipy.sparse.linalg import eigsh
-
-    from . import assembly
-    from .dynamics import _elastic_tangent
-
-    K = assembly.stiffness(model.disc, _elastic_tangent(model))[free][:, free]
-    scale = sparse.diags(1.0 / np.sqrt(mass[free]))
-    A = (scale @ K @ scale).tocsr()
-    start = np.random.default_rng(0).standard_normal(free.size)
-    top = float(eigsh(A, k=1, which="LA", tol=1e-8, v0=start, return_eigenvectors=False)[0])
-    omega = math.sqrt(top)
-    return 2.0 / omega, omega
-
-
-def recorded_steps(settings: ExplicitSettings) -> np.ndarray:
-    """The steps recorded as rows: every ``record_every``-th and the last."""
-    return np.unique(np.append(np.arange(0, settings.steps, settings.record_every),
-                               settings.steps))
-
-
-#: Smallest rotary inertia I₀ of the footing, relative to the story's m h², that the explicit
-#: route integrates: its footing and story are advanced with their mass matrix, whose θ row is
-#: h times the story's when I₀ = 0 (singular; the implicit route adds the soil's stiffness and
-#: runs it).
-MIN_ROTARY_INERTIA = 1e-9
-
-
-def check_footing_mass(scene) -> None:
-    """Refuse a footing whose rotary inertia the explicit route cannot advance."""
-    s = scene.structure
-    story = s.stories[0]
-    low = MIN_ROTARY_INERTIA * story.weight / scene.g * story.height ** 2
-    if not s.rotary_inertia >= low:
-        raise InputError(f"structure.rotary_inertia = {s.rotary_inertia:g}: the explicit route "
-                         "needs the footing's mass matrix positive definite; valid range is "
-                         f"[{low:.3g}, ...) ({MIN_ROTARY_INERTIA:g} m h²), or set "
-                         "continuum.dynamics = 'implicit'")
-
-
-def explicit_settings(model, scene, motion, options, mass, free) -> ExplicitSettings:
-    """The explicit run's step, duration and boundaries, checked before any work."""
-    _check_scene(scene, motion)
-    base, sides = boundaries(model, options)
-    if options.mass not in (None, "lumped"):
-        raise InputError(f"DynamicOptions.mass = {options.mass!r}: the explicit route needs a "
-                         "diagonal mass; valid: 'lumped' (or continuum.dynamics = 'implicit')")
-    bad = free[mass[free] <= 1e-12 * np.abs(mass).max()]  # zero up to round-off
-    if bad.size:
-        raise InputError(f"continuum.element = {model.disc.element!r}: its row-sum lumped mass "
-                         f"is not positive at {bad.size} DOFs; the explicit route needs Q2, Q1 or "
-                         "P1 (or continuum.dynamics = 'implicit')")
-    check_footing_mass(scene)
-    critical, omega = critical_step(model, mass, free)
-    limit = STABILITY_FRACTION * critical
-    if options.dt is None:
-        dt = motion.dt / max(1, math.ceil(motion.dt / limit * (1.0 - 1e-12)))
-    else:
-        dt = options.dt
-        if dt > limit:
-            raise InputError(
-                f"DynamicOptions.dt = {dt:g} s: beyond the explicit stability limit of the mesh "
-                f"(2/ω_max = {critical:.4g} s, ω_max = {omega:.4g} rad/s); valid range is "
-                f"(0, {limit:.4g}] s ({STABILITY_FRACTION:g} of 2/ω_max)")
-    duration = options.duration or scene.analysis.duration or motion.duration
-    steps = max(1, int(round(duration / dt)))
-    if options.record_every is not None:
-        every = options.record_every
-    else:
-        implicit = motion.dt / max(1, math.ceil(motion.dt / time_step_limit(model)
-                                                * (1.0 - 1e-12)))
-        every = max(1, int(math.floor(implicit / dt * (1.0 + 1e-9))))
-    return ExplicitSettings(dt=dt, steps=steps, record_every=min(every, steps), base=base,
-                            sides=sides, prescribe_u=not model.footing.interface.tangential,
-                            limit=limit, critical=critical, omega_max=omega)
-
-
 class _Row:
-    """What :class:`~upliftlab.continuum.dynamics._Recorder` reads of a state (duck type);
+    """What :class:`~upliftlab.continuum.dynamic_result.Recorder` reads of a state (duck type);
     the material and the stress are formed only for a snapshot."""
 
     iterations = 0
@@ -227,7 +112,7 @@ def run_explicit(model, scene, motion, options, *, progress=None) -> DynamicResu
     free = np.setdiff1d(np.arange(model.disc.ndofs), fixed)
     settings = explicit_settings(model, scene, motion, options, mass, free)
     started = _time.perf_counter()
-    static = _dynamics._gravity(model, scene, options, settings.prescribe_u)
+    static = ground.gravity_state(model, scene, options, settings.prescribe_u)
     threads = numba.get_num_threads()
     numba.set_num_threads(min(options.threads, numba.config.NUMBA_NUM_THREADS))
     try:
@@ -252,14 +137,14 @@ class _Explicit:
         names = (["sides"] if settings.sides == "lysmer" else []) + (
             ["bottom"] if settings.base == "compliant" else [])
         self.c = lumped_dashpots(model, names) * self.keep
-        released = np.setdiff1d(_static_fixed(model), fixed)
-        R0 = _residual(model, static.stress)
+        released = np.setdiff1d(static_fixed(model), fixed)
+        R0 = soil_residual(model, static.stress)
         release = np.zeros(n)
         release[released] = R0[released]
         self.datum = model.body_force + release  # R = f_int − datum
         if settings.base == "rigid":
             r = np.zeros(n)
-            r[_x_dofs(model)] = 1.0
+            r[x_dofs(model)] = 1.0
             self.ground_soil = -(mass * r) * self.keep
             self.incident = np.zeros(n)
         else:
@@ -267,7 +152,7 @@ class _Explicit:
             self.incident = incident_load(model, options.wave) * self.keep
         self.z = structure_matrices(scene)
         self.ground_z = -(self.z.M @ self.z.r) if settings.base == "rigid" else np.zeros(4)
-        self.vg = _ground_velocity(motion, settings.dt, settings.steps + 1)
+        self.vg = ground_velocity(motion, settings.dt, settings.steps + 1)
         f = model.footing
         self.contact = f.contact_dofs
         self.L = f.kinematics
@@ -277,22 +162,13 @@ class _Explicit:
         self.compiled = COMPILED_LOOP and self.soil.compiled
 
     def structure_affine(self, zn, vz, Fz, first: bool):
-        """(A, b): A z_{n+1} + b + [Lᵀ f_c; 0] = 0 for the footing and story (module
-        docstring of :mod:`~upliftlab.continuum.contact_step`)."""
-        z, dt = self.z, self.settings.dt
-        if first:
-            h = 0.5 * dt * dt
-            A = z.M / h
-            b = -A @ zn - z.M @ vz / (0.5 * dt) - Fz + z.K @ zn + z.C @ vz
-        else:
-            h = dt * dt
-            A = (z.M + 0.5 * dt * z.C) / h
-            b = -A @ zn - (z.M - 0.5 * dt * z.C) @ vz / dt - Fz + z.K @ zn
-        return A, b
+        """(A, b): A z_{n+1} + b + [Lᵀ f_c; 0] = 0 for the footing and story
+        (:func:`~upliftlab.continuum.superstructure.central_difference_form`)."""
+        return central_difference_form(self.z, self.settings.dt, zn, vz, Fz, first)
 
     def loop(self, progress) -> DynamicResult:
         st = self.settings
-        rec = _Recorder(self.model, recorded_steps(st).size - 1, self.options.snapshots)
+        rec = Recorder(self.model, recorded_steps(st).size - 1, self.options.snapshots)
         try:
             if self.compiled:
                 self.compiled_steps(rec, progress)
@@ -410,17 +286,19 @@ class _Explicit:
         Lf = np.ascontiguousarray(self.L[:nc][:, self.free_q])
         elements, gather = compiled_pair(numba.get_num_threads() > 1)
         done, Fz_prev = -1, np.zeros(4)
-        constants = (lay.nodes, lay.dNdx, lay.dNdy, lay.dx, soil.eigenstrain, soil.plastic,
+        rings, carry = (U, V, Z, VZ, FC, ST), (R_prev, F_prev, Fz_prev, energy, counters)
+        soil_data = (lay.nodes, lay.dNdx, lay.dNdy, lay.dx, soil.eigenstrain, soil.plastic,
                      soil.ebar, soil.kind, lam, G, strength, hardening, soil.stress, soil.work,
-                     fint, lay.ptr, lay.entries, elements, gather, self.datum, self.keep,
-                     self.ground_soil, self.incident, ag_all, vinc_all, self.mass, self.c,
-                     m_step, z.M, z.C, z.K, z.gravity, self.ground_z, free, Lf,
-                     f.uy.astype(np.int64), f.ux.astype(np.int64), f.x, f.interface.mu, f.width,
-                     f.interface.tangential)
+                     fint, lay.ptr, lay.entries)
+        loads = (self.datum, self.keep, self.ground_soil, self.incident, ag_all, vinc_all,
+                 self.mass, self.c, m_step)
+        structure = (z.M, z.C, z.K, z.gravity, self.ground_z)
+        contact = (free, Lf, f.uy.astype(np.int64), f.ux.astype(np.int64), f.x,
+                   f.interface.mu, f.width, f.interface.tangential)
         for k in recorded_steps(st):
             with self.diverging(done + 1, k, U[k % 3]):
-                run_steps(done + 1, k, dt, U, V, R_prev, F_prev, Z, VZ, Fz_prev, FC, ST, energy,
-                          counters, *constants)
+                run_steps(done + 1, k, dt, rings, carry, soil_data, elements, gather, loads,
+                          structure, contact)
             done = k
             self.record(rec, progress, k, U, V, Z, VZ, FC, ST, energy, counters, ag_all[k])
 
@@ -467,10 +345,7 @@ class _Explicit:
     def structure_increment(self, z0, z1, F0, F1, vz):
         """(strain, damping, input, 0) of the footing and story over one step: story spring
         and footing weight; story dashpot at the mid-step velocity; ground loads."""
-        z, dz = self.z, z1 - z0
-        strain = 0.5 * float((z.K @ (z0 + z1)) @ dz) - float(z.gravity @ dz)
-        damping = float((z.C @ vz) @ dz)
-        inputs = 0.5 * float((F0 + F1 - 2.0 * z.gravity) @ dz)
+        strain, damping, inputs = structure_work(self.z, z0, z1, F0, F1, vz, 1.0)
         return np.array([strain, damping, inputs, 0.0])
 
     def contact_work(self, f0, f1, u0, u1, z0, z1) -> float:
@@ -503,5 +378,5 @@ class _Explicit:
                 "steps": st.steps, "record_every": st.record_every, "base": st.base,
                 "sides": st.sides, "wave": self.options.wave, "mass": "lumped",
                 "dt_limit": st.limit, "dt_critical": st.critical,
-                "stability_fraction": STABILITY_FRACTION, "omega_max": st.omega_max,
+                "stability_fraction": explicit_step.STABILITY_FRACTION, "omega_max": st.omega_max,
                 "compiled": self.soil.compiled, "threads": numba.get_num_threads()}

@@ -83,14 +83,23 @@ def _tangential(A, b, prescribed, z, u, u_next, v_next, m_eff, h, dt, uy, ux, x,
 
 
 @nb.njit(cache=True)
-def run_steps(k0, k1, dt, U, V, R_prev, F_prev, Z, VZ, Fz_prev, FC, ST, energy, counters,
-              nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, lam, G, strength, H, stress, work,
-              fint, ptr, entries, elements, gather, datum, keep, ground, incident, ag_all,
-              vinc_all, mass, damping, m_step, Mz, Cz, Kz, gravity_z, ground_z, free, Lf, uy, ux,
-              x, mu, width, tangential):
-    """Steps k0…k1 (module docstring); returns nothing, the rings hold the state. ``elements``
-    and ``gather``: the serial or parallel kernels (:func:`~upliftlab.continuum.kernels.
-    compiled_pair`), passed in so that the serial loop never compiles the parallel ones."""
+def run_steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure, contact):
+    """Steps k0…k1 (module docstring); returns nothing, the rings hold the state. The arrays
+    travel in tuples: ``rings`` (U, V, Z, VZ, FC, ST) and ``carry`` (R_prev, F_prev, Fz_prev,
+    energy, counters), both updated in place; ``soil`` the compiled soil force's layout, state
+    and workspace (:class:`~upliftlab.continuum.soil_force.SoilForce`); ``loads`` (datum, keep,
+    ground, incident, ag_all, vinc_all, mass, damping, m_step); ``structure`` (M, C, K,
+    gravity, ground influence of the footing and story); ``contact`` (free, Lf, uy, ux, x, μ,
+    width, tangential). ``elements`` and ``gather``: the serial or parallel kernels
+    (:func:`~upliftlab.continuum.kernels.compiled_pair`), passed in so that the serial loop
+    never compiles the parallel ones."""
+    U, V, Z, VZ, FC, ST = rings
+    R_prev, F_prev, Fz_prev, energy, counters = carry
+    (nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, lam, G, strength, H, stress, work, fint,
+     ptr, entries) = soil
+    datum, keep, ground, incident, ag_all, vinc_all, mass, damping, m_step = loads
+    Mz, Cz, Kz, gravity_z, ground_z = structure
+    free, Lf, uy, ux, x, mu, width, tangential = contact
     nc = uy.size
     prescribed = np.ones(3, dtype=np.bool_)
     for i in free:

@@ -17,14 +17,14 @@ measured from the start of the step) or bonded (rough: no slip while in contact)
 Coulomb with μ = :data:`ROUGH_FRICTION` (1000): identical to a tie wherever |T| < 1000 P, and
 solvable at the node where contact ends, where an infinite μ has no solution.
 
-**Solver.** The soil's linearisation is condensed onto the contact DOFs c (the flexibility route
-of ``continuum-notes.md``): f_c = r + S Δu_c, with S the Schur complement of the current tangent
-and f_c the forces the footing applies to the soil. :func:`solve_contact` then solves this small
-dense problem together with the footing's equilibrium or prescribed motion and the contact
-conditions by a primal–dual active set (semismooth Newton on the complementarity function
-P − c g): guess the closed/stick/slip sets, solve the linear system they define, update the sets
-from the solution, and stop when they no longer change. Each solve is exact for its sets, so the
-converged answer satisfies P ≥ 0, g ≥ 0, P g = 0 to round-off.
+**Solver.** The soil's linearisation is condensed onto the contact DOFs c (a flexibility
+formulation: only the contact DOFs enter the contact problem): f_c = r + S Δu_c, with S the Schur
+complement of the current tangent and f_c the forces the footing applies to the soil.
+:func:`solve_contact` then solves this small dense problem together with the footing's equilibrium
+or prescribed motion and the contact conditions by a primal–dual active set (semismooth Newton on
+the complementarity function P − c g): guess the closed/stick/slip sets, solve the linear system
+they define, update the sets from the solution, and stop when they no longer change. Each solve is
+exact for its sets, so the converged answer satisfies P ≥ 0, g ≥ 0, P g = 0 to round-off.
 """
 
 from __future__ import annotations

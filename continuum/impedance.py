@@ -13,7 +13,7 @@ The usual normalisation K_j = K_j,static [k_j(a0) + i a0 c_j(a0)], a0 = ω (B/2)
 DOFs follow its rigid motion (both components if the interface is bonded; the vertical only if
 frictionless, whose base then carries no shear), and the reactions give K(ω) = Lᵀ f_c. The
 stiffness is the model's (:func:`~upliftlab.continuum.assembly.stiffness`, its quadrature), the
-mass :func:`~upliftlab.continuum.dynamics.mass_data` (consistent).
+mass :func:`~upliftlab.continuum.waves.mass_data` (consistent).
 
 **The unbounded soil.** Two absorbing boundaries (``ImpedanceOptions.boundary``):
 
@@ -30,7 +30,7 @@ mass :func:`~upliftlab.continuum.dynamics.mass_data` (consistent).
   stretch grows as 1/a0, so the layer stands for an ever longer soil: the logarithmic growth
   of the 2D vertical and horizontal compliance is represented, not cut off by the box.
 - ``lysmer``: viscous dashpots ρV_p (normal) and ρV_s (tangential) on the box's sides and
-  bottom (:func:`~upliftlab.continuum.dynamics.dashpot_data`), nothing fixed. Exact for a plane
+  bottom (:func:`~upliftlab.continuum.waves.dashpot_data`), nothing fixed. Exact for a plane
   wave at normal incidence only; what it reflects (oblique and surface waves, and everything at
   low frequency, where the box is a fraction of a wavelength) comes back to the footing.
 
@@ -53,9 +53,11 @@ from ..checks import InputError
 from ..results import write_netcdf
 from ..scenes import ContinuumOptions
 from . import assembly
-from .dynamics import _full_basis, dashpot_data, mass_data, wave_speeds
+from .waves import dashpot_data, mass_data, wave_speeds
 from .materials import plane_strain_tangent
-from .statics import _elastic_tangent, _metadata
+from .fields import result_metadata
+from .geostatic import elastic_tangent
+from .pml import check_layer, pml_corrections
 
 __all__ = ["ImpedanceOptions", "Impedance", "impedance", "impedance_model", "BOUNDARIES",
            "DEFAULT_A0", "DEFAULT_BOX", "static_normalisers"]
@@ -107,16 +109,7 @@ class ImpedanceOptions:
             raise InputError(f"impedance pml_reflection = {r:g}: valid range is (0, 1)")
         checks.integer_at_least("impedance pml_order", self.pml_order, 1)
         if self.boundary == "pml":
-            _check_layer(self.pml_thickness, 0.5 * self.domain_width, self.domain_depth)
-
-
-def _check_layer(thickness: float, half_width: float, depth: float) -> None:
-    """The layer (all lengths in B) must leave soil around the footing."""
-    if not (half_width - thickness > 0.5 and depth - thickness > 0.0):
-        raise InputError(f"impedance pml_thickness = {thickness:g} B: the layer must leave soil "
-                         f"around the footing inside a box of half-width {half_width:g} B and "
-                         f"depth {depth:g} B; valid range is (0, {min(half_width - 0.5, depth):g})"
-                         " B")
+            check_layer(self.pml_thickness, 0.5 * self.domain_width, self.domain_depth)
 
 
 def _numbers(values) -> bool:
@@ -221,114 +214,6 @@ class Impedance:
 
 
 # ---------------------------------------------------------------------------------------------
-# The perfectly matched layer
-# ---------------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True, eq=False)
-class _Layer:
-    """Where the PML is: ξ_x, ξ_y ∈ [0, 1] at the quadrature points of the stiffness (``k``)
-    and mass (``m``) rules of the elements that reach into it (``elements``), and f₀."""
-
-    elements: np.ndarray
-    xi_k: tuple
-    xi_m: tuple
-    strength: float
-    order: int
-
-
-def _xi(coords: np.ndarray, inner_x: float, inner_y: float, thickness: float):
-    """Normalised depth into the side (x) and bottom (y) layers, 0 outside them."""
-    x, y = coords
-    xi_x = np.clip((np.abs(x) - inner_x) / thickness, 0.0, 1.0)
-    xi_y = np.clip((-y - inner_y) / thickness, 0.0, 1.0)
-    return xi_x, xi_y
-
-
-def _layer(model, options: ImpedanceOptions, full) -> _Layer:
-    B = model.width
-    half_width = 0.5 * float(np.ptp(model.mesh.p[0]))
-    depth = -float(model.mesh.p[1].min())
-    L = options.pml_thickness * B
-    _check_layer(options.pml_thickness, half_width / B, depth / B)
-    inner_x, inner_y = half_width - L, depth - L
-    xk = _xi(model.disc.qp_coordinates, inner_x, inner_y, L)
-    xm = _xi(np.asarray(full.mapping.F(full.X)), inner_x, inner_y, L)
-    inside = ((xk[0] > 0) | (xk[1] > 0)).any(axis=1) | ((xm[0] > 0) | (xm[1] > 0)).any(axis=1)
-    elements = np.flatnonzero(inside)
-    vp, vs = wave_speeds(model.soil)
-    m = options.pml_order
-    strength = (m + 1) * 0.5 * B * math.log(1.0 / options.pml_reflection) * vp / (2.0 * vs * L)
-    pick = lambda pair: (pair[0][elements], pair[1][elements])  # noqa: E731
-    return _Layer(elements=elements, xi_k=pick(xk), xi_m=pick(xm), strength=strength, order=m)
-
-
-def _stretch(xi: np.ndarray, layer: _Layer, a0: float) -> np.ndarray:
-    f = layer.strength * xi ** layer.order
-    return 1.0 + f - 1j * f / a0
-
-
-def _gradient_rows(basis) -> np.ndarray:
-    """(4, nloc, nelems, nqp): u_x,x, u_y,y, u_x,y, u_y,x of each local vector function."""
-    return np.stack([np.stack((g[0, 0], g[1, 1], g[0, 1], g[1, 0]))
-                     for g in (phi[0].grad for phi in basis.basis)], axis=1)
-
-
-def _lame_gradient_matrix(soil) -> np.ndarray:
-    """C on the displacement gradient (u_x,x, u_y,y, u_x,y, u_y,x), plane strain."""
-    G, nu = soil.shear_modulus, soil.poisson_ratio
-    lam = 2.0 * G * nu / (1.0 - 2.0 * nu)
-    return np.array([[lam + 2 * G, lam, 0, 0], [lam, lam + 2 * G, 0, 0],
-                     [0, 0, G, G], [0, 0, G, G]], dtype=float)
-
-
-@dataclass(frozen=True, eq=False)
-class _PML:
-    """The layer's corrections to the stiffness and mass data at one frequency are
-    ΔK = ∫ Gᵀ (Λ C Λ λ_x λ_y − C) G and ΔM = ∫ ρ (λ_x λ_y − 1) u·v over its elements."""
-
-    layer: _Layer
-    grad: np.ndarray
-    dx_k: np.ndarray
-    values: np.ndarray
-    dx_m: np.ndarray
-    C: np.ndarray
-    rho: float
-    scatter: np.ndarray
-    nnz: int
-
-    def corrections(self, a0: float) -> tuple[np.ndarray, np.ndarray]:
-        lx, ly = (_stretch(x, self.layer, a0) for x in self.layer.xi_k)
-        inv = np.stack((1 / lx, 1 / ly, 1 / ly, 1 / lx))
-        Ct = np.einsum("aep,ab,bep->abep", inv, self.C, inv) * (lx * ly) \
-            - self.C[:, :, None, None]
-        CG = np.einsum("abep,bjep->ajep", Ct, self.grad)
-        Ke = np.einsum("aiep,ajep->eij", self.grad, CG * self.dx_k)
-        mx, my = (_stretch(x, self.layer, a0) for x in self.layer.xi_m)
-        w = self.rho * (mx * my - 1.0) * self.dx_m
-        Me = np.einsum("ciep,cjep->eij", self.values, self.values * w)
-        return self._scatter(Ke), self._scatter(Me)
-
-    def _scatter(self, Ae: np.ndarray) -> np.ndarray:
-        flat = Ae.ravel()
-        return np.bincount(self.scatter, weights=flat.real, minlength=self.nnz) \
-            + 1j * np.bincount(self.scatter, weights=flat.imag, minlength=self.nnz)
-
-
-def _pml(model, options: ImpedanceOptions) -> _PML:
-    full = _full_basis(model)
-    layer = _layer(model, options, full)
-    e = layer.elements
-    nloc = model.disc.dofs.shape[0]
-    scatter = model.disc.pattern.scatter.reshape(-1, nloc, nloc)[e].ravel()
-    values = np.stack([np.asarray(phi[0]) for phi in full.basis], axis=1)[:, :, e]
-    return _PML(layer=layer, grad=_gradient_rows(model.disc.basis)[:, :, e],
-                dx_k=model.disc.dx[e], values=values, dx_m=np.asarray(full.dx)[e],
-                C=_lame_gradient_matrix(model.soil), rho=model.soil.density,
-                scatter=scatter, nnz=model.disc.pattern.nnz)
-
-
-# ---------------------------------------------------------------------------------------------
 # The harmonic solve
 # ---------------------------------------------------------------------------------------------
 
@@ -382,9 +267,9 @@ def impedance(model, options: ImpedanceOptions = ImpedanceOptions(), *,
     before any work (InputError naming the field, the value and the valid range)."""
     _check(model)
     started = _time.perf_counter()
-    pml = _pml(model, options) if options.boundary == "pml" else None
+    pml = pml_corrections(model, options) if options.boundary == "pml" else None
     pattern = model.disc.pattern
-    D = plane_strain_tangent(_elastic_tangent(model))
+    D = plane_strain_tangent(elastic_tangent(model))
     K0 = assembly.stiffness(model.disc, D).data
     M0 = mass_data(model)
     C0 = dashpot_data(model, ["sides", "bottom"]) if options.boundary == "lysmer" \
@@ -411,7 +296,7 @@ def impedance(model, options: ImpedanceOptions = ImpedanceOptions(), *,
     extra = {"boundary": options.boundary, "pml_thickness": options.pml_thickness,
              "pml_reflection": options.pml_reflection, "pml_order": options.pml_order,
              "wall_time_s": _time.perf_counter() - started, "free_dofs": int(free.size)}
-    metadata = _metadata(model, "impedance", extra)
+    metadata = result_metadata(model, "impedance", extra)
     metadata["units"] = _units(model)
     return Impedance(a0=a0, matrix=mats, soil=model.soil, width=model.width,
                      interface=model.soil.interface, mesh=dict(model.mesh_parameters),

@@ -8,7 +8,7 @@ state, as :mod:`~upliftlab.continuum.materials` requires):
    R = f_int − f_body.
 2. Factorise the tangent's free block once, the contact DOFs last, and condense onto them
    (S = K_cc − K_ci K_ii⁻¹ K_ic from the factors, r = R_c − K_ci K_ii⁻¹ R_i by one solve;
-   :func:`~upliftlab.continuum.model.condensation`).
+   :func:`~upliftlab.continuum.condensation.condensation`).
 3. Solve the linearised contact problem **exactly** on that small dense system with the
    footing's equilibrium or prescribed motion (primal–dual active set,
    :func:`~upliftlab.continuum.footing.solve_contact`): a sequential linear complementarity
@@ -16,11 +16,12 @@ state, as :mod:`~upliftlab.continuum.materials` requires):
    plastic Newton loop.
 4. Recover the interior increment Δu_i = −K_ii⁻¹(R_i + K_ic Δu_c) (one more solve).
 5. Energy line search (:func:`_line_search`), the predictor included: near collapse the last
-   converged tangent is nearly singular and its full step can overshoot (graded Prandtl mesh,
-   8 across: 132 → 89 factorisations, 5 → 1 step cuts, measured).
+   converged tangent is nearly singular and its full step can overshoot (what the search saves:
+   ``benchmarks/CONTINUUM_DESIGN.md``).
 
 The first iteration of a step uses the tangent of the last converged state and imposes the whole
-prescribed increment: the linearised predictor of ``continuum-notes.md``. Convergence is
+prescribed increment: the linearised (tangent) predictor, so the first iterate is already
+consistent with the prescribed footing motion. Convergence is
 ‖R − f_c‖ ≤ ``rtol`` × (‖f_body‖ + ‖f_c‖ + E·B·1e-6) over the unconstrained DOFs. For elastic
 soil the tangent is factorised once per model and each step is one small dense solve.
 
@@ -37,6 +38,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..checks import InputError
+from .anderson import Anderson
 from .footing import OPEN, ContactError, ContactProblem, solve_contact
 from .materials import State
 
@@ -239,54 +241,6 @@ def equilibrium(model, state: ContinuumState, control: Control,
     raise ConvergenceError(f"Newton did not converge in {iteration} iterations: relative "
                            f"residual {relative:.3e} > rtol {options.rtol:g}",
                            residual=relative, iterations=iteration)
-
-
-class Anderson:
-    """Anderson acceleration (type II, Walker & Ni, SIAM J. Numer. Anal. 49(4), 2011) of the
-    fixed-point iteration x ← x + d(x) of modified Newton: the next iterate is x + d − ΔG γ,
-    with γ the least-squares fit of d by the recorded differences ΔD of d and ΔG of x + d,
-    ``depth`` pairs at most. With a frozen iteration matrix the iteration converges linearly,
-    and this recovers most of Newton's rate at the cost of a small least-squares problem.
-
-    The contact forces are combined with the same weights, so the combination keeps zero gaps
-    at closed nodes and zero forces at open ones. The pairs are secant information about the
-    map's Jacobian, which changes little from one time step to the next: one instance can serve
-    a whole run (:meth:`new_step` keeps the pairs, forgets the last point; the first iteration
-    of a step, the predictor, is always the plain step). The pairs are dropped whenever the
-    contact status or the iteration matrix changes."""
-
-    def __init__(self, depth: int):
-        self.depth = depth
-        self.status = self.matrix = self.last = None
-        self.pairs = []
-
-    def clear(self) -> None:
-        self.pairs, self.last = [], None
-
-    def new_step(self) -> None:
-        self.last = None
-
-    def mix(self, x, d, force, status, matrix=None):
-        """The combined (x + d, force), or None (take the plain step)."""
-        if self.depth == 0:
-            return None
-        if self.matrix is not matrix or self.status is None \
-                or not np.array_equal(status, self.status):
-            self.clear()
-            self.status, self.matrix = np.array(status), matrix
-        g = x + d
-        first, last = self.last is None, self.last
-        self.last = (g, d, force)
-        if first:  # a step's predictor: the plain step
-            return None
-        self.pairs.append(tuple(a - b for a, b in zip((g, d, force), last)))
-        del self.pairs[:-self.depth]
-        dG, dD, dF = (np.array(column).T for column in zip(*self.pairs))
-        # the k×k normal equations (k = depth ≤ 10): 0.14 ms against 0.72 ms for the SVD of the
-        # (n, 4) block at 20k DOFs (measured); the mixed iterate is only taken if it lowers the
-        # residual (_mixed_step), so their poorer conditioning costs no accuracy
-        gamma = np.linalg.lstsq(dD.T @ dD, dD.T @ d, rcond=None)[0]
-        return g - dG @ gamma, force - dF @ gamma
 
 
 def _mixed_step(model, state, soil_term, mixed, merit0):

@@ -125,7 +125,7 @@ def test_body_force_sums_to_weight():
 
 
 def test_element_and_mesh_must_match():
-    # Reference: design.md, bad input names the field and the valid range.
+    # Reference: the project's input rule: bad input names the field and the valid range.
     soil = soil_mesh(2.0, element="Q1", elements_across=2, domain_width=2, domain_depth=1)
     with pytest.raises(InputError, match="^element = 'P2': needs a MeshTri1"):
         discretise(soil.mesh, "P2")

@@ -1,9 +1,9 @@
 """Vertical bearing capacity of a rough rigid strip on undrained clay (upliftlab.continuum).
 
-Reference: Prandtl, q_u = (2 + π) c_u for a strip on Tresca soil (anchors §4; for φ = 0 the
+Reference: Prandtl, q_u = (2 + π) c_u for a strip on Tresca soil (Prandtl 1920; for φ = 0 the
 soil's weight and the base roughness do not change it); von Mises in plane strain with
 σ_y = √3 c_u gives the same. Displacement FE overshoots on coarse meshes and converges from
-above at O(h) (the footing-edge singularity, continuum-notes.md); constant-strain triangles lock.
+above at O(h) (the footing-edge singularity); constant-strain triangles lock.
 
 Soil: the scene's (E = 50 MPa, ν = 0.3, ρ = 1.8 t/m³, c_u = 50 kPa, K0 = 1), bonded (rough)
 interface, settlement pushed to 0.1 m (5 % of B) in 10 steps.
@@ -60,7 +60,7 @@ def test_prandtl_capacity_falls_towards_the_reference_under_refinement(default_m
 
 
 def test_constant_strain_triangles_lock(default_mesh):
-    # Reference: volumetric locking of P1 under isochoric plastic flow (continuum-notes.md).
+    # Reference: volumetric locking of P1 under isochoric plastic flow.
     # P1 on the same grid (16 across): +40 % at 0.1 m and still rising; asserted > 10 % and
     # more than 5 times the Q2 error, with no plateau.
     _, p1 = capacity_error(element="P1")
@@ -91,7 +91,7 @@ def test_prandtl_refinement_study():
 
 
 def test_grading_towards_the_footing_edges_cuts_the_error_at_equal_dofs():
-    # Reference: (2 + π) c_u. The error is O(h) at the footing edges (continuum-notes.md), so
+    # Reference: (2 + π) c_u. The error is O(h) at the footing edges, so
     # at equal DOFs a mesh graded towards them is closer. Q2 8 across (5184 DOFs): grading 1
     # +3.41 %, grading 16 (centre element 16 × the edge element) +0.97 %. Asserted: within
     # [0, 1.2 %] and below 0.4 × the uniform mesh's error, still converging from above.

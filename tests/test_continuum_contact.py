@@ -1,7 +1,7 @@
 """Unilateral contact of the rigid footing on elastic soil (upliftlab.continuum).
 
 References:
-- Winkler bed (anchors §3): uplift starts at e = M/N = B/6.
+- Winkler bed (compression-only springs): uplift starts at e = M/N = B/6.
 - Elastic half-plane, rigid flat frictionless punch (Johnson, *Contact Mechanics*, 1985, §2.8
   and §5.2; derived here): under N and M the pressure is
   p(x) = (N/π + 2 M x/(π b²))/√(b² − x²), b = B/2, so the heel's edge coefficient vanishes and
@@ -60,8 +60,8 @@ def test_full_contact_then_uplift_with_exact_complementarity(pushovers):
 
 
 def test_uplift_onset_eccentricity_is_a_quarter_width_not_a_sixth(pushovers):
-    # Reference: half-plane onset e = B/4 (module docstring); Winkler's is B/6 (anchors §3).
-    # Measured on the 10B box: e/B = 0.24929 (8 across), 0.24910 (16), 0.24906 (32); the
+    # Reference: half-plane onset e = B/4 (module docstring); Winkler's is B/6 (compression-only
+    # springs). Measured on the 10B box: e/B = 0.24929 (8 across), 0.24910 (16), 0.24906 (32); the
     # −0.36 % from 1/4 is the box (20B: 0.24993, 40B: 0.25012). Asserted within 1 % of B/4,
     # converging (|Δe| from 8 to 16 below 0.1 %), and 49 % above Winkler's B/6.
     e8, e16 = (uplift_onset(pushovers[n]).e / B for n in (8, 16))
@@ -188,7 +188,7 @@ def test_coulomb_footing_slides_at_mu_times_n():
 
 
 def test_frictionless_footing_refuses_a_horizontal_force():
-    # Reference: design.md bad input: a frictionless base has no horizontal stiffness.
+    # Reference: the project's input rule: a frictionless base has no horizontal stiffness.
     model = model_for(4)
     with pytest.raises(InputError, match="frictionless interface"):
         follow(model, geostatic(model), [Control((False, False, True), (10.0, -N, 0.0))])

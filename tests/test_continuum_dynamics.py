@@ -1,7 +1,7 @@
 """Dynamics of the continuum model (upliftlab.continuum.dynamics).
 
 References, one per test:
-- Lysmer–Kuhlemeyer boundary (anchors §4; Lysmer & Kuhlemeyer 1969): in a 1-D soil column on a
+- Lysmer–Kuhlemeyer boundary (Lysmer & Kuhlemeyer 1969): in a 1-D soil column on a
   compliant base, a vertically incident S (or P) pulse doubles at the free surface (the 1-D wave
   solution: surface velocity = 2 u̇_inc) and leaves through the base; the energy left in the
   column after it has gone is the reflected energy, 0 for a perfect absorber, < 5 % required;
@@ -33,7 +33,9 @@ from scipy.sparse.linalg import splu
 
 from upliftlab.checks import InputError
 from upliftlab.continuum import OPEN, assembly, build_model, make_model
-from upliftlab.continuum import dynamics as dyn
+from upliftlab.continuum import ground
+from upliftlab.continuum import iteration_matrix
+from upliftlab.continuum.iteration_matrix import elastic_plane_tangent
 from upliftlab.continuum.dynamics import (COURANT_LIMIT, DynamicOptions, DynamicResult,
                                           dashpot_data, incident_load, mass_data,
                                           newmark_parameters, run_dynamic, time_step_limit,
@@ -94,7 +96,7 @@ def test_lysmer_base_absorbs_a_vertically_incident_pulse(wave):
     free = np.setdiff1d(np.arange(basis.N), fixed)
     dt = 0.5 * 0.5 / vp
     c = newmark_parameters(0.0, dt)
-    A = (c["a0"] * M + c["c0"] * C + K)[free][:, free].tocsc()
+    A = (c.a0 * M + c.c0 * C + K)[free][:, free].tocsc()
     lu = splu(A)
     f, t0, H = 10.0, 0.15, 40.0
     t_end = t0 + 2.0 * H / speed + 0.15
@@ -103,11 +105,11 @@ def test_lysmer_base_absorbs_a_vertically_incident_pulse(wave):
     top = basis.get_dofs("surface").all("u^1" if wave == "S" else "u^2")
     energy, surface = [], []
     for n in range(1, steps + 1):
-        rhs = load * _ricker(n * dt, f, t0) + M @ (c["a0"] * u + c["a1"] * v + c["a2"] * a) \
-            + C @ (c["c0"] * u - c["c1"] * v - c["c2"] * a)
+        rhs = load * _ricker(n * dt, f, t0) + M @ (c.a0 * u + c.a1 * v + c.a2 * a) \
+            + C @ (c.c0 * u - c.c1 * v - c.c2 * a)
         new = np.zeros_like(u)
         new[free] = lu.solve(rhs[free])
-        an = c["a0"] * (new - u) - c["a1"] * v - c["a2"] * a
+        an = c.a0 * (new - u) - c.a1 * v - c.a2 * a
         v = v + dt * 0.5 * (a + an)
         u, a = new, an
         energy.append(0.5 * v @ (M @ v) + 0.5 * u @ (K @ u))
@@ -121,8 +123,8 @@ def test_lysmer_base_absorbs_a_vertically_incident_pulse(wave):
 
 
 def test_lysmer_dashpots_carry_rho_v_per_unit_length():
-    # Reference: σ_n = ρ V_p v_n and τ = ρ V_s v_t (anchors §4) integrated over the bottom
-    # (width 2 m): a uniform unit velocity gives the resultant ρ V 2 m in each direction.
+    # Reference: σ_n = ρ V_p v_n and τ = ρ V_s v_t (Lysmer & Kuhlemeyer 1969) integrated over the
+    # bottom (width 2 m): a uniform unit velocity gives the resultant ρ V 2 m in each direction.
     model = _column(depth=4.0)
     vp, vs = wave_speeds(model.soil)
     C = model.disc.pattern.matrix(dashpot_data(model, ["bottom"]))
@@ -375,7 +377,7 @@ def test_too_coarse_a_step_is_refused_before_any_work(monkeypatch):
     def no_work(*args, **kwargs):
         raise AssertionError("work started before the input was checked")
 
-    monkeypatch.setattr(dyn, "_gravity", no_work)
+    monkeypatch.setattr(ground, "gravity_state", no_work)
     with pytest.raises(InputError) as info:
         run_dynamic(model, scene, scene.build_motion(), DynamicOptions(dt=1.5 * limit,
                                                                        method="implicit"))
@@ -393,7 +395,7 @@ def test_unsupported_scenes_are_refused_before_any_work(overrides, message, meth
                                                          monkeypatch):
     scene = load_scene(SCENE, overrides=COARSE + overrides)
     model = build_model(scene)
-    monkeypatch.setattr(dyn, "_gravity", lambda *a, **k: pytest.fail("work started"))
+    monkeypatch.setattr(ground, "gravity_state", lambda *a, **k: pytest.fail("work started"))
     with pytest.raises(InputError, match=None) as info:
         run_dynamic(model, scene, scene.build_motion(), DynamicOptions(method=method))
     assert message in str(info.value)
@@ -440,7 +442,7 @@ def test_bad_anderson_depth_is_refused(depth):
 
 def test_predictor_and_single_precision_matrix_converge_to_the_same_history(monkeypatch):
     # Reference: the iteration from the last converged state with a double-precision iteration
-    # matrix (predict = False, dynamics.SINGLE = False) on the plastic clay scene's Ricker
+    # matrix (predict = False, iteration_matrix.SINGLE = False) on the plastic clay scene's Ricker
     # pulse. Every variant converges to the same rtol = 1e-6 at every step, so the histories
     # agree to well within 0.1 % of their peaks; the constant-acceleration predictor starts
     # each step closer to its solution, so it needs fewer iterations in all (measured on
@@ -452,7 +454,7 @@ def test_predictor_and_single_precision_matrix_converge_to_the_same_history(monk
     newton = NewtonOptions(rtol=1e-6, max_iterations=60, anderson=4)
     runs = {}
     for single, predict in ((False, False), (False, True), (True, True)):
-        monkeypatch.setattr(dyn, "SINGLE", single)
+        monkeypatch.setattr(iteration_matrix, "SINGLE", single)
         runs[single, predict] = run_dynamic(model, scene, motion, DynamicOptions(
             method="implicit", snapshots=0, newton=newton, predict=predict))
     plain = runs[False, False]
@@ -477,7 +479,7 @@ def test_single_precision_condensation_is_an_iteration_matrix():
 
     scene = load_scene(SCENE, overrides=COARSE)
     model = build_model(scene)
-    data = dyn.assembly.stiffness(model.disc, dyn._elastic_tangent(model)).data
+    data = assembly.stiffness(model.disc, elastic_plane_tangent(model)).data
     double = condensation(model.blocks, data, True, reused=True)
     single = condensation(model.blocks, data, True, reused=True, single=True)
     rhs = np.random.default_rng(1).standard_normal(model.dofs)

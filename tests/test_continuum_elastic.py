@@ -1,6 +1,6 @@
 """Elastic soil under a rigid footing: stiffnesses and geostatic stress of upliftlab.continuum.
 
-References (verification-anchors.md §4 unless stated):
+References (closed forms for a rigid strip on an elastic half-plane unless stated):
 - rocking stiffness of a rigid frictionless strip on an elastic half-plane,
   K_r = π G B²/(8(1 − ν)); a bonded footing is about 5 % stiffer at ν = 0.3;
 - Flamant: 1/K_v grows by (1 − ν)/(π G) per unit ln(domain size);
@@ -35,14 +35,14 @@ def rocking(n=16, intorder=None, interface="frictionless", **kw):
 
 
 def test_rocking_stiffness_on_default_mesh_within_1_percent():
-    # Reference: K_r = π G B²/(8(1 − ν)) (anchors §4). Default mesh: Q2 2×2 reduced, 16
-    # elements across B, 10B × 10B box, 20 160 DOFs. Measured: −0.018 %.
+    # Reference: K_r = π G B²/(8(1 − ν)) (Muskhelishvili's rigid punch). Default mesh: Q2 2×2
+    # reduced, 16 elements across B, 10B × 10B box, 20 160 DOFs. Measured: −0.018 %.
     error = rocking() / K_R - 1.0
     assert abs(error) <= 0.01, error
 
 
 def test_rocking_stiffness_converges_at_first_order_with_full_integration():
-    # Reference: the footing-edge singularity limits convergence to O(h) (continuum-notes.md);
+    # Reference: the footing-edge singularity limits convergence to O(h);
     # Q2 with full 3×3 integration at n = 4, 8, 16 across B: +7.64 %, +3.75 %, +1.83 %, fitted
     # rate 1.03 (asserted 1 ± 0.15); Richardson 2 K(16) − K(8) = −0.085 % (asserted 0.2 %).
     # The reduced default converges faster and from nearer: +0.76 %, +0.14 %, −0.02 %.
@@ -73,14 +73,15 @@ def test_rocking_stiffness_refinement_study():
 
 
 def test_bonded_footing_is_about_five_percent_stiffer_in_rocking():
-    # Reference: anchors §4, "a bonded (rough) footing is about 5 % stiffer at ν = 0.3".
-    # Measured on the default mesh: +5.6 %; asserted 4–7 %.
+    # Reference: the half-plane solutions of bonded and frictionless strips, "a bonded (rough)
+    # footing is about 5 % stiffer at ν = 0.3". Measured on the default mesh: +5.6 %; asserted 4–7
+    # %.
     ratio = rocking(interface="bonded") / rocking()
     assert abs(ratio - 1.055) <= 0.015, ratio
 
 
 def test_vertical_compliance_grows_with_log_of_domain_size():
-    # Reference: Flamant (anchors §4): d(1/K_v)/d ln L = (1 − ν)/(π G). Boxes 5B, 10B, 20B,
+    # Reference: Flamant: d(1/K_v)/d ln L = (1 − ν)/(π G). Boxes 5B, 10B, 20B,
     # 40B (square), Q2 8 across: fitted slope −0.75 % from the closed form (asserted 2 %).
     sizes = np.array([5.0, 10.0, 20.0, 40.0])
     compliance = []

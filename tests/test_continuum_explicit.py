@@ -26,7 +26,10 @@ import pytest
 from upliftlab.checks import InputError
 from upliftlab.continuum import OPEN, build_model, geostatic, kernels
 from upliftlab.continuum import dynamics as dyn
+from upliftlab.continuum import ground
+from upliftlab.continuum.iteration_matrix import elastic_plane_tangent
 from upliftlab.continuum import explicit as ex
+from upliftlab.continuum import explicit_step
 from upliftlab.continuum.contact_step import normal_forces, tangential_step
 from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
 from upliftlab.continuum.footing import (ContactError, ContactProblem, Footing, Interface,
@@ -116,7 +119,7 @@ def test_a_basis_without_a_positive_lumped_mass_is_refused(monkeypatch):
     scene = load_scene(SCENE, overrides=COARSE + ["continuum.element=P2"])
     model = build_model(scene)
     assert ex.lumped_mass(model).min() <= 1e-12 * ex.lumped_mass(model).max()
-    monkeypatch.setattr(dyn, "_gravity", lambda *a, **k: pytest.fail("work started"))
+    monkeypatch.setattr(ground, "gravity_state", lambda *a, **k: pytest.fail("work started"))
     with pytest.raises(InputError, match="continuum.element = 'P2'"):
         run_dynamic(model, scene, scene.build_motion(), DynamicOptions(method="explicit"))
 
@@ -131,7 +134,7 @@ def test_stable_step_is_twice_the_inverse_of_the_largest_frequency():
     free = np.setdiff1d(np.arange(model.disc.ndofs), dyn.dynamic_fixed(model, "rigid",
                                                                      "rollers"))
     critical, omega = ex.critical_step(model, mass, free)
-    K = assembly.stiffness(model.disc, dyn._elastic_tangent(model))[free][:, free].toarray()
+    K = assembly.stiffness(model.disc, elastic_plane_tangent(model))[free][:, free].toarray()
     scale = 1.0 / np.sqrt(mass[free])
     top = np.linalg.eigvalsh(scale[:, None] * K * scale[None, :]).max()
     assert omega == pytest.approx(np.sqrt(top), rel=1e-9)
@@ -146,7 +149,7 @@ def test_a_step_beyond_the_stable_limit_is_refused_with_the_limit(monkeypatch):
                                                                      "rollers"))
     critical, _ = ex.critical_step(model, mass, free)
     limit = ex.STABILITY_FRACTION * critical
-    monkeypatch.setattr(dyn, "_gravity", lambda *a, **k: pytest.fail("work started"))
+    monkeypatch.setattr(ground, "gravity_state", lambda *a, **k: pytest.fail("work started"))
     with pytest.raises(InputError) as info:
         run_dynamic(model, scene, scene.build_motion(),
                     DynamicOptions(method="explicit", dt=1.001 * limit))
@@ -171,7 +174,7 @@ def test_central_differences_are_stable_up_to_two_over_omega_max(fraction, stabl
     # by allowing that fraction of the limit; a diverged run fails naming the time and the
     # step's share of the limit.
     scene, model, motion = _free_rocking()
-    monkeypatch.setattr(ex, "STABILITY_FRACTION", fraction)
+    monkeypatch.setattr(explicit_step, "STABILITY_FRACTION", fraction)
     mass = ex.lumped_mass(model)
     free = np.setdiff1d(np.arange(model.disc.ndofs), dyn.dynamic_fixed(model, "rigid",
                                                                      "rollers"))

@@ -1,9 +1,9 @@
 """Bad input, the strip-footing scene, and result files of upliftlab.continuum.
 
-References: design.md ("a scene or motion that makes no sense gets an error that names the
-field, the value and the valid range, before any work starts"; results are records saved
-atomically with provenance); the scene's stated design numbers (FS_v = 3 on (2 + π) c_u B,
-T = 0.3 s, I0 of a 2 m × 4 m block, a Winkler bed with the continuum's K_r).
+References: the project's input rule ("a scene or motion that makes no sense gets an error that
+names the field, the value and the valid range, before any work starts"; results are records saved
+atomically with provenance); the scene's stated design numbers (FS_v = 3 on (2 + π) c_u B, T = 0.3
+s, I0 of a 2 m × 4 m block, a Winkler bed with the continuum's K_r).
 """
 
 from __future__ import annotations
@@ -47,19 +47,20 @@ def no_meshing(monkeypatch):
     (dict(k0=-0.5), r"^soil.k0 = -0.5: valid range is \(0, 10\]"),
 ])
 def test_bad_soil_is_refused_before_meshing(no_meshing, change, message):
-    # Reference: design.md, field, value and valid range, before any work.
+    # Reference: the project's input rule: field, value and valid range, before any work.
     with pytest.raises(InputError, match=message):
         make_model(dataclasses.replace(SOIL, **change), B)
 
 
 def test_footing_wider_than_the_domain_is_refused(no_meshing):
-    # Reference: design.md; the domain must be wider than the footing (domain_width > 1 B).
+    # Reference: the project's input rule; the domain must be wider than the footing (domain_width
+    # > 1 B).
     with pytest.raises(InputError, match=r"^continuum.domain_width = 0.8: the footing"):
         make_model(SOIL, B, ContinuumOptions(domain_width=0.8))
 
 
 def test_footing_that_does_not_fit_a_given_mesh_is_refused():
-    # Reference: design.md; the mesh's footing boundary must span [-b, b].
+    # Reference: the project's input rule; the mesh's footing boundary must span [-b, b].
     mesh = soil_mesh(B, elements_across=4, domain_width=3, domain_depth=1)
     with pytest.raises(InputError, match=r"^foundation.half_width = 2: the mesh's footing"):
         make_model(SOIL, 4.0, mesh=mesh)
@@ -123,15 +124,15 @@ def test_strip_footing_scene_loads_in_both_models():
 
 
 def test_build_model_needs_soil():
-    # Reference: design.md; a scene without [soil] cannot run in the continuum.
+    # Reference: the project's input rule; a scene without [soil] cannot run in the continuum.
     scene = load_scene("strip_footing_clay")
     with pytest.raises(InputError, match=r"^soil is missing"):
         build_model(dataclasses.replace(scene, soil=None))
 
 
 def test_pushover_saves_netcdf_with_provenance(tmp_path):
-    # Reference: design.md results: a record saved atomically (no partial files), readable,
-    # carrying provenance (scene digest, mesh, DOFs).
+    # Reference: the project's rule for results: a record saved atomically (no partial files),
+    # readable, carrying provenance (scene digest, mesh, DOFs).
     scene = load_scene("strip_footing_clay", overrides=(
         "soil.model=elastic", "soil.undrained_strength=", "continuum.elements_across=4"))
     model = build_model(scene)
@@ -145,7 +146,8 @@ def test_pushover_saves_netcdf_with_provenance(tmp_path):
 
 
 def test_envelope_saves_netcdf(tmp_path):
-    # Reference: design.md results; the normalised envelope v = V/V_ult, m = M/(B V_ult).
+    # Reference: the project's rule for results; the normalised envelope v = V/V_ult, m = M/(B
+    # V_ult).
     envelope = Envelope(V=np.array([100.0, 200.0]), M=np.array([30.0, 40.0]), V_ult=400.0,
                         width=2.0, metadata={"analysis": "vm_envelope"})
     variables, attrs = read_netcdf(envelope.save(tmp_path / "envelope.nc"))

@@ -3,7 +3,8 @@
 
 References, one per test:
 - rocking stiffness of a frictionless strip on the elastic half-plane, K_r = π G B²/(8(1 − ν))
-  (anchors §4), which holds up to ν = 1/2: the reduced-integration Q2 does not lock;
+  (Muskhelishvili's rigid punch), which holds up to ν = 1/2: the reduced-integration Q2 does not
+  lock;
 - the incompressible limit of the dynamic response: the footing's peak rotation is continuous
   as ν → 1/2 (ν = 0.499 against 0.4999, measured 0.02 %), with the energy balance closing;
 - bad input is refused with one line naming the field, the value and the valid range (exit 2).
@@ -20,6 +21,8 @@ from upliftlab import cli
 from upliftlab.checks import InputError
 from upliftlab.continuum import build_model, footing_stiffness, make_model
 from upliftlab.continuum import dynamics as dyn
+from upliftlab.continuum import ground
+from upliftlab.continuum.step_rules import implicit_settings
 from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
 from upliftlab.scenes import ContinuumOptions, Soil, load_scene
 
@@ -63,7 +66,7 @@ def test_implicit_dynamics_refuses_nearly_incompressible_soil(monkeypatch):
     scene = load_scene(SCENE, overrides=["continuum.elements_across=2",
                                          "soil.poisson_ratio=0.4999"])
     model = build_model(scene)
-    monkeypatch.setattr(dyn, "_gravity", lambda *a, **k: pytest.fail("work started"))
+    monkeypatch.setattr(ground, "gravity_state", lambda *a, **k: pytest.fail("work started"))
     with pytest.raises(InputError) as info:
         run_dynamic(model, scene, scene.build_motion(), DynamicOptions(method="implicit"))
     text = str(info.value)
@@ -126,6 +129,7 @@ def test_implicit_dynamics_accepts_nu_049():
     scene = load_scene(SCENE, overrides=["continuum.elements_across=4", "soil.model=elastic",
                                          "soil.poisson_ratio=0.49"])
     model = build_model(scene)
-    settings = dyn._settings(model, scene, scene.build_motion(), DynamicOptions(method="implicit"))
+    settings = implicit_settings(model, scene, scene.build_motion(),
+                                 DynamicOptions(method="implicit"))
     vs = dyn.wave_speeds(model.soil)[1]
     assert vs * settings.dt / dyn.smallest_element(model) == pytest.approx(0.2414, rel=1e-3)

@@ -1,12 +1,12 @@
 """Newton's method, its tangent, step cutting and the V–M envelope (upliftlab.continuum).
 
 References:
-- Finite differences (SfePy-style, design.md): the consistent tangent equals central
+- Finite differences (as SfePy checks its tangents): the consistent tangent equals central
   differences of the residual, and the footing tangent dF/dq equals central differences of the
   re-equilibrated reactions, with the contact active set and the plastic state frozen.
 - Perfect plasticity: the limit load does not depend on the load path (one big step that needs
   bisection and ten small steps reach the same plateau).
-- Effective width (Meyerhof; anchors §4): for a strip on Tresca soil with a tensionless
+- Effective width (Meyerhof 1953): for a strip on Tresca soil with a tensionless
   interface, M/(B V_ult) = v(1 − v)/2. For a smooth base the effective-width stress field
   (Prandtl's field on B' = vB, no contact beyond) is statically admissible, so it is a lower
   bound: the exact envelope lies on or above it.
@@ -151,7 +151,7 @@ def test_one_big_step_is_bisected_and_reaches_the_same_limit_load():
 
 
 def test_newton_gives_up_with_the_step_and_residual():
-    # Reference: design.md hard cases: a vertical load above the capacity has no equilibrium;
+    # Reference: a hard case: a vertical load above the capacity has no equilibrium;
     # Newton must say which step failed and with what residual, not return garbage.
     model = make_model(soil(**SOILS["tresca"]), B, SMALL)
     capacity = vertical_pushover(model, np.linspace(0.02, 0.1, 5)).capacity
@@ -166,7 +166,7 @@ def test_newton_gives_up_with_the_step_and_residual():
 @pytest.mark.parametrize("field, value", [("rtol", 0.0), ("max_iterations", 0),
                                           ("max_cuts", 1.5)])
 def test_bad_newton_options(field, value):
-    # Reference: design.md, bad input names the field, the value and the valid range.
+    # Reference: the project's input rule: bad input names the field, the value and the valid range.
     with pytest.raises(InputError, match=f"^NewtonOptions.{field} = "):
         NewtonOptions(**{field: value})
 

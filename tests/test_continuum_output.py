@@ -9,7 +9,7 @@ References:
 - the Tresca criterion bounds the element-averaged (σ1 − σ3)/2 by c_u;
 - the XDMF file read back by meshio equals what was written (same steps, times and fields);
 - the linear sub-mesh tiles the domain: its cell areas sum to the box area, all positive;
-- the tensionless Winkler closed form (anchors §3, table) and the half-plane onset M = N B/4.
+- the tensionless Winkler closed form (compression-only springs) and the half-plane onset M = N B/4.
 Figures are checked by numbers (size, colour content, frame count), never by pixel comparison.
 """
 
@@ -169,7 +169,8 @@ def test_gif_has_one_frame_per_snapshot(run, tmp_path):
 
 
 def test_winkler_closed_form_matches_the_anchor_table():
-    # Reference: anchors §3 table (θ/θ_up -> M/(N B), c/B), to 1e-6.
+    # Reference: the closed form of a rigid footing on compression-only springs (θ/θ_up -> M/(N B),
+    # c/B), to 1e-6.
     N, B, k = 100.0, 2.0, 5e4
     theta_up = 2 * N / (k * B ** 2)
     ref = winkler_rocking(np.array([0.5, 1.5, 3.0, 10.0]) * theta_up, N, B, k)
@@ -213,7 +214,8 @@ def test_a_dynamic_shaped_result_matches_snapshots_to_the_nearest_time(run, tmp_
 def test_pushover_summary_reports_onset_peak_and_contact_loss(run):
     # Reference: onset eccentricity near the half-plane B/4 (plasticity under the toe lowers it
     # on this coarse mesh: asserted within 10 %), the peak moment below the V–M capacity
-    # B V_ult/9 + 10 % (anchors §4, v = 1/3), and contact lost over more than half the base.
+    # B V_ult/9 + 10 % (Meyerhof's effective width, v = 1/3), and contact lost over more than half
+    # the base.
     s = pushover_summary(run.path)
     assert abs(s["onset_e_over_B"] / 0.25 - 1.0) <= 0.10
     v_ult = (2 + math.pi) * 50.0 * 2.0

@@ -16,9 +16,9 @@ Physically admissible means, for the reduced model, an energy balance closed to 
 M <= N B/2, with 0.5 % for the mesh) and a contact loss in [0, 1]; for the continuum
 dynamics, finite peaks with |θ| < 1 rad.
 
-``python tests/test_fuzz.py [--fork] [--timeout S]`` prints the counts (refused / ran fine /
-failed) and every failure; ``--fork`` runs each case in a forked child with a timeout and a
-memory limit, which is how the counts of the code before the fixes were measured (hangs and
+``python tests/test_fuzz.py`` prints the counts (refused / ran fine / failed) and every failure;
+``python benchmarks/fuzz_counts.py`` runs each case in a forked child with a timeout and
+a memory limit, which is how the counts of the code before the fixes were measured (hangs and
 memory blow-ups counted as failures).
 """
 
@@ -33,7 +33,7 @@ import subprocess
 import sys
 import tomllib
 import traceback
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
@@ -466,8 +466,8 @@ def run_case(case: Case, tmp: Path) -> tuple[str, str]:
 # The tests
 # ---------------------------------------------------------------------------------------------
 
-#: Counts measured with this list on the code before the fixes of issue 10
-#: (``python tests/test_fuzz.py --fork --timeout 60``): 1234 cases, 101 failures (47
+#: Counts measured with this list on the code before its input checks were added
+#: (``python benchmarks/fuzz_counts.py --timeout 60``): 1234 cases, 101 failures (47
 #: tracebacks, 21 inputs without effect that ran, 19 garbage inputs that reached the solvers
 #: and failed there with exit 3, 7 usage errors of many lines, 5 NaN or inadmissible results,
 #: 2 hangs). After the fixes: 1135 refused, 99 ran, 0 failed.
@@ -525,95 +525,68 @@ def test_the_fuzz_list_is_fixed_and_covers_every_field(outcomes):
 
 
 # ---------------------------------------------------------------------------------------------
-# Counting (python tests/test_fuzz.py [--fork] [--timeout S])
+# Counting (python tests/test_fuzz.py [--only TEXT] [--json FILE])
 # ---------------------------------------------------------------------------------------------
 
 
-def _forked(case: Case, tmp: Path, timeout: float, memory: int) -> tuple[str, str]:
-    """``run_case`` in a forked child with a timeout (s) and an address-space limit (bytes)."""
-    import resource
-    import signal
-    import time
-
-    tmp.mkdir(parents=True, exist_ok=True)
-    result = tmp / "verdict.json"
-    pid = os.fork()
-    if pid == 0:  # child
-        try:
-            resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
-            verdict = run_case(case, tmp / "case")
-        except BaseException as exc:  # noqa: BLE001
-            verdict = ("failed", f"{type(exc).__name__}: {exc}")
-        result.write_text(json.dumps(verdict))
-        os._exit(0)
-    start = time.monotonic()
-    while time.monotonic() - start < timeout:
-        done, status = os.waitpid(pid, os.WNOHANG)
-        if done:
-            break
-        time.sleep(0.02)
-    else:
-        os.kill(pid, signal.SIGKILL)
-        os.waitpid(pid, 0)
-        return "failed", f"hang: killed after {timeout:g} s"
-    if not result.exists():
-        return "failed", f"the child died (status {status})"
-    return tuple(json.loads(result.read_text()))
-
-
 def main(argv: list[str] | None = None) -> int:
+    """Run every case (or those whose id contains ``--only``) in this process, under an
+    address-space limit, and print the counts; the test's fixture runs it as a child.
+    ``benchmarks/fuzz_counts.py`` runs each case in a forked child instead."""
     import argparse
     import tempfile
     import time
 
     p = argparse.ArgumentParser(description="count the fuzz outcomes")
-    p.add_argument("--fork", action="store_true", help="each case in a forked child")
-    p.add_argument("--timeout", type=float, default=60.0)
     p.add_argument("--memory-gb", type=float, default=6.0,
-                   help="address-space limit (GiB) of each forked child, or of this process")
+                   help="address-space limit (GiB) of this process (0: none)")
     p.add_argument("--only", default="", help="run the cases whose id contains this text")
     p.add_argument("--json", help="write every verdict to this file")
     p.add_argument("--verbose", action="store_true", help="print each case as it starts")
     args = p.parse_args(argv)
     os.environ.setdefault("MPLBACKEND", "Agg")
-    if not args.fork and args.memory_gb:
+    if args.memory_gb:
         import resource
         limit = int(args.memory_gb * 2**30)
         resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
-    cases = [c for c in all_cases() if args.only in c.id]
-    counts = {"refused": 0, "ran": 0, "failed": 0}
-    verdicts = {}
     start = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="upliftlab-fuzz-") as root:
-        if args.fork:  # compile and import once, so that every child inherits it
-            for i, argv in enumerate((_RUN, (*_RUN, "--integrator", "newmark"),
-                                      (*_PUSH, "--steps", "3"), _DYN)):
-                run_case(Case(f"warm-up {i}", (*argv, "--out", "{out}")), Path(root) / f"w{i}")
-        for i, case in enumerate(cases):
-            tmp = Path(root) / f"c{i:04d}"
+        def each(i: int, case: Case) -> tuple[str, str]:
             if args.verbose:
                 print(f"{case.id} ...", file=sys.stderr, flush=True)
-            verdict = (_forked(case, tmp, args.timeout, int(args.memory_gb * 2**30))
-                       if args.fork else run_case(case, tmp))
-            counts[verdict[0]] += 1
-            verdicts[case.id] = verdict
-            if verdict[0] == "failed":
-                print(f"FAILED {case.id}: {verdict[1]}", flush=True)
-            if (i + 1) % 100 == 0:
-                print(f"... {i + 1}/{len(cases)} in {time.perf_counter() - start:.0f} s "
-                      f"{counts}", file=sys.stderr, flush=True)
-    fields = sum(1 for k in verdicts if not k.startswith(("option:", "motion_file:",
-                                                          "scene_file:")))
-    print(f"{len(cases)} cases ({fields} field mutations, {len(cases) - fields} files and "
-          f"options) in {time.perf_counter() - start:.0f} s: {counts}")
-    for group in ("field", "files and options"):
-        keys = [k for k in verdicts if (k.startswith(("option:", "motion_file:", "scene_file:"))
-                                         == (group != "field"))]
-        sub = {s: sum(verdicts[k][0] == s for k in keys) for s in counts}
-        print(f"  {group}: {sub}")
+            return run_case(case, Path(root) / f"c{i:04d}")
+
+        verdicts = count_cases([c for c in all_cases() if args.only in c.id], each, start)
     if args.json:
         Path(args.json).write_text(json.dumps(verdicts, indent=1))
     return 0
+
+
+def count_cases(cases: list[Case], run, start: float) -> dict[str, tuple[str, str]]:
+    """``run(i, case)`` for every case; print the failures as they come and the counts (all,
+    fields, files and options) at the end. Returns {case id: verdict}."""
+    import time
+
+    counts = {"refused": 0, "ran": 0, "failed": 0}
+    verdicts = {}
+    for i, case in enumerate(cases):
+        verdict = run(i, case)
+        counts[verdict[0]] += 1
+        verdicts[case.id] = verdict
+        if verdict[0] == "failed":
+            print(f"FAILED {case.id}: {verdict[1]}", flush=True)
+        if (i + 1) % 100 == 0:
+            print(f"... {i + 1}/{len(cases)} in {time.perf_counter() - start:.0f} s "
+                  f"{counts}", file=sys.stderr, flush=True)
+    files = ("option:", "motion_file:", "scene_file:")
+    fields = sum(1 for k in verdicts if not k.startswith(files))
+    print(f"{len(cases)} cases ({fields} field mutations, {len(cases) - fields} files and "
+          f"options) in {time.perf_counter() - start:.0f} s: {counts}")
+    for group in ("field", "files and options"):
+        keys = [k for k in verdicts if k.startswith(files) == (group != "field")]
+        sub = {s: sum(verdicts[k][0] == s for k in keys) for s in counts}
+        print(f"  {group}: {sub}")
+    return verdicts
 
 
 if __name__ == "__main__":

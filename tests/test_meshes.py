@@ -193,7 +193,7 @@ def test_from_options_and_defaults_follow_continuum_options():
     ("grading", 0.5), ("grading", 101.0), ("layer_depth", 0.0), ("layer_depth", -2.0),
 ])
 def test_bad_parameters_raise_input_error_naming_the_field(field, value):
-    # Reference: design.md, bad input names the field, the value and the valid range.
+    # Reference: the project's input rule: bad input names the field, the value and the valid range.
     kwargs = {"footing_width": 2.0, field: value}
     with pytest.raises(InputError, match=f"^{field} = ") as error:
         soil_mesh(kwargs.pop("footing_width"), **kwargs)
@@ -242,7 +242,7 @@ def test_p2_settlement_is_rigid_along_the_whole_footing():
     assert np.max(np.abs(trace[1] + 0.01)) <= EXACT
     force = stiffness @ u
     vertical = force[dofs.uy].sum()
-    assert vertical < 0.0  # continuum-notes.md: footing DOF forces are negative in compression
+    assert vertical < 0.0  # sign convention: footing DOF forces are negative in compression
     assert abs(force[dofs.ux].sum()) <= 1e-9 * abs(vertical)
     assert abs(np.dot(dofs.x, force[dofs.uy])) <= 1e-9 * abs(vertical)
     work = skfem.Functional(lambda w: dot(w["u"], w["u"])).assemble(facet_basis,
@@ -355,7 +355,7 @@ def test_xdmf_writes_its_h5_beside_the_file_and_nothing_else(tmp_path, monkeypat
 
 @pytest.mark.parametrize("suffix", [".vtu", ".xdmf", ".msh"])
 def test_failed_write_keeps_previous_file(tmp_path, monkeypatch, suffix):
-    # Reference: design.md, nothing already written is lost or half-written.
+    # Reference: the project's rule for output: nothing already written is lost or half-written.
     target = tmp_path / f"mesh{suffix}"
     write_mesh(target, small())
     before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
@@ -470,7 +470,7 @@ def test_reads_a_gmsh_41_mesh_with_physical_groups(tmp_path):
 
 
 def test_bad_files_raise_input_error(tmp_path):
-    # Reference: design.md, errors name the path and what is wrong.
+    # Reference: the project's input rule: errors name the path and what is wrong.
     with pytest.raises(InputError, match=r"suffix '\.stl' must be one of \.vtu, \.xdmf, \.msh"):
         write_mesh(tmp_path / "mesh.stl", small())
     with pytest.raises(InputError, match="no such file"):

@@ -174,6 +174,29 @@ def test_a_replaced_scene_carries_its_own_digest_and_provenance(tmp_path):
     assert "foundation.springs=40" in prov["overrides"]
 
 
+def test_a_replaced_continuum_scene_carries_its_own_digest_into_the_result():
+    """The continuum's provenance takes the scene's digest: a soil changed in code by
+    ``dataclasses.replace`` or by the typed ``Scene.replace`` must give the digest of the scene
+    loaded with the same change as an override (the independent path), never the old one."""
+    from upliftlab.continuum import build_model
+    from upliftlab.continuum.fields import result_metadata
+
+    scene = load_scene("strip_footing_clay", overrides=["continuum.elements_across=4"])
+    loaded = load_scene("strip_footing_clay", overrides=["continuum.elements_across=4",
+                                                         "soil.youngs_modulus=60000.0"])
+    by_fields = dataclasses.replace(scene, soil=dataclasses.replace(scene.soil,
+                                                                    youngs_modulus=60e3))
+    typed = scene.replace("soil", youngs_modulus=60e3)
+    assert by_fields.digest == typed.digest == loaded.digest != scene.digest
+    assert typed.overrides[-1] == "soil.youngs_modulus=60000.0"
+    assert by_fields.data["soil"]["youngs_modulus"] == typed.data["soil"]["youngs_modulus"] == 60e3
+    metadata = result_metadata(build_model(typed), "pushover", {})
+    assert metadata["scene_digest"] == loaded.digest
+    assert metadata["soil"]["youngs_modulus"] == 60e3
+    with pytest.raises(InputError, match="soil.model = 'granite'"):
+        scene.replace("soil", model="granite")
+
+
 def test_replace_validates_like_a_file():
     scene = load_scene("short_period_free")
     with pytest.raises(InputError, match="foundation.springs = -3: must be an integer >= 2"):

@@ -207,7 +207,7 @@ def _short(settings: dict) -> str:
     return settings_digest(settings)[:8]
 
 
-def _default_out(stem: str, variant: dict) -> Path:
+def default_out(stem: str, variant: dict) -> Path:
     """``results/<stem>``, with a digest of ``variant`` when it changes the scene's defaults
     (overrides, motion, step), so that different runs do not share a folder."""
     extra = {k: v for k, v in variant.items() if v}
@@ -237,7 +237,7 @@ def _run(args) -> int:
                 "overrides": list(scene.overrides), "motion": args.motion, "dt": dt,
                 "integrator": args.integrator}
     motion = scene.build_motion()  # the record is read and checked before the folder
-    with claim(args.out, _default_out(scene.name, variant), settings=settings,
+    with claim(args.out, default_out(scene.name, variant), settings=settings,
                force=args.force) as out:
         from .reduced import run
         with warnings.catch_warnings():  # the model's notes are printed as notes, below

@@ -20,11 +20,12 @@ from . import bounds
 from .budget import check as check_budget
 from .budget import continuum_cost
 from .checks import InputError
-from .cli import (EXIT_INTERRUPTED, EXIT_NUMERICS, _default_out, need_extra, number,
+from .cli import (EXIT_INTERRUPTED, EXIT_NUMERICS, default_out, need_extra, number,
                   refuse_without_effect, say_if_rounded)
 from .outdir import claim
 
-__all__ = ["add_continuum", "continuum", "CONTINUUM_ANALYSES", "MESH_KEYS", "MAX_ROTATION"]
+__all__ = ["add_continuum", "continuum", "CONTINUUM_ANALYSES", "MESH_KEYS", "MAX_ROTATION",
+           "mesh_overrides", "say", "eta"]
 
 CONTINUUM_ANALYSES = ("pushover", "dynamic", "impedance")
 #: ``--mesh`` keys: the [continuum] fields that shape the mesh and its quadrature.
@@ -92,7 +93,7 @@ def add_continuum(sub) -> None:
     c.add_argument("--force", action="store_true", help="replace a different run in --out")
 
 
-def _mesh_overrides(items: list[str]) -> list[str]:
+def mesh_overrides(items: list[str]) -> list[str]:
     """``--mesh a=1,b=2`` -> ``continuum.a=1``, ``continuum.b=2``; unknown keys refused."""
     overrides = []
     for item in items:
@@ -108,7 +109,8 @@ def _mesh_overrides(items: list[str]) -> list[str]:
     return overrides
 
 
-def _say(message: str) -> None:
+def say(message: str) -> None:
+    """One progress line on stderr."""
     print(f"upliftlab continuum: {message}", file=sys.stderr, flush=True)
 
 
@@ -182,7 +184,7 @@ def continuum(args) -> int:
     if not args.no_render:
         need_extra("upliftlab continuum", "matplotlib", "pyvista", "imageio",
                    why="or add --no-render")
-    overrides = list(args.overrides) + _mesh_overrides(args.mesh)
+    overrides = list(args.overrides) + mesh_overrides(args.mesh)
     scene = load_scene(args.scene, case=args.case, overrides=overrides,
                        motion=args.motion if args.analysis == "dynamic" else None)
     refuse_without_effect(overrides, f"the continuum {args.analysis}", USED[args.analysis])
@@ -190,7 +192,8 @@ def continuum(args) -> int:
         raise InputError(f"scene {scene.name!r}: soil is missing; the continuum model needs a "
                          "[soil] table")
     if args.analysis == "impedance":
-        return _impedance(args, scene, overrides)
+        from .cli_impedance import run_impedance
+        return run_impedance(args, scene, overrides)
     _physics(scene, args.analysis)
     if args.analysis == "dynamic":
         motion = scene.build_motion()  # reads and checks the record before any meshing
@@ -210,13 +213,13 @@ def continuum(args) -> int:
                 "scene_digest": scene.digest, "overrides": list(scene.overrides),
                 "motion": args.motion, "theta_max": given["theta_max"],
                 "steps": given["steps"]}
-    default = _default_out(f"{scene.name}-continuum-{args.analysis}", variant)
+    default = default_out(f"{scene.name}-continuum-{args.analysis}", variant)
     with claim(args.out, default, settings=settings, force=args.force) as out:
         from .continuum import build_model
 
         started = time.perf_counter()
         model = build_model(scene)
-        _say(f"{scene.name}: {model.disc.element}, {model.mesh.nelements} elements, "
+        say(f"{scene.name}: {model.disc.element}, {model.mesh.nelements} elements, "
              f"{model.dofs} DOFs, soil {scene.soil.model}")
         if args.analysis == "pushover":
             result = _pushover(model, scene, options["theta_max"], options["steps"])
@@ -226,7 +229,7 @@ def continuum(args) -> int:
                 return result
             say_if_rounded("upliftlab continuum", scene.analysis.duration or motion.duration,
                            steps, dt)
-        _say(f"solved in {time.perf_counter() - started:.1f} s")
+        say(f"solved in {time.perf_counter() - started:.1f} s")
         from .continuum.output import (dynamic_summary, pushover_summary, summary_line,
                                        write_outputs)
 
@@ -236,7 +239,7 @@ def continuum(args) -> int:
         out.start_writing()
         written = write_outputs(out.path, model, result, scene=scene,
                                 renders=not args.no_render, scale=options["scale"],
-                                progress=_say)
+                                progress=say)
         out.complete(written.values() if isinstance(written, dict) else written)
     if args.json:
         import json
@@ -314,18 +317,19 @@ def _pushover(model, scene, theta_max, steps):
 
     N, theta_on = scene.structure.vertical_weight, _theta_on(scene)
     rotations = rotation_schedule(theta_max, 40 if steps is None else steps, theta_on)
-    _say(f"rotation pushover at N = {N:g} to θ = {theta_max:.4g} rad in {rotations.size - 1} "
+    say(f"rotation pushover at N = {N:g} to θ = {theta_max:.4g} rad in {rotations.size - 1} "
          f"steps (elastic half-plane uplift at θ_on = {theta_on:.4g} rad)")
     started = time.perf_counter()
 
     def progress(k, n, state):
-        _say(f"step {k + 1}/{n}: θ = {state.q[2]:.4g} rad, M = {state.M:.4g}, "
-             f"{state.iterations} Newton iterations{_eta(started, k + 1, n)}")
+        say(f"step {k + 1}/{n}: θ = {state.q[2]:.4g} rad, M = {state.M:.4g}, "
+             f"{state.iterations} Newton iterations{eta(started, k + 1, n)}")
 
     return rotation_pushover(model, N, rotations, record_fields=True, progress=progress)
 
 
-def _eta(started: float, done: int, total: int) -> str:
+def eta(started: float, done: int, total: int) -> str:
+    """"; elapsed, about … left" after ``done`` of ``total`` (s since ``started``)."""
     elapsed = time.perf_counter() - started
     left = elapsed / max(done, 1) * (total - done)
     return f"; {elapsed:.0f} s, about {left:.0f} s left" if done < total else \
@@ -340,7 +344,7 @@ def _dynamic(model, scene, motion, threads: int, out, started: float):
     from .continuum.run_control import EnergyBalanceError, Interrupted
 
     duration = scene.analysis.duration or motion.duration
-    _say(f"{model.options.dynamics} dynamics (continuum.dynamics), {duration:g} s of "
+    say(f"{model.options.dynamics} dynamics (continuum.dynamics), {duration:g} s of "
          f"{motion.name} (--set analysis.duration=T runs the first T s)")
 
     def terminate(signum, frame):
@@ -384,82 +388,9 @@ def _dynamic_progress(duration: float, started: float):
         t0, k0 = first["time"]
         rate = (now - t0) / (k - k0) if k > k0 else math.nan
         eta = rate * (n - k)
-        _say(f"t = {duration * k / max(n, 1):.3f} of {duration:g} s ({k / max(n, 1):.0%}), "
+        say(f"t = {duration * k / max(n, 1):.3f} of {duration:g} s ({k / max(n, 1):.0%}), "
              f"elapsed {now - started:.1f} s, ETA {eta:.0f} s"
              + ("" if math.isfinite(eta) else " (measuring)")
              + f": θ = {state.q[2]:.4g} rad, N = {state.N:.4g}")
 
     return progress
-
-
-def _impedance_options(args):
-    """ImpedanceOptions from --a0, --boundary and a --mesh domain_width/domain_depth (the
-    impedance meshes its own box; the scene's is a static one)."""
-    from .continuum.impedance import ImpedanceOptions
-
-    kwargs = {}
-    if args.a0 is not None:
-        try:
-            kwargs["a0"] = tuple(float(x) for x in args.a0.split(",") if x.strip())
-        except ValueError:
-            raise InputError(f"--a0 = {args.a0!r}: expected comma-separated numbers > 0") from None
-    if args.boundary is not None:
-        kwargs["boundary"] = args.boundary
-    for pair in _mesh_overrides(args.mesh):
-        key, _, value = pair.partition("=")
-        if key in ("continuum.domain_width", "continuum.domain_depth"):
-            name = key.split(".")[1]
-            kwargs[name] = number(f"--mesh {name}", value, high=1e4)
-    return ImpedanceOptions(**kwargs)
-
-
-def _impedance(args, scene, overrides) -> int:
-    """``--analysis impedance``: the FE impedance, checked against the exact half-plane
-    (exit 3 beyond the stated tolerances, before any file is written)."""
-    import json
-
-    from .continuum.impedance import impedance, impedance_model
-
-    options = _impedance_options(args)
-    model = impedance_model(scene.soil, scene.foundation.width, scene.continuum, options,
-                            scene=scene)
-    settings = {"command": "continuum impedance", "scene": scene.name,
-                "scene_digest": scene.digest, "overrides": list(scene.overrides),
-                "a0": args.a0, "boundary": args.boundary}
-    default = _default_out(f"{scene.name}-continuum-impedance",
-                           {"overrides": overrides, "a0": args.a0, "boundary": args.boundary})
-    _say(f"{scene.name}: impedance, {model.disc.element}, {model.mesh.nelements} elements, "
-         f"{model.dofs} DOFs, {options.boundary} box {options.domain_width:g}B x "
-         f"{options.domain_depth:g}B, {scene.soil.interface} interface, "
-         f"{len(options.a0)} frequencies")
-    with claim(args.out, default, settings=settings, force=args.force) as out:
-        started = time.perf_counter()
-
-        def progress(k, n, a0):
-            _say(f"a0 = {a0:.3g} ({k + 1}/{n}){_eta(started, k + 1, n)}")
-
-        result = impedance(model, options, progress=progress)
-        from .continuum.impedance_output import (impedance_figure, impedance_summary,
-                                                 reference_for, verify)
-
-        reference = reference_for(result)
-        errors = verify(result, reference)  # ImpedanceAccuracyError (exit 3) before any file
-        out.start_writing()
-        written = [result.save(out.path / "impedance.nc")]
-        if not args.no_render:
-            from .reduced.figures import save
-            written.append(save(impedance_figure(result, reference),
-                                out.path / "impedance.png"))
-        out.complete(written)
-    for path in written:
-        _say(f"wrote {path}")
-    summary = impedance_summary(result, reference, errors)
-    if args.json:
-        print(json.dumps(summary, allow_nan=False))
-    else:
-        worst = ", ".join(f"{k} {100 * v:.2f} %" for k, v in summary["max_error"].items())
-        print(f"impedance of {scene.name}: {len(result.a0)} frequencies a0 = "
-              f"{result.a0.min():g}-{result.a0.max():g}, {result.dofs} DOFs, "
-              f"{summary['wall_time_s']:.1f} s; largest error against the exact half-plane: "
-              f"{worst}")
-    return 0
