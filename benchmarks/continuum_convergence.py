@@ -88,7 +88,7 @@ def run(route: str, n: int, step: float, mass: str | None, rtol: float | None) -
     started = time.perf_counter()
     model = build_model(scene)
     options = DynamicOptions(snapshots=0, mass=mass,
-                             dt=step * ec._default_step(model, motion, route))
+                             dt=step * ec.default_step(model, motion, route))
     if rtol is not None:
         options = replace(options, newton=replace(options.newton, rtol=rtol))
     result = run_dynamic(model, scene, motion, options)

@@ -85,7 +85,7 @@ def run(route: str, n: int, duration: float | None, rtol: float | None, threads:
     wall, cpu = time.perf_counter(), time.process_time()
     model = build_model(scene)
     if step != 1.0:
-        options = replace(options, dt=step * _default_step(model, motion, route))
+        options = replace(options, dt=step * default_step(model, motion, route))
     result = run_dynamic(model, scene, motion, options)
     wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
     gap = np.asarray(result.gap)
@@ -99,7 +99,7 @@ def run(route: str, n: int, duration: float | None, rtol: float | None, threads:
             "edge": np.maximum(gap[:, 0], gap[:, -1])}
 
 
-def _default_step(model, motion, route: str) -> float:
+def default_step(model, motion, route: str) -> float:
     """The route's automatic step on this mesh and record (s)."""
     from upliftlab.continuum import explicit
     from upliftlab.continuum.dynamics import dynamic_fixed, time_step_limit
