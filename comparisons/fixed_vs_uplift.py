@@ -23,11 +23,9 @@ Run it with ``python -m upliftlab.comparisons.fixed_vs_uplift [--fast] [--out DI
 
 from __future__ import annotations
 
-import argparse
 import copy
 import math
 import sys
-import time
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
@@ -41,12 +39,15 @@ from ..results import provenance, write_csv
 from ..scenes import Scene, load_scene, scene_from_dict
 from ..reduced import run as run_reduced
 from ..reduced.batch import run_batch
+from .protocol import Context, Study, main_for, run_study
 from .store import Store, point_key
 from .study import StudyResult, file_sha256, require_matplotlib, write_figure, write_summary
 from .speed_vs_error import continuum_status
 
 __all__ = ["STUDY", "BUILDINGS", "SUPPORTS", "Grid", "FULL_GRID", "FAST_GRID", "Figure",
-           "Spectrum", "Ranges", "FixedVsUplift", "run", "main", "figure_run",
+           "Spectrum", "Ranges", "FixedVsUplift", "Options", "DEFINITION", "compute", "write",
+           "run",
+           "main", "figure_run",
            "spectrum_points", "reduction_ranges", "check_grid", "PAPER_FIG11_PEAK_U"]
 
 STUDY = "fixed_vs_uplift"
@@ -81,6 +82,13 @@ def _periods(count: int) -> tuple[float, ...]:
 
 FULL_GRID = Grid(periods=_periods(30))
 FAST_GRID = Grid(periods=_periods(8), families=("short",))
+
+
+@dataclass(frozen=True)
+class Options:
+    """``figures``: write the PNGs (needs matplotlib)."""
+
+    figures: bool = True
 
 
 def check_grid(grid: Grid) -> Grid:
@@ -305,6 +313,7 @@ class FixedVsUplift:
     spectra: tuple[Spectrum, ...]
     grid: Grid
     continuum: str
+    options: Options = None
 
     def figure(self, building: str) -> Figure:
         return next(f for f in self.figures if f.building == building)
@@ -323,6 +332,34 @@ def _figure(building: str, store: Store, record: dict) -> Figure:
                   {s: r["uplift"] for s, r in runs.items()})
 
 
+def compute(scene, ctx: Context) -> FixedVsUplift:
+    """The figures' runs and the spectra (``scene`` must be None: the study's scenes are the
+    paper's buildings); ``ctx.grid`` (default :data:`FAST_GRID` or :data:`FULL_GRID`),
+    ``ctx.options`` (:class:`Options`), ``ctx.workers`` processes of
+    :func:`~upliftlab.reduced.run_batch`."""
+    if scene is not None:
+        raise InputError(f"scene = {scene!r}: this study runs the paper's buildings "
+                         f"({', '.join(BUILDINGS.values())}); pass scene=None")
+    grid = check_grid(ctx.grid or (FAST_GRID if ctx.fast else FULL_GRID))
+    options = ctx.options or Options()
+    checks.boolean("figures", options.figures)
+    if options.figures:
+        require_matplotlib(STUDY)
+    if ctx.workers is not None:
+        checks.integer_at_least("workers", ctx.workers, 1)
+    record = _record()
+    figs = tuple(_figure(b, ctx.store, record) for b in grid.figures)
+    points = spectrum_points(grid, record)
+    records = _spectrum_records(points, ctx.store, ctx.workers)
+    per = len(grid.supports) * len(grid.periods)
+    spectra = tuple(_spectrum(f, grid, records[k * per:(k + 1) * per])
+                    for k, f in enumerate(grid.families))
+    _, note = continuum_status()
+    note = note.replace("continuum points were not run", "the continuum comparison (stiff "
+                        "bonded against unilateral-contact footing) was not run")
+    return FixedVsUplift(None, figs, spectra, grid, note, options)
+
+
 def run(scene: None = None, fast: bool = False, *, out: str | Path | None = None,
         store: Store | str | Path | None = None, grid: Grid | None = None,
         figures: bool = True, workers: int | None = None) -> FixedVsUplift:
@@ -333,31 +370,9 @@ def run(scene: None = None, fast: bool = False, *, out: str | Path | None = None
     ``results/fixed_vs_uplift[-fast]``); ``store``: the results store (default
     ``<out>/store``); ``workers``: processes of :func:`~upliftlab.reduced.run_batch`.
     """
-    start = time.perf_counter()
-    if scene is not None:
-        raise InputError(f"scene = {scene!r}: this study runs the paper's buildings "
-                         f"({', '.join(BUILDINGS.values())}); pass scene=None")
-    checks.boolean("fast", fast)
-    grid = check_grid(grid or (FAST_GRID if fast else FULL_GRID))
-    checks.boolean("figures", figures)
-    if figures:
-        require_matplotlib(STUDY)
-    if workers is not None:
-        checks.integer_at_least("workers", workers, 1)
-    record = _record()
-    out = Path(out) if out is not None else Path("results") / (STUDY + ("-fast" if fast else ""))
-    store = store if isinstance(store, Store) else Store(store or out / "store")
-    figs = tuple(_figure(b, store, record) for b in grid.figures)
-    points = spectrum_points(grid, record)
-    records = _spectrum_records(points, store, workers)
-    per = len(grid.supports) * len(grid.periods)
-    spectra = tuple(_spectrum(f, grid, records[k * per:(k + 1) * per])
-                    for k, f in enumerate(grid.families))
-    _, note = continuum_status()
-    note = note.replace("continuum points were not run", "the continuum comparison (stiff "
-                        "bonded against unilateral-contact footing) was not run")
-    partial = FixedVsUplift(None, figs, spectra, grid, note)
-    return replace(partial, study=_write(partial, fast, out, store, figures, start))
+    return run_study(DEFINITION, scene, Context(fast=fast, out=out, store=store, grid=grid,
+                                                options=Options(figures=figures),
+                                                workers=workers))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -365,8 +380,9 @@ def run(scene: None = None, fast: bool = False, *, out: str | Path | None = None
 # ---------------------------------------------------------------------------------------------
 
 
-def _write(result: FixedVsUplift, fast: bool, out: Path, store: Store, figures: bool,
-           start: float) -> StudyResult:
+def write(result: FixedVsUplift, ctx: Context) -> StudyResult:
+    """Histories, spectra, figures and the summary into ``ctx.out``."""
+    fast, out, store = ctx.fast, ctx.out, ctx.store
     prov = provenance(study=STUDY, fast=fast, grid=asdict(result.grid), store=str(store.root))
     files = []
     for f in result.figures:
@@ -387,10 +403,10 @@ def _write(result: FixedVsUplift, fast: bool, out: Path, store: Store, figures: 
                                header=f"{STUDY}: peak u (in) and base shear V/W against the "
                                       f"superstructure period, {s.family}-period building's "
                                       "base body, El Centro 1940 N-S"))
-    if figures:
+    if result.options.figures:
         files += [_plot_figures(result, out / "figures" / "fig11_12.png"),
                   _plot_spectra(result, out / "figures" / "spectrum.png")]
-    elapsed = time.perf_counter() - start
+    elapsed = ctx.elapsed()
     numbers = _numbers(result, elapsed)
     text = _markdown(result, fast, elapsed)
     files += list(write_summary(out, text, {"numbers": numbers, "provenance": prov}))
@@ -527,33 +543,26 @@ def _markdown(result: FixedVsUplift, fast: bool, elapsed: float) -> str:
 # ---------------------------------------------------------------------------------------------
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m upliftlab.comparisons.fixed_vs_uplift [--fast] [--out DIR]``"""
-    parser = argparse.ArgumentParser(prog=f"python -m upliftlab.comparisons.{STUDY}",
-                                     description=__doc__.splitlines()[0])
-    parser.add_argument("--fast", action="store_true", help="10 periods, short-period family")
-    parser.add_argument("--out", help="output directory")
-    parser.add_argument("--store", help="results store (default: OUT/store)")
-    parser.add_argument("--workers", type=int, help="run_batch processes (default: CPUs)")
-    parser.add_argument("--no-figures", action="store_true")
-    args = parser.parse_args(argv)
-    try:
-        result = run(fast=args.fast, out=args.out, store=args.store, workers=args.workers,
-                     figures=not args.no_figures)
-    except InputError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
-    for f in result.figures:
-        print(f"Fig. {f.number}: peak u fixed {f.peak_u['fixed']:.4g} in, uplift (C) "
-              f"{f.peak_u['C']:.4g} in (ratio {f.ratio_u:.3f}); base shear ratio "
-              f"{f.ratio_shear:.3f}")
+def _describe(result: FixedVsUplift) -> list[str]:
+    lines = [f"Fig. {f.number}: peak u fixed {f.peak_u['fixed']:.4g} in, uplift (C) "
+             f"{f.peak_u['C']:.4g} in (ratio {f.ratio_u:.3f}); base shear ratio "
+             f"{f.ratio_shear:.3f}" for f in result.figures]
     for s in result.spectra:
         r = s.ranges[("C", "shear")]
-        print(f"{s.family}: Case C reduces peak base shear over {_span(r.reduced)} "
-              f"(min ratio {r.min_ratio:.3f} at {r.min_period:g} s)")
-    print(f"wrote {len(result.study.files)} files to {result.study.directory} in "
-          f"{result.study.elapsed:.1f} s")
-    return 0
+        lines.append(f"{s.family}: Case C reduces peak base shear over {_span(r.reduced)} "
+                     f"(min ratio {r.min_ratio:.3f} at {r.min_period:g} s)")
+    return lines
+
+
+def _context_from(args, ctx: Context, say) -> Context:
+    return replace(ctx, options=Options(figures=not args.no_figures))
+
+
+DEFINITION = Study(STUDY, "Fixed base against uplift",
+                   "What allowing uplift changes against a fixed base.", Options, compute, write,
+                   describe=_describe, context_from=_context_from,
+                   help_fast="10 periods, short-period family")
+main = main_for(DEFINITION)
 
 
 if __name__ == "__main__":

@@ -25,26 +25,25 @@ conclusion that needs El Centro says so when the record is missing, instead of d
 
 from __future__ import annotations
 
-import argparse
 import math
 import sys
-import time
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
-from .. import checks
 from ..checks import InputError
 from ..motions import ELCENTRO, MOTIONS_ENV, Motion, load_motion
 from ..reduced.paper import decay_time
 from ..reduced.run import run as run_reduced
 from ..results import provenance
 from ..scenes import load_scene
+from .protocol import Context, Study, main_for, run_study
 from .study import StudyResult, write_summary
 
-__all__ = ["Evidence", "Conclusion", "PaperConclusions", "run", "main", "apparent_period"]
+__all__ = ["Evidence", "Conclusion", "PaperConclusions", "Options", "DEFINITION", "compute",
+           "write", "run", "main", "apparent_period"]
 
 STUDY = "paper"
 BUILDINGS = ("short_period", "long_period")
@@ -316,21 +315,28 @@ def _record_note(record: Motion | None) -> str:
 # ---------------------------------------------------------------------------------------------
 
 
-def run(fast: bool = False, *, out: str | Path | None = None, motion: str | None = None,
-        equivalence=None, progress=None) -> PaperConclusions:
-    """Decide every conclusion. ``fast``: coarser output sampling and the fast two-spring maps.
+@dataclass(frozen=True)
+class Options:
+    """``motion``: the El Centro record (a name on UPLIFTLAB_MOTIONS or a path; None: the
+    packaged name, skipped with a note if not found)."""
 
-    ``motion``: the El Centro record (a name on UPLIFTLAB_MOTIONS or a path; default the
-    packaged name, skipped with a note if not found). ``equivalence``: a finished
-    :func:`.two_spring_equivalence.run` result to reuse (else it is run, from its store).
-    """
-    start = time.perf_counter()
-    checks.boolean("fast", fast)
-    say = progress or (lambda msg: None)
-    out = Path(out) if out is not None else Path("results") / (STUDY + ("-fast" if fast else ""))
-    record = _record(motion)
+    motion: str | None = None
+
+
+def compute(scene: None, ctx: Context) -> PaperConclusions:
+    """Decide every conclusion (``scene`` must be None: the paper's buildings). The two-spring
+    conclusion reuses ``ctx.results["two_spring_equivalence"]`` when the report computed it,
+    else runs that study (from its store) beside ``ctx.out``."""
+    if scene is not None:
+        raise InputError(f"scene = {scene!r}: this study runs the paper's buildings; pass "
+                         "scene=None")
+    fast, out = ctx.fast, ctx.out
+    options = ctx.options or Options()
+    say = ctx.progress or (lambda msg: None)
+    record = _record(options.motion)
     say("reduced runs of the paper's scenes")
     responses = _responses(record, output_dt=0.01 if fast else 0.005)
+    equivalence = ctx.results.get("two_spring_equivalence")
     if equivalence is None:
         from . import two_spring_equivalence
         say("two-spring equivalence maps")
@@ -342,14 +348,31 @@ def run(fast: bool = False, *, out: str | Path | None = None, motion: str | None
         conclusion_settlement(responses, record), conclusion_two_springs(equivalence),
         conclusion_uplift_beneficial(responses, record), conclusion_more_with_c(responses, record),
         conclusion_period(responses, record))
-    result = PaperConclusions(conclusions, None if record is None else record.source)
-    numbers = {"conclusions": [_numbers(c) for c in conclusions],
+    return PaperConclusions(conclusions, None if record is None else record.source)
+
+
+def write(result: PaperConclusions, ctx: Context) -> StudyResult:
+    """``summary.md`` and ``summary.json`` into ``ctx.out``."""
+    fast, out = ctx.fast, ctx.out
+    numbers = {"conclusions": [_numbers(c) for c in result.conclusions],
                "record": result.record, "provenance": provenance(study=STUDY, fast=fast)}
     markdown = _markdown(result)
     md, js = write_summary(out, markdown, numbers)
-    study = StudyResult(STUDY, fast, out, (md, js), markdown, numbers, numbers["provenance"],
-                        time.perf_counter() - start)
-    return PaperConclusions(conclusions, result.record, study)
+    return StudyResult(STUDY, fast, out, (md, js), markdown, numbers, numbers["provenance"],
+                       ctx.elapsed())
+
+
+def run(fast: bool = False, *, out: str | Path | None = None, motion: str | None = None,
+        equivalence=None, progress=None) -> PaperConclusions:
+    """Decide every conclusion. ``fast``: coarser output sampling and the fast two-spring maps.
+
+    ``motion``: the El Centro record (a name on UPLIFTLAB_MOTIONS or a path; default the
+    packaged name, skipped with a note if not found). ``equivalence``: a finished
+    :func:`.two_spring_equivalence.run` result to reuse (else it is run, from its store).
+    """
+    results = {} if equivalence is None else {"two_spring_equivalence": equivalence}
+    return run_study(DEFINITION, None, Context(fast=fast, out=out, options=Options(motion),
+                                               progress=progress, results=results))
 
 
 def _record(motion: str | None) -> Motion | None:
@@ -390,24 +413,22 @@ def _markdown(result: PaperConclusions) -> str:
     return "\n".join(lines)
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m upliftlab.comparisons.paper [--fast] [--out DIR] [--motion PATH]``"""
-    parser = argparse.ArgumentParser(prog=f"python -m upliftlab.comparisons.{STUDY}",
-                                     description=__doc__.splitlines()[0])
-    parser.add_argument("--fast", action="store_true", help="fast two-spring maps")
-    parser.add_argument("--out", help="output directory (default results/paper[-fast])")
+def _arguments(parser) -> None:
     parser.add_argument("--motion", help="the El Centro record: a name or a path")
-    args = parser.parse_args(argv)
-    try:
-        result = run(fast=args.fast, out=args.out, motion=args.motion,
-                     progress=lambda m: print(f"{STUDY}: {m}", file=sys.stderr, flush=True))
-    except InputError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
-    for c in result.conclusions:
-        print(f"{c.number}. {c.verdict}: {c.statement}")
-    print(f"wrote {result.study.directory / 'summary.md'}")
-    return 0
+
+
+def _context_from(args, ctx: Context, say) -> Context:
+    return replace(ctx, options=Options(args.motion), progress=say)
+
+
+DEFINITION = Study(STUDY, "The founding paper's conclusions",
+                   "Each conclusion of Ewing's study, decided from runs of our models.", Options,
+                   compute, write,
+                   describe=lambda result: [f"{c.number}. {c.verdict}: {c.statement}"
+                                            for c in result.conclusions],
+                   arguments=_arguments, context_from=_context_from,
+                   help_fast="fast two-spring maps")
+main = main_for(DEFINITION)
 
 
 if __name__ == "__main__":

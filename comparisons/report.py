@@ -9,22 +9,22 @@ observed convergence orders (:mod:`.verification`); the two-spring equivalence m
 (:mod:`.two_spring_equivalence`); Winkler against the continuum (:mod:`.winkler_vs_continuum`);
 speed against error (:mod:`.speed_vs_error`); fixed base against uplift
 (:mod:`.fixed_vs_uplift`); the founding paper's conclusions (:mod:`.paper`); and the uplift
-zone of a continuum rotation pushover (:func:`upliftlab.continuum.output.write_outputs`: a
-coarse mesh in fast mode).
+zone of a continuum rotation pushover (:mod:`.uplift_zone`: a coarse mesh in fast mode).
 
-**Discovery.** Studies are found through :data:`REGISTRY` (module name → how its ``run`` is
-called) and imported lazily, one at a time. A module that does not exist yet, or that fails,
-leaves a section that says so with the error message; the rest of the report is still built.
+**Discovery.** The report walks :data:`.registry.STUDIES` (module names) and runs each
+study through the protocol (:func:`.protocol.run_study`), importing its module when its turn
+comes. A module that does not exist yet, or that fails, leaves a section that says so with the
+error message; the rest of the report is still built.
 
-**Nothing is re-run.** Each study keeps its own store (the sweeps' points), and the report keeps
-one more record per study in ``<out>/store`` under a content key: the study, fast or full, the
-package version, the SHA-256 of the El Centro file and a SHA-256 of the source files its
-numbers depend on (``reduced/``, ``continuum/``, ``meshes/``, the core modules, the scenes, the
-study's module and the comparison modules it imports; for the uplift-zone section, this
-module). While the key is unchanged and the study's files are still on disk, the section is
-built from the record without calling the study; any edit to those sources makes a new key and
-the study runs again. The verification table is cached the same way by :mod:`.verification`.
-``report.json`` says for each section whether it was ``computed`` or read from the ``store``.
+**Nothing is re-run.** Each study keeps its own store (the sweeps' points), and the report
+keeps one more record per study in ``<out>/store`` under a content key: the study, fast or
+full, the package version, the SHA-256 of the El Centro file and a SHA-256 of the source files
+its numbers depend on (``reduced/``, ``continuum/``, ``meshes/``, the core modules, the scenes,
+the study's module or package and the comparison modules it imports). While the key is
+unchanged and the study's files are still on disk, the section is built from the record without
+calling the study; any edit to those sources makes a new key and the study runs again. The
+verification table is cached the same way by :mod:`.verification`. ``report.json`` says for
+each section whether it was ``computed`` or read from the ``store``.
 
 **Threads.** The studies run one after another in this process with BLAS limited to one thread
 (:func:`.verification.single_threaded`), as the sweeps' worker processes are: on a loaded
@@ -49,157 +49,32 @@ from __future__ import annotations
 import base64
 import contextlib
 import html
-import importlib
-import inspect
 import json
 import os
 import re
 import sys
 import time
 import traceback
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from .. import __version__, checks
 from ..checks import InputError
 from ..results import provenance, write_text
+from .protocol import EXIT_FAILED, EXIT_INPUT, EXIT_OK, Context, Study, run_study
+from .registry import STUDIES, definition
 from .store import Store, point_key
-from .study import StudyResult, _json_default
+from .study import StudyResult, json_default
+from .uplift_zone import continuum_pushover
 from .verification import single_threaded
 
-__all__ = ["REGISTRY", "Entry", "Section", "Report", "build_report", "markdown_to_html",
+__all__ = ["STUDIES", "Section", "Report", "build_report", "markdown_to_html", "study_digest",
+           "continuum_pushover",
            "EXIT_OK", "EXIT_FAILED", "EXIT_VERIFICATION", "EXIT_INPUT"]
 
-EXIT_OK, EXIT_FAILED, EXIT_INPUT = 0, 1, 2
 EXIT_VERIFICATION = EXIT_FAILED  # the earlier name of the same exit code
 REPORT = "report"
-
-
-# ---------------------------------------------------------------------------------------------
-# Registry
-# ---------------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class Entry:
-    """A study of the report: ``module`` under ``upliftlab.comparisons``, the section
-    ``title``, an ``intro`` line, and ``call(module, context) -> result`` (an object with a
-    ``.study`` :class:`StudyResult`, or the StudyResult itself). ``cached``: whether the report
-    may keep the study's record in its own store (the verification caches itself)."""
-
-    name: str
-    module: str
-    title: str
-    intro: str
-    call: Callable
-    cached: bool = True
-
-
-def _accepted(function, names: Sequence[str]) -> set[str]:
-    params = inspect.signature(function).parameters
-    if any(p.kind is inspect.Parameter.VAR_KEYWORD for p in params.values()):
-        return set(names)
-    return {n for n in names if n in params}
-
-
-def _call_run(module, ctx: _Context, **extra):
-    """``module.run(fast=..., out=...)`` plus ``store``/``scheduler``/``extra`` where its
-    signature takes them."""
-    run = getattr(module, "run", None)
-    if not callable(run):
-        raise InputError(f"{module.__name__} has no run(fast=..., out=...)")
-    kwargs = {"fast": ctx.fast, "out": ctx.study_dir(module.__name__.rsplit(".", 1)[-1])}
-    optional = {"scheduler": ctx.scheduler, **extra}
-    for name in _accepted(run, list(optional)):
-        if optional[name] is not None:
-            kwargs[name] = optional[name]
-    return run(**kwargs)
-
-
-def _verification(module, ctx: _Context):
-    return module.run(fast=ctx.fast, out=ctx.study_dir("verification"), store=ctx.store)
-
-
-def _equivalence(module, ctx: _Context):
-    return _call_run(module, ctx)
-
-
-def _paper(module, ctx: _Context):
-    """The paper's conclusions reuse the equivalence result when this report computed it."""
-    return _call_run(module, ctx, equivalence=ctx.results.get("two_spring_equivalence"))
-
-
-def _pushover(module, ctx: _Context):
-    return continuum_pushover(ctx.fast, ctx.study_dir("uplift_zone"))
-
-
-REGISTRY: tuple[Entry, ...] = (
-    Entry("verification", "verification", "Verification anchors",
-          "Every verification anchor (closed forms, published values and converged runs, "
-          "listed in the table with their references) recomputed through the library, with "
-          "its measured error against its tolerance.", _verification, cached=False),
-    Entry("two_spring_equivalence", "two_spring_equivalence", "Two-spring equivalence",
-          "When can a Winkler bed be replaced by two springs? Maps of the relative error of "
-          "each two-spring layout against a converged bed.", _equivalence),
-    Entry("winkler_vs_continuum", "winkler_vs_continuum", "Winkler against the continuum",
-          "How well the reduced model's Winkler bed matches the plane-strain continuum.",
-          _call_run),
-    Entry("speed_vs_error", "speed_vs_error", "Speed against error",
-          "What each model and discretisation costs for the error it leaves.", _call_run),
-    Entry("fixed_vs_uplift", "fixed_vs_uplift", "Fixed base against uplift",
-          "What allowing uplift changes against a fixed base.", _call_run),
-    Entry("paper", "paper", "The founding paper's conclusions",
-          "Each conclusion of Ewing's study, decided from runs of our models.", _paper),
-    Entry("uplift_zone", "", "Uplift zone of the continuum",
-          "A rotation pushover of the strip footing on clay in the continuum model "
-          "(upliftlab.continuum.output.write_outputs).", _pushover),
-)
-
-
-# ---------------------------------------------------------------------------------------------
-# The continuum pushover whose renders the report shows
-# ---------------------------------------------------------------------------------------------
-
-
-def continuum_pushover(fast: bool, out: Path) -> StudyResult:
-    """A rotation pushover of ``strip_footing_clay`` to 10 θ_on (8 elements across B and 12
-    steps in fast mode, the scene's 16 and 40 otherwise), written by ``write_outputs``
-    (uplift.png, moment_rotation.png, XDMF)."""
-    import math
-
-    from ..continuum import build_model, rotation_pushover
-    from ..continuum.output import (pushover_summary, rotation_schedule, summary_line,
-                                    write_outputs)
-    from ..scenes import load_scene
-
-    start = time.perf_counter()
-    overrides = ["continuum.elements_across=8"] if fast else []
-    scene = load_scene("strip_footing_clay", overrides=overrides)
-    model = build_model(scene)
-    soil, N = scene.soil, scene.structure.vertical_weight
-    theta_on = 2.0 * N * (1.0 - soil.poisson_ratio) / (math.pi * soil.shear_modulus
-                                                      * model.width)
-    rotations = rotation_schedule(10.0 * theta_on, 12 if fast else 40, theta_on)
-    path = rotation_pushover(model, N, rotations, record_fields=True)
-    written = write_outputs(out, model, path, scene=scene, renders=True)
-    summary = pushover_summary(path)
-    units = {"length": scene.units.length,
-             "moment/length": f"{scene.units.force}·{scene.units.length}/{scene.units.length}"}
-    text = "\n".join([
-        f"# Rotation pushover, {scene.name}", "",
-        f"{scene.title}. Mesh: {model.disc.element}, {scene.continuum.elements_across} "
-        f"elements across B ({model.dofs} DOFs), {rotations.size - 1} rotation steps to "
-        f"10 θ_on at constant N = {N:g} {scene.units.force}/{scene.units.length}"
-        + (" (coarse mesh: fast mode)." if fast else "."), "",
-        summary_line(summary, units) + ".", "",
-        "The picture shows the snapshot of largest rotation (displacements magnified, the "
-        "magnification is printed in it); the M–θ figure compares the FE path with the "
-        "elastic half-plane, the tensionless Winkler bed and the V–M capacity."])
-    files = tuple(written[k] for k in ("uplift.png", "moment_rotation.png") if k in written)
-    files += tuple(p for k, p in written.items() if not k.endswith(".png"))
-    return StudyResult("uplift_zone", fast, Path(out), files, text, summary,
-                       provenance(study="uplift_zone", fast=fast), time.perf_counter() - start)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -208,7 +83,10 @@ def continuum_pushover(fast: bool, out: Path) -> StudyResult:
 
 
 @dataclass
-class _Context:
+class _Run:
+    """What the sections of one report share: fast or full, the report's folder and store,
+    the scheduler, and the results computed so far (by study name)."""
+
     fast: bool
     out: Path
     store: Store
@@ -221,10 +99,13 @@ class _Context:
 
 @dataclass(frozen=True)
 class Section:
-    """What one section shows: ``status`` ok, missing (module absent) or error; ``source``
-    computed or store; the study record (``study``) or the ``error`` text."""
+    """What one section shows: its ``name``, ``title`` and ``intro``; ``status`` ok, missing
+    (module absent) or error; ``source`` computed or store; the study record (``study``) or
+    the ``error`` text."""
 
-    entry: Entry
+    name: str
+    title: str
+    intro: str
     status: str
     source: str
     seconds: float
@@ -245,33 +126,47 @@ class Report:
     elapsed: float
 
     def section(self, name: str) -> Section:
-        return next(s for s in self.sections if s.entry.name == name)
+        return next(s for s in self.sections if s.name == name)
+
+
+_SHARED = ("study", "store", "sweep", "protocol")
+
+
+def _sources(name: str) -> list[Path]:
+    """The files of comparison module ``name``: ``name.py``, or every ``.py`` of the package."""
+    here = Path(__file__).parent
+    if (here / name).is_dir():
+        return sorted((here / name).glob("*.py"))
+    return [here / f"{name}.py"] if (here / f"{name}.py").is_file() else []
 
 
 def _siblings(name: str, seen: set[str] | None = None) -> set[str]:
-    """``name`` and the comparison modules it imports, transitively (``from .x import``)."""
+    """``name`` and the comparison modules it imports, transitively (``from .x import`` in a
+    module, ``from ..x import`` in a study package)."""
     seen = set() if seen is None else seen
-    path = Path(__file__).parent / f"{name}.py"
-    if name in seen or not path.is_file():
+    files = _sources(name)
+    if name in seen or not files:
         return seen
     seen.add(name)
-    text = path.read_text(encoding="utf-8", errors="replace")
-    for other in re.findall(r"from \.(\w+) import|from \. import (\w+)", text):
-        _siblings(other[0] or other[1], seen)
+    package = files[0].parent.name == name
+    pattern = (r"from \.\.(\w+) import|from \.\. import (\w+)" if package
+               else r"from \.(\w+) import|from \. import (\w+)")
+    for path in files:
+        text = path.read_text(encoding="utf-8", errors="replace")
+        for other in re.findall(pattern, text):
+            _siblings(other[0] or other[1], seen)
     return seen
 
 
-def _study_digest(entry: Entry) -> str:
-    """SHA-256 of the sources a study's numbers depend on: the library's (see
-    :func:`.verification.source_digest`), the study's module and the comparison modules it
-    imports. Other studies' modules stay out, so editing one study re-runs only that one."""
+def study_digest(name: str) -> str:
+    """SHA-256 of the sources study module ``name``'s numbers depend on: the library's (see
+    :func:`.verification.source_digest`), the study's module (or package) and the comparison
+    modules it imports. Other studies' modules stay out, so editing one study re-runs only
+    that one."""
     from .verification import source_digest
 
-    here = Path(__file__).parent
-    names = (_siblings(entry.module) - {"report", "verification"} if entry.module
-             else {"report"})  # a built-in section: its code is here
-    names |= {"study", "store", "sweep"}
-    return source_digest([here / f"{n}.py" for n in sorted(names) if (here / f"{n}.py").is_file()])
+    names = (_siblings(name) - {"report", "registry", "verification"}) | set(_SHARED)
+    return source_digest([p for n in sorted(names) for p in _sources(n)])
 
 
 def _record_sha() -> str | None:
@@ -290,7 +185,7 @@ def _study_record(study: StudyResult) -> dict:
         "name": study.name, "fast": study.fast, "directory": str(study.directory),
         "files": [str(p) for p in study.files], "summary": study.summary,
         "numbers": study.numbers, "provenance": study.provenance, "elapsed": study.elapsed},
-        default=_json_default, allow_nan=True))
+        default=json_default, allow_nan=True))
     return plain
 
 
@@ -300,71 +195,69 @@ def _study_from(record: Mapping) -> StudyResult:
                        record["numbers"], record["provenance"], record["elapsed"])
 
 
-def _module(entry: Entry):
-    """The study's module, or None for a built-in section. A missing module raises
-    ModuleNotFoundError naming it."""
-    if not entry.module:
-        return None
-    return importlib.import_module(f"{__package__}.{entry.module}")
-
-
-def _run_section(entry: Entry, ctx: _Context, record_sha: str | None, say) -> Section:
+def _run_section(item: str | Study, run: _Run, record_sha: str | None, say) -> Section:
+    """One section: ``item`` is a study module's name (imported now) or a Study record."""
     start = time.perf_counter()
-    key = point_key(REPORT, f"{entry.name}:run", {"fast": ctx.fast,
-                                                   "source": _study_digest(entry),
-                                                   "elcentro_sha256": record_sha})
-    if entry.cached:
-        stored = ctx.store.get(key)
-        if stored is not None and all(Path(p).is_file() for p in stored["files"]):
-            say(f"{entry.name}: read from the store")
-            return Section(entry, "ok", "store", time.perf_counter() - start,
-                           _study_from(stored))
+    name = item if isinstance(item, str) else item.name
+    module = item if isinstance(item, str) else item.compute.__module__.rsplit(".", 1)[-1]
     try:
-        module = _module(entry)
+        study = definition(item) if isinstance(item, str) else item
     except ModuleNotFoundError as exc:
-        wanted = f"{__package__}.{entry.module}"
+        wanted = f"{__package__}.{item}"
         if exc.name != wanted:
-            return _failed(entry, start, exc)
-        say(f"{entry.name}: module {wanted} does not exist (yet)")
-        return Section(entry, "missing", "", time.perf_counter() - start,
+            return _failed(name, name, "", start, exc)
+        say(f"{name}: module {wanted} does not exist (yet)")
+        return Section(name, name, "", "missing", "", time.perf_counter() - start,
                        error=f"The module {wanted} does not exist in this installation: the "
                              "study is not written yet, so this section has no results")
     except Exception as exc:  # an import error of a study under development
-        return _failed(entry, start, exc)
-    say(f"{entry.name}: running")
+        return _failed(name, name, "", start, exc)
+    key = point_key(REPORT, f"{study.name}:run", {"fast": run.fast,
+                                                  "source": study_digest(module),
+                                                  "elcentro_sha256": record_sha})
+    if not study.own_store:
+        stored = run.store.get(key)
+        if stored is not None and all(Path(p).is_file() for p in stored["files"]):
+            say(f"{study.name}: read from the store")
+            return Section(study.name, study.title, study.intro, "ok", "store",
+                           time.perf_counter() - start, _study_from(stored))
+    say(f"{study.name}: running")
+    context = Context(fast=run.fast, out=run.study_dir(study.name),
+                      store=run.store if study.own_store else None,
+                      scheduler=None if study.own_store else run.scheduler,
+                      results=run.results, started=start)
     try:
         with single_threaded():
-            result = entry.call(module, ctx)
-        study = getattr(result, "study", result)
-        if not isinstance(study, StudyResult):
-            raise TypeError(f"run() returned {type(result).__name__}, which has no StudyResult "
-                            "(.study)")
+            result = run_study(study, None, context)
     except Exception as exc:
-        return _failed(entry, start, exc)
-    ctx.results[entry.name] = result
-    if entry.cached:
+        return _failed(study.name, study.title, study.intro, start, exc)
+    run.results[study.name] = result
+    if not study.own_store:
         with contextlib.suppress(InputError, TypeError, ValueError):
-            ctx.store.put(key, _study_record(study), {"study": REPORT, "section": entry.name,
-                                                      "version": __version__})
-    say(f"{entry.name}: done in {time.perf_counter() - start:.1f} s")
+            run.store.put(key, _study_record(result.study), {"study": REPORT,
+                                                             "section": study.name,
+                                                             "version": __version__})
+    say(f"{study.name}: done in {time.perf_counter() - start:.1f} s")
     source = "store" if getattr(result, "reused", False) else "computed"
-    return Section(entry, "ok", source, time.perf_counter() - start, study, result)
+    return Section(study.name, study.title, study.intro, "ok", source,
+                   time.perf_counter() - start, result.study, result)
 
 
-def _failed(entry: Entry, start: float, exc: BaseException) -> Section:
+def _failed(name: str, title: str, intro: str, start: float, exc: BaseException) -> Section:
     lines = traceback.format_exception(type(exc), exc, exc.__traceback__)
     tail = "".join(lines[-6:])
     message = f"{type(exc).__name__}: {exc}"
-    return Section(entry, "error", "", time.perf_counter() - start,
+    return Section(name, title, intro, "error", "", time.perf_counter() - start,
                    error=f"{message}\n\n{tail}")
 
 
 def build_report(fast: bool = False, *, out: str | Path | None = None,
-                 scheduler: str | None = None, entries: Sequence[Entry] = REGISTRY,
+                 scheduler: str | None = None, studies: Sequence[str | Study] = STUDIES,
                  progress=None, force: bool = False) -> Report:
-    """Run (or read from the stores) every section and write ``<out>/report.html`` and
-    ``report.json``. Options and the output folder are checked before anything runs
-    (:class:`InputError`)."""
+    """Run (or read from the stores) every study of ``studies`` (module names under
+    ``upliftlab.comparisons``, or :class:`.protocol.Study` records; default the registry's)
+    and write ``<out>/report.html`` and ``report.json``. Options and the output folder are
+    checked before anything runs (:class:`InputError`)."""
     from ..outdir import claim
 
     start = time.perf_counter()
@@ -375,28 +268,28 @@ def build_report(fast: bool = False, *, out: str | Path | None = None,
     default = Path("results") / (REPORT + ("-fast" if fast else ""))
     with claim(out, default, settings={"command": "report", "fast": fast},
                force=force) as folder:
-        report = _build(fast, folder, scheduler, entries, progress, start)
+        report = _build(fast, folder, scheduler, studies, progress, start)
     return report
 
 
-def _build(fast, folder, scheduler, entries, progress, start) -> Report:
+def _build(fast, folder, scheduler, studies, progress, start) -> Report:
     out = folder.path
     os.environ.setdefault("MPLBACKEND", "Agg")
     say = progress or (lambda message: None)
-    ctx = _Context(fast, out, Store(out / "store"), scheduler)
+    run = _Run(fast, out, Store(out / "store"), scheduler)
     record_sha = _record_sha()
-    sections = tuple(_run_section(e, ctx, record_sha, say) for e in entries)
-    verification = next((s for s in sections if s.entry.name == "verification"), None)
+    sections = tuple(_run_section(item, run, record_sha, say) for item in studies)
+    verification = next((s for s in sections if s.name == "verification"), None)
     passed = bool(verification and verification.status == "ok"
                   and verification.study.numbers.get("passed"))
     elapsed = time.perf_counter() - start
-    failed = [s.entry.name for s in sections if s.status != "ok"]
+    failed = [s.name for s in sections if s.status != "ok"]
     page = render_html(sections, fast=fast, passed=passed, elapsed=elapsed)
     folder.start_writing()
     path = write_text(out / "report.html", page)
     summary = write_text(out / "report.json", json.dumps({
         "passed": passed, "fast": fast, "elapsed_s": elapsed, "html": str(path),
-        "sections": {s.entry.name: {"status": s.status, "source": s.source,
+        "sections": {s.name: {"status": s.status, "source": s.source,
                                     "seconds": s.seconds,
                                     "error": s.error.split("\n", 1)[0]}
                      for s in sections},
@@ -663,9 +556,8 @@ def _verification_tables(study: StudyResult) -> str:
 
 
 def _section_html(s: Section) -> str:
-    e = s.entry
-    parts = [f'<h2 id="{e.name}">{html.escape(e.title)}</h2>',
-             f"<p>{html.escape(e.intro)}</p>"]
+    parts = [f'<h2 id="{s.name}">{html.escape(s.title)}</h2>',
+             f"<p>{html.escape(s.intro)}</p>" if s.intro else ""]
     if s.status == "missing":
         return "".join(parts) + f'<p class="notice">{html.escape(s.error)}</p>'
     if s.status == "error":
@@ -678,10 +570,10 @@ def _section_html(s: Section) -> str:
              else f"computed in {s.seconds:.1f} s")
     parts.append(f'<p class="meta">Output: <code>{html.escape(str(study.directory))}</code>; '
                  f"{where}.</p>")
-    if e.name == "verification":
+    if s.name == "verification":
         return "".join(parts) + _verification_tables(study)
     parts.append(markdown_to_html(_without_title(study.summary), shift=2))
-    parts.append(_figures(study, pair=e.name == "uplift_zone"))
+    parts.append(_figures(study, pair=s.name == "uplift_zone"))
     return "".join(parts)
 
 
@@ -713,7 +605,7 @@ def render_html(sections: Sequence[Section], *, fast: bool, passed: bool,
     prov = provenance()
     problems = [s for s in sections if s.status != "ok"]
     status_lines = [f"<strong>Verification {'passed' if passed else 'FAILED'}.</strong>"]
-    verification = next((s for s in sections if s.entry.name == "verification"), None)
+    verification = next((s for s in sections if s.name == "verification"), None)
     if verification is not None and verification.status == "ok":
         n = verification.study.numbers["counts"]
         status_lines.append(f"{n['pass']} anchors and orders pass, {n['fail']} fail, "
@@ -727,14 +619,13 @@ def render_html(sections: Sequence[Section], *, fast: bool, passed: bool,
                         f"{sum(s.source == 'computed' for s in sections)} computed now).")
     for s in problems:
         kind = "missing" if s.status == "missing" else "failed"
-        status_lines.append(f"<br>Section “{html.escape(s.entry.title)}”: {kind} "
+        status_lines.append(f"<br>Section “{html.escape(s.title)}”: {kind} "
                             f"({html.escape(s.error.split(chr(10), 1)[0][:200])}).")
     items = []
     for s in sections:
         flag = "" if s.status == "ok" else f' <small class="note">({s.status})</small>'
-        items.append(f'<li><a href="#{s.entry.name}">{html.escape(s.entry.title)}</a>{flag}'
-                     "</li>")
-        if s.entry.name == "verification" and s.status == "ok":
+        items.append(f'<li><a href="#{s.name}">{html.escape(s.title)}</a>{flag}</li>')
+        if s.name == "verification" and s.status == "ok":
             items.append('<li><a href="#orders">Observed convergence orders</a></li>')
     items.append('<li><a href="#anchors">Appendix: the verification anchors</a></li>')
     nav = "".join(items)
@@ -778,10 +669,10 @@ def command(args) -> int:
                           force=getattr(args, "force", False))
     failed = [s for s in report.sections if s.status != "ok"]
     for s in failed:
-        say(f"section {s.entry.name}: {s.status}: {s.error.split(chr(10), 1)[0]}")
+        say(f"section {s.name}: {s.status}: {s.error.split(chr(10), 1)[0]}")
     verdict = "verification passed" if report.passed else "verification FAILED"
     sections = (f"; {len(failed)} of {len(report.sections)} sections FAILED "
-                f"({', '.join(s.entry.name for s in failed)})" if failed else "")
+                f"({', '.join(s.name for s in failed)})" if failed else "")
     print(f"upliftlab report: wrote {report.path} in {report.elapsed:.1f} s; {verdict}{sections}")
     return report.code
 

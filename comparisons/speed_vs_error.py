@@ -30,7 +30,6 @@ Run it with ``python -m upliftlab.comparisons.speed_vs_error [--fast] [--out DIR
 
 from __future__ import annotations
 
-import argparse
 import contextlib
 import copy
 import math
@@ -52,13 +51,15 @@ from ..results import provenance, write_csv
 from ..scenes import Scene, load_scene, scene_from_dict
 from ..reduced import IntegrationError, build_model, run as run_reduced, stability_limit
 from ..reduced import kernels as kn
+from .protocol import Context, Study, main_for, run_study
 from .store import Store
 from .study import StudyResult, file_sha256, require_matplotlib, write_figure, write_summary
 from .sweep import run_sweep, sweep_executor
 
 __all__ = ["STUDY", "QUANTITIES", "INTEGRATORS", "MODELS", "SceneSpec", "Grid", "Options",
            "FULL_GRID", "FAST_GRID", "Point", "Reference", "SceneResult", "SpeedVsError",
-           "run", "main", "evaluate_point", "point_scene", "edge_uplift",
+           "DEFINITION", "compute", "write", "run", "main", "evaluate_point", "point_scene",
+           "edge_uplift",
            "permanent_settlement", "pareto_front", "motion_entry", "scales", "load_spec",
            "scene_points", "check_grid",
            "check_options", "measurement_context", "continuum_status", "pulse_overrides"]
@@ -634,6 +635,35 @@ def _panel(scene, grid: Grid) -> Grid:
                      "SceneSpec, or a list of SceneSpec")
 
 
+def compute(scene, ctx: Context) -> SpeedVsError:
+    """Every point of the panel (``scene``: None for ``ctx.grid``'s panel, a scene or scene
+    specs) under ``ctx.options``; ``ctx.workers`` local processes (default: the CPU count)."""
+    grid = check_grid(_panel(scene, ctx.grid or (FAST_GRID if ctx.fast else FULL_GRID)))
+    options = check_options(ctx.options or Options())
+    if options.figures:
+        require_matplotlib(STUDY)
+    scenes = [load_spec(s) for s in grid.scenes]
+    nworkers = ctx.workers or (os.cpu_count() or 1)
+    context = measurement_context(nworkers)
+    per_scene = [scene_points(s, grid, context, spec.continuum_levels)
+                 for spec, s in zip(grid.scenes, scenes)]
+    flat = [p for pts, refs in per_scene for p in pts + refs]
+    executor = ctx.executor
+    with contextlib.ExitStack() as stack:
+        if executor is None:
+            executor = stack.enter_context(sweep_executor(ctx.scheduler, workers=nworkers))
+        records = run_sweep(evaluate_point, flat, ctx.store, study=STUDY, executor=executor,
+                            progress=ctx.progress)
+    results, k = [], 0
+    for spec, s, (pts, refs) in zip(grid.scenes, scenes, per_scene):
+        recs, k = records[k:k + len(pts)], k + len(pts)
+        ref_recs, k = records[k:k + len(refs)], k + len(refs)
+        results.append(_scene_result(spec, s, pts, recs, refs, ref_recs, grid, options))
+    sessions = len({r.get("session", "") for r in records if "error" not in r})
+    return SpeedVsError(None, tuple(results), grid, options, context,
+                        _continuum_note(grid, results), sessions)
+
+
 def run(scene: str | SceneSpec | Sequence[SceneSpec] | None = None, fast: bool = False, *,
         out: str | Path | None = None, store: Store | str | Path | None = None,
         grid: Grid | None = None, options: Options | None = None, executor=None,
@@ -646,35 +676,9 @@ def run(scene: str | SceneSpec | Sequence[SceneSpec] | None = None, fast: bool =
     :func:`.sweep.run_sweep`; ``workers`` local processes (default: the CPU count). Every
     parameter and scene is checked before anything runs.
     """
-    start = time.perf_counter()
-    checks.boolean("fast", fast)
-    grid = check_grid(_panel(scene, grid or (FAST_GRID if fast else FULL_GRID)))
-    options = check_options(options or Options())
-    if options.figures:
-        require_matplotlib(STUDY)
-    scenes = [load_spec(s) for s in grid.scenes]
-    nworkers = workers or (os.cpu_count() or 1)
-    context = measurement_context(nworkers)
-    out = Path(out) if out is not None else Path("results") / (STUDY + ("-fast" if fast else ""))
-    store = store if isinstance(store, Store) else Store(store or out / "store")
-    per_scene = [scene_points(s, grid, context, spec.continuum_levels)
-                 for spec, s in zip(grid.scenes, scenes)]
-    flat = [p for pts, refs in per_scene for p in pts + refs]
-    with contextlib.ExitStack() as stack:
-        if executor is None:
-            executor = stack.enter_context(sweep_executor(scheduler, workers=nworkers))
-        records = run_sweep(evaluate_point, flat, store, study=STUDY, executor=executor,
-                            progress=progress)
-    results, k = [], 0
-    for spec, s, (pts, refs) in zip(grid.scenes, scenes, per_scene):
-        recs, k = records[k:k + len(pts)], k + len(pts)
-        ref_recs, k = records[k:k + len(refs)], k + len(refs)
-        results.append(_scene_result(spec, s, pts, recs, refs, ref_recs, grid, options))
-    sessions = len({r.get("session", "") for r in records if "error" not in r})
-    partial = SpeedVsError(None, tuple(results), grid, options, context,
-                           _continuum_note(grid, results), sessions)
-    study = _write(partial, fast, out, store, start)
-    return replace(partial, study=study)
+    return run_study(DEFINITION, scene, Context(
+        fast=fast, out=out, store=store, grid=grid, options=options, executor=executor,
+        scheduler=scheduler, progress=progress, workers=workers))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -682,14 +686,16 @@ def run(scene: str | SceneSpec | Sequence[SceneSpec] | None = None, fast: bool =
 # ---------------------------------------------------------------------------------------------
 
 
-def _write(result: SpeedVsError, fast: bool, out: Path, store: Store, start: float):
+def write(result: SpeedVsError, ctx: Context) -> StudyResult:
+    """Points, Pareto fronts, figures and the summary into ``ctx.out``."""
+    fast, out, store = ctx.fast, ctx.out, ctx.store
     prov = provenance(study=STUDY, fast=fast, grid=asdict(result.grid),
                       options=asdict(result.options), context=result.context,
                       store=str(store.root))
     files = [_write_points(result, out / "points.csv"), _write_pareto(result, out / "pareto.csv")]
     if result.options.figures:
         files += [_figure(s, out / "figures" / f"{s.label}.png") for s in result.scenes]
-    elapsed = time.perf_counter() - start
+    elapsed = ctx.elapsed()
     numbers = _numbers(result, elapsed)
     text = _markdown(result, fast, elapsed)
     files += list(write_summary(out, text, {"numbers": numbers, "provenance": prov}))
@@ -939,31 +945,26 @@ def _markdown(result: SpeedVsError, fast: bool, elapsed: float) -> str:
 # ---------------------------------------------------------------------------------------------
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m upliftlab.comparisons.speed_vs_error [--fast] [--out DIR]``"""
-    parser = argparse.ArgumentParser(prog=f"python -m upliftlab.comparisons.{STUDY}",
-                                     description=__doc__.splitlines()[0])
-    parser.add_argument("--fast", action="store_true", help="two short pulses, few levels")
-    parser.add_argument("--out", help="output directory")
-    parser.add_argument("--store", help="results store (default: OUT/store)")
-    parser.add_argument("--workers", type=int, help="worker processes (default: CPU count)")
-    parser.add_argument("--no-figures", action="store_true")
-    args = parser.parse_args(argv)
-    try:
-        result = run(fast=args.fast, out=args.out, store=args.store, workers=args.workers,
-                     options=Options(figures=not args.no_figures))
-    except InputError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
+def _context_from(args, ctx: Context, say) -> Context:
+    return replace(ctx, options=Options(figures=not args.no_figures))
+
+
+def _describe(result: SpeedVsError) -> list[str]:
+    lines = []
     for s in result.scenes:
         p = s.cheapest("u", 0.05)
         best = _table_note(s, "u") or ("none" if p is None else
                                        f"{_short(p)} ({p.runtime * 1e3:.3g} ms)")
-        print(f"{s.label}: reference {s.reference.runtime:.3g} s; cheapest within 5 % in "
-              f"peak u: {best}")
-    print(f"wrote {len(result.study.files)} files to {result.study.directory} in "
-          f"{result.study.elapsed:.1f} s")
-    return 0
+        lines.append(f"{s.label}: reference {s.reference.runtime:.3g} s; cheapest within 5 % "
+                     f"in peak u: {best}")
+    return lines
+
+
+DEFINITION = Study(STUDY, "Speed against error",
+                   "What each model and discretisation costs for the error it leaves.", Options,
+                   compute, write, describe=_describe, context_from=_context_from,
+                   help_fast="two short pulses, few levels")
+main = main_for(DEFINITION)
 
 
 if __name__ == "__main__":

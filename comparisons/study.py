@@ -159,11 +159,12 @@ def write_summary(directory: str | os.PathLike, markdown: str,
     directory = Path(directory)
     md = write_text(directory / "summary.md", markdown)
     js = write_text(directory / "summary.json",
-                    json.dumps(numbers, indent=2, sort_keys=True, default=_json_default) + "\n")
+                    json.dumps(numbers, indent=2, sort_keys=True, default=json_default) + "\n")
     return md, js
 
 
-def _json_default(value):
+def json_default(value):
+    """JSON of numpy scalars and arrays and of paths (for ``json.dumps(default=...)``)."""
     if isinstance(value, np.generic):
         return value.item()
     if isinstance(value, np.ndarray):

@@ -28,12 +28,10 @@ Run it with ``python -m upliftlab.comparisons.two_spring_equivalence [--fast] [-
 
 from __future__ import annotations
 
-import argparse
 import contextlib
 import copy
 import math
 import sys
-import time
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
@@ -49,6 +47,7 @@ from ..reduced import IntegrationError, build_model, rocking_pushover, run as ru
 from ..reduced import uplift_onset_force
 from ..reduced.compatibility import layout_for
 from ..reduced.response import ENERGY_NAMES
+from .protocol import Context, Study, main_for, run_study
 from .store import Store
 from .study import (Axis, Region, StudyResult, ascii_text, corner_region, export_fema_p695,
                     file_sha256, plot_error_maps, region_text, relative_error, require_matplotlib,
@@ -57,7 +56,8 @@ from .sweep import run_sweep, sweep_executor
 
 __all__ = ["STUDY", "LAYOUTS", "CASES", "METRICS", "Grid", "Options", "FULL_GRID", "FAST_GRID",
            "StaticLayout", "Statics", "Convergence", "ErrorMap", "RegionStatement",
-           "EwingConclusion", "TwoSpringEquivalence", "run", "main", "evaluate_point",
+           "EwingConclusion", "TwoSpringEquivalence", "DEFINITION", "compute", "write", "run",
+           "main", "evaluate_point",
            "point_scene", "edge_uplift", "permanent_settlement", "equivalence_regions",
            "ewing_conclusion",
            "check_grid", "check_options"]
@@ -1052,6 +1052,7 @@ class TwoSpringEquivalence:
     grid: Grid
     options: Options
     record_note: str
+    base: Base = None
 
     def map(self, name: str) -> ErrorMap:
         return next(m for m in self.maps if m.name == name)
@@ -1059,6 +1060,32 @@ class TwoSpringEquivalence:
     def region(self, map: str, case: str, layout: str, metric: str = "u") -> RegionStatement:
         return next(r for r in self.regions if (r.map, r.case, r.layout, r.metric)
                     == (map, case, layout, metric))
+
+
+def compute(scene: str | Scene, ctx: Context) -> TwoSpringEquivalence:
+    """The convergence check, the error maps, the statics and the conclusions of ``scene``
+    (a one-story scene; its own motion is not used), with ``ctx.grid`` (default
+    :data:`FAST_GRID` or :data:`FULL_GRID`) and ``ctx.options`` (:class:`Options`). Every
+    parameter is checked before anything runs."""
+    grid = check_grid(ctx.grid or (FAST_GRID if ctx.fast else FULL_GRID))
+    options = check_options(ctx.options or Options())
+    if options.figures:
+        require_matplotlib(STUDY)
+    base = _base(scene)
+    store, executor = ctx.store, ctx.executor
+    reference, records, record_note = _motions(grid, options, ctx.out)
+    with contextlib.ExitStack() as stack:  # one pool (or Dask client) for both sweeps
+        if executor is None:
+            executor = stack.enter_context(sweep_executor(ctx.scheduler))
+        sweep = {"executor": executor, "progress": ctx.progress}
+        convergence = check_convergence(base, grid, options, reference, store, sweep)
+        maps_ctx = _Context(base, grid, options, convergence.springs, reference, records)
+        maps = tuple(compute_maps(maps_ctx, store, sweep))
+    statics = compute_statics(base, convergence.springs, options, grid.backbone_points)
+    regions = tuple(equivalence_regions(maps, options.threshold))
+    ewing = ewing_conclusion(maps, options.threshold)
+    return TwoSpringEquivalence(None, convergence.springs, convergence, statics, maps, regions,
+                                ewing, grid, options, record_note, base)
 
 
 def run(scene: str | Scene = "short_period_elcentro", fast: bool = False, *,
@@ -1073,30 +1100,9 @@ def run(scene: str | Scene = "short_period_elcentro", fast: bool = False, *,
     ``<out>/store``); ``executor``/``scheduler``/``progress`` go to :func:`.sweep.run_sweep`.
     Every parameter is checked before anything runs.
     """
-    start = time.perf_counter()
-    checks.boolean("fast", fast)
-    grid = check_grid(grid or (FAST_GRID if fast else FULL_GRID))
-    options = check_options(options or Options())
-    if options.figures:
-        require_matplotlib(STUDY)
-    base = _base(scene)
-    out = Path(out) if out is not None else Path("results") / (STUDY + ("-fast" if fast else ""))
-    store = store if isinstance(store, Store) else Store(store or out / "store")
-    reference, records, record_note = _motions(grid, options, out)
-    with contextlib.ExitStack() as stack:  # one pool (or Dask client) for both sweeps
-        if executor is None:
-            executor = stack.enter_context(sweep_executor(scheduler))
-        sweep = {"executor": executor, "progress": progress}
-        convergence = check_convergence(base, grid, options, reference, store, sweep)
-        ctx = _Context(base, grid, options, convergence.springs, reference, records)
-        maps = tuple(compute_maps(ctx, store, sweep))
-    statics = compute_statics(base, convergence.springs, options, grid.backbone_points)
-    regions = tuple(equivalence_regions(maps, options.threshold))
-    ewing = ewing_conclusion(maps, options.threshold)
-    partial = TwoSpringEquivalence(None, convergence.springs, convergence, statics, maps, regions,
-                                   ewing, grid, options, record_note)
-    study = _write(partial, base, fast, out, store, start)
-    return replace(partial, study=study)
+    return run_study(DEFINITION, scene, Context(
+        fast=fast, out=out, store=store, grid=grid, options=options, executor=executor,
+        scheduler=scheduler, progress=progress))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -1104,8 +1110,9 @@ def run(scene: str | Scene = "short_period_elcentro", fast: bool = False, *,
 # ---------------------------------------------------------------------------------------------
 
 
-def _write(result: TwoSpringEquivalence, base: Base, fast: bool, out: Path, store: Store,
-           start: float) -> StudyResult:
+def write(result: TwoSpringEquivalence, ctx: Context) -> StudyResult:
+    """Statics, convergence, maps, figures and the summary into ``ctx.out``."""
+    base, fast, out, store = result.base, ctx.fast, ctx.out, ctx.store
     prov = provenance(study=STUDY, scene=base.name, fast=fast, grid=asdict(result.grid),
                       options=asdict(result.options), springs=result.springs,
                       store=str(store.root))
@@ -1114,7 +1121,7 @@ def _write(result: TwoSpringEquivalence, base: Base, fast: bool, out: Path, stor
     files += [_write_map(m, out / f"map_{m.name}.nc", prov) for m in result.maps]
     if result.options.figures:
         files += _figures(result, out / "figures")
-    elapsed = time.perf_counter() - start
+    elapsed = ctx.elapsed()
     numbers = _numbers(result, elapsed)
     text = _markdown(result, base, fast, elapsed)
     files += list(write_summary(out, text, {"numbers": numbers, "provenance": prov}))
@@ -1391,39 +1398,34 @@ def _short(text: str) -> str:
 # ---------------------------------------------------------------------------------------------
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m upliftlab.comparisons.two_spring_equivalence [--fast] [--out DIR] ...``"""
-    parser = argparse.ArgumentParser(prog=f"python -m upliftlab.comparisons.{STUDY}",
-                                     description=__doc__.splitlines()[0])
-    parser.add_argument("--scene", default="short_period_elcentro",
-                        help="base scene (one story): name or path")
-    parser.add_argument("--fast", action="store_true", help="small grids, pulses only")
-    parser.add_argument("--out", help="output directory")
-    parser.add_argument("--store", help="results store (default: OUT/store)")
-    parser.add_argument("--scheduler", help="Dask scheduler address (or DASK_SCHEDULER_ADDRESS)")
+def _arguments(parser) -> None:
     parser.add_argument("--threshold", type=float, default=Options.threshold,
                         help="equivalence threshold, a fraction (default 0.10)")
     parser.add_argument("--records", default=Options.records, choices=RECORD_SETS)
-    parser.add_argument("--no-figures", action="store_true")
-    args = parser.parse_args(argv)
+
+
+def _context_from(args, ctx: Context, say) -> Context:
     options = Options(threshold=args.threshold, records=args.records,
                       figures=not args.no_figures)
-    try:
-        if options.figures:
-            from ..cli import need_extra
-            need_extra(f"python -m upliftlab.comparisons.{STUDY}", "matplotlib",
-                       why="or add --no-figures")
-        result = run(args.scene, fast=args.fast, out=args.out, store=args.store,
-                     options=options, scheduler=args.scheduler)
-    except InputError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
-    print(f"{STUDY}: N = {result.springs}; onset ratio {result.statics.onset_ratio:.4f}, "
-          f"capacity ratio {result.statics.capacity_ratio:.4f}")
-    print(result.ewing.text)
-    print(f"wrote {len(result.study.files)} files to {result.study.directory} "
-          f"in {result.study.elapsed:.1f} s")
-    return 0
+    if options.figures:
+        from ..cli import need_extra
+        need_extra(f"python -m upliftlab.comparisons.{STUDY}", "matplotlib",
+                   why="or add --no-figures")
+    return replace(ctx, options=options)
+
+
+def _describe(result: TwoSpringEquivalence) -> list[str]:
+    return [f"{STUDY}: N = {result.springs}; onset ratio {result.statics.onset_ratio:.4f}, "
+            f"capacity ratio {result.statics.capacity_ratio:.4f}", result.ewing.text]
+
+
+DEFINITION = Study(STUDY, "Two-spring equivalence",
+                   "When can a Winkler bed be replaced by two springs? Maps of the relative "
+                   "error of each two-spring layout against a converged bed.", Options, compute,
+                   write, scene="short_period_elcentro", describe=_describe,
+                   arguments=_arguments, context_from=_context_from,
+                   help_fast="small grids, pulses only")
+main = main_for(DEFINITION)
 
 
 if __name__ == "__main__":

@@ -33,7 +33,6 @@ table is never shown. A check that raises becomes a failing row that carries the
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 import hashlib
 import math
@@ -45,14 +44,16 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import __version__, checks
+from .. import __version__
 from ..checks import InputError
 from ..motions import ELCENTRO, find_motion, load_motion
 from ..results import provenance, write_csv
+from .protocol import Context, Study, main_for, run_study
 from .store import Store, point_key
 from .study import StudyResult, file_sha256, write_summary
 
-__all__ = ["STUDY", "Row", "Order", "Verification", "run", "main", "source_digest",
+__all__ = ["STUDY", "Row", "Order", "Verification", "DEFINITION", "compute_or_read", "write",
+           "run", "main", "source_digest",
            "drop_mass"]
 
 STUDY = "verification"
@@ -118,6 +119,8 @@ class Verification:
     computed_utc: str
     compute_seconds: float
     study: StudyResult | None = None
+    inputs: Mapping = dataclasses.field(default_factory=dict)
+    check_seconds: Mapping = dataclasses.field(default_factory=dict)
 
     @property
     def failures(self) -> list[str]:
@@ -773,6 +776,31 @@ def _compute(fast: bool, progress=None) -> dict:
             "orders": [dataclasses.asdict(o) for o in orders], "seconds": seconds}
 
 
+def compute_or_read(scene: None, ctx: Context) -> Verification:
+    """Every anchor, computed or read from ``ctx.store`` under the content key of the module
+    docstring (``scene`` must be None: the checks build their own)."""
+    if scene is not None:
+        raise InputError(f"scene = {scene!r}: the verification builds its own scenes; pass "
+                         "scene=None")
+    fast, store = ctx.fast, ctx.store
+    _, record_sha, _ = _record()
+    params = {"fast": bool(fast), "elcentro_sha256": record_sha, "source": source_digest()}
+    key = point_key(STUDY, "upliftlab.comparisons.verification:compute", params)
+    entry = store.get(key)
+    reused = entry is not None
+    if entry is None:
+        t0 = time.perf_counter()
+        entry = compute(fast, ctx.progress)
+        entry["compute_seconds"] = time.perf_counter() - t0
+        entry["computed_utc"] = provenance()["created_utc"]
+        store.put(key, entry, {"study": STUDY, "params": params, "version": __version__})
+    rows = tuple(Row(**r) for r in entry["rows"])
+    orders = tuple(Order(**{**o, "steps": tuple(o["steps"]), "errors": tuple(o["errors"])})
+                   for o in entry["orders"])
+    return Verification(rows, orders, reused, key, entry["computed_utc"],
+                        entry["compute_seconds"], None, params, entry.get("seconds", {}))
+
+
 def run(fast: bool = False, *, out: str | Path | None = None,
         store: Store | str | Path | None = None, progress=None, **_ignored) -> Verification:
     """Compute (or read from ``store``) every anchor; write ``anchors.csv``, ``orders.csv``,
@@ -781,42 +809,24 @@ def run(fast: bool = False, *, out: str | Path | None = None,
     ``store`` defaults to ``<out>/store``. Keyword arguments other studies take (``scheduler``)
     are accepted and ignored: the checks run in this process.
     """
-    start = time.perf_counter()
-    checks.boolean("fast", fast)
-    out = Path(out) if out is not None else Path("results") / (STUDY + ("-fast" if fast else ""))
-    store = store if isinstance(store, Store) else Store(store or out / "store")
-    _, record_sha, _ = _record()
-    params = {"fast": bool(fast), "elcentro_sha256": record_sha, "source": source_digest()}
-    key = point_key(STUDY, "upliftlab.comparisons.verification:compute", params)
-    entry = store.get(key)
-    reused = entry is not None
-    if entry is None:
-        t0 = time.perf_counter()
-        entry = compute(fast, progress)
-        entry["compute_seconds"] = time.perf_counter() - t0
-        entry["computed_utc"] = provenance()["created_utc"]
-        store.put(key, entry, {"study": STUDY, "params": params, "version": __version__})
-    rows = tuple(Row(**r) for r in entry["rows"])
-    orders = tuple(Order(**{**o, "steps": tuple(o["steps"]), "errors": tuple(o["errors"])})
-                   for o in entry["orders"])
-    result = Verification(rows, orders, reused, key, entry["computed_utc"],
-                          entry["compute_seconds"])
-    study = _write(result, fast, out, store, params, entry, start)
-    return dataclasses.replace(result, study=study)
+    return run_study(DEFINITION, None, Context(fast=fast, out=out, store=store,
+                                               progress=progress))
 
 
-def _write(result: Verification, fast: bool, out: Path, store: Store, params: Mapping,
-           entry: Mapping, start: float) -> StudyResult:
+def write(result: Verification, ctx: Context) -> StudyResult:
+    """``anchors.csv``, ``orders.csv`` and the summary into ``ctx.out``."""
+    fast, out, store = ctx.fast, ctx.out, ctx.store
     prov = provenance(study=STUDY, fast=fast, key=result.key, store=str(store.root),
-                      computed_utc=result.computed_utc, reused=result.reused, inputs=dict(params))
+                      computed_utc=result.computed_utc, reused=result.reused,
+                      inputs=dict(result.inputs))
     files = [_rows_csv(result.rows, out / "anchors.csv"),
              _orders_csv(result.orders, out / "orders.csv")]
-    elapsed = time.perf_counter() - start
+    elapsed = ctx.elapsed()
     numbers = {"passed": result.passed, "failures": result.failures,
                "counts": _counts(result), "reused": result.reused, "key": result.key,
                "computed_utc": result.computed_utc,
                "compute_seconds": result.compute_seconds,
-               "check_seconds": entry.get("seconds", {}),
+               "check_seconds": dict(result.check_seconds),
                "rows": [dataclasses.asdict(r) for r in result.rows],
                "orders": [dataclasses.asdict(o) for o in result.orders], "elapsed_s": elapsed}
     text = markdown(result, fast)
@@ -903,22 +913,18 @@ def markdown(result: Verification, fast: bool) -> str:
     return "\n".join(lines) + "\n"
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m upliftlab.comparisons.verification [--fast] [--out DIR] [--store DIR]``"""
-    parser = argparse.ArgumentParser(prog=f"python -m upliftlab.comparisons.{STUDY}",
-                                     description=__doc__.splitlines()[0])
-    parser.add_argument("--fast", action="store_true", help="skip the costly continuum levels")
-    parser.add_argument("--out", help="output directory")
-    parser.add_argument("--store", help="results store (default OUT/store)")
-    args = parser.parse_args(argv)
-    try:
-        result = run(fast=args.fast, out=args.out, store=args.store,
-                     progress=lambda m: print(f"{STUDY}: {m}", file=sys.stderr, flush=True))
-    except InputError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
-    print(result.study.summary)
-    return 0 if result.passed else 1
+def _context_from(args, ctx: Context, say) -> Context:
+    return dataclasses.replace(ctx, progress=say)
+
+
+DEFINITION = Study(STUDY, "Verification anchors",
+                   "Every verification anchor (closed forms, published values and converged "
+                   "runs, listed in the table with their references) recomputed through the "
+                   "library, with its measured error against its tolerance.", None,
+                   compute_or_read, write, describe=lambda result: [result.study.summary],
+                   passed=lambda result: result.passed, context_from=_context_from,
+                   own_store=True, help_fast="skip the costly continuum levels")
+main = main_for(DEFINITION)
 
 
 if __name__ == "__main__":

@@ -39,14 +39,12 @@ Run it with ``python -m upliftlab.comparisons.winkler_vs_continuum [--fast] [--o
 
 from __future__ import annotations
 
-import argparse
 import contextlib
 import copy
 import importlib.util
 import math
 import os
 import sys
-import time
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
@@ -59,6 +57,7 @@ from ..results import provenance, write_csv, write_netcdf
 from ..scenes import Scene, load_scene, scene_from_dict
 from ..reduced import build_model as build_reduced, rocking_pushover, uplift_onset_force
 from ..reduced.compatibility import end_stiffened_bed, winkler_bed
+from .protocol import Context, Study, main_for, run_study
 from .store import Store
 from .study import StudyResult, ascii_text, relative_error, require_matplotlib, write_figure, \
     write_summary
@@ -68,7 +67,8 @@ __all__ = ["STUDY", "CALIBRATIONS", "Options", "FULL_OPTIONS", "FAST_OPTIONS", "
            "Calibration", "EndStiffening", "end_stiffening", "calibrate", "ContinuumReference",
            "BedResponse", "ErrorTable", "Recommendation", "DynamicComparison",
            "WinklerVsContinuum", "evaluate_continuum", "rotation_path", "cyclic_path",
-           "error_table", "recommend", "run", "main", "DYNAMIC_MISSING"]
+           "error_table", "recommend", "DEFINITION", "compute", "write", "run", "main",
+           "DYNAMIC_MISSING"]
 
 STUDY = "winkler_vs_continuum"
 CALIBRATIONS = ("uniform", "end_stiffened", "uniform_plastic", "end_stiffened_plastic")
@@ -1036,6 +1036,40 @@ def _anchors(ref: ContinuumReference, beds: Sequence[BedResponse]) -> dict:
     return out
 
 
+def compute(scene: str | Scene, ctx: Context) -> WinklerVsContinuum:
+    """The continuum reference, the calibrated beds, their errors and the dynamics of
+    ``scene`` (with ``[soil]``) under ``ctx.options`` (default :data:`FAST_OPTIONS` or
+    :data:`FULL_OPTIONS`). Every parameter is checked before anything runs."""
+    fast = ctx.fast
+    options = check_options(ctx.options or (FAST_OPTIONS if fast else FULL_OPTIONS))
+    if options.figures:
+        require_matplotlib(STUDY)
+    scene = scene if isinstance(scene, Scene) else load_scene(scene)
+    if fast and options.fast_overrides:
+        scene = scene.with_overrides(*options.fast_overrides)
+    _check_scene(scene)
+    end_zone(scene.foundation.half_width, options.springs, options.end_length)
+    static, theta_on = _continuum_points(scene, options)
+    motions, dynamic, reason = dynamic_points(scene, options, fast)
+    executor = ctx.executor
+    with contextlib.ExitStack() as stack:
+        if executor is None:  # one worker per point at most
+            workers = min(os.cpu_count() or 1, len(static) + len(dynamic))
+            executor = stack.enter_context(sweep_executor(ctx.scheduler, workers=workers))
+        records = run_sweep(evaluate_continuum, static + dynamic, ctx.store, study=STUDY,
+                            chunk=1, executor=executor, progress=ctx.progress)  # statics first
+    ref = continuum_reference(scene, theta_on, records[:len(static)])
+    calibrations = calibrate(ref, options)
+    beds = tuple(bed_response(scene, c, ref) for c in calibrations)
+    dynamics = compare_dynamics(scene, calibrations, motions, dynamic, records[len(static):],
+                                reason)
+    table = error_table(ref, beds, options, _dynamic_quantities(ref, scene, dynamics),
+                        dynamics.runs)
+    return WinklerVsContinuum(None, scene, ref, calibrations, beds, table,
+                              recommend(table, options.adequate), _anchors(ref, beds),
+                              dynamics, options)
+
+
 def run(scene: str | Scene = "strip_footing_clay", fast: bool = False, *,
         out: str | Path | None = None, store: Store | str | Path | None = None,
         options: Options | None = None, executor=None, scheduler=None,
@@ -1048,38 +1082,9 @@ def run(scene: str | Scene = "strip_footing_clay", fast: bool = False, *,
     results store (default ``<out>/store``); ``executor``/``scheduler``/``progress`` go to
     :func:`.sweep.run_sweep`. Every parameter is checked before anything runs.
     """
-    start = time.perf_counter()
-    checks.boolean("fast", fast)
-    options = check_options(options or (FAST_OPTIONS if fast else FULL_OPTIONS))
-    if options.figures:
-        require_matplotlib(STUDY)
-    scene = scene if isinstance(scene, Scene) else load_scene(scene)
-    if fast and options.fast_overrides:
-        scene = scene.with_overrides(*options.fast_overrides)
-    _check_scene(scene)
-    end_zone(scene.foundation.half_width, options.springs, options.end_length)
-    out = Path(out) if out is not None else Path("results") / (STUDY + ("-fast" if fast else ""))
-    store = store if isinstance(store, Store) else Store(store or out / "store")
-    static, theta_on = _continuum_points(scene, options)
-    motions, dynamic, reason = dynamic_points(scene, options, fast)
-    with contextlib.ExitStack() as stack:
-        if executor is None:  # one worker per point at most
-            workers = min(os.cpu_count() or 1, len(static) + len(dynamic))
-            executor = stack.enter_context(sweep_executor(scheduler, workers=workers))
-        records = run_sweep(evaluate_continuum, static + dynamic, store, study=STUDY, chunk=1,
-                            executor=executor, progress=progress)  # the statics first
-    ref = continuum_reference(scene, theta_on, records[:len(static)])
-    calibrations = calibrate(ref, options)
-    beds = tuple(bed_response(scene, c, ref) for c in calibrations)
-    dynamics = compare_dynamics(scene, calibrations, motions, dynamic, records[len(static):],
-                                reason)
-    table = error_table(ref, beds, options, _dynamic_quantities(ref, scene, dynamics),
-                        dynamics.runs)
-    partial = WinklerVsContinuum(None, scene, ref, calibrations, beds, table,
-                                 recommend(table, options.adequate), _anchors(ref, beds),
-                                 dynamics, options)
-    study = _write(partial, fast, out, store, start)
-    return replace(partial, study=study)
+    return run_study(DEFINITION, scene, Context(fast=fast, out=out, store=store, options=options,
+                                                executor=executor, scheduler=scheduler,
+                                                progress=progress))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -1087,8 +1092,9 @@ def run(scene: str | Scene = "strip_footing_clay", fast: bool = False, *,
 # ---------------------------------------------------------------------------------------------
 
 
-def _write(result: WinklerVsContinuum, fast: bool, out: Path, store: Store,
-           start: float) -> StudyResult:
+def write(result: WinklerVsContinuum, ctx: Context) -> StudyResult:
+    """Paths, errors, dynamics, figures and the summary into ``ctx.out``."""
+    fast, out, store = ctx.fast, ctx.out, ctx.store
     prov = provenance(study=STUDY, scene=result.scene.name, scene_digest=result.scene.digest,
                       overrides=list(result.scene.overrides), fast=fast,
                       options=asdict(result.options), store=str(store.root),
@@ -1100,7 +1106,7 @@ def _write(result: WinklerVsContinuum, fast: bool, out: Path, store: Store,
               for run in result.dynamics.runs]
     if result.options.figures:
         files += _figures(result, out / "figures")
-    elapsed = time.perf_counter() - start
+    elapsed = ctx.elapsed()
     numbers = _numbers(result, elapsed)
     text = _markdown(result, fast, elapsed)
     files += list(write_summary(out, text, {"numbers": numbers, "provenance": prov}))
@@ -1433,34 +1439,30 @@ def _dynamic_markdown(dyn: DynamicComparison, options: Options, fast: bool) -> s
 # ---------------------------------------------------------------------------------------------
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m upliftlab.comparisons.winkler_vs_continuum [--fast] [--out DIR] ...``"""
-    parser = argparse.ArgumentParser(prog=f"python -m upliftlab.comparisons.{STUDY}",
-                                     description=__doc__.splitlines()[0])
-    parser.add_argument("--scene", default="strip_footing_clay", help="scene name or path")
-    parser.add_argument("--fast", action="store_true", help="coarse mesh, short paths")
-    parser.add_argument("--out", help="output directory")
-    parser.add_argument("--store", help="results store (default: OUT/store)")
-    parser.add_argument("--scheduler", help="Dask scheduler address (or DASK_SCHEDULER_ADDRESS)")
+def _arguments(parser) -> None:
     parser.add_argument("--end-length", type=float, default=Options.end_length,
                         help="end-zone length of the end-stiffened bed, fraction of b")
     parser.add_argument("--no-dynamic", action="store_true")
-    parser.add_argument("--no-figures", action="store_true")
-    args = parser.parse_args(argv)
+
+
+def _context_from(args, ctx: Context, say) -> Context:
     base = FAST_OPTIONS if args.fast else FULL_OPTIONS
-    options = replace(base, end_length=args.end_length, dynamic=not args.no_dynamic,
-                      figures=not args.no_figures)
-    try:
-        result = run(args.scene, fast=args.fast, out=args.out, store=args.store,
-                     options=options, scheduler=args.scheduler)
-    except InputError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
-    print(result.recommendation.text)
-    print(result.dynamics.reason if not result.dynamics.available else "dynamics compared")
-    print(f"wrote {len(result.study.files)} files to {result.study.directory} "
-          f"in {result.study.elapsed:.1f} s")
-    return 0
+    return replace(ctx, options=replace(base, end_length=args.end_length,
+                                        dynamic=not args.no_dynamic,
+                                        figures=not args.no_figures))
+
+
+def _describe(result: WinklerVsContinuum) -> list[str]:
+    return [result.recommendation.text,
+            result.dynamics.reason if not result.dynamics.available else "dynamics compared"]
+
+
+DEFINITION = Study(STUDY, "Winkler against the continuum",
+                   "How well the reduced model's Winkler bed matches the plane-strain continuum.",
+                   Options, compute, write, scene="strip_footing_clay", describe=_describe,
+                   arguments=_arguments, context_from=_context_from,
+                   help_fast="coarse mesh, short paths")
+main = main_for(DEFINITION)
 
 
 if __name__ == "__main__":
