@@ -193,10 +193,10 @@ def test_a_failing_verification_gives_exit_1(tmp_path, monkeypatch):
     from upliftlab.comparisons import verification as vf
 
     def wrong(ctx):
-        return [vf._rel("reduced", "wrong", "a deliberately wrong anchor", "none", 1.1, 1.0,
-                        0.01)]
+        return [vf.relative_row("reduced", "wrong", "a deliberately wrong anchor", "none", 1.1,
+                                1.0, 0.01)]
 
-    monkeypatch.setattr(vf, "CHECKS", (("reduced", "wrong", wrong),))
+    monkeypatch.setattr(vf.workflow, "CHECKS", (("reduced", "wrong", wrong),))
     report = rp.build_report(True, out=tmp_path / "r", studies=("verification",))
     assert report.code == rp.EXIT_FAILED and not report.passed
     assert "a deliberately wrong anchor" in report.path.read_text()

@@ -271,7 +271,8 @@ def test_missing_continuum_dynamics_is_reported_not_faked(study, monkeypatch):
     """When upliftlab.continuum.dynamics cannot be used, no dynamic point is made and the
     comparison carries the statement 'dynamic comparison not run: continuum dynamics
     unavailable' with the reason."""
-    monkeypatch.setattr(wvc, "dynamics_available", lambda: (False, "module absent (test)"))
+    monkeypatch.setattr(wvc.dynamics, "dynamics_available",
+                        lambda: (False, "module absent (test)"))
     motions, points, reason = wvc.dynamic_points(study.scene, study.options, fast=True)
     assert motions == [] and points == []
     assert reason == f"{wvc.DYNAMIC_MISSING} (module absent (test))"
