@@ -35,15 +35,15 @@ from .grid import (FAST_GRID, FLOOR_FRACTION, FULL_GRID, Grid, IMPLICIT, INTEGRA
                    MAX_HALVINGS, MODELS, Options, QUANTITIES, STABILITY_MARGIN, STUDY, SceneSpec,
                    check_grid, check_options)
 from .output import write
-from .points import (continuum_status, edge_uplift, evaluate_continuum, evaluate_point, load_spec,
-                     measurement_context, motion_entry, permanent_settlement, point_scene,
-                     pulse_overrides, scales, scene_points)
+from .points import (continuum_status, evaluate_continuum, evaluate_point, load_spec,
+                     measurement_context, motion_entry, point_scene, pulse_overrides, scales,
+                     scene_points)
 from .workflow import DEFINITION, compute, main, run
 
 __all__ = ["STUDY", "QUANTITIES", "INTEGRATORS", "MODELS", "SceneSpec", "Grid", "Options",
            "FULL_GRID", "FAST_GRID", "Point", "Reference", "SceneResult", "SpeedVsError",
            "DEFINITION", "compute", "write", "run", "main", "evaluate_point", "point_scene",
-           "edge_uplift", "permanent_settlement", "pareto_front", "motion_entry", "scales",
+           "pareto_front", "motion_entry", "scales",
            "load_spec", "scene_points", "check_grid", "check_options", "measurement_context",
            "continuum_status", "pulse_overrides", "LABELS", "IMPLICIT", "FLOOR_FRACTION",
            "STABILITY_MARGIN", "MAX_HALVINGS", "evaluate_continuum"]

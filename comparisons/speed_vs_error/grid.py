@@ -12,8 +12,13 @@ from ...checks import InputError
 
 STUDY = "speed_vs_error"
 QUANTITIES = ("u", "theta", "uplift", "residual_settlement")
-LABELS = {"u": "peak u", "theta": "peak θ", "uplift": "peak edge uplift",
-          "residual_settlement": "residual settlement"}
+# reduced rows and continuum rows measure uplift and settlement differently (..measures); the
+# labels say so: reduced_edge_uplift_from_peaks against continuum_peak_edge_gap, and
+# reduced_plastic_settlement against continuum_settlement_change
+LABELS = {"u": "peak u", "theta": "peak θ",
+          "uplift": "peak edge uplift (reduced: from peaks; continuum: edge gap)",
+          "residual_settlement": "residual settlement (reduced: Σkε_p/Σk; continuum: "
+                                 "V(0) − V(end))"}
 INTEGRATORS = ("events", "rk4", "abm4", "newmark", "hht")
 IMPLICIT = ("newmark", "hht")
 MODELS = ("edges", "equivalent", "winkler")

@@ -17,9 +17,11 @@ import numpy as np
 
 from ...checks import InputError
 from ...motions import find_motion
-from ...reduced import (IntegrationError, build_model, kernels as kn, run as run_reduced,
+from ...reduced import (IntegrationError, build_model, run as run_reduced,
                         stability_limit)
 from ...scenes import Scene, load_scene, scene_from_dict
+from ..measures import (continuum_peak_edge_gap, continuum_settlement_change,
+                        reduced_edge_uplift_from_peaks, reduced_plastic_settlement)
 from ..store import keyed_as
 from ..study import file_sha256
 from .grid import Grid, MAX_HALVINGS, STABILITY_MARGIN, SceneSpec
@@ -142,30 +144,6 @@ def _ladder_dt(scene: Scene, name: str, rank: int) -> tuple[float, float]:
     return record_dt / 2 ** (k0 + rank), limit
 
 
-def edge_uplift(response) -> float:
-    """Peak uplift of the footing edge x = ±b (length): for each spring its peak gap (tracked
-    at every step) plus the lift from the spring to the edge on its side under the peak base
-    rotation, (b − |x_i|)·θ_peak; the largest over the springs. Exact for springs at the edge
-    (two ``edges`` springs; the error of the others vanishes as 1/N for a bed), a rigid-base
-    estimate for springs inside it (``equivalent``)."""
-    model = response.model
-    found = model.foundation_slice
-    gaps = response.raw_peaks[kn.N_PEAK_SCALARS::2][found]
-    x = model.params["x"][found]
-    b = model.layout.half_width
-    theta = response.peaks["theta"]
-    return float(max(0.0, np.max(gaps + (b - np.abs(x)) * theta)))
-
-
-def permanent_settlement(response) -> float:
-    """Residual settlement of the base centre once it rests on every spring again (length,
-    down): Σ k_i ε_p,i / Σ k_i at the end (0 for elastic springs)."""
-    model = response.model
-    found = model.foundation_slice
-    k = model.params["k"][found]
-    return float(np.sum(k * response.plastic[-1, found]) / np.sum(k))
-
-
 _WARM: set = set()
 _SESSION = f"{os.getpid()}-{time.time():.0f}"
 
@@ -211,8 +189,8 @@ def evaluate_point(point: Mapping) -> dict:
     except (IntegrationError, InputError) as exc:
         return {"error": str(exc)}
     pk = response.peaks
-    return {"u": pk["u"], "theta": pk["theta"], "uplift": edge_uplift(response),
-            "residual_settlement": permanent_settlement(response),
+    return {"u": pk["u"], "theta": pk["theta"], "uplift": reduced_edge_uplift_from_peaks(response),
+            "residual_settlement": reduced_plastic_settlement(response),
             "spring_uplift": pk["uplift_max"], "dt": dt,
             "stability_limit": response.info["stability_limit"] if math.isnan(limit) else limit,
             "steps": response.info["steps"], "runtime": statistics.median(times),
@@ -240,13 +218,11 @@ def evaluate_continuum(scene: Scene, repeats: int, budget: float, session: str =
             times.append(time.perf_counter() - start)
     except (InputError, RuntimeError) as exc:
         return {"error": f"continuum: {exc}"}
-    footing, x = np.asarray(result.footing), np.asarray(result.x)
-    gap = np.asarray(result.gap)
-    edges = [int(np.argmin(x)), int(np.argmax(x))]
+    footing, gap = np.asarray(result.footing), np.asarray(result.gap)
     return {"u": float(np.max(np.abs(result.structure_u))),
             "theta": float(np.max(np.abs(footing[:, 2]))),
-            "uplift": float(max(0.0, np.max(gap[:, edges]))),
-            "residual_settlement": float(footing[0, 1] - footing[-1, 1]),
+            "uplift": continuum_peak_edge_gap(gap, result.x),
+            "residual_settlement": continuum_settlement_change(footing),
             "spring_uplift": float(max(0.0, np.max(gap))),
             "dt": float(result.metadata["dt"]),
             "stability_limit": float(result.metadata["dt_limit"])  # explicit: a real limit

@@ -103,8 +103,10 @@ def summary_markdown(result: SpeedVsError, fast: bool, elapsed: float) -> str:
              "Error = |value − reference| / max(|reference|, floor), floor = "
              f"{FLOOR_FRACTION:g} × the quantity's scale at the uplift threshold (u_up = "
              "(W b/3h)/k, θ_up = W/(K_v b), W/K_v for uplift and settlement). Peak edge uplift: "
-             "the largest tracked spring gap plus (b − |x_i|)·θ_peak; residual settlement: "
-             "Σ k_i ε_p,i / Σ k_i at the end (zero for elastic springs).", "",
+             "the largest tracked spring gap plus (b − |x_i|)·θ_peak (a continuum mesh: the "
+             "largest gap of its edge nodes); residual settlement: Σ k_i ε_p,i / Σ k_i at the "
+             "end, zero for elastic springs (a continuum mesh: V(0) − V(end) of the footing "
+             "centre, a different quantity, measured against the same reduced reference).", "",
              f"Runtimes: wall time of a whole reduced run in a single-threaded worker, median of "
              f"up to {result.grid.repeats} repeats (fewer once {result.grid.repeat_budget:g} s "
              f"were spent), after a warm-up. They are **stored with their measurement context** "

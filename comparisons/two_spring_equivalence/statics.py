@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...anchors import WINKLER_ONSET_ECCENTRICITY, ultimate_moment_ratio
 from ...reduced import build_model, rocking_pushover, uplift_onset_force
 from .grid import Options, STATIC_MOTION
 from .points import Base, make_point, point_scene
@@ -116,10 +117,10 @@ def _static_layout(base, label, bed, layout, springs, options, thetas) -> Static
     else:
         k, kv = elastic.layout.stiffnesses, elastic.layout.vertical_stiffness
         outer = float(np.max(x))
-        onset_cf = (1.0 / 6.0 if bed == "uniform"
+        onset_cf = (WINKLER_ONSET_ECCENTRICITY if bed == "uniform"
                     else float(np.sum(k * x**2)) / (kv * outer * 2.0 * b))
         capacity_cf = 0.5
-        ultimate_cf = (0.5 * (1.0 - 1.0 / fs) if bed == "uniform"
+        ultimate_cf = (ultimate_moment_ratio(fs) if bed == "uniform"
                        else _rigid_plastic_moment(plastic, fs) / nb)
     path = rocking_pushover(plastic, theta_up * thetas)
     return StaticLayout(label, bed, layout, tuple(float(v) for v in x / b), onset, onset_cf,

@@ -55,8 +55,8 @@ def summary_markdown(result: TwoSpringEquivalence, base: Base, fast: bool, elaps
              f"{FLOOR_FRACTION:g} × the measure's value at the uplift threshold: u_up = "
              "(W b/3h)/k, θ_up = W/(K_v b), the static settlement W/K_v (uplift, residual "
              "settlement), W b/(3h) (base shear) and W²/(2K_v) (dissipated energy). Peak edge "
-             "uplift is the gap at x = ±b over the (plastically settled) soil at the outermost "
-             "spring, the same measure for every layout; permanent settlement is the "
+             "gap is the gap at x = ±b over the (plastically settled) soil at the outermost "
+             "spring, the same measure for every layout; plastic settlement is the "
              "stiffness-weighted mean plastic settlement of the springs at the end, Σ k_i ε_p,i "
              "/ Σ k_i (independent of any rocking left at the end).", "",
              "## Winkler bed: convergence in N", "",

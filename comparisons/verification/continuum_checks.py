@@ -8,6 +8,9 @@ import math
 
 import numpy as np
 
+from ...anchors import (HALF_PLANE_ONSET_ECCENTRICITY, TOLERANCES, WINKLER_ONSET_ECCENTRICITY,
+                        flamant_compliance_slope, half_plane_onset_rotation,
+                        half_plane_rocking_stiffness, prandtl_capacity)
 from .records import (C, FAIL, Order, Row, SKIP, absolute_row, bound_row, order_row, relative_row,
                       skipped_row)
 
@@ -41,14 +44,15 @@ def rocking_stiffness(ctx) -> tuple[list[Row], list[Order]]:
     the O(h) convergence of full 3×3 integration at 4, 8, 16 across."""
     from ...continuum import footing_stiffness
 
-    k_r = math.pi * G_SOIL * B ** 2 / (8 * (1 - NU))
+    k_r = half_plane_rocking_stiffness(G_SOIL, B, NU)
     soil = _elastic_soil()
     default = footing_stiffness(_model(soil, elements_across=16)).rocking
     ns = np.array([4, 8, 16])
     full = np.array([footing_stiffness(_model(soil, elements_across=int(n), intorder=4)).rocking
                      for n in ns])
     rows = [relative_row(C, "K_r", "rocking stiffness K_r, Q2 (2×2), 16 across B",
-                         "anchor §4, πGB²/(8(1 − ν))", default, k_r, 0.01),
+                         "anchor §4, πGB²/(8(1 − ν))", default, k_r,
+                         TOLERANCES["rocking_stiffness"].value),
             relative_row(C, "K_r_richardson", "K_r, full integration, Richardson 2K(16) − K(8)",
                          "anchor §4", 2 * full[-1] - full[-2], k_r, 0.002)]
     orders = [order_row(C, "K_r, Q2 full integration (h = B/n)", "Q2 3×3", 1.0 / ns,
@@ -66,8 +70,8 @@ def flamant(ctx) -> list[Row]:
                   for s in sizes]
     slope = np.polyfit(np.log(sizes), compliance, 1)[0]
     return [relative_row(C, "flamant", "vertical compliance slope d(1/K_v)/d ln L, boxes 5B–40B",
-                         "anchor §4 (Flamant), (1 − ν)/(πG)", slope, (1 - NU) / (math.pi * G_SOIL),
-                         0.02)]
+                         "anchor §4 (Flamant), (1 − ν)/(πG)", slope,
+                         flamant_compliance_slope(G_SOIL, NU), TOLERANCES["flamant"].value)]
 
 
 def _prandtl_error(element: str, n: int) -> np.ndarray:
@@ -78,7 +82,7 @@ def _prandtl_error(element: str, n: int) -> np.ndarray:
                 undrained_strength=CU, interface="bonded")
     path = vertical_pushover(_model(soil, element=element, elements_across=n),
                              np.linspace(0.0, 0.1, 11)[1:])
-    return path.N / (B * (2 + math.pi) * CU) - 1.0
+    return path.N / prandtl_capacity(CU, B) - 1.0
 
 
 def prandtl(ctx) -> tuple[list[Row], list[Order]]:
@@ -87,7 +91,8 @@ def prandtl(ctx) -> tuple[list[Row], list[Order]]:
     ref = "anchor §4, (2 + π) c_u = 257.08 kPa"
     q8 = _prandtl_error("Q2", 8)
     rows = [bound_row(C, "prandtl_8", "Prandtl q_u, Q2, 8 across B (error, from above)", ref,
-                      q8[-1], 0.0, 0.05, "coarse mesh: O(h) overshoot, own tolerance 5 %")]
+                      q8[-1], 0.0, TOLERANCES["prandtl_coarse"].value,
+                      "coarse mesh: O(h) overshoot, own tolerance 5 %")]
     orders = []
     if ctx.fast:
         rows += [skipped_row(C, "prandtl_16", "Prandtl q_u, Q2, 16 across B (error, from above)",
@@ -102,7 +107,7 @@ def prandtl(ctx) -> tuple[list[Row], list[Order]]:
     else:
         q16 = _prandtl_error("Q2", 16)
         rows += [bound_row(C, "prandtl_16", "Prandtl q_u, Q2, 16 across B (error, from above)",
-                           ref, q16[-1], 0.0, 0.02),
+                           ref, q16[-1], 0.0, TOLERANCES["prandtl"].value),
                  absolute_row(C, "prandtl_richardson", "Prandtl, Richardson 2q(16) − q(8) (rel. "
                               "error)", ref, 2 * q16[-1] - q8[-1], 0.0, 0.005)]
         orders.append(order_row(C, "Prandtl q_u, Q2 (h = B/n)", "Q2 2×2", B / np.array([8.0, 16.0]),
@@ -123,13 +128,15 @@ def uplift_eccentricity(ctx) -> list[Row]:
     """Elastic half-plane: uplift starts at e = M/N = B/4 (1 %), not Winkler's B/6."""
     from ...continuum import rotation_pushover, uplift_onset
 
-    theta_on = 2 * N_SCENE * (1 - NU) / (math.pi * G_SOIL * B)
+    theta_on = half_plane_onset_rotation(N_SCENE, B, G_SOIL, NU)
     ratios = np.array([0.25, 0.5, 1.5, 2.0, 3.0, 5.0, 10.0])
     path = rotation_pushover(_model(_elastic_soil(), elements_across=16), N_SCENE,
                              ratios * theta_on)
     onset = uplift_onset(path)
     return [relative_row(C, "onset_e", "uplift-onset eccentricity e/B, Q2 16 across, 10B box",
-                         "half-plane (Johnson 1985): 1/4", onset.e / B, 0.25, 0.01,
-                         f"{100 * (onset.e / B / (1 / 6) - 1):.0f} % above Winkler's B/6"),
+                         "half-plane (Johnson 1985): 1/4", onset.e / B,
+                         HALF_PLANE_ONSET_ECCENTRICITY, TOLERANCES["half_plane_onset"].value,
+                         f"{100 * (onset.e / B / WINKLER_ONSET_ECCENTRICITY - 1):.0f} % above "
+                         "Winkler's B/6"),
             relative_row(C, "onset_theta", "uplift-onset rotation θ_on", "2N(1 − ν)/(πGB)",
-                         onset.theta, theta_on, 0.01)]
+                         onset.theta, theta_on, TOLERANCES["half_plane_onset"].value)]

@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from ...anchors import HOUSNER_PERIOD_HB5, TOLERANCES, rocking_restitution_rectangle
 from .records import Order, R, Row, bound_row, order_row, relative_row, skipped_row
 
 
@@ -45,13 +46,15 @@ def rigid_block(ctx) -> list[Row]:
     b, h = math.sin(alpha), math.cos(alpha)
     energy = np.array([b * a - h * a * a / 2 for a in peaks])
     ratios = np.sqrt(energy[1:] / energy[:-1])
-    e = 1 - 1.5 * math.sin(alpha) ** 2
+    e = rocking_restitution_rectangle(alpha)
     worst = ratios[int(np.argmax(np.abs(ratios / e - 1)))]
     return [relative_row(R, "housner_period", "rigid block h/b = 5, θ0 = 0.5α: 4 × time to first "
-                         "impact", "anchor §1, T_exact = 1.944300 s", 4 * t_cross, 1.944300, 0.01),
+                         "impact", "anchor §1, T_exact = 1.944300 s", 4 * t_cross,
+                         HOUSNER_PERIOD_HB5, TOLERANCES["housner_period"].value),
             relative_row(R, "housner_restitution",
                          "rocking restitution (worst of 3 impacts, ε = 0.9)",
-                         "anchor §1, 1 − 1.5 sin²α = 0.9423", worst, e, 0.01)]
+                         "anchor §1, 1 − 1.5 sin²α = 0.9423", worst, e,
+                         TOLERANCES["housner_restitution"].value)]
 
 
 def energy_balance(ctx) -> list[Row]:

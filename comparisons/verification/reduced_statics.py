@@ -8,6 +8,9 @@ import math
 
 import numpy as np
 
+from ...anchors import (TOLERANCES, edge_springs_onset_force, equivalent_springs_onset_force,
+                        first_yield_rotation_ratio, ultimate_moment_ratio, winkler_contact_ratio,
+                        winkler_moment_ratio, winkler_onset_force)
 from .records import R, Row, absolute_row, relative_row, skipped_row
 
 
@@ -117,16 +120,18 @@ def winkler_pushover(ctx) -> list[Row]:
     theta_up = 2 * N / (model.layout.vertical_stiffness * B)
     ratios = np.array([0.5, 1.5, 3.0, 10.0])
     push = rocking_pushover(model, ratios * theta_up)
-    closed_m = np.where(ratios <= 1, ratios, 3 - 2 * np.sqrt(1 / ratios))
-    closed_c = np.where(ratios <= 1, 1.0, np.sqrt(1 / ratios))
+    closed_m = winkler_moment_ratio(ratios)
+    closed_c = winkler_contact_ratio(ratios)
     em = push.moment / (N * B / 6) / closed_m - 1
     ec = push.contact / B / closed_c - 1
     km, kc = int(np.argmax(np.abs(em))), int(np.argmax(np.abs(ec)))
     ref = "anchor §3 (θ/θ_up = 0.5, 1.5, 3, 10; worst shown)"
     return [relative_row(R, "pushover_M", f"M/M_up, 200 springs (worst at θ = {ratios[km]:g} θ_up)",
-                         ref, push.moment[km] / (N * B / 6), closed_m[km], 5e-3),
+                         ref, push.moment[km] / (N * B / 6), closed_m[km],
+                         TOLERANCES["winkler_pushover"].value),
             relative_row(R, "pushover_c", f"contact c/B, 200 springs (worst at θ = {ratios[kc]:g} "
-                         "θ_up)", ref, push.contact[kc] / B, closed_c[kc], 5e-3)]
+                         "θ_up)", ref, push.contact[kc] / B, closed_c[kc],
+                         TOLERANCES["winkler_pushover"].value)]
 
 
 def reduced_uplift_onset(ctx) -> list[Row]:
@@ -145,15 +150,16 @@ def reduced_uplift_onset(ctx) -> list[Row]:
     n = 200
     p200 = onset(f"foundation.springs={n}")
     return [relative_row(R, "onset_edges", "uplift onset, edge springs: W b/h = 50 kip", ref,
-                         onset("foundation.layout='edges'", two), W * b / h, 1e-12),
-            relative_row(R, "onset_equivalent", "uplift onset, ±b/√3: W b/(√3 h) = 28.868 kip", ref,
-                         onset("foundation.layout='equivalent'", two), W * b / (math.sqrt(3) * h),
+                         onset("foundation.layout='edges'", two), edge_springs_onset_force(W, b, h),
                          1e-12),
+            relative_row(R, "onset_equivalent", "uplift onset, ±b/√3: W b/(√3 h) = 28.868 kip", ref,
+                         onset("foundation.layout='equivalent'", two),
+                         equivalent_springs_onset_force(W, b, h), 1e-12),
             relative_row(R, "onset_winkler_N", f"uplift onset, {n} strips: W b/(3h)(1 + 1/N)",
-                         "outer strip centre at b(1 − 1/N)", p200, W * b / (3 * h) * (1 + 1 / n),
+                         "outer strip centre at b(1 − 1/N)", p200, winkler_onset_force(W, b, h, n),
                          1e-12),
             relative_row(R, "onset_winkler", "uplift onset, 400 strips vs W b/(3h) = 16.667 kip",
-                         ref, onset("foundation.springs=400"), W * b / (3 * h), 5e-3,
+                         ref, onset("foundation.springs=400"), winkler_onset_force(W, b, h), 5e-3,
                          "N → ∞ limit; the bed's excess is 1/N")]
 
 
@@ -185,15 +191,17 @@ def ultimate_moment(ctx) -> list[Row]:
     theta_up = 2 * N / (model.layout.vertical_stiffness * B)
     ratios = np.geomspace(0.1, 2000.0, 120 if ctx.fast else 400)
     push = rocking_pushover(model, theta_up * ratios)
-    m_ult = N * B / 2 * (1 - 1 / fs)
+    m_ult = N * B * ultimate_moment_ratio(fs)
     k = int(np.flatnonzero(push.plastic.max(axis=1) > 0)[0])
     first = _first_yield(model, theta_up, ratios[k - 1], ratios[k])
     ref = "anchor §3 (FS_v = 3, 400 springs)"
     return [relative_row(R, "M_ult", "elasto-plastic bed: M(2000 θ_up) / M_ult, M_ult = "
-                         "(NB/2)(1 − 1/FS_v)", ref, push.moment[-1], m_ult, 2e-3,
+                         "(NB/2)(1 − 1/FS_v)", ref, push.moment[-1], m_ult,
+                         TOLERANCES["ultimate_moment"].value,
                          f"{ratios.size} pushover steps"),
             relative_row(R, "yield_rotation", "first yield rotation θ_y/θ_up = FS_v²/4", ref, first,
-                         fs ** 2 / 4, 0.02, "bisection of the pushover to 1e-6")]
+                         first_yield_rotation_ratio(fs), TOLERANCES["first_yield"].value,
+                         "bisection of the pushover to 1e-6")]
 
 
 def drop_mass(cstar: float, *, k: float, m: float = 0.518, v0: float = 10.0,

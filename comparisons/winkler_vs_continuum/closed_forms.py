@@ -8,6 +8,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ...anchors import (half_plane_rocking, prandtl_capacity, vm_envelope_moment_ratio,
+                        winkler_rocking)
 from .calibration import BedResponse
 from .options import WINKLER_ONSET
 from .reference import ContinuumReference
@@ -15,8 +17,6 @@ from .reference import ContinuumReference
 
 def closed_form_checks(ref: ContinuumReference, beds: Sequence[BedResponse]) -> dict:
     """The anchor checks of the package docstring, as numbers."""
-    from ...continuum.output import half_plane_rocking, winkler_rocking
-
     NB = ref.N * ref.B
     out = {"K_r_closed_form": ref.K_r_closed_form,
            "K_r_error_vs_closed_form": ref.K_r / ref.K_r_closed_form - 1.0,
@@ -48,10 +48,10 @@ def closed_form_checks(ref: ContinuumReference, beds: Sequence[BedResponse]) -> 
     out["half_plane_M_error"] = float(np.max(np.abs(np.asarray(el["M"][1:]) - hp["M"][1:]))
                                       / NB)
     if ref.cu is not None:
-        prandtl = (2.0 + math.pi) * ref.cu * ref.B
+        prandtl = prandtl_capacity(ref.cu, ref.B)
         v = ref.N / ref.N_ult
         out["prandtl_N_ult"] = prandtl
         out["N_ult_error_vs_prandtl"] = ref.N_ult / prandtl - 1.0
-        out["vm_envelope_M_over_NB"] = (1.0 - v) / 2.0  # B V_ult v(1 − v)/2 ÷ N B
+        out["vm_envelope_M_over_NB"] = vm_envelope_moment_ratio(v)
         out["continuum_M_max_over_NB"] = float(np.max(ref.monotonic["M"]) / NB)
     return out

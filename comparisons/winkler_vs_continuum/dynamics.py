@@ -12,9 +12,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...scenes import Scene
+from ..measures import edge_uplift_history, reduced_edge_gap_history
 from .calibration import Calibration, bed_scene
 from .options import DYNAMIC_MISSING, Options, finite_or_none
-from .points import edge_gap, history_grid, motion_scene, sampled_histories
+from .points import history_grid, motion_scene, sampled_histories
 
 
 # ---------------------------------------------------------------------------------------------
@@ -23,8 +24,10 @@ from .points import edge_gap, history_grid, motion_scene, sampled_histories
 
 
 DYNAMIC_MEASURES = ("u", "theta", "uplift", "residual_settlement")
-DYNAMIC_LABELS = {"u": "peak u", "theta": "peak θ", "uplift": "peak edge uplift",
-                  "residual_settlement": "residual settlement"}
+# both models measured alike (..measures): uplift = edge_uplift_history's peak,
+# residual_settlement = settlement_when_flattest
+DYNAMIC_LABELS = {"u": "peak u", "theta": "peak θ", "uplift": "peak edge gap",
+                  "residual_settlement": "settlement when flattest"}
 HISTORIES = ("theta", "u", "uplift", "settlement", "contact")
 
 
@@ -83,15 +86,9 @@ def _bed_dynamic(scene: Scene, cal: Calibration, point: Mapping, grid: np.ndarra
         nan = [math.nan] * grid.size
         return {"peaks": dict.fromkeys(DYNAMIC_MEASURES, math.nan), "refused": str(exc),
                 **dict.fromkeys(HISTORIES, nan)}
-    model = response.model
-    found = model.foundation_slice
-    x, d0 = model.params["x"][found], model.params["d0"][found]
-    ep = response.plastic[:, found]
-    b = model.layout.half_width
-    left, right = int(np.argmin(x)), int(np.argmax(x))
-    gap = np.column_stack([b * response.theta + response.V - d0[left] + ep[:, left],
-                           -b * response.theta + response.V - d0[right] + ep[:, right]])
-    out = sampled_histories(response.time, response.theta, response.u, edge_gap(gap),
+    gap = reduced_edge_gap_history(response)
+    out = sampled_histories(response.time, response.theta, response.u,
+                            edge_uplift_history(gap),
                             response.settlement, response.contact_length, grid)
     out["peaks"]["u"] = max(out["peaks"]["u"], response.peaks["u"])
     out["peaks"]["theta"] = max(out["peaks"]["theta"], response.peaks["theta"])

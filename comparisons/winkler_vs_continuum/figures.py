@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ...anchors import half_plane_rocking, winkler_rocking
 from ..study import write_figure
 from .analysis import ErrorTable
 from .dynamics import DynamicRun
@@ -53,8 +54,6 @@ def _monotonic_figure(result: WinklerVsContinuum, path: Path) -> Path:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from ...continuum.output import half_plane_rocking, winkler_rocking
-
     ref = result.reference
     NB, B = ref.N * ref.B, ref.B
     fig, axes = plt.subplots(3, 1, figsize=(8, 10), sharex=True, constrained_layout=True)

@@ -6,6 +6,8 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from ...anchors import (HALF_PLANE_ONSET_ECCENTRICITY, WINKLER_ONSET_ECCENTRICITY,
+                        prandtl_capacity)
 from ... import checks
 from ...checks import InputError
 from ...scenes import Scene
@@ -17,8 +19,8 @@ LABELS = {"uniform": "uniform bed (K_r)", "end_stiffened": "end-stiffened bed (K
           "uniform_plastic": "uniform bed, elasto-plastic (K_r, q_ult)",
           "end_stiffened_plastic": "end-stiffened bed, elasto-plastic (K_r, K_v, q_ult)"}
 DYNAMIC_MISSING = "dynamic comparison not run: continuum dynamics unavailable"
-ONSET_ANCHOR = 0.25  # e/B of a rigid strip on an elastic half-plane (anchors §4)
-WINKLER_ONSET = 1.0 / 6.0  # e/B of a uniform tensionless Winkler bed (anchors §3)
+ONSET_ANCHOR = HALF_PLANE_ONSET_ECCENTRICITY  # e/B, rigid strip on an elastic half-plane
+WINKLER_ONSET = WINKLER_ONSET_ECCENTRICITY  # e/B of a uniform tensionless Winkler bed
 # Error floors: a reference smaller than this is measured against the floor instead.
 FLOORS = {"moment": 0.01, "contact": 0.05, "settlement": 0.1, "energy": 0.01}
 STATIC_MOTION = {"type": "free", "velocity": 1.0, "duration": 1.0}  # unused by the statics
@@ -137,7 +139,7 @@ def check_scene(scene: Scene) -> None:
                          f"{scene.foundation.support!r}; the study needs 'uplift'")
     soil, N, B = scene.soil, scene.structure.vertical_weight, scene.foundation.width
     if soil.model in ("tresca", "von_mises") and soil.undrained_strength is not None:
-        prandtl = (2.0 + math.pi) * soil.undrained_strength * B
+        prandtl = prandtl_capacity(soil.undrained_strength, B)
         if not N < prandtl:
             raise InputError(f"structure.vertical_weight = {N:g}: the footing cannot carry it; "
                              f"valid range is (0, {prandtl:g}) (Prandtl (2 + π) c_u B)")

@@ -10,6 +10,7 @@ import numpy as np
 
 from ...checks import InputError
 from ...scenes import Scene, scene_from_dict
+from ..measures import edge_uplift_history, settlement_when_flattest
 from ..store import keyed_as
 
 
@@ -75,12 +76,6 @@ def motion_scene(point: Mapping) -> Scene:
     return scene_from_dict(data, merged=True)
 
 
-def edge_gap(gap: np.ndarray) -> np.ndarray:
-    """Uplift of the footing's edges over time: the larger gap of the two edge nodes."""
-    gap = np.asarray(gap, dtype=float)
-    return np.maximum(np.maximum(gap[:, 0], gap[:, -1]), 0.0)
-
-
 def sampled_histories(time, theta, u, uplift, settlement, contact, grid) -> dict:
     """Peaks from the full histories and the histories on ``grid`` (linear interpolation).
     The residual settlement is the settlement of the centre at the moment of the last quarter
@@ -90,12 +85,11 @@ def sampled_histories(time, theta, u, uplift, settlement, contact, grid) -> dict
     series = {"theta": theta, "u": u, "uplift": uplift, "settlement": settlement,
               "contact": contact}
     series = {k: np.asarray(v, dtype=float) for k, v in series.items()}
-    tail = np.flatnonzero(time >= time[0] + 0.75 * (time[-1] - time[0]))
-    flat = tail[int(np.argmin(np.abs(series["theta"][tail])))]
     peaks = {"u": float(np.max(np.abs(series["u"]))),
              "theta": float(np.max(np.abs(series["theta"]))),
              "uplift": float(np.max(series["uplift"])),
-             "residual_settlement": float(series["settlement"][flat])}
+             "residual_settlement": settlement_when_flattest(time, series["theta"],
+                                                             series["settlement"])}
     return {"peaks": peaks, **{k: floats(np.interp(grid, time, v)) for k, v in series.items()}}
 
 
@@ -121,7 +115,7 @@ def evaluate_dynamic(point: Mapping) -> dict:
     footing = np.asarray(result.footing, dtype=float)
     u = np.asarray(result.structure_u, dtype=float).reshape(time_.size, -1)[:, -1]
     return {"time": floats(time_ - time_[0]), "theta": floats(footing[:, 2]), "u": floats(u),
-            "uplift": floats(edge_gap(result.gap)),
+            "uplift": floats(edge_uplift_history(result.gap)),
             "settlement": floats(-(footing[:, 1] - footing[0, 1])),
             "contact": floats(result.contact_length), "steps": int(time_.size),
             "dofs": int(model.dofs)}

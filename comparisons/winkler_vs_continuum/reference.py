@@ -4,12 +4,12 @@ the capacity the beds are calibrated to."""
 from __future__ import annotations
 
 import copy
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...anchors import half_plane_onset_rotation, half_plane_rocking_stiffness
 from ...scenes import Scene
 from .options import Options, STATIC_MOTION
 from .points import floats
@@ -79,7 +79,7 @@ class ContinuumReference:
     @property
     def K_r_closed_form(self) -> float:
         """π G B²/(8(1 − ν)) (anchors §4)."""
-        return math.pi * self.G * self.B ** 2 / (8.0 * (1.0 - self.nu))
+        return half_plane_rocking_stiffness(self.G, self.B, self.nu)
 
     def onset(self, which: str = "monotonic") -> dict:
         return getattr(self, which)["onset"]
@@ -88,7 +88,7 @@ class ContinuumReference:
 def continuum_points(scene: Scene, options: Options) -> tuple[list[dict], float]:
     soil, B = scene.soil, scene.foundation.width
     N = scene.structure.vertical_weight
-    theta_on = 2.0 * N * (1.0 - soil.poisson_ratio) / (math.pi * soil.shear_modulus * B)
+    theta_on = half_plane_onset_rotation(N, B, soil.shear_modulus, soil.poisson_ratio)
     table = {**copy.deepcopy(scene.data), "motion": STATIC_MOTION}  # keys free of the motion
     rotations = floats(rotation_path(theta_on, options))
     points = [
