@@ -1,10 +1,10 @@
 """Shared helpers for studies: the result record, error measures, region statements, figures,
 atomic output and record sets.
 
-A study module (one per study) exposes ``run(scene, fast) -> result`` and ``main()``. It
-evaluates its points through :func:`.sweep.run_sweep` (so nothing already stored is run again),
-and writes data, figures and a Markdown summary whose statements are computed from the data.
-Every file goes through :func:`upliftlab.results.atomic_path`: it appears complete or not at all.
+A study (:mod:`.protocol`) computes its points through :func:`.sweep.run_sweep` (so nothing
+already stored is run again), and writes data, figures and a Markdown summary whose statements
+are computed from the data. Every file goes through :func:`upliftlab.results.atomic_path`: it
+appears complete or not at all.
 """
 
 from __future__ import annotations

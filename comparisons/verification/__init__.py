@@ -23,7 +23,7 @@ against Q2.
 **Caching.** The whole table is one record of a :class:`.store.Store` under a content key: the
 study's inputs (fast or full, the El Centro file's SHA-256), the package version and a SHA-256
 of the source files of ``reduced/``, ``continuum/``, ``meshes/``, the core modules (but not the
-command line) and this module. A second run with the same key reads the record and recomputes
+command line) and this package. A second run with the same key reads the record and recomputes
 nothing (``Verification.reused``); editing any of those sources gives a new key, so a stale
 table is never shown. A check that raises becomes a failing row that carries the message.
 

@@ -117,7 +117,7 @@ def dynamic_quantities(ref: ContinuumReference, scene: Scene, dynamics) -> list[
 def error_table(ref: ContinuumReference, beds: Sequence[BedResponse],
                 options: Options, dynamic: Sequence[tuple] = (), runs: Sequence = ()
                 ) -> ErrorTable:
-    """The error table of every calibration against the continuum (module docstring), with
+    """The error table of every calibration against the continuum (package docstring), with
     the ``dynamic`` quantities (:func:`dynamic_quantities`) of the dynamic ``runs``."""
     spec = _quantities(ref, options) + list(dynamic)
     mono = dict(ref.monotonic, _theta_on=ref.theta_on)

@@ -133,7 +133,7 @@ def _bed_stiffnesses(layout: str, b: float, springs: int, K_v: float, R_k: float
 
 
 def calibrate(ref: ContinuumReference, options: Options) -> tuple[Calibration, ...]:
-    """The four calibrations of the module docstring, from the continuum reference."""
+    """The four calibrations of the package docstring, from the continuum reference."""
     b, n = 0.5 * ref.B, options.springs
     uniform = winkler_bed(b, 1.0, n)
     Kv_uniform = ref.K_r / uniform.rocking_stiffness
