@@ -28,8 +28,8 @@ from __future__ import annotations
 from .conclusions import (conclusion_decay, conclusion_long_period_peak, conclusion_more_with_c,
                           conclusion_peak_u, conclusion_period, conclusion_settlement,
                           conclusion_two_springs, conclusion_uplift_beneficial)
-from .measures import apparent_period
 from .records import BUILDINGS, Conclusion, Evidence, PaperConclusions, STUDY
+from .responses import apparent_period
 from .workflow import DEFINITION, Options, compute, main, run, write
 
 __all__ = ["Evidence", "Conclusion", "PaperConclusions", "Options", "DEFINITION", "compute",

@@ -8,7 +8,7 @@ from collections.abc import Mapping
 from ...motions import Motion
 from ...reduced.paper import decay_time
 from ...scenes import load_scene
-from .measures import apparent_period, peak_ratio, record_note, reduced_label
+from .responses import apparent_period, peak_ratio, record_note, reduced_label
 from .records import BUILDINGS, Conclusion, Evidence
 
 

@@ -13,7 +13,7 @@ from ..study import StudyResult, write_summary
 from .conclusions import (conclusion_decay, conclusion_long_period_peak, conclusion_more_with_c,
                           conclusion_peak_u, conclusion_period, conclusion_settlement,
                           conclusion_two_springs, conclusion_uplift_beneficial)
-from .measures import paper_responses
+from .responses import paper_responses
 from .records import Conclusion, PaperConclusions, STUDY
 
 

@@ -1,4 +1,4 @@
-"""The measures the conclusions are decided from: the reduced runs of the paper's scenes and
+"""The responses the conclusions are decided from: the reduced runs of the paper's scenes and
 the apparent period of a response."""
 
 from __future__ import annotations
