@@ -177,11 +177,18 @@ def _study_from(record: Mapping) -> StudyResult:
                        record["numbers"], record["provenance"], record["elapsed"])
 
 
+def _module_of(study: Study) -> str:
+    """The comparison module (or package) that defines ``study``'s compute: what its report key
+    digests."""
+    parts = study.compute.__module__.split(".")
+    return parts[2] if parts[:2] == ["upliftlab", "comparisons"] and len(parts) > 2 else study.name
+
+
 def _run_section(item: str | Study, run: _Run, record_sha: str | None, say) -> Section:
     """One section: ``item`` is a study module's name (imported now) or a Study record."""
     start = time.perf_counter()
     name = item if isinstance(item, str) else item.name
-    module = item if isinstance(item, str) else item.compute.__module__.rsplit(".", 1)[-1]
+    module = item if isinstance(item, str) else _module_of(item)
     try:
         study = definition(item) if isinstance(item, str) else item
     except ModuleNotFoundError as exc:
