@@ -27,7 +27,7 @@ from .. import __version__
 from ..checks import InputError
 from ..results import atomic_path
 
-__all__ = ["Store", "point_key", "canonical_json", "function_name"]
+__all__ = ["Store", "point_key", "canonical_json", "function_name", "keyed_as"]
 
 _SUFFIX = ".json"
 
@@ -67,8 +67,24 @@ def canonical_json(value, where: str = "point") -> str:
                       ensure_ascii=True, allow_nan=False)
 
 
+def keyed_as(name: str):
+    """Declare the name that identifies a point function in store keys (``module:qualname``
+    where it was first written), so that moving the function to another module keeps every
+    stored point's key."""
+
+    def declare(function):
+        function.key_name = name
+        return function
+
+    return declare
+
+
 def function_name(function) -> str:
-    """``module:qualname`` of a function: what identifies it in a key."""
+    """What identifies a function in a key: its declared :func:`keyed_as` name, else its
+    ``module:qualname``."""
+    declared = getattr(function, "key_name", None)
+    if isinstance(declared, str) and declared:
+        return declared
     module = getattr(function, "__module__", None)
     qualname = getattr(function, "__qualname__", None)
     if not module or not qualname:

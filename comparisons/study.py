@@ -1,10 +1,10 @@
 """Shared helpers for studies: the result record, error measures, region statements, figures,
 atomic output and record sets.
 
-A study module (one per study) exposes ``run(scene, fast) -> result`` and ``main()``. It
-evaluates its points through :func:`.sweep.run_sweep` (so nothing already stored is run again),
-and writes data, figures and a Markdown summary whose statements are computed from the data.
-Every file goes through :func:`upliftlab.results.atomic_path`: it appears complete or not at all.
+A study (:mod:`.protocol`) computes its points through :func:`.sweep.run_sweep` (so nothing
+already stored is run again), and writes data, figures and a Markdown summary whose statements
+are computed from the data. Every file goes through :func:`upliftlab.results.atomic_path`: it
+appears complete or not at all.
 """
 
 from __future__ import annotations
@@ -159,11 +159,12 @@ def write_summary(directory: str | os.PathLike, markdown: str,
     directory = Path(directory)
     md = write_text(directory / "summary.md", markdown)
     js = write_text(directory / "summary.json",
-                    json.dumps(numbers, indent=2, sort_keys=True, default=_json_default) + "\n")
+                    json.dumps(numbers, indent=2, sort_keys=True, default=json_default) + "\n")
     return md, js
 
 
-def _json_default(value):
+def json_default(value):
+    """JSON of numpy scalars and arrays and of paths (for ``json.dumps(default=...)``)."""
     if isinstance(value, np.generic):
         return value.item()
     if isinstance(value, np.ndarray):

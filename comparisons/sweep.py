@@ -197,14 +197,15 @@ def run_sweep(function: Callable, points: Iterable[Mapping], store: Store | str 
     ``function(point) -> record`` is a top-level (picklable) function of one point (a dict of
     JSON values) returning JSON values (numbers, text, lists, tables); with ``batched`` it takes
     a list of points and returns a list of records. ``study`` names the study in the keys
-    (default: the function's module). ``executor``: any ``concurrent.futures`` executor (kept
-    open); otherwise :func:`sweep_executor` (``scheduler`` or local processes, ``workers`` of
-    them). ``chunk`` points go to each task (default: up to :data:`MAX_CHUNK`, about
-    :data:`TASKS_PER_WORKER` tasks per worker). ``progress``: None prints on stderr for long
-    sweeps, False is silent, or a callable taking a :class:`SweepProgress` (called at the start
-    and after every chunk; an exception it raises, such as KeyboardInterrupt, stops the sweep
-    with every finished point stored). ``write_through`` (default: True except on Dask): workers
-    store each point as soon as it is done.
+    (default: the last part of the module in the function's key name). ``executor``: any
+    ``concurrent.futures`` executor (kept open); otherwise :func:`sweep_executor`
+    (``scheduler`` or local processes, ``workers`` of them). ``chunk`` points go to each task
+    (default: up to :data:`MAX_CHUNK`, about :data:`TASKS_PER_WORKER` tasks per worker).
+    ``progress``: None prints on stderr for long sweeps, False is silent, or a callable taking
+    a :class:`SweepProgress` (called at the start and after every chunk; an exception it
+    raises, such as KeyboardInterrupt, stops the sweep with every finished point stored).
+    ``write_through`` (default: True except on Dask): workers store each point as soon as it is
+    done.
 
     Every point is checked (JSON, finite numbers) and keyed before anything runs. Local worker
     processes are spawned: a script that calls this needs the usual
@@ -212,7 +213,7 @@ def run_sweep(function: Callable, points: Iterable[Mapping], store: Store | str 
     """
     store = store if isinstance(store, Store) else Store(store)
     name = function_name(function)
-    study = study or function.__module__.rsplit(".", 1)[-1]
+    study = study or name.split(":", 1)[0].rsplit(".", 1)[-1]
     points = list(points)
     keys = _keys(study, name, points)
     if chunk is not None:

@@ -14,7 +14,7 @@ import pytest
 
 from upliftlab import cli
 from upliftlab.comparisons import advise as adv
-from upliftlab.comparisons import speed_vs_error as sve
+from upliftlab.comparisons.measures import reduced_edge_uplift_from_peaks
 from upliftlab.reduced import run
 from upliftlab.scenes import load_scene
 
@@ -43,10 +43,11 @@ def test_recommendation_meets_tolerance_independently(advice):
     rec = advice.recommendation
     assert rec is not None and rec.meets
     assert abs(rec.error) + advice.reference.uncertainty <= 0.02
-    value = sve.edge_uplift(_independent(SCENE, rec.candidate, rec.dt))
+    value = reduced_edge_uplift_from_peaks(_independent(SCENE, rec.candidate, rec.dt))
     assert value == pytest.approx(rec.value, rel=1e-12)  # deterministic re-run
     ref_scene = load_scene(SCENE, case="B", overrides=PULSE + ["foundation.springs=320"])
-    reference = sve.edge_uplift(run(ref_scene, integrator="rk4", dt=6.25e-4, histories=False))
+    reference = reduced_edge_uplift_from_peaks(run(ref_scene, integrator="rk4", dt=6.25e-4,
+                                                   histories=False))
     assert abs(value - reference) / reference <= 0.02
 
 

@@ -58,7 +58,7 @@ def _no_failures():
 def _pulse_points(springs=8, intensity=2.0):
     """Four short reduced-model runs (Ewing's short-period building, 0.2 s sine pulse of
     ``intensity`` times the uplift threshold)."""
-    base = tse._base("short_period_elcentro")
+    base = tse.load_base("short_period_elcentro")
     return [tse.make_point(base, bed="uniform", layout=layout, springs=springs,
                            options=tse.Options(), case=case,
                            motion={"type": "sine", "period": 0.2, "intensity": intensity})

@@ -103,8 +103,8 @@ def test_rerun_recomputes_nothing(study, tmp_path, monkeypatch):
     def refuse(*args, **kwargs):
         raise AssertionError("recomputed a stored point")
 
-    monkeypatch.setattr(fvu, "_batch", refuse)
-    monkeypatch.setattr(fvu, "figure_run", refuse)
+    monkeypatch.setattr(fvu.runs, "run_spectrum_batch", refuse)
+    monkeypatch.setattr(fvu.runs, "figure_run", refuse)
     again = fvu.run(fast=True, out=tmp_path, store=store, figures=False)
     assert len(store) == before
     assert again.spectrum("short").u["C"].tolist() == study.spectrum("short").u["C"].tolist()

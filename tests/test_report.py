@@ -42,7 +42,7 @@ def _digests() -> list[str]:
     """The content keys' source digests of every section (verification and studies)."""
     from upliftlab.comparisons.verification import source_digest
 
-    return [source_digest()] + [rp._study_digest(e) for e in rp.REGISTRY]
+    return [source_digest()] + [rp.study_digest(name) for name in rp.STUDIES]
 
 
 def _records(store: Path) -> dict[str, str]:
@@ -165,24 +165,26 @@ def test_missing_or_failing_study_is_reported_and_fails_the_command(reports, cap
     # A study module that does not exist and one that raises each leave a section with the
     # message, and make the command fail: `upliftlab report` exited 0 with 3 of 7 sections
     # failed (an unreachable scheduler). The verification is read from the same store: cheap.
-    def broken(module, ctx):
+    from dataclasses import replace
+
+    from upliftlab.comparisons.fixed_vs_uplift import DEFINITION
+
+    def broken(scene, context):
         raise RuntimeError("deliberately broken study")
 
-    entries = (rp.REGISTRY[0],
-               rp.Entry("ghost", "no_such_study_module", "Ghost", "missing on purpose",
-                        rp._call_run),
-               rp.Entry("broken", "store", "Broken", "fails on purpose", broken))
-    report = rp.build_report(True, out=reports["out"], entries=entries)
+    studies = ("verification", "no_such_study_module",
+               replace(DEFINITION, name="broken", title="Broken", compute=broken))
+    report = rp.build_report(True, out=reports["out"], studies=studies)
     assert report.code == rp.EXIT_FAILED == 1 and report.passed
     assert report.section("verification").source == "store"
-    assert report.section("ghost").status == "missing"
+    assert report.section("no_such_study_module").status == "missing"
     assert report.section("broken").status == "error"
     page = report.path.read_text()
     assert "upliftlab.comparisons.no_such_study_module does not exist" in page
     assert "deliberately broken study" in page
     from upliftlab.outdir import read_marker
     assert read_marker(reports["out"]) is None  # a failed report is not marked complete
-    ok = rp.build_report(True, out=reports["out"], entries=entries[:1])
+    ok = rp.build_report(True, out=reports["out"], studies=studies[:1])
     assert ok.code == rp.EXIT_OK and read_marker(reports["out"])["complete"]
 
 
@@ -191,11 +193,11 @@ def test_a_failing_verification_gives_exit_1(tmp_path, monkeypatch):
     from upliftlab.comparisons import verification as vf
 
     def wrong(ctx):
-        return [vf._rel("reduced", "wrong", "a deliberately wrong anchor", "none", 1.1, 1.0,
-                        0.01)]
+        return [vf.relative_row("reduced", "wrong", "a deliberately wrong anchor", "none", 1.1,
+                                1.0, 0.01)]
 
-    monkeypatch.setattr(vf, "CHECKS", (("reduced", "wrong", wrong),))
-    report = rp.build_report(True, out=tmp_path / "r", entries=(rp.REGISTRY[0],))
+    monkeypatch.setattr(vf.workflow, "CHECKS", (("reduced", "wrong", wrong),))
+    report = rp.build_report(True, out=tmp_path / "r", studies=("verification",))
     assert report.code == rp.EXIT_FAILED and not report.passed
     assert "a deliberately wrong anchor" in report.path.read_text()
 

@@ -106,7 +106,7 @@ def test_springs_matching_kv_and_ktheta_are_exact_below_uplift(study):
 def test_edge_uplift_of_edge_springs_is_their_spring_gap():
     """For springs at ±b the edge gap is the spring's own gap (the response's peak, tracked
     between steps): equal to 1 %, sampled never above it (1e-9)."""
-    base = tse._base("short_period_elcentro")
+    base = tse.load_base("short_period_elcentro")
     point = tse.make_point(base, bed="uniform", layout="edges", springs=2,
                            options=tse.Options(), case="B",
                            motion={"type": "sine", "period": 0.3, "intensity": 6.0})

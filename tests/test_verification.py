@@ -18,20 +18,20 @@ from upliftlab.comparisons import verification as vf
 
 def test_rows_pass_exactly_within_their_tolerance():
     # |measured/expected − 1| ≤ tol passes, just beyond fails; bounds are inclusive.
-    assert vf._rel("g", "a", "q", "r", 1.0 + 0.9e-3, 1.0, 1e-3).passed
-    assert not vf._rel("g", "a", "q", "r", 1.0 + 1.1e-3, 1.0, 1e-3).passed
-    assert vf._abs("g", "a", "q", "r", -0.0204354, -0.0204, 1e-4).passed
-    assert not vf._abs("g", "a", "q", "r", -0.0206, -0.0204, 1e-4).passed
-    assert vf._bound("g", "a", "q", "r", 0.05, 0.0, 0.05).passed
-    assert not vf._bound("g", "a", "q", "r", -1e-9, 0.0, 0.05).passed
-    order = vf._order("g", "c", "m", [0.1, 0.05, 0.025], [1e-2, 2.5e-3, 6.25e-4], "2", 1.9, 2.1)
+    assert vf.relative_row("g", "a", "q", "r", 1.0 + 0.9e-3, 1.0, 1e-3).passed
+    assert not vf.relative_row("g", "a", "q", "r", 1.0 + 1.1e-3, 1.0, 1e-3).passed
+    assert vf.absolute_row("g", "a", "q", "r", -0.0204354, -0.0204, 1e-4).passed
+    assert not vf.absolute_row("g", "a", "q", "r", -0.0206, -0.0204, 1e-4).passed
+    assert vf.bound_row("g", "a", "q", "r", 0.05, 0.0, 0.05).passed
+    assert not vf.bound_row("g", "a", "q", "r", -1e-9, 0.0, 0.05).passed
+    order = vf.order_row("g", "c", "m", [0.1, 0.05, 0.025], [1e-2, 2.5e-3, 6.25e-4], "2", 1.9, 2.1)
     assert order.slope == pytest.approx(2.0, abs=1e-12) and order.status == vf.PASS
 
 
 def _counting_checks(calls):
     def good(ctx):
         calls.append("good")
-        return [vf._rel("reduced", "good", "a right anchor", "none", 2.0, 2.0, 1e-12)]
+        return [vf.relative_row("reduced", "good", "a right anchor", "none", 2.0, 2.0, 1e-12)]
 
     def crash(ctx):
         raise ZeroDivisionError("a check that crashes")
@@ -44,8 +44,8 @@ def test_store_key_follows_the_sources(tmp_path, monkeypatch):
     # computation stamp is kept). A changed source digest: recomputed. A crashing check: a
     # failing row with its message, so the study does not pass.
     calls = []
-    monkeypatch.setattr(vf, "CHECKS", _counting_checks(calls))
-    monkeypatch.setattr(vf, "source_digest", lambda extra=(): "sources-v1")
+    monkeypatch.setattr(vf.workflow, "CHECKS", _counting_checks(calls))
+    monkeypatch.setattr(vf.workflow, "source_digest", lambda extra=(): "sources-v1")
     first = vf.run(True, out=tmp_path / "out", store=tmp_path / "store")
     again = vf.run(True, out=tmp_path / "out", store=tmp_path / "store")
     assert calls == ["good"]
@@ -54,7 +54,7 @@ def test_store_key_follows_the_sources(tmp_path, monkeypatch):
     assert [r.status for r in again.rows] == [vf.PASS, vf.FAIL]
     assert "ZeroDivisionError: a check that crashes" in again.rows[1].note
     assert not again.passed and "a check that crashes" in again.study.summary
-    monkeypatch.setattr(vf, "source_digest", lambda extra=(): "sources-v2")
+    monkeypatch.setattr(vf.workflow, "source_digest", lambda extra=(): "sources-v2")
     edited = vf.run(True, out=tmp_path / "out", store=tmp_path / "store")
     assert calls == ["good", "good"] and not edited.reused and edited.key != first.key
     full = vf.run(False, out=tmp_path / "out", store=tmp_path / "store")

@@ -26,6 +26,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from upliftlab.anchors import (HALF_PLANE_ONSET_ECCENTRICITY, TOLERANCES,
+                               WINKLER_ONSET_ECCENTRICITY, half_plane_rocking_stiffness,
+                               prandtl_capacity, ultimate_moment_ratio, winkler_rocking)
 from upliftlab.checks import InputError
 from upliftlab.comparisons import winkler_vs_continuum as wvc
 from upliftlab.comparisons.store import Store
@@ -57,9 +60,9 @@ def test_uniform_bed_has_the_continuum_rocking_stiffness(study):
         assert abs(study.table.error(name, "K_r")) <= 1e-6
         model = build_reduced(wvc.bed_scene(study.scene, bed.calibration))
         assert model.layout.rocking_stiffness == pytest.approx(ref.K_r, rel=1e-6)
-    closed = math.pi * ref.G * ref.B ** 2 / (8 * (1 - ref.nu))
+    closed = half_plane_rocking_stiffness(ref.G, ref.B, ref.nu)
     assert ref.K_r_closed_form == pytest.approx(closed, rel=1e-12)
-    assert 0.0 < ref.K_r / closed - 1.0 <= 0.01
+    assert 0.0 < ref.K_r / closed - 1.0 <= TOLERANCES["rocking_stiffness"].value
 
 
 def test_end_stiffened_bed_reports_why_the_default_box_cannot_match_K_v(study):
@@ -116,14 +119,14 @@ def test_elastoplastic_springs_take_the_continuum_capacity(study):
     beds' N_ult equals the continuum's (calibration, 1e-9) and the uniform plastic bed's moment
     at the end of the pushover is within 1 % of (N B/2)(1 − 1/FS_v) (anchors §3)."""
     ref = study.reference
-    prandtl = (2 + math.pi) * ref.cu * ref.B
+    prandtl = prandtl_capacity(ref.cu, ref.B)
     assert 0.0 < ref.N_ult / prandtl - 1.0 <= 0.05
     fs = ref.N_ult / ref.N
     for name in ("uniform_plastic", "end_stiffened_plastic"):
         assert study.calibration(name).yield_multiple == pytest.approx(fs, rel=1e-12)
         assert abs(study.table.error(name, "N_ult")) <= 1e-9
     assert math.isnan(study.table.error("uniform", "N_ult"))
-    meyerhof = 0.5 * ref.N * ref.B * (1 - 1 / fs)
+    meyerhof = ref.N * ref.B * ultimate_moment_ratio(fs)
     assert study.bed("uniform_plastic").monotonic["M"][-1] == pytest.approx(meyerhof, rel=0.01)
 
 
@@ -140,9 +143,10 @@ def test_uplift_onset_continuum_later_than_winkler(study):
     elastic = a["continuum_elastic_onset_e_over_B"]
     tresca = a["continuum_monotonic_onset_e_over_B"]
     winkler = a["winkler_onset_e_over_B"]
-    assert elastic == pytest.approx(0.25, rel=0.01)
+    assert elastic == pytest.approx(HALF_PLANE_ONSET_ECCENTRICITY,
+                                    rel=TOLERANCES["half_plane_onset"].value)
     assert winkler == pytest.approx((1 + 1 / n) / 6, rel=1e-9)
-    assert winkler == pytest.approx(1 / 6, rel=1.5 / n)
+    assert winkler == pytest.approx(WINKLER_ONSET_ECCENTRICITY, rel=1.5 / n)
     assert elastic > winkler and tresca > winkler
     assert study.study.numbers["onset_ordering_holds"] is True
     onset = study.reference.onset("monotonic")
@@ -154,8 +158,6 @@ def test_uniform_bed_follows_the_winkler_closed_form(study):
     """Anchor §3: M = (kB³/12)θ to θ_up, then M/M_up = 3 − 2√(θ_up/θ), c = B√(θ_up/θ), with
     k = K_v/B of the built bed. A bed of n = 48 strips is within 0.2 % in M (measured 0.10 %),
     one strip width in c, and 1 % of N/(kB) in settlement."""
-    from upliftlab.continuum.output import winkler_rocking
-
     bed, ref = study.bed("uniform"), study.reference
     theta = np.asarray(bed.monotonic["theta"])
     k = bed.K_v / ref.B
@@ -271,7 +273,8 @@ def test_missing_continuum_dynamics_is_reported_not_faked(study, monkeypatch):
     """When upliftlab.continuum.dynamics cannot be used, no dynamic point is made and the
     comparison carries the statement 'dynamic comparison not run: continuum dynamics
     unavailable' with the reason."""
-    monkeypatch.setattr(wvc, "dynamics_available", lambda: (False, "module absent (test)"))
+    monkeypatch.setattr(wvc.dynamics, "dynamics_available",
+                        lambda: (False, "module absent (test)"))
     motions, points, reason = wvc.dynamic_points(study.scene, study.options, fast=True)
     assert motions == [] and points == []
     assert reason == f"{wvc.DYNAMIC_MISSING} (module absent (test))"

@@ -1,0 +1,86 @@
+"""The study protocol (upliftlab.comparisons.protocol) and the registry the report walks.
+
+References: the names under which earlier versions stored results (a study's name is its
+module's name and its output folder ``results/<name>[-fast]``; a sweep's point function is keyed
+by the ``module:qualname`` it had when it was written, before the studies became packages), and
+the command line's contract (exit code 2 and one line for bad input, nothing written).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+from upliftlab.checks import InputError
+from upliftlab.comparisons import protocol
+from upliftlab.comparisons.registry import STUDIES, definition
+from upliftlab.comparisons.store import function_name
+
+#: Point functions and the key names their stores were written under (before the move).
+KEY_NAMES = {
+    "two_spring_equivalence": ("evaluate_point",
+                               "upliftlab.comparisons.two_spring_equivalence:evaluate_point"),
+    "speed_vs_error": ("evaluate_point", "upliftlab.comparisons.speed_vs_error:evaluate_point"),
+    "winkler_vs_continuum": ("evaluate_continuum",
+                             "upliftlab.comparisons.winkler_vs_continuum:evaluate_continuum"),
+}
+
+
+def test_every_registered_study_keeps_its_name():
+    # Seven studies, in the report's order; each is named after its module, so its output
+    # folder and its report key are those of earlier versions.
+    assert len(STUDIES) == 7 and STUDIES[0] == "verification" and STUDIES[-1] == "uplift_zone"
+    for module in STUDIES:
+        study = definition(module)
+        assert study.name == module
+        assert protocol.default_out(study.name, True) == Path("results") / f"{module}-fast"
+        assert callable(study.compute) and callable(study.write)
+
+
+def test_point_functions_keep_their_store_key_names():
+    # Moving a point function into a package must not change the keys of the stored points.
+    import importlib
+
+    for module, (function, key) in KEY_NAMES.items():
+        fn = getattr(importlib.import_module(f"upliftlab.comparisons.{module}"), function)
+        assert function_name(fn) == key
+        assert fn.__module__ != key.split(":")[0]  # it did move: the declared name is what keys
+
+
+def test_run_study_computes_then_writes_into_the_resolved_folder(tmp_path):
+    # compute sees the resolved folder and a store under it; write's record becomes .study.
+    from upliftlab.comparisons.paper import PaperConclusions
+    from upliftlab.comparisons.study import StudyResult
+
+    seen = {}
+
+    def compute(scene, context):
+        seen["compute"] = (scene, context.out, context.store.root)
+        return PaperConclusions((), None)
+
+    def write(result, context):
+        return StudyResult("probe", context.fast, context.out, (), "", {"n": 3}, {}, 0.0)
+
+    study = protocol.Study("probe", "Probe", "", None, compute, write, scene="a_scene")
+    result = protocol.run_study(study, None, protocol.Context(fast=True, out=tmp_path / "o"))
+    assert seen["compute"] == ("a_scene", tmp_path / "o", tmp_path / "o" / "store")
+    assert result.study.numbers == {"n": 3}
+    with pytest.raises(InputError, match="fast"):
+        protocol.run_study(study, None, protocol.Context(fast="yes"))
+
+
+def test_main_for_refuses_bad_input_in_one_line(tmp_path, capsys):
+    # --workers 0: exit 2, one line on stderr naming the option, nothing computed or written.
+    from upliftlab.comparisons.fixed_vs_uplift import DEFINITION
+
+    def never(scene, context):
+        raise AssertionError("computed despite bad input")
+
+    main = protocol.main_for(replace(DEFINITION, compute=never))
+    out = tmp_path / "out"
+    assert main(["--fast", "--workers", "0", "--out", str(out)]) == protocol.EXIT_INPUT
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--workers" in err
+    assert not out.exists()
