@@ -57,11 +57,12 @@ from upliftlab.continuum import (OPEN, footing_stiffness, make_model,  # noqa: E
                                  rotation_pushover, uplift_onset, vertical_pushover)
 from upliftlab.results import write_text  # noqa: E402
 from upliftlab.scenes import ContinuumOptions, Soil  # noqa: E402
+from upliftlab.anchors import prandtl_capacity  # noqa: E402
 
 E, NU, RHO, CU, B, N = 50e3, 0.3, 1.8, 50.0, 2.0, 171.39
 G = E / (2 * (1 + NU))
 K_R = math.pi * G * B ** 2 / (8 * (1 - NU))
-Q_U = (2 + math.pi) * CU * B
+Q_U = prandtl_capacity(CU, B)
 THETA_ON = 2 * N * (1 - NU) / (math.pi * G * B)
 ELASTIC = Soil(youngs_modulus=E, poisson_ratio=NU, density=RHO, model="elastic")
 CLAY = Soil(youngs_modulus=E, poisson_ratio=NU, density=RHO, model="tresca",

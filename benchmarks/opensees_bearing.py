@@ -48,9 +48,10 @@ import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 from bench_output import add_output_arguments, output_folder, require  # noqa: E402
+from upliftlab.anchors import prandtl_capacity  # noqa: E402
 
 E, NU, CU, B = 50e3, 0.3, 50.0, 2.0  # kPa, -, kPa, m
-Q_U = (2 + math.pi) * CU * B          # kN/m
+Q_U = prandtl_capacity(CU, B)          # kN/m
 SETTLEMENT, STEPS = 0.05 * B, 10
 HERE = Path(__file__).resolve().parent
 

@@ -34,7 +34,6 @@ effective-width capacity of a strip on Tresca soil, Meyerhof 1953).
 
 from __future__ import annotations
 
-import math
 import os
 import tempfile
 from pathlib import Path
@@ -42,6 +41,7 @@ from typing import Protocol
 
 import numpy as np
 
+from ..anchors import half_plane_rocking, prandtl_capacity, winkler_rocking  # noqa: F401
 from ..checks import InputError
 from ..meshes.render import linear_submesh, snapshot_rows
 from ..results import atomic_path
@@ -175,40 +175,6 @@ def read_xdmf(path) -> dict:
             "point_data": point_data, "cell_data": cell_data}
 
 
-# ---------------------------------------------------------------------------------------------
-# Closed forms for the M–θ figure
-# ---------------------------------------------------------------------------------------------
-
-
-def winkler_rocking(theta, N: float, B: float, k: float) -> dict:
-    """Rigid footing on a tensionless uniform Winkler bed of modulus ``k`` (force/length² per
-    unit length), the closed form of compression-only springs: ``M``, contact length ``c`` and
-    centre ``settlement`` (down) at rotations ``theta`` (the closed form of a monotonic pushover,
-    odd in θ)."""
-    theta = np.asarray(theta, dtype=float)
-    a = np.abs(theta)
-    theta_up = 2.0 * N / (k * B ** 2)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(a > theta_up, theta_up / np.maximum(a, 1e-300), 1.0)
-    c = B * np.sqrt(ratio)
-    M = np.where(a <= theta_up, k * B ** 3 / 12.0 * a, N * B / 6.0 * (3.0 - 2.0 * np.sqrt(ratio)))
-    settlement = np.where(a <= theta_up, N / (k * B), a * (c - 0.5 * B))
-    return {"M": np.sign(theta) * M, "c": c, "settlement": settlement, "theta_up": theta_up}
-
-
-def half_plane_rocking(theta, N: float, B: float, G: float, nu: float) -> dict:
-    """Rigid frictionless strip on an elastic half-plane, tensionless (Johnson 1985, §5.2;
-    tests/test_continuum_contact.py): ``M`` and contact length ``c`` at rotations ``theta``."""
-    theta = np.asarray(theta, dtype=float)
-    a = np.abs(theta)
-    theta_on = 2.0 * N * (1.0 - nu) / (math.pi * G * B)
-    K_r = math.pi * G * B ** 2 / (8.0 * (1.0 - nu))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(a > theta_on, theta_on / np.maximum(a, 1e-300), 1.0)
-    M = np.where(a <= theta_on, K_r * a, N * B * (0.5 - 0.25 * ratio))
-    return {"M": np.sign(theta) * M, "c": B * ratio, "theta_on": theta_on}
-
-
 def _soil(metadata: dict) -> dict:
     soil = metadata.get("soil", {})
     if isinstance(soil, str):
@@ -262,7 +228,7 @@ def moment_rotation_figure(path, scene=None):
         ax_s.plot(fine, ref["settlement"], "--", color="tab:red", lw=1.5, label=label)
     cu = soil.get("undrained_strength")
     if soil.get("model") in ("tresca", "von_mises") and cu:
-        V_ult = (2.0 + math.pi) * float(cu) * B
+        V_ult = prandtl_capacity(float(cu), B)
         v = N / V_ult
         if 0.0 < v < 1.0:
             ax_m.axhline(B * V_ult * v * (1 - v) / 2, color="tab:green", ls="-.",

@@ -12,16 +12,16 @@ interface, settlement pushed to 0.1 m (5 % of B) in 10 steps.
 from __future__ import annotations
 
 import dataclasses
-import math
 
 import numpy as np
 import pytest
 
 from upliftlab.continuum import make_model, vertical_pushover
 from upliftlab.scenes import ContinuumOptions, Soil
+from upliftlab.anchors import prandtl_capacity
 
 B, CU = 2.0, 50.0
-Q_U = (2 + math.pi) * CU
+Q_U = prandtl_capacity(CU, 1.0)
 SOIL = Soil(youngs_modulus=50e3, poisson_ratio=0.3, density=1.8, model="tresca",
             undrained_strength=CU, interface="bonded")
 SETTLEMENTS = np.linspace(0.0, 0.1, 11)[1:]

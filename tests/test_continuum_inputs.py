@@ -21,6 +21,7 @@ from upliftlab.continuum import (Envelope, build_model, geostatic, make_model,
 from upliftlab.meshes import soil_mesh
 from upliftlab.results import read_netcdf
 from upliftlab.scenes import ContinuumOptions, Soil, load_scene, scene_from_dict
+from upliftlab.anchors import prandtl_capacity
 
 B = 2.0
 SOIL = Soil(youngs_modulus=50e3, poisson_ratio=0.3, density=1.8, model="tresca",
@@ -112,7 +113,7 @@ def test_strip_footing_scene_loads_in_both_models():
     scene = load_scene("strip_footing_clay")
     s, f, soil = scene.structure, scene.foundation, scene.soil
     m = s.weight / scene.g
-    assert abs((2 + math.pi) * soil.undrained_strength * f.width / s.weight / 3 - 1) <= 1e-4
+    assert abs(prandtl_capacity(soil.undrained_strength, f.width) / s.weight / 3 - 1) <= 1e-4
     assert abs(2 * math.pi * math.sqrt(m / s.stories[0].stiffness) / 0.3 - 1) <= 1e-4
     assert abs(s.rotary_inertia / (m * (2.0 ** 2 + 4.0 ** 2) / 12) - 1) <= 1e-4
     k_r = math.pi * soil.shear_modulus * f.width ** 2 / (8 * (1 - soil.poisson_ratio))

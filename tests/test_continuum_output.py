@@ -32,6 +32,7 @@ from upliftlab.meshes import soil_mesh
 from upliftlab.meshes.render import (animate_uplift, linear_submesh, render_uplift,
                                      snapshot_rows)
 from upliftlab.scenes import ContinuumOptions, Soil, load_scene
+from upliftlab.anchors import prandtl_capacity
 
 pytest.importorskip("pyvista")
 imageio = pytest.importorskip("imageio.v3")
@@ -218,7 +219,7 @@ def test_pushover_summary_reports_onset_peak_and_contact_loss(run):
     # the base.
     s = pushover_summary(run.path)
     assert abs(s["onset_e_over_B"] / 0.25 - 1.0) <= 0.10
-    v_ult = (2 + math.pi) * 50.0 * 2.0
+    v_ult = prandtl_capacity(50.0, 2.0)
     assert 0.9 <= s["peak_M"] / (2.0 * v_ult / 9.0) <= 1.10
     assert 0.5 <= s["max_contact_loss"] < 1.0
 

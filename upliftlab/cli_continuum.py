@@ -17,6 +17,7 @@ import sys
 import time
 
 from . import bounds
+from .anchors import prandtl_capacity
 from .budget import check as check_budget
 from .budget import continuum_cost
 from .checks import InputError
@@ -145,7 +146,7 @@ def _physics(scene, analysis: str) -> None:
     """What the continuum can carry, checked on the scene before meshing."""
     soil, N, B = scene.soil, scene.structure.vertical_weight, scene.foundation.width
     if soil.model in ("tresca", "von_mises"):
-        capacity = (2.0 + math.pi) * soil.undrained_strength * B
+        capacity = prandtl_capacity(soil.undrained_strength, B)
         if N >= capacity:
             raise InputError(f"structure.vertical_weight = {N:g}: at or above the strip's "
                              f"bearing capacity (2 + π) c_u B = {capacity:.4g} (FS_v = "
