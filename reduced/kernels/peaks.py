@@ -2,7 +2,7 @@
 and shears, the overturning moment, the foundation gaps and compressions (refined inside a step
 on its interpolants), the least contact length of the base, and the toppling test. The slots of
 the peak array are named in :mod:`.codes` (``P_*``, then two per spring) and decoded in one place,
-:func:`upliftlab.reduced.response.decode_peaks`.
+:func:`upliftlab.reduced.peak_slots.decode_peaks`.
 """
 
 from __future__ import annotations
