@@ -289,23 +289,26 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
     params = P.view(np.recarray)  # records read as p.k in compiled and plain code
     history = np.zeros(ns, dtype=sp.HISTORY_DTYPE).view(np.recarray)
     frame = inputs.frame.copy()  # its pivot side changes during a run
-    common = (q0, qd0, plan.dt, plan.steps, plan.stride, inputs.minv, params, inputs.geometric,
-              inputs.ground_load, ag, dtg, inputs.weight, frame, inputs.story)
-    outs = (out["time"], out["q"], out["qd"], out["deformation"], out["force"], out["mode"],
-            out["plastic"], out["energy"], peaks, counters)
+    system = (inputs.minv, params, inputs.geometric, inputs.ground_load, ag, dtg, inputs.weight,
+              frame, inputs.story)  # the kernels' SYSTEM record
+    clock = (plan.dt, plan.steps, plan.stride)
+    outputs = (out["time"], out["q"], out["qd"], out["deformation"], out["force"], out["mode"],
+               out["plastic"], out["energy"])
     log = np.zeros((0, 5))
     m = method(name)
     if m.kind == "events":
         max_switches = switch_budget(ns, plan.dt, inputs.shortest_period)
         rows = max(1000, 20 * ns * int(plan.steps * plan.dt + 1)) if impacts else 0
         log = np.full((rows, 5), np.nan)
-        status = m.kernel(*common, inputs.floor, max_switches, *outs, log, history)
+        status = m.kernel(q0, qd0, clock, system, inputs.floor, max_switches, outputs, peaks,
+                          counters, log, history)
     elif m.kind == "fixed":
-        status = m.kernel(*common, *outs, history)
+        status = m.kernel(q0, qd0, clock, system, outputs, peaks, counters, history)
     else:
         alpha = m.alpha if m.alpha is not None else inputs.hht_alpha
-        status = m.kernel(*common, alpha, NEWTON_TOL, inputs.newmark_scale, NEWTON_ITERATIONS,
-                          NEWTON_HALVINGS, *outs, history)
+        newton = (NEWTON_TOL, inputs.newmark_scale, NEWTON_ITERATIONS)
+        status = m.kernel(q0, qd0, clock, system, alpha, newton, NEWTON_HALVINGS, outputs, peaks,
+                          counters, history)
     rows = int(counters[4])  # the run may end between outputs (overturned, failed)
     out = {k: v[:rows] for k, v in out.items()}
     out["raw_peaks"] = peaks

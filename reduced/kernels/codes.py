@@ -106,6 +106,19 @@ OVERSHOOT_TOL = 1e-6
 ROUNDING = 32.0 * 2.220446049250313e-16
 N_SAMPLES = 4
 
+# Records that travel through the kernels as tuples (numba passes a tuple of arrays at no cost,
+# and unpacks it into names):
+#   SYSTEM   (minv, P, KG, L, ag, dtg, weight, frame, story): the scene as the kernels see it:
+#            inverse masses, spring records, K_G, ground load, ground acceleration (samples dtg
+#            apart), the weight on the foundation, the frame and the story table (h, m, W).
+#   OUTPUTS  (time, q, q̇, e, f, mode, εp, energy): the stored states, one row each.
+#   STAGES   (k1, k2, k3, k4, qs, q̇s, q1, q̇1, acc1, Mw): an RK4 step's stages, its stage
+#            state, its end and the mass matrix of exact kinematics.
+#   BOOKS    (modes, H, e_ref, e, ė): what the bookkeeping reads of the springs: their modes,
+#            history, strain energy at rest, and scratch for their deformations.
+#   CLOCK    (dt, nsteps, stride): the macro step, how many, and every how many a row is stored.
+#   NEWTON   (tol, fscale, max_iter) of the implicit integrators' Newton iteration.
+
 
 T_A0, T_A1 = 0, 1           # entries of A on the two shared DOFs (bed table only)
 T_K, T_C, T_F = 2, 3, 4      # force conjugate to e: T_K e + T_C ė + T_F

@@ -32,8 +32,12 @@ def kinetic_gravity(q, qd, minv, KG, weight, frame, story):
 
 
 @njit(cache=True, **HOT)
-def energy_balance(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story):
-    """Stored + dissipated − input energy at a state: constant for an exact integration."""
+def energy_balance(q, qd, acc, books, system):
+    """Stored + dissipated − input energy at a state: constant for an exact integration.
+    ``books`` and ``system`` are the records :data:`~.codes.BOOKS` and
+    :data:`~.codes.SYSTEM`."""
+    modes, H, e_ref, e, ed = books
+    minv, P, KG, _, _, _, weight, frame, story = system
     deformations(q, qd, P, e, ed)
     strain = 0.0
     for j in range(e.size):
@@ -44,17 +48,17 @@ def energy_balance(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, fram
 
 
 @njit(cache=True, **HOT)
-def check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story, peaks):
+def check_energy(q, qd, acc, books, system, peaks):
     """Update the largest residual of the energy balance and its scale (the largest |input|)."""
-    total = energy_balance(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story)
+    total = energy_balance(q, qd, acc, books, system)
     peaks[P_ERES] = max(peaks[P_ERES], abs(total - peaks[P_ETOT0]))
     peaks[P_ESCALE] = max(peaks[P_ESCALE], abs(acc[E_INPUT]))
 
 
 @njit(cache=True, **HOT)
-def start_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story, peaks):
+def start_energy(q, qd, acc, books, system, peaks):
     """The balance's datum at the start, and its scale: the initial stored energy."""
-    total = energy_balance(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story)
+    total = energy_balance(q, qd, acc, books, system)
     peaks[P_ETOT0] = total
     peaks[P_ESCALE] = max(peaks[P_ESCALE], abs(total))
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .codes import E_PLASTIC, F_ECHECK, F_ITH, F_IV, F_NFLEX, HOT, NONFINITE, N_ACC, OK, OVERTURNED
+from .codes import E_PLASTIC, F_ECHECK, HOT, NONFINITE, N_ACC, OK, OVERTURNED
 from .energy import check_energy, start_energy, static_strain_energy
 from .interpolants import finite
 from .laws import commit_all, initial_modes
@@ -18,13 +18,15 @@ from .peaks import after_fixed_step, start_side, track_peaks
 from .stages import copy, rk4_step
 
 
-@njit(cache=True)
-def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, frame, story,
-                  out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy, peaks,
-                  counters, H):
-    """Classical RK4 with trial spring laws and end-of-step return mapping."""
+@njit(cache=True, inline="always")
+def fixed_start(q0, qd0, system, outputs, peaks, counters, H):
+    """What both fixed-step integrators do before their first step: the workspace, the initial
+    modes, the first stored state and the energy datum. Returns (system with K_G or an empty
+    K_G, books, stages, (contact, e0, ė0), the state q, q̇, acc, and whether the structure is
+    released past its toppling angle)."""
+    minv, P, KG, L, ag, dtg, weight, frame, story = system
+    scene = (minv, P, geometric_or_nothing(KG), L, ag, dtg, weight, frame, story)
     ns, n = P.size, q0.size
-    KG = geometric_or_nothing(KG)
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
     k1, k2, k3, k4 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
     qs, qds, q1, qd1 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
@@ -37,126 +39,114 @@ def integrate_rk4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, 
     initial_modes(P, H, modes, e0, ed0)
     e_ref = static_strain_energy(P)
     start_side(q, qd, frame)
-    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story,
-           out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+    books = (modes, H, e_ref, e1, ed1)
+    record(0, 0.0, q, qd, acc, books, scene, outputs)
     counters[4] = 1
-    start_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story, peaks)
+    start_energy(q, qd, acc, books, scene, peaks)
     deformations(q, qd, P, e0, ed0)
-    if after_fixed_step(0.0, q, P, H, e0, frame, story, peaks):
+    toppled = after_fixed_step(0.0, q, P, H, e0, frame, story, peaks)
+    stages = (k1, k2, k3, k4, qs, qds, q1, qd1, acc1, Mw)
+    return scene, books, stages, (contact, e0, ed0), q, qd, acc, toppled
+
+
+@njit(cache=True)
+def integrate_rk4(q0, qd0, clock, system, outputs, peaks, counters, H):
+    """Classical RK4 with trial spring laws and end-of-step return mapping (``clock``,
+    ``system``, ``outputs``: the records :data:`~.codes.CLOCK`, :data:`~.codes.SYSTEM`,
+    :data:`~.codes.OUTPUTS`)."""
+    scene, books, stages, fixed, q, qd, acc, toppled = fixed_start(q0, qd0, system, outputs,
+                                                                    peaks, counters, H)
+    if toppled:
         return OVERTURNED  # released past its toppling angle: the initial row is the result
-    return march_rk4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg,
-                     weight, frame, story, Mw, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds,
-                     q1, qd1, acc1, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep,
-                     out_energy, peaks, counters)
+    return march_rk4(q, qd, acc, clock, scene, books, fixed, stages, outputs, peaks, counters)
 
 
 @njit(cache=True, **HOT)
-def end_fixed_step(step, t, nsteps, stride, q, qd, acc, modes, H, minv, P, KG, weight, frame,
-                   story, e_ref, e0, e1, ed1, out_t, out_q, out_qd, out_e, out_f, out_mode,
-                   out_ep, out_energy, peaks, counters):
+def end_fixed_step(step, t, clock, q, qd, acc, books, e0, system, outputs, peaks, counters):
     """After a fixed step (committed): contact length, overturning, outputs and the energy
-    check. Returns OVERTURNED if the run ends here, else OK."""
+    check (``e0`` the springs' deformations at the step's end). Returns OVERTURNED if the run
+    ends here, else OK."""
+    _, nsteps, stride = clock
+    _, P, _, _, _, _, _, frame, story = system
+    H = books[1]
     if after_fixed_step(t, q, P, H, e0, frame, story, peaks):
         row = stop_row(step, stride)
-        record(row, t, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story,
-               out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+        record(row, t, q, qd, acc, books, system, outputs)
         counters[4] = row + 1
-        check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story,
-                     peaks)
+        check_energy(q, qd, acc, books, system, peaks)
         return OVERTURNED
     if (step + 1) % stride == 0 or step == nsteps - 1:
         row = output_row(step, stride)
-        record(row, t, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story,
-               out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+        record(row, t, q, qd, acc, books, system, outputs)
         counters[4] = row + 1
     if (step + 1) % max(1, int(frame[F_ECHECK])) == 0:
-        check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story,
-                     peaks)
+        check_energy(q, qd, acc, books, system, peaks)
     return OK
 
 
 @njit(cache=True, **HOT)
-def march_rk4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg,
-              weight, frame, story, Mw, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds, q1,
-              qd1, acc1, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy,
-              peaks, counters):
+def march_rk4(q, qd, acc, clock, system, books, fixed, stages, outputs, peaks, counters):
     """The time loop of :func:`integrate_rk4`, in the workspace it allocated."""
-    ith, iv, n_story = int(frame[F_ITH]), int(frame[F_IV]), int(frame[F_NFLEX])
+    dt, nsteps, _ = clock
+    _, P, _, _, _, _, _, frame, _ = system
+    modes, H, _, e1, ed1 = books
+    contact, e0, ed0 = fixed
+    q1, qd1, acc1 = stages[6], stages[7], stages[8]
     for step in range(nsteps):
-        rk4_step(step * dt, dt, q, qd, acc, True, minv, P, KG, L, ag, dtg, modes, H, frame, story,
-                 Mw, k1, k2, k3, k4, qs, qds, q1, qd1, acc1)
+        rk4_step(step * dt, dt, q, qd, acc, True, system, modes, H, stages)
         counters[2] += 4
         if not finite(q1, qd1):
             counters[0] = step
             return NONFINITE
         deformations(q1, qd1, P, e1, ed1)
-        track_peaks(dt, q, qd, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith, iv, peaks)
+        track_peaks(dt, (q, qd, e0, ed0), (q1, qd1, e1, ed1), P, modes, H, frame, peaks)
         copy(q, q1)
         copy(qd, qd1)
         copy(acc, acc1)
         copy(e0, e1)
         copy(ed0, ed1)
         acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
-        if end_fixed_step(step, (step + 1) * dt, nsteps, stride, q, qd, acc, modes, H, minv, P,
-                          KG, weight, frame, story, e_ref, e0, e1, ed1, out_t, out_q, out_qd,
-                          out_e, out_f, out_mode, out_ep, out_energy, peaks, counters) != OK:
+        if end_fixed_step(step, (step + 1) * dt, clock, q, qd, acc, books, e0, system, outputs,
+                          peaks, counters) != OK:
             return OVERTURNED
-    check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story, peaks)
+    check_energy(q, qd, acc, books, system, peaks)
     return OK
 
 
 @njit(cache=True)
-def integrate_abm4(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, frame, story,
-                   out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy, peaks,
-                   counters, H):
+def integrate_abm4(q0, qd0, clock, system, outputs, peaks, counters, H):
     """Adams–Bashforth–Moulton 4 (PECE) on y = (q, q̇, energy), started by three RK4 steps.
 
     Predictor AB4: y* = yₙ + h/24 (55fₙ − 59fₙ₋₁ + 37fₙ₋₂ − 9fₙ₋₃).
     Corrector AM4: yₙ₊₁ = yₙ + h/24 (9f* + 19fₙ − 5fₙ₋₁ + fₙ₋₂).
     """
-    ns, n = P.size, q0.size
-    KG = geometric_or_nothing(KG)
-    m = 2 * n + N_ACC
-    e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
-    k1, k2, k3, k4 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
-    qs, qds, q1, qd1 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
-    Mw = np.zeros((n, n))
-    q, qd = q0.copy(), qd0.copy()
-    acc, acc1 = np.zeros(N_ACC), np.zeros(N_ACC)
+    m = 2 * q0.size + N_ACC
     F = np.zeros((4, m))  # derivative history, F[0] newest
     ystar = np.zeros(m)
     fstar = np.zeros(m)
-    modes = np.zeros(ns, dtype=np.int64)
-    contact = np.ones(ns, dtype=np.int64)
-    deformations(q, qd, P, e0, ed0)
-    initial_modes(P, H, modes, e0, ed0)
-    e_ref = static_strain_energy(P)
-    start_side(q, qd, frame)
-    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story,
-           out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
-    counters[4] = 1
-    start_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story, peaks)
-    deformations(q, qd, P, e0, ed0)
-    if after_fixed_step(0.0, q, P, H, e0, frame, story, peaks):
+    scene, books, stages, fixed, q, qd, acc, toppled = fixed_start(q0, qd0, system, outputs,
+                                                                    peaks, counters, H)
+    if toppled:
         return OVERTURNED  # released past its toppling angle: the initial row is the result
-    return march_abm4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg,
-                      weight, frame, story, Mw, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds,
-                      q1, qd1, acc1, F, ystar, fstar, out_t, out_q, out_qd, out_e, out_f,
-                      out_mode, out_ep, out_energy, peaks, counters)
+    return march_abm4(q, qd, acc, clock, scene, books, fixed, stages, (F, ystar, fstar), outputs,
+                      peaks, counters)
 
 
 @njit(cache=True, **HOT)
-def march_abm4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L, ag, dtg,
-               weight, frame, story, Mw, e_ref, e0, ed0, e1, ed1, k1, k2, k3, k4, qs, qds, q1,
-               qd1, acc1, F, ystar, fstar, out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep,
-               out_energy, peaks, counters):
-    """The time loop of :func:`integrate_abm4`, in the workspace it allocated."""
+def march_abm4(q, qd, acc, clock, system, books, fixed, stages, history, outputs, peaks,
+               counters):
+    """The time loop of :func:`integrate_abm4`, in the workspace it allocated; ``history`` is
+    (F, y*, f*): the derivative history (F[0] newest), the predictor and its derivative."""
+    dt, nsteps, _ = clock
+    _, P, _, _, _, _, _, frame, _ = system
+    modes, H, _, e1, ed1 = books
+    contact, e0, ed0 = fixed
+    k1, k2, _, _, qs, qds, q1, qd1, acc1, Mw = stages
+    F, ystar, fstar = history
     n, m = q.size, F.shape[1]
-    ith, iv, n_story = int(frame[F_ITH]), int(frame[F_IV]), int(frame[F_NFLEX])
     for step in range(nsteps):
         t = step * dt
-        pw = accelerations(t, q, qd, True, minv, P, KG, L, ag, dtg, modes, H, frame, story, Mw,
-                           k1)
+        pw = accelerations(t, q, qd, True, system, modes, H, Mw, k1)
         counters[2] += 1
         for r in range(3, 0, -1):
             for c in range(m):
@@ -167,8 +157,7 @@ def march_abm4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L
         for c in range(N_ACC):
             F[0, 2 * n + c] = pw[c]
         if step < 3:
-            rk4_step(t, dt, q, qd, acc, True, minv, P, KG, L, ag, dtg, modes, H, frame, story,
-                     Mw, k1, k2, k3, k4, qs, qds, q1, qd1, acc1)
+            rk4_step(t, dt, q, qd, acc, True, system, modes, H, stages)
             counters[2] += 4
         else:
             for c in range(m):
@@ -178,8 +167,7 @@ def march_abm4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L
             for i in range(n):
                 qs[i] = ystar[i]
                 qds[i] = ystar[n + i]
-            pw = accelerations(t + dt, qs, qds, True, minv, P, KG, L, ag, dtg, modes, H, frame,
-                               story, Mw, k2)
+            pw = accelerations(t + dt, qs, qds, True, system, modes, H, Mw, k2)
             counters[2] += 1
             for i in range(n):
                 fstar[i] = qds[i]
@@ -198,16 +186,15 @@ def march_abm4(q, qd, acc, modes, contact, H, dt, nsteps, stride, minv, P, KG, L
             counters[0] = step
             return NONFINITE
         deformations(q1, qd1, P, e1, ed1)
-        track_peaks(dt, q, qd, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith, iv, peaks)
+        track_peaks(dt, (q, qd, e0, ed0), (q1, qd1, e1, ed1), P, modes, H, frame, peaks)
         copy(q, q1)
         copy(qd, qd1)
         copy(acc, acc1)
         copy(e0, e1)
         copy(ed0, ed1)
         acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
-        if end_fixed_step(step, (step + 1) * dt, nsteps, stride, q, qd, acc, modes, H, minv, P,
-                          KG, weight, frame, story, e_ref, e0, e1, ed1, out_t, out_q, out_qd,
-                          out_e, out_f, out_mode, out_ep, out_energy, peaks, counters) != OK:
+        if end_fixed_step(step, (step + 1) * dt, clock, q, qd, acc, books, e0, system, outputs,
+                          peaks, counters) != OK:
             return OVERTURNED
-    check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e1, ed1, frame, story, peaks)
+    check_energy(q, qd, acc, books, system, peaks)
     return OK

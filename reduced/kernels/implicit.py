@@ -8,8 +8,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .codes import (E_IMPACT, E_INPUT, E_PLASTIC, E_VISCOUS, F_ITH, F_IV, F_NFLEX, NONFINITE,
-                    NO_CONVERGENCE, N_ACC, OK, OVERTURNED)
+from .codes import (E_IMPACT, E_INPUT, E_PLASTIC, E_VISCOUS, NONFINITE, NO_CONVERGENCE, N_ACC, OK,
+                    OVERTURNED)
 from .energy import check_energy, start_energy, static_strain_energy
 from .fixed_step import end_fixed_step
 from .interpolants import finite
@@ -51,9 +51,15 @@ def internal_force(q, qd, P, KG, H, e, ed, fint, kt, ct, modes, fd, fimp):
 
 
 @njit(cache=True)
-def newmark_residual(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, P, KG, L, ag,
-                     dtg, H, modes, e, ed, kt, ct, fd, fimp, q1, qd1, qdd1, fint1, R):
-    """Residual of the HHT-α step at trial q₁ (fills q̇₁, q̈₁, f₁); returns (|R|∞, force scale)."""
+def newmark_residual(t, h, start, scheme, system, H, modes, e, ed, tangents, end, R):
+    """Residual of the HHT-α step at trial q₁ (fills q̇₁, q̈₁, f₁); returns (|R|∞, force scale).
+    ``start`` and ``end`` are (q, q̇, q̈, f) at the step's ends, ``scheme`` (α, β, γ),
+    ``tangents`` (k_t, c_t, dashpot force, impact share) of every spring."""
+    q, qd, qdd, fint0 = start
+    q1, qd1, qdd1, fint1 = end
+    alpha, beta, gamma = scheme
+    minv, P, KG, L, ag, dtg, _, _, _ = system
+    kt, ct, fd, fimp = tangents
     n = q.size
     a0 = ground_acceleration(t, ag, dtg)
     a1 = ground_acceleration(t + h, ag, dtg)
@@ -73,8 +79,9 @@ def newmark_residual(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, P, KG, L
 
 
 @njit(cache=True)
-def newmark_jacobian(h, alpha, beta, gamma, minv, P, KG, kt, ct, J):
-    """J = M/(βh²) + (1+α)(A diag(k_t + γ c_t/(βh)) Aᵀ + K_G)."""
+def newmark_jacobian(h, scheme, minv, P, KG, kt, ct, J):
+    """J = M/(βh²) + (1+α)(A diag(k_t + γ c_t/(βh)) Aᵀ + K_G), ``scheme`` = (α, β, γ)."""
+    alpha, beta, gamma = scheme
     n = minv.size
     for i in range(n):
         for k in range(n):
@@ -93,16 +100,22 @@ def newmark_jacobian(h, alpha, beta, gamma, minv, P, KG, kt, ct, J):
 
 
 @njit(cache=True)
-def newmark_substep(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, P, KG, L, ag, dtg,
-                    H, modes, e, ed, kt, ct, fd, fimp, tol, fscale, max_iter, q1, qd1, qdd1,
-                    fint1):
-    """One HHT-α step (α = 0: Newmark average acceleration) by Newton. Returns iterations or −1.
+def newmark_substep(t, h, start, scheme, system, H, modes, e, ed, tangents, newton, end):
+    """One HHT-α step (α = 0: Newmark average acceleration) by Newton, from ``start`` to
+    ``end`` (q, q̇, q̈, f of each; ``newton`` = (tol, fscale, max_iter)). Returns iterations or
+    −1.
 
     Residual: M q̈₁ + (1+α) f(q₁, q̇₁) − α f(q₀, q̇₀) − (1+α) L a_g(t₁) + α L a_g(t₀) = 0,
     converged when its largest entry is below ``tol`` times the larger of ``fscale`` (the
     weights, m g) and the forces in play, or when the Newton update is at round-off. A
     backtracking line search on |R| stops the active set of the springs from cycling.
     """
+    q, qd, qdd, _ = start
+    q1 = end[0]
+    beta = scheme[1]
+    minv, P, KG, _, _, _, _, _, _ = system
+    kt, ct, _, _ = tangents
+    tol, fscale, max_iter = newton
     n = q.size
     R = np.zeros(n)
     J = np.zeros((n, n))
@@ -111,20 +124,18 @@ def newmark_substep(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, P, KG, L,
     for i in range(n):
         q1[i] = q[i] + h * qd[i] + h * h * (0.5 - beta) * qdd[i]
         qscale = max(qscale, abs(q[i]), abs(q1[i]))
-    rnorm, scale = newmark_residual(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, P,
-                                    KG, L, ag, dtg, H, modes, e, ed, kt, ct, fd, fimp, q1, qd1,
-                                    qdd1, fint1, R)
+    rnorm, scale = newmark_residual(t, h, start, scheme, system, H, modes, e, ed, tangents, end,
+                                    R)
     for it in range(1, max_iter + 1):
-        newmark_jacobian(h, alpha, beta, gamma, minv, P, KG, kt, ct, J)
+        newmark_jacobian(h, scheme, minv, P, KG, kt, ct, J)
         dq = np.linalg.solve(J, R)
         step = 1.0
         trial[:] = q1
         for _ in range(8):
             for i in range(n):
                 q1[i] = trial[i] - step * dq[i]
-            new_norm, scale = newmark_residual(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv,
-                                               P, KG, L, ag, dtg, H, modes, e, ed, kt, ct,
-                                               fd, fimp, q1, qd1, qdd1, fint1, R)
+            new_norm, scale = newmark_residual(t, h, start, scheme, system, H, modes, e, ed,
+                                               tangents, end, R)
             if new_norm <= rnorm or new_norm <= tol * max(scale, fscale):
                 break
             step *= 0.5
@@ -138,10 +149,10 @@ def newmark_substep(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, P, KG, L,
 
 
 @njit(cache=True)
-def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weight, frame,
-                      story, alpha, tol, fscale, max_iter, max_halvings, out_t, out_q,
-                      out_qd, out_e, out_f, out_mode, out_ep, out_energy, peaks, counters, H):
-    """HHT-α (α in [−1/3, 0]; α = 0 is Newmark average acceleration), Newton, step halving.
+def integrate_newmark(q0, qd0, clock, system, alpha, newton, max_halvings, outputs, peaks,
+                      counters, H):
+    """HHT-α (α in [−1/3, 0]; α = 0 is Newmark average acceleration), Newton, step halving;
+    ``newton`` = (tol, fscale, max_iter) (:data:`~.codes.NEWTON`).
 
     β = (1 − α)²/4, γ = 1/2 − α. A step whose Newton iteration fails is split in halves, up to
     ``max_halvings`` times. ``counters`` = [step of failure, halvings, Newton iterations].
@@ -149,10 +160,12 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weig
     ½(f₀ + f₁)·Δe over the step, so the balance of Newmark closes to the Newton tolerance away
     from switches; HHT's own numerical dissipation is what its balance leaves open.
     """
+    dt, nsteps, _ = clock
+    minv, P, KG, L, ag, dtg, _, frame, story = system
     ns, n = P.size, q0.size
-    ith, iv, n_story = int(frame[F_ITH]), int(frame[F_IV]), int(frame[F_NFLEX])
     beta = (1.0 - alpha) ** 2 / 4.0
     gamma = 0.5 - alpha
+    scheme = (alpha, beta, gamma)
     e, ed = np.zeros(ns), np.zeros(ns)
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
     kt, ct = np.zeros(ns), np.zeros(ns)
@@ -168,10 +181,13 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weig
     for i in range(n):
         qdd[i] = (L[i] * a0 - fint0[i]) * minv[i]
     e_ref = static_strain_energy(P)
-    record(0, 0.0, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story,
-           out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+    books = (modes, H, e_ref, e, ed)
+    record(0, 0.0, q, qd, acc, books, system, outputs)
     counters[4] = 1
-    start_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story, peaks)
+    start_energy(q, qd, acc, books, system, peaks)
+    start = (q, qd, qdd, fint0)
+    end = (q1, qd1, qdd1, fint1)
+    tangents = (kt, ct, fd1, fimp1)
     if after_fixed_step(0.0, q, P, H, e0, frame, story, peaks):
         return OVERTURNED  # released past its toppling angle: the initial row is the result
     for step in range(nsteps):
@@ -183,9 +199,8 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weig
             h = min(dt / 2.0**level, t_end - t)
             if t_end - (t + h) <= t_tol:
                 h = t_end - t
-            its = newmark_substep(t, h, q, qd, qdd, fint0, alpha, beta, gamma, minv, P,
-                                  KG, L, ag, dtg, H, modes, e, ed, kt, ct, fd1, fimp1, tol,
-                                  fscale, max_iter, q1, qd1, qdd1, fint1)
+            its = newmark_substep(t, h, start, scheme, system, H, modes, e, ed, tangents, newton,
+                                  end)
             if its < 0:
                 level += 1
                 counters[1] += 1
@@ -195,8 +210,7 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weig
                 continue
             counters[2] += its
             deformations(q1, qd1, P, e1, ed1)
-            track_peaks(h, q, qd, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith, iv,
-                        peaks)
+            track_peaks(h, (q, qd, e0, ed0), (q1, qd1, e1, ed1), P, modes, H, frame, peaks)
             ga0 = ground_acceleration(t, ag, dtg)
             ga1 = ground_acceleration(t + h, ag, dtg)
             for i in range(n):
@@ -221,9 +235,8 @@ def integrate_newmark(q0, qd0, dt, nsteps, stride, minv, P, KG, L, ag, dtg, weig
         if not finite(q, qd):
             counters[0] = step
             return NONFINITE
-        if end_fixed_step(step, t_end, nsteps, stride, q, qd, acc, modes, H, minv, P, KG, weight,
-                          frame, story, e_ref, e0, e, ed, out_t, out_q, out_qd, out_e, out_f,
-                          out_mode, out_ep, out_energy, peaks, counters) != OK:
+        if end_fixed_step(step, t_end, clock, q, qd, acc, books, e0, system, outputs, peaks,
+                          counters) != OK:
             return OVERTURNED
-    check_energy(q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story, peaks)
+    check_energy(q, qd, acc, books, system, peaks)
     return OK

@@ -60,8 +60,10 @@ def rates(q, qd, qdd, P, e, ed, edd):
 
 
 @njit(cache=True, inline="always")
-def accelerations(t, q, qd, natural, minv, P, KG, L, ag, dtg, modes, H, frame, story, Mw, qdd):
+def accelerations(t, q, qd, natural, system, modes, H, Mw, qdd):
     """q̈ from the equation of motion; returns the powers (input, viscous, impact, plastic).
+    ``system`` is the scene's record (:data:`~.codes.SYSTEM`), ``Mw`` scratch for the mass
+    matrix of exact kinematics.
 
     ``natural``: each spring's mode is decided by its trial state (fixed-step methods, whose
     plastic work is counted at the return map instead; with exact kinematics the base pivots
@@ -69,6 +71,7 @@ def accelerations(t, q, qd, natural, minv, P, KG, L, ag, dtg, modes, H, frame, s
     the same two DOFs as the last spring (the foundation bed, on θ and V) sum their forces
     locally instead of scattering each into q̈.
     """
+    minv, P, KG, L, ag, dtg, _, frame, story = system
     n = q.size
     a = ground_acceleration(t, ag, dtg)
     pin = 0.0

@@ -14,9 +14,12 @@ from .motion import deformations
 
 
 @njit(cache=True, **HOT)
-def record(k, t, q, qd, acc, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story, out_t,
-           out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy):
-    """Store the state at output index k."""
+def record(k, t, q, qd, acc, books, system, outputs):
+    """Store the state at output index k (the records :data:`~.codes.BOOKS`,
+    :data:`~.codes.SYSTEM` and :data:`~.codes.OUTPUTS`)."""
+    modes, H, e_ref, e, ed = books
+    minv, P, KG, _, _, _, weight, frame, story = system
+    out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy = outputs
     n = q.size
     deformations(q, qd, P, e, ed)
     out_t[k] = t
@@ -55,17 +58,18 @@ def stop_row(step, stride):
 
 
 @njit(cache=True, **HOT)
-def record_between(row, t_out, t, h, q, qd, a0, q1, qd1, a1, acc, acc1, p0, p1, qs, qds, acc_s,
-                   P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story, out_t, out_q,
-                   out_qd, out_e, out_f, out_mode, out_ep, out_energy):
+def record_between(row, t_out, t, h, start, end, p0, p1, scratch, books, system, outputs):
     """Store the state at time t_out inside the accepted step [t, t + h], in which every spring
-    kept its mode: q and q̇ on the step's quintic interpolant (q, q̇, q̈ at both ends), the
-    energy accumulators on the cubic through their values and rates (the powers p0, p1)."""
+    kept its mode: q and q̇ on the step's quintic interpolant (``start`` and ``end`` hold q, q̇,
+    q̈ and the energy accumulators at both ends), the energy accumulators on the cubic through
+    their values and rates (the powers p0, p1). ``scratch`` is (q, q̇, acc) to fill."""
+    q, qd, a0, acc = start
+    q1, qd1, a1, acc1 = end
+    qs, qds, acc_s = scratch
     s = (t_out - t) / h
     for i in range(q.size):
         m = quintic(h, q[i], qd[i], a0[i], q1[i], qd1[i], a1[i])
         qs[i], qds[i] = quintic_at(m, s, h)
     for c in range(N_ACC):
         acc_s[c] = hermite(s, h, acc[c], p0[c], acc1[c], p1[c])[0]
-    record(row, t_out, qs, qds, acc_s, P, modes, H, minv, KG, weight, e_ref, e, ed, frame, story,
-           out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy)
+    record(row, t_out, qs, qds, acc_s, books, system, outputs)

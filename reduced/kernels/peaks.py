@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from numba import njit
 
-from .codes import (FAST, F_B, F_EXACT, F_ITH, F_SIDE, HOT, N_PEAK_SCALARS, P_CMIN, P_MOT, P_RPREV,
+from .codes import (FAST, F_B, F_EXACT, F_ITH, F_IV, F_NFLEX, F_SIDE, HOT, N_PEAK_SCALARS, P_CMIN, P_MOT, P_RPREV,
                     P_THMAX, P_THMIN, P_TOVER, P_TPREV, P_UMAX, P_UMIN, P_VMAX, P_VMIN, SEPARATED,
                     STORY, T_A0, T_A1, T_C, T_F, T_FY, T_GAP, T_K, T_KC)
 from .interpolants import hermite_extreme
@@ -18,14 +18,18 @@ from .tables import bed_rates
 
 
 @njit(cache=True, **HOT)
-def track_peaks(h, q0, qd0, q1, qd1, e0, ed0, e1, ed1, P, modes, H, n_story, ith, iv, peaks):
-    """Update peaks over a step [t, t+h], refining interior extrema by Hermite interpolation.
+def track_peaks(h, start, end, P, modes, H, frame, peaks):
+    """Update peaks over a step [t, t+h], refining interior extrema by Hermite interpolation;
+    ``start`` and ``end`` are (q, q̇, e, ė) at the step's ends.
 
     Scalars: top deformation u (sum of story drifts), θ, V, and at the step's end the
     overturning moment Σ arm·shear of the stories. Per spring j: slot A = max opening
     (foundation: gap −d; story: |drift|), slot B = max |force| at the step ends (foundation:
     spring compression; story: its shear, dashpot included, so story 0 gives the base shear).
     """
+    q0, qd0, e0, ed0 = start
+    q1, qd1, e1, ed1 = end
+    ith, iv, n_story = int(frame[F_ITH]), int(frame[F_IV]), int(frame[F_NFLEX])
     if n_story > 0:
         u0 = ud0 = u1 = ud1 = 0.0
         for j in range(n_story):

@@ -30,9 +30,10 @@ def rk4_stage_state(stage, h, q, qd, k1, k2, k3, qs, qds):
 
 
 @njit(cache=True, inline="always")
-def rk4_combine(h, q, qd, acc, k1, k2, k3, k4, p1, p2, p3, p4, q1, qd1, acc1):
-    """The end of an RK4 step from its four stages; the energy accumulators ``acc`` ride along
-    as extra components, with the powers p1…p4 as their rates."""
+def rk4_combine(h, q, qd, acc, p1, p2, p3, p4, stages):
+    """The end of an RK4 step (q₁, q̇₁ and acc₁ of ``stages``) from its four stages; the energy
+    accumulators ``acc`` ride along as extra components, with the powers p1…p4 as their rates."""
+    k1, k2, k3, k4, _, _, q1, qd1, acc1, _ = stages
     for i in range(q.size):
         q1[i] = q[i] + h * qd[i] + h * h / 6.0 * (k1[i] + k2[i] + k3[i])
         qd1[i] = qd[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
@@ -41,39 +42,33 @@ def rk4_combine(h, q, qd, acc, k1, k2, k3, k4, p1, p2, p3, p4, q1, qd1, acc1):
 
 
 @njit(cache=True, **HOT)
-def rk4_step(t, h, q, qd, acc, natural, minv, P, KG, L, ag, dtg, modes, H, frame, story, Mw,
-             k1, k2, k3, k4, qs, qds, q1, qd1, acc1):
-    """One classical RK4 step of size h with the laws of :func:`accelerations`."""
-    p1 = accelerations(t, q, qd, natural, minv, P, KG, L, ag, dtg, modes, H, frame, story, Mw,
-                       k1)
+def rk4_step(t, h, q, qd, acc, natural, system, modes, H, stages):
+    """One classical RK4 step of size h with the laws of :func:`accelerations`, in the
+    workspace ``stages`` (:data:`~.codes.STAGES`), which receives the step's end."""
+    k1, k2, k3, k4, qs, qds, _, _, _, Mw = stages
+    p1 = accelerations(t, q, qd, natural, system, modes, H, Mw, k1)
     rk4_stage_state(2, h, q, qd, k1, k2, k3, qs, qds)
-    p2 = accelerations(t + 0.5 * h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes, H, frame,
-                       story, Mw, k2)
+    p2 = accelerations(t + 0.5 * h, qs, qds, natural, system, modes, H, Mw, k2)
     rk4_stage_state(3, h, q, qd, k1, k2, k3, qs, qds)
-    p3 = accelerations(t + 0.5 * h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes, H, frame,
-                       story, Mw, k3)
+    p3 = accelerations(t + 0.5 * h, qs, qds, natural, system, modes, H, Mw, k3)
     rk4_stage_state(4, h, q, qd, k1, k2, k3, qs, qds)
-    p4 = accelerations(t + h, qs, qds, natural, minv, P, KG, L, ag, dtg, modes, H, frame, story,
-                       Mw, k4)
-    rk4_combine(h, q, qd, acc, k1, k2, k3, k4, p1, p2, p3, p4, q1, qd1, acc1)
+    p4 = accelerations(t + h, qs, qds, natural, system, modes, H, Mw, k4)
+    rk4_combine(h, q, qd, acc, p1, p2, p3, p4, stages)
 
 
 @njit(cache=True, **HOT)
-def frozen_rk4_step(t, h, q, qd, acc, k1, p1, minv, P, KG, L, ag, dtg, Tg, Tb, frame, story, Mw,
-                    k2, k3, k4, qs, qds, q1, qd1, acc1):
+def frozen_rk4_step(t, h, q, qd, acc, p1, system, Tg, Tb, stages):
     """RK4 step of the event stepper, every spring in its tabulated mode, from its first stage
-    k1 (with its powers p1): the acceleration at the end of the step before (three
-    right-hand sides a step, with the one at its end)."""
+    (the first array of ``stages``, with its powers p1): the acceleration at the end of the step
+    before (three right-hand sides a step, with the one at its end)."""
+    k1, k2, k3, k4, qs, qds, _, _, _, Mw = stages
     rk4_stage_state(2, h, q, qd, k1, k2, k3, qs, qds)
-    p2 = frozen_accelerations(t + 0.5 * h, qs, qds, minv, P, KG, L, ag, dtg, Tg, Tb, frame, story,
-                              Mw, k2)
+    p2 = frozen_accelerations(t + 0.5 * h, qs, qds, system, Tg, Tb, Mw, k2)
     rk4_stage_state(3, h, q, qd, k1, k2, k3, qs, qds)
-    p3 = frozen_accelerations(t + 0.5 * h, qs, qds, minv, P, KG, L, ag, dtg, Tg, Tb, frame, story,
-                              Mw, k3)
+    p3 = frozen_accelerations(t + 0.5 * h, qs, qds, system, Tg, Tb, Mw, k3)
     rk4_stage_state(4, h, q, qd, k1, k2, k3, qs, qds)
-    p4 = frozen_accelerations(t + h, qs, qds, minv, P, KG, L, ag, dtg, Tg, Tb, frame, story, Mw,
-                              k4)
-    rk4_combine(h, q, qd, acc, k1, k2, k3, k4, p1, p2, p3, p4, q1, qd1, acc1)
+    p4 = frozen_accelerations(t + h, qs, qds, system, Tg, Tb, Mw, k4)
+    rk4_combine(h, q, qd, acc, p1, p2, p3, p4, stages)
 
 
 @njit(cache=True, inline="always")
@@ -84,8 +79,11 @@ def copy(a, b):
 
 
 @njit(cache=True, inline="always")
-def advance(q, qd, a, acc, e, ed, edd, q1, qd1, a1, acc1, e1, ed1, edd1):
-    """Make the end of an accepted step the start of the next."""
+def advance(start, end):
+    """Make the end of an accepted step the start of the next: each is (q, q̇, q̈, acc, e, ė,
+    ë), the springs' off the bed."""
+    q, qd, a, acc, e, ed, edd = start
+    q1, qd1, a1, acc1, e1, ed1, edd1 = end
     for i in range(q.size):
         q[i] = q1[i]
         qd[i] = qd1[i]

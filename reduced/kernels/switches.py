@@ -119,8 +119,11 @@ def column_crossing(T, col, m, h, s_max, shift):
 
 
 @njit(cache=True, inline="always")
-def spring_quintic(j, h, Tb, x0, y0, x1, y1, e0, ed0, edd0, e1, ed1, edd1):
-    """Coefficients of spring j's e on a trial step (bed springs from their DOFs' state)."""
+def spring_quintic(j, h, Tb, x0, y0, x1, y1, start, end):
+    """Coefficients of spring j's e on a trial step (bed springs from their DOFs' state;
+    ``start``, ``end``: (e, ė, ë) of the springs off the bed)."""
+    e0, ed0, edd0 = start
+    e1, ed1, edd1 = end
     ng = e0.size
     if j < ng:
         return quintic(h, e0[j], ed0[j], edd0[j], e1[j], ed1[j], edd1[j])
@@ -145,13 +148,16 @@ def relocate(j, s, m, h, P, modes, H, Tg, Tb, q, qd):
 
 
 @njit(cache=True, **HOT)
-def first_crossing(h, P, Tg, Tb, x0, y0, x1, y1, e0, ed0, edd0, e1, ed1, edd1, margin):
+def first_crossing(h, P, Tg, Tb, x0, y0, x1, y1, start, end, margin):
     """Earliest fraction s of a trial step at which a spring should switch, on the step's
     quintic interpolant, and that spring; (2.0, −1) when every spring keeps its mode.
 
-    (e, ė, ë) of the springs off the bed at the start and the end of the step; the bed's follow
-    from its DOFs' state at the start (x0, y0) and the end (x1, y1). ``margin`` is scratch.
+    ``start``, ``end``: (e, ė, ë) of the springs off the bed at the start and the end of the
+    step; the bed's follow from its DOFs' state at the start (x0, y0) and the end (x1, y1).
+    ``margin`` is scratch.
     """
+    e0, ed0, edd0 = start
+    e1, ed1, edd1 = end
     level = -SWITCH_TOL
     best, spring = 2.0, -1
     for j in range(e0.size):

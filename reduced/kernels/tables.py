@@ -109,9 +109,10 @@ def bed_forces(T, x, xd, y, yd):
 
 
 @njit(cache=True, inline="always")
-def frozen_accelerations(t, q, qd, minv, P, KG, L, ag, dtg, Tg, Tb, frame, story, Mw, qdd):
+def frozen_accelerations(t, q, qd, system, Tg, Tb, Mw, qdd):
     """q̈ with every spring held in its tabulated mode (event stepper); returns the powers
     (input, viscous, impact, plastic)."""
+    minv, P, KG, L, ag, dtg, _, frame, story = system
     n = q.size
     a = ground_acceleration(t, ag, dtg)
     pin = 0.0
