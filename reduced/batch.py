@@ -31,6 +31,7 @@ from ..scenes import MotionSpec, Scene, build_motion
 from . import kernels as kn
 from .integrators import StepPlan, method
 from .model import build_model
+from .peak_slots import decode_peaks
 from .response import energy_balance_error
 from .run import KernelInputs, ground_acceleration, initial_conditions, integrate, plan_run
 
@@ -315,18 +316,13 @@ def _samples(job: _Job, acceleration: np.ndarray) -> np.ndarray:
 def _row(job: _Job, out: dict) -> list[float]:
     """The values of :attr:`~.response.Response.peaks` that the batch keeps, from the same
     arrays (the first and last states, the tracked peaks)."""
-    pk = out["raw_peaks"]
-    n0, inputs = kn.N_PEAK_SCALARS, job.inputs
-    stories = inputs.stories
-    u = max(abs(pk[kn.P_UMIN]), abs(pk[kn.P_UMAX])) if stories else 0.0
-    theta = max(abs(pk[kn.P_THMIN]), abs(pk[kn.P_THMAX])) if inputs.theta >= 0 else 0.0
-    shear = float(pk[n0 + 1]) if stories else 0.0
-    if job.exact:
-        theta = math.asin(min(theta, 1.0))
+    inputs = job.inputs
+    pk = decode_peaks(out["raw_peaks"], stories=inputs.stories, rocks=inputs.theta >= 0,
+                      settles=inputs.v >= 0, exact=job.exact)
+    u, theta, shear = pk.u, pk.theta, pk.base_shear
     uplift = settlement = math.nan
     if job.leftmost >= 0:
-        uplift = max(float(pk[n0 + 2 * job.leftmost]), 0.0)
+        uplift = max(float(pk.opening[job.leftmost]), 0.0)
         settlement = float(-out["q"][-1, inputs.v])
-    tracked = pk[kn.P_ERES] / max(pk[kn.P_ESCALE], 1e-300)
-    energy = max(energy_balance_error(out["energy"]), float(tracked))
+    energy = max(energy_balance_error(out["energy"]), pk.energy_residual)
     return [u, theta, uplift, settlement, shear, energy, job.plan.dt]

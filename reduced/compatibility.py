@@ -74,7 +74,8 @@ def edge_springs(half_width: float, total_stiffness: float) -> SpringLayout:
 
 
 def equivalent_springs(half_width: float, total_stiffness: float) -> SpringLayout:
-    """Two springs of K_v/2 at ±b/√3: the bonded K_v and K_θ of a uniform bed (anchor §2)."""
+    """Two springs of K_v/2 at ±b/√3: the bonded K_v and K_θ of a uniform bed (its rocking
+    stiffness K_v b²/3 is 2 (K_v/2)(b/√3)²)."""
     b = half_width
     x = b / math.sqrt(3.0)
     return SpringLayout(b, [-x, x], [total_stiffness / 2] * 2, [b, b])

@@ -14,7 +14,7 @@ import math
 
 from ..budget import Cost, check, reduced_cost
 from ..checks import InputError
-from .integrators import StepPlan
+from .integrators import StepPlan, method
 from .model import ReducedModel
 
 __all__ = ["check_run_cost"]
@@ -33,7 +33,7 @@ def check_run_cost(model: ReducedModel, plan: StepPlan, duration: float, name: s
         steps = max(plan.steps, math.ceil(duration / step))
     stride = max(1, steps // max(plan.rows - 1, 1))
     cost = reduced_cost(steps=steps, step=step, stride=stride, dofs=model.mass.size,
-                        springs=model.spring_count, events=name == "events",
+                        springs=model.spring_count, events=method(name).locates_switches,
                         histories=histories)
     a = model.scene.analysis
     return check(cost, a.max_steps, a.max_memory)

@@ -76,7 +76,8 @@ def housner_period(theta0_over_alpha: float, half_width: float, height: float,
                    g: float = 9.81) -> float:
     """Linearised free-rocking period of a uniform rigid block released from rest at θ₀.
 
-    T = (4/p) cosh⁻¹[1/(1 − θ₀/α)], p = √(3g/(4R)), R = √(b² + h²) (anchor §1).
+    T = (4/p) cosh⁻¹[1/(1 − θ₀/α)], p = √(3g/(4R)), R = √(b² + h²)
+    (Housner 1963, for a rigid block on a rigid base).
     """
     R = math.hypot(half_width, height)
     p = math.sqrt(3.0 * g / (4.0 * R))

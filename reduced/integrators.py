@@ -13,12 +13,14 @@ A step beyond the limit is refused with the limit in the message, or subcycled o
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg
 
 from ..checks import InputError
+from . import kernels as kn
 from .model import ReducedModel
 
 GROWTH_TOL = 1e-7
@@ -48,13 +50,26 @@ def _abm4_growth(z: np.ndarray) -> np.ndarray:
     return np.max(np.abs(roots), axis=-1).reshape(np.shape(z))
 
 
+def _no_growth(z: np.ndarray) -> np.ndarray:
+    """The implicit integrators are unconditionally stable: no step grows a mode."""
+    return np.zeros(np.shape(z))
+
+
 @dataclass(frozen=True)
 class Method:
-    """An integrator: its name, order, whether it is explicit, and its stability region.
+    """An integrator: its name, order, whether it is explicit, its stability region and the
+    compiled kernel that runs it. This registry (:data:`METHODS`) is the one list of the
+    reduced model's integrators: the run, its step plan, its cost and the tests read it.
 
     ``points_per_period`` sets the automatic step: enough steps per shortest bonded period for
     about 1e-4 in peak u on the paper's fixed-base scenes (measured against Nigam–Jennings:
-    ABM4 loses order at the record's slope breaks, Newmark is second order).
+    ABM4 loses order at the record's slope breaks, Newmark is second order). ``growth`` is the
+    largest amplification |y₁/y₀| of one step on y' = λy at z = λh. ``kind`` says how the kernel
+    is called: ``"events"`` (switches located inside the step, optional error control, an
+    impact log), ``"fixed"`` (explicit, fixed step, end-of-step return map) or ``"implicit"``
+    (Newton; ``alpha`` the HHT-α parameter, None: the scene's ``analysis.hht_alpha``).
+    ``multistep``: a multistep method (its stability is a root condition, its energy residual
+    measured after its starting steps).
     """
 
     name: str
@@ -62,23 +77,30 @@ class Method:
     explicit: bool
     description: str
     points_per_period: int
+    growth: Callable[[np.ndarray], np.ndarray]
+    kernel: Callable
+    kind: str
+    alpha: float | None = 0.0
+    multistep: bool = False
 
-    def growth(self, z: np.ndarray) -> np.ndarray:
-        if self.name in ("rk4", "events"):
-            return _rk4_growth(z)
-        if self.name == "abm4":
-            return _abm4_growth(z)
-        return np.zeros(np.shape(z))
+    @property
+    def locates_switches(self) -> bool:
+        """True for the event stepper, whose steps end at every switch of a spring."""
+        return self.kind == "events"
 
 
-METHODS = {
-    "events": Method("events", 4, True, "RK4 with switches located inside the step", 40),
-    "rk4": Method("rk4", 4, True, "classical Runge-Kutta, fixed step (Ewing)", 40),
-    "abm4": Method("abm4", 4, True, "Adams-Bashforth-Moulton predictor-corrector, PECE (Ewing)",
-                   150),
-    "newmark": Method("newmark", 2, False, "Newmark average acceleration, Newton", 350),
-    "hht": Method("hht", 2, False, "HHT-alpha, Newton", 350),
-}
+METHODS = {m.name: m for m in (
+    Method("events", 4, True, "RK4 with switches located inside the step", 40, _rk4_growth,
+           kn.integrate_events, "events"),
+    Method("rk4", 4, True, "classical Runge-Kutta, fixed step (Ewing)", 40, _rk4_growth,
+           kn.integrate_rk4, "fixed"),
+    Method("abm4", 4, True, "Adams-Bashforth-Moulton predictor-corrector, PECE (Ewing)", 150,
+           _abm4_growth, kn.integrate_abm4, "fixed", multistep=True),
+    Method("newmark", 2, False, "Newmark average acceleration, Newton", 350, _no_growth,
+           kn.integrate_newmark, "implicit", alpha=0.0),
+    Method("hht", 2, False, "HHT-alpha, Newton", 350, _no_growth, kn.integrate_newmark,
+           "implicit", alpha=None),
+)}
 
 
 def method(name: str) -> Method:
@@ -105,7 +127,7 @@ def _ray_limits(m: Method, lams: np.ndarray) -> np.ndarray:
     hi = hs[rows, first_bad]
     lo = np.where(first_bad > 0, hs[rows, np.maximum(first_bad - 1, 0)], 0.0)
     lam = lams[rows][:, None]
-    parts = 2 if m.name == "abm4" else 32
+    parts = 2 if m.multistep else 32
     fractions = np.arange(1, parts) / parts
     index = np.arange(rows.size)
     for _ in range(math.ceil(50 / math.log2(parts))):
@@ -147,7 +169,7 @@ def stability_boundary(model: ReducedModel, name: str) -> float:
     m = method(name)
     if not m.explicit:
         return math.inf
-    lams = _eigenvalues(model, all_impact=name != "events")
+    lams = _eigenvalues(model, all_impact=not m.locates_switches)
     lams = lams[(np.abs(lams) > 0) & (lams.imag >= 0)]  # one of each conjugate pair
     return float(np.min(_ray_limits(m, lams), initial=math.inf))
 
@@ -177,7 +199,7 @@ def _step_residual(m: Method, J, M, K, C, h: float, states: np.ndarray) -> float
         return y + h / 6 * (f1 + 2 * f2 + 2 * f3 + f4), d
 
     e0 = energy(states)
-    if m.name != "abm4":
+    if not m.multistep:
         y1, dissipated = rk4(states)
         return float(np.max(np.abs(energy(y1) - e0 + dissipated) / e0))
     # ABM4 (PECE on y and the dissipation) after its three RK4 starting steps: the residual it
@@ -211,12 +233,12 @@ def stability_limit(model: ReducedModel, name: str, *, duration: float | None = 
     m = method(name)
     boundary = stability_boundary(model, name)
     a = model.scene.analysis
-    if not m.explicit or (name == "events" and a.rtol > 0):
+    if not m.explicit or (m.locates_switches and a.rtol > 0):
         return boundary
     tolerance = a.energy_tolerance if tolerance is None else tolerance
     if duration is None:
         duration = a.duration or model.scene.build_motion().duration
-    J, M, K, C = _first_order(model, all_impact=name != "events")
+    J, M, K, C = _first_order(model, all_impact=not m.locates_switches)
     lam, vectors = np.linalg.eig(J)
     keep = np.abs(lam) > 0
     states = np.concatenate([vectors[:, keep].real, vectors[:, keep].imag], axis=1)
@@ -317,7 +339,7 @@ def time_step(model: ReducedModel, name: str, *, record_dt: float, duration: flo
     m = method(name)
     a = model.scene.analysis
     out = output_dt if output_dt is not None else None
-    if name == "events" and a.rtol > 0:
+    if m.locates_switches and a.rtol > 0:
         return _controlled(model, record_dt, duration, dt, out, max_records)
     limit = stability_limit(model, name, duration=duration)
     substeps = 1
@@ -345,7 +367,7 @@ def time_step(model: ReducedModel, name: str, *, record_dt: float, duration: flo
                     f"energy balance within analysis.energy_tolerance = {a.energy_tolerance:g} "
                     f"over {duration:g} s); use dt <= {limit:.4g} s, set analysis.subcycle = "
                     "true, or " + ("let the error control choose the steps (analysis.rtol "
-                                   "> 0)" if name == "events" else "use the event stepper "
+                                   "> 0)" if m.locates_switches else "use the event stepper "
                                    "(integrator 'events')"))
             substeps = math.ceil(dt / (0.95 * limit))
             reason = f"requested {dt:g} s, subcycled {substeps}x (limit {limit:.4g} s)"

@@ -2,7 +2,7 @@
 
 :func:`build_model` turns a validated :class:`~upliftlab.scenes.Scene` into a
 :class:`ReducedModel`: immutable arrays that the compiled integrators take as arguments.
-Conventions (``design.md``): DOFs relative to the ground; θ positive when it moves the top by
+Conventions: DOFs relative to the ground; θ positive when it moves the top by
 +hθ; V positive up; foundation spring deformation is compression. Damping of the foundation is a
 fraction ζ_f of critical for the bonded vertical mode, c_i = ζ_f·2√(K_v m_v)·k_i/K_v; damping of
 the superstructure is a fraction ζ_s of critical for its fixed-base first mode (stiffness

@@ -17,9 +17,9 @@ from pathlib import Path
 import numpy as np
 
 from ..results import write_csv, write_netcdf
-from . import kernels as kn
 from . import springs as sp
 from .model import ReducedModel
+from .peak_slots import TrackedPeaks, decode_peaks
 from .static import contact_lengths
 
 __all__ = ["Response", "ENERGY_NAMES", "energy_balance_error"]
@@ -192,9 +192,7 @@ class Response:
     def energy_balance_error(self) -> float:
         """max |residual| / max(max input, initial energy): the balance's relative error, over
         the stored states and the checks the integrator made between them."""
-        pk = self.raw_peaks
-        tracked = pk[kn.P_ERES] / max(pk[kn.P_ESCALE], 1e-300)
-        return max(energy_balance_error(self.energy), float(tracked))
+        return max(energy_balance_error(self.energy), self.tracked.energy_residual)
 
     @property
     def verdict(self) -> str:
@@ -204,38 +202,40 @@ class Response:
 
     # ---- peaks ------------------------------------------------------------------------------
     @cached_property
+    def tracked(self) -> TrackedPeaks:
+        """The peaks the integrator tracked at every step (:func:`~.peak_slots.decode_peaks`)."""
+        return decode_peaks(self.raw_peaks, stories=self.model.story_count,
+                            rocks=self.dofs.theta >= 0, settles=self.dofs.v >= 0,
+                            exact=self.model.exact)
+
+    @cached_property
     def peaks(self) -> dict[str, float]:
         """Peak values over the whole run, tracked at every step whatever is stored: u, θ, V,
         the gaps and (event stepper) the story shears and the overturning moment with cubic
         interpolation inside the steps; with the fixed-step integrators the shears and moment
         at the step ends; the least contact length at the step ends. The residual
         settlement and the plastic settlements are those of the last state."""
-        pk = self.raw_peaks
+        pk = self.tracked
         f = self.foundation_slice
-        n0 = kn.N_PEAK_SCALARS
-        gap = pk[n0::2][f]
-        force = pk[n0 + 1::2]
-        theta = max(abs(pk[kn.P_THMIN]), abs(pk[kn.P_THMAX])) if self.dofs.theta >= 0 else 0.0
-        if self.model.exact:
-            theta = math.asin(min(theta, 1.0))
+        gap = pk.opening[f]
         out = {
-            "u": max(abs(pk[kn.P_UMIN]), abs(pk[kn.P_UMAX])) if self.model.story_count else 0.0,
-            "theta": theta,
-            "V_min": pk[kn.P_VMIN] if self.dofs.v >= 0 else 0.0,
-            "V_max": pk[kn.P_VMAX] if self.dofs.v >= 0 else 0.0,
-            "base_shear": float(pk[n0 + 1]) if self.model.story_count else 0.0,
-            "overturning_moment": float(pk[kn.P_MOT]),
+            "u": pk.u,
+            "theta": pk.theta,
+            "V_min": pk.v_min,
+            "V_max": pk.v_max,
+            "base_shear": pk.base_shear,
+            "overturning_moment": pk.overturning_moment,
         }
         if self.model.story_count:
-            out["story_drift"] = [float(v) for v in pk[n0::2][:self.model.story_count]]
+            out["story_drift"] = pk.story_drift
         if self.model.layout is not None:
             out["uplift_left"] = max(float(gap[self.leftmost]), 0.0)
             out["uplift_max"] = max(float(np.max(gap)), 0.0)
-            out["spring_force_max"] = float(np.max(force[f]))
+            out["spring_force_max"] = float(np.max(pk.force[f]))
             out["residual_settlement"] = float(-self.V[-1])
             out["plastic_settlement_max"] = float(np.max(self.plastic[-1, f]))
             out["plastic_settlement_mean"] = float(np.mean(self.plastic[-1, f]))
-            out["min_contact_length"] = float(pk[kn.P_CMIN])
+            out["min_contact_length"] = pk.min_contact_length
         out["energy_balance_error"] = self.energy_balance_error
         return {k: (float(v) if not isinstance(v, list) else v) for k, v in out.items()}
 

@@ -16,8 +16,9 @@ from ..scenes import Scene
 from . import kernels as kn
 from . import springs as sp
 from .cost import check_run_cost
-from .integrators import StepPlan, method, time_step
+from .integrators import METHODS, StepPlan, method, time_step
 from .model import ReducedModel, build_model
+from .peak_slots import decode_peaks, start_peaks
 from .response import Response, ground_displacement
 from .static import initial_state
 
@@ -102,8 +103,11 @@ def run_model(model: ReducedModel, motion: Motion, *, integrator: str | None = N
             "energy_tolerance": a.energy_tolerance,
             "kinematics": model.scene.structure.kinematics,
             "verdict": "overturned" if status == kn.OVERTURNED else "completed",
-            "overturned_at": (float(out["raw_peaks"][kn.P_TOVER]) if status == kn.OVERTURNED
-                              else None),
+            "overturned_at": (decode_peaks(out["raw_peaks"], stories=model.story_count,
+                                           rocks=model.dofs.theta >= 0,
+                                           settles=model.dofs.v >= 0,
+                                           exact=model.exact).overturned_at
+                              if status == kn.OVERTURNED else None),
             "notes": list(model.notes),
             "counters": [int(c) for c in counters], "wall_time_s": elapsed,
             "motion": motion.name, "motion_source": motion.source, "pga_g": motion.pga}
@@ -134,7 +138,8 @@ def plan_run(model: ReducedModel, motion: Motion, name: str, *, dt: float | None
     if model.exact and not m.explicit:
         raise InputError(f"analysis.integrator = {name!r} with structure.kinematics = 'exact': "
                          "exact kinematics has a mass matrix that changes with θ, integrated by "
-                         "the explicit integrators; valid: 'events', 'rk4', 'abm4'")
+                         "the explicit integrators; valid: "
+                         + ", ".join(repr(k) for k, v in METHODS.items() if v.explicit))
     duration = a.duration or motion.duration
     motion = motion.extended(duration)
     plan = time_step(model, name, record_dt=motion.dt, duration=duration,
@@ -279,39 +284,41 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
         "mode": np.zeros((nout, ns), np.int64), "plastic": np.zeros((nout, ns)),
         "energy": np.zeros((nout, kn.N_ENERGY)),
     }
-    peaks = np.zeros(kn.N_PEAK_SCALARS + 2 * ns)
-    peaks[kn.P_CMIN] = np.inf
-    start = _initial_values(P, inputs, q0)  # the extremes start at the initial state
-    peaks[[kn.P_UMIN, kn.P_UMAX, kn.P_THMIN, kn.P_THMAX, kn.P_VMIN, kn.P_VMAX]] = start
-    gaps = peaks[kn.N_PEAK_SCALARS::2]  # a view: the gap at rest is −δ0
-    gaps[inputs.stories:] = -P["d0"][inputs.stories:]
+    peaks = start_peaks(P, inputs.stories, _initial_values(P, inputs, q0))
     counters = np.zeros(kn.N_COUNTERS, np.int64)
     params = P.view(np.recarray)  # records read as p.k in compiled and plain code
     history = np.zeros(ns, dtype=sp.HISTORY_DTYPE).view(np.recarray)
     frame = inputs.frame.copy()  # its pivot side changes during a run
-    common = (q0, qd0, plan.dt, plan.steps, plan.stride, inputs.minv, params, inputs.geometric,
-              inputs.ground_load, ag, dtg, inputs.weight, frame, inputs.story)
-    outs = (out["time"], out["q"], out["qd"], out["deformation"], out["force"], out["mode"],
-            out["plastic"], out["energy"], peaks, counters)
+    system = (inputs.minv, params, inputs.geometric, inputs.ground_load, ag, dtg, inputs.weight,
+              frame, inputs.story)  # the kernels' SYSTEM record
+    clock = (plan.dt, plan.steps, plan.stride)
+    outputs = (out["time"], out["q"], out["qd"], out["deformation"], out["force"], out["mode"],
+               out["plastic"], out["energy"])
     log = np.zeros((0, 5))
-    if name == "events":
+    m = method(name)
+    if m.kind == "events":
         max_switches = switch_budget(ns, plan.dt, inputs.shortest_period)
         rows = max(1000, 20 * ns * int(plan.steps * plan.dt + 1)) if impacts else 0
         log = np.full((rows, 5), np.nan)
-        status = kn.integrate_events(*common, inputs.floor, max_switches, *outs, log, history)
-    elif name == "rk4":
-        status = kn.integrate_rk4(*common, *outs, history)
-    elif name == "abm4":
-        status = kn.integrate_abm4(*common, *outs, history)
+        status = m.kernel(q0, qd0, clock, system, inputs.floor, max_switches, outputs, peaks,
+                          counters, log, history)
+    elif m.kind == "fixed":
+        status = m.kernel(q0, qd0, clock, system, outputs, peaks, counters, history)
     else:
-        alpha = 0.0 if name == "newmark" else inputs.hht_alpha
-        status = kn.integrate_newmark(*common, alpha, 1e-10, inputs.newmark_scale, 50, 12,
-                                      *outs, history)
+        alpha = m.alpha if m.alpha is not None else inputs.hht_alpha
+        newton = (NEWTON_TOL, inputs.newmark_scale, NEWTON_ITERATIONS)
+        status = m.kernel(q0, qd0, clock, system, alpha, newton, NEWTON_HALVINGS, outputs, peaks,
+                          counters, history)
     rows = int(counters[4])  # the run may end between outputs (overturned, failed)
     out = {k: v[:rows] for k, v in out.items()}
     out["raw_peaks"] = peaks
     out["impacts"] = log[:min(int(counters[3]), log.shape[0])].copy()
     return status, out, counters
+
+
+#: The implicit integrators' Newton: tolerance on the residual (relative to the forces in play),
+#: iterations per step, and halvings of a step whose Newton iteration fails.
+NEWTON_TOL, NEWTON_ITERATIONS, NEWTON_HALVINGS = 1e-10, 50, 12
 
 
 def switch_budget(springs: int, dt: float, shortest_period: float) -> int:
@@ -355,7 +362,7 @@ def _check_status(status: int, counters: np.ndarray, plan: StepPlan, name: str) 
     if status == kn.NO_CONVERGENCE:
         t = counters[0] * plan.dt
         raise IntegrationError(f"{name}: Newton did not converge at t = {t:.6g} s even after "
-                               "12 step halvings")
+                               f"{NEWTON_HALVINGS} step halvings")
     if status == kn.STEP_UNDERFLOW:
         t = counters[0] * plan.dt
         raise IntegrationError(f"{name}: the error control cut the step to round-off at "

@@ -3,7 +3,8 @@
 They use the same spring laws as the dynamics (no dashpots, since velocities are zero), with the
 history (plastic settlement) committed after each converged increment.
 
-* :func:`rocking_pushover` — rigid base rotated by θ at constant vertical load (anchor §3):
+* :func:`rocking_pushover` — rigid base rotated by θ at constant vertical load (on a Winkler
+  bed: an elastic bed uplifts at M = W b/3 and tends to W b):
   moment, settlement and contact length against θ, monotonic or cyclic.
 * :func:`uplift_onset_force` — the lateral force at the top mass that first separates a spring.
 * :func:`initial_state` — the state a free vibration starts from: a base rotation with the

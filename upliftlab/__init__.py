@@ -28,19 +28,42 @@ def _checkout_subpackages() -> None:
 _checkout_subpackages()
 
 
+def _kernel_sources_digest() -> str:
+    """The first 16 hex digits of the SHA-256 of the compiled kernels' sources (every
+    ``reduced/kernels/*.py``, by name; name and content of each), or ``"unknown"`` if they cannot
+    be read. numba keys a cached function on its own file only (numba issue 1833): an edit to a
+    spring law would leave the integrators compiled from it, in other files, stale."""
+    import hashlib
+    from pathlib import Path
+
+    for root in __path__:
+        folder = Path(root) / "reduced" / "kernels"
+        if not folder.is_dir():
+            folder = Path(root).parent / "reduced" / "kernels"  # a checkout: reduced/ beside
+        if folder.is_dir():
+            digest = hashlib.sha256()
+            for path in sorted(folder.glob("*.py")):
+                digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
+            return digest.hexdigest()[:16]
+    return "unknown"
+
+
 def _numba_cache_outside_the_package() -> None:
-    """Compiled kernels are cached in ``$XDG_CACHE_HOME/upliftlab/numba`` (``~/.cache/...``;
-    ``NUMBA_CACHE_DIR`` if set), not beside the installed sources: a cache written inside an
-    installed ``site-packages/upliftlab`` survives ``pip uninstall`` and leaves a folder that
-    shadows a later install as an empty namespace package (the README's test command after
-    its first command failed so). Left alone when the folder cannot be written."""
+    """Compiled kernels are cached in ``$XDG_CACHE_HOME/upliftlab/numba/<digest>``
+    (``~/.cache/...``; ``NUMBA_CACHE_DIR`` if set), not beside the installed sources: a cache
+    written inside an installed ``site-packages/upliftlab`` survives ``pip uninstall`` and
+    leaves a folder that shadows a later install as an empty namespace package (the README's
+    test command after its first command failed so). ``<digest>`` is that of the kernels'
+    sources (:func:`_kernel_sources_digest`), so that an edit to any of them, a spring law say,
+    compiles every kernel afresh instead of loading integrators cached with the old law.
+    Left alone when the folder cannot be written."""
     import os
     import sys
 
     if os.environ.get("NUMBA_CACHE_DIR"):
         return
     base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    folder = os.path.join(base, "upliftlab", "numba")
+    folder = os.path.join(base, "upliftlab", "numba", _kernel_sources_digest())
     try:
         os.makedirs(folder, exist_ok=True)
     except OSError:

@@ -1,0 +1,79 @@
+"""The peak array of the compiled integrators, written and read in one place.
+
+The kernels track the peaks of a run in one float array: :data:`~.kernels.N_PEAK_SCALARS`
+scalars (slots ``P_*`` of :mod:`.kernels.codes`), then two slots per spring: A, its largest
+opening (foundation: the gap −d; story: |drift|), and B, its largest |force| (foundation: the
+compression; story: the shear, dashpot included, so story 0 gives the base shear).
+:func:`start_peaks` fills the array a run starts from; :func:`decode_peaks` reads it back.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import kernels as kn
+
+__all__ = ["TrackedPeaks", "decode_peaks", "start_peaks"]
+
+
+@dataclass(frozen=True, eq=False)
+class TrackedPeaks:
+    """The peaks a run tracked at every step, in the scene's units."""
+
+    u: float                    # largest |top deformation| (length; 0 without stories)
+    theta: float                # largest |θ| (rad; 0 for a fixed base)
+    v_min: float                # least and largest V (length; 0 for a fixed base)
+    v_max: float
+    overturning_moment: float   # largest |Σ arm·shear| of the stories (force·length)
+    min_contact_length: float   # least contact length of the base (length; inf: not tracked)
+    energy_residual: float      # largest |energy balance residual| over its scale
+    overturned_at: float        # time the toppling angle was reached (s; if overturned)
+    opening: np.ndarray         # slot A of every spring (length)
+    force: np.ndarray           # slot B of every spring (force)
+    stories: int                # story springs: the first ``stories`` of each slot
+
+    @property
+    def base_shear(self) -> float:
+        """The largest |shear| of story 0 (force; 0 without stories)."""
+        return float(self.force[0]) if self.stories else 0.0
+
+    @property
+    def story_drift(self) -> list[float]:
+        """The largest |drift| of each story (length)."""
+        return [float(v) for v in self.opening[:self.stories]]
+
+
+def decode_peaks(raw: np.ndarray, *, stories: int, rocks: bool, settles: bool,
+                 exact: bool) -> TrackedPeaks:
+    """Read the kernels' peak array ``raw`` of a model with ``stories`` story springs, a base
+    that ``rocks`` (θ among its DOFs) and ``settles`` (V among them), in ``exact`` rocking
+    kinematics (whose θ slots hold sin θ)."""
+    n0 = kn.N_PEAK_SCALARS
+    theta = max(abs(raw[kn.P_THMIN]), abs(raw[kn.P_THMAX])) if rocks else 0.0
+    if exact:
+        theta = math.asin(min(theta, 1.0))
+    return TrackedPeaks(
+        u=max(abs(raw[kn.P_UMIN]), abs(raw[kn.P_UMAX])) if stories else 0.0,
+        theta=theta,
+        v_min=raw[kn.P_VMIN] if settles else 0.0,
+        v_max=raw[kn.P_VMAX] if settles else 0.0,
+        overturning_moment=float(raw[kn.P_MOT]),
+        min_contact_length=float(raw[kn.P_CMIN]),
+        energy_residual=float(raw[kn.P_ERES] / max(raw[kn.P_ESCALE], 1e-300)),
+        overturned_at=float(raw[kn.P_TOVER]),
+        opening=raw[n0::2], force=raw[n0 + 1::2], stories=stories)
+
+
+def start_peaks(params: np.ndarray, stories: int, start: list[float]) -> np.ndarray:
+    """The peak array a run starts from: the extremes of u, θ and V at the initial state
+    ``start`` = (u, u, θ, θ, V, V), the foundation gaps at rest (−δ0), the least contact length
+    at infinity and every other slot at zero."""
+    peaks = np.zeros(kn.N_PEAK_SCALARS + 2 * params.size)
+    peaks[kn.P_CMIN] = np.inf
+    peaks[[kn.P_UMIN, kn.P_UMAX, kn.P_THMIN, kn.P_THMAX, kn.P_VMIN, kn.P_VMAX]] = start
+    gaps = peaks[kn.N_PEAK_SCALARS::2]  # a view: the gap at rest is −δ0
+    gaps[stories:] = -params["d0"][stories:]
+    return peaks

@@ -1,0 +1,109 @@
+"""The compiled kernels as a package: the one registry of integrators, and a numba cache that
+follows an edit to any kernel source.
+
+References: the integrator names the scene schema and the command line accept (the registry
+must list exactly those); the closed-form amplification of classical RK4 on y' = λy; and, for
+the cache, the changed law itself (a run after the edit must give the edited law's number).
+"""
+
+import os
+import shutil
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from upliftlab import cli, scenes
+from upliftlab.reduced import kernels as kn
+from upliftlab.reduced.integrators import METHODS
+
+
+def test_the_registry_lists_the_integrators_the_scene_and_the_cli_accept():
+    """The registry of integrators is the list the schema (``analysis.integrator``) and
+    ``upliftlab run --integrator`` accept, in the same order; each names its compiled kernel."""
+    assert tuple(METHODS) == scenes.INTEGRATORS
+    run_parser = next(a for a in cli.parser()._subparsers._group_actions[0].choices["run"]
+                      ._actions if a.dest == "integrator")
+    assert tuple(run_parser.choices) == tuple(METHODS)
+    kernels = {m.name: m.kernel for m in METHODS.values()}
+    assert kernels == {"events": kn.integrate_events, "rk4": kn.integrate_rk4,
+                       "abm4": kn.integrate_abm4, "newmark": kn.integrate_newmark,
+                       "hht": kn.integrate_newmark}
+    assert [m.name for m in METHODS.values() if m.locates_switches] == ["events"]
+
+
+def test_registry_growth_is_rk4_amplification():
+    """|R(z)| of classical RK4, R = 1 + z + z²/2 + z³/6 + z⁴/24 (closed form), at points on
+    the imaginary axis and inside the left half-plane, to 1e-15; ABM4's growth at z = 0 is 1
+    (consistency) and the implicit methods never grow."""
+    z = np.array([0.5j, 2.0j, -1.0 + 1.0j, -2.7])
+    exact = np.abs(1 + z + z**2 / 2 + z**3 / 6 + z**4 / 24)
+    np.testing.assert_allclose(METHODS["rk4"].growth(z), exact, rtol=1e-15)
+    np.testing.assert_allclose(METHODS["events"].growth(z), exact, rtol=1e-15)
+    assert METHODS["abm4"].growth(np.array([0.0]))[0] == pytest.approx(1.0, abs=1e-12)
+    assert np.all(METHODS["hht"].growth(z) == 0.0)
+
+
+_FORCE_OF_ONE_SPRING = """
+import os, sys
+import numpy as np
+import upliftlab.reduced as reduced
+from upliftlab.reduced import kernels as kn, springs as sp
+table = sp.spring_table(1)
+table["kind"], table["k"], table["f0"], table["nnz"] = sp.UPLIFT, 1000.0, 10.0, 2
+table["i0"], table["a0"], table["i1"], table["a1"] = 0, -1.0, 0, 0.0
+P = sp.derive_columns(table).view(np.recarray)
+H = np.zeros(1, dtype=sp.HISTORY_DTYPE).view(np.recarray)
+z = np.zeros(1)
+fint = np.zeros(1)
+kn.internal_force(np.array([-0.002]), np.zeros(1), P, np.zeros((1, 1)), H, np.zeros(1),
+                  np.zeros(1), fint, np.zeros(1), np.zeros(1), np.zeros(1, np.int64),
+                  np.zeros(1), np.zeros(1))
+print(repr(float(fint[0])), os.environ["NUMBA_CACHE_DIR"], reduced.__file__)
+"""
+
+
+def _force_in(copy: Path, env: dict) -> tuple[float, str, str]:
+    out = subprocess.run([sys.executable, "-c", _FORCE_OF_ONE_SPRING], cwd=copy, env=env,
+                         capture_output=True, text=True, check=True, timeout=600).stdout.split()
+    return float(out[0]), out[1], out[2]
+
+
+def test_an_edited_law_is_compiled_afresh(tmp_path):
+    """numba caches a compiled function keyed on its own file only, so the implicit
+    integrators' ``internal_force`` (in ``implicit.py``) cached with a spring law (in
+    ``laws.py``) would outlive an edit to the law. The cache folder is keyed on a digest of the
+    kernels' sources, so the edit is seen. Two processes on a copy of the package: a foundation
+    spring (k = 1000, F0 = 10, so δ0 = 0.01; e = −V) compressed by e = 0.002 puts on V the
+    internal force −(k e) = −2 before the edit (the force increment over F0), and
+    −(2 k (δ0 + e) − F0) = −14 after the law's spring force is doubled (closed forms, to
+    1e-12). A control process on the first process's cache folder, as numba alone would use
+    it, still gives the stale −2."""
+    copy = tmp_path / "checkout"
+    root = Path(__file__).resolve().parents[1]
+    ignore = shutil.ignore_patterns("__pycache__", "*.pyc")
+    for name in ("upliftlab", "reduced"):
+        shutil.copytree(root / name, copy / name, ignore=ignore)
+    shutil.copy(root / "pyproject.toml", copy / "pyproject.toml")
+    env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR",
+                                                            "NUMBA_DISABLE_JIT")}
+    env["XDG_CACHE_HOME"] = str(tmp_path / "cache")
+    before, folder_before, package = _force_in(copy, env)
+    assert Path(package).resolve().is_relative_to(copy.resolve())  # the copy ran, not the repo
+    assert before == pytest.approx(-1000.0 * 0.002, rel=1e-12)
+    assert any(Path(folder_before).rglob("*.nbi"))  # the compiled kernels were cached
+
+    laws = copy / "reduced" / "kernels" / "laws.py"
+    text = laws.read_text()
+    old = "        fs = p.k * (p.d0 + e - ep)\n"
+    assert text.count(old) == 1
+    laws.write_text(text.replace(old, "        fs = 2.0 * p.k * (p.d0 + e - ep)\n"))
+    after, folder_after, _ = _force_in(copy, env)
+    assert folder_after != folder_before
+    assert after == pytest.approx(-(2.0 * 1000.0 * (0.01 + 0.002) - 10.0), rel=1e-12)
+
+    stale, _, _ = _force_in(copy, dict(env, NUMBA_CACHE_DIR=folder_before))
+    assert stale == pytest.approx(before, rel=1e-12)
