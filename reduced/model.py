@@ -22,7 +22,7 @@ from ..scenes import Scene
 from . import springs as sp
 from .compatibility import DofMap, SpringLayout, compatibility_matrix, layout_for, stiffness_matrix
 
-__all__ = ["ReducedModel", "build_model", "impact_effective_mass"]
+__all__ = ["ReducedModel", "build_model", "impact_effective_mass", "impact_step"]
 
 
 @dataclass(frozen=True)
@@ -270,14 +270,14 @@ def _foundation_params(f, layout: SpringLayout, weight, rotary_mass, vertical_ma
         cstar = f.impact_multiple * 2.0 * np.sqrt(k * meff)
         table["cimp"] = cstar
         table["dzf"] = meff * (1.0 - f.restitution) / cstar
-        table["imph"] = _impact_step(meff, table["c"] + cstar, k)
+        table["imph"] = impact_step(meff, table["c"] + cstar, k)
     return table, theta_s
 
 
 RK4_REAL_LIMIT = 2.785293563405282  # |R(z)| = 1 on the negative real axis
 
 
-def _impact_step(mass, damping, stiffness):
+def impact_step(mass, damping, stiffness):
     """Step cap while a spring's impact dashpot acts: |λ|·h = 0.1 × RK4's real-axis limit
     (0.28) for m s² + c s + k = 0, where RK4's local error is about 1e-5 — a stroke that lasts
     many steps (ε → 0) is then integrated accurately, not only stably. Takes arrays: |λ| is

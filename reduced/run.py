@@ -13,6 +13,7 @@ from ..checks import InputError
 from ..motions import Motion
 from ..results import provenance
 from ..scenes import Scene
+from ..time_schemes import hht
 from . import kernels as kn
 from . import springs as sp
 from .cost import check_run_cost
@@ -305,10 +306,10 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
     elif m.kind == "fixed":
         status = m.kernel(q0, qd0, clock, system, outputs, peaks, counters, history)
     else:
-        alpha = m.alpha if m.alpha is not None else inputs.hht_alpha
+        c = hht(m.alpha if m.alpha is not None else inputs.hht_alpha, plan.dt)
         newton = (NEWTON_TOL, inputs.newmark_scale, NEWTON_ITERATIONS)
-        status = m.kernel(q0, qd0, clock, system, alpha, newton, NEWTON_HALVINGS, outputs, peaks,
-                          counters, history)
+        status = m.kernel(q0, qd0, clock, system, (c.alpha, c.beta, c.gamma), newton,
+                          NEWTON_HALVINGS, outputs, peaks, counters, history)
     rows = int(counters[4])  # the run may end between outputs (overturned, failed)
     out = {k: v[:rows] for k, v in out.items()}
     out["raw_peaks"] = peaks

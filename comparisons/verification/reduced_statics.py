@@ -214,14 +214,14 @@ def drop_mass(cstar: float, *, k: float, m: float = 0.518, v0: float = 10.0,
     from ...reduced import kernels as kn
     from ...reduced import springs as sp
     from ...reduced.integrators import StepPlan
-    from ...reduced.model import _impact_step
+    from ...reduced.model import impact_step
     from ...reduced.run import KernelInputs, integrate
 
     table = sp.spring_table(1)
     table["kind"], table["k"], table["f0"], table["nnz"] = sp.UPLIFT, k, 1e-9 * k, 2
     table["i0"], table["a0"], table["i1"], table["a1"] = 0, -1.0, 0, 0.0  # e = −V
     table["cimp"], table["dzf"] = cstar, m * (1 - eps) / cstar
-    table["imph"] = _impact_step(m, cstar, k)
+    table["imph"] = impact_step(m, cstar, k)
     P = sp.derive_columns(table)
     inputs = KernelInputs.springs_only(P, np.array([m]), v=0, weight=1.0)
     stroke = m / cstar * math.log(1 / eps)  # its duration with the dashpot alone

@@ -149,12 +149,14 @@ def newmark_substep(t, h, start, scheme, system, H, modes, e, ed, tangents, newt
 
 
 @njit(cache=True)
-def integrate_newmark(q0, qd0, clock, system, alpha, newton, max_halvings, outputs, peaks,
+def integrate_newmark(q0, qd0, clock, system, scheme, newton, max_halvings, outputs, peaks,
                       counters, H):
     """HHT-α (α in [−1/3, 0]; α = 0 is Newmark average acceleration), Newton, step halving;
+    ``scheme`` = (α, β, γ) of :func:`upliftlab.time_schemes.hht` (β = (1 − α)²/4,
+    γ = 1/2 − α; the step's own constants are formed here, as halving changes the step);
     ``newton`` = (tol, fscale, max_iter) (:data:`~.codes.NEWTON`).
 
-    β = (1 − α)²/4, γ = 1/2 − α. A step whose Newton iteration fails is split in halves, up to
+    A step whose Newton iteration fails is split in halves, up to
     ``max_halvings`` times. ``counters`` = [step of failure, halvings, Newton iterations].
     Energy follows the scheme's own identity: the work of each force is the trapezoid
     ½(f₀ + f₁)·Δe over the step, so the balance of Newmark closes to the Newton tolerance away
@@ -163,9 +165,7 @@ def integrate_newmark(q0, qd0, clock, system, alpha, newton, max_halvings, outpu
     dt, nsteps, _ = clock
     minv, P, KG, L, ag, dtg, _, frame, story = system
     ns, n = P.size, q0.size
-    beta = (1.0 - alpha) ** 2 / 4.0
-    gamma = 0.5 - alpha
-    scheme = (alpha, beta, gamma)
+    alpha = scheme[0]
     e, ed = np.zeros(ns), np.zeros(ns)
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
     kt, ct = np.zeros(ns), np.zeros(ns)
