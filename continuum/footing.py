@@ -294,7 +294,7 @@ def _solve_sets(p: ContactProblem, status: np.ndarray) -> tuple[np.ndarray, np.n
 
 
 def _system(p: ContactProblem, status: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    f, n, m = p.footing, p.footing.nodes, p.S.shape[0]
+    f, m = p.footing, p.S.shape[0]
     L = f.kinematics
     A, b = np.zeros((m + 3, m + 3)), np.zeros(m + 3)
     closed, opened = np.flatnonzero(status != OPEN), np.flatnonzero(status == OPEN)

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import math
 import os
 import signal
 import subprocess
@@ -26,7 +25,7 @@ import pytest
 
 from upliftlab.checks import InputError
 from upliftlab.cli import main as cli
-from upliftlab.outdir import LOCK, MARKER, read_marker
+from upliftlab.outdir import LOCK, read_marker
 from upliftlab.reduced import run
 from upliftlab.results import read_netcdf
 from upliftlab.scenes import load_scene

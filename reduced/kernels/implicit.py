@@ -165,7 +165,6 @@ def integrate_newmark(q0, qd0, clock, system, scheme, newton, max_halvings, outp
     dt, nsteps, _ = clock
     minv, P, KG, L, ag, dtg, _, frame, story = system
     ns, n = P.size, q0.size
-    alpha = scheme[0]
     e, ed = np.zeros(ns), np.zeros(ns)
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
     kt, ct = np.zeros(ns), np.zeros(ns)
