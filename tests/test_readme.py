@@ -205,3 +205,18 @@ def test_compiled_kernels_are_cached_outside_the_installed_package(tmp_path):
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
                          check=True).stdout.split()
     assert out == [str(tmp_path / "mine")] * 2
+
+
+def test_layout_lists_every_module_once():
+    # Reference: the repository's own files. The README's module list (the Layout section's
+    # details block) names every Python module of the packages once, and nothing that is gone.
+    text = (ROOT / "README.md").read_text()
+    block = text.split("<summary>Every module, one line each", 1)[1].split("</details>", 1)[0]
+    listed = [line.split()[0] for line in block.splitlines()
+              if line.split() and line.split()[0].endswith(".py")]
+    on_disk = sorted(str(p.relative_to(ROOT)) for root in
+                     ("upliftlab", "reduced", "continuum", "meshes", "comparisons")
+                     for p in (ROOT / root).rglob("*.py") if "__pycache__" not in p.parts)
+    assert len(listed) == len(set(listed)), "a module is listed twice"
+    assert sorted(listed) == on_disk, (f"missing: {sorted(set(on_disk) - set(listed))}; "
+                                       f"gone: {sorted(set(listed) - set(on_disk))}")
