@@ -106,3 +106,13 @@ def test_an_edited_law_is_compiled_afresh(tmp_path):
 
     stale, _, _ = _force_in(copy, dict(env, NUMBA_CACHE_DIR=folder_before))
     assert stale == pytest.approx(before, rel=1e-12)
+
+
+def test_the_registry_holds_every_integrator_the_scene_accepts():
+    # Reference: the names a scene and the command line accept (upliftlab.scene_motion); the
+    # registry must describe each of them, in the same order, and nothing else.
+    from upliftlab.reduced.integrators import METHODS
+    from upliftlab.scene_motion import INTEGRATORS
+
+    assert tuple(METHODS) == INTEGRATORS
+    assert {m.order for m in METHODS.values()} == {2, 4}

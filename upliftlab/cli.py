@@ -51,6 +51,7 @@ from pathlib import Path  # noqa: E402
 from . import __version__, bounds  # noqa: E402
 from .checks import InputError  # noqa: E402
 from .outdir import claim, settings_digest  # noqa: E402
+from .scene_motion import INTEGRATORS  # noqa: E402
 
 __all__ = ["main", "parser", "EXIT_INPUT", "EXIT_FAILED", "EXIT_NUMERICS", "EXIT_INTERRUPTED",
            "need_extra"]
@@ -81,7 +82,7 @@ def parser() -> argparse.ArgumentParser:
                                     "replaces the scene's motion")
     r.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
                    help="override a scene field by its dotted TOML key (repeatable)")
-    r.add_argument("--integrator", choices=["events", "rk4", "abm4", "newmark", "hht"])
+    r.add_argument("--integrator", choices=list(INTEGRATORS))
     r.add_argument("--dt", help="time step (s); default: chosen from the scene")
     r.add_argument("--out", help="output directory (default results/<scene>-<case>, with a "
                                  "digest of the overrides when there are any)")

@@ -19,6 +19,8 @@ __all__ = ["MOTION_TYPES", "INTEGRATORS", "DEFAULT_RTOL", "DEFAULT_ENERGY_TOLERA
            "read_motion", "read_analysis", "build_motion"]
 
 MOTION_TYPES = ("record", "free", "sine", "cosine", "ricker", "harmonic")
+#: The reduced model's integrators by name (the scene and the command line check a name here;
+#: the registry of what each is, ``upliftlab.reduced.integrators.METHODS``, has exactly these).
 INTEGRATORS = ("events", "rk4", "abm4", "newmark", "hht")
 #: Default budget of a run (``analysis.max_steps``, ``analysis.max_memory`` in GiB).
 DEFAULT_MAX_STEPS, DEFAULT_MAX_MEMORY = 10_000_000, 4.0

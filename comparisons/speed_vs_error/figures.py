@@ -5,12 +5,13 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from ...reduced.integrators import METHODS
 from ..study import write_figure
 from .analysis import SceneResult
 from .grid import LABELS, QUANTITIES
 
 
-_COLOURS = {"events": "C0", "rk4": "C1", "abm4": "C2", "newmark": "C3", "hht": "C4"}
+_COLOURS = {name: f"C{i}" for i, name in enumerate(METHODS)}
 _MARKERS = {"edges": "s", "equivalent": "D", "winkler": "o", "continuum": "^"}
 
 

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 from ... import checks
 from ...checks import InputError
+from ...reduced.integrators import METHODS
 
 
 STUDY = "speed_vs_error"
@@ -19,8 +20,8 @@ LABELS = {"u": "peak u", "theta": "peak θ",
           "uplift": "peak edge uplift (reduced: from peaks; continuum: edge gap)",
           "residual_settlement": "residual settlement (reduced: Σkε_p/Σk; continuum: "
                                  "V(0) − V(end))"}
-INTEGRATORS = ("events", "rk4", "abm4", "newmark", "hht")
-IMPLICIT = ("newmark", "hht")
+INTEGRATORS = tuple(METHODS)
+IMPLICIT = tuple(name for name, m in METHODS.items() if not m.explicit)
 MODELS = ("edges", "equivalent", "winkler")
 FLOOR_FRACTION = 0.1  # error floor: this fraction of the quantity's uplift-threshold scale
 STABILITY_MARGIN = 0.95  # a ladder step is used only below this fraction of the limit

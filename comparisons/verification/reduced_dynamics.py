@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from ...anchors import HOUSNER_PERIOD_HB5, TOLERANCES, rocking_restitution_rectangle
+from ...reduced.integrators import METHODS
 from .records import Order, R, Row, bound_row, order_row, relative_row, skipped_row
 
 
@@ -109,7 +110,7 @@ def orders_smooth(ctx) -> list[Order]:
     dts = np.array([0.004, 0.002, 0.001, 0.0005])
     case = "smooth bonded (matrix exponential)"
     out = []
-    for name, p in (("events", 4), ("rk4", 4), ("abm4", 4), ("newmark", 2), ("hht", 2)):
+    for name, p in ((m.name, m.order) for m in METHODS.values()):
         errors = [_end_error(scene, exact, name, dt) for dt in dts]
         out.append(order_row(R, case, name, dts, errors, f"{p}", p - 0.15, p + 0.15))
     return out
