@@ -24,6 +24,7 @@ from pathlib import Path
 
 from .. import checks
 from ..checks import InputError
+from ..log import configure, logger
 from .store import Store
 
 __all__ = ["Study", "Context", "run_study", "main_for", "default_out", "EXIT_OK", "EXIT_FAILED",
@@ -139,9 +140,10 @@ def main_for(study: Study) -> Callable[[Sequence[str] | None], int]:
         if study.arguments is not None:
             study.arguments(parser)
         args = parser.parse_args(argv)
+        configure(0)
 
         def say(message):
-            print(f"{study.name}: {message}", file=sys.stderr, flush=True)
+            logger(study.name).info(f"{study.name}: {message}")
 
         try:
             if args.workers is not None:

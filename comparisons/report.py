@@ -59,6 +59,7 @@ from pathlib import Path
 
 from .. import __version__, checks
 from ..checks import InputError
+from ..log import logger
 from ..results import provenance, write_text
 from .protocol import Context, EXIT_FAILED, EXIT_INPUT, EXIT_OK, Study, run_study
 from .registry import STUDIES, definition
@@ -307,7 +308,7 @@ def command(args) -> int:
     """``upliftlab report``: build the report; the exit status of the module docstring."""
 
     def say(message):
-        print(f"upliftlab report: {message}", file=sys.stderr, flush=True)
+        logger("report").info(f"upliftlab report: {message}")
 
     report = build_report(args.fast, out=args.out, scheduler=args.scheduler, progress=say,
                           force=getattr(args, "force", False))

@@ -9,7 +9,6 @@ summary says which file to supply and how.
 from __future__ import annotations
 
 import json
-import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -17,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from ..checks import InputError
+from ..log import logger
 from ..motions import ELCENTRO, ELCENTRO_DESCRIPTION, MOTIONS_ENV, Motion, load_motion
 from ..results import write_text
 from ..scenes import load_scene
@@ -269,7 +269,7 @@ def main(out: str | Path = "results/paper", motion: str | None = None, *, record
     start = time.perf_counter()
 
     def say(msg):
-        print(f"upliftlab paper: {msg}", file=sys.stderr, flush=True)
+        logger("paper").info(f"upliftlab paper: {msg}")
 
     if record is None:
         say(f"El Centro record not found ({MOTIONS_ENV}); making Figs. 4, 7 and 9 only")

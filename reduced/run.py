@@ -13,6 +13,7 @@ from ..checks import InputError
 from ..motions import Motion
 from ..results import provenance
 from ..scenes import Scene
+from ..log import announce_compilation, logger
 from ..time_schemes import hht
 from . import kernels as kn
 from . import springs as sp
@@ -25,7 +26,8 @@ from .static import initial_state
 
 __all__ = ["run", "run_model", "initial_conditions", "IntegrationError", "EnergyBalanceError",
            "ModelWarning",
-           "KernelInputs", "integrate", "ground_acceleration", "frame_of", "story_table"]
+           "KernelInputs", "integrate", "ground_acceleration", "frame_of", "story_table",
+           "kernel_cache_pattern"]
 
 
 class IntegrationError(RuntimeError):
@@ -297,6 +299,9 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
                out["plastic"], out["energy"])
     log = np.zeros((0, 5))
     m = method(name)
+    announce_compilation("the reduced model's kernels", kernel_cache_pattern(m.kernel))
+    logger("reduced").debug(f"upliftlab: {name}: dt = {plan.dt:.6g} s, {plan.steps} steps, "
+                            f"{ns} springs, {q0.size} DOFs")
     if m.kind == "events":
         max_switches = switch_budget(ns, plan.dt, inputs.shortest_period)
         rows = max(1000, 20 * ns * int(plan.steps * plan.dt + 1)) if impacts else 0
@@ -370,3 +375,10 @@ def _check_status(status: int, counters: np.ndarray, plan: StepPlan, name: str) 
                                f"t = {t:.6g} s (analysis.rtol = {plan.rtol:g}); relax "
                                "analysis.rtol or check the scene's stiffness")
     raise IntegrationError(f"{name}: unknown status {status}")
+
+
+def kernel_cache_pattern(kernel) -> str:
+    """The name of a compiled kernel's index file in numba's cache, as a glob pattern
+    (``<module>.<function>-*.nbi``)."""
+    function = getattr(kernel, "py_func", kernel)
+    return f"{function.__module__.rsplit('.', 1)[-1]}.{function.__name__}-*.nbi"

@@ -50,6 +50,7 @@ from pathlib import Path  # noqa: E402
 
 from . import __version__, bounds  # noqa: E402
 from .checks import InputError  # noqa: E402
+from .log import configure, logger  # noqa: E402
 from .outdir import claim, settings_digest  # noqa: E402
 from .scene_motion import INTEGRATORS  # noqa: E402
 
@@ -65,6 +66,16 @@ class _Parser(argparse.ArgumentParser):
     def error(self, message):
         self.exit(EXIT_INPUT, f"upliftlab: error: {self.prog}: {message} (see {self.prog} "
                               "--help)\n")
+
+
+def add_verbosity(parser: argparse.ArgumentParser) -> None:
+    """``--quiet`` (warnings and errors only) and ``--verbose`` (details of each run's set-up)
+    (:mod:`upliftlab.log`)."""
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument("-q", "--quiet", action="store_true",
+                       help="only warnings and errors on stderr")
+    group.add_argument("-v", "--verbose", action="store_true",
+                       help="also the details of each run (steps, compilation)")
 
 
 def parser() -> argparse.ArgumentParser:
@@ -139,6 +150,8 @@ def parser() -> argparse.ArgumentParser:
     o.add_argument("--timeout", default="3600", help="of the OpenSees run (s, default 3600)")
     o.add_argument("--json", action="store_true", help="with --run: print one JSON object "
                    "{\"upliftlab\": {...}, \"opensees\": {...}}")
+    for command in sub.choices.values():  # after the subcommand: upliftlab run X --quiet
+        add_verbosity(command)
     return p
 
 
@@ -200,8 +213,8 @@ def say_if_rounded(command: str, duration: float, steps: int, dt: float) -> None
     """Say on stderr when a run's length differs from the duration asked for (it is a whole
     number of steps)."""
     if abs(steps * dt - duration) > 1e-9 * max(duration, 1.0):
-        print(f"{command}: note: the duration {duration:g} s runs as {steps} steps of "
-              f"{dt:.6g} s = {steps * dt:.6g} s", file=sys.stderr)
+        logger("cli").warning(f"{command}: note: the duration {duration:g} s runs as {steps} "
+                              f"steps of {dt:.6g} s = {steps * dt:.6g} s")
 
 
 def _short(settings: dict) -> str:
@@ -245,7 +258,7 @@ def _run(args) -> int:
             warnings.simplefilter("ignore")
             response = run(scene, motion=motion, integrator=args.integrator, dt=dt)
         for note in response.info.get("notes", []):
-            print(f"upliftlab run: note: {note}", file=sys.stderr)
+            logger("cli").warning(f"upliftlab run: note: {note}")
         say_if_rounded("upliftlab run", scene.analysis.duration or motion.duration,
                        response.info["steps"], response.info["dt"])
         out.start_writing()
@@ -255,7 +268,7 @@ def _run(args) -> int:
             written.append(save(response_figure(response), out.path / f"{scene.name}.png"))
         out.complete(written)
     for path in written:
-        print(f"upliftlab run: wrote {path}", file=sys.stderr)
+        logger("cli").info(f"upliftlab run: wrote {path}")
     if args.json:
         print(json.dumps(response.summary(), allow_nan=False))
     else:
@@ -332,6 +345,7 @@ def main(argv: list[str] | None = None) -> int:
         return exc.code if isinstance(exc.code, int) else 0
     from .cli_continuum import continuum
 
+    configure(int(args.verbose) - int(args.quiet))
     handler = {"run": _run, "paper": _paper, "scenes": _scenes, "report": _report,
                "continuum": continuum, "advise": _advise, "opensees": _opensees}[args.command]
     try:

@@ -21,6 +21,7 @@ from .anchors import prandtl_capacity
 from .budget import check as check_budget
 from .budget import continuum_cost
 from .checks import InputError
+from .log import logger
 from .cli import (EXIT_INTERRUPTED, EXIT_NUMERICS, default_out, need_extra, number,
                   refuse_without_effect, say_if_rounded)
 from .outdir import claim
@@ -112,7 +113,7 @@ def mesh_overrides(items: list[str]) -> list[str]:
 
 def say(message: str) -> None:
     """One progress line on stderr."""
-    print(f"upliftlab continuum: {message}", file=sys.stderr, flush=True)
+    logger("continuum").info(f"upliftlab continuum: {message}")
 
 
 def _options(args) -> dict:

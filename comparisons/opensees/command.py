@@ -10,10 +10,10 @@ from __future__ import annotations
 
 import json
 import math
-import sys
 from pathlib import Path
 
 from ...checks import InputError
+from ...log import logger
 from ...scenes import load_scene
 from .compare import comparison_table, compare, write_comparison
 from .script import write_script
@@ -53,7 +53,7 @@ def command(args) -> int:
         return 0
     result = compare(scene, out, dt=dt, dashpots=args.dashpots, timeout=timeout)
     for path in write_comparison(result, out):
-        print(f"upliftlab opensees: wrote {path}", file=sys.stderr)
+        logger("opensees").info(f"upliftlab opensees: wrote {path}")
     if args.json:
         print(json.dumps(result.to_json()))
     else:

@@ -13,7 +13,6 @@ from __future__ import annotations
 import json
 import math
 import statistics
-import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from ...checks import InputError
+from ...log import logger
 from ...reduced import Response, run
 from ...results import write_csv, write_text
 from ...scenes import Scene
@@ -67,7 +67,7 @@ def summary_of(summary: dict) -> dict:
 
 
 def _say(message: str) -> None:
-    print(f"upliftlab opensees: {message}", file=sys.stderr, flush=True)
+    logger("opensees").info(f"upliftlab opensees: {message}")
 
 
 def _timed_run(scene: Scene, integrator: str | None, dt: float | None,

@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from ...checks import InputError
+from ...log import logger
 
 __all__ = ["OPENSEES_EXTRA", "OpenSeesRun", "OpenSeesError", "opensees_available",
            "require_opensees", "run_script"]
@@ -78,7 +79,7 @@ def _relay(stream, keep: deque, echo: bool) -> None:
     for line in stream:
         keep.append(line.rstrip("\n"))
         if echo:
-            print(line, end="", file=sys.stderr, flush=True)
+            logger("opensees").info(line.rstrip("\n"))
 
 
 def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True) -> OpenSeesRun:

@@ -1,0 +1,54 @@
+"""Messages through logging (upliftlab.log): the command line's --quiet and --verbose, and the
+first run's compilation notice.
+
+References: the levels of Python's logging (WARNING for --quiet, INFO by default, DEBUG for
+--verbose) and numba's cache layout (an index file ``<module>.<function>-<line>.py311.nbi`` per
+cached function).
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from upliftlab import cli, log
+
+
+@pytest.mark.parametrize("flag, wrote, details", [("--quiet", False, False), (None, True, False),
+                                                   ("--verbose", True, True)])
+def test_quiet_and_verbose_choose_what_reaches_stderr(flag, wrote, details, tmp_path, capsys):
+    argv = ["run", "wall_free", "--no-figure", "--out", str(tmp_path / "run")]
+    assert cli.main(argv + ([flag] if flag else [])) == 0
+    captured = capsys.readouterr()
+    assert ("upliftlab run: wrote" in captured.err) is wrote
+    assert ("events: dt = 0.01 s, 300 steps" in captured.err) is details
+    assert "peak u = 0.1808 in" in captured.out  # the result itself is never silenced
+
+
+def test_quiet_and_verbose_together_are_refused(capsys):
+    assert cli.main(["run", "wall_free", "--quiet", "--verbose"]) == 2
+    assert "not allowed with" in capsys.readouterr().err
+
+
+def test_compilation_is_announced_once_and_only_without_a_cache(tmp_path, monkeypatch,
+                                                                 capsys):
+    log.configure(0)
+    monkeypatch.delenv("NUMBA_DISABLE_JIT", raising=False)
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(log, "_announced", set())
+    pattern = "events.integrate_events-*.nbi"
+    log.announce_compilation("the kernels", pattern)
+    log.announce_compilation("the kernels", pattern)  # once per process
+    assert capsys.readouterr().err.count("compiling the kernels") == 1
+    (tmp_path / "kernels_x").mkdir()
+    (tmp_path / "kernels_x" / "events.integrate_events-40.py311.nbi").write_bytes(b"")
+    monkeypatch.setattr(log, "_announced", set())
+    log.announce_compilation("the kernels", pattern)  # cached: nothing to say
+    assert "compiling" not in capsys.readouterr().err
+
+
+def test_the_kernel_pattern_names_the_cached_file():
+    from upliftlab.reduced.integrators import METHODS
+    from upliftlab.reduced.run import kernel_cache_pattern
+
+    assert kernel_cache_pattern(METHODS["events"].kernel) == "events.integrate_events-*.nbi"
+    assert kernel_cache_pattern(METHODS["hht"].kernel) == "implicit.integrate_newmark-*.nbi"

@@ -1,0 +1,77 @@
+"""Messages: the library logs through :mod:`logging` under the ``upliftlab`` logger.
+
+Progress of long work and notes about a run go to ``logging`` (INFO and WARNING), details of
+how a run was set up (its step, its plan, the compilation of kernels) to DEBUG; the library
+never prints. A program that uses upliftlab sees nothing unless it configures logging; the
+command line does, with :func:`configure`: INFO and above by default, WARNING and above with
+``--quiet``, everything with ``--verbose``, each message on one line of stderr. Errors are not
+messages: they are exceptions, which the command line turns into one line and an exit code.
+
+The first run on a machine compiles the reduced model's kernels (numba) and caches them; it
+says so (:func:`announce_compilation`) instead of going silent for the minute it takes.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import sys
+from pathlib import Path
+
+__all__ = ["logger", "configure", "LEVELS", "announce_compilation", "kernels_cached"]
+
+#: ``--quiet``, default, ``--verbose``: the lowest level shown.
+LEVELS = {-1: logging.WARNING, 0: logging.INFO, 1: logging.DEBUG}
+_announced: set[str] = set()
+
+
+def logger(name: str = "") -> logging.Logger:
+    """The logger ``upliftlab.<name>`` (``upliftlab`` for the empty name)."""
+    return logging.getLogger("upliftlab" + (f".{name}" if name else ""))
+
+
+class _Handler(logging.StreamHandler):
+    """stderr as it is when the message is written (tests and pipes replace it)."""
+
+    def __init__(self):
+        super().__init__(sys.stderr)
+
+    def emit(self, record):
+        self.stream = sys.stderr  # not setStream: it would flush the old one, maybe closed
+        super().emit(record)
+
+
+def configure(verbosity: int = 0) -> None:
+    """Show upliftlab's messages on stderr from the level of ``verbosity`` (−1 quiet, 0 normal,
+    1 verbose), one line each; replaces an earlier call's handler."""
+    if verbosity not in LEVELS:
+        raise ValueError(f"verbosity = {verbosity}: valid are {sorted(LEVELS)}")
+    root = logger()
+    for handler in [h for h in root.handlers if isinstance(h, _Handler)]:
+        root.removeHandler(handler)
+    handler = _Handler()
+    handler.setFormatter(logging.Formatter("%(message)s"))
+    root.addHandler(handler)
+    root.setLevel(LEVELS[verbosity])
+    root.propagate = False
+
+
+def kernels_cached(folder: str | os.PathLike | None, pattern: str) -> bool:
+    """Whether numba's cache ``folder`` holds an index file matching ``pattern`` (e.g.
+    ``events.integrate_events-*.nbi``): the kernel was compiled and cached by an earlier run."""
+    if not folder or not Path(folder).is_dir():
+        return False
+    return any(Path(folder).rglob(pattern))
+
+
+def announce_compilation(what: str, pattern: str) -> None:
+    """Say, once per process, that ``what`` is being compiled when numba's cache does not hold
+    it yet (``pattern`` as in :func:`kernels_cached`)."""
+    if what in _announced:
+        return
+    _announced.add(what)
+    folder = os.environ.get("NUMBA_CACHE_DIR")
+    if os.environ.get("NUMBA_DISABLE_JIT") == "1" or kernels_cached(folder, pattern):
+        return
+    logger("compile").info(f"upliftlab: compiling {what} (once: the next runs read them from "
+                           f"the cache in {folder or 'the package folder'})")
