@@ -73,7 +73,7 @@ def main(argv: list[str] | None = None) -> int:
         verdicts = count_cases(
             [c for c in all_cases() if args.only in c.id],
             lambda i, case: _forked(case, Path(root) / f"c{i:04d}", args.timeout, memory),
-            start)
+            lambda: time.perf_counter() - start)
     if args.json:
         Path(args.json).write_text(json.dumps(verdicts, indent=1))
     return 0
