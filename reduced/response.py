@@ -280,6 +280,22 @@ class Response:
                      f"residual settlement = {s['residual_settlement']:.4g} {u.length}")
         return text
 
+    # ---- labelled data ----------------------------------------------------------------------
+    def to_xarray(self):
+        """The response as an :class:`xarray.Dataset` with labelled coordinates and CF
+        attributes (:mod:`~.labelled`): ``ds.spring_force.sel(spring=3)``,
+        ``ds.energy.sel(component="input")``."""
+        from .labelled import to_dataset
+
+        return to_dataset(self)
+
+    def to_dataframe(self):
+        """The scalar histories (u, x, X, θ, V, base shear, overturning moment, contact length)
+        as a :class:`pandas.DataFrame` indexed by time (:mod:`~.labelled`)."""
+        from .labelled import to_frame
+
+        return to_frame(self)
+
     # ---- files ------------------------------------------------------------------------------
     def save(self, path: str | Path, *, csv: bool = False) -> list[Path]:
         """Write one NetCDF file (and a CSV of the scalar histories if ``csv``); atomic."""
