@@ -97,6 +97,14 @@ class DynamicResult:
         closed = self.status != OPEN
         return np.sum(closed[1:] != closed[:-1], axis=0)
 
+    def to_xarray(self):
+        """The footing's histories and its contact along the base as an
+        :class:`xarray.Dataset` with labelled coordinates and CF attributes
+        (:mod:`~.labelled`): ``ds.pressure.sel(node=0)``, ``ds.energy.sel(component="input")``."""
+        from .labelled import to_dataset
+
+        return to_dataset(self)
+
     def save(self, path) -> Path:
         """Write the histories and soil fields to NetCDF (atomically), with provenance."""
         units = self.metadata.get("units", {})

@@ -1,0 +1,40 @@
+"""The continuum dynamic result as labelled data (upliftlab.continuum.labelled).
+
+Reference: the DynamicResult's own arrays, held unchanged (exactly) under labels; the CF
+conventions' attributes (units and long_name, or flag_values with flag_meanings).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from upliftlab.continuum import build_model
+from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
+from upliftlab.scenes import load_scene
+
+
+@pytest.fixture(scope="module")
+def result():
+    scene = load_scene("strip_footing_clay", overrides=["continuum.elements_across=4",
+                                                        "analysis.duration=0.3"])
+    return run_dynamic(build_model(scene), scene, scene.build_motion(),
+                       DynamicOptions(snapshots=0))
+
+
+def test_the_dataset_selects_by_label_and_holds_the_result(result):
+    ds = result.to_xarray()
+    assert np.array_equal(ds.theta.values, result.theta)
+    edge = int(np.argmin(result.x))
+    assert np.array_equal(ds.pressure.sel(node=edge).values, result.pressure[:, edge])
+    assert float(ds.x.sel(node=edge)) == pytest.approx(-0.5 * result.width, rel=1e-12)
+    assert np.array_equal(ds.energy.sel(component="input").values, result.energy[:, 3])
+    assert ds.attrs["Conventions"].startswith("CF-")
+
+
+def test_every_variable_has_units_or_flags_and_a_long_name(result):
+    ds = result.to_xarray()
+    for name in list(ds.data_vars) + ["time", "x"]:
+        assert ds[name].attrs.get("long_name"), name
+        assert ds[name].attrs.get("units") or "flag_values" in ds[name].attrs, name
+    assert ds.status.attrs["flag_meanings"].split()[0] == "open"
