@@ -27,9 +27,8 @@ incomplete).
 
 BLAS and OpenMP use one thread unless the user set ``OMP_NUM_THREADS``,
 ``OPENBLAS_NUM_THREADS`` or ``MKL_NUM_THREADS``: the solves here are small and the machines
-shared, where threaded BLAS is slower (one second of El Centro on the continuum took 115 s with
-the default threads against 46 s with one, on a loaded 2-core machine). They are set before
-numpy loads (``import upliftlab`` loads nothing yet).
+shared, where threaded BLAS is slower (measured in ``benchmarks/CONTINUUM_DESIGN.md``). They are
+set before numpy loads (``import upliftlab`` loads nothing yet).
 """
 
 from __future__ import annotations

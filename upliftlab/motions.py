@@ -218,7 +218,7 @@ def read_motion(path: str | os.PathLike, dt: float | None = None) -> Motion:
     """Read a motion file: PEER ``.AT2``, two columns (time, g), or one column (g) with ``dt``.
 
     A file is parsed once per process while its size and modification time stay the same
-    (parsing a 1560-sample text record costs about 5 ms, a quarter of a 40-spring run); the
+    (parsing a text record costs a sizeable share of a short reduced run); the
     :class:`Motion` is immutable, so the cached record is shared safely.
     """
     path = Path(path)
