@@ -296,7 +296,7 @@ class _Explicit:
         structure = (z.M, z.C, z.K, z.gravity, self.ground_z)
         contact = (free, Lf, f.uy.astype(np.int64), f.ux.astype(np.int64), f.x,
                    f.interface.mu, f.width, f.interface.tangential)
-        announce_compilation("the continuum's explicit kernels", "explicit_loop.run_steps-*.nbi")
+        announce_compilation("the continuum's explicit kernels", run_steps)
         for k in recorded_steps(st):
             with self.diverging(done + 1, k, U[k % 3]):
                 run_steps(done + 1, k, dt, rings, carry, soil_data, elements, gather, loads,

@@ -26,8 +26,7 @@ from .static import initial_state
 
 __all__ = ["run", "run_model", "initial_conditions", "IntegrationError", "EnergyBalanceError",
            "ModelWarning",
-           "KernelInputs", "integrate", "ground_acceleration", "frame_of", "story_table",
-           "kernel_cache_pattern"]
+           "KernelInputs", "integrate", "ground_acceleration", "frame_of", "story_table"]
 
 
 class IntegrationError(RuntimeError):
@@ -299,7 +298,7 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
                out["plastic"], out["energy"])
     log = np.zeros((0, 5))
     m = method(name)
-    announce_compilation("the reduced model's kernels", kernel_cache_pattern(m.kernel))
+    announce_compilation("the reduced model's kernels", m.kernel)
     logger("reduced").debug(f"upliftlab: {name}: dt = {plan.dt:.6g} s, {plan.steps} steps, "
                             f"{ns} springs, {q0.size} DOFs")
     if m.kind == "events":
@@ -376,9 +375,3 @@ def _check_status(status: int, counters: np.ndarray, plan: StepPlan, name: str) 
                                "analysis.rtol or check the scene's stiffness")
     raise IntegrationError(f"{name}: unknown status {status}")
 
-
-def kernel_cache_pattern(kernel) -> str:
-    """The name of a compiled kernel's index file in numba's cache, as a glob pattern
-    (``<module>.<function>-*.nbi``)."""
-    function = getattr(kernel, "py_func", kernel)
-    return f"{function.__module__.rsplit('.', 1)[-1]}.{function.__name__}-*.nbi"

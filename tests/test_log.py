@@ -31,24 +31,40 @@ def test_quiet_and_verbose_together_are_refused(capsys):
 
 def test_compilation_is_announced_once_and_only_without_a_cache(tmp_path, monkeypatch,
                                                                  capsys):
+    from upliftlab.reduced.integrators import METHODS
+
+    kernel = METHODS["events"].kernel
     log.configure(0)
     monkeypatch.delenv("NUMBA_DISABLE_JIT", raising=False)
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
     monkeypatch.setattr(log, "_announced", set())
-    pattern = "events.integrate_events-*.nbi"
-    log.announce_compilation("the kernels", pattern)
-    log.announce_compilation("the kernels", pattern)  # once per process
+    log.announce_compilation("the kernels", kernel)
+    log.announce_compilation("the kernels", kernel)  # once per process
     assert capsys.readouterr().err.count("compiling the kernels") == 1
-    (tmp_path / "kernels_x").mkdir()
-    (tmp_path / "kernels_x" / "events.integrate_events-40.py311.nbi").write_bytes(b"")
+    # another checkout's cache of the same kernel is not this source's cache
+    other = tmp_path / "kernels_0000000000000000000000000000000000000000"
+    other.mkdir()
+    (other / "events.integrate_events-40.py311.nbi").write_bytes(b"")
     monkeypatch.setattr(log, "_announced", set())
-    log.announce_compilation("the kernels", pattern)  # cached: nothing to say
+    log.announce_compilation("the kernels", kernel)
+    assert capsys.readouterr().err.count("compiling the kernels") == 1
+    folder, _ = log.cache_index(kernel)
+    (tmp_path / folder).mkdir()
+    (tmp_path / folder / "events.integrate_events-40.py311.nbi").write_bytes(b"")
+    monkeypatch.setattr(log, "_announced", set())
+    log.announce_compilation("the kernels", kernel)  # cached: nothing to say
     assert "compiling" not in capsys.readouterr().err
 
 
-def test_the_kernel_pattern_names_the_cached_file():
-    from upliftlab.reduced.integrators import METHODS
-    from upliftlab.reduced.run import kernel_cache_pattern
+def test_the_cache_index_is_where_numba_writes_it():
+    # Reference: numba's cache locator for NUMBA_CACHE_DIR, which names the folder
+    # <source folder>_<sha1 of its absolute path> and the index <module>.<function>-<line>.nbi.
+    import hashlib
+    from pathlib import Path
 
-    assert kernel_cache_pattern(METHODS["events"].kernel) == "events.integrate_events-*.nbi"
-    assert kernel_cache_pattern(METHODS["hht"].kernel) == "implicit.integrate_newmark-*.nbi"
+    from upliftlab.reduced.integrators import METHODS
+
+    folder, pattern = log.cache_index(METHODS["hht"].kernel)
+    source = Path(__file__).resolve().parents[1] / "reduced" / "kernels"
+    assert str(folder) == f"kernels_{hashlib.sha1(str(source).encode()).hexdigest()}"
+    assert pattern == "implicit.integrate_newmark-*.nbi"

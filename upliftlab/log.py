@@ -18,7 +18,8 @@ import os
 import sys
 from pathlib import Path
 
-__all__ = ["logger", "configure", "LEVELS", "announce_compilation", "kernels_cached"]
+__all__ = ["logger", "configure", "LEVELS", "announce_compilation", "kernels_cached",
+           "cache_index"]
 
 #: ``--quiet``, default, ``--verbose``: the lowest level shown.
 LEVELS = {-1: logging.WARNING, 0: logging.INFO, 1: logging.DEBUG}
@@ -56,22 +57,37 @@ def configure(verbosity: int = 0) -> None:
     root.propagate = False
 
 
-def kernels_cached(folder: str | os.PathLike | None, pattern: str) -> bool:
-    """Whether numba's cache ``folder`` holds an index file matching ``pattern`` (e.g.
-    ``events.integrate_events-*.nbi``): the kernel was compiled and cached by an earlier run."""
-    if not folder or not Path(folder).is_dir():
+def cache_index(function) -> tuple[Path, str]:
+    """Where numba's cache keeps the index of a compiled ``function`` (cache=True) under
+    ``NUMBA_CACHE_DIR``: the folder ``<source folder name>_<sha1 of its absolute path>`` and the
+    file pattern ``<module>.<function>-*.nbi``."""
+    import hashlib
+    import inspect
+
+    plain = getattr(function, "py_func", function)
+    source = Path(inspect.getfile(plain)).resolve()
+    folder = f"{source.parent.name}_{hashlib.sha1(str(source.parent).encode()).hexdigest()}"
+    return Path(folder), f"{source.stem}.{plain.__name__}-*.nbi"
+
+
+def kernels_cached(cache: str | os.PathLike | None, function) -> bool:
+    """Whether numba's cache folder ``cache`` holds the index of the compiled ``function``
+    (:func:`cache_index`): an earlier run of this source compiled and cached it."""
+    if not cache:
         return False
-    return any(Path(folder).rglob(pattern))
+    folder, pattern = cache_index(function)
+    where = Path(cache) / folder
+    return where.is_dir() and any(where.glob(pattern))
 
 
-def announce_compilation(what: str, pattern: str) -> None:
+def announce_compilation(what: str, function) -> None:
     """Say, once per process, that ``what`` is being compiled when numba's cache does not hold
-    it yet (``pattern`` as in :func:`kernels_cached`)."""
+    the compiled ``function`` yet (:func:`kernels_cached`)."""
     if what in _announced:
         return
     _announced.add(what)
-    folder = os.environ.get("NUMBA_CACHE_DIR")
-    if os.environ.get("NUMBA_DISABLE_JIT") == "1" or kernels_cached(folder, pattern):
+    cache = os.environ.get("NUMBA_CACHE_DIR")
+    if os.environ.get("NUMBA_DISABLE_JIT") == "1" or kernels_cached(cache, function):
         return
     logger("compile").info(f"upliftlab: compiling {what} (once: the next runs read them from "
-                           f"the cache in {folder or 'the package folder'})")
+                           f"the cache in {cache or 'the package folder'})")
