@@ -63,6 +63,17 @@ figure{margin:12px 0 18px}figure img{max-width:100%;height:auto;border:1px solid
 figcaption{font-size:12px;color:#5a6272}
 nav ol{columns:2;font-size:14px;margin:6px 0}small.note{color:#5a6272}
 .grid2{display:grid;grid-template-columns:1fr 1fr;gap:14px}
+body{counter-reset:figure}figure{counter-increment:figure}
+figcaption::before{content:"Figure " counter(figure) ". ";font-weight:600;color:#1d2330}
+@media print{
+ @page{margin:14mm}
+ body{background:#fff;font-size:10pt}main{max-width:none;box-shadow:none;padding:0}
+ h2{break-after:avoid}h3{break-after:avoid}
+ .scroll{overflow:visible}table{font-size:8pt;table-layout:auto;word-break:break-word}
+ th{position:static}figure,tr,.status,.notice,.error{break-inside:avoid}
+ figure img{max-width:100%;max-height:240mm;border:none}.grid2{display:block}
+ pre{white-space:pre-wrap;word-break:break-word}nav ol{columns:1}
+}
 """
 
 

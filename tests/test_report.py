@@ -89,6 +89,11 @@ def test_report_writes_one_self_contained_html(reports):
     for name in ("verification-anchors.md", "design.md", "../shared"):
         assert name not in page, name
     assert "Prandtl's bearing capacity" in page.split('id="anchors"')[1]
+    # figures are numbered (a CSS counter, in print too) and printing keeps wide tables and
+    # figures whole: a print style sheet that lets the tables' scroll boxes grow
+    assert 'content:"Figure " counter(figure)' in page
+    printing = page.split("@media print{", 1)[1].split("\n}", 1)[0]
+    assert ".scroll{overflow:visible}" in printing and "break-inside:avoid" in printing
 
 
 def test_every_verification_row_passes_with_its_tolerance(reports):
