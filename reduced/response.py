@@ -316,6 +316,8 @@ class Response:
             "base_shear": (t, self.base_shear, {"units": F}),
             "overturning_moment": (t, self.overturning_moment, {"units": f"{F}*{L}"}),
             "contact_length": (t, self.contact_length, {"units": L}),
+            "ground_displacement": (t, self.ground_displacement,
+                                    {"units": L, "long_name": "ground displacement"}),
             "spring_deformation": (ts, self.deformation, {"units": L}),
             "spring_force": (ts, self.force, {"units": F}),
             "spring_mode": (ts, self.mode.astype(np.int8),

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..checks import InputError
-from ..motions import Motion
+from ..motions import Motion, motion_checksum
 from ..results import provenance
 from ..scenes import Scene
 from ..log import announce_compilation, logger
@@ -112,7 +112,8 @@ def run_model(model: ReducedModel, motion: Motion, *, integrator: str | None = N
                               if status == kn.OVERTURNED else None),
             "notes": list(model.notes),
             "counters": [int(c) for c in counters], "wall_time_s": elapsed,
-            "motion": motion.name, "motion_source": motion.source, "pga_g": motion.pga}
+            "motion": motion.name, "motion_source": motion.source, "pga_g": motion.pga,
+            "motion_sha256": motion_checksum(motion)}
     prov = provenance(model="reduced", scene=model.scene.name, scene_file=model.scene.source,
                       case=model.scene.case, overrides=list(model.scene.overrides),
                       scene_digest=model.scene.digest, scene_data=model.scene.data)

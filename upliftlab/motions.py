@@ -29,6 +29,7 @@ from .checks import InputError, finite, nonnegative, positive
 
 __all__ = [
     "Motion",
+    "motion_checksum",
     "MOTIONS_ENV",
     "ELCENTRO",
     "read_motion",
@@ -419,3 +420,16 @@ def harmonic(amplitude: float, period: float, duration: float, *, dt: float = 0.
     return Motion(name="harmonic", dt=dt, acceleration=acc,
                   source=f"builtin:harmonic(A={amplitude:g} g, T={period:g} s)")
 
+
+def motion_checksum(motion: Motion) -> str:
+    """SHA-256 of what a run was driven by: the record file's bytes when the motion was read
+    from a file, else the samples and their step (a built-in motion)."""
+    import hashlib
+
+    path = Path(motion.source) if motion.source and not motion.source.startswith("builtin:") \
+        else None
+    if path is not None and path.is_file():
+        return hashlib.sha256(path.read_bytes()).hexdigest()
+    digest = hashlib.sha256(np.ascontiguousarray(motion.acceleration, dtype=float).tobytes())
+    digest.update(repr(float(motion.dt)).encode())
+    return digest.hexdigest()

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import contextlib
 import datetime as _dt
+import functools
+import hashlib
 import json
 import os
 import platform
@@ -128,15 +130,60 @@ def write_csv(path: str | os.PathLike, columns: Mapping[str, np.ndarray],
 
 
 def provenance(**extra) -> dict[str, object]:
-    """Package version, time and platform, plus ``extra`` (scene, model, options)."""
+    """Package version, a digest of its sources, time, platform and the versions of the
+    numerical libraries, plus ``extra`` (scene, model, options)."""
     from . import __version__
 
     record = {
         "upliftlab_version": __version__,
+        "source_sha256": source_digest(),
         "created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
         "python": platform.python_version(),
         "numpy": np.__version__,
+        "scipy": _version("scipy"),
+        "numba": _version("numba"),
         "platform": platform.platform(terse=True),
     }
     record.update(extra)
     return record
+
+
+def _version(package: str) -> str:
+    from importlib import metadata
+
+    try:
+        return metadata.version(package)
+    except metadata.PackageNotFoundError:
+        return "not installed"
+
+
+@functools.cache
+def source_digest() -> str:
+    """SHA-256 of every Python source of the package and its subpackages (wherever the install
+    put them), by module name and content: which code produced a result, beyond the version."""
+    import importlib.util
+
+    files = {}
+    subpackages = {name.rsplit(".", 1)[1] for name in SOURCE_PACKAGES if "." in name}
+    for package in SOURCE_PACKAGES:
+        spec = importlib.util.find_spec(package)
+        short = package.rsplit(".", 1)[-1]
+        for folder in (spec.submodule_search_locations or []) if spec else []:
+            if Path(folder).name != short:  # the checkout's root, which a source run adds
+                continue
+            for path in Path(folder).rglob("*.py"):
+                relative = path.relative_to(folder)
+                if "__pycache__" in relative.parts or (
+                        package == "upliftlab" and relative.parts[0] in subpackages):
+                    continue  # the installed layout nests the subpackages: read them once
+                files[f"{package}/{relative.as_posix()}"] = path
+    digest = hashlib.sha256()
+    for name, path in sorted(files.items()):
+        digest.update(name.encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
+#: The packages whose sources :func:`source_digest` covers.
+SOURCE_PACKAGES = ("upliftlab", "upliftlab.reduced", "upliftlab.continuum", "upliftlab.meshes",
+                   "upliftlab.comparisons")
