@@ -128,9 +128,13 @@ def measure(sc, integrator: str, dt: float | None, repeats: int) -> dict:
 
 
 def _limit_in(message: str) -> str:
-    """The stability limit quoted in ``time_step``'s refusal."""
+    """The limit quoted in ``time_step``'s refusal: the stability limit of an explicit
+    integrator, or the largest step that resolves the shortest period for an implicit one."""
     words = message.split("stability limit ")
-    return words[1].split()[0] + " s" if len(words) > 1 else "?"
+    if len(words) > 1:
+        return words[1].split()[0] + " s"
+    words = message.split("valid range is (0, ")
+    return (words[1].split("]")[0] + " s, resolution") if len(words) > 1 else "?"
 
 
 def reference(n: int, k: int, extra: tuple[str, ...] = ()) -> dict:
