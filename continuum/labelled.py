@@ -1,5 +1,6 @@
-"""A continuum dynamic result as labelled data: an :class:`xarray.Dataset` of the footing's
-histories and its contact along the base, so that a notebook selects by label.
+"""A continuum result as labelled data: an :class:`xarray.Dataset` of the footing's histories
+and its contact along the base (a dynamic run against time, a static path against its load
+step), so that a notebook selects by label.
 
 CF conventions where they apply: coordinate variables ``time`` (s), ``node`` (the footing's
 contact nodes, with their ``x``) and ``component`` (of the energy account); ``units`` and
@@ -17,7 +18,7 @@ import numpy as np
 from .dynamic_result import ENERGY
 from .footing import OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK
 
-__all__ = ["to_dataset"]
+__all__ = ["to_dataset", "path_to_dataset"]
 
 
 def to_dataset(result):
@@ -60,4 +61,44 @@ def to_dataset(result):
               "component": ("component", list(ENERGY), {"long_name": "energy account"})}
     attrs = {"Conventions": "CF-1.10", "kind": result.kind, "width": result.width,
              "metadata": json.dumps(result.metadata, default=str)}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def path_to_dataset(path):
+    """A static path (a StaticPath: a pushover) as an :class:`xarray.Dataset` over its load
+    ``step``, with the footing's rotation, settlement and loads as variables and the contact per
+    base node; ``ds.swap_dims(step="theta")`` makes a rotation pushover selectable by θ."""
+    import xarray as xr
+
+    units = path.metadata["units"]
+    length, force, moment = units["length"], units["force/length"], units["moment/length"]
+    stress = units["stress"]
+    s, node = "step", ("step", "node")
+    data = {
+        "u": (s, path.u, {"units": length, "long_name": "footing sliding"}),
+        "v": (s, path.v, {"units": length, "positive": "up",
+                          "long_name": "footing settlement (up positive)"}),
+        "H": (s, path.H, {"units": force, "long_name": "horizontal load"}),
+        "N": (s, path.N, {"units": force, "positive": "compression",
+                          "long_name": "vertical load"}),
+        "M": (s, path.M, {"units": moment, "long_name": "moment about the centre"}),
+        "contact_length": (s, path.contact_length,
+                           {"units": length, "long_name": "length of the base in contact"}),
+        "pressure": (node, path.pressure, {"units": stress, "positive": "compression",
+                                           "long_name": "contact pressure"}),
+        "shear": (node, path.shear, {"units": stress, "long_name": "shear traction on the soil"}),
+        "gap": (node, path.gap, {"units": length, "long_name": "gap under the base"}),
+        "status": (node, path.status.astype(np.int8), {
+            "long_name": "contact state of a base node",
+            "flag_values": np.array([OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE], np.int8),
+            "flag_meanings": "open stick slip_positive slip_negative"}),
+        "iterations": (s, path.iterations, {"units": "1", "long_name": "Newton iterations"}),
+    }
+    coords = {"step": (s, np.arange(1, path.theta.size + 1), {"long_name": "load step"}),
+              "theta": (s, path.theta, {"units": "rad", "long_name": "footing rotation"}),
+              "node": ("node", np.arange(path.x.size), {"long_name": "base node index"}),
+              "x": ("node", path.x, {"units": length,
+                                     "long_name": "position along the base from its centre"})}
+    attrs = {"Conventions": "CF-1.10", "kind": path.kind, "width": path.width,
+             "metadata": json.dumps(path.metadata, default=str)}
     return xr.Dataset(data, coords=coords, attrs=attrs)

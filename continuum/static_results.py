@@ -57,6 +57,13 @@ class StaticPath:
     plastic_strain: np.ndarray | None = field(default=None, repr=False)
     max_shear_stress: np.ndarray | None = field(default=None, repr=False)
 
+    def to_xarray(self):
+        """The path as an :class:`xarray.Dataset` over its load step with CF attributes
+        (:mod:`~.labelled`); ``ds.swap_dims(step="theta")`` selects a pushover by rotation."""
+        from .labelled import path_to_dataset
+
+        return path_to_dataset(self)
+
     @property
     def time(self) -> np.ndarray:
         """The load-step number 1, 2, …, n: the pseudo-time of a static path."""

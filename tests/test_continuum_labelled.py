@@ -38,3 +38,21 @@ def test_every_variable_has_units_or_flags_and_a_long_name(result):
         assert ds[name].attrs.get("long_name"), name
         assert ds[name].attrs.get("units") or "flag_values" in ds[name].attrs, name
     assert ds.status.attrs["flag_meanings"].split()[0] == "open"
+
+
+def test_a_pushover_selects_by_rotation():
+    # Reference: the StaticPath's own arrays; the rotations asked for (the pushover's schedule).
+    from upliftlab.continuum import rotation_pushover
+
+    scene = load_scene("strip_footing_clay", overrides=["continuum.elements_across=4"])
+    model = build_model(scene)
+    rotations = np.array([0.0, 0.002, 0.004, 0.006])
+    path = rotation_pushover(model, scene.structure.vertical_weight, rotations)
+    ds = path.to_xarray().swap_dims(step="theta")
+    assert np.array_equal(ds.M.values, path.M)
+    assert float(ds.M.sel(theta=0.004, method="nearest")) == path.M[
+        np.argmin(np.abs(path.theta - 0.004))]
+    assert ds.theta.values[-1] == pytest.approx(0.006, rel=1e-9)
+    for name in ds.data_vars:
+        assert ds[name].attrs.get("long_name"), name
+        assert ds[name].attrs.get("units") or "flag_values" in ds[name].attrs, name
