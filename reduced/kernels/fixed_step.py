@@ -85,30 +85,46 @@ def end_fixed_step(step, t, clock, q, qd, acc, books, e0, system, outputs, peaks
 
 
 @njit(cache=True, **HOT)
-def march_rk4(q, qd, acc, clock, system, books, fixed, stages, outputs, peaks, counters):
-    """The time loop of :func:`integrate_rk4`, in the workspace it allocated."""
-    dt, nsteps, _ = clock
+def accept_fixed_step(step, clock, state, trial, system, books, fixed, outputs, peaks, counters):
+    """Make a fixed step's trial end ``trial`` = (q₁, q̇₁, energy₁) the state ``state``: refuse
+    non-finite values, track the peaks over the step, apply the springs' end-of-step return map,
+    store the row and test toppling (:func:`end_fixed_step`). Shared by RK4 and ABM4."""
+    dt = clock[0]
+    q, qd, acc = state
+    q1, qd1, acc1 = trial
     _, P, _, _, _, _, _, frame, _ = system
     modes, H, _, e1, ed1 = books
     contact, e0, ed0 = fixed
+    if not finite(q1, qd1):
+        counters[0] = step
+        return NONFINITE
+    deformations(q1, qd1, P, e1, ed1)
+    track_peaks(dt, (q, qd, e0, ed0), (q1, qd1, e1, ed1), P, modes, H, frame, peaks)
+    copy(q, q1)
+    copy(qd, qd1)
+    copy(acc, acc1)
+    copy(e0, e1)
+    copy(ed0, ed1)
+    acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
+    if end_fixed_step(step, (step + 1) * dt, clock, q, qd, acc, books, e0, system, outputs,
+                      peaks, counters) != OK:
+        return OVERTURNED
+    return OK
+
+
+@njit(cache=True, **HOT)
+def march_rk4(q, qd, acc, clock, system, books, fixed, stages, outputs, peaks, counters):
+    """The time loop of :func:`integrate_rk4`, in the workspace it allocated."""
+    dt, nsteps, _ = clock
+    modes, H = books[0], books[1]
     q1, qd1, acc1 = stages[6], stages[7], stages[8]
     for step in range(nsteps):
         rk4_step(step * dt, dt, q, qd, acc, True, system, modes, H, stages)
         counters[2] += 4
-        if not finite(q1, qd1):
-            counters[0] = step
-            return NONFINITE
-        deformations(q1, qd1, P, e1, ed1)
-        track_peaks(dt, (q, qd, e0, ed0), (q1, qd1, e1, ed1), P, modes, H, frame, peaks)
-        copy(q, q1)
-        copy(qd, qd1)
-        copy(acc, acc1)
-        copy(e0, e1)
-        copy(ed0, ed1)
-        acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
-        if end_fixed_step(step, (step + 1) * dt, clock, q, qd, acc, books, e0, system, outputs,
-                          peaks, counters) != OK:
-            return OVERTURNED
+        status = accept_fixed_step(step, clock, (q, qd, acc), (q1, qd1, acc1), system, books,
+                                   fixed, outputs, peaks, counters)
+        if status != OK:
+            return status
     check_energy(q, qd, acc, books, system, peaks)
     return OK
 
@@ -138,9 +154,7 @@ def march_abm4(q, qd, acc, clock, system, books, fixed, stages, history, outputs
     """The time loop of :func:`integrate_abm4`, in the workspace it allocated; ``history`` is
     (F, y*, f*): the derivative history (F[0] newest), the predictor and its derivative."""
     dt, nsteps, _ = clock
-    _, P, _, _, _, _, _, frame, _ = system
-    modes, H, _, e1, ed1 = books
-    contact, e0, ed0 = fixed
+    modes, H = books[0], books[1]
     k1, k2, _, _, qs, qds, q1, qd1, acc1, Mw = stages
     F, ystar, fstar = history
     n, m = q.size, F.shape[1]
@@ -182,19 +196,9 @@ def march_abm4(q, qd, acc, clock, system, books, fixed, stages, history, outputs
                     qd1[c - n] = qd[c - n] + incr
                 else:
                     acc1[c - 2 * n] = acc[c - 2 * n] + incr
-        if not finite(q1, qd1):
-            counters[0] = step
-            return NONFINITE
-        deformations(q1, qd1, P, e1, ed1)
-        track_peaks(dt, (q, qd, e0, ed0), (q1, qd1, e1, ed1), P, modes, H, frame, peaks)
-        copy(q, q1)
-        copy(qd, qd1)
-        copy(acc, acc1)
-        copy(e0, e1)
-        copy(ed0, ed1)
-        acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
-        if end_fixed_step(step, (step + 1) * dt, clock, q, qd, acc, books, e0, system, outputs,
-                          peaks, counters) != OK:
-            return OVERTURNED
+        status = accept_fixed_step(step, clock, (q, qd, acc), (q1, qd1, acc1), system, books,
+                                   fixed, outputs, peaks, counters)
+        if status != OK:
+            return status
     check_energy(q, qd, acc, books, system, peaks)
     return OK
