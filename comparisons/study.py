@@ -47,6 +47,26 @@ class StudyResult:
     provenance: Mapping
     elapsed: float
 
+    def __repr__(self) -> str:
+        """One line: the study, its variant, where its files are and how long it took."""
+        variant = "fast" if self.fast else "full"
+        return (f"<StudyResult {self.name} ({variant}): {len(self.files)} files in "
+                f"{self.directory}, {self.elapsed:.1f} s>")
+
+    def to_xarray(self):
+        """The study's NetCDF files as one :class:`xarray.DataTree`, a node per file by its
+        name (``map_aspect``, ``errors``), loaded into memory; the key numbers and the elapsed
+        time (s) are attributes of the root, one per key."""
+        import xarray as xr
+
+        from ..results import cf_attributes, read_dataset
+
+        nodes = {Path(f).stem: read_dataset(f) for f in self.files if str(f).endswith(".nc")}
+        tree = xr.DataTree.from_dict(nodes, name=self.name)
+        tree.attrs = cf_attributes({"study": self.name, "fast": self.fast,
+                                    "elapsed_s": self.elapsed, "numbers": dict(self.numbers)})
+        return tree
+
 
 @dataclass(frozen=True)
 class Axis:

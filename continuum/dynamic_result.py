@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..results import write_netcdf
+from ..results import write_dataset
 from .fields import element_average, max_shear_stress, result_metadata
 from .footing import OPEN
 
@@ -97,6 +97,16 @@ class DynamicResult:
         closed = self.status != OPEN
         return np.sum(closed[1:] != closed[:-1], axis=0)
 
+    def __repr__(self) -> str:
+        """One line: the method, the span, the peaks of the footing and the energy balance
+        (the arrays are in :meth:`to_xarray`)."""
+        length = self.metadata.get("units", {}).get("length", "")
+        incomplete = ", INCOMPLETE" if self.metadata.get("incomplete") else ""
+        return (f"<DynamicResult {self.metadata.get('method', '?')}: {self.time.size} steps over "
+                f"{self.time[-1]:.4g} s, peak |theta| = {np.max(np.abs(self.footing[:, 2])):.4g}"
+                f" rad, settlement at the end = {-self.footing[-1, 1]:.4g} {length}, "
+                f"{self.snapshot_step.size} snapshots, B = {self.width:g} {length}{incomplete}>")
+
     def to_xarray(self):
         """The footing's histories and its contact along the base as an
         :class:`xarray.Dataset` with labelled coordinates and CF attributes
@@ -106,39 +116,9 @@ class DynamicResult:
         return to_dataset(self)
 
     def save(self, path) -> Path:
-        """Write the histories and soil fields to NetCDF (atomically), with provenance."""
-        units = self.metadata.get("units", {})
-        length, force = units.get("length", ""), units.get("force/length", "")
-        t, node, snap = ("time",), ("time", "node"), ("snapshot",)
-        variables = {
-            "time": (t, self.time, {"units": "s"}),
-            "u": (t, self.footing[:, 0], {"units": length}),
-            "v": (t, self.footing[:, 1], {"units": length, "positive": "up"}),
-            "theta": (t, self.footing[:, 2], {"units": "rad"}),
-            "structure_u": (t, self.structure_u, {"units": length}),
-            "structure_velocity": (t, self.structure_velocity, {"units": f"{length}/s"}),
-            "ground_acceleration": (t, self.ground_acceleration, {"units": f"{length}/s^2"}),
-            "H": (t, self.H, {"units": force}),
-            "N": (t, self.N, {"units": force, "positive": "compression"}),
-            "M": (t, self.M, {"units": units.get("moment/length", "")}),
-            "contact_length": (t, self.contact_length, {"units": length}),
-            "x": (("node",), self.x, {"units": length}),
-            "pressure": (node, self.pressure, {"positive": "compression"}),
-            "gap": (node, self.gap, {"units": length}),
-            "status": (node, self.status, {"values": "0 open, 1 stick, 2/3 slip +/-"}),
-            "iterations": (t, self.iterations, {}),
-            "refactored": (t, self.refactored.astype(np.int8), {}),
-            "energy": (t + ("term",), self.energy, {"terms": " ".join(ENERGY)}),
-            "snapshot_step": (snap, self.snapshot_step, {}),
-            "snapshot_time": (snap, self.snapshot_time, {"units": "s"}),
-            "displacement": (snap + ("dof",), self.displacement,
-                             {"units": length, "meaning": "soil DOF vector, model basis ordering"}),
-            "plastic_strain": (snap + ("element",), self.plastic_strain, {}),
-            "max_shear_stress": (snap + ("element",), self.max_shear_stress,
-                                 {"units": units.get("stress", "")}),
-        }
-        return write_netcdf(path, variables, attrs={"kind": self.kind, "width": self.width,
-                                                    **self.metadata})
+        """Write the labelled dataset of :meth:`to_xarray` (histories, contact, soil fields at the
+        snapshots, provenance) to NetCDF-4, atomically."""
+        return write_dataset(path, self.to_xarray())
 
 
 class Recorder:

@@ -202,13 +202,19 @@ class Impedance:
         """Write the impedance functions to NetCDF (atomically), with provenance."""
         units = self.metadata.get("units", {})
         f = ("a0",)
-        variables = {"a0": (f, self.a0, {"meaning": "omega (B/2) / V_s"}),
-                     "omega": (f, self.omega, {"units": "rad/s"})}
+        variables = {"a0": (f, self.a0, {"units": "1", "long_name":
+                                         "dimensionless frequency omega (B/2) / V_s"}),
+                     "omega": (f, self.omega, {"units": "rad/s", "long_name": "frequency"})}
+        modes = {"K_v": "vertical", "K_h": "horizontal", "K_r": "rocking",
+                 "K_hr": "horizontal-rocking coupling"}
         for name, K in (("K_v", self.K_v), ("K_h", self.K_h), ("K_r", self.K_r),
                         ("K_hr", self.K_hr)):
-            variables[f"{name}_real"] = (f, K.real, {"units": units.get(name, "")})
-            variables[f"{name}_imag"] = (f, K.imag, {"units": units.get(name, ""),
-                                                      "convention": "exp(+i omega t)"})
+            variables[f"{name}_real"] = (f, K.real, {
+                "units": units.get(name, ""),
+                "long_name": f"{modes[name]} impedance per unit length, real part"})
+            variables[f"{name}_imag"] = (f, K.imag, {
+                "units": units.get(name, ""), "convention": "exp(+i omega t)",
+                "long_name": f"{modes[name]} impedance per unit length, imaginary part"})
         return write_netcdf(path, variables, attrs={"kind": "impedance", "width": self.width,
                                                     **self.metadata})
 

@@ -5,16 +5,17 @@ step), so that a notebook selects by label.
 CF conventions where they apply: coordinate variables ``time`` (s), ``node`` (the footing's
 contact nodes, with their ``x``) and ``component`` (of the energy account); ``units`` and
 ``long_name`` on every variable; the contact state as ``flag_values``/``flag_meanings``. The soil
-fields of the snapshots stay in the XDMF output (a mesh, not a table). Nothing here computes:
-every value is one the :class:`~.dynamic_result.DynamicResult` holds.
+fields of the snapshots are here too, as the model's DOF vector and element averages along
+``snapshot`` (the XDMF output draws them on the mesh); the run's metadata and provenance are
+attributes, one per key (:func:`~upliftlab.results.cf_attributes`). This dataset is what the
+results' ``save`` writes. Nothing here computes: every value is one the result holds.
 """
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 
+from ..results import cf_attributes
 from .dynamic_result import ENERGY
 from .footing import OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK
 
@@ -52,11 +53,33 @@ def _footing_and_contact(result, dim: str) -> tuple[dict, dict]:
     return data, coords
 
 
+def _snapshots(result, data: dict, coords: dict, time_units: str, time_meaning: str) -> None:
+    """Add the soil fields at the snapshots: the DOF vector and the element averages."""
+    units = result.metadata["units"]
+    snap, step = "snapshot", "time" if "time" in coords else "step"
+    coords["snapshot"] = ("snapshot", np.arange(result.snapshot_step.size),
+                          {"long_name": "snapshot index"})
+    data.update({
+        "snapshot_step": (snap, result.snapshot_step, {
+            "units": "1", "long_name": f"index along {step} of the snapshot"}),
+        "snapshot_time": (snap, result.snapshot_time, {"units": time_units,
+                                                       "long_name": time_meaning}),
+        "displacement": ((snap, "dof"), result.displacement, {
+            "units": units["length"],
+            "long_name": "soil displacement DOF vector in the model basis's ordering"}),
+        "plastic_strain": ((snap, "element"), result.plastic_strain, {
+            "units": "1", "long_name": "element-averaged equivalent plastic strain"}),
+        "max_shear_stress": ((snap, "element"), result.max_shear_stress, {
+            "units": units["stress"], "long_name": "element-averaged (s1 - s3)/2"}),
+    })
+
+
 def _dataset(result, data: dict, coords: dict):
     import xarray as xr
 
-    attrs = {"Conventions": "CF-1.10", "kind": result.kind, "width": result.width,
-             "metadata": json.dumps(result.metadata, default=str)}
+    attrs = cf_attributes({
+        "Conventions": "CF-1.10", "source": "upliftlab continuum model (plane strain)",
+        "kind": result.kind, "width": result.width, **result.metadata})
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
@@ -69,6 +92,13 @@ def to_dataset(result):
         "theta": ("time", result.footing[:, 2], {"units": "rad", "long_name": "footing rotation"}),
         "structure_u": ("time", result.structure_u, {"units": length,
                                                      "long_name": "story deformation"}),
+        "structure_velocity": ("time", result.structure_velocity, {
+            "units": f"{length}/s", "long_name": "rate of the story deformation"}),
+        "iterations": ("time", result.iterations, {"units": "1",
+                                                   "long_name": "iterations of the step"}),
+        "refactored": ("time", result.refactored.astype(np.int8), {
+            "long_name": "iteration matrix refactored at the step",
+            "flag_values": np.array([0, 1], np.int8), "flag_meanings": "kept refactored"}),
         "ground_acceleration": ("time", result.ground_acceleration,
                                 {"units": f"{length}/s^2", "long_name": "ground acceleration"}),
         "energy": (("time", "component"), result.energy,
@@ -77,6 +107,7 @@ def to_dataset(result):
     coords.update({"time": ("time", result.time, {"units": "s", "long_name": "time",
                                                   "axis": "T"}),
                    "component": ("component", list(ENERGY), {"long_name": "energy account"})})
+    _snapshots(result, data, coords, "s", "time of the snapshot")
     return _dataset(result, data, coords)
 
 
@@ -89,9 +120,12 @@ def path_to_dataset(path):
         "shear": (("step", "node"), path.shear, {"units": path.metadata["units"]["stress"],
                                                  "long_name": "shear traction on the soil"}),
         "iterations": ("step", path.iterations, {"units": "1", "long_name": "Newton iterations"}),
+        "cuts": ("step", path.cuts, {"units": "1", "long_name": "step cuts"}),
     })
     coords.update({"step": ("step", np.arange(1, path.theta.size + 1),
                             {"long_name": "load step"}),
                    "theta": ("step", path.theta, {"units": "rad",
                                                   "long_name": "footing rotation"})})
+    if path.has_fields:
+        _snapshots(path, data, coords, "1", "load-step number of the snapshot")
     return _dataset(path, data, coords)

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..results import write_netcdf
+from ..results import write_dataset, write_netcdf
 
 __all__ = ["StaticPath", "UpliftOnset", "Envelope"]
 
@@ -101,52 +101,24 @@ class StaticPath:
     def contact_fraction(self) -> np.ndarray:
         return self.contact_length / self.width
 
+    def __repr__(self) -> str:
+        """One line: the kind, the steps, the range of rotation and the loads reached."""
+        units = self.metadata.get("units", {})
+        force = units.get("force/length", "")
+        return (f"<StaticPath {self.kind}: {self.theta.size} steps, theta up to "
+                f"{np.max(np.abs(self.theta)):.4g} rad, N up to {np.max(self.N):.4g} {force}, "
+                f"M up to {np.max(np.abs(self.M)):.4g} {units.get('moment/length', '')}, "
+                f"B = {self.width:g} {units.get('length', '')}>")
+
     @property
     def capacity(self) -> float:
         """Largest vertical load N reached (force/length)."""
         return float(np.max(self.N))
 
     def save(self, path) -> Path:
-        """Write the histories to NetCDF (atomically), with provenance."""
-        step, node = ("step",), ("step", "node")
-        units = self.metadata.get("units", {})
-        variables = {
-            "u": (step, self.u, {"units": units.get("length", "")}),
-            "v": (step, self.v, {"units": units.get("length", ""), "positive": "up"}),
-            "theta": (step, self.theta, {"units": "rad"}),
-            "H": (step, self.H, {"units": units.get("force/length", "")}),
-            "N": (step, self.N, {"units": units.get("force/length", ""),
-                                 "positive": "compression"}),
-            "M": (step, self.M, {"units": units.get("moment/length", ""),
-                                 "positive": "resisting +theta"}),
-            "contact_length": (step, self.contact_length, {"units": units.get("length", "")}),
-            "x": (("node",), self.x, {"units": units.get("length", "")}),
-            "pressure": (node, self.pressure, {"positive": "compression"}),
-            "shear": (node, self.shear, {}),
-            "gap": (node, self.gap, {}),
-            "status": (node, self.status, {"values": "0 open, 1 stick, 2/3 slip +/-"}),
-            "iterations": (step, self.iterations, {}),
-            "cuts": (step, self.cuts, {}),
-        }
-        if self.has_fields:
-            variables.update(self._field_variables(units))
-        return write_netcdf(path, variables, attrs={"kind": self.kind, "width": self.width,
-                                                    **self.metadata})
-
-    def _field_variables(self, units: dict) -> dict:
-        snap = ("snapshot",)
-        return {
-            "snapshot_step": (snap, self.snapshot_step, {"meaning": "index of the step"}),
-            "snapshot_time": (snap, self.snapshot_time, {"meaning": "load-step number"}),
-            "displacement": (snap + ("dof",), self.displacement,
-                             {"units": units.get("length", ""),
-                              "meaning": "soil DOF vector, model basis ordering"}),
-            "plastic_strain": (snap + ("element",), self.plastic_strain,
-                               {"meaning": "element-averaged equivalent plastic strain"}),
-            "max_shear_stress": (snap + ("element",), self.max_shear_stress,
-                                 {"units": units.get("stress", ""),
-                                  "meaning": "element-averaged (s1 - s3)/2"}),
-        }
+        """Write the labelled dataset of :meth:`to_xarray` (the path, the contact along the
+        base, the soil fields at the snapshots, provenance) to NetCDF-4, atomically."""
+        return write_dataset(path, self.to_xarray())
 
 
 @dataclass(frozen=True)
@@ -187,8 +159,15 @@ class Envelope:
 
     def save(self, path) -> Path:
         """Write V, M, v, m per probe to NetCDF (atomically), with provenance."""
-        variables = {"V": (("probe",), self.V, {}), "M": (("probe",), self.M, {}),
-                     "v": (("probe",), self.v, {}), "m": (("probe",), self.m, {})}
+        units = self.metadata.get("units", {})
+        probe = ("probe",)
+        variables = {
+            "V": (probe, self.V, {"units": units.get("force/length", ""),
+                                  "long_name": "vertical load of the probe"}),
+            "M": (probe, self.M, {"units": units.get("moment/length", ""),
+                                  "long_name": "largest moment the probe reached"}),
+            "v": (probe, self.v, {"units": "1", "long_name": "V / V_ult"}),
+            "m": (probe, self.m, {"units": "1", "long_name": "M / (B V_ult)"})}
         return write_netcdf(path, variables, attrs={"V_ult": self.V_ult, "width": self.width,
                                                     **self.metadata})
 

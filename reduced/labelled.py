@@ -5,19 +5,21 @@ The dataset follows the CF conventions where they apply: a coordinate variable p
 (``time`` in s, ``dof`` by the DOF's name, ``spring`` by its index with its ``position`` and
 ``kind`` as coordinates, ``component`` of the energy account by name), ``units`` and
 ``long_name`` on every variable, and the contact state as ``flag_values``/``flag_meanings``.
-The peaks, the run's information and its provenance are attributes (JSON text where they are
-nested). Nothing here computes: every value is one the :class:`~.response.Response` holds.
+The peaks are scalar variables with their units (``peak_theta``; the story drifts along
+``story``); the ground motion as the run read it is in the dataset, on its own time axis
+``record_time``. The run's information and its provenance are attributes, one per key
+(:func:`~upliftlab.results.cf_attributes`). This dataset is what :meth:`Response.save` writes.
+Nothing here computes: every value is one the :class:`~.response.Response` holds.
 """
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 
+from ..results import cf_attributes
 from . import springs as sp
 
-__all__ = ["to_dataset", "to_frame", "SCALAR_HISTORIES"]
+__all__ = ["to_dataset", "to_frame", "SCALAR_HISTORIES", "PEAK_UNITS"]
 
 #: The scalar histories of a response: name -> (long name, unit kind).
 SCALAR_HISTORIES = {
@@ -29,6 +31,26 @@ SCALAR_HISTORIES = {
     "base_shear": ("base shear", "force"),
     "overturning_moment": ("overturning moment about O", "moment"),
     "contact_length": ("length of the base in contact", "length"),
+    "ground_displacement": ("ground displacement", "length"),
+}
+
+#: The peaks of a response: name -> (long name, unit kind).
+PEAK_UNITS = {
+    "u": ("peak |superstructure deformation|", "length"),
+    "theta": ("peak |base rotation|", "rad"),
+    "V_min": ("least vertical displacement of O (up positive)", "length"),
+    "V_max": ("greatest vertical displacement of O (up positive)", "length"),
+    "base_shear": ("peak |base shear|", "force"),
+    "overturning_moment": ("peak |overturning moment about O|", "moment"),
+    "story_drift": ("peak |story drift|", "length"),
+    "uplift_left": ("peak uplift of the left edge", "length"),
+    "uplift_max": ("peak uplift of any foundation spring", "length"),
+    "spring_force_max": ("peak compression in a foundation spring", "force"),
+    "residual_settlement": ("settlement of O at the end of the run (down positive)", "length"),
+    "plastic_settlement_max": ("largest plastic settlement of a spring at the end", "length"),
+    "plastic_settlement_mean": ("mean plastic settlement of the springs at the end", "length"),
+    "min_contact_length": ("least length of the base in contact", "length"),
+    "energy_balance_error": ("energy balance error, relative to the input", "1"),
 }
 
 
@@ -45,6 +67,7 @@ def to_dataset(response):
     from .response import ENERGY_NAMES
 
     units, model = _units(response), response.model
+    units["acceleration"] = f"{units['length']}/s^2"
     names = list(response.dofs.names)
     modes = sp.MODE_NAMES[sp.UPLIFT]
     coords = {
@@ -54,7 +77,7 @@ def to_dataset(response):
                    {"long_name": "spring index (stories first, then the foundation)"}),
         "position": ("spring", model.params["x"],
                      {"units": units["length"], "long_name": "spring position from O"}),
-        "kind": ("spring", model.kind, {"long_name": "spring kind", "flag_values":
+        "kind": ("spring", np.asarray(model.kind, np.int8), {"long_name": "spring kind", "flag_values":
                                         np.array([0, 1, 2], np.int8),
                                         "flag_meanings": "story uplift bonded"}),
         "component": ("component", list(ENERGY_NAMES), {"long_name": "energy account"}),
@@ -79,13 +102,47 @@ def to_dataset(response):
                                 {"units": units["length"], "long_name": "plastic deformation"}),
         "energy": (("time", "component"), response.energy,
                    {"units": units["energy"], "long_name": "cumulative energy account"}),
+        "spring_stiffness": ("spring", model.params["k"] + model.params["kh"],
+                             {"units": units["stiffness"], "long_name": "spring stiffness"}),
+        "spring_static_force": ("spring", model.params["f0"], {
+            "units": units["force"], "long_name": "static compression of a foundation spring"}),
     })
-    attrs = {"Conventions": "CF-1.10", "title": model.scene.title, "scene": model.scene.name,
-             "units": model.scene.units.name,
-             "peaks": json.dumps(response.peaks, default=float),
-             "info": json.dumps(response.info, default=str),
-             "provenance": json.dumps(response.provenance, default=str)}
+    data.update(_peaks(response, units))
+    data.update(_ground_motion(response, units, coords))
+    attrs = cf_attributes({
+        "Conventions": "CF-1.10", "title": model.scene.title, "scene": model.scene.name,
+        "units": model.scene.units.name, "gravity": model.scene.units.gravity,
+        "source": "upliftlab reduced model (compatibility-matrix formulation)",
+        "info": response.info, "provenance": response.provenance})
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def _peaks(response, units) -> dict:
+    """The peaks as scalar variables ``peak_<name>`` (the story drifts along ``story``)."""
+    data = {}
+    for name, value in response.peaks.items():
+        long, kind = PEAK_UNITS[name]
+        attrs = {"units": units.get(kind, kind), "long_name": long}
+        if isinstance(value, list):
+            data[f"peak_{name}"] = ("story", np.asarray(value, dtype=float), attrs)
+            data["story"] = ("story", np.arange(1, len(value) + 1),
+                             {"long_name": "story, counted from the base"})
+        else:
+            data[f"peak_{name}"] = ((), value, attrs)
+    return data
+
+
+def _ground_motion(response, units, coords) -> dict:
+    """The ground acceleration as the run read it (the record's samples, scaled and extended),
+    on ``record_time``: in the file, so that a result needs no motion file to be re-read."""
+    motion = response.motion
+    if motion is None:
+        return {}
+    coords["record_time"] = ("record_time", np.arange(motion.acceleration.size) * motion.dt,
+                             {"units": "s", "long_name": "time of the ground motion's samples"})
+    return {"ground_acceleration": ("record_time", motion.acceleration * response.model.g, {
+        "units": units["acceleration"], "long_name": "horizontal ground acceleration",
+        "motion": motion.name, "motion_source": motion.source})}
 
 
 def to_frame(response):

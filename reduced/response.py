@@ -3,12 +3,11 @@
 A :class:`Response` is a record of arrays. Derived histories (u, θ, V, base shear, overturning
 moment, uplift, contact length) are properties computed from the stored state, so that one
 stored set of arrays serves every figure and summary. :meth:`Response.save` writes one
-self-describing NetCDF file (and CSV on request), atomically.
+self-describing NetCDF-4 file (and CSV on request), atomically.
 """
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -16,8 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..results import write_csv, write_netcdf
-from . import springs as sp
+from ..results import write_csv, write_dataset
 from .model import ReducedModel
 from .peak_slots import TrackedPeaks, decode_peaks
 from .static import contact_lengths
@@ -52,6 +50,7 @@ class Response:
     impacts: np.ndarray = field(default_factory=lambda: np.zeros((0, 5)))
     info: dict = field(default_factory=dict)
     provenance: dict = field(default_factory=dict)
+    motion: object = field(default=None, repr=False)  # the Motion the run read (for its file)
 
     # ---- histories --------------------------------------------------------------------------
     @property
@@ -267,6 +266,13 @@ class Response:
         return {k: (None if isinstance(v, float) and not math.isfinite(v) else v)
                 for k, v in out.items()}
 
+    def __repr__(self) -> str:
+        """One line: the scene, the integrator, the stored span and the verdict with the peaks
+        (the arrays are in :meth:`to_xarray`)."""
+        return (f"<Response {self.summary_line()}; {self.info.get('integrator', '?')}, "
+                f"{self.time.size} stored times over {self.time[-1]:.4g} s, "
+                f"{self.model.params.size} springs, {self.verdict}>")
+
     def summary_line(self) -> str:
         s = self.summary()
         u = self.model.scene.units
@@ -298,52 +304,11 @@ class Response:
 
     # ---- files ------------------------------------------------------------------------------
     def save(self, path: str | Path, *, csv: bool = False) -> list[Path]:
-        """Write one NetCDF file (and a CSV of the scalar histories if ``csv``); atomic."""
+        """Write one NetCDF-4 file, the labelled dataset of :meth:`to_xarray` (and a CSV of the
+        scalar histories if ``csv``); atomic."""
         path = Path(path)
         u = self.model.scene.units
-        L, F = u.length, u.force
-        t = ("time",)
-        ts = ("time", "spring")
-        variables = {
-            "time": (t, self.time, {"units": "s"}),
-            "q": (("time", "dof"), self.q, {"dofs": list(self.dofs.names)}),
-            "qd": (("time", "dof"), self.qd, {"dofs": list(self.dofs.names)}),
-            "u": (t, self.u, {"units": L, "long_name": "superstructure deformation (eq. 7)"}),
-            "x": (t, self.x, {"units": L, "long_name": "top displacement relative to ground"}),
-            "X": (t, self.X, {"units": L, "long_name": "absolute top displacement"}),
-            "theta": (t, self.theta, {"units": "rad"}),
-            "V": (t, self.V, {"units": L, "long_name": "vertical displacement of O, up"}),
-            "base_shear": (t, self.base_shear, {"units": F}),
-            "overturning_moment": (t, self.overturning_moment, {"units": f"{F}*{L}"}),
-            "contact_length": (t, self.contact_length, {"units": L}),
-            "ground_displacement": (t, self.ground_displacement,
-                                    {"units": L, "long_name": "ground displacement"}),
-            "spring_deformation": (ts, self.deformation, {"units": L}),
-            "spring_force": (ts, self.force, {"units": F}),
-            "spring_mode": (ts, self.mode.astype(np.int8),
-                            {"meaning": json.dumps({str(k): v for k, v in
-                                                    sp.MODE_NAMES[sp.UPLIFT].items()})}),
-            "plastic_deformation": (ts, self.plastic, {"units": L}),
-            "spring_position": (("spring",), self.model.params["x"], {"units": L}),
-            "spring_stiffness": (("spring",), self.model.params["k"] + self.model.params["kh"],
-                                 {"units": f"{F}/{L}"}),
-            "spring_static_force": (("spring",), self.model.params["f0"], {"units": F}),
-            "spring_kind": (("spring",), self.model.kind,
-                            {"meaning": "0 story, 1 uplift, 2 bonded"}),
-        }
-        for i, name in enumerate(ENERGY_NAMES):
-            variables[f"energy_{name}"] = (t, self.energy[:, i], {"units": f"{F}*{L}"})
-        attrs = {
-            "title": self.model.scene.title,
-            "scene": self.model.scene.name,
-            "units": u.name,
-            "gravity": u.gravity,
-            "peaks": self.peaks,
-            "info": self.info,
-            "provenance": self.provenance,
-            "Conventions": "upliftlab-1",
-        }
-        written = [write_netcdf(path, variables, attrs)]
+        written = [write_dataset(path, self.to_xarray())]
         if csv:
             cols = {"time": self.time, "u": self.u, "x": self.x, "theta": self.theta,
                     "V": self.V, "base_shear": self.base_shear,

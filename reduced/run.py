@@ -119,7 +119,7 @@ def run_model(model: ReducedModel, motion: Motion, *, integrator: str | None = N
                       scene_digest=model.scene.digest, scene_data=model.scene.data)
     xg = ground_displacement(motion.acceleration, motion.dt, model.g, t)
     response = Response(model=model, ground_displacement=xg, info=info, provenance=prov,
-                        **arrays)
+                        motion=motion, **arrays)
     check_response(response)
     for note in model.notes:
         warnings.warn(note, ModelWarning, stacklevel=3)

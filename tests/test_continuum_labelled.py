@@ -56,3 +56,11 @@ def test_a_pushover_selects_by_rotation():
     for name in ds.data_vars:
         assert ds[name].attrs.get("long_name"), name
         assert ds[name].attrs.get("units") or "flag_values" in ds[name].attrs, name
+
+
+def test_the_repr_is_one_short_line_with_the_peaks(result):
+    # Reference: the result's own arrays (peak |θ| and the settlement at the end).
+    text = repr(result)
+    assert "\n" not in text and len(text) < 300, text
+    assert f"{np.max(np.abs(result.theta)):.4g} rad" in text
+    assert f"{-result.footing[-1, 1]:.4g} m" in text and text.startswith("<DynamicResult ")

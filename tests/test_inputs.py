@@ -10,8 +10,8 @@ import pytest
 
 from upliftlab.checks import InputError
 from upliftlab.cli import main as cli
-from upliftlab.motions import (Motion, cosine_pulse, free_vibration, harmonic, load_motion,
-                               read_motion, ricker_pulse, sine_pulse)
+from upliftlab.motions import (Motion, cosine_pulse, find_motion, free_vibration, harmonic,
+                               load_motion, read_motion, ricker_pulse, sine_pulse)
 from upliftlab.reduced import run
 from upliftlab.results import read_netcdf, write_netcdf
 from upliftlab.scenes import load_scene, packaged_scenes
@@ -158,17 +158,53 @@ def test_builtin_motions():
 
 
 def test_netcdf_results_are_self_describing_and_read_by_xarray(tmp_path):
+    # Reference: the CF-1.10 conventions and the NetCDF-4 format (an HDF5 file, its arrays
+    # deflated), checked with h5py independently of xarray; the values round-trip exactly.
     xr = pytest.importorskip("xarray")
-    response = run(load_scene("short_period_free", case="C", overrides=["motion.duration=0.5"]))
+    h5py = pytest.importorskip("h5py")
+    scene = load_scene("short_period_free", case="C", overrides=["motion.duration=0.5"])
+    response = run(scene)
     path = response.save(tmp_path / "run.nc", csv=True)[0]
-    ds = xr.open_dataset(path, engine="scipy")
-    np.testing.assert_allclose(ds["u"].values, response.u)
-    assert ds["u"].attrs["units"] == "in"
-    provenance = json.loads(ds.attrs["provenance"])
-    assert provenance["scene"] == "short_period_free-C" and provenance["model"] == "reduced"
-    assert json.loads(ds.attrs["peaks"])["u"] == pytest.approx(response.peaks["u"])
+    assert path.read_bytes()[:8] == b"\x89HDF\r\n\x1a\n"  # NetCDF-4 is HDF5
+    with h5py.File(path) as h5:
+        assert h5["spring_force"].compression == "gzip" and h5["spring_force"].shuffle
+    ds = xr.open_dataset(path, engine="h5netcdf")
+    np.testing.assert_array_equal(ds["u"].values, response.u)
+    np.testing.assert_array_equal(ds.spring_force.sel(spring=3).values, response.force[:, 3])
+    np.testing.assert_array_equal(ds.q.sel(dof="theta").values, response.theta)
+    assert ds.attrs["Conventions"] == "CF-1.10" and ds["u"].attrs["units"] == "in"
+    for name, var in ds.variables.items():
+        assert var.attrs.get("long_name"), name
+        if var.dtype.kind == "f":
+            assert var.attrs.get("units"), name
+    assert ds["spring_mode"].attrs["flag_meanings"].split() == [
+        "separated", "contact", "yielding", "clipped"]
+    assert ds["peak_u"].item() == response.peaks["u"] and ds["peak_u"].attrs["units"] == "in"
+    assert ds.attrs["provenance_scene"] == "short_period_free-C"
+    assert ds.attrs["provenance_model"] == "reduced"
+    assert len(ds.attrs["provenance_source_sha256"]) == 64
+    assert ds.attrs["provenance_numba"] and ds.attrs["provenance_scipy"]
+    assert len(ds.attrs["info_motion_sha256"]) == 64
+    # the motion the run read is in the file: the free vibration's record is all zeros, so
+    # check its length and time axis against the run's duration
+    assert ds.record_time.values[-1] <= 0.5 + 1e-12 and ds.ground_acceleration.size >= 2
     ds.close()
     assert (tmp_path / "run.csv").read_text().splitlines()[2].startswith("time,u,x,theta")
+
+
+def test_a_records_samples_are_in_its_result_file(tmp_path, elcentro):
+    # Reference: the record's file read with numpy alone (columns time [s], acceleration [g]),
+    # in g after dividing by g in the scene's units (386.09 in/s²).
+    xr = pytest.importorskip("xarray")
+    response = run(load_scene("short_period_elcentro", case="B",
+                              overrides=["motion.duration=1.0"]))
+    ds = xr.open_dataset(response.save(tmp_path / "run.nc")[0], engine="h5netcdf")
+    recorded = ds.ground_acceleration.values / 386.09
+    assert ds.ground_acceleration.attrs["units"] == "in/s^2"
+    assert recorded.size == 50 and ds.record_time.values[1] == pytest.approx(0.02, rel=1e-12)
+    first_second = np.loadtxt(find_motion("elcentro_1940_ns"))[:50, 1]
+    assert np.abs(recorded - first_second).max() <= 1e-12
+    ds.close()
 
 
 def test_results_are_written_atomically(tmp_path):

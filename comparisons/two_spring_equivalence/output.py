@@ -8,12 +8,13 @@ from pathlib import Path
 
 import numpy as np
 
-from ...results import provenance, write_csv, write_netcdf
+from ...results import cf_attributes, provenance, write_csv, write_dataset
+from ...units import unit_system
 from ..protocol import Context
 from ..study import StudyResult, ascii_text, write_summary
 from .convergence import Convergence
 from .figures import write_figures
-from .grid import FLOOR_FRACTION, METRICS, STUDY
+from .grid import FLOOR_FRACTION, METRIC_LABELS, METRICS, STUDY
 from .maps import ErrorMap
 from .result import TwoSpringEquivalence
 from .statics import Statics
@@ -33,7 +34,8 @@ def write(result: TwoSpringEquivalence, ctx: Context) -> StudyResult:
                       store=str(store.root))
     files = [_write_statics(result.statics, out / "statics.csv"),
              _write_convergence(result.convergence, out / "convergence.nc", prov)]
-    files += [_write_map(m, out / f"map_{m.name}.nc", prov) for m in result.maps]
+    files += [_write_map(m, out / f"map_{m.name}.nc", prov, base.table["units"])
+              for m in result.maps]
     if result.options.figures:
         files += write_figures(result, out / "figures")
     elapsed = ctx.elapsed()
@@ -55,33 +57,76 @@ def _write_statics(statics: Statics, path: Path) -> Path:
 
 
 def _write_convergence(conv: Convergence, path: Path, prov: Mapping) -> Path:
-    variables = {"springs": (("springs",), np.array(conv.candidates), {})}
-    for key, values in conv.static.items():
-        variables[f"static_{key}"] = (("springs",), np.array(values), {"units": "M/(N B)"})
+    return write_dataset(path, convergence_dataset(conv, prov))
+
+
+def _write_map(emap: ErrorMap, path: Path, prov: Mapping, units: str) -> Path:
+    return write_dataset(path, map_dataset(emap, prov, units))
+
+
+def convergence_dataset(conv: Convergence, prov: Mapping):
+    """The convergence check in N as a labelled dataset over ``springs``."""
+    import xarray as xr
+
+    springs = ("springs",)
+    data = {f"static_{key}": (springs, np.array(values, dtype=float), {
+        "units": "1", "long_name": f"{key} of the uniform bed, M/(N B)"})
+        for key, values in conv.static.items()}
     for case, measures in conv.dynamic.items():
         for m, values in measures.items():
-            variables[f"case_{case}_{m}"] = (("springs",), np.array(values, dtype=float), {})
-    attrs = {"title": f"{STUDY}: convergence of the Winkler bed in N", "chosen_springs":
-             conv.springs, "converged": conv.converged, "changes": conv.changes,
-             "motion": ascii_text(conv.motion), "provenance": prov}
-    return write_netcdf(path, variables, attrs)
+            data[f"case_{case}_{m}"] = (springs, np.array(values, dtype=float), {
+                "units": "scene units of the measure",
+                "long_name": f"Case {case}: {METRIC_LABELS.get(m, m)}"})
+    coords = {"springs": (springs, np.array(conv.candidates),
+                          {"units": "1", "long_name": "number of springs in the bed"})}
+    attrs = {"Conventions": "CF-1.10", "title": f"{STUDY}: convergence of the Winkler bed in N",
+             "chosen_springs": conv.springs, "converged": conv.converged,
+             "changes": conv.changes, "motion": ascii_text(conv.motion), "provenance": prov}
+    return xr.Dataset(data, coords=coords, attrs=cf_attributes(attrs))
 
 
-def _write_map(emap: ErrorMap, path: Path, prov: Mapping) -> Path:
-    dims5 = ("case", "layout", "measure", "y", "x")
+def map_dataset(emap: ErrorMap, prov: Mapping, units: str):
+    """An error map as a labelled dataset: ``error`` over (case, layout, measure, y, x), so
+    that ``ds.error.sel(case="C", layout="edge", measure="u")`` is one map; the two-spring
+    values and the bed's reference per measure with its units (``value_u``, ``reference_u``)."""
+    import xarray as xr
+
+    u = unit_system(units)
+    unit_of = {"u": u.length, "theta": "rad", "uplift": u.length,
+               "residual_settlement": u.length, "base_shear": u.force,
+               "dissipated_energy": f"{u.force}*{u.length}"}
     numeric_y = all(isinstance(v, (int, float)) for v in emap.y.values)
-    variables = {
-        "x": (("x",), np.array(emap.x.values, dtype=float),
-              {"long_name": ascii_text(emap.x.label)}),
-        "y": (("y",), np.array(emap.y.values if numeric_y else range(len(emap.y.values)),
-                               dtype=float), {"long_name": ascii_text(emap.y.label)}),
-        "error": (dims5, emap.errors, {"long_name": "(two-spring - bed)/max(|bed|, floor)"}),
-        "value": (dims5, emap.values, {}),
-        "reference": (("case", "measure", "y", "x"), emap.reference, {}),
-        "uplifted": (("case", "y", "x"), emap.uplifted, {}),
+    coords = {
+        "case": ("case", list(emap.cases), {"long_name": "foundation model (Case A, B or C)"}),
+        "layout": ("layout", list(emap.layouts), {"long_name": "two-spring layout"}),
+        "measure": ("measure", list(METRICS), {"long_name": "measure compared"}),
+        "x": ("x", np.array(emap.x.values, dtype=float), {
+            "long_name": ascii_text(emap.x.label), "units": _axis_unit(emap.x.unit)}),
+        "y": ("y", np.array(emap.y.values, dtype=float) if numeric_y
+              else [str(v) for v in emap.y.values],
+              {"long_name": ascii_text(emap.y.label), "units": _axis_unit(emap.y.unit)}),
     }
-    attrs = {"title": ascii_text(emap.title), "bed": emap.bed, "cases": list(emap.cases),
-             "layouts": list(emap.layouts), "measures": list(METRICS),
-             "y_labels": [str(v) for v in emap.y.values], "floor_fraction": FLOOR_FRACTION,
-             "failures": list(emap.failures), "provenance": prov}
-    return write_netcdf(path, variables, attrs)
+    data = {
+        "error": (("case", "layout", "measure", "y", "x"), emap.errors, {
+            "units": "1", "long_name": "(two-spring - bed)/max(|bed|, floor); NaN: run failed"}),
+        "uplifted": (("case", "y", "x"), emap.uplifted.astype(np.int8), {
+            "long_name": "the bed separated", "flag_values": np.array([0, 1], np.int8),
+            "flag_meanings": "in_contact uplifted"}),
+    }
+    for k, m in enumerate(METRICS):
+        label = METRIC_LABELS[m]
+        data[f"value_{m}"] = (("case", "layout", "y", "x"), emap.values[:, :, k], {
+            "units": unit_of[m], "long_name": f"{label} of the two springs"})
+        data[f"reference_{m}"] = (("case", "y", "x"), emap.reference[:, k], {
+            "units": unit_of[m], "long_name": f"{label} of the Winkler bed ({emap.bed})"})
+    attrs = {"Conventions": "CF-1.10", "title": ascii_text(emap.title), "bed": emap.bed,
+             "floor_fraction": FLOOR_FRACTION, "failures": list(emap.failures),
+             "energy_balance_error": emap.energy_balance_error, "provenance": prov}
+    return xr.Dataset(data, coords=coords, attrs=cf_attributes(attrs))
+
+
+def _axis_unit(unit: str) -> str:
+    """An axis's unit as CF text: seconds as ``s``, a multiple of a named quantity as its name
+    (e.g. ``a_up``), and ``1`` for a plain number or a label."""
+    text = ascii_text(unit).strip().lstrip("x×* ").strip()
+    return text or "1"

@@ -38,6 +38,24 @@ class TwoSpringEquivalence:
     def map(self, name: str) -> ErrorMap:
         return next(m for m in self.maps if m.name == name)
 
+    def __repr__(self) -> str:
+        """One line: the bed's N, the maps and where the files are."""
+        names = ", ".join(m.name for m in self.maps)
+        return f"<TwoSpringEquivalence N = {self.springs} springs, maps: {names}; {self.study!r}>"
+
+    def to_xarray(self):
+        """The study's data as an :class:`xarray.DataTree`: ``convergence`` and one node per
+        error map (``map_aspect``, …), the datasets its files hold, so that
+        ``tree["map_aspect"].error.sel(case="C", layout="edge", measure="u")`` is one map."""
+        import xarray as xr
+
+        from .output import convergence_dataset, map_dataset
+
+        prov, units = self.study.provenance, self.base.table["units"]
+        nodes = {"convergence": convergence_dataset(self.convergence, prov)}
+        nodes.update({f"map_{m.name}": map_dataset(m, prov, units) for m in self.maps})
+        return xr.DataTree.from_dict(nodes, name=self.study.name)
+
     def region(self, map: str, case: str, layout: str, metric: str = "u") -> RegionStatement:
         return next(r for r in self.regions if (r.map, r.case, r.layout, r.metric)
                     == (map, case, layout, metric))

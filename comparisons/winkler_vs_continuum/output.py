@@ -8,11 +8,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ...results import provenance, write_csv, write_netcdf
+from ...results import cf_attributes, provenance, write_csv, write_dataset
 from ..protocol import Context
 from ..study import StudyResult, ascii_text, write_summary
 from .analysis import ErrorTable
-from .dynamics import DYNAMIC_MEASURES, DynamicRun, HISTORIES
+from .dynamics import DYNAMIC_LABELS, DYNAMIC_MEASURES, DynamicRun, HISTORIES
 from .figures import write_figures
 from .options import STUDY
 from .result import WinklerVsContinuum
@@ -33,8 +33,8 @@ def write(result: WinklerVsContinuum, ctx: Context) -> StudyResult:
                       continuum_dofs=result.reference.dofs)
     files = [_write_paths(result, "monotonic", out / "monotonic.csv"),
              _write_paths(result, "cyclic", out / "cyclic.csv"),
-             _write_errors(result.table, out / "errors.nc", prov)]
-    files += [_write_dynamic(run, out / f"dynamic_{run.key}.nc", prov)
+             _write_errors(result.table, out / "errors.nc", prov, result.scene.units)]
+    files += [_write_dynamic(run, out / f"dynamic_{run.key}.nc", prov, result.scene.units)
               for run in result.dynamics.runs]
     if result.options.figures:
         files += write_figures(result, out / "figures")
@@ -66,31 +66,86 @@ def _write_paths(result: WinklerVsContinuum, which: str, path: Path) -> Path:
         f"{units.length}; continuum = the scene's soil, continuum_elastic = elastic soil"))
 
 
-def _write_errors(table: ErrorTable, path: Path, prov: Mapping) -> Path:
-    dims = ("calibration", "quantity")
-    variables = {"error": (dims, table.errors, {"long_name": "(bed - continuum)/max(|continuum|,"
-                                                             " floor)"}),
-                 "value": (dims, np.where(np.isfinite(table.values), table.values, -1.0),
-                           {"missing": "-1 where the bed has no such value (elastic N_ult)"}),
-                 "reference": (("quantity",), table.reference, {}),
-                 "floor": (("quantity",), table.floors, {})}
-    attrs = {"title": f"{STUDY}: error table", "calibrations": list(table.calibrations),
-             "quantities": list(table.quantities),
-             "labels": [ascii_text(s) for s in table.labels],
-             "groups": [ascii_text(s) for s in table.groups], "provenance": prov}
-    return write_netcdf(path, variables, attrs)
+def _write_errors(table: ErrorTable, path: Path, prov: Mapping, units) -> Path:
+    return write_dataset(path, errors_dataset(table, prov, units))
 
 
-def _write_dynamic(run: DynamicRun, path: Path, prov: Mapping) -> Path:
-    """The overlaid histories of one motion (continuum and beds) with their peaks."""
+def _write_dynamic(run: DynamicRun, path: Path, prov: Mapping, units) -> Path:
+    return write_dataset(path, dynamic_dataset(run, prov, units))
+
+
+def errors_dataset(table: ErrorTable, prov: Mapping, units):
+    """The error table as a labelled dataset: ``error`` over (calibration, quantity), so that
+    ``ds.error.sel(calibration="uniform_plastic", quantity="onset_moment")`` is one entry, with
+    each quantity's label and group as coordinates along it; the quantities mix units, so each
+    has its own ``value_<quantity>`` (the beds, over calibration) and ``reference_<quantity>``
+    (the continuum, its error floor as an attribute), in the scene's units per unit length."""
+    import xarray as xr
+
+    coords = {
+        "calibration": ("calibration", list(table.calibrations),
+                        {"long_name": "Winkler-bed calibration"}),
+        "quantity": ("quantity", list(table.quantities), {"long_name": "quantity compared"}),
+        "label": ("quantity", [ascii_text(s) for s in table.labels],
+                  {"long_name": "what the quantity is"}),
+        "group": ("quantity", [ascii_text(s) for s in table.groups],
+                  {"long_name": "what the quantity belongs to"}),
+    }
+    data = {"error": (("calibration", "quantity"), table.errors, {
+        "units": "1", "long_name": "(bed - continuum)/max(|continuum|, floor); NaN: none"})}
+    for k, (key, label) in enumerate(zip(table.quantities, table.labels)):
+        unit = quantity_unit(key, units)
+        data[f"value_{key}"] = ("calibration", table.values[:, k], {
+            "units": unit, "long_name": ascii_text(f"{label} of the bed (inf: no capacity)")})
+        data[f"reference_{key}"] = ((), table.reference[k], {
+            "units": unit, "long_name": ascii_text(f"{label} of the continuum"),
+            "error_floor": float(table.floors[k])})
+    attrs = {"Conventions": "CF-1.10", "title": f"{STUDY}: error table", "provenance": prov}
+    return xr.Dataset(data, coords=coords, attrs=cf_attributes(attrs))
+
+
+def quantity_unit(key: str, units) -> str:
+    """The unit of a compared quantity (per unit length of the strip, plane strain) by its
+    key: stiffnesses, moments and energies per length, lengths, rotations."""
+    F, L = units.force, units.length
+    if key == "K_r":
+        return f"{F}*{L}/rad/{L}"
+    if key == "K_v":
+        return f"{F}/{L}/{L}"
+    if key == "N_ult":
+        return f"{F}/{L}"
+    if key.endswith("_theta"):
+        return "rad"
+    if key.startswith(("onset_moment", "M_", "cyclic_M", "cyclic_energy")):
+        return f"{F}*{L}/{L}"
+    return L  # contact lengths, settlements, story deformation, uplift
+
+
+def dynamic_dataset(run: DynamicRun, prov: Mapping, units):
+    """One motion's overlaid histories (continuum and beds) over (model, time) and their peaks
+    over (measure, model)."""
+    import xarray as xr
+
     models = ("continuum",) + tuple(run.beds)
-    variables = {"time": (("time",), run.time, {"units": "s"})}
+    length = units.length
+    history_units = {"theta": ("rad", "footing rotation"), "u": (length, "story deformation"),
+                     "uplift": (length, "uplift of the footing's edge"),
+                     "settlement": (length, "settlement of the centre from rest (down)"),
+                     "contact": (length, "length of the base in contact")}
+    coords = {"model": ("model", list(models), {"long_name": "continuum or bed calibration"}),
+              "time": ("time", run.time, {"units": "s", "long_name": "time", "axis": "T"}),
+              "measure": ("measure", list(DYNAMIC_MEASURES), {"long_name": "peak measure"})}
+    data = {}
     for key in HISTORIES:
-        data = [run.continuum[key]] + [run.beds[n][key] for n in run.beds]
-        variables[key] = (("model", "time"), np.array(data, dtype=float), {})
-    peaks = np.array([[run.continuum["peaks"][m]] + [run.beds[n]["peaks"][m] for n in run.beds]
-                      for m in DYNAMIC_MEASURES], dtype=float)
-    variables["peak"] = (("measure", "model"), peaks, {})
-    attrs = {"title": ascii_text(f"{STUDY}: {run.label}"), "models": list(models),
-             "measures": list(DYNAMIC_MEASURES), "provenance": prov}
-    return write_netcdf(path, variables, attrs)
+        values = [run.continuum[key]] + [run.beds[n][key] for n in run.beds]
+        unit, long = history_units[key]
+        data[key] = (("model", "time"), np.array(values, dtype=float),
+                     {"units": unit, "long_name": long})
+    for m in DYNAMIC_MEASURES:
+        values = [run.continuum["peaks"][m]] + [run.beds[n]["peaks"][m] for n in run.beds]
+        unit = "rad" if m == "theta" else length
+        data[f"peak_{m}"] = ("model", np.array(values, dtype=float),
+                             {"units": unit, "long_name": ascii_text(DYNAMIC_LABELS[m])})
+    attrs = {"Conventions": "CF-1.10", "title": ascii_text(f"{STUDY}: {run.label}"),
+             "provenance": prov}
+    return xr.Dataset(data, coords=coords, attrs=cf_attributes(attrs))

@@ -38,5 +38,25 @@ class WinklerVsContinuum:
     def calibration(self, name: str) -> Calibration:
         return next(c for c in self.calibrations if c.name == name)
 
+    def __repr__(self) -> str:
+        """One line: the scene, the calibrations, the motions and where the files are."""
+        motions = ", ".join(run.key for run in self.dynamics.runs) or "none"
+        return (f"<WinklerVsContinuum {self.scene.name}: {len(self.calibrations)} calibrations, "
+                f"{len(self.table.quantities)} quantities, motions: {motions}; {self.study!r}>")
+
+    def to_xarray(self):
+        """The study's data as an :class:`xarray.DataTree`: ``errors`` (the error table over
+        calibration and quantity) and one node per motion (``dynamic_<key>``), the datasets its
+        files hold: ``tree["errors"].error.sel(calibration="uniform_plastic")``."""
+        import xarray as xr
+
+        from .output import dynamic_dataset, errors_dataset
+
+        prov, units = self.study.provenance, self.scene.units
+        nodes = {"errors": errors_dataset(self.table, prov, units)}
+        nodes.update({f"dynamic_{run.key}": dynamic_dataset(run, prov, units)
+                      for run in self.dynamics.runs})
+        return xr.DataTree.from_dict(nodes, name=self.study.name)
+
     def bed(self, name: str) -> BedResponse:
         return next(b for b in self.beds if b.calibration.name == name)
