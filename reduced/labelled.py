@@ -77,9 +77,9 @@ def to_dataset(response):
                    {"long_name": "spring index (stories first, then the foundation)"}),
         "position": ("spring", model.params["x"],
                      {"units": units["length"], "long_name": "spring position from O"}),
-        "kind": ("spring", np.asarray(model.kind, np.int8), {"long_name": "spring kind", "flag_values":
-                                        np.array([0, 1, 2], np.int8),
-                                        "flag_meanings": "story uplift bonded"}),
+        "kind": ("spring", np.asarray(model.kind, np.int8), {
+            "long_name": "spring kind", "flag_values": np.array([0, 1, 2], np.int8),
+            "flag_meanings": "story uplift bonded"}),
         "component": ("component", list(ENERGY_NAMES), {"long_name": "energy account"}),
     }
     data = {name: ("time", getattr(response, name),
