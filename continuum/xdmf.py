@@ -27,15 +27,15 @@ Per snapshot: point data ``displacement`` (3 components, z = 0, so *Warp By Vect
 **Footing base** (``footing.xdmf`` + ``footing.h5``): the footing's contact nodes at (x, 0, 0),
 sorted by x, joined by straight line cells (ParaView's *Plot Data* draws them over x; its
 *Integrate Variables* integrates line cells by the trapezoid rule, and skips quadratic ones,
-which is why the cells are straight). Per snapshot, the values the result holds at that step
-(:mod:`~upliftlab.continuum.footing` conventions): ``contact_pressure`` p_i (force/length²,
-compression positive, zero where open), ``contact_gap`` g_i (length, ≥ 0, zero where closed;
-both zeros to the contact solve's round-off, written as the result holds them),
-``footing_contact`` (1 closed, 0 open), ``contact_state`` (0 open, 1 stick, 2 slip +x, 3 slip
-−x), ``contact_force`` P_i = p_i w_i (force/length; w_i the node's weight ∫ φ_i ds, so Σ P_i is
-exactly the vertical load N the base carries, while the trapezoid of p over x only approximates
-it on a quadratic base), and ``footing_displacement`` (u, v − x θ, 0), the rigid base's motion
-there.
+which is why the cells are straight). Per snapshot, the values the result holds at that step,
+in the signs of :mod:`~upliftlab.continuum.footing` (``upliftlab/docs/conventions.md``):
+``contact_pressure`` p_i (force/length², compression positive, zero where open),
+``contact_gap`` g_i (length, ≥ 0, zero where closed; both zeros to the contact solve's
+round-off, written as the result holds them), ``footing_contact`` (1 closed, 0 open),
+``contact_state`` (0 open, 1 stick, 2 slip +x, 3 slip −x), ``contact_force`` P_i = p_i w_i
+(force/length; w_i the node's weight ∫ φ_i ds, so Σ P_i is exactly the vertical load N the base
+carries, while the trapezoid of p over x only approximates it on a quadratic base), and
+``footing_displacement`` (u, v − x θ, 0), the rigid base's motion there.
 
 Each file and its ``.h5`` are written in a private directory beside the target and moved into
 place, the ``.h5`` first: they appear complete or not at all, and nothing is written to the
