@@ -14,8 +14,9 @@ own, unrounded: meshio writes ``repr(float)``, which reads back exactly.
 **What the file says it holds.** XDMF 3 allows ``<Information Name=… Value=…/>`` under
 ``Domain``; each file carries ``time`` (e.g. ``imposed footing rotation theta [rad]``),
 ``time_quantity``, ``time_units``, ``kind``, ``scene`` and, per field, ``field <name>``: its
-meaning, sign and unit. meshio and ParaView skip these elements; they are there for a reader of
-the XML and for :func:`read_xdmf` (``information``). ParaView shows the time value itself.
+meaning, sign and unit. meshio's reader and VTK's XDMF reader read past these elements (neither
+shows them); they are there for a reader of the XML and for :func:`read_xdmf`
+(``information``). ParaView shows the time value itself.
 
 **Soil fields** (``fields.xdmf`` + ``fields.h5``), on the **linear sub-mesh** of the basis: each
 Q2 quad split into four quads on its nine nodes, each P2 triangle into four triangles on its six
@@ -25,9 +26,9 @@ Per snapshot: point data ``displacement`` (3 components, z = 0, so *Warp By Vect
 ``max_shear_stress`` (each element's value on its four sub-cells).
 
 **Footing base** (``footing.xdmf`` + ``footing.h5``): the footing's contact nodes at (x, 0, 0),
-sorted by x, joined by straight line cells (ParaView's *Plot Data* draws them over x; its
-*Integrate Variables* integrates line cells by the trapezoid rule, and skips quadratic ones,
-which is why the cells are straight). Per snapshot, the values the result holds at that step,
+sorted by x, joined by straight line cells (ParaView's *Plot Data*, X array Points_X, draws
+them over x; its *Integrate Variables* integrates line cells by the trapezoid rule and skips
+quadratic ones, which is why the cells are straight). Per snapshot, the values the result holds at that step,
 in the signs of :mod:`~upliftlab.continuum.footing` (``upliftlab/docs/conventions.md``):
 ``contact_pressure`` p_i (force/length², compression positive, zero where open),
 ``contact_gap`` g_i (length, ≥ 0, zero where closed; both zeros to the contact solve's
