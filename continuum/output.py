@@ -1,27 +1,7 @@
-"""Outputs of continuum analyses: an XDMF time series of the soil fields for ParaView, the
-uplift-zone pictures (through :mod:`upliftlab.meshes.render`), the M–θ figure of a pushover,
-and one-line summaries.
-
-**What a result must offer** (:class:`FieldHistory`, duck typed). A static path whose pushover
-recorded fields (``record_fields=True``, :mod:`~upliftlab.continuum.statics`) and a dynamic
-result both offer: ``time`` (nt; s, or the load-step number of a static path), ``footing``
-(nt, 3: u, v, θ), ``x`` (nc) the contact nodes, ``pressure`` and ``gap`` (nt, nc),
-``contact_length``, ``N``, ``M``, ``H`` (nt), ``snapshot_time`` (nk), ``displacement``
-(nk, ndofs) the soil DOF vector in the model basis's ordering, ``plastic_strain`` (nk, nelems)
-element averages, ``metadata`` (dict) and ``save(path)``. Optional: ``max_shear_stress``
-(nk, nelems), and ``snapshot_step`` (nk), the history row of each snapshot (static paths; a
-dynamic result's snapshots are matched to the nearest ``time``).
-
-**XDMF** (:func:`write_xdmf`): meshio's time series (XDMF 3 with one ``.h5`` of the same stem
-beside it), written on the **linear sub-mesh** of the basis: each Q2 quad split into four quads
-on its nine nodes, each P2 triangle into four triangles on its six nodes
-(:func:`~upliftlab.meshes.frames.linear_submesh`), so every nodal value is written exactly.
-Per snapshot, at time ``snapshot_time``: point data ``displacement`` (3 components, z = 0, so
-ParaView's *Warp By Vector* applies) and ``displacement_magnitude``; cell data
-``equivalent_plastic_strain`` and, if the result has it, ``max_shear_stress`` (each element's
-value on its four sub-cells). Both files are written in a private directory beside the target
-and moved into place, the ``.h5`` first: they appear complete or not at all, and nothing is
-written to the working directory (meshio 5.3.5 would put the ``.h5`` there).
+"""Outputs of continuum analyses: the XDMF time series for ParaView (the soil fields and the
+contact along the footing's base, :mod:`~upliftlab.continuum.xdmf`), the uplift-zone pictures
+(through :mod:`upliftlab.meshes.render`), the M–θ figure of a pushover, and one-line summaries.
+What a result must offer is :class:`~upliftlab.continuum.field_history.FieldHistory`.
 
 **M–θ figure** (:func:`moment_rotation_figure`): M, contact length c/B and settlement against θ,
 with the closed forms computed here (``upliftlab.continuum`` never imports the reduced
@@ -34,145 +14,24 @@ effective-width capacity of a strip on Tresca soil, Meyerhof 1953).
 
 from __future__ import annotations
 
-import os
-import tempfile
 from pathlib import Path
-from typing import Protocol
 
 import numpy as np
 
 from ..anchors import half_plane_rocking, prandtl_capacity, winkler_rocking  # noqa: F401
 from ..checks import InputError
-from ..meshes.render import linear_submesh, snapshot_rows
+from ..meshes.render import snapshot_rows
 from ..results import atomic_path
+from .field_history import FieldHistory, check_history
 from .summaries import (dynamic_summary, pushover_summary, rotation_schedule,  # noqa: F401
                         summary_line)
+from .xdmf import TimeAxis, read_xdmf, time_axis, write_footing_xdmf, write_xdmf
 
-__all__ = ["FieldHistory", "check_history", "write_xdmf", "read_xdmf", "winkler_rocking",
+__all__ = ["FieldHistory", "check_history", "TimeAxis", "time_axis", "write_xdmf",
+           "write_footing_xdmf", "read_xdmf", "winkler_rocking",
            "half_plane_rocking", "moment_rotation_figure", "save_figure", "rotation_schedule",
            "pushover_summary",
            "dynamic_summary", "summary_line", "write_outputs"]
-
-
-class FieldHistory(Protocol):
-    """The duck type the output functions read (module docstring)."""
-
-    time: np.ndarray
-    footing: np.ndarray
-    x: np.ndarray
-    pressure: np.ndarray
-    gap: np.ndarray
-    contact_length: np.ndarray
-    N: np.ndarray
-    M: np.ndarray
-    H: np.ndarray
-    snapshot_time: np.ndarray
-    displacement: np.ndarray
-    plastic_strain: np.ndarray
-    metadata: dict
-
-    def save(self, path): ...
-
-
-_REQUIRED = ("time", "footing", "x", "pressure", "gap", "contact_length", "N", "M", "H",
-             "snapshot_time", "displacement", "plastic_strain", "metadata")
-
-
-def check_history(result, model=None) -> None:
-    """Refuse a result that lacks a :class:`FieldHistory` attribute or recorded no fields, or
-    whose fields do not fit ``model``."""
-    missing = [name for name in _REQUIRED if not hasattr(result, name)]
-    if missing:
-        raise InputError(f"result ({type(result).__name__}): lacks {', '.join(missing)}; "
-                         "expected a FieldHistory (continuum.output)")
-    if getattr(result, "displacement", None) is None or np.size(result.snapshot_time) == 0:
-        raise InputError(f"result ({type(result).__name__}): no soil fields recorded (pass "
-                         "record_fields=True to the pushover)")
-    nk = np.size(result.snapshot_time)
-    shapes = {"displacement": np.shape(result.displacement),
-              "plastic_strain": np.shape(result.plastic_strain)}
-    if any(len(s) != 2 or s[0] != nk for s in shapes.values()):
-        raise InputError(f"result: {shapes} do not have {nk} snapshots")
-    if model is not None and (shapes["displacement"][1] != model.disc.ndofs
-                              or shapes["plastic_strain"][1] != model.mesh.nelements):
-        raise InputError(f"result: fields {shapes} do not fit the model ({model.disc.ndofs} "
-                         f"DOFs, {model.mesh.nelements} elements)")
-
-
-# ---------------------------------------------------------------------------------------------
-# XDMF
-# ---------------------------------------------------------------------------------------------
-
-
-def _writer_class():
-    import meshio
-
-    class _Writer(meshio.xdmf.TimeSeriesWriter):
-        """meshio's time-series writer with its ``.h5`` beside the ``.xdmf`` (an absolute
-        path), not in the working directory; the ``.xdmf`` refers to it by base name."""
-
-        def __enter__(self):
-            import h5py
-
-            self.h5_filename = str(self.filename.with_suffix(".h5").resolve())
-            self.h5_file = h5py.File(self.h5_filename, "w")
-            return self
-
-    return _Writer
-
-
-def write_xdmf(path, model, result) -> Path:
-    """Write the soil fields of every snapshot of ``result`` (a :class:`FieldHistory`) on
-    ``model``'s mesh to ``path`` (``.xdmf``) and its ``.h5`` (module docstring). Returns the
-    path of the ``.xdmf``."""
-    path = Path(path)
-    if path.suffix.lower() != ".xdmf":
-        raise InputError(f"path = {str(path)!r}: expected a .xdmf file")
-    check_history(result, model)
-    sub = linear_submesh(model.disc.basis)
-    points = np.column_stack((sub.points, np.zeros(len(sub.points))))
-    shear = getattr(result, "max_shear_stress", None)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory(prefix=f".{path.name}.", dir=path.parent) as tmp:
-        inner = Path(tmp) / path.name
-        with _writer_class()(inner) as writer:
-            writer.write_points_cells(points, [(sub.cell_type, sub.cells)])
-            for k, t in enumerate(np.asarray(result.snapshot_time, dtype=float)):
-                u = sub.vectors(result.displacement[k])
-                vector = np.column_stack((u, np.zeros(len(u))))
-                cells = {"equivalent_plastic_strain": [sub.cell_values(result.plastic_strain[k])]}
-                if shear is not None:
-                    cells["max_shear_stress"] = [sub.cell_values(shear[k])]
-                writer.write_data(float(t), point_data={
-                    "displacement": vector,
-                    "displacement_magnitude": np.linalg.norm(u, axis=1)}, cell_data=cells)
-        h5 = inner.with_suffix(".h5")
-        if not h5.is_file():
-            raise RuntimeError(f"meshio wrote no {h5.name} beside {inner}")
-        os.replace(h5, path.with_suffix(".h5"))
-        os.replace(inner, path)
-    return path
-
-
-def read_xdmf(path) -> dict:
-    """Read a time series written by :func:`write_xdmf`: ``points`` (np, 3), ``cells``
-    (list of meshio cell blocks), ``times`` (nk), ``point_data`` and ``cell_data`` (one dict per
-    step; cell data as single arrays)."""
-    import meshio
-
-    path = Path(path)
-    if not path.is_file():
-        raise InputError(f"path = {str(path)!r}: no such file")
-    with meshio.xdmf.TimeSeriesReader(path) as reader:
-        points, cells = reader.read_points_cells()
-        times, point_data, cell_data = [], [], []
-        for k in range(reader.num_steps):
-            t, pd, cd = reader.read_data(k)
-            times.append(t)
-            point_data.append(pd)
-            cell_data.append({name: np.concatenate(blocks) for name, blocks in cd.items()})
-    return {"points": points, "cells": cells, "times": np.array(times),
-            "point_data": point_data, "cell_data": cell_data}
 
 
 def _soil(metadata: dict) -> dict:
@@ -267,12 +126,15 @@ def save_figure(fig, path) -> Path:
 def write_outputs(directory, model, result, *, scene=None, renders: bool = True,
                   scale: float | None = None, progress=None) -> dict[str, Path]:
     """Write a run's files into ``directory``: ``result.nc`` (``result.save``), ``fields.xdmf``
-    and ``fields.h5``, ``uplift.png`` (the snapshot of largest |θ|) and ``uplift.gif`` (every
-    snapshot; skipped if not ``renders``), and for a pushover ``moment_rotation.png``.
+    and ``fields.h5`` (the soil), ``footing.xdmf`` and ``footing.h5`` (the contact along the
+    base; both time series at the same time values: :mod:`~upliftlab.continuum.xdmf`),
+    ``uplift.png`` (the snapshot of largest |θ|) and ``uplift.gif`` (every snapshot; skipped if
+    not ``renders``), and for a pushover ``moment_rotation.png``.
     ``progress(message)`` reports each file. Returns {name: path}."""
     from ..meshes.render import animate_uplift, render_uplift
 
     check_history(result, model)
+    axis = time_axis(result)  # refuses a result of unknown kind before any file is written
     directory = Path(directory)
     say = progress or (lambda message: None)
     written: dict[str, Path] = {}
@@ -280,7 +142,12 @@ def write_outputs(directory, model, result, *, scene=None, renders: bool = True,
     say(f"wrote {written['result.nc']}")
     written["fields.xdmf"] = write_xdmf(directory / "fields.xdmf", model, result)
     written["fields.h5"] = directory / "fields.h5"
-    say(f"wrote {written['fields.xdmf']} and fields.h5 ({np.size(result.snapshot_time)} steps)")
+    say(f"wrote {written['fields.xdmf']} and fields.h5 ({np.size(result.snapshot_time)} steps, "
+        f"time = {axis.description})")
+    written["footing.xdmf"] = write_footing_xdmf(directory / "footing.xdmf", model, result)
+    written["footing.h5"] = directory / "footing.h5"
+    say(f"wrote {written['footing.xdmf']} and footing.h5 (contact pressure and gap along the "
+        "base)")
     if str(getattr(result, "kind", "")).endswith(("rotation_pushover", "moment_pushover")):
         fig = moment_rotation_figure(result, scene=scene)
         written["moment_rotation.png"] = save_figure(fig, directory / "moment_rotation.png")

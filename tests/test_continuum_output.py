@@ -7,7 +7,8 @@ References:
   recorded displacement of a closed contact node equals the footing's motion there,
   uy = v − x θ (the contact condition, solved exactly);
 - the Tresca criterion bounds the element-averaged (σ1 − σ3)/2 by c_u;
-- the XDMF file read back by meshio equals what was written (same steps, times and fields);
+- the XDMF file read back by meshio equals what was written (same steps, times and fields; a
+  pushover's time is its rotation θ: tests/test_continuum_xdmf.py checks the footing's file);
 - the linear sub-mesh tiles the domain: its cell areas sum to the box area, all positive;
 - the tensionless Winkler closed form (compression-only springs) and the half-plane onset M = N B/4.
 Figures are checked by numbers (size, colour content, frame count), never by pixel comparison.
@@ -114,7 +115,7 @@ def test_xdmf_round_trip_inside_the_run_directory(run, tmp_path, monkeypatch):
     back = read_xdmf(target)
     sub = linear_submesh(run.model.disc.basis)
     n = run.path.theta.size
-    assert back["times"].tolist() == run.path.snapshot_time.tolist()
+    assert back["times"].tolist() == run.path.theta.tolist()  # a pushover's time is θ (rad)
     assert len(back["point_data"]) == n
     assert np.array_equal(back["points"][:, :2], sub.points)
     assert back["cells"][0].type == "quad" and len(back["cells"][0].data) == 4 * 162
@@ -203,7 +204,8 @@ def test_a_dynamic_shaped_result_matches_snapshots_to_the_nearest_time(run, tmp_
     # the nearest row, and the XDMF carries their times.
     p = run.path
     fake = SimpleNamespace(time=0.01 * np.arange(p.theta.size), footing=p.footing, x=p.x,
-                           pressure=p.pressure, gap=p.gap, contact_length=p.contact_length,
+                           pressure=p.pressure, gap=p.gap, status=p.status, kind="dynamic",
+                           contact_length=p.contact_length,
                            N=p.N, M=p.M, H=p.H, snapshot_time=np.array([0.0, 0.0149, 0.061]),
                            displacement=p.displacement[[0, 1, 6]],
                            plastic_strain=p.plastic_strain[[0, 1, 6]], metadata=p.metadata)
@@ -231,14 +233,22 @@ def test_cli_pushover_writes_every_file_and_prints_the_summary(tmp_path, capsys)
     captured = capsys.readouterr()
     assert code == 0, captured.err
     names = sorted(p.name for p in out.iterdir())
-    assert names == ["fields.h5", "fields.xdmf", "moment_rotation.png", "result.nc",
-                     "uplift.gif", "uplift.png", "upliftlab-run.json"]
+    assert names == ["fields.h5", "fields.xdmf", "footing.h5", "footing.xdmf",
+                     "moment_rotation.png", "result.nc", "uplift.gif", "uplift.png",
+                     "upliftlab-run.json"]
     lines = captured.out.strip().splitlines()
     assert len(lines) == 1 and "uplift onset at e = " in lines[0] and "peak M = " in lines[0]
     assert "max contact loss" in lines[0]
     steps = 6 + 1 + 2  # θ = 0, six steps, 0.4 and 0.8 θ_on (rotation_schedule)
     assert f"step {steps}/{steps}" in captured.err
-    assert len(read_xdmf(out / "fields.xdmf")["times"]) == steps
+    fields, footing = read_xdmf(out / "fields.xdmf"), read_xdmf(out / "footing.xdmf")
+    assert len(fields["times"]) == steps
+    # both series share their time values: the rotation θ (rad), from 0, increasing
+    assert footing["times"].tolist() == fields["times"].tolist()
+    assert fields["times"][0] == 0.0 and np.all(np.diff(fields["times"]) > 0.0)
+    assert fields["information"]["time"] == footing["information"]["time"] == \
+        "imposed footing rotation theta [rad]"
+    assert "time = imposed footing rotation theta [rad]" in captured.err
     assert imageio.imread(out / "uplift.gif", index=None).shape[0] == steps
 
 

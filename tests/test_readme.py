@@ -53,6 +53,12 @@ EXERCISED = {
     "upliftlab continuum strip_footing_clay --analysis dynamic --motion elcentro_1940_ns "
     "--set analysis.duration=2 --out results/clay-ec-2s":
         ("slow", ("results/clay-ec-2s/result.nc", "results/clay-ec-2s/uplift.gif")),
+    "upliftlab continuum strip_footing_clay --mesh elements_across=4 --steps 6 --no-render "
+    "--out results/clay-coarse && python -c \"from upliftlab.continuum.output import read_xdmf; "
+    "f = read_xdmf('results/clay-coarse/footing.xdmf'); print(f['information']['time'], "
+    "f['times'][-1])\"":
+        ("here", ("results/clay-coarse/result.nc", "results/clay-coarse/fields.xdmf",
+                  "results/clay-coarse/footing.xdmf", "results/clay-coarse/footing.h5")),
     "upliftlab report --out results/report": ("slow", ("results/report/report.html",)),
     "upliftlab report --fast": ("tests/test_report.py::test_report_writes_one_self_contained_html",
                                 ()),
