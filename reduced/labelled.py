@@ -28,6 +28,7 @@ SCALAR_HISTORIES = {
     "X": ("absolute top displacement", "length"),
     "theta": ("base rotation", "rad"),
     "V": ("vertical displacement of the base point O, up", "length"),
+    "sway": ("horizontal displacement of the base relative to the ground", "length"),
     "base_shear": ("base shear", "force"),
     "overturning_moment": ("overturning moment about O", "moment"),
     "contact_length": ("length of the base in contact", "length"),
@@ -74,7 +75,7 @@ def to_dataset(response):
         "time": ("time", response.time, {"units": "s", "long_name": "time", "axis": "T"}),
         "dof": ("dof", names, {"long_name": "degree of freedom"}),
         "spring": ("spring", np.arange(model.params.size),
-                   {"long_name": "spring index (stories first, then the foundation)"}),
+                   {"long_name": "spring index (stories first, then the sway spring, then the foundation)"}),
         "position": ("spring", model.params["x"],
                      {"units": units["length"], "long_name": "spring position from O"}),
         "kind": ("spring", np.asarray(model.kind, np.int8), {"long_name": "spring kind", "flag_values":
