@@ -334,6 +334,8 @@ class Response:
                     "V": self.V, "base_shear": self.base_shear,
                     "overturning_moment": self.overturning_moment,
                     "contact_length": self.contact_length}
+            if self.model.sway_spring >= 0:
+                cols["sway"] = self.sway
             if self.model.layout is not None:
                 cols["left_spring_displacement"] = self.left_spring_displacement
             written.append(write_csv(path.with_suffix(".csv"), cols,
