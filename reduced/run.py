@@ -202,6 +202,8 @@ class KernelInputs:
     def of(cls, model: ReducedModel, plan: StepPlan | None = None) -> KernelInputs:
         d = model.dofs
         scale = model.g * float(np.sum(model.mass[list(d.stories)])) + model.weight
+        if scale == 0.0:  # a rigid structure sliding on a fixed base: its own weight
+            scale = model.scene.structure.vertical_weight
         return cls(model.params, 1.0 / model.mass, model.geometric, model.ground_load,
                    model.weight, d.theta, d.v, model.story_count, scale,
                    model.scene.analysis.hht_alpha, frame_of(model, plan), story_table(model),
