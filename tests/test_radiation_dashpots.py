@@ -24,15 +24,15 @@ from upliftlab.scenes import Soil, load_scene
 def test_a_pair_of_springs_reproduces_both_dashpots():
     """Springs at x = −0.5 and 1.0 m, C_v = 3, C_r = 2: c₁ + c₂ = 3 and 0.25 c₁ + c₂ = 2 give
     0.75 c₁ = 1, so c₁ = 4/3 and c₂ = 5/3 (to 1e-12)."""
-    c, alpha, beta = distribute([-0.5, 1.0], [0.75, 0.75], 3.0, 2.0)
+    c, alpha, beta, where = distribute([-0.5, 1.0], [0.75, 0.75], 3.0, 2.0)
     np.testing.assert_allclose(c, [4.0 / 3.0, 5.0 / 3.0], rtol=1e-12)
-    assert math.isnan(alpha) and math.isnan(beta)
+    assert math.isnan(alpha) and math.isnan(beta) and where == "pair"
 
 
 def test_a_symmetric_pair_reproduces_both_only_at_its_own_ratio():
     """A pair at ±0.8 m has Σc x² = 0.64 Σc: C_v = 5, C_r = 3.2 gives 2.5 each; C_r = 3 is
     refused, naming the positions that would reproduce it (±√0.6 = ±0.7746)."""
-    c, _, _ = distribute([-0.8, 0.8], [1.0, 1.0], 5.0, 3.2)
+    c, *_ = distribute([-0.8, 0.8], [1.0, 1.0], 5.0, 3.2)
     np.testing.assert_allclose(c, [2.5, 2.5], rtol=1e-12)
     with pytest.raises(InputError, match=r"only at ±0\.774597"):
         distribute([-0.8, 0.8], [1.0, 1.0], 5.0, 3.0)
@@ -42,38 +42,59 @@ def test_four_springs_uniform_part_plus_end_concentration_by_hand():
     """A uniform bed of 4 on b = 1 m: w = 0.5, x = ±0.25, ±0.75. W = Σw = 2,
     A = Σw x² = 0.5 (2·0.0625 + 2·0.5625) = 0.625, E = x₁² + x₄² = 1.125. With C_v = 10,
     C_r = 4: 2α + 2β = 10 and 0.625 α + 1.125 β = 4 give β = 1.75, α = 3.25, so the middle
-    springs carry 0.5 α = 1.625 and the end ones 1.625 + 1.75 = 3.375 (to 1e-12)."""
+    springs carry 0.5 α = 1.625 and the end ones 1.625 + 1.75 = 3.375 (to 1e-12). The ratio
+    C_r/C_v = 0.4 is above the uniform part's A/W = 0.3125: the concentration goes to the ends."""
     bed = winkler_bed(1.0, 1.0, 4)
-    c, alpha, beta = distribute(bed.positions, bed.widths, 10.0, 4.0)
+    c, alpha, beta, where = distribute(bed.positions, bed.widths, 10.0, 4.0)
     assert alpha == pytest.approx(3.25, rel=1e-12) and beta == pytest.approx(1.75, rel=1e-12)
+    assert where == "ends"
     np.testing.assert_allclose(c, [3.375, 1.625, 1.625, 3.375], rtol=1e-12)
 
 
+def test_four_springs_uniform_part_plus_centre_concentration_by_hand():
+    """The same bed with C_v = 10, C_r = 2 (ratio 0.2, below A/W = 0.3125): the concentration
+    goes to the two springs nearest O, at ±0.25 (E_c = 2·0.0625 = 0.125):
+    2α + 2β = 10 and 0.625 α + 0.125 β = 2 give β = 2.25, α = 2.75, so the end springs carry
+    0.5 α = 1.375 and the middle ones 1.375 + 2.25 = 3.625 (to 1e-12)."""
+    bed = winkler_bed(1.0, 1.0, 4)
+    c, alpha, beta, where = distribute(bed.positions, bed.widths, 10.0, 2.0)
+    assert alpha == pytest.approx(2.75, rel=1e-12) and beta == pytest.approx(2.25, rel=1e-12)
+    assert where == "centre"
+    np.testing.assert_allclose(c, [1.375, 3.625, 3.625, 1.375], rtol=1e-12)
+
+
 @pytest.mark.parametrize("springs", [3, 20, 48, 257])
-def test_n_spring_beds_reproduce_both_dashpots(springs):
-    """Uniform beds of N springs on b = 1.3 m, C_v = 7.1 and C_r/C_v 30 % of the way from the
-    uniform part's ratio Σw x²/Σw to the ends' x_N²: Σc = C_v and Σc x² = C_r to 1e-12, with
-    α, β > 0 and every c ≥ 0."""
+@pytest.mark.parametrize("toward", [0.0, 0.3, 1.0])
+def test_n_spring_beds_reproduce_both_dashpots(springs, toward):
+    """Uniform beds of N springs on b = 1.3 m, C_v = 7.1 and C_r/C_v 30 % (and all) of the way
+    from the uniform part's ratio Σw x²/Σw to the ends' x_N², and as far towards the centre
+    springs' x_c² (at either bound exactly, all the concentration and no uniform part): Σc = C_v
+    and Σc x² = C_r to 1e-12, every c ≥ 0."""
     bed = winkler_bed(1.3, 1.0, springs)
     x = bed.positions
-    low = np.sum(bed.widths * x * x) / np.sum(bed.widths)
-    high = x[-1] ** 2
-    C_v = 7.1
-    C_r = C_v * (low + 0.3 * (high - low))
-    c, alpha, beta = distribute(x, bed.widths, C_v, C_r)
-    assert np.all(c >= 0.0) and alpha > 0.0 and beta > 0.0
-    assert np.sum(c) == pytest.approx(C_v, rel=1e-12)
-    assert np.sum(c * x * x) == pytest.approx(C_r, rel=1e-12)
+    uniform = np.sum(bed.widths * x * x) / np.sum(bed.widths)
+    for bound, where in ((x[-1] ** 2, "ends"), (np.min(x * x), "centre")):
+        C_v = 7.1
+        C_r = C_v * (uniform + toward * (bound - uniform))
+        c, alpha, beta, got = distribute(x, bed.widths, C_v, C_r)
+        assert np.all(c >= 0.0) and alpha >= 0.0 and beta >= 0.0
+        if toward > 0:
+            assert got == where
+        else:  # the uniform part alone
+            assert beta <= 1e-12 * C_v
+        assert np.sum(c) == pytest.approx(C_v, rel=1e-12)
+        assert np.sum(c * x * x) == pytest.approx(C_r, rel=1e-12)
 
 
 def test_no_non_negative_distribution_is_refused_with_the_range():
-    """On the 4-spring bed above the reachable C_r/C_v is [A/W, E/2] = [0.3125, 0.5625]
-    (length²): 0.3 and 0.6 are refused in one line naming it."""
+    """On the 4-spring bed above the reachable C_r/C_v is [E_c/2, E/2] = [0.0625, 0.5625]
+    (length²), the centre springs' ratio to the ends': 0.05 and 0.6 are refused in one line
+    naming it."""
     bed = winkler_bed(1.0, 1.0, 4)
-    for ratio, where in ((0.3, "concentrated at the centre"), (0.6, "no bed under")):
+    for ratio, where in ((0.05, "below the centre springs'"), (0.6, "no bed under")):
         with pytest.raises(InputError) as err:
             distribute(bed.positions, bed.widths, 10.0, 10.0 * ratio)
-        assert "[0.3125, 0.5625]" in str(err.value) and where in str(err.value)
+        assert "[0.0625, 0.5625]" in str(err.value) and where in str(err.value)
         assert "\n" not in str(err.value)
 
 
@@ -146,7 +167,7 @@ def test_rigid_footing_decays_in_rocking_with_the_damping_ratio_of_c_r():
     (ω Δt)²/2 = 7e-7) gives ζ to 1e-4."""
     scene = _footing()
     radiation = radiation_dashpots(scene)
-    assert radiation.source == "gazetas" and radiation.end > 0.0
+    assert radiation.source == "gazetas" and radiation.where == "ends"
     damped = with_radiation(scene, radiation, horizontal=False)
     model = build_model(damped)
     x, c = model.layout.positions, model.params["c"][model.foundation_slice]
@@ -183,3 +204,48 @@ def test_the_horizontal_dashpot_goes_on_the_sway_spring():
     assert model.params["c"][model.sway_spring] == radiation.C_h
     with pytest.raises(InputError, match="foundation.sway_stiffness is missing"):
         with_radiation(_footing(), radiation)
+
+
+def test_rocking_frequency_of_a_flexible_structure_is_its_flexible_base_fundamental():
+    """The clay strip's SDOF (T = 0.3 s fixed base) on its bonded bed: V decouples (symmetric
+    bed), and the frequency is the lowest of the (x, θ) system assembled by hand:
+    M = diag(m, I₀), K = k [[1, −h], [−h, h²]] + diag(0, K_θ) (the story deforms by x − hθ),
+    scipy.linalg.eigh, to 1e-12."""
+    import scipy.linalg
+
+    scene = load_scene("strip_footing_clay", overrides=["foundation.support=bonded"])
+    model = build_model(scene)
+    s = scene.structure
+    m, h = s.weight / scene.g, s.height
+    k = m * (2.0 * math.pi / 0.3) ** 2
+    K = k * np.array([[1.0, -h], [-h, h * h]]) + np.diag([0.0, model.layout.rocking_stiffness])
+    w2 = scipy.linalg.eigh(K, np.diag([m, s.rotary_inertia]), eigvals_only=True)
+    assert rocking_frequency(model) == pytest.approx(math.sqrt(w2[0]), rel=1e-12)
+
+
+def test_dashpots_from_a_continuum_impedance_go_to_the_centre_at_low_frequency():
+    """The FE impedance of the clay strip (elastic, bonded interface, 4 elements across B, PML)
+    at a0 = 0.08–0.16, and the rigid footing's rocking frequency (a0 = 0.114): the bed's
+    dashpots reproduce the impedance's C_v and C_r, interpolated linearly in ω between the two
+    neighbouring a0 (by hand below), to 1e-12, with the concentration at the centre (this 2D
+    strip radiates far more vertically than in rocking here: C_r/C_v < b²/3); C_h = Im K_h/ω
+    interpolated the same way."""
+    from upliftlab.continuum.impedance import impedance, impedance_model
+
+    scene = _footing(**{"soil.model": "elastic", "soil.undrained_strength": "",
+                        "soil.interface": "bonded", "continuum.elements_across": 4})
+    options = ImpedanceOptions(a0=(0.08, 0.12, 0.16))
+    record = impedance(impedance_model(scene.soil, scene.foundation.width, scene.continuum,
+                                       options), options)
+    radiation = radiation_dashpots(scene, impedance=record)
+    omega = radiation.omega
+    assert record.omega[0] < omega < record.omega[1]
+    f = (omega - record.omega[0]) / (record.omega[1] - record.omega[0])
+    for mode, got in (("v", radiation.C_v), ("h", radiation.C_h), ("r", radiation.C_r)):
+        C = record.matrix[:, {"v": 1, "h": 0, "r": 2}[mode], {"v": 1, "h": 0, "r": 2}[mode]]
+        C = C.imag / record.omega
+        assert got == pytest.approx(C[0] + f * (C[1] - C[0]), rel=1e-12)
+    assert radiation.where == "centre" and radiation.C_r / radiation.C_v < 1.0 / 3.0
+    c, x = np.array(radiation.dashpots), build_model(scene).layout.positions
+    assert np.sum(c) == pytest.approx(radiation.C_v, rel=1e-12)
+    assert np.sum(c * x * x) == pytest.approx(radiation.C_r, rel=1e-12)

@@ -6,26 +6,32 @@ springs at x_i with dashpots c_i has the vertical dashpot Σ c_i and the rocking
 Σ c_i x_i² (about O, the bed being symmetric or not). Dashpots proportional to the springs'
 stiffnesses (``foundation.damping_ratio``) cannot give both: their ratio is fixed by the
 stiffness distribution, so matching C_v over- or under-damps rocking. Here they are
-distributed as a **uniform part plus an end concentration**,
+distributed as a **uniform part plus a concentration**,
 
     c_i = α w_i + β ε_i,
 
-w_i the tributary width of spring i and ε_i = 1 at the two outermost springs, 0 elsewhere, with
-α, β solved in closed form from Σ c_i = C_v and Σ c_i x_i² = C_r (:func:`distribute`). Both are
-non-negative exactly when C_r/C_v lies between the uniform part's ratio Σ w x²/Σ w and the ends'
-(x_first² + x_last²)/2: below it the rocking dashpot is smaller than any bed without a
-concentration at its centre gives, above it larger than any bed under the footing gives; both
-are refused with the range. A pair of springs (N = 2) has no uniform part to split: its two
-dashpots are solved directly, which needs x_1² ≠ x_2² (a symmetric pair at ±x has
-Σ c x² = x² Σ c, so it reproduces both only when C_r/C_v = x²).
+w_i the tributary width of spring i, with α, β ≥ 0 solved in closed form from Σ c_i = C_v and
+Σ c_i x_i² = C_r (:func:`distribute`). The uniform part alone has the ratio
+ρ_u = Σ w x²/Σ w (b²/3 for a fine uniform bed). Where C_r/C_v ≥ ρ_u the concentration sits at
+the two outermost springs (ε_i = 1 there), up to the ends' ratio (x_first² + x_last²)/2; where
+it is lower it sits at the spring or the two springs nearest the centre O, down to their ratio.
+Outside these bounds no non-negative dashpots of this form exist (above the ends' ratio, none
+under the footing at all), and the request is refused with the range. A continuum's impedance
+usually needs the centre: a 2D strip radiates much more vertically than in rocking at the low
+frequencies of rocking structures (the clay strip of the scenes: C_r/C_v ≈ 0.02–0.05 b² at
+a0 = 0.1–0.2, where the handbook's high-frequency dashpots give B²/12 = b²/3). A pair of
+springs (N = 2) has no uniform part to split: its two dashpots are solved directly, which needs
+x_1² ≠ x_2² (a symmetric pair at ±x has Σ c x² = x² Σ c, so it reproduces both only when
+C_r/C_v = x²).
 
 The dashpots come from the continuum's :class:`~upliftlab.continuum.impedance.Impedance`
 (C_j = Im K_j/ω, linear in ω between its frequencies: :func:`impedance_dashpots`) or from the
 handbook strip of :mod:`upliftlab.continuum.gazetas` (:func:`gazetas_dashpots`: the
 high-frequency dashpots c̃ = 1, the same at every ω). The frequency is by default the
-structure's rocking frequency on the bed (:func:`rocking_frequency`). The horizontal dashpot
-C_h goes on the sway spring (``foundation.sway_damping``); the coupling Im K_hr has no element
-in the reduced model and is left out. Everything is per unit length for a strip, as the
+structure's rocking frequency on the bed (:func:`rocking_frequency`: its fundamental bonded mode
+other than the vertical one). The horizontal dashpot C_h goes on the sway spring
+(``foundation.sway_damping``); a frictionless interface has no horizontal impedance (C_h = 0);
+the coupling Im K_hr has no element in the reduced model and is left out. Everything is per unit length for a strip, as the
 continuum's impedance and the strip scenes are. The result is plain numbers for the reduced
 scene (:meth:`RadiationDashpots.foundation_keys`, :func:`with_radiation`).
 """
@@ -52,9 +58,9 @@ class RadiationDashpots:
     """Radiation dashpots of a bed at the circular frequency ``omega`` (rad/s): the targets
     ``C_v``, ``C_h`` (force·s/length) and ``C_r`` (force·length·s/rad), the bed's ``dashpots``
     c_i (force·s/length, from −b to +b), the uniform part ``uniform`` α (force·s/length per
-    length of base) and the ``end`` concentration β at each outermost spring (force·s/length;
-    both NaN for a pair, solved directly), and their ``source`` (``impedance`` or
-    ``gazetas``)."""
+    length of base), the ``concentrated`` β added at each spring ``where`` (``ends``,
+    ``centre``, or ``pair`` for two springs solved directly, α and β NaN), and their
+    ``source`` (``impedance`` or ``gazetas``)."""
 
     omega: float
     C_v: float
@@ -62,7 +68,8 @@ class RadiationDashpots:
     C_r: float
     dashpots: tuple[float, ...]
     uniform: float
-    end: float
+    concentrated: float
+    where: str
     source: str
 
     def foundation_keys(self, *, horizontal: bool = True) -> dict:
@@ -74,11 +81,13 @@ class RadiationDashpots:
         return keys
 
 
-def distribute(positions, widths, C_v: float, C_r: float) -> tuple[np.ndarray, float, float]:
-    """(c_i, α, β): dashpots c_i = α w_i + β ε_i at the springs ``positions`` x_i (sorted)
-    with tributary ``widths`` w_i whose sum is C_v and whose Σ c_i x_i² is C_r (module
-    docstring); an :class:`InputError` when no non-negative distribution of this form exists.
-    A pair is solved directly (α, β NaN)."""
+def distribute(positions, widths, C_v: float,
+               C_r: float) -> tuple[np.ndarray, float, float, str]:
+    """(c_i, α, β, where): dashpots c_i = α w_i + β ε_i at the springs ``positions`` x_i
+    (sorted) with tributary ``widths`` w_i whose sum is C_v and whose Σ c_i x_i² is C_r, the
+    concentration β at the ``ends`` or the ``centre`` (module docstring); an
+    :class:`InputError` when no non-negative distribution of this form exists. A pair is
+    solved directly (α, β NaN, ``pair``)."""
     x = np.asarray(positions, dtype=float)
     w = np.asarray(widths, dtype=float)
     if x.size < 2 or w.shape != x.shape or np.any(np.diff(x) <= 0) or np.any(w <= 0):
@@ -92,21 +101,27 @@ def distribute(positions, widths, C_v: float, C_r: float) -> tuple[np.ndarray, f
         return _pair(x, C_v, C_r, ratio)
     ends = np.zeros(x.size)
     ends[[0, -1]] = 1.0
-    low = float(np.sum(w * x * x) / np.sum(w))       # the uniform part's C_r/C_v
-    high = float(np.sum(ends * x * x) / 2.0)          # the end concentration's
-    if not low <= ratio <= high:
-        where = ("below: it would need dashpots concentrated at the centre"
-                 if ratio < low else "above: no bed under the footing reaches it")
+    centre = (np.abs(x) <= np.min(np.abs(x)) + 1e-12 * np.max(np.abs(x))).astype(float)
+    uniform = float(np.sum(w * x * x) / np.sum(w))      # the uniform part's C_r/C_v
+    low = float(np.sum(centre * x * x) / np.sum(centre))  # the centre concentration's
+    high = float(np.sum(ends * x * x) / 2.0)             # the end concentration's
+    if not low * (1.0 - 1e-12) <= ratio <= high * (1.0 + 1e-12):  # a bound, to round-off
+        where = ("above the ends': no bed under the footing reaches it" if ratio > high
+                 else "below the centre springs'")
         raise InputError(f"radiation dashpots: C_r/C_v = {ratio:.6g} (length²) is outside "
-                         f"[{low:.6g}, {high:.6g}], the range of a uniform part plus an end "
-                         f"concentration on these {x.size} springs ({where})")
-    # Σ c = α W + 2β = C_v, Σ c x² = α A + β E = C_r, solved by Cramer's rule
-    W, A, E = float(np.sum(w)), float(np.sum(w * x * x)), float(np.sum(ends * x * x))
-    det = W * E - 2.0 * A
-    alpha = (C_v * E - 2.0 * C_r) / det
+                         f"[{low:.6g}, {high:.6g}], the range of a uniform part plus a "
+                         f"concentration at the centre or the ends of these {x.size} springs "
+                         f"({where})")
+    where = "ends" if ratio >= uniform else "centre"
+    e = ends if where == "ends" else centre
+    # Σ c = α W + β n = C_v, Σ c x² = α A + β E = C_r, solved by Cramer's rule
+    W, A = float(np.sum(w)), float(np.sum(w * x * x))
+    n, E = float(np.sum(e)), float(np.sum(e * x * x))
+    det = W * E - n * A
+    alpha = (C_v * E - n * C_r) / det
     beta = (W * C_r - A * C_v) / det
     alpha, beta = max(alpha, 0.0), max(beta, 0.0)  # −0 or round-off at either end of the range
-    return alpha * w + beta * ends, alpha, beta
+    return alpha * w + beta * e, alpha, beta, where
 
 
 def _pair(x: np.ndarray, C_v: float, C_r: float, ratio: float):
@@ -117,14 +132,14 @@ def _pair(x: np.ndarray, C_v: float, C_r: float, ratio: float):
             raise InputError(f"radiation dashpots: a pair at ±{math.sqrt(a):.6g} has "
                              f"Σ c x² = x² Σ c, so it reproduces C_r/C_v = {ratio:.6g} (length²)"
                              f" only at ±{math.sqrt(ratio):.6g}")
-        return np.array([0.5 * C_v, 0.5 * C_v]), math.nan, math.nan
+        return np.array([0.5 * C_v, 0.5 * C_v]), math.nan, math.nan, "pair"
     c2 = (C_r - a * C_v) / (b - a)
     c = np.array([C_v - c2, c2])
     if np.any(c < 0.0):
         raise InputError(f"radiation dashpots: C_r/C_v = {ratio:.6g} (length²) is outside "
                          f"[{min(a, b):.6g}, {max(a, b):.6g}], what two non-negative dashpots "
                          f"at {x[0]:g} and {x[1]:g} reach")
-    return c, math.nan, math.nan
+    return c, math.nan, math.nan, "pair"
 
 
 def impedance_dashpots(impedance, omega: float) -> tuple[float, float, float]:
@@ -152,16 +167,18 @@ def gazetas_dashpots(*, shear_modulus: float, poisson: float, density: float,
 
 
 def rocking_frequency(model) -> float:
-    """The circular frequency (rad/s) of the bonded mode of the reduced ``model`` whose kinetic
-    energy lies most in the rotation θ: the structure's rocking mode on its bed."""
+    """The circular frequency (rad/s) of the structure rocking on its bed: the lowest bonded
+    mode of the reduced ``model`` that is not a vertical one (at most half of its kinetic
+    energy in V; the shares of V over the modes sum to one, so there is always one). For a rigid structure its rocking mode (with the sway, if any); for a
+    flexible one the fundamental mode on the flexible base, the frequency at which
+    soil–structure interaction practice takes the foundation's dashpots."""
     if model.dofs.theta < 0:
         raise InputError("foundation.support = 'fixed': a fixed base has no rocking frequency")
     K, _ = model.bonded_matrices()
-    M = np.diag(model.mass)
-    w2, modes = scipy.linalg.eigh(K, M)
-    share = model.mass[model.dofs.theta] * modes[model.dofs.theta] ** 2
-    share /= np.einsum("i,ij,ij->j", model.mass, modes, modes)
-    return float(math.sqrt(w2[int(np.argmax(share))]))
+    w2, modes = scipy.linalg.eigh(K, np.diag(model.mass))
+    energy = model.mass[:, None] * modes**2
+    vertical = energy[model.dofs.v] / energy.sum(axis=0)
+    return float(math.sqrt(w2[int(np.flatnonzero(vertical <= 0.5)[0])]))
 
 
 def radiation_dashpots(scene: Scene, *, impedance=None,
@@ -185,9 +202,9 @@ def radiation_dashpots(scene: Scene, *, impedance=None,
                                          poisson=soil.poisson_ratio, density=soil.density,
                                          width=scene.foundation.width)
         source = "gazetas"
-    c, alpha, beta = distribute(model.layout.positions, model.layout.widths, C_v, C_r)
+    c, alpha, beta, where = distribute(model.layout.positions, model.layout.widths, C_v, C_r)
     return RadiationDashpots(omega, C_v, C_h, C_r, tuple(float(v) for v in c), alpha, beta,
-                             source)
+                             where, source)
 
 
 def with_radiation(scene: Scene, dashpots: RadiationDashpots, *,
