@@ -277,3 +277,23 @@ def test_the_opensees_export_refuses_a_sway_spring():
 
     with pytest.raises(InputError, match="foundation.sway_stiffness = 300000: the OpenSees"):
         check_representable(_sliding_building())
+
+
+@pytest.mark.parametrize("rigid", [True, False])
+def test_statics_do_not_see_an_undeformed_sway_spring(rigid):
+    """Statics of equilibrium: a lateral force P at the top is carried by the sway spring in
+    shear and by the bed in the moment P h about O, whatever the sway; so the uplift-onset
+    force is that of the same scene without sway (to 1e-12), and a rocking pushover (the
+    base rotated, the sway spring left undeformed) gives the same M–θ (to 1e-12)."""
+    from upliftlab.reduced import rocking_pushover, uplift_onset_force
+
+    plain = sway_scene(rigid=rigid, support="uplift", foundation={"law": "elastoplastic"})
+    swaying = sway_scene(rigid=rigid, support="uplift", foundation={"law": "elastoplastic"},
+                         sway={"sway_stiffness": 3.0e5, "sliding_friction": 0.2})
+    onset = uplift_onset_force(build_model(plain))
+    assert uplift_onset_force(build_model(swaying)) == pytest.approx(onset, rel=1e-12)
+    thetas = np.linspace(0.0, 0.01, 21)
+    a = rocking_pushover(build_model(plain), thetas)
+    b = rocking_pushover(build_model(swaying), thetas)
+    np.testing.assert_allclose(b.moment, a.moment, rtol=1e-12, atol=1e-12 * np.max(a.moment))
+    np.testing.assert_allclose(b.vertical, a.vertical, rtol=1e-12)
