@@ -262,7 +262,7 @@ def _sway_params(f, vertical_weight: float) -> np.ndarray:
     table = sp.spring_table(1)
     table["kind"] = sp.STORY
     table["k"] = f.sway_stiffness
-    table["c"] = f.sway_damping
+    table["c"] = f.sway_damping or 0.0
     if f.sliding_friction is not None:
         table["fy"] = f.sliding_friction * vertical_weight
     return table

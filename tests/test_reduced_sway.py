@@ -297,3 +297,15 @@ def test_statics_do_not_see_an_undeformed_sway_spring(rigid):
     b = rocking_pushover(build_model(swaying), thetas)
     np.testing.assert_allclose(b.moment, a.moment, rtol=1e-12, atol=1e-12 * np.max(a.moment))
     np.testing.assert_allclose(b.vertical, a.vertical, rtol=1e-12)
+
+
+def test_a_sway_spring_is_added_to_a_scene_by_replace():
+    """scene.replace(foundation, sway_stiffness=…) on a scene without sway gives the scene a
+    sway spring without a dashpot (the other sway keys stay unset), as the same key in a file."""
+    plain = sway_scene(rigid=False, support="uplift")
+    scene = plain.replace("foundation", sway_stiffness=3.0e5)
+    assert scene.foundation.sway_damping is None and scene.foundation.sliding_friction is None
+    model = build_model(scene)
+    assert model.params["c"][model.sway_spring] == 0.0
+    assert model.params["k"][model.sway_spring] == 3.0e5
+    assert math.isinf(model.params["fy"][model.sway_spring])

@@ -151,15 +151,17 @@ class Foundation:
     effective mass at the spring's position, so each landing spring removes (1 − ε²) of that
     mass's closing energy and a bed of N springs removes N times as much) or ``tributary``
     (that mass times the spring's share k_i/K_v of the bed, so the energy removed per landing
-    of the whole base does not grow with N). ``dashpots`` (force·s/length, one per spring: from
-    −b to +b, or in the order of ``positions`` for a custom layout; None: from ``damping_ratio``) sets every spring's dashpot
-    instead, e.g. the radiation dashpots of a soil's impedance distributed over the bed.
+    of the whole base does not grow with N). ``dashpots`` (force·s/length, one per spring:
+    from −b to +b, or in the order of ``positions`` for a custom layout; None: from
+    ``damping_ratio``) sets every spring's dashpot instead, e.g. the radiation dashpots of a
+    soil's impedance distributed over the bed.
 
     ``sway_stiffness`` (force/length; None: no sway, Ewing's model) puts a horizontal spring
-    under the base, with a parallel dashpot ``sway_damping`` (force·s/length) and, with
-    ``sliding_friction`` μ, a slider in series with the spring that carries at most μ W (W the
-    structure's ``vertical_weight``, the weight the foundation carries at rest): the base then
-    has the continuum footing's three DOFs (horizontal, vertical, rotation).
+    under the base, with a parallel dashpot ``sway_damping`` (force·s/length; None: none) and,
+    with ``sliding_friction`` μ (None: no sliding), a slider in series with the spring that
+    carries at most μ W (W the structure's ``vertical_weight``, the weight the foundation
+    carries at rest): the base then has the continuum footing's three DOFs (horizontal,
+    vertical, rotation).
     """
 
     support: str
@@ -310,6 +312,6 @@ def _sway(table: Table, units: UnitSystem):
                                  "on the sway spring; give foundation.sway_stiffness too")
         return None, None, None
     stiffness = table.get("sway_stiffness", bounds.checker("stiffness", units))
-    damping = table.get("sway_damping", bounds.checker("dashpot", units), 0.0)
+    damping = table.get("sway_damping", bounds.checker("dashpot", units), None)
     friction = table.get("sliding_friction", in_range(0.0, MAX_FRICTION, low_open=True), None)
     return stiffness, damping, friction
