@@ -249,3 +249,25 @@ def test_dashpots_from_a_continuum_impedance_go_to_the_centre_at_low_frequency()
     c, x = np.array(radiation.dashpots), build_model(scene).layout.positions
     assert np.sum(c) == pytest.approx(radiation.C_v, rel=1e-12)
     assert np.sum(c * x * x) == pytest.approx(radiation.C_r, rel=1e-12)
+
+
+def test_a_custom_layout_keeps_each_dashpot_with_its_position():
+    """A custom bed listed out of order (x = 0.75, −0.25, −0.75, 0.25 on b = 1): the scene's
+    dashpots follow its list, and the model's springs (sorted from −b to +b) carry the four
+    springs' hand values of the centre case above, 1.375 at the ends and 3.625 in the middle,
+    scaled here to C_v = 10 and C_r = 2 (to 1e-12)."""
+    from upliftlab.comparisons.winkler_vs_continuum.radiation import RadiationDashpots
+
+    scene = _footing(**{"foundation.layout": "custom", "foundation.springs": "",
+                        "foundation.stiffness": "",
+                        "foundation.positions": "[0.75, -0.25, -0.75, 0.25]",
+                        "foundation.stiffnesses": "[3e4, 3e4, 3e4, 3e4]"})
+    model = build_model(scene)
+    c, alpha, beta, where = distribute(model.layout.positions, model.layout.widths, 10.0, 2.0)
+    radiation = RadiationDashpots(1.0, 10.0, 0.0, 2.0, tuple(c), alpha, beta, where, "test")
+    damped = with_radiation(scene, radiation, horizontal=False)
+    np.testing.assert_allclose(damped.foundation.dashpots, [1.375, 3.625, 1.375, 3.625],
+                               rtol=1e-12)
+    got = build_model(damped)
+    np.testing.assert_allclose(got.params["c"][got.foundation_slice], [1.375, 3.625, 3.625,
+                                                                       1.375], rtol=1e-12)
