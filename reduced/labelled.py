@@ -21,7 +21,8 @@ from . import springs as sp
 
 __all__ = ["to_dataset", "to_frame", "SCALAR_HISTORIES", "PEAK_UNITS"]
 
-#: The scalar histories of a response: name -> (long name, unit kind).
+#: The scalar histories of a response: name -> (long name, unit kind); ``sway`` only for a
+#: base on a sway spring.
 SCALAR_HISTORIES = {
     "u": ("superstructure deformation", "length"),
     "x": ("top displacement relative to the ground", "length"),

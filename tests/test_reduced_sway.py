@@ -309,3 +309,23 @@ def test_a_sway_spring_is_added_to_a_scene_by_replace():
     assert model.params["c"][model.sway_spring] == 0.0
     assert model.params["k"][model.sway_spring] == 3.0e5
     assert math.isinf(model.params["fy"][model.sway_spring])
+
+
+def test_the_sway_is_labelled_data_and_saved(tmp_path):
+    """The base's sway is a history of the dataset and the frame (only with a sway spring),
+    its peaks are scalar variables with units, and the file reads back the same history."""
+    import xarray as xr
+
+    response = run(_sliding_building())
+    ds = response.to_xarray()
+    np.testing.assert_array_equal(ds["sway"].values, response.sway)
+    assert ds["sway"].attrs["units"] == "m" and "u_b" in list(ds["dof"].values)
+    assert float(ds["peak_sway"]) == response.peaks["sway"]
+    assert ds["peak_sliding"].attrs["units"] == "m"
+    assert "sway" in response.to_dataframe().columns
+    path = response.save(tmp_path / "run.nc")[0]
+    with xr.open_dataset(path) as back:
+        np.testing.assert_array_equal(back["sway"].values, response.sway)
+    plain = run(sway_scene(rigid=False, support="uplift"))
+    assert "sway" not in plain.to_xarray() and "peak_sway" not in plain.to_xarray()
+    assert "sway" not in plain.to_dataframe().columns
