@@ -91,7 +91,7 @@ def test_no_non_negative_distribution_is_refused_with_the_range():
     (length²), the centre springs' ratio to the ends': 0.05 and 0.6 are refused in one line
     naming it."""
     bed = winkler_bed(1.0, 1.0, 4)
-    for ratio, where in ((0.05, "below the centre springs'"), (0.6, "no bed under")):
+    for ratio, where in ((0.05, "below the centre springs'"), (0.6, "above the ends'")):
         with pytest.raises(InputError) as err:
             distribute(bed.positions, bed.widths, 10.0, 10.0 * ratio)
         assert "[0.0625, 0.5625]" in str(err.value) and where in str(err.value)

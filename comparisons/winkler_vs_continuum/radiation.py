@@ -15,8 +15,8 @@ w_i the tributary width of spring i, with α, β ≥ 0 solved in closed form fro
 ρ_u = Σ w x²/Σ w (b²/3 for a fine uniform bed). Where C_r/C_v ≥ ρ_u the concentration sits at
 the two outermost springs (ε_i = 1 there), up to the ends' ratio (x_first² + x_last²)/2; where
 it is lower it sits at the spring or the two springs nearest the centre O, down to their ratio.
-Outside these bounds no non-negative dashpots of this form exist (above the ends' ratio, none
-under the footing at all), and the request is refused with the range. A continuum's impedance
+Outside these bounds no non-negative dashpots of this form exist (above the ends' ratio of a
+symmetric bed, none under the footing at all), and the request is refused with the range. A continuum's impedance
 usually needs the centre: a 2D strip radiates much more vertically than in rocking at the low
 frequencies of rocking structures (the clay strip of the scenes: C_r/C_v ≈ 0.02–0.05 b² at
 a0 = 0.1–0.2, where the handbook's high-frequency dashpots give B²/12 = b²/3). A pair of
@@ -106,8 +106,7 @@ def distribute(positions, widths, C_v: float,
     low = float(np.sum(centre * x * x) / np.sum(centre))  # the centre concentration's
     high = float(np.sum(ends * x * x) / 2.0)             # the end concentration's
     if not low * (1.0 - 1e-12) <= ratio <= high * (1.0 + 1e-12):  # a bound, to round-off
-        where = ("above the ends': no bed under the footing reaches it" if ratio > high
-                 else "below the centre springs'")
+        where = "above the ends'" if ratio > high else "below the centre springs'"
         raise InputError(f"radiation dashpots: C_r/C_v = {ratio:.6g} (length²) is outside "
                          f"[{low:.6g}, {high:.6g}], the range of a uniform part plus a "
                          f"concentration at the centre or the ends of these {x.size} springs "
