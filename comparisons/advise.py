@@ -201,6 +201,10 @@ def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str 
                          f"{scene.foundation.support!r} with {len(scene.structure.stories)} "
                          "stories; the advisor compares foundations of a one-story structure "
                          "that may uplift (support = 'uplift')")
+    if scene.foundation.dashpots is not None:
+        raise InputError("foundation.dashpots: the advisor changes the number of springs, "
+                         "and these dashpots are given one per spring; use "
+                         "foundation.damping_ratio")
     sizes = FAST if fast else FULL
     data = {"scene": scene.data, "motion": sve.motion_entry(scene)}
     floor = sve.FLOOR_FRACTION * sve.scales(scene)[q]

@@ -189,7 +189,7 @@ def _job(scene: Scene, motion, integrator, dt, bases, motions) -> _Job:
     q0, qd0 = initial_conditions(model, motion)
     samples = max(motion.acceleration.size, math.ceil(duration / motion.dt - 1e-9))
     found = model.foundation_slice
-    leftmost = (model.story_count + int(np.argmin(model.params["x"][found]))
+    leftmost = (model.foundation_start + int(np.argmin(model.params["x"][found]))
                 if model.layout is not None else -1)
     return _Job(name, KernelInputs.of(model, plan), plan, q0, qd0, index, factor, samples,
                 motion.dt, model.g, leftmost, a.energy_tolerance, model.exact)

@@ -7,6 +7,13 @@ deformation of spring ``i``: ``e = Aᵀ q`` (eq. 3). Story springs deform by the
 relative to the rotated base, ``u_j − u_{j−1}`` with ``u_j = x_j − h_j θ`` (eq. 7). Foundation
 springs deform by the *compression* of the base point above them, ``e_i = x_i θ − V``. The same
 A turns spring forces into nodal forces, ``A s(e)``, for any spring law.
+
+A base on a sway spring has one DOF more, its horizontal displacement relative to the ground:
+the sway spring deforms by the base's displacement u_b and the first story's drift is taken
+from it, ``u_1 = x_1 − h_1 θ − u_b``. For a flexible structure that DOF is u_b itself (the
+story DOFs stay relative to the ground, so the mass matrix stays diagonal); for a rigid one it
+is the horizontal displacement u_G of the centre of mass G, at height h_G above O, and
+``u_b = u_G − h_G θ`` (the mass matrix is diagonal about G).
 """
 
 from __future__ import annotations
@@ -137,12 +144,14 @@ def layout_for(foundation) -> SpringLayout:
 @dataclass(frozen=True)
 class DofMap:
     """Where each free DOF sits in q: story ``x`` indices (empty if rigid), ``theta``, ``v``
-    (−1 when locked by a fixed base). Names are for output."""
+    (−1 when locked by a fixed base), ``sway`` (−1 without a sway spring: the base's u_b, or
+    the centre of mass's u_G for a rigid structure). Names are for output."""
 
     stories: tuple[int, ...]
     theta: int
     v: int
     names: tuple[str, ...]
+    sway: int = -1
 
     @property
     def size(self) -> int:
@@ -150,40 +159,54 @@ class DofMap:
 
     @classmethod
     def build(cls, story_count: int, *, rigid: bool, fixed: bool,
-              exact: bool = False) -> DofMap:
+              exact: bool = False, sway: bool = False) -> DofMap:
         """Exact kinematics names its DOFs for what they hold: story deflections ``w`` in the
-        rotated frame and ``sin_theta``."""
+        rotated frame and ``sin_theta``. A sway DOF comes last: ``u_b``, or ``u_G`` for a rigid
+        structure."""
         stories = () if rigid else tuple(range(story_count))
         names = [f"{'w' if exact else 'x'}{j + 1}" for j in stories]
-        theta = v = -1
+        theta = v = sway_dof = -1
         if not fixed:
             theta, v = len(names), len(names) + 1
             names += ["sin_theta" if exact else "theta", "V"]
-        return cls(stories, theta, v, tuple(names))
+        if sway:
+            sway_dof = len(names)
+            names.append("u_G" if rigid else "u_b")
+        return cls(stories, theta, v, tuple(names), sway_dof)
 
 
 def compatibility_matrix(dofs: DofMap, heights, layout: SpringLayout | None, *,
-                         exact: bool = False) -> np.ndarray:
-    """A (n_dof × n_spring): story springs first, then foundation springs (eqs. 3, 9).
+                         exact: bool = False, sway_height: float = 0.0) -> np.ndarray:
+    """A (n_dof × n_spring): story springs first, then the sway spring (if any), then the
+    foundation springs (eqs. 3, 9).
 
-    Story spring j: e = u_j − u_{j−1}, u_j = x_j − h_j θ. Foundation spring i: e = x_i θ − V.
-    With ``exact`` kinematics the story DOFs are the deflections w_j in the base's rotated frame
-    and the rotation DOF is sin θ: story spring j is e = w_j − w_{j−1} and foundation spring i
-    e = x_i sin θ − V, still linear.
+    Story spring j: e = u_j − u_{j−1}, u_j = x_j − h_j θ (− u_b with a sway spring). Sway
+    spring: e = u_b (a rigid structure: u_G − h_G θ, ``sway_height`` h_G). Foundation spring i:
+    e = x_i θ − V. With ``exact`` kinematics the story DOFs are the deflections w_j in the
+    base's rotated frame and the rotation DOF is sin θ: story spring j is e = w_j − w_{j−1}
+    and foundation spring i e = x_i sin θ − V, still linear.
     """
     heights = np.asarray(heights, dtype=float)
     n_story = len(dofs.stories)
+    n_sway = 1 if dofs.sway >= 0 else 0
     n_found = 0 if layout is None else layout.count
-    A = np.zeros((dofs.size, n_story + n_found))
+    A = np.zeros((dofs.size, n_story + n_sway + n_found))
     for j, dof in enumerate(dofs.stories):
         A[dof, j] = 1.0
         if j > 0:
             A[dofs.stories[j - 1], j] = -1.0
         if dofs.theta >= 0 and not exact:
             A[dofs.theta, j] = -(heights[j] - (heights[j - 1] if j > 0 else 0.0))
+    if n_sway:
+        A[dofs.sway, n_story] = 1.0
+        if n_story:
+            A[dofs.sway, 0] = -1.0
+        elif dofs.theta >= 0:
+            A[dofs.theta, n_story] = -sway_height
     if layout is not None:
-        A[dofs.theta, n_story:] = layout.positions
-        A[dofs.v, n_story:] = -1.0
+        first = n_story + n_sway
+        A[dofs.theta, first:] = layout.positions
+        A[dofs.v, first:] = -1.0
     return A
 
 

@@ -21,13 +21,15 @@ from . import springs as sp
 
 __all__ = ["to_dataset", "to_frame", "SCALAR_HISTORIES", "PEAK_UNITS"]
 
-#: The scalar histories of a response: name -> (long name, unit kind).
+#: The scalar histories of a response: name -> (long name, unit kind); ``sway`` only for a
+#: base on a sway spring.
 SCALAR_HISTORIES = {
     "u": ("superstructure deformation", "length"),
     "x": ("top displacement relative to the ground", "length"),
     "X": ("absolute top displacement", "length"),
     "theta": ("base rotation", "rad"),
     "V": ("vertical displacement of the base point O, up", "length"),
+    "sway": ("horizontal displacement of the base relative to the ground", "length"),
     "base_shear": ("base shear", "force"),
     "overturning_moment": ("overturning moment about O", "moment"),
     "contact_length": ("length of the base in contact", "length"),
@@ -50,6 +52,10 @@ PEAK_UNITS = {
     "plastic_settlement_max": ("largest plastic settlement of a spring at the end", "length"),
     "plastic_settlement_mean": ("mean plastic settlement of the springs at the end", "length"),
     "min_contact_length": ("least length of the base in contact", "length"),
+    "sway": ("peak |horizontal displacement of the base relative to the ground|", "length"),
+    "sway_force": ("peak |force of the sway spring and its dashpot|", "force"),
+    "residual_sway": ("horizontal displacement of the base at the end of the run", "length"),
+    "sliding": ("sliding of the base at the end of the run", "length"),
     "energy_balance_error": ("energy balance error, relative to the input", "1"),
 }
 
@@ -58,6 +64,12 @@ def _units(response) -> dict[str, str]:
     u = response.model.scene.units
     return {"length": u.length, "force": u.force, "moment": f"{u.force}*{u.length}",
             "rad": "rad", "stiffness": f"{u.force}/{u.length}", "energy": f"{u.force}*{u.length}"}
+
+
+def _histories(response) -> dict:
+    """:data:`SCALAR_HISTORIES` of this response: the sway only when it has a sway spring."""
+    sways = response.model.sway_spring >= 0
+    return {k: v for k, v in SCALAR_HISTORIES.items() if k != "sway" or sways}
 
 
 def to_dataset(response):
@@ -74,7 +86,8 @@ def to_dataset(response):
         "time": ("time", response.time, {"units": "s", "long_name": "time", "axis": "T"}),
         "dof": ("dof", names, {"long_name": "degree of freedom"}),
         "spring": ("spring", np.arange(model.params.size),
-                   {"long_name": "spring index (stories first, then the foundation)"}),
+                   {"long_name": "spring index (stories first, then the sway spring if any, "
+                                 "then the foundation)"}),
         "position": ("spring", model.params["x"],
                      {"units": units["length"], "long_name": "spring position from O"}),
         "kind": ("spring", np.asarray(model.kind, np.int8), {
@@ -84,7 +97,7 @@ def to_dataset(response):
     }
     data = {name: ("time", getattr(response, name),
                    {"units": units[kind], "long_name": long})
-            for name, (long, kind) in SCALAR_HISTORIES.items()}
+            for name, (long, kind) in _histories(response).items()}
     data.update({
         "q": (("time", "dof"), response.q, {"units": "scene units of each DOF",
                                             "long_name": "DOFs relative to the ground"}),
@@ -150,9 +163,9 @@ def to_frame(response):
     in ``frame.attrs["units"]``."""
     import pandas as pd
 
-    units = _units(response)
-    frame = pd.DataFrame({name: getattr(response, name) for name in SCALAR_HISTORIES},
+    units, histories = _units(response), _histories(response)
+    frame = pd.DataFrame({name: getattr(response, name) for name in histories},
                          index=pd.Index(response.time, name="time"))
-    frame.attrs["units"] = {name: units[kind] for name, (_, kind) in SCALAR_HISTORIES.items()}
+    frame.attrs["units"] = {name: units[kind] for name, (_, kind) in histories.items()}
     frame.attrs["units"]["time"] = "s"
     return frame

@@ -6,7 +6,14 @@ Conventions: DOFs relative to the ground; θ positive when it moves the top by
 +hθ; V positive up; foundation spring deformation is compression. Damping of the foundation is a
 fraction ζ_f of critical for the bonded vertical mode, c_i = ζ_f·2√(K_v m_v)·k_i/K_v; damping of
 the superstructure is a fraction ζ_s of critical for its fixed-base first mode (stiffness
-proportional for a shear building, which is ζ_s exactly for one story).
+proportional for a shear building, which is ζ_s exactly for one story). The foundation's
+dashpots may instead be given one per spring (``foundation.dashpots``).
+
+A sway spring (``foundation.sway_stiffness``) is a story-kind spring on the base's horizontal
+displacement relative to the ground: elastic, or elastic–perfectly plastic with the sliding
+capacity μ W, with a parallel dashpot. It adds one DOF (:mod:`.compatibility`): the base's u_b
+with the base body's own mass for a flexible structure, or the centre of mass's u_G with the
+whole mass for a rigid one (I_θ is then about G).
 """
 
 from __future__ import annotations
@@ -47,6 +54,7 @@ class ReducedModel:
     layout: SpringLayout | None
     static_rotation: float = 0.0
     notes: tuple[str, ...] = field(default=())
+    sway_height: float = 0.0
 
     @property
     def exact(self) -> bool:
@@ -78,8 +86,18 @@ class ReducedModel:
         return self.params["kind"]
 
     @property
+    def sway_spring(self) -> int:
+        """Index of the sway spring (after the story springs), −1 without one."""
+        return self.story_count if self.dofs.sway >= 0 else -1
+
+    @property
+    def foundation_start(self) -> int:
+        """Index of the first foundation spring (after the stories and the sway spring)."""
+        return self.story_count + (1 if self.dofs.sway >= 0 else 0)
+
+    @property
     def foundation_slice(self) -> slice:
-        return slice(self.story_count, self.spring_count)
+        return slice(self.foundation_start, self.spring_count)
 
     @property
     def g(self) -> float:
@@ -116,19 +134,28 @@ def build_model(scene: Scene) -> ReducedModel:
     if exact and fixed:
         raise InputError("structure.kinematics = 'exact' with foundation.support = 'fixed': "
                          "exact kinematics is that of a rocking base; valid: 'small'")
-    dofs = DofMap.build(len(s.stories), rigid=s.rigid, fixed=fixed, exact=exact)
+    if exact and f.sways:  # scenes refuse it when read; a model made otherwise is refused here
+        raise InputError("foundation.sway_stiffness with structure.kinematics = 'exact': exact "
+                         "kinematics pivots the base on its edge without sliding; valid: 'small'")
+    dofs = DofMap.build(len(s.stories), rigid=s.rigid, fixed=fixed, exact=exact, sway=f.sways)
     heights = np.array([st.height for st in s.stories])
     masses = np.array([st.weight for st in s.stories]) / g
     layout = None if fixed else layout_for(f)
-    A = compatibility_matrix(dofs, heights, layout, exact=exact)
     mass, load = _masses(dofs, s, masses, heights, g)
     if exact:  # the kernels build M(q); mass is its diagonal at rest, for the energy scale
         mass = np.diag(_exact_mass_at_rest(dofs, s, masses, heights, g))
         load = np.zeros_like(load)
+    rotary_mass = mass[dofs.theta]  # about O, without sway: the impact damper's (eq. 17)
+    sway_height = 0.0
+    if f.sways:
+        sway_height = _sway_masses(dofs, s, masses, heights, g, mass, load)
+    A = compatibility_matrix(dofs, heights, layout, exact=exact, sway_height=sway_height)
     tables = [_story_params(s, masses)]
+    if f.sways:
+        tables.append(_sway_params(f, s.vertical_weight))
     weight, theta_s = 0.0, 0.0
     if layout is not None:
-        found, theta_s = _foundation_params(f, layout, s.vertical_weight, mass[dofs.theta],
+        found, theta_s = _foundation_params(f, layout, s.vertical_weight, rotary_mass,
                                             mass[dofs.v])
         tables.append(found)
         weight = s.vertical_weight
@@ -139,7 +166,8 @@ def build_model(scene: Scene) -> ReducedModel:
         params["arm"][:len(s.stories)] = np.diff(np.concatenate([[0.0], heights]))
     return ReducedModel(scene=scene, dofs=dofs, mass=mass, A=A, params=params, ground_load=load,
                         geometric=geometric, weight=weight, heights=heights, layout=layout,
-                        static_rotation=theta_s, notes=_notes(f, layout))
+                        static_rotation=theta_s, notes=_notes(f, layout),
+                        sway_height=sway_height)
 
 
 #: Springs beyond which the paper's per-spring impact damper is warned about (Fig. 1b's 12).
@@ -205,6 +233,41 @@ def _masses(dofs: DofMap, s, masses, heights, g) -> tuple[np.ndarray, np.ndarray
     return mass, load
 
 
+def _sway_masses(dofs: DofMap, s, masses, heights, g, mass, load) -> float:
+    """Mass and ground load of the sway DOF, in place; returns h_G (0 for a flexible structure).
+
+    Flexible structure: u_b carries the base body's own mass m_b = (W_v − Σ W_j)/g (the story
+    masses keep their DOFs relative to the ground). Rigid: u_G carries the whole mass
+    M = Σ m_j + m_b at G, h_G = Σ m_j h_j / M above O, and the rotary mass becomes the one about
+    G, I₀ + Σ m_j h_j² − M h_G², so that the mass matrix stays diagonal; the ground then loads
+    u_G only."""
+    base_mass = max(s.vertical_weight - s.weight, 0.0) / g
+    if dofs.stories:
+        mass[dofs.sway] = base_mass
+        load[dofs.sway] = -base_mass
+        return 0.0
+    total = float(np.sum(masses)) + base_mass
+    height = float(np.sum(masses * heights)) / total
+    mass[dofs.sway] = total
+    load[dofs.sway] = -total
+    if dofs.theta >= 0:
+        mass[dofs.theta] -= total * height * height
+        load[dofs.theta] = 0.0
+    return height
+
+
+def _sway_params(f, vertical_weight: float) -> np.ndarray:
+    """The sway spring: a story-kind spring of stiffness k_h, capped at the sliding capacity
+    μ W (elastic without μ), with a parallel dashpot c_h."""
+    table = sp.spring_table(1)
+    table["kind"] = sp.STORY
+    table["k"] = f.sway_stiffness
+    table["c"] = f.sway_damping or 0.0
+    if f.sliding_friction is not None:
+        table["fy"] = f.sliding_friction * vertical_weight
+    return table
+
+
 def _fundamental_frequency(s, masses) -> float:
     k = np.array([st.stiffness for st in s.stories])
     n = k.size
@@ -258,8 +321,12 @@ def _foundation_params(f, layout: SpringLayout, weight, rotary_mass, vertical_ma
     table = sp.spring_table(layout.count)
     table["kind"] = sp.UPLIFT if f.support == "uplift" else sp.BONDED
     table["k"] = k
-    table["c"] = (f.damping_ratio * 2.0 * math.sqrt(f.stiffness * vertical_mass) * k
-                  / layout.vertical_stiffness)
+    if f.dashpots is not None:  # one per spring; a custom layout's follow its positions
+        c = np.asarray(f.dashpots, dtype=float)
+        table["c"] = c[np.argsort(f.positions, kind="stable")] if f.layout == "custom" else c
+    else:
+        table["c"] = (f.damping_ratio * 2.0 * math.sqrt(f.stiffness * vertical_mass) * k
+                      / layout.vertical_stiffness)
     table["f0"] = F0
     table["fy"] = f.yield_multiple * F0 if f.law == "elastoplastic" else np.inf
     table["x"] = x
@@ -305,11 +372,14 @@ def _geometric(dofs: DofMap, s, masses, heights, g, A) -> np.ndarray:
     if t >= 0 and s.rigid:
         KG[t, t] = -float(np.sum(weights * heights))
         return KG
-    if t >= 0:
+    if t >= 0:  # x_j − u_b is the lateral position relative to the base, with a sway DOF
         for j, dof in enumerate(dofs.stories):
             KG[t, t] += weights[j] * heights[j]
             KG[dof, t] -= weights[j]
             KG[t, dof] -= weights[j]
+            if dofs.sway >= 0:
+                KG[dofs.sway, t] += weights[j]
+                KG[t, dofs.sway] += weights[j]
     story_heights = np.diff(np.concatenate([[0.0], heights]))
     above = np.cumsum(weights[::-1])[::-1]
     for k in range(len(dofs.stories)):

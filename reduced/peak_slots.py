@@ -34,6 +34,18 @@ class TrackedPeaks:
     opening: np.ndarray         # slot A of every spring (length)
     force: np.ndarray           # slot B of every spring (force)
     stories: int                # story springs: the first ``stories`` of each slot
+    sways: bool = False         # a sway spring follows the story springs
+
+    @property
+    def sway(self) -> float:
+        """The largest |horizontal displacement| of the base relative to the ground, the sway
+        spring's deformation (length; 0 without a sway spring)."""
+        return float(self.opening[self.stories]) if self.sways else 0.0
+
+    @property
+    def sway_force(self) -> float:
+        """The largest |force| of the sway spring, its dashpot included (force; 0 without)."""
+        return float(self.force[self.stories]) if self.sways else 0.0
 
     @property
     def base_shear(self) -> float:
@@ -47,10 +59,10 @@ class TrackedPeaks:
 
 
 def decode_peaks(raw: np.ndarray, *, stories: int, rocks: bool, settles: bool,
-                 exact: bool) -> TrackedPeaks:
-    """Read the kernels' peak array ``raw`` of a model with ``stories`` story springs, a base
-    that ``rocks`` (θ among its DOFs) and ``settles`` (V among them), in ``exact`` rocking
-    kinematics (whose θ slots hold sin θ)."""
+                 exact: bool, sways: bool = False) -> TrackedPeaks:
+    """Read the kernels' peak array ``raw`` of a model with ``stories`` story springs (then a
+    sway spring if it ``sways``), a base that ``rocks`` (θ among its DOFs) and ``settles`` (V
+    among them), in ``exact`` rocking kinematics (whose θ slots hold sin θ)."""
     n0 = kn.N_PEAK_SCALARS
     theta = max(abs(raw[kn.P_THMIN]), abs(raw[kn.P_THMAX])) if rocks else 0.0
     if exact:
@@ -64,7 +76,7 @@ def decode_peaks(raw: np.ndarray, *, stories: int, rocks: bool, settles: bool,
         min_contact_length=float(raw[kn.P_CMIN]),
         energy_residual=float(raw[kn.P_ERES] / max(raw[kn.P_ESCALE], 1e-300)),
         overturned_at=float(raw[kn.P_TOVER]),
-        opening=raw[n0::2], force=raw[n0 + 1::2], stories=stories)
+        opening=raw[n0::2], force=raw[n0 + 1::2], stories=stories, sways=sways)
 
 
 def start_peaks(params: np.ndarray, stories: int, start: list[float]) -> np.ndarray:

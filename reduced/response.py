@@ -77,7 +77,17 @@ class Response:
                     + self.model.heights[-1] * s)
         if d.stories:
             return self.q[:, d.stories[-1]]
+        if d.sway >= 0:  # u_G + (h − h_G) θ
+            lever = self.model.heights[-1] - self.model.sway_height
+            return self.q[:, d.sway] + lever * self.theta
         return self.model.heights[-1] * self.theta
+
+    @property
+    def sway(self) -> np.ndarray:
+        """Horizontal displacement of the base relative to the ground, u_b: the sway spring's
+        deformation, its sliding included (length; zero without a sway spring)."""
+        j = self.model.sway_spring
+        return self.deformation[:, j] if j >= 0 else np.zeros(self.time.size)
 
     @property
     def X(self) -> np.ndarray:
@@ -170,7 +180,7 @@ class Response:
         ``lock_time``/``lock_velocity`` when the stroke Δz was done (NaN if the spring separated
         first). ``ratio`` = lock_velocity / v0 is the realised coefficient of restitution."""
         im = self.impacts
-        spring = im[:, 1].astype(int) - self.model.story_count
+        spring = im[:, 1].astype(int) - self.model.foundation_start
         with np.errstate(invalid="ignore", divide="ignore"):
             ratio = im[:, 4] / im[:, 2]
         return {"time": im[:, 0], "spring": spring, "v0": im[:, 2], "lock_time": im[:, 3],
@@ -205,7 +215,7 @@ class Response:
         """The peaks the integrator tracked at every step (:func:`~.peak_slots.decode_peaks`)."""
         return decode_peaks(self.raw_peaks, stories=self.model.story_count,
                             rocks=self.dofs.theta >= 0, settles=self.dofs.v >= 0,
-                            exact=self.model.exact)
+                            exact=self.model.exact, sways=self.dofs.sway >= 0)
 
     @cached_property
     def peaks(self) -> dict[str, float]:
@@ -227,6 +237,12 @@ class Response:
         }
         if self.model.story_count:
             out["story_drift"] = pk.story_drift
+        if self.model.sway_spring >= 0:
+            j = self.model.sway_spring
+            out["sway"] = pk.sway
+            out["sway_force"] = pk.sway_force
+            out["residual_sway"] = float(self.deformation[-1, j])
+            out["sliding"] = float(self.plastic[-1, j])
         if self.model.layout is not None:
             out["uplift_left"] = max(float(gap[self.leftmost]), 0.0)
             out["uplift_max"] = max(float(np.max(gap)), 0.0)
@@ -257,6 +273,8 @@ class Response:
             "peak_theta": pk["theta"],
             "peak_base_shear": pk["base_shear"],
         }
+        if "sway" in pk:
+            out["peak_sway"] = pk["sway"]
         if "uplift_left" in pk:
             out["peak_uplift_left"] = pk["uplift_left"]
             out["residual_settlement"] = pk["residual_settlement"]
@@ -281,6 +299,8 @@ class Response:
             text += f"OVERTURNED at t = {s['overturned_at']:.4g} s (peaks up to then): "
         text += (f"peak u = {s['peak_u']:.4g} {u.length}, "
                  f"peak theta = {s['peak_theta']:.4g} rad")
+        if "peak_sway" in s:
+            text += f", peak sway = {s['peak_sway']:.4g} {u.length}"
         if "peak_uplift_left" in s:
             text += (f", uplift of leftmost spring = {s['peak_uplift_left']:.4g} {u.length}, "
                      f"residual settlement = {s['residual_settlement']:.4g} {u.length}")
@@ -314,6 +334,8 @@ class Response:
                     "V": self.V, "base_shear": self.base_shear,
                     "overturning_moment": self.overturning_moment,
                     "contact_length": self.contact_length}
+            if self.model.sway_spring >= 0:
+                cols["sway"] = self.sway
             if self.model.layout is not None:
                 cols["left_spring_displacement"] = self.left_spring_displacement
             written.append(write_csv(path.with_suffix(".csv"), cols,

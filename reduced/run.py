@@ -59,8 +59,12 @@ def initial_conditions(model: ReducedModel, motion: Motion) -> tuple[np.ndarray,
             lever = model.heights[-1] + (model.layout.half_width * abs(s0)
                                          / math.sqrt(1.0 - s0 * s0))
             qd0[d.theta] = v0 / lever
+        elif d.theta < 0:  # a rigid structure sliding on a fixed base: Ẋ = u̇_G
+            qd0[d.sway] = v0
         else:
             qd0[d.theta] = v0 / model.heights[-1]
+            if d.sway >= 0:  # the base at rest: u̇_G = h_G θ̇
+                qd0[d.sway] = model.sway_height * qd0[d.theta]
     return q0, qd0
 
 
@@ -108,7 +112,8 @@ def run_model(model: ReducedModel, motion: Motion, *, integrator: str | None = N
             "overturned_at": (decode_peaks(out["raw_peaks"], stories=model.story_count,
                                            rocks=model.dofs.theta >= 0,
                                            settles=model.dofs.v >= 0,
-                                           exact=model.exact).overturned_at
+                                           exact=model.exact,
+                                           sways=model.dofs.sway >= 0).overturned_at
                               if status == kn.OVERTURNED else None),
             "notes": list(model.notes),
             "counters": [int(c) for c in counters], "wall_time_s": elapsed,
@@ -197,6 +202,8 @@ class KernelInputs:
     def of(cls, model: ReducedModel, plan: StepPlan | None = None) -> KernelInputs:
         d = model.dofs
         scale = model.g * float(np.sum(model.mass[list(d.stories)])) + model.weight
+        if scale == 0.0:  # a rigid structure sliding on a fixed base: its own weight
+            scale = model.scene.structure.vertical_weight
         return cls(model.params, 1.0 / model.mass, model.geometric, model.ground_load,
                    model.weight, d.theta, d.v, model.story_count, scale,
                    model.scene.analysis.hht_alpha, frame_of(model, plan), story_table(model),
@@ -212,6 +219,7 @@ class KernelInputs:
         n = mass.size
         frame = np.zeros(kn.N_FRAME)
         frame[kn.F_ITH], frame[kn.F_IV], frame[kn.F_ECHECK], frame[kn.F_SIDE] = -1, v, 1, 1
+        frame[kn.F_ISWAY] = -1
         frame[kn.F_HMAX] = frame[kn.F_H0] = math.inf
         return cls(params, 1.0 / mass, np.zeros((n, n)), np.zeros(n), weight, -1, v, 0, 1.0,
                    0.0, frame, np.zeros((0, 3)), np.full(2 * n, 1e-12))
@@ -237,6 +245,7 @@ def frame_of(model: ReducedModel, plan: StepPlan | None = None) -> np.ndarray:
     frame[kn.F_SIDE] = 1.0
     frame[kn.F_ITH], frame[kn.F_IV] = d.theta, d.v
     frame[kn.F_NFLEX] = len(d.stories)
+    frame[kn.F_ISWAY] = d.sway if d.stories else -1
     frame[kn.F_ECHECK] = 1
     frame[kn.F_HMAX] = frame[kn.F_H0] = math.inf
     if plan is not None:
@@ -261,6 +270,8 @@ def error_floors(model: ReducedModel) -> np.ndarray:
         settle = model.weight / model.layout.vertical_stiffness
         floor[d.v] = settle
         floor[d.theta] = settle / model.layout.half_width
+    if d.sway >= 0:  # the sway under the weight as a lateral load
+        floor[d.sway] = s.vertical_weight / model.scene.foundation.sway_stiffness
     if not np.any(floor[:model.mass.size]):
         floor[:model.mass.size] = g * 1e-6
     floor[:model.mass.size] = np.where(floor[:model.mass.size] > 0, floor[:model.mass.size],

@@ -122,12 +122,10 @@ def rocking_pushover(model: ReducedModel, thetas) -> Pushover:
     q = np.zeros(model.mass.size)
     out = {k: [] for k in ("moment", "vertical", "contact", "plastic")}
     for theta in thetas:
-        q[d.theta] = theta
-        for j, dof in enumerate(d.stories):
-            q[dof] = model.heights[j] * theta
+        _carry(model, q, theta)
         q[d.v] = _vertical_equilibrium(model, q, hist)
         _, _, total, e, _ = _forces(model, q, hist)
-        for j in range(model.story_count, ns):
+        for j in range(model.foundation_start, ns):
             kn.commit_step(model.params[j], e[j], 0.0, hist[j], 1)
         found = model.foundation_slice
         out["moment"].append(foundation_moment(model, total))
@@ -151,6 +149,9 @@ def uplift_onset_force(model: ReducedModel) -> float:
     load = np.zeros(model.mass.size)
     top = model.dofs.stories[-1] if model.dofs.stories else model.dofs.theta
     load[top] = 1.0 if model.dofs.stories else model.heights[-1]
+    if not model.dofs.stories and model.dofs.sway >= 0:  # the top moves by u_G + (h − h_G) θ
+        load[model.dofs.sway] = 1.0
+        load[top] = model.heights[-1] - model.sway_height
     q = np.linalg.solve(K, load)
     e = model.A.T @ q
     rate = e[model.foundation_slice]  # compression per unit force
@@ -179,9 +180,7 @@ def initial_state(model: ReducedModel, *, displacement: float = 0.0,
                                  "(-pi/2, pi/2) with exact kinematics")
             q[d.theta] = np.sin(rotation)
         else:
-            q[d.theta] = rotation
-            for j, dof in enumerate(d.stories):
-                q[dof] = model.heights[j] * rotation
+            _carry(model, q, rotation)
         if model.layout is not None:
             q[d.v] = _vertical_equilibrium(model, q, np.zeros(model.spring_count,
                                                                  dtype=sp.HISTORY_DTYPE))
@@ -191,6 +190,17 @@ def initial_state(model: ReducedModel, *, displacement: float = 0.0,
                              "motion.rotation for a rigid one")
         q = _displaced(model, q, displacement)
     return q
+
+
+def _carry(model: ReducedModel, q: np.ndarray, theta: float) -> None:
+    """The base rotated by θ with the superstructure undeformed and the base's sway u_b at
+    zero (x_j = h_j θ; a rigid structure on a sway spring: u_G = h_G θ), in place."""
+    d = model.dofs
+    q[d.theta] = theta
+    for j, dof in enumerate(d.stories):
+        q[dof] = model.heights[j] * theta
+    if d.sway >= 0:
+        q[d.sway] = 0.0 if d.stories else model.sway_height * theta
 
 
 def _displaced(model: ReducedModel, q: np.ndarray, displacement: float) -> np.ndarray:

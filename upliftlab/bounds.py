@@ -48,6 +48,7 @@ KINDS: dict[str, Kind] = {
     "length": Kind(0, 1, "{L}", "m", 1e-4, 1e5),
     "force": Kind(1, 0, "{F}", "N", 1e-6, 1e13),
     "stiffness": Kind(1, -1, "{F}/{L}", "N/m", 1e-6, 1e16),
+    "dashpot": Kind(1, -1, "{F}*s/{L}", "N*s/m", 0.0, 1e16),
     "rotary_inertia": Kind(1, 1, "{F}*{L}*s^2", "kg*m^2", 0.0, 1e18),
     "modulus": Kind(1, -2, "{F}/{L}^2", "Pa", 1e3, 1e13),
     "strength": Kind(1, -2, "{F}/{L}^2", "Pa", 0.0, 1e10),

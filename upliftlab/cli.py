@@ -316,7 +316,8 @@ ADVISE_KEYS = ("schema", "units", "title", "description", "reference", "structur
                *(f"foundation.{k}" for k in ("support", "half_width", "stiffness",
                                              "vertical_period", "law", "yield_multiple",
                                              "damping_ratio", "restitution", "impact_multiple",
-                                             "impact_mass")),
+                                             "impact_mass", "sway_stiffness", "sway_damping",
+                                             "sliding_friction")),
                "motion*", "analysis.duration", "analysis.max_steps", "analysis.max_memory")
 
 

@@ -151,7 +151,17 @@ class Foundation:
     effective mass at the spring's position, so each landing spring removes (1 − ε²) of that
     mass's closing energy and a bed of N springs removes N times as much) or ``tributary``
     (that mass times the spring's share k_i/K_v of the bed, so the energy removed per landing
-    of the whole base does not grow with N).
+    of the whole base does not grow with N). ``dashpots`` (force·s/length, one per spring:
+    from −b to +b, or in the order of ``positions`` for a custom layout; None: from
+    ``damping_ratio``) sets every spring's dashpot instead, e.g. the radiation dashpots of a
+    soil's impedance distributed over the bed.
+
+    ``sway_stiffness`` (force/length; None: no sway, Ewing's model) puts a horizontal spring
+    under the base, with a parallel dashpot ``sway_damping`` (force·s/length; None: none) and,
+    with ``sliding_friction`` μ (None: no sliding), a slider in series with the spring that
+    carries at most μ W (W the structure's ``vertical_weight``, the weight the foundation
+    carries at rest): the base then has the continuum footing's three DOFs (horizontal,
+    vertical, rotation).
     """
 
     support: str
@@ -169,11 +179,20 @@ class Foundation:
     end_length: float = 0.0
     positions: tuple[float, ...] = ()
     stiffnesses: tuple[float, ...] = ()
+    dashpots: tuple[float, ...] | None = None
+    sway_stiffness: float | None = None
+    sway_damping: float | None = None
+    sliding_friction: float | None = None
 
     @property
     def width(self) -> float:
         """Full base width B = 2b (length)."""
         return 2.0 * self.half_width
+
+    @property
+    def sways(self) -> bool:
+        """True when the base has a horizontal spring (its sway DOF)."""
+        return self.sway_stiffness is not None
 
 
 #: Most springs a foundation may have: a bed finer than b/50000 resolves nothing more, and its
@@ -234,6 +253,9 @@ def read_foundation(data, vertical_mass: float, units: UnitSystem) -> Foundation
     if layout == "end_stiffened":
         end_ratio = table.get("end_stiffness_ratio", in_range(1.0, 1e6))
         end_length = table.get("end_length", in_range(0.0, 1.0, low_open=True, high_open=True))
+    damping_ratio = table.get("damping_ratio", in_range(0.0, 2.0), 0.0)
+    dashpots = _dashpots(table, springs, damping_ratio, units)
+    sway_stiffness, sway_damping, friction = _sway(table, units)
     foundation = Foundation(
         support=support,
         half_width=half_width,
@@ -242,7 +264,7 @@ def read_foundation(data, vertical_mass: float, units: UnitSystem) -> Foundation
         stiffness=stiffness,
         law=table.get("law", choice(LAWS), "elastic"),
         yield_multiple=table.get("yield_multiple", in_range(1.0, 1e6, low_open=True), 3.0),
-        damping_ratio=table.get("damping_ratio", in_range(0.0, 2.0), 0.0),
+        damping_ratio=damping_ratio,
         restitution=table.get("restitution", in_range(0.0, 1.0), 1.0),
         impact_multiple=table.get("impact_multiple", in_range(0.1, 1e4), 10.0),
         impact_mass=table.get("impact_mass", choice(IMPACT_MASSES), "point"),
@@ -250,6 +272,46 @@ def read_foundation(data, vertical_mass: float, units: UnitSystem) -> Foundation
         end_length=end_length,
         positions=positions,
         stiffnesses=stiffnesses,
+        dashpots=dashpots,
+        sway_stiffness=sway_stiffness,
+        sway_damping=sway_damping,
+        sliding_friction=friction,
     )
     table.done()
     return foundation
+
+
+#: Largest sliding friction coefficient μ: beyond it the base never slides in any record.
+MAX_FRICTION = 10.0
+
+
+def _dashpots(table: Table, springs: int, damping_ratio: float,
+              units: UnitSystem) -> tuple[float, ...] | None:
+    """``foundation.dashpots``: one dashpot per spring (force·s/length), or None."""
+    if not table.has("dashpots"):
+        return None
+    dashpots = table.get("dashpots", numbers)
+    if len(dashpots) != springs:
+        raise InputError(f"foundation.dashpots has {len(dashpots)} entries: give one per spring "
+                         f"({springs})")
+    for i, c in enumerate(dashpots):
+        bounds.check(f"foundation.dashpots[{i}]", c, "dashpot", units)
+    if damping_ratio > 0.0:
+        raise InputError(f"foundation.damping_ratio = {damping_ratio:g} with foundation.dashpots:"
+                         " give one of them; valid: 0 (or remove it)")
+    return dashpots
+
+
+def _sway(table: Table, units: UnitSystem):
+    """(sway_stiffness, sway_damping, sliding_friction) of ``[foundation]``: all None without
+    a sway spring, whose other keys are then refused (they would do nothing)."""
+    if not table.has("sway_stiffness"):
+        for key in ("sway_damping", "sliding_friction"):
+            if table.has(key):
+                raise InputError(f"foundation.{key} without foundation.sway_stiffness: it acts "
+                                 "on the sway spring; give foundation.sway_stiffness too")
+        return None, None, None
+    stiffness = table.get("sway_stiffness", bounds.checker("stiffness", units))
+    damping = table.get("sway_damping", bounds.checker("dashpot", units), None)
+    friction = table.get("sliding_friction", in_range(0.0, MAX_FRICTION, low_open=True), None)
+    return stiffness, damping, friction

@@ -196,9 +196,17 @@ def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
 
 def _check_consistency(scene: Scene) -> None:
     s, f = scene.structure, scene.foundation
-    if s.rigid and f.support == "fixed":
+    if s.rigid and f.support == "fixed" and not f.sways:
         raise InputError("structure.rigid = true with foundation.support = 'fixed': "
                          "a rigid structure on a fixed base has no motion")
+    if f.sways and s.kinematics == "exact":
+        raise InputError("foundation.sway_stiffness with structure.kinematics = 'exact': exact "
+                         "kinematics pivots the base on its edge without sliding; valid: 'small'")
+    if f.sways and not s.rigid and not s.vertical_weight > s.weight * (1.0 + 1e-9):
+        raise InputError(f"structure.vertical_weight = {s.vertical_weight:g} with "
+                         "foundation.sway_stiffness: a flexible structure's swaying base needs "
+                         "a mass of its own (the foundation's weight); valid range is > the "
+                         f"story weights, {s.weight:g}")
     if s.rotary_inertia == 0.0 and not s.rigid and f.support != "fixed":
         raise InputError("structure.rotary_inertia = 0: the rocking base needs a mass moment of "
                          "inertia > 0 (mass·length²) unless structure.rigid = true")

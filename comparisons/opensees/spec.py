@@ -123,6 +123,14 @@ def check_representable(scene: Scene) -> None:
             f"foundation.restitution = {f.restitution:g}: Ewing's impact damper (Case C) has "
             "no equivalent in OpenSees (no material adds a dashpot on recontact for a stroke "
             "set by the closing velocity and then locks); valid: 1 (Cases A and B)")
+    if f.sways:
+        raise InputError(
+            f"foundation.sway_stiffness = {f.sway_stiffness:g}: the OpenSees script has no sway "
+            "spring under the footing (its footing node is fixed horizontally); remove it")
+    if f.dashpots is not None:
+        raise InputError(
+            "foundation.dashpots: the OpenSees script sizes every dashpot from "
+            "foundation.damping_ratio (c_i proportional to k_i); remove foundation.dashpots")
     if s.kinematics != "small":
         raise InputError(
             f"structure.kinematics = {s.kinematics!r}: the OpenSees model (zeroLength springs "

@@ -49,6 +49,8 @@ from .options import (CALIBRATIONS, DYNAMIC_MISSING, FAST_OPTIONS, FLOORS, FULL_
                       ONSET_ANCHOR, Options, STUDY, WINKLER_ONSET, check_options)
 from .output import write
 from .points import evaluate_continuum, evaluate_dynamic
+from .radiation import (RadiationDashpots, distribute, gazetas_dashpots, impedance_dashpots,
+                        radiation_dashpots, rocking_frequency, with_radiation)
 from .reference import ContinuumReference, continuum_reference, cyclic_path, rotation_path
 from .result import WinklerVsContinuum
 from .workflow import DEFINITION, compute, main, run
@@ -61,4 +63,5 @@ __all__ = ["STUDY", "CALIBRATIONS", "Options", "FULL_OPTIONS", "FAST_OPTIONS", "
            "DYNAMIC_MISSING", "DYNAMIC_MEASURES", "DYNAMIC_LABELS", "bed_scene", "bed_response",
            "continuum_reference", "compare_dynamics", "dynamic_points", "dynamics_available",
            "evaluate_dynamic", "closed_form_checks", "end_zone", "WINKLER_ONSET", "ONSET_ANCHOR",
-           "LABELS", "FLOORS"]
+           "LABELS", "FLOORS", "RadiationDashpots", "distribute", "gazetas_dashpots",
+           "impedance_dashpots", "radiation_dashpots", "rocking_frequency", "with_radiation"]

@@ -20,10 +20,10 @@ digest of this package's sources instead (:func:`upliftlab._numba_cache_outside_
 """
 
 from .codes import (BONDED, CHATTER, CLIPPED, CONTACT, ELASTIC, E_IMPACT, E_INPUT, E_PLASTIC,
-                    E_VISCOUS, FAST, F_B, F_ECHECK, F_EXACT, F_H0, F_HMAX, F_IB, F_ITH, F_IV, F_MB,
-                    F_NFLEX, F_OUTDT, F_RTOL, F_SIDE, F_WTOT, HISTORY_DTYPE, HOT, MAX_DEPTH,
-                    MAX_PIECES, NONFINITE, NO_CONVERGENCE, N_ACC, N_CONDITIONS, N_COUNTERS,
-                    N_ENERGY, N_FRAME, N_PEAK_SCALARS, N_ROWS, N_SAMPLES, OK, OVERSHOOT_TOL,
+                    E_VISCOUS, FAST, F_B, F_ECHECK, F_EXACT, F_H0, F_HMAX, F_IB, F_ISWAY,
+                    F_ITH, F_IV, F_MB, F_NFLEX, F_OUTDT, F_RTOL, F_SIDE, F_WTOT, HISTORY_DTYPE,
+                    HOT, MAX_DEPTH, MAX_PIECES, NONFINITE, NO_CONVERGENCE, N_ACC, N_CONDITIONS,
+                    N_COUNTERS, N_ENERGY, N_FRAME, N_PEAK_SCALARS, N_ROWS, N_SAMPLES, OK, OVERSHOOT_TOL,
                     OVERTURNED, P_CMIN, P_ERES, P_ESCALE, P_ETOT0, P_MOT, P_RPREV, P_THMAX,
                     P_THMIN, P_TOVER, P_TPREV, P_UMAX, P_UMIN, P_VMAX, P_VMIN, ROUNDING, SEPARATED,
                     SPRING_DTYPE, STEP_UNDERFLOW, STORY, SWITCH_TOL, T_A0, T_A1, T_C, T_COND, T_F,
@@ -58,7 +58,8 @@ from .implicit import (integrate_newmark, internal_force, newmark_jacobian, newm
 
 __all__ = ["BONDED", "CHATTER", "CLIPPED", "CONTACT", "ELASTIC", "E_IMPACT", "E_INPUT",
            "E_PLASTIC", "E_VISCOUS", "FAST", "F_B", "F_ECHECK", "F_EXACT", "F_H0", "F_HMAX",
-           "F_IB", "F_ITH", "F_IV", "F_MB", "F_NFLEX", "F_OUTDT", "F_RTOL", "F_SIDE", "F_WTOT",
+           "F_IB", "F_ISWAY", "F_ITH", "F_IV", "F_MB", "F_NFLEX", "F_OUTDT", "F_RTOL",
+           "F_SIDE", "F_WTOT",
            "HISTORY_DTYPE", "HOT", "MAX_DEPTH", "MAX_PIECES", "NONFINITE", "NO_CONVERGENCE",
            "N_ACC", "N_CONDITIONS", "N_COUNTERS", "N_ENERGY", "N_FRAME", "N_PEAK_SCALARS",
            "N_ROWS", "N_SAMPLES", "OK", "OVERSHOOT_TOL", "OVERTURNED", "P_CMIN", "P_ERES",

@@ -89,7 +89,10 @@ F_HMAX = 11    # event stepper: the largest step it takes (s)
 F_H0 = 12      # event stepper: its first trial step under error control (s)
 F_OUTDT = 13   # event stepper under error control: spacing of the stored states (s), which it
                # interpolates within its steps (0: every ``stride`` steps)
-N_FRAME = 14
+F_ISWAY = 14   # index of the base's horizontal DOF u_b in q for a flexible structure on a
+               # sway spring (the story DOFs are then relative to the ground, the base's too);
+               # −1 otherwise (no sway, or a rigid structure, whose sway DOF is its centre's)
+N_FRAME = 15
 
 OK, CHATTER, NONFINITE, NO_CONVERGENCE, OVERTURNED, STEP_UNDERFLOW = 0, 1, 2, 3, 4, 5
 # counters: [0] steps cut at a switch (events) or the failing step, [1] switches or halvings,

@@ -18,7 +18,7 @@ import math
 
 from numba import njit
 
-from .codes import F_B, F_EXACT, F_IB, F_ITH, F_IV, F_MB, F_NFLEX, F_SIDE, F_WTOT
+from .codes import F_B, F_EXACT, F_IB, F_ISWAY, F_ITH, F_IV, F_MB, F_NFLEX, F_SIDE, F_WTOT
 
 
 @njit(cache=True, inline="always")
@@ -145,12 +145,13 @@ def overturn_ratio(q, frame, story):
     base's) in the exact geometry of the state, and x_O the base centre's rest position. At 1
     the centre is over the edge the base rocks about: past the toppling angle (a rigid block:
     θ = α = atan(b/h)). Small rotations are judged on the same geometry, their state read as
-    θ and deflections w_j = x_j − h_j θ: the model's own restoring moment vanishes only at
-    θ = b/h, past the real structure's toppling."""
+    θ and deflections w_j = x_j − h_j θ − u_b (u_b the base's sway, when it has one): the
+    model's own restoring moment vanishes only at θ = b/h, past the real structure's
+    toppling."""
     b = frame[F_B]
     if b <= 0.0:
         return 0.0
-    ith, nflex = int(frame[F_ITH]), int(frame[F_NFLEX])
+    ith, nflex, isway = int(frame[F_ITH]), int(frame[F_NFLEX]), int(frame[F_ISWAY])
     exact = frame[F_EXACT] > 0.0
     s = q[ith] if exact else math.sin(q[ith])
     c = math.sqrt(max(1.0 - s * s, 0.0))
@@ -160,5 +161,7 @@ def overturn_ratio(q, frame, story):
         w = 0.0
         if j < nflex:
             w = q[j] if exact else q[j] - h * q[ith]
+            if isway >= 0:
+                w -= q[isway]
         moment += story[j, 2] * (w * c + h * s)
     return abs(moment / frame[F_WTOT]) / b
