@@ -122,7 +122,8 @@ def _record_path(path: Path) -> Path:
 
 def _write_record(path: Path, image: Path, png: Path | None, caption: Caption,
                   frames: tuple = ()) -> Path:
-    record = {"image": image.name, "png": png.name if png else None, **asdict(caption)}
+    record = {"image": Path(image).relative_to(path.parent).as_posix(),
+              "png": png.name if png else None, **asdict(caption)}
     if frames:
         record["frames"] = [{"image": Path(p).relative_to(path.parent).as_posix(),
                              "label": label} for p, label in frames]

@@ -112,12 +112,14 @@ def _verification_tables(study: StudyResult) -> str:
                  "skipped and marked so; Prandtl is checked on 8 across with its own 5 % "
                  "tolerance.</p>")
     table = ['<div class="scroll"><table><thead><tr><th>group</th><th>quantity</th>'
-             "<th>reference</th><th>measured</th><th>expected</th><th>error</th>"
-             "<th>tolerance</th><th>result</th></tr></thead><tbody>"]
+             "<th>reference</th><th>unit</th><th>measured</th><th>expected</th>"
+             "<th>error (–, or in the unit if abs)</th><th>tolerance</th><th>result</th></tr>"
+             "</thead><tbody>"]
     for r in rows:
         note = f'<br><small class="note">{html.escape(r.note)}</small>' if r.note else ""
         table.append(f'<tr class="{r.status}"><td>{r.group}</td><td>{html.escape(r.quantity)}'
                      f"{note}</td><td>{html.escape(r.reference)}</td>"
+                     f"<td>{html.escape(getattr(r, 'unit', '') or '—')}</td>"
                      f'<td class="num">{fmt(r.measured)}</td><td class="num">'
                      f"{fmt(r.expected)}</td>"
                      f'<td class="num">{html.escape(error_text(r))}</td>'
@@ -125,7 +127,7 @@ def _verification_tables(study: StudyResult) -> str:
                      f"<td>{mark[r.status]}</td></tr>")
     table.append("</tbody></table></div>")
     order_html = ['<div class="scroll"><table><thead><tr><th>group</th><th>case</th>'
-                  "<th>method</th><th>steps (Δt in s, or h/B)</th><th>observed order</th>"
+                  "<th>method</th><th>steps (Δt in s, or h/B)</th><th>observed order (–)</th>"
                   "<th>expected</th><th>band</th><th>result</th></tr></thead><tbody>"]
     for o in orders:
         steps = ", ".join(f"{s:g}" for s in o.steps) or "—"
