@@ -24,7 +24,8 @@ from pathlib import Path
 from ..results import atomic_path, write_text
 
 __all__ = ["PAGE_WIDTH_IN", "MIN_FONT_PT", "Caption", "FigureRecord", "print_style",
-           "page_figure", "small_text", "save", "save_frames", "read", "is_record", "RECORD_SUFFIX"]
+           "page_figure", "small_text", "plain_log_ticks", "save", "save_frames", "read",
+           "is_record", "RECORD_SUFFIX"]
 
 #: Width (in) every figure is drawn at: the printed text width with a margin on A4 and Letter.
 PAGE_WIDTH_IN = 6.5
@@ -105,6 +106,23 @@ def _shown(artist) -> bool:
     return axes is None or axes.get_visible()
 
 
+def _plain(value: float, _position=None) -> str:
+    return f"{value:g}"
+
+
+def plain_log_ticks(fig) -> None:
+    """Label the log and symlog axes of ``fig`` (colour bars included) 0.1, 1, 10, 1e-06 —
+    plain text at the tick size — instead of 10⁻¹, whose exponent prints at 70 % of it; no
+    minor labels."""
+    from matplotlib.ticker import FuncFormatter, NullFormatter
+
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            if axis.get_scale() in ("log", "symlog"):
+                axis.set_major_formatter(FuncFormatter(_plain))
+                axis.set_minor_formatter(NullFormatter())
+
+
 def _check(fig, path: Path) -> None:
     width, _ = fig.get_size_inches()
     if width > PAGE_WIDTH_IN + 1e-9:
@@ -131,7 +149,8 @@ def _write_record(path: Path, image: Path, png: Path | None, caption: Caption,
 
 
 def save(path, fig, caption: Caption, *, png_dpi: int = 110) -> list[Path]:
-    """Check ``fig`` prints readably (width, text sizes: ValueError otherwise), then write
+    """Label log axes in plain numbers (:func:`plain_log_ticks`), check ``fig`` prints
+    readably (width, text sizes: ValueError otherwise), then write
     ``<stem>.svg``, ``<stem>.png`` and the caption record ``<stem>.figure.json`` beside
     ``path`` (any suffix); close the figure. Returns [record, svg, png]."""
     import matplotlib.pyplot as plt
@@ -139,6 +158,7 @@ def save(path, fig, caption: Caption, *, png_dpi: int = 110) -> list[Path]:
     path = Path(path)
     svg, png = path.with_suffix(".svg"), path.with_suffix(".png")
     try:
+        plain_log_ticks(fig)
         _check(fig, path)
         path.parent.mkdir(parents=True, exist_ok=True)
         with print_style():

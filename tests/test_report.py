@@ -19,6 +19,7 @@ import re
 import shutil
 import subprocess
 import sys
+from collections import Counter
 from pathlib import Path
 
 import pytest
@@ -120,7 +121,7 @@ def test_every_table_states_its_units(reports):
     # m per metre of strip for the continuum; "–" for ratios).
     page = (reports["out"] / "report.html").read_text()
     tables = re.findall(r"<thead>(.*?)</thead>", page, flags=re.S)
-    assert len(tables) >= 15
+    assert len(tables) >= 12
     for head in tables:
         cells = [re.sub(r"<[^>]+>", "", c) for c in re.findall(r"<th>(.*?)</th>", head)]
         assert any(re.search(r"\([^)]+\)", c) or c.strip() == "unit" for c in cells), cells
@@ -173,7 +174,7 @@ def test_captions_state_the_studies_own_numbers(reports):
     # compute the same numbers by their own code (summary.json): the two-spring onset and
     # capacity ratios (anchor §2: 1.73/(1 + 1/N) and 0.58) and Figs. 11–12's peaks.
     out = reports["out"]
-    page = (out / "report.html").read_text()
+    page = html.unescape((out / "report.html").read_text())
     two = json.loads((out / "studies" / "two_spring_equivalence-fast" / "summary.json")
                      .read_text())["numbers"]
     assert (f"start to uplift at {two['onset_ratio_equivalent_vs_winkler']:.2f} × the bed's "
@@ -237,6 +238,8 @@ def test_report_prints_on_a4_and_letter_with_every_column_and_figure(reports, tm
     headers = {re.sub(r"<[^>]+>", "", html.unescape(h)).strip()
                for h in re.findall(r"<th>(.*?)</th>", page, flags=re.S)}
     figures = len(_figures(page))
+    body = re.sub(r"<(style|script|head|output)\b.*?</\1>", " ", page, flags=re.S)
+    shown = Counter(html.unescape(re.sub(r"<[^>]+>", " ", body)).split())
     margin = 14 / 25.4 * 72
     counts = {}
     for paper, (_, (width, height)) in PAPERS.items():
@@ -248,11 +251,12 @@ def test_report_prints_on_a4_and_letter_with_every_column_and_figure(reports, tm
             assert (w, h) == pytest.approx((width, height), abs=1.0), paper
             assert all(margin - 3 <= a and b <= w - margin + 3 for a, b, _ in words), (
                 paper, [t for a, b, t in words if a < margin - 3 or b > w - margin + 3][:5])
-        text = set(t for _, _, words in pages for _, _, t in words)
+        printed = Counter(t for _, _, words in pages for _, _, t in words)
         joined = " ".join(t for _, _, words in pages for _, _, t in words)
-        for header in headers:
-            for word in header.split():
-                assert word in text or word in joined, (paper, header, word)
+        # every word of a table header is printed at least as often as the page shows it: a
+        # column cut off the page would take its header's words with it
+        for word in {w for header in headers for w in header.split()}:
+            assert printed[word] >= shown[word], (paper, word, printed[word], shown[word])
         for k in range(1, figures + 1):
             assert f"Figure {k}." in joined, (paper, k)
     print(f"pages: {counts}")
