@@ -142,7 +142,8 @@ def quantity_unit(key: str, units) -> str:
 
 def _error_markdown(table: ErrorTable, units) -> list[str]:
     head = ("| quantity | unit | continuum (in the unit) | "
-            + " | ".join(f"`{c}` (error, %)" for c in table.calibrations) + " |")
+            + " | ".join(f"{c.replace('_', ' ')} (error, %)" for c in table.calibrations)
+            + " |")
     rows = [head, "|---|---|---|" + "---|" * len(table.calibrations)]
     for j, label in enumerate(table.labels):
         rows.append(f"| {label} | {quantity_unit(table.quantities[j], units)} | "
@@ -167,7 +168,8 @@ def _dynamic_markdown(dyn: DynamicComparison, options: Options, fast: bool, unit
         lines += [f"### {run.label}", "",
                   f"Continuum: {run.continuum['steps']} steps on {run.continuum['dofs']} DOFs. "
                   "Histories overlaid in this section's figure of the run.", "",
-                  "| measure | unit | continuum | " + " | ".join(f"`{n}`" for n in names) + " |",
+                  "| measure | unit | continuum | " + " | ".join(n.replace("_", " ") for n in names)
+                  + " |",
                   "|---|---|---|" + "---|" * len(names)]
         for m in DYNAMIC_MEASURES:
             lines.append(f"| {DYNAMIC_LABELS[m]} | {quantity_unit('_' + m, units)} | "
