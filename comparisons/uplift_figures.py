@@ -91,8 +91,8 @@ def animation_caption(scene, frames, B: float, stress: str) -> Caption:
     pressure = max(float(np.max(f.pressure)) for f in frames)
     shown = (f"{len(frames)} snapshots of the rotation pushover of {scene.name}: the soil "
              "and the footing (displacements magnified) with the contact pressure p (filled) "
-             "and the gap g (line) along the base under each; move the slider to step "
-             "through them.")
+             "and the gap g (line) along the base under each; on screen the slider steps "
+             "through them, in print the last shows.")
     conclusion = (f"The contact shrinks from {first.contact_length / B:.0%} of B "
                   f"({first.label}) to {last.contact_length / B:.0%} ({last.label}) while the "
                   f"gap under the lifted edge grows to {gap:.3g} {length} and the peak pressure "

@@ -207,6 +207,41 @@ def test_the_uplift_animation_has_a_frame_slider_with_contact_and_gap(reports):
     assert re.search(r"contact shrinks from 100% of B .* to \d+%", anim[0])
 
 
+def _need_printing_tools() -> None:
+    """Skip without Chromium or poppler, unless under CI, where they must be installed."""
+    from upliftlab.comparisons.report_print import browser
+
+    if browser() is None or shutil.which("pdftotext") is None:
+        if os.environ.get("CI"):
+            pytest.fail("printing needs chromium and poppler-utils (apt-get install chromium "
+                        "poppler-utils); CI must have them")
+        pytest.skip("chromium or poppler-utils is not installed")
+
+
+def test_frame_slider_script_shows_the_chosen_frame_offline(reports, tmp_path):
+    # The page opened from disk in headless Chromium (no network) with the slider set to
+    # frame 0: the inline script shows frame 0 only and writes frame 0's label (the DOM
+    # after the script ran; reference: the frame labels in the page itself).
+    from upliftlab.comparisons.report_print import browser
+
+    _need_printing_tools()
+    page = (reports["out"] / "report.html").read_text()
+    moved = re.sub(r'(<input type="range" min="0" max="\d+" step="1" value=")\d+"',
+                   r'\g<1>0"', page)
+    assert moved != page
+    copy = tmp_path / "slider.html"
+    copy.write_text(moved)
+    done = subprocess.run([browser(), "--headless", "--no-sandbox", "--disable-gpu",
+                           "--disable-background-networking", "--no-first-run",
+                           f"--user-data-dir={tmp_path / 'profile'}", "--dump-dom",
+                           copy.as_uri()], capture_output=True, text=True, timeout=300)
+    anim = re.search(r'<figure class="anim">.*?</figure>', done.stdout, flags=re.S).group(0)
+    frames = re.findall(r"<img [^>]*>", anim)
+    assert [" hidden" in f for f in frames] == [False] + [True] * (len(frames) - 1)
+    first = html.unescape(re.search(r'data-label="([^"]*)"', frames[0]).group(1))
+    assert html.unescape(re.search(r"<output>(.*?)</output>", anim).group(1)) == first
+
+
 def _pdf_words(pdf: Path) -> list[tuple[float, float, list[tuple[float, float, str]]]]:
     """Per page: (width, height, [(xMin, xMax, word)]) from pdftotext -bbox."""
     done = subprocess.run(["pdftotext", "-bbox", str(pdf), "-"], capture_output=True,
@@ -227,13 +262,9 @@ def test_report_prints_on_a4_and_letter_with_every_column_and_figure(reports, tm
     # paper's (A4 595.28 × 841.89 pt, Letter 612 × 792 pt, within 1 pt); every table header
     # cell's words and every figure's number ("Figure k.") are in the PDF's text; no word
     # lies outside the page's 14 mm margins (a cut table column or figure would).
-    from upliftlab.comparisons.report_print import PAPERS, browser, print_pdf
+    from upliftlab.comparisons.report_print import PAPERS, print_pdf
 
-    if browser() is None or shutil.which("pdftotext") is None:
-        if os.environ.get("CI"):
-            pytest.fail("printing needs chromium and poppler-utils (apt-get install chromium "
-                        "poppler-utils); CI must have them")
-        pytest.skip("chromium or poppler-utils is not installed")
+    _need_printing_tools()
     page = (reports["out"] / "report.html").read_text()
     headers = {re.sub(r"<[^>]+>", "", html.unescape(h)).strip()
                for h in re.findall(r"<th>(.*?)</th>", page, flags=re.S)}

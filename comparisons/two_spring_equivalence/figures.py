@@ -122,7 +122,7 @@ def _convergence_figure(conv: Convergence):
         fig, axes = page_figure(3.2, 1, len(cases) + 1, sharey=True)
         for key, values in conv.static.items():
             v = np.array(values)
-            axes[0].semilogx(n, v / v[-1], "o-", label=key)
+            axes[0].semilogx(n, v / v[-1], "s--", label=key)
         axes[0].set_title("statics")
         for ax, case in zip(axes[1:], cases):
             for m, values in conv.dynamic[case].items():
