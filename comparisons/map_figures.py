@@ -24,7 +24,8 @@ import numpy as np
 from .figure_record import page_figure
 from .study import Axis
 
-__all__ = ["LEVELS", "share_within", "worst_cell", "layout_maps", "dense_maps"]
+__all__ = ["LEVELS", "MAX_HEIGHT_IN", "share_within", "worst_cell", "layout_maps", "dense_maps",
+           "rows_per_figure"]
 
 #: Contour levels (fractions) drawn on every error map.
 LEVELS = (0.10, 0.20)
@@ -111,16 +112,30 @@ def layout_maps(x: Axis, y: Axis, panels: Sequence[tuple[str, np.ndarray]],
     return fig
 
 
+#: Tallest figure (in): fits the printed text height of Letter (11 in − 2 × 14 mm = 9.9 in)
+#: and A4 with its caption, so no figure is scaled down (and its text below 9 pt) in print.
+MAX_HEIGHT_IN = 8.6
+
+
+def _row_height(y: Axis) -> float:
+    return 0.75 + 0.16 * max(len(y.values), 4)
+
+
+def rows_per_figure(y: Axis) -> int:
+    """How many rows of :func:`dense_maps` panels fit in :data:`MAX_HEIGHT_IN`."""
+    return max(1, int((MAX_HEIGHT_IN - 0.9) // _row_height(y)))
+
+
 def dense_maps(x: Axis, y: Axis, columns: Sequence[str],
                rows: Sequence[tuple[str, Sequence[np.ndarray]]],
                levels: Sequence[float] = LEVELS):
     """Every panel: one column per name of ``columns`` (titled on the top row), one row per
     (row name, errors per column) of ``rows`` (the row name above the y label); page width,
-    tall; the figure."""
+    tall (give it at most :func:`rows_per_figure` rows to stay within
+    :data:`MAX_HEIGHT_IN`); the figure."""
     levels = _levels(levels)
     ncols = len(columns)
-    row_in = 0.75 + 0.16 * max(len(y.values), 4)
-    fig, axes = page_figure(0.9 + row_in * len(rows), len(rows), ncols, squeeze=False)
+    fig, axes = page_figure(0.9 + _row_height(y) * len(rows), len(rows), ncols, squeeze=False)
     mesh = None
     for r, (row_name, panels) in enumerate(rows):
         for c, errors in enumerate(panels):

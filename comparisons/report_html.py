@@ -60,6 +60,7 @@ tr.fail td{background:#fdecea}tr.skipped td{color:#6b6f78;background:#fffbea}
 .error{border-left:5px solid #b3261e;background:#fdf3f2;padding:8px 12px;margin:10px 0}
 pre{background:#f3f4f6;padding:8px 10px;overflow-x:auto;font-size:12px;white-space:pre-wrap}
 code{font-family:"DejaVu Sans Mono",Menlo,Consolas,monospace;font-size:12.5px}
+[hidden]{display:none!important}
 figure{margin:14px 0 22px}figure img{display:block;max-width:100%;height:auto}
 figure img.plot{width:100%;max-width:840px}figure img.render{border:1px solid #e3e6eb}
 figcaption{font-size:13px;color:#3d4452;max-width:840px;margin-top:4px}

@@ -17,6 +17,7 @@ import math
 import os
 import re
 import shutil
+import struct
 import subprocess
 import sys
 from collections import Counter
@@ -146,9 +147,11 @@ def _svgs(block: str) -> list[str]:
 def test_every_figure_is_captioned_vector_and_readable_in_print(reports):
     # Each <figure> has a caption with a conclusion that states a number; each plot is an SVG
     # of at most the page width (6.5 in = 468 pt: A4 and Letter less 14 mm margins hold
-    # 7.2 in) whose every text is at least 9 pt (one SVG unit is one point); the error maps
+    # 7.2 in) and 8.6 in high (Letter's text height 9.9 in less a caption), whose every text
+    # is at least 9 pt (one SVG unit is one point); the error maps
     # are split: the readable ones in the page, the all-panel ones behind <details>.
     from upliftlab.comparisons.figure_record import MIN_FONT_PT, PAGE_WIDTH_IN
+    from upliftlab.comparisons.map_figures import MAX_HEIGHT_IN
 
     page = (reports["out"] / "report.html").read_text()
     figures = _figures(page)
@@ -160,7 +163,9 @@ def test_every_figure_is_captioned_vector_and_readable_in_print(reports):
         for svg in _svgs(block):
             plots += 1
             width = float(re.search(r'<svg[^>]*\bwidth="([\d.]+)pt"', svg).group(1))
+            height = float(re.search(r'<svg[^>]*\bheight="([\d.]+)pt"', svg).group(1))
             assert width <= 72 * PAGE_WIDTH_IN + 1e-6
+            assert height <= 72 * MAX_HEIGHT_IN + 1e-6  # printed whole, never scaled down
             sizes = [float(x) for x in re.findall(r"font-size:\s*([\d.]+)px", svg)]
             assert sizes and min(sizes) >= MIN_FONT_PT
     assert plots == len(figures) - page.count('class="anim"') >= 24
@@ -269,6 +274,9 @@ def test_report_prints_on_a4_and_letter_with_every_column_and_figure(reports, tm
     headers = {re.sub(r"<[^>]+>", "", html.unescape(h)).strip()
                for h in re.findall(r"<th>(.*?)</th>", page, flags=re.S)}
     figures = len(_figures(page))
+    frame = re.search(r'<figure class="anim">.*?src="data:image/png;base64,([^"]+)"', page,
+                      flags=re.S).group(1)
+    frame_size = struct.unpack(">II", base64.b64decode(frame)[16:24])  # PNG IHDR width, height
     body = re.sub(r"<(style|script|head|output)\b.*?</\1>", " ", page, flags=re.S)
     shown = Counter(html.unescape(re.sub(r"<[^>]+>", " ", body)).split())
     margin = 14 / 25.4 * 72
@@ -290,6 +298,11 @@ def test_report_prints_on_a4_and_letter_with_every_column_and_figure(reports, tm
             assert printed[word] >= shown[word], (paper, word, printed[word], shown[word])
         for k in range(1, figures + 1):
             assert f"Figure {k}." in joined, (paper, k)
+        # the animation prints one frame (the one shown), not its whole stack of frames
+        listed = subprocess.run(["pdfimages", "-list", str(pdf)], capture_output=True,
+                                text=True, check=True).stdout.splitlines()[2:]
+        sizes = Counter((int(r.split()[3]), int(r.split()[4])) for r in listed)
+        assert sizes[frame_size] == 1, (paper, frame_size, sizes)
     print(f"pages: {counts}")
 
 def test_every_verification_row_passes_with_its_tolerance(reports):

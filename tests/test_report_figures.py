@@ -121,6 +121,24 @@ def test_dense_maps_keep_every_panel_at_page_width():
     assert sum(1 for a in fig.axes if a.get_visible() and a.get_label() != "<colorbar>") >= 18
 
 
+def test_dense_maps_are_split_to_fit_a_printed_page():
+    # With the full grid's 7 intensities, the six measures do not fit one page: each figure
+    # gets at most rows_per_figure rows and stays within MAX_HEIGHT_IN (8.6 in; Letter's text
+    # height is 11 in − 2 × 14 mm = 9.9 in).
+    x = Axis("h_over_b", "h/b", (1.5, 2.0, 2.8, 4.0, 6.0))
+    y = Axis("intensity", "intensity", (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0), " × a_up")
+    per = mf.rows_per_figure(y)
+    assert 1 <= per < 6
+    assert mf.MAX_HEIGHT_IN <= 11 - 2 * MARGIN_IN - 1.0
+    rows = [(f"measure {k}", [np.full((7, 5), 0.05)] * 3) for k in range(per)]
+    with fr.print_style():
+        fig = mf.dense_maps(x, y, ("edges", "equivalent", "calibrated"), rows)
+    assert fig.get_size_inches()[1] <= mf.MAX_HEIGHT_IN
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
+
+
 def test_frame_subset_keeps_first_and_last():
     # Evenly spaced indices round(k (n − 1)/(m − 1)), k = 0…m−1.
     assert frame_subset(5, 24) == [0, 1, 2, 3, 4]

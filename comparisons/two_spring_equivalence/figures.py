@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from ..figure_record import Caption, page_figure, print_style, save
-from ..map_figures import dense_maps, layout_maps, share_within, worst_cell
+from ..map_figures import dense_maps, layout_maps, rows_per_figure, share_within, worst_cell
 from .convergence import Convergence
 from .grid import METRICS, METRIC_LABELS
 from .result import TwoSpringEquivalence
@@ -29,8 +29,11 @@ def write_figures(result: TwoSpringEquivalence, directory: Path) -> list[Path]:
             slug = f"{emap.name}_{case.replace('/', '')}"
             files += save(directory / f"{slug}_all.png",
                           *_map_figure(result, emap, case, levels))
-            files += save(directory / f"{slug}.png",
-                          *_dense_figure(result, emap, case, levels))
+            per = rows_per_figure(emap.y)
+            for k in range(0, len(METRICS), per):
+                name = f"{slug}.png" if k == 0 else f"{slug}_{k // per + 1}.png"
+                files += save(directory / name, *_dense_figure(result, emap, case, levels,
+                                                               METRICS[k:k + per]))
     return files
 
 
@@ -61,20 +64,23 @@ def _map_figure(result: TwoSpringEquivalence, emap, case: str, levels):
                         shown, conclusion)
 
 
-def _dense_figure(result: TwoSpringEquivalence, emap, case: str, levels):
+def _dense_figure(result: TwoSpringEquivalence, emap, case: str, levels, metrics):
     threshold = result.options.threshold
     rows = [(METRIC_LABELS[m], [emap.error(case, layout, m) for layout in emap.layouts])
-            for m in METRICS]
+            for m in metrics]
     with print_style():
         fig = dense_maps(emap.x, emap.y, emap.layouts, rows, levels)
     shares = {m: np.nanmean([share_within(emap.error(case, layout, m), threshold)
-                             for layout in emap.layouts]) for m in METRICS}
+                             for layout in emap.layouts]) for m in metrics}
     hardest = min(shares, key=lambda m: shares[m] if np.isfinite(shares[m]) else 2.0)
-    conclusion = (f"The hardest measure to match is {METRIC_LABELS[hardest]}: within "
+    others = ", ".join(f"{METRIC_LABELS[m]} {_pct(v)}" for m, v in shares.items()
+                       if m != hardest)
+    conclusion = (f"Of these measures the hardest to match is {METRIC_LABELS[hardest]}: within "
                   f"{100 * threshold:g} % over {_pct(shares[hardest])} of the map on average "
-                  f"over the layouts (peak u: {_pct(shares['u'])}).")
-    shown = (f"Every measure (rows) for every layout (columns): |two-spring − bed| / bed (%), "
-             f"{emap.title}, Case {case}, N = {result.springs}.")
+                  f"over the layouts ({others or 'the only one shown'}).")
+    shown = (f"{', '.join(METRIC_LABELS[m] for m in metrics)} (rows) for every layout "
+             f"(columns): |two-spring − bed| / bed (%), {emap.title}, Case {case}, "
+             f"N = {result.springs}.")
     return fig, Caption(f"Each measure on its own: {emap.title}, Case {case}", shown,
                         conclusion, dense=True)
 

@@ -10,6 +10,7 @@ import numpy as np
 
 from ...anchors import half_plane_rocking, winkler_rocking
 from ..figure_record import Caption, page_figure, print_style, save
+from ..map_figures import MAX_HEIGHT_IN
 from .analysis import ErrorTable
 from .dynamics import DynamicRun
 from .options import LABELS
@@ -154,7 +155,7 @@ def _error_figure(table: ErrorTable):
     percent = np.clip(100.0 * np.abs(table.errors.T), 0.01, 1000.0)  # (quantity, calibration)
     nq, nc = percent.shape
     with print_style():
-        fig, ax = page_figure(1.6 + 0.25 * nq)
+        fig, ax = page_figure(min(MAX_HEIGHT_IN, 1.6 + 0.25 * nq))
         image = ax.pcolormesh(np.arange(nc + 1) - 0.5, np.arange(nq + 1) - 0.5,
                               np.ma.masked_invalid(percent), norm=LogNorm(0.01, 1000.0),
                               cmap="viridis")
