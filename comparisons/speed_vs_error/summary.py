@@ -67,8 +67,8 @@ def _continuum_lines(result: SpeedVsError) -> list[str]:
             continue
         lines += [f"### {s.label} — continuum meshes against the Winkler reference", "",
                   "| elements across | runtime (s) | " + " | ".join(
-                      f"{LABELS[q]} ({_units(s).split(', ')[k]}; error and change to next "
-                      "finer in %)" for k, q in enumerate(QUANTITIES))
+                      f"{LABELS[q]} ({_units(result, s).split(', ')[k]}; error and change to "
+                      "next finer in %)" for k, q in enumerate(QUANTITIES))
                   + " |", "|---|---|" + "---|" * len(QUANTITIES)]
         for k, p in enumerate(pts):
             finer = pts[k + 1] if k + 1 < len(pts) else None
@@ -126,7 +126,7 @@ def summary_markdown(result: SpeedVsError, fast: bool, elapsed: float) -> str:
         cells = [f"{r.values[q]:.4g} ({_pct(r.change_springs[q])}, {_pct(r.change_dt[q])})"
                  + ("" if r.converged[q] else " **not conv.**") for q in QUANTITIES]
         lines.append(f"| {s.label} | events, N = {r.springs}, Δt = {r.dt:g} s | "
-                     + " | ".join(cells) + f" | {_units(s)} | {r.runtime:.3g} |")
+                     + " | ".join(cells) + f" | {_units(result, s)} | {r.runtime:.3g} |")
     notconv = [(s.label, q) for s in result.scenes for q in QUANTITIES
                if not s.reference.converged[q]]
     lines += ["", f"Converged to {_pct(opt.convergence_tolerance)} (change from half the "
@@ -168,10 +168,11 @@ def summary_markdown(result: SpeedVsError, fast: bool, elapsed: float) -> str:
     return "\n".join(lines)
 
 
-def _units(s) -> str:
-    """The units of peak u, θ, uplift and settlement of scene result ``s`` (its scene's
-    length unit; θ in rad)."""
+def _units(result: SpeedVsError, s) -> str:
+    """The units of peak u, θ, uplift and settlement of scene result ``s`` (its packaged
+    scene's length unit; θ in rad)."""
     from ...scenes import load_scene
 
-    length = load_scene(s.name).units.length
+    spec = next(sp for sp in result.grid.scenes if sp.label == s.label)
+    length = load_scene(spec.scene).units.length
     return f"{length}, rad, {length}, {length}"
