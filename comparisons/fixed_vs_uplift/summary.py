@@ -72,7 +72,8 @@ def summary_markdown(result: FixedVsUplift, fast: bool, elapsed: float) -> str:
                   f"Largest base-shear coefficient V/W over the periods: {peaks}.", "",
                   "| uplift case | quantity | reduced over (periods T in s) | by up to (min "
                   "ratio (–), at T) | median ratio (–) | increased over (T in s) | max ratio "
-                  "(–) (at T) | ratio at T = 0.15 s (–) | ratio at T = 0.59 s (–) |", "|---|---|---|---|---|---|---|---|---|"]
+                  "(–) (at T) | ratio at T = 0.15 s (–) | ratio at T = 0.59 s (–) |",
+                  "|---|---|---|---|---|---|---|---|---|"]
         for (support, what), r in s.ranges.items():
             name = "peak base shear" if what == "shear" else "peak deformation"
             lines.append(f"| {SUPPORT_LABELS[support]} | {name} | {span_text(r.reduced)} "

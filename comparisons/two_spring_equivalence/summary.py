@@ -109,8 +109,8 @@ def _pct2(value: float) -> str:
 
 def _statics_table(st: Statics) -> list[str]:
     rows = ["| foundation | positions x/b (–) | onset M/(NB) (–) | closed form (–) | "
-            f"capacity M/(NB) (–) | closed form (–) | M_ult/(NB), FS_v = {st.yield_multiple:g} "
-            "(–) | closed form (–) |",
+            "capacity M/(NB) (–) | closed form (–) | "
+            f"M_ult/(NB), FS_v = {st.yield_multiple:g} (–) | closed form (–) |",
             "|---|---|---|---|---|---|---|---|"]
     for s in st.layouts:
         two = len(s.positions) == 2
