@@ -29,7 +29,8 @@ def write_figures(result: TwoSpringEquivalence, directory: Path) -> list[Path]:
             slug = f"{emap.name}_{case.replace('/', '')}"
             files += save(directory / f"{slug}_all.png",
                           *_map_figure(result, emap, case, levels))
-            per = rows_per_figure(emap.y)
+            pages = -(-len(METRICS) // rows_per_figure(emap.y))
+            per = -(-len(METRICS) // pages)  # as many rows in each figure as can be
             for k in range(0, len(METRICS), per):
                 name = f"{slug}.png" if k == 0 else f"{slug}_{k // per + 1}.png"
                 files += save(directory / name, *_dense_figure(result, emap, case, levels,
