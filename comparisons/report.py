@@ -1,8 +1,12 @@
 """One self-contained HTML report of every study: ``upliftlab report [--fast] [--out DIR]``.
 
-The report is a single file, ``<out>/report.html``: figures are embedded as base64 PNG, the
-style sheet is inline, and there are no scripts, external links or fonts, so it can be mailed
-or archived as it is. Beside it ``report.json`` records what each section did.
+The report is a single file, ``<out>/report.html``: plots are embedded as SVG and the rendered
+soil frames as PNG (:mod:`.report_figures`), each figure numbered with a caption computed from
+its data (:mod:`.figure_record`); the style sheets (screen and print) are inline; there are no
+external links or fonts, and one inline script, the uplift animation's frame slider
+(:mod:`.report_animation`), so it can be mailed or archived as it is and opened from disk
+offline. :mod:`.report_print` prints it to PDF on A4 or Letter. Beside it ``report.json``
+records what each section did.
 
 Sections, in order: the verification anchors (measured error, tolerance, pass/fail) and the
 observed convergence orders (:mod:`.verification`); the two-spring equivalence maps and tables

@@ -1,16 +1,17 @@
-"""The report's page: the style sheet, each section's HTML (figures embedded as base64 PNG, the
-verification tables), the anchors appendix and the status box."""
+"""The report's page: the style sheet (screen and print), each section's HTML (its summary, its
+figures from :mod:`.report_figures`, the verification tables), the anchors appendix, the status
+box and the frame slider's one inline script (:mod:`.report_animation`)."""
 
 from __future__ import annotations
 
-import base64
 import html
 from collections.abc import Sequence
 from dataclasses import dataclass
-from pathlib import Path
 
 from .. import __version__
 from ..results import provenance
+from .report_animation import SCRIPT
+from .report_figures import figures_html
 from .report_markdown import markdown_to_html
 from .study import StudyResult
 
@@ -59,42 +60,33 @@ tr.fail td{background:#fdecea}tr.skipped td{color:#6b6f78;background:#fffbea}
 .error{border-left:5px solid #b3261e;background:#fdf3f2;padding:8px 12px;margin:10px 0}
 pre{background:#f3f4f6;padding:8px 10px;overflow-x:auto;font-size:12px;white-space:pre-wrap}
 code{font-family:"DejaVu Sans Mono",Menlo,Consolas,monospace;font-size:12.5px}
-figure{margin:12px 0 18px}figure img{max-width:100%;height:auto;border:1px solid #e3e6eb}
-figcaption{font-size:12px;color:#5a6272}
+[hidden]{display:none!important}
+figure{margin:14px 0 22px}figure img{display:block;max-width:100%;height:auto}
+figure img.plot{width:100%;max-width:840px}figure img.render{border:1px solid #e3e6eb}
+figcaption{font-size:13px;color:#3d4452;max-width:840px;margin-top:4px}
+figcaption .conclusion{color:#1d2330;font-weight:600}
+details.dense{margin:10px 0 18px;border:1px solid #d6dae1;padding:6px 12px;background:#fafbfc}
+details.dense>summary{cursor:pointer;font-weight:600}
+figure.anim .slider{display:flex;gap:12px;align-items:center;font-size:13px;margin:6px 0}
+figure.anim input{width:min(420px,60vw)}figure.anim output{font-variant-numeric:tabular-nums}
 nav ol{columns:2;font-size:14px;margin:6px 0}small.note{color:#5a6272}
-.grid2{display:grid;grid-template-columns:1fr 1fr;gap:14px}
 body{counter-reset:figure}figure{counter-increment:figure}
 figcaption::before{content:"Figure " counter(figure) ". ";font-weight:600;color:#1d2330}
 @media print{
  @page{margin:14mm}
  body{background:#fff;font-size:10pt}main{max-width:none;box-shadow:none;padding:0}
  h2{break-after:avoid}h3{break-after:avoid}
- .scroll{overflow:visible}table{font-size:8pt;table-layout:auto;word-break:break-word}
+ .scroll{overflow:visible}table{font-size:8pt;table-layout:auto}
+ th,td{overflow-wrap:break-word;padding:2px 4px}td.num,td.tol{white-space:normal}
  th{position:static}figure,tr,.status,.notice,.error{break-inside:avoid}
- figure img{max-width:100%;max-height:240mm;border:none}.grid2{display:block}
- pre{white-space:pre-wrap;word-break:break-word}nav ol{columns:1}
+ figure img.plot{width:auto;max-width:100%;max-height:235mm}
+ figure img.render{max-width:100%;max-height:200mm;border:none}figcaption{font-size:9pt}
+ details.dense{border:none;padding:0;background:none}details.dense>summary{list-style:none}
+ details::details-content{content-visibility:visible;display:block}
+ figure.anim .slider{display:none}
+ pre{white-space:pre-wrap;word-break:break-word}code{word-break:break-all}nav ol{columns:1}
 }
 """
-
-
-def _png(path: Path) -> str:
-    data = base64.b64encode(Path(path).read_bytes()).decode("ascii")
-    return f"data:image/png;base64,{data}"
-
-
-def _figures(study: StudyResult, pair: bool = False) -> str:
-    pngs = [Path(p) for p in study.files if str(p).endswith(".png") and Path(p).is_file()]
-    if not pngs:
-        return ""
-    blocks = []
-    for p in pngs:
-        caption = html.escape(p.relative_to(study.directory).as_posix()
-                              if p.is_relative_to(study.directory) else p.name)
-        blocks.append(f'<figure><img alt="{caption}" src="{_png(p)}">'
-                      f"<figcaption>{caption}</figcaption></figure>")
-    if pair and len(blocks) == 2:
-        return '<div class="grid2">' + "".join(blocks) + "</div>"
-    return "\n".join(blocks)
 
 
 def _verification_tables(study: StudyResult) -> str:
@@ -121,12 +113,14 @@ def _verification_tables(study: StudyResult) -> str:
                  "skipped and marked so; Prandtl is checked on 8 across with its own 5 % "
                  "tolerance.</p>")
     table = ['<div class="scroll"><table><thead><tr><th>group</th><th>quantity</th>'
-             "<th>reference</th><th>measured</th><th>expected</th><th>error</th>"
-             "<th>tolerance</th><th>result</th></tr></thead><tbody>"]
+             "<th>reference</th><th>unit</th><th>measured</th><th>expected</th>"
+             "<th>error (–, or in the unit if abs)</th><th>tolerance</th><th>result</th></tr>"
+             "</thead><tbody>"]
     for r in rows:
         note = f'<br><small class="note">{html.escape(r.note)}</small>' if r.note else ""
         table.append(f'<tr class="{r.status}"><td>{r.group}</td><td>{html.escape(r.quantity)}'
                      f"{note}</td><td>{html.escape(r.reference)}</td>"
+                     f"<td>{html.escape(getattr(r, 'unit', '') or '—')}</td>"
                      f'<td class="num">{fmt(r.measured)}</td><td class="num">'
                      f"{fmt(r.expected)}</td>"
                      f'<td class="num">{html.escape(error_text(r))}</td>'
@@ -134,7 +128,7 @@ def _verification_tables(study: StudyResult) -> str:
                      f"<td>{mark[r.status]}</td></tr>")
     table.append("</tbody></table></div>")
     order_html = ['<div class="scroll"><table><thead><tr><th>group</th><th>case</th>'
-                  "<th>method</th><th>steps (Δt in s, or h/B)</th><th>observed order</th>"
+                  "<th>method</th><th>steps (Δt in s, or h/B)</th><th>observed order (–)</th>"
                   "<th>expected</th><th>band</th><th>result</th></tr></thead><tbody>"]
     for o in orders:
         steps = ", ".join(f"{s:g}" for s in o.steps) or "—"
@@ -172,7 +166,7 @@ def _section_html(s: Section) -> str:
     if s.name == "verification":
         return "".join(parts) + _verification_tables(study)
     parts.append(markdown_to_html(_without_title(study.summary), shift=2))
-    parts.append(_figures(study, pair=s.name == "uplift_zone"))
+    parts.append(figures_html(study))
     return "".join(parts)
 
 
@@ -241,4 +235,5 @@ def render_html(sections: Sequence[Section], *, fast: bool, passed: bool,
         f" in {elapsed:.1f} s. {'Fast mode: small grids and coarse meshes.' if fast else ''}"
         "</p>"
         f'<div class="status{"" if passed else " failing"}">{" ".join(status_lines)}</div>'
-        f"<nav><ol>{nav}</ol></nav>{body}</main></body></html>\n")
+        f"<nav><ol>{nav}</ol></nav>{body}</main>"
+        + (SCRIPT if 'class="anim"' in body else "") + "</body></html>\n")

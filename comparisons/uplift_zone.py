@@ -2,7 +2,8 @@
 
 A rotation pushover of ``strip_footing_clay`` to 10 θ_on (8 elements across B and 12 steps in
 fast mode, the scene's 16 and 40 otherwise), written by
-:func:`upliftlab.continuum.output.write_outputs` (uplift.png, moment_rotation.png, XDMF).
+:func:`upliftlab.continuum.output.write_outputs` (uplift.png, moment_rotation.png, XDMF), and the report's figures by
+:mod:`.uplift_figures` (the M–θ path at page width, the frames of the frame slider).
 θ_on = 2N(1 − ν)/(πGB) is the uplift-onset rotation of a rigid strip on the elastic half-plane
 (:func:`upliftlab.anchors.half_plane_onset_rotation`).
 """
@@ -16,6 +17,7 @@ from ..anchors import half_plane_onset_rotation
 from ..results import provenance
 from .protocol import Context, Study, main_for, run_study
 from .study import StudyResult
+from .uplift_figures import write_figures
 
 __all__ = ["STUDY", "DEFINITION", "continuum_pushover", "run", "main"]
 
@@ -71,9 +73,11 @@ def write(result, ctx: Context) -> StudyResult:
         summary_line(summary, units) + ".", "",
         "The picture shows the snapshot of largest rotation (displacements magnified, the "
         "magnification is printed in it); the M–θ figure compares the FE path with the "
-        "elastic half-plane, the tensionless Winkler bed and the V–M capacity."])
+        "elastic half-plane and the V–M capacity; the frame slider steps through the "
+        "pushover with the contact pressure and the gap under the footing."])
+    figures = write_figures(Path(out), scene, model, path, renders="uplift.png" in written)
     files = tuple(written[k] for k in ("uplift.png", "moment_rotation.png") if k in written)
-    files += tuple(p for k, p in written.items() if not k.endswith(".png"))
+    files += tuple(p for k, p in written.items() if not k.endswith(".png")) + tuple(figures)
     return StudyResult(STUDY, fast, Path(out), files, text, summary,
                        provenance(study=STUDY, fast=fast), ctx.elapsed())
 

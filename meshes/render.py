@@ -36,8 +36,8 @@ from .frames import (Frame, SubMesh, View, frames, linear_submesh, nice_scale,  
                      snapshot_rows, uplift_view)
 
 __all__ = ["SubMesh", "linear_submesh", "View", "Frame", "uplift_view", "frames",
-           "snapshot_rows", "render_frame", "render_uplift", "animate_uplift",
-           "nice_scale"]
+           "snapshot_rows", "render_frame", "render_uplift", "animate_uplift", "render_frames",
+           "frame_subset", "nice_scale"]
 
 #: Colour map of the equivalent plastic strain (zero is a pale yellow, distinct from white).
 CMAP = "YlOrRd"
@@ -145,11 +145,16 @@ def _unit(text: str) -> str:
     return f" [{text}]" if text else ""
 
 
+#: Page width (in) of a frame unless asked otherwise.
+FIGURE_WIDTH_IN = 9.0
+
+
 def _layout(fig_width: float, view: View):
     """Axes rectangles (figure fractions) and the figure height: the soil panel keeps the
     window's aspect ratio, the contact panel shares its x extent."""
     xmin, xmax, ymin, ymax = view.window
-    left, width = 0.11, 1.0 - 0.11 - 0.13
+    left_in, right_in = 0.85, 1.35  # axis labels; colour bar with its ticks and label
+    left, width = left_in / fig_width, 1.0 - (left_in + right_in) / fig_width
     soil_h_in = width * fig_width * (ymax - ymin) / (xmax - xmin)
     contact_h_in, top_in, gap_in, bottom_in = 0.3 * fig_width, 0.95, 0.6, 0.6
     height = top_in + soil_h_in + gap_in + contact_h_in + bottom_in
@@ -159,11 +164,11 @@ def _layout(fig_width: float, view: View):
     return height, soil, contact, bar
 
 
-def _figure(frame: Frame, image: np.ndarray, view: View, dpi: int):
+def _figure(frame: Frame, image: np.ndarray, view: View, dpi: int,
+            fig_width: float = FIGURE_WIDTH_IN):
     import matplotlib
     from matplotlib.figure import Figure
 
-    fig_width = 9.0
     height, soil_rect, contact_rect, bar_rect = _layout(fig_width, view)
     fig = Figure(figsize=(fig_width, height), dpi=dpi)
     soil = fig.add_axes(soil_rect)
@@ -184,8 +189,9 @@ def _figure(frame: Frame, image: np.ndarray, view: View, dpi: int):
             else matplotlib.colors.Normalize(floor, top))
     mappable = matplotlib.cm.ScalarMappable(norm=norm, cmap=CMAP)
     bar = fig.colorbar(mappable, cax=fig.add_axes(bar_rect), extend="min" if floor else None)
-    bar.set_label("equivalent plastic strain ε̄ᵖ [–]"
-                  + (f" (log; < {floor:.1e}: palest)" if floor else " (none: elastic)"))
+    bar.set_label("plastic strain ε̄ᵖ [–]"
+                  + (f"\n(log; < {floor:.1e}: palest)" if floor else "\n(none: elastic)"),
+                  fontsize=9)
     _contact_panel(fig.add_axes(contact_rect), frame, view)
     theta = frame.footing[2]
     fig.suptitle(f"{view.title}: {frame.label}\nθ = {theta:.3g} rad,  M = {frame.M:.4g}"
@@ -223,15 +229,16 @@ def _pixels(fig) -> np.ndarray:
     return np.asarray(canvas.buffer_rgba())[..., :3].copy()
 
 
-def render_frame(painter: _SoilPainter, frame: Frame, view: View, dpi: int = 100
-                 ) -> np.ndarray:
-    """The RGB page (h, w, 3) of one frame."""
-    return _pixels(_figure(frame, painter.paint(frame), view, dpi))
+def render_frame(painter: _SoilPainter, frame: Frame, view: View, dpi: int = 100,
+                 width_in: float = FIGURE_WIDTH_IN) -> np.ndarray:
+    """The RGB page (h, w, 3) of one frame, ``width_in`` inches wide at ``dpi``."""
+    return _pixels(_figure(frame, painter.paint(frame), view, dpi, width_in))
 
 
-def _painter(sub: SubMesh, view: View, dpi: int) -> _SoilPainter:
-    _, soil_rect, _, _ = _layout(9.0, view)
-    return _SoilPainter(sub, view, width_px=int(round(1.5 * soil_rect[2] * 9.0 * dpi)))
+def _painter(sub: SubMesh, view: View, dpi: int,
+             width_in: float = FIGURE_WIDTH_IN) -> _SoilPainter:
+    _, soil_rect, _, _ = _layout(width_in, view)
+    return _SoilPainter(sub, view, width_px=int(round(1.5 * soil_rect[2] * width_in * dpi)))
 
 
 def render_uplift(path, result, basis, footing_width: float, *, snapshot: int = -1,
@@ -281,3 +288,48 @@ def animate_uplift(path, result, basis, footing_width: float, *, scale: float | 
         iio.imwrite(tmp, np.stack(pages), extension=".gif", loop=0,
                     duration=int(round(1000 * seconds_per_frame)))
     return path
+
+
+def frame_subset(count: int, limit: int) -> list[int]:
+    """Indices of at most ``limit`` (≥ 2) of ``count`` frames, evenly spaced, the first and the
+    last always kept."""
+    if limit < 2:
+        raise InputError(f"limit = {limit}: at least 2 frames (the first and the last)")
+    if count <= limit:
+        return list(range(count))
+    return sorted({int(round(k * (count - 1) / (limit - 1))) for k in range(limit)})
+
+
+def render_frames(directory, result, basis, footing_width: float, *, limit: int = 24,
+                  scale: float | None = None, title: str = "", width_in: float = 6.5,
+                  dpi: int = 100, progress=None) -> list[tuple]:
+    """Write one PNG page per snapshot of a result, at most ``limit`` of them evenly spaced
+    (:func:`frame_subset`), ``width_in`` inches wide, into ``directory`` as
+    ``frame_000.png``, … (same view and limits in every page: what an animation or a frame
+    slider shows). ``progress(k, n)`` after each page. Returns [(path, :class:`Frame`)]."""
+    from pathlib import Path
+
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    sub = linear_submesh(basis)
+    all_frames = frames(result, sub)
+    view = uplift_view(result, sub, footing_width, scale=scale, title=title)
+    chosen = frame_subset(len(all_frames), limit)
+    painter = _painter(sub, view, dpi, width_in)
+    written = []
+    try:
+        for k, index in enumerate(chosen):
+            fig = _figure(all_frames[index], painter.paint(all_frames[index]), view, dpi,
+                          width_in)
+            from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+            FigureCanvasAgg(fig)
+            path = directory / f"frame_{k:03d}.png"
+            with atomic_path(path) as tmp:
+                fig.savefig(tmp, format="png", dpi=dpi)
+            written.append((path, all_frames[index]))
+            if progress is not None:
+                progress(k, len(chosen))
+    finally:
+        painter.close()
+    return written

@@ -10,13 +10,17 @@ through time), exit 2 on bad options, 1 when a verification row or any section f
 
 from __future__ import annotations
 
+import base64
+import html
 import json
 import math
 import os
 import re
 import shutil
+import struct
 import subprocess
 import sys
+from collections import Counter
 from pathlib import Path
 
 import pytest
@@ -68,33 +72,238 @@ def reports(tmp_path_factory, elcentro):
 
 
 def test_report_writes_one_self_contained_html(reports):
-    # Contract: exit 0 (verification passed), exactly one HTML file, every image embedded as
-    # base64 PNG, no scripts, style sheets, fonts or links that leave the page.
+    # Contract: exit 0 (verification passed), exactly one HTML file, every image embedded (SVG
+    # plots, PNG frames of the rendered soil), no style sheets, fonts or links that leave the
+    # page, and one inline script (the frame slider's) with no source and no URL.
     first, out = reports["first"], reports["out"]
     assert first.returncode == 0, first.stderr[-3000:]
     htmls = list(out.rglob("*.html"))
     assert htmls == [out / "report.html"]
     page = htmls[0].read_text()
     sources = re.findall(r'src="([^"]*)"', page)
-    assert len(sources) >= 10  # the two-spring maps, the uplift zone and the M–θ figure
-    assert all(s.startswith("data:image/png;base64,") for s in sources)
+    assert len(sources) >= 10  # the two-spring maps, the frames and the M–θ figure
+    assert all(s.startswith(("data:image/svg+xml;base64,", "data:image/png;base64,"))
+               for s in sources)
     assert all(h.startswith("#") for h in re.findall(r'href="([^"]*)"', page))
-    for forbidden in ("<script", "<link", "<iframe", "@import", "url(", "srcset"):
+    for forbidden in ("<link", "<iframe", "@import", "url(", "srcset", "<script src"):
         assert forbidden not in page.lower(), forbidden
+    scripts = re.findall(r"<script>(.*?)</script>", page, flags=re.S)
+    assert len(scripts) == 1 and page.lower().count("<script") == 1
+    assert "://" not in scripts[0] and "fetch" not in scripts[0] and "import" not in scripts[0]
     for section in ("verification", "orders", "two_spring_equivalence", "paper",
                     "uplift_zone", "winkler_vs_continuum", "speed_vs_error", "fixed_vs_uplift",
                     "anchors"):
         assert f'id="{section}"' in page, section
-    # the report names no document it does not hold: its "anchor §N" are in its appendix
-    for name in ("verification-anchors.md", "design.md", "../shared"):
-        assert name not in page, name
     assert "Prandtl's bearing capacity" in page.split('id="anchors"')[1]
     # figures are numbered (a CSS counter, in print too) and printing keeps wide tables and
     # figures whole: a print style sheet that lets the tables' scroll boxes grow
     assert 'content:"Figure " counter(figure)' in page
     printing = page.split("@media print{", 1)[1].split("\n}", 1)[0]
     assert ".scroll{overflow:visible}" in printing and "break-inside:avoid" in printing
+    # the size the README states: the fast report stays under 8 MB
+    assert (out / "report.html").stat().st_size < 8e6
 
+
+def test_report_names_no_document_outside_the_repository(reports):
+    # The report names no document it does not hold: its "anchor §N" are in its appendix, and
+    # no link, path or file name points at the shared notes or another Markdown file.
+    page = (reports["out"] / "report.html").read_text()
+    text = re.sub(r'src="data:[^"]*"', "", page)
+    for name in ("shared/", "reference/", "verification-anchors", "design.md",
+                 "continuum-notes", "ewing-foundation"):
+        assert name not in text, name
+    assert re.findall(r"[\w./-]+\.md\b", text) == []
+    assert "anchor §" in text and 'id="anchors"' in text
+
+
+def test_every_table_states_its_units(reports):
+    # Every table of the page names a unit in a header cell, in parentheses or as a unit
+    # column; every verification anchor has its unit (kip, in, s for the reduced anchors; kN,
+    # m per metre of strip for the continuum; "–" for ratios).
+    page = (reports["out"] / "report.html").read_text()
+    tables = re.findall(r"<thead>(.*?)</thead>", page, flags=re.S)
+    assert len(tables) >= 12
+    for head in tables:
+        cells = [re.sub(r"<[^>]+>", "", c) for c in re.findall(r"<th>(.*?)</th>", head)]
+        assert any(re.search(r"\([^)]+\)", c) or c.strip() == "unit" for c in cells), cells
+    numbers = json.loads((reports["out"] / "studies" / "verification-fast" / "summary.json")
+                         .read_text())["numbers"]
+    assert all(r["unit"] for r in numbers["rows"]), [r["id"] for r in numbers["rows"]
+                                                    if not r["unit"]]
+    units = {r["id"]: r["unit"] for r in numbers["rows"]}
+    assert units["K_thth"] == "kip·in/rad" and units["nj_wall_elcentro"] == "in"
+    assert units["K_r"] == "kN·m/m per rad" and units["onset_e"] == "–"
+
+
+def _figures(page: str) -> list[str]:
+    return re.findall(r"<figure[ >].*?</figure>", page, flags=re.S)
+
+
+def _svgs(block: str) -> list[str]:
+    return [base64.b64decode(d).decode("utf-8")
+            for d in re.findall(r'src="data:image/svg\+xml;base64,([^"]+)"', block)]
+
+
+def test_every_figure_is_captioned_vector_and_readable_in_print(reports):
+    # Each <figure> has a caption with a conclusion that states a number; each plot is an SVG
+    # of at most the page width (6.5 in = 468 pt: A4 and Letter less 14 mm margins hold
+    # 7.2 in) and 8.6 in high (Letter's text height 9.9 in less a caption), whose every text
+    # is at least 9 pt (one SVG unit is one point); the error maps
+    # are split: the readable ones in the page, the all-panel ones behind <details>.
+    from upliftlab.comparisons.figure_record import MIN_FONT_PT, PAGE_WIDTH_IN
+    from upliftlab.comparisons.map_figures import MAX_HEIGHT_IN
+
+    page = (reports["out"] / "report.html").read_text()
+    figures = _figures(page)
+    assert len(figures) >= 25
+    plots = 0
+    for block in figures:
+        conclusion = re.search(r'<span class="conclusion">(.*?)</span>', block, flags=re.S)
+        assert conclusion and re.search(r"\d", conclusion.group(1)), block[-400:]
+        for svg in _svgs(block):
+            plots += 1
+            width = float(re.search(r'<svg[^>]*\bwidth="([\d.]+)pt"', svg).group(1))
+            height = float(re.search(r'<svg[^>]*\bheight="([\d.]+)pt"', svg).group(1))
+            assert width <= 72 * PAGE_WIDTH_IN + 1e-6
+            assert height <= 72 * MAX_HEIGHT_IN + 1e-6  # printed whole, never scaled down
+            sizes = [float(x) for x in re.findall(r"font-size:\s*([\d.]+)px", svg)]
+            assert sizes and min(sizes) >= MIN_FONT_PT
+    assert plots == len(figures) - page.count('class="anim"') >= 24
+    dense = page.split('<details class="dense">', 1)[1].split("</details>", 1)[0]
+    assert len(_figures(dense)) >= 9  # one all-measures grid per map and case
+    assert "Where do two springs replace the bed?" in page.split('<details class="dense">')[0]
+
+
+def test_captions_state_the_studies_own_numbers(reports):
+    # The conclusions are computed from the data each figure plots; the studies' summaries
+    # compute the same numbers by their own code (summary.json): the two-spring onset and
+    # capacity ratios (anchor §2: 1.73/(1 + 1/N) and 0.58) and Figs. 11–12's peaks.
+    out = reports["out"]
+    page = html.unescape((out / "report.html").read_text())
+    two = json.loads((out / "studies" / "two_spring_equivalence-fast" / "summary.json")
+                     .read_text())["numbers"]
+    assert (f"start to uplift at {two['onset_ratio_equivalent_vs_winkler']:.2f} × the bed's "
+            f"onset moment and end at {two['capacity_ratio_equivalent_vs_winkler']:.2f} × its "
+            "capacity") in page
+    fixed = json.loads((out / "studies" / "fixed_vs_uplift-fast" / "summary.json")
+                       .read_text())["numbers"]["figures"]
+    for fig in fixed.values():
+        peaks = fig["peak_u"]
+        assert (f"changes the peak deformation from {peaks['fixed']:.3g} in to "
+                f"{peaks['C']:.3g} in (× {fig['ratio_u']:.2f})") in page
+
+
+def test_the_uplift_animation_has_a_frame_slider_with_contact_and_gap(reports):
+    # The pushover's frames (PNG renders with the contact pressure and gap panel) behind an
+    # <input type=range> spanning them, the last frame shown, at most MAX_FRAMES frames.
+    from upliftlab.comparisons.uplift_figures import MAX_FRAMES
+
+    page = (reports["out"] / "report.html").read_text()
+    anim = [b for b in _figures(page) if 'class="anim"' in b]
+    assert len(anim) == 1
+    frames = re.findall(r"<img [^>]*>", anim[0])
+    assert 2 <= len(frames) <= MAX_FRAMES
+    assert all('src="data:image/png;base64,' in f for f in frames)
+    assert sum(" hidden" in f for f in frames) == len(frames) - 1 and " hidden" not in frames[-1]
+    slider = re.search(r'<input type="range" min="0" max="(\d+)" step="1" value="(\d+)"',
+                       anim[0])
+    assert slider and int(slider.group(1)) == int(slider.group(2)) == len(frames) - 1
+    assert "contact pressure p" in anim[0] and "gap g" in anim[0]
+    assert re.search(r"contact shrinks from 100% of B .* to \d+%", anim[0])
+
+
+def _need_printing_tools() -> None:
+    """Skip without Chromium or poppler, unless under CI, where they must be installed."""
+    from upliftlab.comparisons.report_print import browser
+
+    if browser() is None or shutil.which("pdftotext") is None:
+        if os.environ.get("CI"):
+            pytest.fail("printing needs chromium and poppler-utils (apt-get install chromium "
+                        "poppler-utils); CI must have them")
+        pytest.skip("chromium or poppler-utils is not installed")
+
+
+def test_frame_slider_script_shows_the_chosen_frame_offline(reports, tmp_path):
+    # The page opened from disk in headless Chromium (no network) with the slider set to
+    # frame 0: the inline script shows frame 0 only and writes frame 0's label (the DOM
+    # after the script ran; reference: the frame labels in the page itself).
+    from upliftlab.comparisons.report_print import browser
+
+    _need_printing_tools()
+    page = (reports["out"] / "report.html").read_text()
+    moved = re.sub(r'(<input type="range" min="0" max="\d+" step="1" value=")\d+"',
+                   r'\g<1>0"', page)
+    assert moved != page
+    copy = tmp_path / "slider.html"
+    copy.write_text(moved)
+    done = subprocess.run([browser(), "--headless", "--no-sandbox", "--disable-gpu",
+                           "--disable-background-networking", "--no-first-run",
+                           f"--user-data-dir={tmp_path / 'profile'}", "--dump-dom",
+                           copy.as_uri()], capture_output=True, text=True, timeout=300)
+    anim = re.search(r'<figure class="anim">.*?</figure>', done.stdout, flags=re.S).group(0)
+    frames = re.findall(r"<img [^>]*>", anim)
+    assert [" hidden" in f for f in frames] == [False] + [True] * (len(frames) - 1)
+    first = html.unescape(re.search(r'data-label="([^"]*)"', frames[0]).group(1))
+    assert html.unescape(re.search(r"<output>(.*?)</output>", anim).group(1)) == first
+
+
+def _pdf_words(pdf: Path) -> list[tuple[float, float, list[tuple[float, float, str]]]]:
+    """Per page: (width, height, [(xMin, xMax, word)]) from pdftotext -bbox."""
+    done = subprocess.run(["pdftotext", "-bbox", str(pdf), "-"], capture_output=True,
+                          text=True, check=True)
+    pages = []
+    for chunk in done.stdout.split("<page ")[1:]:
+        w, h = (float(v) for v in re.search(r'width="([\d.]+)" height="([\d.]+)"',
+                                              chunk).groups())
+        words = [(float(a), float(b), html.unescape(t)) for a, b, t in re.findall(
+            r'<word xMin="([\d.]+)" yMin="[\d.]+" xMax="([\d.]+)" yMax="[\d.]+">(.*?)</word>',
+            chunk)]
+        pages.append((w, h, words))
+    return pages
+
+
+def test_report_prints_on_a4_and_letter_with_every_column_and_figure(reports, tmp_path):
+    # Printed by headless Chromium (comparisons/report_print.py): the page size is the
+    # paper's (A4 595.28 × 841.89 pt, Letter 612 × 792 pt, within 1 pt); every table header
+    # cell's words and every figure's number ("Figure k.") are in the PDF's text; no word
+    # lies outside the page's 14 mm margins (a cut table column or figure would).
+    from upliftlab.comparisons.report_print import PAPERS, print_pdf
+
+    _need_printing_tools()
+    page = (reports["out"] / "report.html").read_text()
+    headers = {re.sub(r"<[^>]+>", "", html.unescape(h)).strip()
+               for h in re.findall(r"<th>(.*?)</th>", page, flags=re.S)}
+    figures = len(_figures(page))
+    frame = re.search(r'<figure class="anim">.*?src="data:image/png;base64,([^"]+)"', page,
+                      flags=re.S).group(1)
+    frame_size = struct.unpack(">II", base64.b64decode(frame)[16:24])  # PNG IHDR width, height
+    body = re.sub(r"<(style|script|head|output)\b.*?</\1>", " ", page, flags=re.S)
+    shown = Counter(html.unescape(re.sub(r"<[^>]+>", " ", body)).split())
+    margin = 14 / 25.4 * 72
+    counts = {}
+    for paper, (_, (width, height)) in PAPERS.items():
+        pdf = print_pdf(reports["out"] / "report.html", tmp_path / f"{paper}.pdf", paper)
+        pages = _pdf_words(pdf)
+        counts[paper] = len(pages)
+        assert pages, paper
+        for w, h, words in pages:
+            assert (w, h) == pytest.approx((width, height), abs=1.0), paper
+            assert all(margin - 3 <= a and b <= w - margin + 3 for a, b, _ in words), (
+                paper, [t for a, b, t in words if a < margin - 3 or b > w - margin + 3][:5])
+        printed = Counter(t for _, _, words in pages for _, _, t in words)
+        joined = " ".join(t for _, _, words in pages for _, _, t in words)
+        # every word of a table header is printed at least as often as the page shows it: a
+        # column cut off the page would take its header's words with it
+        for word in {w for header in headers for w in header.split()}:
+            assert printed[word] >= shown[word], (paper, word, printed[word], shown[word])
+        for k in range(1, figures + 1):
+            assert f"Figure {k}." in joined, (paper, k)
+        # the animation prints one frame (the one shown), not its whole stack of frames
+        listed = subprocess.run(["pdfimages", "-list", str(pdf)], capture_output=True,
+                                text=True, check=True).stdout.splitlines()[2:]
+        sizes = Counter((int(r.split()[3]), int(r.split()[4])) for r in listed)
+        assert sizes[frame_size] == 1, (paper, frame_size, sizes)
+    print(f"pages: {counts}")
 
 def test_every_verification_row_passes_with_its_tolerance(reports):
     # Each row carries its measured value, reference and tolerance; every one passes. Only the

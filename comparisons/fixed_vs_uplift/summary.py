@@ -47,8 +47,8 @@ def summary_markdown(result: FixedVsUplift, fast: bool, elapsed: float) -> str:
              "The scenes' beds of 12 springs, as drawn in Fig. 1(b). Case C's impact dashpots "
              "are sized per spring, so its peaks depend on N (the speed_vs_error study measures "
              "by how much); the comparison is the paper's, at the paper's N.", "",
-             "| figure | building | peak u fixed (in) | peak u uplift C (in) | ratio | "
-             "peak V fixed (kip) | peak V uplift C (kip) | ratio |",
+             "| figure | building | peak u fixed (in) | peak u uplift C (in) | ratio (–) | "
+             "peak V fixed (kip) | peak V uplift C (kip) | ratio (–) |",
              "|---|---|---|---|---|---|---|---|"]
     for f in result.figures:
         lines.append(f"| {f.number} | {f.building}-period | {f.peak_u['fixed']:.4g} | "
@@ -70,9 +70,10 @@ def summary_markdown(result: FixedVsUplift, fast: bool, elapsed: float) -> str:
                           f"{s.periods[int(np.nanargmax(v))]:g} s)" for k, v in s.shear.items())
         lines += [f"### {s.family}-period building's base body", "",
                   f"Largest base-shear coefficient V/W over the periods: {peaks}.", "",
-                  "| uplift case | quantity | reduced over | by up to (min ratio, at T) | "
-                  "median ratio | increased over | max ratio (at T) | at T = 0.15 s | "
-                  "at T = 0.59 s |", "|---|---|---|---|---|---|---|---|---|"]
+                  "| uplift case | quantity | reduced over (periods T in s) | by up to (min "
+                  "ratio (–), at T) | median ratio (–) | increased over (T in s) | max ratio "
+                  "(–) (at T) | ratio at T = 0.15 s (–) | ratio at T = 0.59 s (–) |",
+                  "|---|---|---|---|---|---|---|---|---|"]
         for (support, what), r in s.ranges.items():
             name = "peak base shear" if what == "shear" else "peak deformation"
             lines.append(f"| {SUPPORT_LABELS[support]} | {name} | {span_text(r.reduced)} "

@@ -12,6 +12,7 @@ from ..speed_vs_error import continuum_status
 from ..store import Store
 from ..study import require_matplotlib
 from .analysis import FixedVsUplift, figure_of, spectrum_of
+from .figures import write_figures
 from .grid import BUILDINGS, FAST_GRID, FULL_GRID, Grid, Options, STUDY, check_grid
 from .output import write
 from .runs import elcentro_entry, spectrum_points, spectrum_records
@@ -77,12 +78,22 @@ def _describe(result: FixedVsUplift) -> list[str]:
     return lines
 
 
+def _write(result: FixedVsUplift, ctx: Context):
+    """:func:`.output.write`, then the page-width figures with their captions
+    (:func:`.figures.write_figures`) added to the files."""
+    study = write(result, ctx)
+    if not result.options.figures:
+        return study
+    extra = write_figures(result, Path(ctx.out) / "figures")
+    return replace(study, files=tuple(study.files) + tuple(extra))
+
+
 def _context_from(args, ctx: Context, say) -> Context:
     return replace(ctx, options=Options(figures=not args.no_figures))
 
 
 DEFINITION = Study(STUDY, "Fixed base against uplift",
-                   "What allowing uplift changes against a fixed base.", Options, compute, write,
+                   "What allowing uplift changes against a fixed base.", Options, compute, _write,
                    describe=_describe, context_from=_context_from,
                    help_fast="10 periods, short-period family")
 main = main_for(DEFINITION)

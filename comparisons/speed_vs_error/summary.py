@@ -67,7 +67,8 @@ def _continuum_lines(result: SpeedVsError) -> list[str]:
             continue
         lines += [f"### {s.label} — continuum meshes against the Winkler reference", "",
                   "| elements across | runtime (s) | " + " | ".join(
-                      f"{LABELS[q]} (error; change to next finer)" for q in QUANTITIES)
+                      f"{_head(q)} ({_units(result, s).split(', ')[k]}; error and change to "
+                      "next finer in %)" for k, q in enumerate(QUANTITIES))
                   + " |", "|---|---|" + "---|" * len(QUANTITIES)]
         for k, p in enumerate(pts):
             finer = pts[k + 1] if k + 1 < len(pts) else None
@@ -116,23 +117,26 @@ def summary_markdown(result: SpeedVsError, fast: bool, elapsed: float) -> str:
              "contributed. Compare runtimes as ratios within this table.", "",
              f"Continuum: {result.continuum}.", "",
              "## References and their convergence", "",
-             "| scene | reference | " + " | ".join(f"{LABELS[q]} (ΔN, Δdt)" for q in QUANTITIES)
-             + " | ref. runtime |", "|---|---|" + "---|" * len(QUANTITIES) + "---|"]
+             "| scene | reference | " + " | ".join(f"{_head(q)} (ΔN, Δdt in %)"
+                                                 for q in QUANTITIES)
+             + " | units of u, θ, uplift, settlement | ref. runtime (s) |",
+             "|---|---|" + "---|" * len(QUANTITIES) + "---|---|"]
     for s in result.scenes:
         r = s.reference
         cells = [f"{r.values[q]:.4g} ({_pct(r.change_springs[q])}, {_pct(r.change_dt[q])})"
                  + ("" if r.converged[q] else " **not conv.**") for q in QUANTITIES]
         lines.append(f"| {s.label} | events, N = {r.springs}, Δt = {r.dt:g} s | "
-                     + " | ".join(cells) + f" | {r.runtime:.3g} s |")
+                     + " | ".join(cells) + f" | {_units(result, s)} | {r.runtime:.3g} |")
     notconv = [(s.label, q) for s in result.scenes for q in QUANTITIES
                if not s.reference.converged[q]]
-    lines += ["", f"Converged to {_pct(opt.convergence_tolerance)} (change from half the "
-              f"springs and from twice the step): "
+    lines += ["", DEFINITIONS, "", f"Converged to {_pct(opt.convergence_tolerance)} (change "
+              f"from half the springs and from twice the step): "
               + (f"all but {len(notconv)}: " + ", ".join(f"{a} {LABELS[q]}" for a, q in notconv)
                  if notconv else "every scene and quantity") + ". Errors against an unconverged "
               "reference are at best as good as its change.", ""]
     lines += ["## Cheapest discretization within each tolerance", "",
-              "| scene | quantity | " + " | ".join(f"within {_pct(t)}" for t in opt.tolerances)
+              "| scene | quantity | " + " | ".join(f"within {_pct(t)} (runtime in ms, error "
+                                                  "in %)" for t in opt.tolerances)
               + " |", "|---|---|" + "---|" * len(opt.tolerances)]
     for s in result.scenes:
         for q in QUANTITIES:
@@ -162,3 +166,24 @@ def summary_markdown(result: SpeedVsError, fast: bool, elapsed: float) -> str:
     lines += [f"Refused runs: {len(refused)}."]
     lines += [f"- {a}: {short_label(p)}: {p.failure}" for a, p in refused[:10]]
     return "\n".join(lines)
+
+
+def _head(quantity: str) -> str:
+    """A quantity's name for a table header: its label without the parenthesised definition
+    (which :data:`DEFINITIONS` states under the table)."""
+    return LABELS[quantity].split(" (")[0]
+
+
+#: The definitions the table headers leave out.
+DEFINITIONS = ("Peak edge uplift: reduced from the peaks, continuum the edge gap; residual "
+               "settlement: reduced Σkε_p/Σk, continuum V(0) − V(end).")
+
+
+def _units(result: SpeedVsError, s) -> str:
+    """The units of peak u, θ, uplift and settlement of scene result ``s`` (its packaged
+    scene's length unit; θ in rad)."""
+    from ...scenes import load_scene
+
+    spec = next(sp for sp in result.grid.scenes if sp.label == s.label)
+    length = load_scene(spec.scene).units.length
+    return f"{length}, rad, {length}, {length}"

@@ -108,8 +108,9 @@ def _pct2(value: float) -> str:
 
 
 def _statics_table(st: Statics) -> list[str]:
-    rows = ["| foundation | positions x/b | onset M/(NB) | closed form | capacity M/(NB) | "
-            f"closed form | M_ult/(NB), FS_v = {st.yield_multiple:g} | closed form |",
+    rows = ["| foundation | positions x/b (–) | onset M/(NB) (–) | closed form (–) | "
+            "capacity M/(NB) (–) | closed form (–) | "
+            f"M_ult/(NB), FS_v = {st.yield_multiple:g} (–) | closed form (–) |",
             "|---|---|---|---|---|---|---|---|"]
     for s in st.layouts:
         two = len(s.positions) == 2
@@ -139,8 +140,9 @@ def _statics_text(st: Statics, threshold: float) -> list[str]:
 
 
 def _region_table(regions, emap: ErrorMap, threshold: float) -> list[str]:
-    rows = [f"| case | layout | {METRIC_LABELS['u']} | {METRIC_LABELS['all']} | points within "
-            f"{100 * threshold:g} % (u, θ, uplift, residual, shear, energy) |",
+    rows = [f"| case | layout | {METRIC_LABELS['u']}: region within {100 * threshold:g} % | "
+            f"{METRIC_LABELS['all']}: region | grid points within {100 * threshold:g} % (count: "
+            "u, θ, uplift, residual, shear, energy) |",
             "|---|---|---|---|---|"]
     for case in emap.cases:
         for layout in emap.layouts:

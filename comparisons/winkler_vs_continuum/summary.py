@@ -89,7 +89,9 @@ def summary_markdown(result: WinklerVsContinuum, fast: bool, elapsed: float) -> 
                      f"Largest M on the pushover {a['continuum_M_max_over_NB']:.4f} N B against "
                      f"the V–M envelope (1 − v)/2 = {a['vm_envelope_M_over_NB']:.4f} N B.")
     lines += ["", "## Calibrations", "",
-              "| calibration | layout | law | K_v | K_θ | R_k | R_e (× b) | FS_v | matched |",
+              f"| calibration | layout | law | K_v ({u.force}/{u.length}/{u.length}) | K_θ "
+              f"({u.force}·{u.length}/{u.length} per rad) | R_k (–) | R_e (× b) | FS_v (–) | "
+              "matched |",
               "|---|---|---|---|---|---|---|---|---|"]
     for c in result.calibrations:
         fs = "—" if c.law == "elastic" else f"{c.yield_multiple:.4g}"
@@ -108,7 +110,7 @@ def summary_markdown(result: WinklerVsContinuum, fast: bool, elapsed: float) -> 
               f"{FLOORS['settlement']:g} × the continuum's settlement under N (settlements), "
               f"{FLOORS['energy']:g} N B θ_on (energy). — : the bed has no such value (elastic "
               "springs have no capacity).", ""]
-    lines += _error_markdown(result.table)
+    lines += _error_markdown(result.table, u)
     lines += ["", "## Which calibration for which question", "",
               "Computed from the table: per question, the calibration whose largest |error| "
               "over the question's quantities is smallest.", "", result.recommendation.text, "",
@@ -116,21 +118,42 @@ def summary_markdown(result: WinklerVsContinuum, fast: bool, elapsed: float) -> 
                   f"{lbl}: {', '.join(result.recommendation.per_quantity[q]) or '—'}"
                   for q, lbl in zip(result.table.quantities, result.table.labels)) + ".", "",
               "## Dynamics", "", result.dynamics.reason if not result.dynamics.available
-              else _dynamic_markdown(result.dynamics, result.options, fast), ""]
+              else _dynamic_markdown(result.dynamics, result.options, fast, u), ""]
     return "\n".join(lines)
 
 
-def _error_markdown(table: ErrorTable) -> list[str]:
-    head = "| quantity | continuum | " + " | ".join(f"`{c}`" for c in table.calibrations) + " |"
-    rows = [head, "|---|---|" + "---|" * len(table.calibrations)]
+def quantity_unit(key: str, units) -> str:
+    """The unit of error-table quantity ``key`` in the scene's ``units`` (per unit length of
+    the strip: plane strain)."""
+    F, L = units.force, units.length
+    if key == "K_r":
+        return f"{F}·{L}/{L} per rad"
+    if key == "K_v":
+        return f"{F}/{L}/{L}"
+    if key == "N_ult":
+        return f"{F}/{L}"
+    if key.endswith("theta"):
+        return "rad"
+    if key.startswith(("contact", "settlement", "cyclic_settlement")) or key.endswith(
+            ("_u", "_uplift", "_residual_settlement")):
+        return L
+    return f"{F}·{L}/{L}"  # moments, and the cyclic energy (moment × rad)
+
+
+def _error_markdown(table: ErrorTable, units) -> list[str]:
+    head = ("| quantity | unit | continuum (in the unit) | "
+            + " | ".join(f"{c.replace('_', ' ')} (error, %)" for c in table.calibrations)
+            + " |")
+    rows = [head, "|---|---|---|" + "---|" * len(table.calibrations)]
     for j, label in enumerate(table.labels):
-        rows.append(f"| {label} | {table.reference[j]:.5g} | "
+        rows.append(f"| {label} | {quantity_unit(table.quantities[j], units)} | "
+                    f"{table.reference[j]:.5g} | "
                     + " | ".join(signed_pct(table.errors[i, j])
                                  for i in range(len(table.calibrations))) + " |")
     return rows
 
 
-def _dynamic_markdown(dyn: DynamicComparison, options: Options, fast: bool) -> str:
+def _dynamic_markdown(dyn: DynamicComparison, options: Options, fast: bool, units) -> str:
     """Peaks per motion: the continuum's and each bed's (errors are in the error table)."""
     overrides = ", ".join(run_overrides(options, fast))
     lines = ["The continuum's dynamic runs: `run_dynamic` with its default options (the "
@@ -144,11 +167,13 @@ def _dynamic_markdown(dyn: DynamicComparison, options: Options, fast: bool) -> s
         names = list(run.beds)
         lines += [f"### {run.label}", "",
                   f"Continuum: {run.continuum['steps']} steps on {run.continuum['dofs']} DOFs. "
-                  "Histories overlaid in `figures/dynamic_" + run.key + ".png`.", "",
-                  "| measure | continuum | " + " | ".join(f"`{n}`" for n in names) + " |",
-                  "|---|---|" + "---|" * len(names)]
+                  "Histories overlaid in this section's figure of the run.", "",
+                  "| measure | unit | continuum | " + " | ".join(n.replace("_", " ") for n in names)
+                  + " |",
+                  "|---|---|---|" + "---|" * len(names)]
         for m in DYNAMIC_MEASURES:
-            lines.append(f"| {DYNAMIC_LABELS[m]} | {run.continuum['peaks'][m]:.4g} | "
+            lines.append(f"| {DYNAMIC_LABELS[m]} | {quantity_unit('_' + m, units)} | "
+                         f"{run.continuum['peaks'][m]:.4g} | "
                          + " | ".join(f"{run.beds[n]['peaks'][m]:.4g}" for n in names) + " |")
         lines.append("")
         lines += [f"- `{n}` refused by the reduced integrator: {run.beds[n]['refused']}"
