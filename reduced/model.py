@@ -21,6 +21,7 @@ from ..checks import InputError
 from ..scenes import Scene
 from . import springs as sp
 from .compatibility import DofMap, SpringLayout, compatibility_matrix, layout_for, stiffness_matrix
+from .qz import QZ_SOILS, check_z50, qz_springs, static_forces
 
 __all__ = ["ReducedModel", "build_model", "impact_effective_mass", "impact_step"]
 
@@ -263,6 +264,8 @@ def _foundation_params(f, layout: SpringLayout, weight, rotary_mass, vertical_ma
     table["f0"] = F0
     table["fy"] = f.yield_multiple * F0 if f.law == "elastoplastic" else np.inf
     table["x"] = x
+    if f.law == "qz":
+        table = _qz_params(f, layout, table, weight)
     if f.restitution < 1.0 and f.support == "uplift":
         meff = impact_effective_mass(x, rotary_mass, vertical_mass)
         if f.impact_mass == "tributary":
@@ -272,6 +275,17 @@ def _foundation_params(f, layout: SpringLayout, weight, rotary_mass, vertical_ma
         table["dzf"] = meff * (1.0 - f.restitution) / cstar
         table["imph"] = impact_step(meff, table["c"] + cstar, k)
     return table, theta_s
+
+
+def _qz_params(f, layout: SpringLayout, table: np.ndarray, weight: float) -> np.ndarray:
+    """The q–z bed: capacity ``capacity_multiple``·W shared over the tributary widths, static
+    forces on the nonlinear backbones (:func:`.qz.static_forces`), z50 and drag."""
+    shape = QZ_SOILS[f.qz_soil]
+    capacity = f.capacity_multiple * weight
+    k, w = layout.stiffnesses, layout.widths
+    check_z50(k, w, capacity, f.z50)
+    table["f0"] = static_forces(k, layout.positions, w, weight, capacity, f.z50, shape)
+    return qz_springs(table, capacity * w / w.sum(), f.z50, f.suction, shape)
 
 
 RK4_REAL_LIMIT = 2.785293563405282  # |R(z)| = 1 on the negative real axis

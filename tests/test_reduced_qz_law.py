@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from upliftlab.reduced import springs as sp
-from upliftlab.reduced.kernels import QZ, qz_commit, qz_force, qz_start, qz_trial
+from upliftlab.reduced.kernels import CONTACT, QZ, qz_commit, qz_force, qz_start, qz_trial
 
 K, QULT, Z50 = 100.0, 10.0, 0.5            # force/length, force, length
 N, ELAST, EMAX = 1.2, 0.2, 0.7             # the clay shape
@@ -211,8 +211,8 @@ def test_dashpot_acts_in_contact_and_never_pulls():
     p["zs"] = h["zc"]
     p["f0"] = 4.0
     p["d0"] = 4.0 / K
-    f, power, fd, kt, ct = qz_force(p, h, 0.0, 0.01)
-    assert (f, fd, ct) == (pytest.approx(0.5), pytest.approx(0.5), 50.0)
+    f, power, fd, kt, ct, mode = qz_force(p, h, 0.0, 0.01)
+    assert (f, fd, ct, mode) == (pytest.approx(0.5), pytest.approx(0.5), 50.0, CONTACT)
     assert power == pytest.approx(0.005)
-    f, _, fd, kt, ct = qz_force(p, h, 0.0, -1.0)  # −50 against Q = 4: clipped at Q
+    f, _, fd, kt, ct, _ = qz_force(p, h, 0.0, -1.0)  # −50 against Q = 4: clipped at Q
     assert f + 4.0 == 0.0 and fd == -4.0 and kt == 0.0 and ct == 0.0

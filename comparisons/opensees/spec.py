@@ -123,6 +123,12 @@ def check_representable(scene: Scene) -> None:
             f"foundation.restitution = {f.restitution:g}: Ewing's impact damper (Case C) has "
             "no equivalent in OpenSees (no material adds a dashpot on recontact for a stroke "
             "set by the closing velocity and then locks); valid: 1 (Cases A and B)")
+    if f.law == "qz":
+        raise InputError(
+            "foundation.law = 'qz': the bridge writes the elastic and elasto-plastic springs; "
+            "upliftlab's q–z spring differs from OpenSees QzSimple2 (rigid closure and near "
+            "field, calibrated far field), so it is not written; valid: 'elastic', "
+            "'elastoplastic'")
     if s.kinematics != "small":
         raise InputError(
             f"structure.kinematics = {s.kinematics!r}: the OpenSees model (zeroLength springs "

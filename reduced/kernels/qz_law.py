@@ -292,9 +292,11 @@ def qz_commit(p, h, z):
 @njit(cache=True)
 def qz_force(p, h, e, ed):
     """Force conjugate to e (the increment Q + dashpot − F0), the dashpot's power and force,
-    and the tangents (dF/de, dF/dė) at the trial state e, ė. The dashpot acts while the gap is
-    closed and never pulls (clipped so that the total stays ≥ 0)."""
-    q, dz, _, zg, _, _, _, _, _, _, _ = qz_trial(p, h, p.zs + e)
+    the tangents (dF/de, dF/dė) and the mode (:func:`qz_mode`) at the trial state e, ė. The
+    dashpot acts while the gap is closed and never pulls (clipped so that the total stays
+    ≥ 0)."""
+    q, dz, zp, zg, _, _, _, _, _, _, _ = qz_trial(p, h, p.zs + e)
+    mode = SEPARATED if zg < 0.0 else (YIELDING if zp > h.zp else CONTACT)
     kt = 0.0 if math.isinf(dz) else 1.0 / dz
     fd = 0.0
     ct = 0.0
@@ -304,7 +306,7 @@ def qz_force(p, h, e, ed):
         if q + fd < 0.0:
             fd = -q
             kt, ct = 0.0, 0.0
-    return q + fd - p.f0, fd * ed, fd, kt, ct
+    return q + fd - p.f0, fd * ed, fd, kt, ct, mode
 
 
 @njit(cache=True)
