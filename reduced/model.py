@@ -21,7 +21,7 @@ from ..checks import InputError
 from ..scenes import Scene
 from . import springs as sp
 from .compatibility import DofMap, SpringLayout, compatibility_matrix, layout_for, stiffness_matrix
-from .qz import QZ_SOILS, check_z50, qz_springs, static_forces
+from .qz import QZ_SOILS, check_z50, common_zref, qz_springs, static_forces
 
 __all__ = ["ReducedModel", "build_model", "impact_effective_mass", "impact_step"]
 
@@ -278,14 +278,16 @@ def _foundation_params(f, layout: SpringLayout, weight, rotary_mass, vertical_ma
 
 
 def _qz_params(f, layout: SpringLayout, table: np.ndarray, weight: float) -> np.ndarray:
-    """The q–z bed: capacity ``capacity_multiple``·W shared over the tributary widths, static
-    forces on the nonlinear backbones (:func:`.qz.static_forces`), z50 and drag."""
+    """The q–z bed: capacity ``capacity_multiple``·W shared over the tributary widths, one
+    near-field z_ref that puts the bed's backbone through (z50, capacity/2), static forces on
+    the nonlinear backbones (:func:`.qz.static_forces`) and the drag."""
     shape = QZ_SOILS[f.qz_soil]
-    capacity = f.capacity_multiple * weight
     k, w = layout.stiffnesses, layout.widths
-    check_z50(k, w, capacity, f.z50)
-    table["f0"] = static_forces(k, layout.positions, w, weight, capacity, f.z50, shape)
-    return qz_springs(table, capacity * w / w.sum(), f.z50, f.suction, shape)
+    qult = f.capacity_multiple * weight * w / w.sum()
+    check_z50(k, qult, f.z50)
+    zref = common_zref(k, qult, f.z50, shape)
+    table["f0"] = static_forces(k, layout.positions, qult, zref, weight, shape)
+    return qz_springs(table, qult, zref, f.suction, 0.5 * f.z50, shape)
 
 
 RK4_REAL_LIMIT = 2.785293563405282  # |R(z)| = 1 on the negative real axis

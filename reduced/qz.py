@@ -1,6 +1,7 @@
 """Parameters of the hysteretic q–z foundation springs (the law: :mod:`.kernels.qz_law`): the
-soil types' backbone shapes, z_ref from z50, the spring records of a bed, its static forces on
-the nonlinear backbones and the springs' histories at rest.
+soil types' backbone shapes, z_ref from the bed's z50 (the settlement at which a centred load
+reaches half the capacity), the spring records of a bed, its static forces on the nonlinear
+backbones and the springs' histories at rest.
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ from scipy.optimize import brentq
 
 from ..checks import InputError
 from . import springs as sp
-from .kernels import QZ, qz_backbone, qz_start, qz_trial
+from .kernels import QZ, qz_backbone, qz_start
 
 
 @dataclass(frozen=True)
@@ -40,25 +41,75 @@ def zref_from_z50(qult, k, z50, shape: QzShape):
     return (z50 - 0.5 * qult / k) / ((2.0 * (1.0 - shape.elast)) ** (1.0 / shape.n) - 1.0)
 
 
-def qz_springs(table: np.ndarray, qult, z50, suction: float, shape: QzShape) -> np.ndarray:
+
+
+def backbone_force(z, k, qult, zref, shape: QzShape, iterations: int = 200) -> np.ndarray:
+    """Forces (force) on the virgin backbones at compression z (length), by bisection on the
+    closed-form z(Q) (arrays broadcast; an inverse independent of the compiled law's solver)."""
+    z, k, qult, zref = np.broadcast_arrays(*(np.asarray(a, dtype=float)
+                                             for a in (z, k, qult, zref)))
+    qr = shape.elast * qult
+    lo, hi = np.zeros(z.shape), qult.copy()
+    for _ in range(iterations):
+        q = 0.5 * (lo + hi)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            plastic = np.where(q > qr, zref * (((qult - qr) / (qult - q)) ** (1.0 / shape.n)
+                                               - 1.0), 0.0)
+        low = q / k + plastic < z
+        lo, hi = np.where(low, q, lo), np.where(low, hi, q)
+    return 0.5 * (lo + hi)
+
+
+def z50_lower_bound(k, qult, capacity: float) -> float:
+    """The least settlement (length) at which a bed of stiffnesses ``k`` and capacities
+    ``qult`` can carry half of ``capacity`` = Σ q_ult: where Σ min(k_i z, q_ult,i) reaches it
+    (each spring elastic–perfectly plastic, the limit z_ref → 0 of its backbone)."""
+    k, qult = np.asarray(k, dtype=float), np.asarray(qult, dtype=float)
+    corners = np.sort(qult / k)
+    carried = np.array([np.minimum(k * z, qult).sum() for z in corners])
+    i = int(np.argmax(carried >= 0.5 * capacity))
+    z_hi = corners[i]
+    z_lo = corners[i - 1] if i > 0 else 0.0
+    f_lo = np.minimum(k * z_lo, qult).sum()
+    return float(z_lo + (0.5 * capacity - f_lo) / (carried[i] - f_lo) * (z_hi - z_lo))
+
+
+def common_zref(k, qult, z50: float, shape: QzShape) -> float:
+    """The near-field reference z_ref (length), one for every spring (a property of the soil),
+    that puts the bed's virgin backbone under a centred load through (z50, Σ q_ult/2): every
+    spring of a base that does not rotate settles z50, and their forces sum to half the
+    capacity. For a bed whose k_i are proportional to q_ult,i it is :func:`zref_from_z50`.
+    z50 must exceed :func:`z50_lower_bound` (callers check it and name the field)."""
+    k, qult = np.asarray(k, dtype=float), np.asarray(qult, dtype=float)
+    half = 0.5 * qult.sum()
+
+    def excess(log_zref):
+        return backbone_force(z50, k, qult, np.exp(log_zref), shape).sum() - half
+
+    lo, hi = np.log(z50) - 60.0, np.log(z50) + 60.0
+    return float(np.exp(brentq(excess, lo, hi, xtol=1e-14, rtol=1e-15, maxiter=500)))
+
+
+def qz_springs(table: np.ndarray, qult, zref, suction: float, zd: float,
+               shape: QzShape) -> np.ndarray:
     """The foundation rows of a spring ``table`` (``k`` and ``f0`` set) as q–z springs of
-    capacity ``qult`` and z50 (arrays or scalars, force and length) with drag
-    ``suction``·q_ult; ``zs`` is each spring's virgin compression at its F0. Returns a new
-    table (derived columns not filled: :func:`~.springs.derive_columns` does that)."""
+    capacity ``qult`` (force) and near-field reference ``zref`` (length; arrays or scalars),
+    with a drag of ``suction``·q_ult and reference ``zd`` (length, z50/2); ``zs`` is each
+    spring's virgin compression at its F0. Returns a new table (derived columns not filled:
+    :func:`~.springs.derive_columns` does that)."""
     rows = table["kind"] != sp.STORY
     table = np.array(table, dtype=sp.SPRING_DTYPE)
     count = int(rows.sum())
     qult = np.broadcast_to(np.asarray(qult, dtype=float), count)
-    z50 = np.broadcast_to(np.asarray(z50, dtype=float), count)
     table["kind"][rows] = QZ
     table["fy"][rows] = np.inf
     table["qult"][rows] = qult
-    table["zref"][rows] = zref_from_z50(qult, table["k"][rows], z50, shape)
+    table["zref"][rows] = np.broadcast_to(np.asarray(zref, dtype=float), count)
     table["npow"][rows] = shape.n
     table["elast"][rows] = shape.elast
     table["emax"][rows] = shape.emax
     table["qd"][rows] = suction * qult
-    table["zd"][rows] = 0.5 * z50
+    table["zd"][rows] = zd
     for j in np.flatnonzero(rows):
         table["zs"][j] = qz_backbone(table[j], table["f0"][j])
     return table
@@ -73,31 +124,23 @@ def initial_history(params: np.ndarray) -> np.ndarray:
     return H
 
 
-def static_forces(stiffnesses, positions, widths, weight: float, capacity: float, z50: float,
+def static_forces(stiffnesses, positions, qult, zref: float, weight: float,
                   shape: QzShape) -> np.ndarray:
-    """The springs' forces F0 (force) at rest under ``weight`` on virgin q–z backbones of
-    capacities ``capacity``·w_i/Σw and the given z50: the compression z at which their forces
-    sum to the weight, the same for every spring of a base that does not rotate. A layout whose
+    """The springs' forces F0 (force) at rest under ``weight`` on their virgin backbones
+    (capacities ``qult``, reference ``zref``): the compression z at which their forces sum to
+    the weight, the same for every spring of a base that does not rotate. A layout whose
     forces would then make a moment about the centre (an asymmetric one) is an
     :class:`InputError`."""
     k = np.asarray(stiffnesses, dtype=float)
-    w = np.asarray(widths, dtype=float)
-    qult = capacity * w / w.sum()
-    table = sp.spring_table(k.size)
-    table["kind"], table["k"] = QZ, k
-    table = qz_springs(table, qult, z50, 0.0, shape)
-    H = np.zeros(k.size, dtype=sp.HISTORY_DTYPE)
-    for j in range(k.size):
-        qz_start(table[j], H[j], 0.0)
 
     def excess(z):
-        return sum(qz_trial(table[j], H[j], z)[0] for j in range(k.size)) - weight
+        return backbone_force(z, k, qult, zref, shape).sum() - weight
 
     hi = weight / k.sum()
     while excess(hi) < 0.0:
         hi *= 2.0
     z = brentq(excess, 0.0, hi, xtol=1e-15 * hi, rtol=1e-15, maxiter=500)
-    forces = np.array([qz_trial(table[j], H[j], z)[0] for j in range(k.size)])
+    forces = backbone_force(z, k, qult, zref, shape)
     x = np.asarray(positions, dtype=float)
     moment = float(np.sum(forces * x))
     if abs(moment) > 1e-9 * weight * np.max(np.abs(x)):
@@ -107,12 +150,12 @@ def static_forces(stiffnesses, positions, widths, weight: float, capacity: float
     return forces
 
 
-def check_z50(stiffnesses, widths, capacity: float, z50: float) -> None:
-    """z50 must exceed every spring's elastic displacement at half capacity, q_ult/(2k)."""
-    k = np.asarray(stiffnesses, dtype=float)
-    w = np.asarray(widths, dtype=float)
-    elastic = 0.5 * capacity * w / w.sum() / k
-    if z50 <= elastic.max():
-        raise InputError(f"foundation.z50 = {z50:g}: below the elastic displacement at half "
-                         f"capacity of the softest spring, q_ult/(2k) = {elastic.max():.4g}; "
-                         f"valid range is > {elastic.max():.4g}")
+def check_z50(stiffnesses, qult, z50: float) -> None:
+    """z50 must exceed the least settlement at which the bed can carry half its capacity
+    (:func:`z50_lower_bound`)."""
+    least = z50_lower_bound(stiffnesses, qult, float(np.sum(qult)))
+    if z50 <= least:
+        raise InputError(f"foundation.z50 = {z50:g}: the bed cannot carry half its capacity at "
+                         f"that settlement even with rigid–plastic near fields (its springs, "
+                         f"elastic up to q_ult, reach it at {least:.4g}); valid range is "
+                         f"> {least:.4g}")

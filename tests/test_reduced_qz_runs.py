@@ -93,7 +93,8 @@ def test_the_static_state_sits_on_the_backbones():
 @pytest.mark.parametrize("edit, message", [
     ({"integrator": "events"}, "analysis.integrator = 'events' with foundation.law = 'qz'"),
     ({"restitution": 0.7}, "foundation.restitution = 0.7 with foundation.law = 'qz'"),
-    ({"z50": 0.01}, "foundation.z50 = 0.01: below the elastic displacement"),
+    # uniform bed: half the capacity 3W/2 on K_v = 5737 kip/in at 303/5737 = 0.0528 in at least
+    ({"z50": 0.01}, "foundation.z50 = 0.01: the bed cannot carry half its capacity"),
     ({"capacity_multiple": 0.5}, "foundation.capacity_multiple"),
     ({"suction": 0.5}, "foundation.suction"),
     ({"support": "bonded"}, "foundation.support = 'bonded' with foundation.law = 'qz'"),
@@ -138,3 +139,24 @@ def test_the_opensees_bridge_refuses_the_qz_law():
     from upliftlab.comparisons.opensees.spec import check_representable
     with pytest.raises(InputError, match="foundation.law = 'qz'"):
         check_representable(_scene(0.6))
+
+
+def test_an_end_stiffened_bed_carries_half_its_capacity_at_z50():
+    """End springs twice as stiff, capacities by tributary width: one z_ref puts the bed's
+    virgin backbone through (z50, 1.5 W) — checked through the compiled law's own solver, not
+    the bisection that calibrated it — its static forces sum to W with the stiffer ends
+    carrying more, and a pulse run closes its balance."""
+    from upliftlab.reduced.kernels import HISTORY_DTYPE, qz_start, qz_trial
+    scene = _scene(0.6, layout="end_stiffened", springs=12, end_stiffness_ratio=2.0,
+                   end_length=1.0 / 3.0)
+    found = build_model(scene).params
+    found = found[found["kind"] == QZ]
+    history = np.zeros(found.size, dtype=HISTORY_DTYPE)
+    total = 0.0
+    for j in range(found.size):
+        qz_start(found[j], history[j], 0.0)
+        total += qz_trial(found[j], history[j], 0.2)[0]
+    assert total == pytest.approx(1.5 * 202.0, rel=1e-9)
+    assert found["f0"].sum() == pytest.approx(202.0, rel=1e-12)
+    assert found["f0"][0] > found["f0"][5]
+    assert run(scene).energy_balance_error <= ENERGY_TOL

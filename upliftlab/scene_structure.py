@@ -149,8 +149,9 @@ class Foundation:
     ``elastoplastic`` (yield at ``yield_multiple`` times the static compression) or ``qz``
     (hysteretic q–z springs, :mod:`upliftlab.reduced.kernels.qz_law`: the bed's bearing
     capacity is ``capacity_multiple`` times the weight, shared over the springs' tributary
-    widths; ``z50`` (length) the settlement at half capacity; ``suction`` the gap's drag as a
-    fraction of capacity; ``qz_soil`` the backbone's shape, ``clay`` or ``sand``). Dashpots in
+    widths; ``z50`` (length) the base's settlement at half capacity under a centred load;
+    ``suction`` the gap's drag as a fraction of capacity; ``qz_soil`` the backbone's shape,
+    ``clay`` or ``sand``). Dashpots in
     parallel carry ``damping_ratio`` of critical for the bonded vertical mode. ``restitution`` ε
     < 1 adds Ewing's impact damper with c* = ``impact_multiple`` · c_cr. ``impact_mass``: the
     mass behind a landing spring in c_cr and Δz — ``point`` (the paper's eq. 17: the structure's

@@ -7,8 +7,10 @@
   (closed-form R_k of :func:`.calibration.end_stiffening`), :func:`qz_stiffnesses`.
 - *z50*: the settlement of the continuum's vertical pushover at half its capacity
   (:func:`z50_from_pushover`); under a centred load every spring of a rigid base settles as
-  much, so each spring's backbone goes through (z50, q_ult,i/2) and the bed's through
-  (z50, N_ult/2).
+  much, and the reduced model gives every spring one near-field z_ref that puts the bed's
+  backbone through (z50, N_ult/2) (:func:`upliftlab.reduced.qz.common_zref`). A bed too soft
+  to carry N_ult/2 at z50 even with rigid–plastic near fields cannot be calibrated (an
+  :class:`InputError` with the least z50 it can take).
 - *Gap*: from a cyclic vertical pushover (down, back up past lift-off): the drag (suction)
   ratio is the largest tension the interface carried over N_ult (:func:`suction_from_cyclic`;
   zero for the continuum's unilateral contact), and the width of the near field's elastic
@@ -26,7 +28,9 @@ import numpy as np
 
 from ...checks import InputError
 from ...reduced.compatibility import end_stiffened_bed
-from ...reduced.qz import QZ_SOILS, SUCTION_MAX
+from ...reduced.kernels import HISTORY_DTYPE, QZ, qz_commit, qz_start
+from ...reduced.qz import QZ_SOILS, SUCTION_MAX, common_zref, qz_springs, z50_lower_bound
+from ...reduced.springs import derive_columns, spring_table
 from .calibration import end_stiffening
 
 
@@ -40,11 +44,14 @@ def spring_capacities(capacity: float, widths) -> np.ndarray:
 def qz_stiffnesses(K_v: float, K_r: float, half_width: float, springs: int, end_length: float,
                    max_ratio: float) -> tuple[np.ndarray, float, bool]:
     """Initial stiffnesses k_i (force/length) of the end-stiffened bed with the continuum's
-    K_v and K_r, its end-stiffness ratio R_k, and whether K_r/K_v was reachable (if not, R_k is
-    the nearest bound, K_v is kept and K_r is missed)."""
+    K_v and K_r, its end-stiffness ratio R_k, and whether K_r/K_v was reachable. If it was not
+    (no bed under the footing has K_r/K_v above b²), R_k is the nearest bound and K_r is kept,
+    K_v missed, as the study's elastic end-stiffened bed does (:func:`.calibration.calibrate`):
+    rocking is the response the beds are compared in."""
     stiff = end_stiffening(K_r / K_v, half_width, springs, end_length, max_ratio)
-    bed = end_stiffened_bed(half_width, K_v, springs, stiff.ratio, end_length)
-    return np.array(bed.stiffnesses), stiff.ratio, stiff.feasible
+    unit = end_stiffened_bed(half_width, 1.0, springs, stiff.ratio, end_length)
+    total = K_v if stiff.feasible else K_r / unit.rocking_stiffness
+    return np.array(unit.stiffnesses) * total, stiff.ratio, stiff.feasible
 
 
 def z50_from_pushover(settlement, force, capacity: float) -> float:
@@ -79,11 +86,14 @@ def elastic_range_from_unloading(settlement, force, stiffness: float, capacity: 
     the force drop from the reversal to the last point whose secant from the reversal is
     still within ``rtol`` of ``stiffness`` (the initial stiffness, force/length)."""
     s, n = np.asarray(settlement, dtype=float), np.asarray(force, dtype=float)
-    turn = int(np.argmax(s))
-    if turn == s.size - 1:
-        raise InputError("cyclic pushover: it never unloads (its settlement peaks at its end)")
-    ds = s[turn] - s[turn + 1:]
-    dn = n[turn] - n[turn + 1:]
+    back = np.flatnonzero(np.diff(s) < 0.0)
+    if back.size == 0:
+        raise InputError("cyclic pushover: it never unloads (its settlement never decreases)")
+    turn = int(back[0])
+    up = np.flatnonzero(np.diff(s[turn:]) > 0.0)  # the unloading ends where it reloads
+    stop = turn + int(up[0]) + 1 if up.size else s.size
+    ds = s[turn] - s[turn + 1:stop]
+    dn = n[turn] - n[turn + 1:stop]
     secant = dn / ds
     elastic = np.abs(secant / stiffness - 1.0) <= rtol
     if not elastic[0]:
@@ -133,14 +143,38 @@ def calibrate_qz(ref, springs: int, end_length: float, max_ratio: float, soil: s
     capacities = spring_capacities(ref.N_ult, widths)
     z50 = z50_from_pushover(ref.vertical["settlement"], ref.vertical["N"], ref.N_ult)
     suction = 0.0 if cyclic_force is None else suction_from_cyclic(cyclic_force, ref.N_ult)
-    elastic_part = 0.5 * capacities / k
-    if np.any(z50 <= elastic_part):
-        raise InputError(f"q–z calibration: z50 = {z50:g} is not above the elastic q_ult/(2k) "
-                         f"= {elastic_part.max():g} of the softest spring: the continuum's "
-                         "pushover is stiffer at half capacity than the bed's initial stiffness")
+    least = z50_lower_bound(k, capacities, ref.N_ult)
+    if z50 <= least:
+        raise InputError(f"q–z calibration: the continuum's z50 = {z50:.4g} is below the least "
+                         f"settlement {least:.4g} at which this bed (R_k = {ratio:.4g}) can carry "
+                         "half the capacity: its softest springs are too soft for its capacities")
     return QzCalibration(b, springs, float(k.sum()), k, capacities, ratio, end_length, z50,
                          suction, soil, ref.N_ult / ref.N, feasible)
 
 
-__all__ = ["QZ_SOILS", "QzCalibration", "calibrate_qz", "elastic_range_from_unloading",
+def bed_vertical_path(stiffnesses, capacities, z50: float, settlements, soil: str = "clay",
+                      suction: float = 0.0) -> np.ndarray:
+    """The force (force) a q–z bed carries along a centred settlement path (length, positive
+    down, from the unloaded state; any sequence, cyclic too): every spring settles as much,
+    each through the compiled law and its history, z_ref from
+    :func:`~upliftlab.reduced.qz.common_zref` — what the continuum's vertical pushover is
+    compared with."""
+    k, q = np.asarray(stiffnesses, dtype=float), np.asarray(capacities, dtype=float)
+    shape = QZ_SOILS[soil]
+    table = spring_table(k.size)
+    table["kind"], table["k"] = QZ, k
+    P = derive_columns(qz_springs(table, q, common_zref(k, q, z50, shape), suction, 0.5 * z50,
+                                  shape))
+    H = np.zeros(k.size, dtype=HISTORY_DTYPE)
+    for j in range(k.size):
+        qz_start(P[j], H[j], 0.0)
+    forces = []
+    for z in np.asarray(settlements, dtype=float):
+        for j in range(k.size):
+            qz_commit(P[j], H[j], z)
+        forces.append(float(H["qc"].sum()))
+    return np.array(forces)
+
+
+__all__ = ["bed_vertical_path", "QZ_SOILS", "QzCalibration", "calibrate_qz", "elastic_range_from_unloading",
            "qz_stiffnesses", "spring_capacities", "suction_from_cyclic", "z50_from_pushover"]
