@@ -216,3 +216,27 @@ def test_dashpot_acts_in_contact_and_never_pulls():
     assert power == pytest.approx(0.005)
     f, _, fd, kt, ct, _ = qz_force(p, h, 0.0, -1.0)  # −50 against Q = 4: clipped at Q
     assert f + 4.0 == 0.0 and fd == -4.0 and kt == 0.0 and ct == 0.0
+
+
+def test_the_dispatching_forms_agree_with_the_qz_functions():
+    """Through reduced/kernels/laws.py: commit_step books qz_commit's work and the contact
+    flag, spring_state reads the trial force and Q²/(2k), trial_mode the force's mode; random
+    trial states around a cyclic history (reference: qz_force/qz_commit on a copy)."""
+    from upliftlab.reduced.kernels import commit_step, spring_state, trial_mode
+    rng = np.random.default_rng(7)
+    p, h = _spring(suction=0.02, c=5.0)
+    qz_start(p, h, 3.0)
+    p["zs"], p["f0"], p["d0"] = h["zc"], 3.0, 3.0 / K
+    for step in range(200):
+        e = rng.uniform(-0.6, 1.2)
+        ed = rng.uniform(-1, 1)
+        copy = h.copy()
+        force, _, fd, _, _, mode = qz_force(p, h, e, ed)
+        ep, q, energy = spring_state(0, p, 0, h, e)
+        assert q == pytest.approx(force + 3.0 - fd, rel=1e-12, abs=1e-12)
+        assert energy == pytest.approx(0.5 * q * q / K, rel=1e-12, abs=1e-15)
+        assert trial_mode(p, h, e, ed) == mode
+        work, contact = commit_step(p, e, ed, h, 1)
+        assert work == qz_commit(p, copy, p["zs"] + e)
+        assert contact == (0 if h["zg"] < 0 else 1)
+        assert h["ep"] == pytest.approx(h["zp"] - (p["zs"] - p["d0"]), abs=1e-15)
