@@ -8,6 +8,8 @@ stepper (exact switch location); the run's own energy balance, checked against t
 tolerance (analysis.energy_tolerance, default 1e-3 of the input).
 """
 
+import math
+
 import numpy as np
 import pytest
 
@@ -160,3 +162,16 @@ def test_an_end_stiffened_bed_carries_half_its_capacity_at_z50():
     assert found["f0"].sum() == pytest.approx(202.0, rel=1e-12)
     assert found["f0"][0] > found["f0"][5]
     assert run(scene).energy_balance_error <= ENERGY_TOL
+
+
+def test_a_qz_scene_replaced_keeps_its_qz_fields_and_checks():
+    scene = _scene(0.6).replace("foundation", z50=0.3)
+    assert (scene.foundation.law, scene.foundation.z50) == ("qz", 0.3)
+    assert scene.foundation.capacity_multiple == 3.0
+    with pytest.raises(InputError, match="foundation.z50 = 0.01"):
+        build_model(scene.replace("foundation", z50=0.01))
+    # back to an elastic bed: the q–z fields return to their defaults (they apply to qz only)
+    elastic = scene.replace("foundation", law="elastic", capacity_multiple=math.inf, z50=0.0)
+    assert elastic.foundation.law == "elastic"
+    with pytest.raises(InputError, match="does not apply to this scene"):
+        scene.replace("foundation", law="elastic")

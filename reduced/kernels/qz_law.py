@@ -34,7 +34,9 @@ parts in series, each carrying Q:
 
 Virgin backbone (q_r = ``elast``·q_ult, z_in = 0): z(Q) = Q/k for Q ≤ q_r, and
 z(Q) = Q/k + z_ref · (((q_ult − q_r)/(q_ult − Q))^(1/n) − 1) beyond, so Q → q_ult as z → ∞;
-z50 = z(q_ult/2) fixes z_ref (:func:`upliftlab.reduced.qz.zref_from_z50`).
+for one spring, z50 = z(q_ult/2) fixes z_ref (:func:`upliftlab.reduced.qz.zref_from_z50`), for
+a bed the settlement at which its springs together carry half their capacity does
+(:func:`upliftlab.reduced.qz.common_zref`).
 
 Dissipation: the work Q dz_p on the near field and Q_g dz_g on the drag, integrated in closed
 form along the branch of a step (no quadrature): with u the distance travelled from the anchor,
