@@ -28,6 +28,7 @@ from ..checks import InputError
 from ..scenes import Scene
 from . import springs as sp
 from .compatibility import DofMap, SpringLayout, compatibility_matrix, layout_for, stiffness_matrix
+from .qz import QZ_SOILS, check_z50, common_zref, qz_springs, static_forces
 
 __all__ = ["ReducedModel", "build_model", "impact_effective_mass", "impact_step"]
 
@@ -330,6 +331,8 @@ def _foundation_params(f, layout: SpringLayout, weight, rotary_mass, vertical_ma
     table["f0"] = F0
     table["fy"] = f.yield_multiple * F0 if f.law == "elastoplastic" else np.inf
     table["x"] = x
+    if f.law == "qz":
+        table = _qz_params(f, layout, table, weight)
     if f.restitution < 1.0 and f.support == "uplift":
         meff = impact_effective_mass(x, rotary_mass, vertical_mass)
         if f.impact_mass == "tributary":
@@ -339,6 +342,19 @@ def _foundation_params(f, layout: SpringLayout, weight, rotary_mass, vertical_ma
         table["dzf"] = meff * (1.0 - f.restitution) / cstar
         table["imph"] = impact_step(meff, table["c"] + cstar, k)
     return table, theta_s
+
+
+def _qz_params(f, layout: SpringLayout, table: np.ndarray, weight: float) -> np.ndarray:
+    """The q–z bed: capacity ``capacity_multiple``·W shared over the tributary widths, one
+    near-field z_ref that puts the bed's backbone through (z50, capacity/2), static forces on
+    the nonlinear backbones (:func:`.qz.static_forces`) and the drag."""
+    shape = QZ_SOILS[f.qz_soil]
+    k, w = layout.stiffnesses, layout.widths
+    qult = f.capacity_multiple * weight * w / w.sum()
+    check_z50(k, qult, f.z50)
+    zref = common_zref(k, qult, f.z50, shape)
+    table["f0"] = static_forces(k, layout.positions, qult, zref, weight, shape)
+    return qz_springs(table, qult, zref, f.suction, 0.5 * f.z50, shape)
 
 
 RK4_REAL_LIMIT = 2.785293563405282  # |R(z)| = 1 on the negative real axis

@@ -21,6 +21,7 @@ from .cost import check_run_cost
 from .integrators import METHODS, StepPlan, method, time_step
 from .model import ReducedModel, build_model
 from .peak_slots import decode_peaks, start_peaks
+from .qz import initial_history
 from .response import Response, ground_displacement
 from .static import initial_state
 
@@ -148,6 +149,10 @@ def plan_run(model: ReducedModel, motion: Motion, name: str, *, dt: float | None
                          "exact kinematics has a mass matrix that changes with θ, integrated by "
                          "the explicit integrators; valid: "
                          + ", ".join(repr(k) for k, v in METHODS.items() if v.explicit))
+    if m.kind == "events" and np.any(model.params["kind"] == kn.QZ):
+        raise InputError(f"analysis.integrator = {name!r} with foundation.law = 'qz': the event "
+                         "stepper tabulates piecewise-affine laws and the q–z spring is curved; "
+                         "valid: " + ", ".join(repr(k) for k in METHODS if k != "events"))
     duration = a.duration or motion.duration
     motion = motion.extended(duration)
     plan = time_step(model, name, record_dt=motion.dt, duration=duration,
@@ -301,7 +306,7 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
     peaks = start_peaks(P, inputs.stories, _initial_values(P, inputs, q0))
     counters = np.zeros(kn.N_COUNTERS, np.int64)
     params = P.view(np.recarray)  # records read as p.k in compiled and plain code
-    history = np.zeros(ns, dtype=sp.HISTORY_DTYPE).view(np.recarray)
+    history = initial_history(P).view(np.recarray)
     frame = inputs.frame.copy()  # its pivot side changes during a run
     system = (inputs.minv, params, inputs.geometric, inputs.ground_load, ag, dtg, inputs.weight,
               frame, inputs.story)  # the kernels' SYSTEM record

@@ -27,15 +27,21 @@ here under their names. Each is a pure function of (mode, parameters, deformatio
 history): parameters ``p`` are one record of :data:`SPRING_DTYPE` and history ``h`` one record
 of :data:`HISTORY_DTYPE` (fields ``ep`` plastic deformation, ``imp`` impact damper on,
 ``e0`` deformation at recontact, ``dz`` impact stroke).
+
+Hysteretic q–z spring (kind ``QZ``, :mod:`.kernels.qz_law`): an elastic far field, a Masing
+near field with a hyperbolic backbone to its capacity and a gap with optional drag, in series;
+its state is the rest of the history record (``zc``, ``qc``, ``zp``, …), its parameters the
+``qult``, ``zref``, ``npow``, ``elast``, ``emax``, ``qd``, ``zd`` and ``zs`` fields
+(:mod:`.qz` builds them).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .kernels import (BONDED, CLIPPED, CONTACT, ELASTIC, HISTORY_DTYPE, SEPARATED, SPRING_DTYPE,
-                      STORY, UPLIFT, YIELD_NEG, YIELD_POS, YIELDING, commit_step, force_in_mode,
-                      natural_mode, switch_mode, tangent, validity)
+from .kernels import (BONDED, CLIPPED, CONTACT, ELASTIC, HISTORY_DTYPE, QZ, SEPARATED,
+                      SPRING_DTYPE, STORY, UPLIFT, YIELD_NEG, YIELD_POS, YIELDING, commit_step,
+                      force_in_mode, natural_mode, switch_mode, tangent, validity)
 
 MODE_NAMES = {
     STORY: {ELASTIC: "elastic", YIELD_POS: "yielding+", YIELD_NEG: "yielding-"},
@@ -70,7 +76,7 @@ def derive_columns(table: np.ndarray) -> np.ndarray:
 
 __all__ = [
     "SPRING_DTYPE", "HISTORY_DTYPE", "spring_table", "derive_columns",
-    "STORY", "UPLIFT", "BONDED",
+    "STORY", "UPLIFT", "BONDED", "QZ",
     "SEPARATED", "CONTACT", "YIELDING", "CLIPPED", "ELASTIC", "YIELD_POS", "YIELD_NEG",
     "force_in_mode", "natural_mode", "validity", "switch_mode", "commit_step", "tangent",
     "MODE_NAMES",

@@ -22,6 +22,7 @@ from ..checks import InputError
 from . import kernels as kn
 from . import springs as sp
 from .model import ReducedModel
+from .qz import initial_history
 
 __all__ = ["Pushover", "rocking_pushover", "uplift_onset_force", "initial_state",
            "contact_length", "contact_lengths", "foundation_moment"]
@@ -36,7 +37,9 @@ def _forces(model: ReducedModel, q: np.ndarray, hist: np.ndarray):
     kn.internal_force(q, np.zeros(n), model.params, model.geometric, hist, e, ed, fint, kt, ct,
                       modes, np.zeros(ns), np.zeros(ns))
     P = model.params
-    law = [kn.force_in_mode(m, P[j], e[j], 0.0, hist[j]["ep"], 0.0)[0] for j, m in enumerate(modes)]
+    law = [kn.qz_force(P[j], hist[j], e[j], 0.0)[0] if P["kind"][j] == kn.QZ else
+           kn.force_in_mode(m, P[j], e[j], 0.0, hist[j]["ep"], 0.0)[0]
+           for j, m in enumerate(modes)]
     total = np.array(law) + np.where(P["kind"] == sp.STORY, 0.0, P["f0"])
     return fint, kt, total, e, modes
 
@@ -118,7 +121,7 @@ def rocking_pushover(model: ReducedModel, thetas) -> Pushover:
     d = model.dofs
     thetas = np.asarray(thetas, dtype=float)
     ns = model.spring_count
-    hist = np.zeros(ns, dtype=sp.HISTORY_DTYPE)
+    hist = initial_history(model.params)
     q = np.zeros(model.mass.size)
     out = {k: [] for k in ("moment", "vertical", "contact", "plastic")}
     for theta in thetas:
@@ -182,8 +185,7 @@ def initial_state(model: ReducedModel, *, displacement: float = 0.0,
         else:
             _carry(model, q, rotation)
         if model.layout is not None:
-            q[d.v] = _vertical_equilibrium(model, q, np.zeros(model.spring_count,
-                                                                 dtype=sp.HISTORY_DTYPE))
+            q[d.v] = _vertical_equilibrium(model, q, initial_history(model.params))
     if displacement:
         if not d.stories:
             raise InputError("motion.displacement needs a flexible structure; use "
@@ -207,7 +209,7 @@ def _displaced(model: ReducedModel, q: np.ndarray, displacement: float) -> np.nd
     """Static equilibrium with the top mass held at ``displacement`` (Newton, free DOFs)."""
     top = model.dofs.stories[-1]
     free = np.array([i for i in range(q.size) if i != top])
-    hist = np.zeros(model.spring_count, dtype=sp.HISTORY_DTYPE)
+    hist = initial_history(model.params)
     q = q.copy()
     q[top] = displacement
     scale = max(model.weight, model.g * float(np.sum(model.mass[list(model.dofs.stories)])))

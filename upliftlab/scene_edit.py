@@ -22,6 +22,7 @@ import json
 import math
 
 from .checks import InputError
+from .scene_structure import QZ_KEYS
 
 __all__ = ["scene_table", "revalidate", "replace_fields", "flatten"]
 
@@ -68,6 +69,8 @@ def _foundation_table(foundation) -> dict:
         skip.add("stiffness")
     if foundation.layout != "end_stiffened":
         skip |= {"end_stiffness_ratio", "end_length"}
+    if foundation.law != "qz":
+        skip |= set(QZ_KEYS)
     return _plain(foundation, [f.name for f in dataclasses.fields(foundation)
                                if f.name not in skip])
 

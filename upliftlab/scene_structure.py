@@ -16,7 +16,9 @@ __all__ = ["KINEMATICS", "SUPPORTS", "LAYOUTS", "LAWS", "IMPACT_MASSES", "MAX_SP
 
 SUPPORTS = ("uplift", "bonded", "fixed")
 LAYOUTS = ("winkler", "edges", "equivalent", "end_stiffened", "custom")
-LAWS = ("elastic", "elastoplastic")
+LAWS = ("elastic", "elastoplastic", "qz")
+QZ_SOIL_NAMES = ("clay", "sand")  # the q–z backbone shapes (upliftlab.reduced.qz.QZ_SOILS)
+QZ_KEYS = ("capacity_multiple", "z50", "suction", "qz_soil")
 IMPACT_MASSES = ("point", "tributary")
 KINEMATICS = ("small", "exact")
 
@@ -144,7 +146,12 @@ class Foundation:
     ``support``: ``uplift`` (compression-only springs), ``bonded`` (springs also carry tension)
     or ``fixed`` (θ and V locked). ``half_width`` b (length). ``layout`` and ``springs`` (N) place
     the springs; ``stiffness`` is their total K_v (force/length). ``law`` is ``elastic`` or
-    ``elastoplastic`` (yield at ``yield_multiple`` times the static compression). Dashpots in
+    ``elastoplastic`` (yield at ``yield_multiple`` times the static compression) or ``qz``
+    (hysteretic q–z springs, :mod:`upliftlab.reduced.kernels.qz_law`: the bed's bearing
+    capacity is ``capacity_multiple`` times the weight, shared over the springs' tributary
+    widths; ``z50`` (length) the base's settlement at half capacity under a centred load;
+    ``suction`` the gap's drag as a fraction of capacity; ``qz_soil`` the backbone's shape,
+    ``clay`` or ``sand``). Dashpots in
     parallel carry ``damping_ratio`` of critical for the bonded vertical mode. ``restitution`` ε
     < 1 adds Ewing's impact damper with c* = ``impact_multiple`` · c_cr. ``impact_mass``: the
     mass behind a landing spring in c_cr and Δz — ``point`` (the paper's eq. 17: the structure's
@@ -183,6 +190,10 @@ class Foundation:
     sway_stiffness: float | None = None
     sway_damping: float | None = None
     sliding_friction: float | None = None
+    capacity_multiple: float = math.inf
+    z50: float = 0.0
+    suction: float = 0.0
+    qz_soil: str = "clay"
 
     @property
     def width(self) -> float:
@@ -256,13 +267,15 @@ def read_foundation(data, vertical_mass: float, units: UnitSystem) -> Foundation
     damping_ratio = table.get("damping_ratio", in_range(0.0, 2.0), 0.0)
     dashpots = _dashpots(table, springs, damping_ratio, units)
     sway_stiffness, sway_damping, friction = _sway(table, units)
+    law = table.get("law", choice(LAWS), "elastic")
+    qz = _qz_keys(table, law, support, units)
     foundation = Foundation(
         support=support,
         half_width=half_width,
         layout=layout,
         springs=springs,
         stiffness=stiffness,
-        law=table.get("law", choice(LAWS), "elastic"),
+        law=law,
         yield_multiple=table.get("yield_multiple", in_range(1.0, 1e6, low_open=True), 3.0),
         damping_ratio=damping_ratio,
         restitution=table.get("restitution", in_range(0.0, 1.0), 1.0),
@@ -276,8 +289,13 @@ def read_foundation(data, vertical_mass: float, units: UnitSystem) -> Foundation
         sway_stiffness=sway_stiffness,
         sway_damping=sway_damping,
         sliding_friction=friction,
+        **qz,
     )
     table.done()
+    if law == "qz" and foundation.restitution < 1.0:
+        raise InputError(f"foundation.restitution = {foundation.restitution:g} with "
+                         "foundation.law = 'qz': the q–z spring has no impact damper (its "
+                         "hysteresis dissipates the landing); valid: 1")
     return foundation
 
 
@@ -315,3 +333,19 @@ def _sway(table: Table, units: UnitSystem):
     damping = table.get("sway_damping", bounds.checker("dashpot", units), None)
     friction = table.get("sliding_friction", in_range(0.0, MAX_FRICTION, low_open=True), None)
     return stiffness, damping, friction
+def _qz_keys(table: Table, law: str, support: str, units: UnitSystem) -> dict:
+    """The q–z keys of a ``[foundation]`` table: read with law ``qz``, refused without it."""
+    if law != "qz":
+        for key in QZ_KEYS:
+            if table.has(key):
+                raise InputError(f"foundation.{key} is read only with foundation.law = 'qz' "
+                                 f"(law is {law!r}); remove it or set the law")
+        return {}
+    if support != "uplift":
+        raise InputError(f"foundation.support = {support!r} with foundation.law = 'qz': the "
+                         "q–z spring opens a gap on uplift; valid: 'uplift'")
+    return {"capacity_multiple": table.get("capacity_multiple",
+                                           in_range(1.0, 1e6, low_open=True)),
+            "z50": table.get("z50", bounds.checker("length", units)),
+            "suction": table.get("suction", in_range(0.0, 0.1), 0.0),
+            "qz_soil": table.get("qz_soil", choice(QZ_SOIL_NAMES), "clay")}

@@ -21,7 +21,7 @@ import copy
 import hashlib
 import json
 import tomllib
-from dataclasses import InitVar, dataclass, field
+from dataclasses import InitVar, dataclass, field, replace
 from importlib import resources
 from pathlib import Path
 
@@ -178,7 +178,8 @@ def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
         structure=structure,
         foundation=read_foundation(table.get("foundation"), vertical_mass, units),
         motion=read_motion(table.get("motion"), units),
-        analysis=read_analysis(table.get("analysis", None, {}), units),
+        analysis=_analysis_for(read_analysis(table.get("analysis", None, {}), units),
+                               data.get("analysis"), data.get("foundation")),
         soil=read_soil(table.get("soil"), units) if table.has("soil") else None,
         continuum=read_continuum(table.get("continuum")) if table.has("continuum") else None,
         cases=tuple(cases_table) if isinstance(cases_table, dict) else (),
@@ -192,6 +193,27 @@ def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
     table.done()
     _check_consistency(scene)
     return scene
+
+
+#: The integrator a scene with q–z springs takes when it names none (the default, the event
+#: stepper, tabulates piecewise-affine laws and refuses the curved q–z law).
+QZ_INTEGRATOR = "rk4"
+
+
+def _analysis_for(analysis: Analysis, analysis_data, foundation_data) -> Analysis:
+    """The analysis of a scene with its foundation in view: a q–z bed that names no integrator
+    gets :data:`QZ_INTEGRATOR`; one that names the event stepper is refused."""
+    law = foundation_data.get("law") if isinstance(foundation_data, dict) else None
+    if law != "qz":
+        return analysis
+    given = analysis_data.get("integrator") if isinstance(analysis_data, dict) else None
+    if given is None:
+        return replace(analysis, integrator=QZ_INTEGRATOR)
+    if given == "events":
+        raise InputError("analysis.integrator = 'events' with foundation.law = 'qz': the event "
+                         "stepper tabulates piecewise-affine laws and the q–z spring is curved; "
+                         "valid: 'rk4', 'abm4', 'newmark', 'hht'")
+    return analysis
 
 
 def _check_consistency(scene: Scene) -> None:

@@ -131,6 +131,12 @@ def check_representable(scene: Scene) -> None:
         raise InputError(
             "foundation.dashpots: the OpenSees script sizes every dashpot from "
             "foundation.damping_ratio (c_i proportional to k_i); remove foundation.dashpots")
+    if f.law == "qz":
+        raise InputError(
+            "foundation.law = 'qz': the bridge writes the elastic and elasto-plastic springs; "
+            "upliftlab's q–z spring differs from OpenSees QzSimple2 (rigid closure and near "
+            "field, calibrated far field), so it is not written; valid: 'elastic', "
+            "'elastoplastic'")
     if s.kinematics != "small":
         raise InputError(
             f"structure.kinematics = {s.kinematics!r}: the OpenSees model (zeroLength springs "

@@ -6,7 +6,8 @@ The package is split by what a reader looks for:
 
 - :mod:`.codes` the spring record and history, modes, status codes, slots of the frame, peaks,
   counters and law tables;
-- :mod:`.laws` every form of each spring law, side by side;
+- :mod:`.laws` every form of each spring law, side by side; :mod:`.qz_law` the hysteretic
+  q–z spring;
 - :mod:`.motion` the equation of motion, :mod:`.rocking` exact rocking kinematics and toppling;
 - :mod:`.tables` the laws tabulated by mode (event stepper), :mod:`.stages` Runge–Kutta stages;
 - :mod:`.interpolants`, :mod:`.crossing`, :mod:`.switches` switch location;
@@ -25,12 +26,15 @@ from .codes import (BONDED, CHATTER, CLIPPED, CONTACT, ELASTIC, E_IMPACT, E_INPU
                     HOT, MAX_DEPTH, MAX_PIECES, NONFINITE, NO_CONVERGENCE, N_ACC, N_CONDITIONS,
                     N_COUNTERS, N_ENERGY, N_FRAME, N_PEAK_SCALARS, N_ROWS, N_SAMPLES, OK, OVERSHOOT_TOL,
                     OVERTURNED, P_CMIN, P_ERES, P_ESCALE, P_ETOT0, P_MOT, P_RPREV, P_THMAX,
-                    P_THMIN, P_TOVER, P_TPREV, P_UMAX, P_UMIN, P_VMAX, P_VMIN, ROUNDING, SEPARATED,
-                    SPRING_DTYPE, STEP_UNDERFLOW, STORY, SWITCH_TOL, T_A0, T_A1, T_C, T_COND, T_F,
-                    T_FY, T_GAP, T_I, T_K, T_KC, T_P, T_V, UPLIFT, YIELDING, YIELD_NEG, YIELD_POS)
+                    P_THMIN, P_TOVER, P_TPREV, P_UMAX, P_UMIN, P_VMAX, P_VMIN, QZ, ROUNDING,
+                    SEPARATED, SPRING_DTYPE, STEP_UNDERFLOW, STORY, SWITCH_TOL, T_A0, T_A1, T_C,
+                    T_COND, T_F, T_FY, T_GAP, T_I, T_K, T_KC, T_P, T_V, UPLIFT, YIELDING,
+                    YIELD_NEG, YIELD_POS)
 from .laws import (commit_all, commit_step, condition, current_plastic, force_in_mode,
                    initial_modes, law, natural_mode, past_limit, spring_state, switch_mode,
-                   tangent, validity)
+                   tangent, trial_mode, validity)
+from .qz_law import (qz_backbone, qz_commit, qz_force, qz_mode, qz_spring_state, qz_start,
+                     qz_trial)
 from .motion import (accelerations, deformation, deformations, geometric_or_nothing,
                      ground_acceleration, rates)
 from .rocking import (exact_dynamics, exact_energy, finish_accelerations, overturn_ratio, pivot,
@@ -64,12 +68,14 @@ __all__ = ["BONDED", "CHATTER", "CLIPPED", "CONTACT", "ELASTIC", "E_IMPACT", "E_
            "N_ACC", "N_CONDITIONS", "N_COUNTERS", "N_ENERGY", "N_FRAME", "N_PEAK_SCALARS",
            "N_ROWS", "N_SAMPLES", "OK", "OVERSHOOT_TOL", "OVERTURNED", "P_CMIN", "P_ERES",
            "P_ESCALE", "P_ETOT0", "P_MOT", "P_RPREV", "P_THMAX", "P_THMIN", "P_TOVER", "P_TPREV",
-           "P_UMAX", "P_UMIN", "P_VMAX", "P_VMIN", "ROUNDING", "SEPARATED", "SPRING_DTYPE",
+           "P_UMAX", "P_UMIN", "P_VMAX", "P_VMIN", "QZ", "ROUNDING", "SEPARATED", "SPRING_DTYPE",
            "STEP_UNDERFLOW", "STORY", "SWITCH_TOL", "T_A0", "T_A1", "T_C", "T_COND", "T_F", "T_FY",
            "T_GAP", "T_I", "T_K", "T_KC", "T_P", "T_V", "UPLIFT", "YIELDING", "YIELD_NEG",
            "YIELD_POS", "commit_all", "commit_step", "condition", "current_plastic",
            "force_in_mode", "initial_modes", "law", "natural_mode", "past_limit", "spring_state",
-           "switch_mode", "tangent", "validity", "accelerations", "deformation", "deformations",
+           "switch_mode", "tangent", "trial_mode", "validity", "qz_backbone", "qz_commit", "qz_force",
+           "qz_mode", "qz_spring_state", "qz_start", "qz_trial", "accelerations", "deformation",
+           "deformations",
            "geometric_or_nothing", "ground_acceleration", "rates", "exact_dynamics",
            "exact_energy", "finish_accelerations", "overturn_ratio", "pivot", "solve_spd",
            "bed_forces", "bed_rates", "bed_start", "bed_state", "frozen_accelerations",

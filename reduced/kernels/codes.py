@@ -44,6 +44,15 @@ SPRING_DTYPE = np.dtype([
     ("gd", np.float64),   # derived: 1/δ0 (1/length)
     ("share", np.float64),  # derived: c*/(c + c*), the impact dashpot's share
     ("arm", np.float64),  # story: its height above the story below, the lever of its shear
+    # q–z springs (kind QZ, :mod:`.qz_law`); zero for the other kinds
+    ("qult", np.float64),  # bearing capacity of the spring q_ult (force)
+    ("zref", np.float64),  # near-field reference displacement of the hyperbola (length)
+    ("npow", np.float64),  # exponent n of the near-field hyperbola (> 1)
+    ("elast", np.float64),  # initial half-width of the near-field elastic range / q_ult
+    ("emax", np.float64),  # largest width of the near-field elastic range / q_ult
+    ("qd", np.float64),    # drag (suction) capacity of the gap, suction · q_ult (force)
+    ("zd", np.float64),    # drag reference displacement z50/2 (length)
+    ("zs", np.float64),    # total compression of the spring at static equilibrium (length)
 ], align=True)
 
 HISTORY_DTYPE = np.dtype([
@@ -51,9 +60,21 @@ HISTORY_DTYPE = np.dtype([
     ("imp", np.float64),  # 1 while the impact dashpot acts, else 0
     ("e0", np.float64),   # deformation at the last recontact (length)
     ("dz", np.float64),   # impact stroke Δz of the last recontact (length)
+    # q–z springs (:mod:`.qz_law`): the committed state of the series chain
+    ("zc", np.float64),   # total compression z (length)
+    ("qc", np.float64),   # force Q (force)
+    ("zp", np.float64),   # near-field plastic displacement (length)
+    ("qr", np.float64),   # near-field elastic range: upper end (force)
+    ("ql", np.float64),   # near-field elastic range: lower end (force)
+    ("zin", np.float64),  # near-field plastic displacement at the range's ends (length)
+    ("wel", np.float64),  # near-field elastic range width (force)
+    ("zg", np.float64),   # gap displacement, 0 closed, < 0 open (length)
+    ("qg", np.float64),   # drag force (force)
+    ("qa", np.float64),   # drag branch anchor: force (force)
+    ("za", np.float64),   # drag branch anchor: gap displacement (length)
 ], align=True)
 
-STORY, UPLIFT, BONDED = 0, 1, 2
+STORY, UPLIFT, BONDED, QZ = 0, 1, 2, 3  # QZ: hysteretic q–z spring (:mod:`.qz_law`)
 SEPARATED, CONTACT, YIELDING, CLIPPED = 0, 1, 2, 3  # foundation modes
 ELASTIC, YIELD_POS, YIELD_NEG = 0, 1, 2  # story modes
 

@@ -9,7 +9,7 @@ import numpy as np
 from numba import njit
 
 from .codes import (E_IMPACT, E_INPUT, E_PLASTIC, E_VISCOUS, NONFINITE, NO_CONVERGENCE, N_ACC, OK,
-                    OVERTURNED)
+                    OVERTURNED, QZ)
 from .energy import check_energy, start_energy, static_strain_energy
 from .fixed_step import end_fixed_step
 from .interpolants import finite
@@ -17,6 +17,7 @@ from .laws import commit_all, force_in_mode, natural_mode, tangent
 from .motion import deformations, ground_acceleration
 from .outputs import record
 from .peaks import after_fixed_step, track_peaks
+from .qz_law import qz_force
 
 
 @njit(cache=True)
@@ -37,12 +38,17 @@ def internal_force(q, qd, P, KG, H, e, ed, fint, kt, ct, modes, fd, fimp):
     for j in range(e.size):
         p = P[j]
         h = H[j]
-        mode = natural_mode(p, e[j], ed[j], h.ep, h.imp)
-        modes[j] = mode
-        f, v, im, _, fd[j], fimp[j] = force_in_mode(mode, p, e[j], ed[j], h.ep, h.imp)
-        pv += v
-        pi += im
-        kt[j], ct[j] = tangent(mode, p, h.imp)
+        if p.kind == QZ:
+            f, v, fd[j], kt[j], ct[j], modes[j] = qz_force(p, h, e[j], ed[j])
+            fimp[j] = 0.0
+            pv += v
+        else:
+            mode = natural_mode(p, e[j], ed[j], h.ep, h.imp)
+            modes[j] = mode
+            f, v, im, _, fd[j], fimp[j] = force_in_mode(mode, p, e[j], ed[j], h.ep, h.imp)
+            pv += v
+            pi += im
+            kt[j], ct[j] = tangent(mode, p, h.imp)
         fint[p.i0] += p.a0 * f
         fint[p.i1] += p.a1 * f
         if p.nnz == 3:

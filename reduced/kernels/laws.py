@@ -9,7 +9,11 @@ state read back for output (:func:`current_plastic`, :func:`spring_state`).
 Two families, chosen by ``p.kind``: a story spring (elastic–perfectly plastic with parallel
 hardening ``kh`` and a dashpot; modes ELASTIC, YIELD_POS, YIELD_NEG) and a foundation spring
 (compression-only UPLIFT or BONDED, static compression F0, yield force Fy, viscous dashpot and
-Ewing's impact dashpot; modes SEPARATED, CONTACT, YIELDING, CLIPPED). :mod:`..springs` documents
+Ewing's impact dashpot; modes SEPARATED, CONTACT, YIELDING, CLIPPED). A third, the hysteretic
+q–z spring (``QZ``, :mod:`.qz_law`), keeps its whole state in its history: the forms that take
+the history (:func:`commit_step`, :func:`spring_state`, :func:`trial_mode`) dispatch to it, and
+the integrators that accept it call its force and tangent directly; the event stepper refuses
+it. :mod:`..springs` documents
 the laws and exports them; ``tests/test_reduced_law_forms.py`` drives random states through every
 form and checks that they agree.
 """
@@ -18,8 +22,9 @@ from __future__ import annotations
 
 from numba import njit
 
-from .codes import (BONDED, CLIPPED, CONTACT, ELASTIC, HOT, N_CONDITIONS, ROUNDING, SEPARATED,
+from .codes import (BONDED, CLIPPED, CONTACT, ELASTIC, HOT, N_CONDITIONS, QZ, ROUNDING, SEPARATED,
                     STORY, SWITCH_TOL, UPLIFT, YIELDING, YIELD_NEG, YIELD_POS)
+from .qz_law import qz_commit, qz_mode, qz_spring_state
 
 
 @njit(cache=True)
@@ -162,6 +167,9 @@ def commit_step(p, e, ed, h, was_contact):
 
     Returns (plastic work of the step, contact flag 0/1).
     """
+    if p.kind == QZ:
+        work = qz_commit(p, h, p.zs + e)
+        return work, (0 if h.zg < 0.0 else 1)
     ep = h.ep
     if p.kind == STORY:
         fep = p.k * (e - ep)
@@ -275,6 +283,8 @@ def current_plastic(mode, p, e, ep):
 def spring_state(j, p, mode, h, e):
     """(plastic deformation now, spring force without its dashpot, strain energy) of spring j
     (foundation: total compression k d and ½ k d² while in contact)."""
+    if p.kind == QZ:
+        return qz_spring_state(p, h, e)
     ep = current_plastic(mode, p, e, h.ep)
     if p.kind == STORY:
         fep = p.k * (e - ep)
@@ -285,10 +295,19 @@ def spring_state(j, p, mode, h, e):
     return ep, p.k * d, 0.5 * p.k * d * d
 
 
+@njit(cache=True)
+def trial_mode(p, h, e, ed):
+    """The mode of a trial state from the committed history (:func:`natural_mode`, or the
+    q–z spring's :func:`.qz_law.qz_mode`)."""
+    if p.kind == QZ:
+        return qz_mode(p, h, e)
+    return natural_mode(p, e, ed, h.ep, h.imp)
+
+
 @njit(cache=True, **HOT)
 def initial_modes(P, H, modes, e, ed):
     for j in range(e.size):
-        modes[j] = natural_mode(P[j], e[j], ed[j], H[j].ep, H[j].imp)
+        modes[j] = trial_mode(P[j], H[j], e[j], ed[j])
 
 
 @njit(cache=True, **HOT)
@@ -298,5 +317,5 @@ def commit_all(P, modes, H, contact, e, ed):
     for j in range(e.size):
         w, contact[j] = commit_step(P[j], e[j], ed[j], H[j], contact[j])
         work += w
-        modes[j] = natural_mode(P[j], e[j], ed[j], H[j].ep, H[j].imp)
+        modes[j] = trial_mode(P[j], H[j], e[j], ed[j])
     return work

@@ -15,8 +15,9 @@ import math
 import numpy as np
 from numba import njit
 
-from .codes import F_EXACT, F_ITH, F_SIDE
+from .codes import F_EXACT, F_ITH, F_SIDE, QZ
 from .laws import force_in_mode, natural_mode
+from .qz_law import qz_force
 from .rocking import finish_accelerations
 
 
@@ -100,8 +101,12 @@ def accelerations(t, q, qd, natural, system, modes, H, Mw, qdd):
             if p.nnz == 3:
                 e += p.a2 * q[p.i2]
                 ed += p.a2 * qd[p.i2]
-        mode = natural_mode(p, e, ed, h.ep, h.imp) if natural else modes[j]
-        f, v, im, pl, _, _ = force_in_mode(mode, p, e, ed, h.ep, h.imp)
+        if p.kind == QZ:  # its trial from its history (fixed-step and implicit methods only)
+            f, v, _, _, _, _ = qz_force(p, h, e, ed)
+            im, pl = 0.0, 0.0
+        else:
+            mode = natural_mode(p, e, ed, h.ep, h.imp) if natural else modes[j]
+            f, v, im, pl, _, _ = force_in_mode(mode, p, e, ed, h.ep, h.imp)
         pv += v
         pi += im
         pp += pl

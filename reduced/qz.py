@@ -1,0 +1,161 @@
+"""Parameters of the hysteretic q–z foundation springs (the law: :mod:`.kernels.qz_law`): the
+soil types' backbone shapes, z_ref from the bed's z50 (the settlement at which a centred load
+reaches half the capacity), the spring records of a bed, its static forces on the nonlinear
+backbones and the springs' histories at rest.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..checks import InputError
+from . import springs as sp
+from .kernels import QZ, qz_backbone, qz_start
+
+
+@dataclass(frozen=True)
+class QzShape:
+    """Shape of a soil's near-field backbone (dimensionless): exponent ``n`` of the hyperbola,
+    initial elastic half-range ``elast``·q_ult and its largest width ``emax``·q_ult. The values
+    are those Boulanger et al. (1999) fitted to Reese and O'Neill's (clay) and Vijayvergiya's
+    (sand) q–z curves, as QzSimple1 types 1 and 2 take them."""
+
+    n: float
+    elast: float
+    emax: float
+
+
+QZ_SOILS = {"clay": QzShape(n=1.2, elast=0.2, emax=0.7),
+            "sand": QzShape(n=5.5, elast=0.3, emax=0.7)}
+SUCTION_MAX = 0.1  # the drag capacity QzSimple allows, as a fraction of q_ult
+
+
+def zref_from_z50(qult, k, z50, shape: QzShape):
+    """z_ref (length) that puts the virgin backbone through (z50, q_ult/2), elastic part
+    included: z50 = q_ult/(2k) + z_ref·((2(1 − elast))^(1/n) − 1). Takes arrays; z50 must
+    exceed the elastic q_ult/(2k) (callers check it and name the field)."""
+    qult, k, z50 = (np.asarray(a, dtype=float) for a in (qult, k, z50))
+    return (z50 - 0.5 * qult / k) / ((2.0 * (1.0 - shape.elast)) ** (1.0 / shape.n) - 1.0)
+
+
+
+
+def backbone_force(z, k, qult, zref, shape: QzShape, iterations: int = 200) -> np.ndarray:
+    """Forces (force) on the virgin backbones at compression z (length), by bisection on the
+    closed-form z(Q) (arrays broadcast; an inverse independent of the compiled law's solver)."""
+    z, k, qult, zref = np.broadcast_arrays(*(np.asarray(a, dtype=float)
+                                             for a in (z, k, qult, zref)))
+    qr = shape.elast * qult
+    lo, hi = np.zeros(z.shape), qult.copy()
+    for _ in range(iterations):
+        q = 0.5 * (lo + hi)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            plastic = np.where(q > qr, zref * (((qult - qr) / (qult - q)) ** (1.0 / shape.n)
+                                               - 1.0), 0.0)
+        low = q / k + plastic < z
+        lo, hi = np.where(low, q, lo), np.where(low, hi, q)
+    return 0.5 * (lo + hi)
+
+
+def z50_lower_bound(k, qult, capacity: float) -> float:
+    """The least settlement (length) at which a bed of stiffnesses ``k`` and capacities
+    ``qult`` can carry half of ``capacity`` = Σ q_ult: where Σ min(k_i z, q_ult,i) reaches it
+    (each spring elastic–perfectly plastic, the limit z_ref → 0 of its backbone)."""
+    k, qult = np.asarray(k, dtype=float), np.asarray(qult, dtype=float)
+    corners = np.sort(qult / k)
+    carried = np.array([np.minimum(k * z, qult).sum() for z in corners])
+    i = int(np.argmax(carried >= 0.5 * capacity))
+    z_hi = corners[i]
+    z_lo = corners[i - 1] if i > 0 else 0.0
+    f_lo = np.minimum(k * z_lo, qult).sum()
+    return float(z_lo + (0.5 * capacity - f_lo) / (carried[i] - f_lo) * (z_hi - z_lo))
+
+
+def common_zref(k, qult, z50: float, shape: QzShape) -> float:
+    """The near-field reference z_ref (length), one for every spring (a property of the soil),
+    that puts the bed's virgin backbone under a centred load through (z50, Σ q_ult/2): every
+    spring of a base that does not rotate settles z50, and their forces sum to half the
+    capacity. For a bed whose k_i are proportional to q_ult,i it is :func:`zref_from_z50`.
+    z50 must exceed :func:`z50_lower_bound` (callers check it and name the field)."""
+    k, qult = np.asarray(k, dtype=float), np.asarray(qult, dtype=float)
+    half = 0.5 * qult.sum()
+
+    def excess(log_zref):
+        return backbone_force(z50, k, qult, np.exp(log_zref), shape).sum() - half
+
+    lo, hi = np.log(z50) - 60.0, np.log(z50) + 60.0
+    return float(np.exp(brentq(excess, lo, hi, xtol=1e-14, rtol=1e-15, maxiter=500)))
+
+
+def qz_springs(table: np.ndarray, qult, zref, suction: float, zd: float,
+               shape: QzShape) -> np.ndarray:
+    """The foundation rows of a spring ``table`` (``k`` and ``f0`` set) as q–z springs of
+    capacity ``qult`` (force) and near-field reference ``zref`` (length; arrays or scalars),
+    with a drag of ``suction``·q_ult and reference ``zd`` (length, z50/2); ``zs`` is each
+    spring's virgin compression at its F0. Returns a new table (derived columns not filled:
+    :func:`~.springs.derive_columns` does that)."""
+    rows = table["kind"] != sp.STORY
+    table = np.array(table, dtype=sp.SPRING_DTYPE)
+    count = int(rows.sum())
+    qult = np.broadcast_to(np.asarray(qult, dtype=float), count)
+    table["kind"][rows] = QZ
+    table["fy"][rows] = np.inf
+    table["qult"][rows] = qult
+    table["zref"][rows] = np.broadcast_to(np.asarray(zref, dtype=float), count)
+    table["npow"][rows] = shape.n
+    table["elast"][rows] = shape.elast
+    table["emax"][rows] = shape.emax
+    table["qd"][rows] = suction * qult
+    table["zd"][rows] = zd
+    for j in np.flatnonzero(rows):
+        table["zs"][j] = qz_backbone(table[j], table["f0"][j])
+    return table
+
+
+def initial_history(params: np.ndarray) -> np.ndarray:
+    """The springs' history at the start of a run: zeros, and every q–z spring on its virgin
+    backbone at its static force F0."""
+    H = np.zeros(params.size, dtype=sp.HISTORY_DTYPE)
+    for j in np.flatnonzero(params["kind"] == QZ):
+        qz_start(params[j], H[j], params["f0"][j])
+    return H
+
+
+def static_forces(stiffnesses, positions, qult, zref: float, weight: float,
+                  shape: QzShape) -> np.ndarray:
+    """The springs' forces F0 (force) at rest under ``weight`` on their virgin backbones
+    (capacities ``qult``, reference ``zref``): the compression z at which their forces sum to
+    the weight, the same for every spring of a base that does not rotate. A layout whose
+    forces would then make a moment about the centre (an asymmetric one) is an
+    :class:`InputError`."""
+    k = np.asarray(stiffnesses, dtype=float)
+
+    def excess(z):
+        return backbone_force(z, k, qult, zref, shape).sum() - weight
+
+    hi = weight / k.sum()
+    while excess(hi) < 0.0:
+        hi *= 2.0
+    z = brentq(excess, 0.0, hi, xtol=1e-15 * hi, rtol=1e-15, maxiter=500)
+    forces = backbone_force(z, k, qult, zref, shape)
+    x = np.asarray(positions, dtype=float)
+    moment = float(np.sum(forces * x))
+    if abs(moment) > 1e-9 * weight * np.max(np.abs(x)):
+        raise InputError(f"foundation.law = 'qz': the layout's springs carry a moment "
+                         f"{moment:.4g} about the centre at rest; the q–z bed needs a layout "
+                         "symmetric about the centre")
+    return forces
+
+
+def check_z50(stiffnesses, qult, z50: float) -> None:
+    """z50 must exceed the least settlement at which the bed can carry half its capacity
+    (:func:`z50_lower_bound`)."""
+    least = z50_lower_bound(stiffnesses, qult, float(np.sum(qult)))
+    if z50 <= least:
+        raise InputError(f"foundation.z50 = {z50:g}: the bed cannot carry half its capacity at "
+                         f"that settlement even with rigid–plastic near fields (its springs, "
+                         f"elastic up to q_ult, reach it at {least:.4g}); valid range is "
+                         f"> {least:.4g}")
