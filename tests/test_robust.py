@@ -435,3 +435,16 @@ def test_default_continuum_folder_without_options_is_the_plain_name(tmp_path, mo
     assert folders[0] == Path("results") / "strip_footing_clay-continuum-pushover"
     assert folders[1].name.startswith("strip_footing_clay-continuum-pushover-")
     assert len(folders[1].name) == len(folders[0].name) + 9  # "-" and 8 hex digits
+
+
+@pytest.mark.parametrize("case, extra", [("A", ()), ("B", ("foundation.law=qz",
+                                                            "foundation.capacity_multiple=3",
+                                                            "foundation.z50=0.2"))])
+def test_a_yield_multiple_override_without_an_elastoplastic_law_is_refused(case, extra):
+    # Reference: the spring laws (reduced/kernels/laws.py, qz_law.py): only the elasto-plastic
+    # spring reads the yield multiple; an override elsewhere would change nothing.
+    with pytest.raises(InputError, match=r"has no effect: the yield multiple acts only with "):
+        load_scene("short_period_free", case=case,
+                   overrides=[*extra, "foundation.yield_multiple=5"])
+    assert load_scene("short_period_free", case="C",
+                      overrides=["foundation.yield_multiple=5"]).foundation.yield_multiple == 5

@@ -218,6 +218,12 @@ def _analysis_for(analysis: Analysis, analysis_data, foundation_data) -> Analysi
 
 def _check_consistency(scene: Scene) -> None:
     s, f = scene.structure, scene.foundation
+    for item in scene.overrides:
+        if override_key(item) == "foundation.yield_multiple" and f.law != "elastoplastic":
+            raise InputError(f"--set {item!r}: has no effect: the yield multiple acts only with "
+                             f"foundation.law = 'elastoplastic' (this scene's law is {f.law!r}"
+                             + (", whose capacity is foundation.capacity_multiple"
+                                if f.law == "qz" else "") + ")")
     if s.rigid and f.support == "fixed" and not f.sways:
         raise InputError("structure.rigid = true with foundation.support = 'fixed': "
                          "a rigid structure on a fixed base has no motion")
