@@ -2,7 +2,8 @@
 
 A dynamic run of the explicit route costs a fixed part (the mesh, the stable step's Lanczos
 eigenvalue, the gravity state) and a part per step, both about proportional to the DOFs:
-``seconds = F·dofs + R·dofs·steps``. ``steps`` = duration/dt, with dt the stable step of the
+``seconds = F·dofs + R·dofs·steps`` (the explicit loop's compilation, once per process, is not
+counted: numba does not cache it, and each worker pays it once). ``steps`` = duration/dt, with dt the stable step of the
 mesh: from the runs of the same soil and mesh already stored, else from
 :data:`~upliftlab.continuum.explicit.COURANT_ESTIMATE` (V_p dt/h_min, below the measured value,
 so that the estimate errs on the cost's side). R is the stored runs' median of
@@ -11,10 +12,11 @@ Tresca, von Mises; or the vectorised fallback: Mohr–Coulomb, Drucker–Prager)
 below. A static point (stiffness plus vertical pushover) costs S·dofs, S from the stored
 statics when there are any.
 
-The defaults were measured on the project's loaded 2-core machine with this study's own point
-functions (``python -m upliftlab.comparisons.winkler_map --fast``, and single 16-across runs
-of the same functions, reported in the issue note); the stored runs replace them as soon as
-there are any, so a second estimate is the machine's own.
+The defaults were measured on the project's loaded 2-core machine with kernels compiled
+(runs of 0.01 s and 0.3–1 s of a Ricker pulse on 4 and 16 across, the clay's compiled Tresca
+and the frictional soil's Mohr–Coulomb fallback, and this study's 16-across statics of the
+clay; reported in the issue note); the stored runs replace the per-step rates as soon as there
+are any, so a second estimate is the machine's own.
 """
 
 from __future__ import annotations
@@ -30,12 +32,13 @@ from ...checks import InputError
 __all__ = ["Estimate", "estimate_cost", "mesh_size", "refuse_over_budget",
            "FIXED_SECONDS_PER_DOF", "SECONDS_PER_DOF_STEP", "STATIC_SECONDS_PER_DOF"]
 
-#: Fixed cost of a dynamic run per DOF (s): mesh, stable step, gravity state.
-FIXED_SECONDS_PER_DOF = 1.25e-3
+#: Fixed cost of a dynamic run per DOF (s): mesh, stable step, gravity state; with a compiled
+#: return map (True) and with the vectorised fallback (False), whose gravity state is slower.
+FIXED_SECONDS_PER_DOF = {True: 4.0e-4, False: 1.1e-3}
 #: Cost per step and DOF (s): compiled return maps, and the vectorised fallback.
-SECONDS_PER_DOF_STEP = {True: 1.4e-7, False: 6.0e-6}
+SECONDS_PER_DOF_STEP = {True: 1.0e-7, False: 6.1e-6}
 #: Cost of a soil's statics (stiffness and vertical pushover) per DOF (s).
-STATIC_SECONDS_PER_DOF = 2.0e-3
+STATIC_SECONDS_PER_DOF = 3.0e-3
 #: Soil models whose return map is compiled for the explicit route.
 COMPILED_MODELS = ("elastic", "tresca", "von_mises")
 
@@ -43,23 +46,26 @@ COMPILED_MODELS = ("elastic", "tresca", "von_mises")
 @dataclass(frozen=True)
 class Estimate:
     """``runs`` continuum runs to make (``static``: a soil's stiffness and vertical pushover
-    count as one; ``dynamic``; ``stored`` more are already in the store) and their estimated ``seconds`` (one worker), with ``source``
-    saying where the rates came from and ``per_run`` the median estimate of a dynamic run."""
+    count as one; ``dynamic``; ``stored`` more are already in the store) and their estimated
+    ``seconds`` of one worker, ``by_soil`` the same per soil; ``per_run`` the median estimate
+    of a dynamic run; ``source`` where the rates came from."""
 
     runs: int
     static: int
     dynamic: int
     stored: int
     seconds: float
+    by_soil: dict
     per_run: float
     source: str
 
     def text(self, workers: int = 1) -> str:
         wall = self.seconds / max(1, workers)
+        soils = ", ".join(f"{k} {_duration(v)}" for k, v in self.by_soil.items())
         return (f"{self.runs} continuum runs to make ({self.static} static, {self.dynamic} "
                 f"dynamic; {self.stored} already stored), estimated {_duration(self.seconds)} "
-                f"of one worker (about {_duration(wall)} on {workers}; a dynamic run about "
-                f"{_duration(self.per_run)}; rates {self.source})")
+                f"of one worker ({soils}; about {_duration(wall)} on {workers} workers; a "
+                f"dynamic run about {_duration(self.per_run)}; rates {self.source})")
 
 
 def _duration(seconds: float) -> str:
@@ -88,56 +94,60 @@ def _stored_rates(stored: Iterable[Mapping]) -> dict:
     rates, density = {}, {}
     for rec in stored:
         dofs, steps = rec["dofs"], max(1, rec["steps"])
-        rest = max(0.0, rec["wall_time_s"] - FIXED_SECONDS_PER_DOF * dofs)
-        rates.setdefault(bool(rec["compiled"]), []).append(rest / (dofs * steps))
+        compiled = bool(rec["compiled"])
+        rest = max(0.0, rec["wall_time_s"] - FIXED_SECONDS_PER_DOF[compiled] * dofs)
+        rates.setdefault(compiled, []).append(rest / (dofs * steps))
         if rec["duration"] > 0:
             density.setdefault(dofs, []).append(steps / rec["duration"])
     return ({k: float(np.median(v)) for k, v in rates.items()},
             {k: float(np.median(v)) for k, v in density.items()})
 
 
-def estimate_cost(static: Sequence[tuple[Mapping, bool]],
-                  dynamic: Sequence[tuple[object, float, bool]],
+def estimate_cost(static: Sequence[tuple[str, object, bool]],
+                  dynamic: Sequence[tuple[str, object, float, bool]],
                   stored_static: Sequence[Mapping], stored_dynamic: Sequence[Mapping]
                   ) -> Estimate:
     """The cost of the runs not yet stored.
 
-    ``static``: (scene, stored) per soil, the scene of its soil and mesh (its stiffness and
-    vertical pushover count as one static run); ``dynamic``: (scene, duration in s, stored)
-    per dynamic point; ``stored_static``/``stored_dynamic``: records already in the store
-    (their timings replace the default rates).
+    ``static``: (soil, scene, stored) per soil, the scene of its soil and mesh (its stiffness
+    and vertical pushover count as one static run); ``dynamic``: (soil, scene, duration in s,
+    stored) per dynamic point; ``stored_static`` ({dofs, wall_time_s} of each soil's stored
+    pair) and ``stored_dynamic`` (stored dynamic records): their timings replace the default
+    rates.
     """
+    from ...continuum.dynamics import wave_speeds
+    from ...continuum.explicit import COURANT_ESTIMATE
+
     rates, density = _stored_rates(stored_dynamic)
     static_rate = (float(np.median([r["wall_time_s"] / r["dofs"] for r in stored_static]))
                    if stored_static else STATIC_SECONDS_PER_DOF)
-    seconds, per_run, n_static, n_dynamic, stored = 0.0, [], 0, 0, 0
-    for scene, done in static:
+    by_soil, per_run, n_static, n_dynamic, stored = {}, [], 0, 0, 0
+    for soil, scene, done in static:
+        by_soil.setdefault(soil, 0.0)
         if done:
             stored += 1
             continue
-        dofs, _ = mesh_size(scene)
-        seconds += static_rate * dofs
+        by_soil[soil] += static_rate * mesh_size(scene)[0]
         n_static += 1
-    for scene, duration, done in dynamic:
+    for soil, scene, duration, done in dynamic:
+        by_soil.setdefault(soil, 0.0)
         if done:
             stored += 1
             continue
-        from ...continuum.dynamics import wave_speeds
-        from ...continuum.explicit import COURANT_ESTIMATE
-
         dofs, h_min = mesh_size(scene)
         compiled = scene.soil.model in COMPILED_MODELS
         per_second = density.get(dofs) or wave_speeds(scene.soil)[0] / (COURANT_ESTIMATE * h_min)
-        steps = math.ceil(duration * per_second)
         rate = rates.get(compiled, SECONDS_PER_DOF_STEP[compiled])
-        cost = FIXED_SECONDS_PER_DOF * dofs + rate * dofs * steps
+        cost = (FIXED_SECONDS_PER_DOF[compiled] * dofs
+                + rate * dofs * math.ceil(duration * per_second))
         per_run.append(cost)
-        seconds += cost
+        by_soil[soil] += cost
         n_dynamic += 1
-    source = ("from the stored runs" if rates else "the defaults of "
-              "upliftlab.comparisons.winkler_map.cost (no run stored yet)")
-    return Estimate(n_static + n_dynamic, n_static, n_dynamic, stored, seconds,
-                    float(np.median(per_run)) if per_run else 0.0, source)
+    kinds = {True: "compiled", False: "fallback"}
+    source = ", ".join(f"{kinds[k]} return map: "
+                       + ("the stored runs'" if k in rates else "default") for k in kinds)
+    return Estimate(n_static + n_dynamic, n_static, n_dynamic, stored, sum(by_soil.values()),
+                    by_soil, float(np.median(per_run)) if per_run else 0.0, source)
 
 
 def refuse_over_budget(estimate: Estimate, budget: float | None) -> None:

@@ -35,7 +35,7 @@ def _error_map(data, path: Path, measure: str) -> Path:
         worst = np.nanmax(med, axis=(3, 4)) if np.isfinite(med).any() else med[:, :, :, 0, 0]
     x = Axis("fs_v", "FS_v", tuple(g.fs_v))
     y = Axis("h_over_B", "h/B", tuple(g.h_over_B))
-    rows = [[(f"{soil}: {_short(name)}", worst[s, :, :, c].T)
+    rows = [[(f"{soil}: {name}", worst[s, :, :, c].T)
              for c, name in enumerate(data.calibrations)] for s, soil in enumerate(g.soils)]
     soils = "; ".join(SOIL_LABELS[s] for s in g.soils)
     title = (f"|bed − continuum| / continuum in {MEASURE_LABELS[measure]}: median over "

@@ -121,51 +121,50 @@ def _scene(table: Mapping):
 
 
 def _estimate(grid, options, motions, base, g, store, statics_points, loads) -> Estimate:
-    """The cost of what is not stored yet. Before the statics are stored the vertical loads
-    are unknown, so every dynamic point counts as still to run."""
+    """The cost of what is not stored yet. A soil whose statics are not stored has no vertical
+    load yet: its dynamic points all count as still to run."""
     static_records = [store.get(_key(p, evaluate_static)) for p in statics_points]
     static_rows = []
-    for i, point in enumerate(statics_points[::2]):
+    for i, soil in enumerate(grid.soils):
+        point = statics_points[2 * i]
         table = {**base, "soil": point["soil"],
                  "continuum": {**base.get("continuum", {}), **point["continuum"]}}
-        static_rows.append((_scene(table), all(r is not None
-                                               for r in static_records[2 * i:2 * i + 2])))
-    known = loads is not None
+        static_rows.append((soil, _scene(table), soil in loads))
     dynamic = _dynamic_points(grid, options, motions, base, g,
-                              loads or {s: 1.0 for s in grid.soils})
-    records = [store.get(_key(p, evaluate_dynamic)) if known else None for p in dynamic]
+                              {s: loads.get(s, 1.0) for s in grid.soils})
     durations = {m["name"]: motion_duration(m) for m in motions}
-    scenes, rows = {}, []
-    for point, record in zip(dynamic, records):
-        soil = point["scene"]["soil"]["model"]
+    scenes, rows, records = {}, [], []
+    soils = [soil for _, (soil, *_) in _cells(grid) for _ in motions]
+    for soil, point in zip(soils, dynamic):
+        record = store.get(_key(point, evaluate_dynamic)) if soil in loads else None
+        records.append(record)
         if soil not in scenes:
             scenes[soil] = _scene(point["scene"])
-        rows.append((scenes[soil], durations[point["motion"]["name"]], record is not None))
-    return estimate_cost(static_rows, rows,
-                         [r for r in static_records if r is not None and "capacity" in r],
-                         [r for r in records if r is not None])
+        rows.append((soil, scenes[soil], durations[point["motion"]["name"]], record is not None))
+    pairs = [static_records[i:i + 2] for i in range(0, len(static_records), 2)]
+    stored_static = [{"dofs": a["dofs"], "wall_time_s": a["wall_time_s"] + b["wall_time_s"]}
+                     for a, b in pairs if a is not None and b is not None]
+    return estimate_cost(static_rows, rows, stored_static, [r for r in records if r is not None])
 
 
-def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motions, ctx,
-                say=None) -> MapData:
+def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motions,
+                ctx) -> MapData:
     """The statics, the continuum runs (both through :func:`.sweep.run_sweep`, stored) and
     every bed's runs (live), after the cost estimate (logged; refused above
     ``options.budget``). The sweeps run on ``ctx.executor``, else on a Dask cluster
     (``ctx.scheduler``), else in this process when the estimate is below
     :data:`IN_PROCESS_SECONDS`, else on ``ctx.workers`` local processes."""
-    log = say or logger(STUDY).info
     store = ctx.store
     base = base_table()
     g = load_scene(BASE_SCENE).g
     b = base["foundation"]["half_width"]
     statics_points = [p for soil in grid.soils for p in static_points(soil, options, b)]
     static_records = [store.get(_key(p, evaluate_static)) for p in statics_points]
-    loads = None
-    if all(r is not None for r in static_records):
-        loads = {soil: static_records[2 * i + 1]["capacity"] for i, soil in enumerate(grid.soils)}
+    loads = {soil: static_records[2 * i + 1]["capacity"] for i, soil in enumerate(grid.soils)
+             if static_records[2 * i] is not None and static_records[2 * i + 1] is not None}
     estimate = _estimate(grid, options, motions, base, g, store, statics_points, loads)
     workers = ctx.workers or os.cpu_count() or 1
-    log(f"{STUDY}: {estimate.text(workers)}")
+    logger(STUDY).info(f"{STUDY}: {estimate.text(workers)}")
     refuse_over_budget(estimate, options.budget)
     with contextlib.ExitStack() as stack:
         executor = ctx.executor

@@ -104,7 +104,11 @@ def summary_markdown(result, fast: bool, elapsed: float) -> str:
              "the base is flattest in the last quarter of the run), residual rotation (the mean "
              "θ over the last quarter), peak |u| and peak story shear |k u + c u̇|. "
              + ENERGY_NOTE, "", f"Wall time {elapsed:.1f} s.", "",
-             "## The continuum statics", "", *_statics_table(d), "",
+             "## The continuum statics", "",
+             "K_v and K_r (every contact node tied to the footing, elastic soil) and V_ult (the "
+             f"largest load of a vertical pushover to {o.settlement_ratio:g} B) do not depend on "
+             "N: one pair of stored static runs per soil serves every FS_v, N = V_ult/FS_v.", "",
+             *_statics_table(d), "",
              "## Where each bed is enough", "",
              f"A cell (FS_v, h/B) of a soil passes when, at every period and intensity, the "
              f"median over the motions of |error| is within {100 * o.theta_tolerance:g} % in peak "
