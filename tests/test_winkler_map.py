@@ -29,6 +29,7 @@ import pytest
 from upliftlab.anchors import prandtl_capacity
 from upliftlab.checks import InputError
 from upliftlab.comparisons import winkler_map as wm
+from upliftlab.comparisons.winkler_map.analysis import regions
 from upliftlab.comparisons.registry import STUDIES, definition
 from upliftlab.continuum import build_model, footing_stiffness
 from upliftlab.reduced import build_model as build_reduced
@@ -134,6 +135,24 @@ def test_the_regions_recomputed_from_the_file(study, written):
         assert entry["total"] == cells.size
         region = study.analysis.region(entry["calibration"], entry["soil"]).region
         assert region.count == _largest_corner(cells)
+
+
+def test_a_region_stated_in_the_maps_own_parameters(study):
+    """Hand-made errors on a 2 FS_v × 3 h/B grid with three motions: |error| 5 % everywhere,
+    except peak θ 30 % at FS_v = 2 and residual settlement 50 % at h/B = 2.5, and one motion
+    90 % off in peak θ everywhere (the median over the motions ignores it). By hand: the cells
+    FS_v = 5 with h/B ≤ 1.5 pass, a corner region of 2 cells."""
+    grid = replace(wm.FAST_GRID, fs_v=(2.0, 5.0), h_over_B=(1.0, 1.5, 2.5))
+    shape = (1, 2, 3, 1, 1, 3, len(wm.BEDS), len(wm.MEASURES))
+    errors = np.full(shape, 0.05)
+    theta, settle = wm.MEASURES.index("theta"), wm.MEASURES.index("residual_settlement")
+    errors[:, 0, ..., theta] = 0.30
+    errors[:, :, 2, ..., settle] = -0.50
+    errors[..., 2, :, theta] = 0.90
+    data = replace(study.data, grid=grid, errors=errors)
+    for region in regions(data):
+        assert (region.passing, region.total, region.region.count) == (2, 6, 2)
+        assert "for FS_v ≥ 5 and h/B ≤ 1.5 (2 of 6 cells; 2 pass anywhere)" in region.text
 
 
 def _largest_corner(cells: np.ndarray) -> int:

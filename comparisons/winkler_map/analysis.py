@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..study import Axis, Region, corner_region, region_text
+from ..study import Axis, Region, corner_region
 from .beds import BEDS
 from .grid import MEASURE_LABELS, MEASURES, SOIL_LABELS
 from .maps import MapData
@@ -131,11 +131,14 @@ def regions(data: MapData) -> list[BedRegion]:
         for s, soil in enumerate(g.soils):
             cells = ok[s, :, :, c].T  # (h_over_B, fs_v)
             region = corner_region(cells, x, y, x_sides=(">=", "<="), y_sides=("<=", ">="))
-            subject = (f"on {SOIL_LABELS[soil]}, the {_subject(name)} (median over the motions; "
-                       f"{100 * o.settlement_tolerance:g} % in residual settlement)")
-            text = region_text(region, subject, o.theta_tolerance).replace(
-                f"stay within {100 * o.theta_tolerance:g} %",
-                f"stays within {100 * o.theta_tolerance:g} % in peak θ and edge uplift")
+            where = region.condition
+            where = where if region.count == 0 or where == "over the whole map" \
+                else f"for {where}"
+            text = (f"On {SOIL_LABELS[soil]}, the {_subject(name)} is within "
+                    f"{100 * o.theta_tolerance:g} % in peak θ and edge uplift and "
+                    f"{100 * o.settlement_tolerance:g} % in residual settlement (median over "
+                    f"the motions, at every period and intensity) {where} ({region.count} of "
+                    f"{cells.size} cells; {int(cells.sum())} pass anywhere)")
             out.append(BedRegion(name, soil, text, region, int(cells.sum()), cells.size))
     return out
 
