@@ -64,7 +64,8 @@ class Estimate:
         soils = ", ".join(f"{k} {_duration(v)}" for k, v in self.by_soil.items())
         return (f"{self.runs} continuum runs to make ({self.static} static, {self.dynamic} "
                 f"dynamic; {self.stored} already stored), estimated {_duration(self.seconds)} "
-                f"of one worker ({soils}; about {_duration(wall)} on {workers} workers; a "
+                f"of one worker ({soils}; about {_duration(wall)} on {workers} worker"
+                f"{'s' if workers > 1 else ''}; a "
                 f"dynamic run about {_duration(self.per_run)}; rates {self.source})")
 
 

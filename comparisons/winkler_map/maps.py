@@ -163,13 +163,14 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
     loads = {soil: static_records[2 * i + 1]["capacity"] for i, soil in enumerate(grid.soils)
              if static_records[2 * i] is not None and static_records[2 * i + 1] is not None}
     estimate = _estimate(grid, options, motions, base, g, store, statics_points, loads)
-    workers = ctx.workers or os.cpu_count() or 1
+    local = ctx.scheduler is None and not os.environ.get(DASK_ENV)
+    in_process = ctx.executor is None and local and estimate.seconds < IN_PROCESS_SECONDS
+    workers = 1 if in_process else (ctx.workers or os.cpu_count() or 1)
     logger(STUDY).info(f"{STUDY}: {estimate.text(workers)}")
     refuse_over_budget(estimate, options.budget)
     with contextlib.ExitStack() as stack:
         executor = ctx.executor
-        local = ctx.scheduler is None and not os.environ.get(DASK_ENV)
-        if executor is None and local and estimate.seconds < IN_PROCESS_SECONDS:
+        if in_process:
             executor = stack.enter_context(cf.ThreadPoolExecutor(1))  # no pool to start
         elif executor is None and estimate.runs:
             n = max(1, min(workers, estimate.runs))
