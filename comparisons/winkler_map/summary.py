@@ -95,7 +95,8 @@ def summary_markdown(result, fast: bool, elapsed: float) -> str:
              f"Winkler bed (e = B/6); motions ({len(d.motions)}, {records} records, each run in "
              f"full): {motions}. Beds of {o.springs} springs: "
              + "; ".join(f"`{c}` {BEDS[c].label}" for c in d.calibrations if c in BEDS) + ".",
-             "", _mesh_text(d, fast), "", SOIL_NOTE + _speed_of_soils(d), "",
+             "", _mesh_text(d, fast), "", SOIL_NOTE + _speed_of_soils(d), "", _input_text(d),
+             "",
              "Errors are (bed − continuum)/max(|continuum|, floor), the floor "
              f"{FLOOR_FRACTION:g} × the measure at a uniform bed's uplift threshold (θ_up = "
              "N B/(6 K_r), the settlement N/K_v, the shear N B/(6h) and the story deformation "
@@ -132,6 +133,27 @@ def _mesh_text(d, fast: bool) -> str:
              "a coarse mesh for a quick check, not the reference: its numbers are not the map's")
     return (f"The continuum runs on {n} elements across B ({', '.join(map(str, dofs))} DOFs; "
             f"{which}). " + MESH_NOTE)
+
+
+def _input_text(d) -> str:
+    """Where the motion enters each model, with the soil column's first period."""
+    from .grid import SOILS
+    from .points import base_table
+
+    base = base_table()
+    B = 2.0 * base["foundation"]["half_width"]
+    depth = base.get("continuum", {}).get("domain_depth", 10.0) * B
+    parts = []
+    for soil in d.grid.soils:
+        t = SOILS[soil]
+        vs = math.sqrt(t["youngs_modulus"] / (2.0 * (1.0 + t["poisson_ratio"])) / t["density"])
+        parts.append(f"{soil}: V_s = {vs:.0f} m/s, T_1 = 4H/V_s = {4.0 * depth / vs:.2f} s")
+    return ("The motion enters the continuum at the rigid base of its box, "
+            f"{depth:g} m below the footing (the box's sides move with it horizontally), and "
+            "reaches the footing through the soil (a free column of that depth would have "
+            f"{'; '.join(parts)}); it enters the reduced model at the footing. The map "
+            "compares the responses to one acceleration history applied at these two places, "
+            "so what the soil does to the motion on its way up is part of every error.")
 
 
 def _speed_of_soils(d) -> str:
