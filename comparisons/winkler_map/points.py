@@ -106,19 +106,40 @@ def _warm_kernels(point: Mapping) -> None:
     """Compile (or load from numba's cache) the continuum's kernels for this soil model once
     per process, on a 2-across mesh and a few steps, so that a run's wall time is its own and
     not the compiler's."""
-    from ...continuum import build_model
-    from ...continuum.dynamics import DynamicOptions, run_dynamic
-
     model_name = point["scene"]["soil"]["model"]
     if model_name in _WARM:
         return
     data = copy.deepcopy(point["scene"])
     data["continuum"] = {**data["continuum"], "elements_across": 2}
     data["motion"] = {"type": "ricker", "amplitude": 0.1, "period": 0.2, "duration": 0.02}
-    scene = scene_from_dict(data, merged=True)
-    run_dynamic(build_model(scene), scene, scene.build_motion(),
-                DynamicOptions(snapshots=0, energy=False))
+    _timed_run(scene_from_dict(data, merged=True))
     _WARM.add(model_name)
+
+
+#: How often a run is tried when numba fails to write the explicit loop to its cache.
+CACHE_SAVE_ATTEMPTS = 3
+
+
+def _timed_run(scene):
+    """(model, result, wall time s) of the continuum's dynamic run of ``scene`` (no
+    snapshots). Numba compiles the explicit loop (``run_steps``, which takes kernels as
+    arguments) in every process and then fails now and then to write it to its cache
+    (``ReferenceError: underlying object has vanished`` from pickling a kernel's type): the
+    loop is compiled in memory by then, so the run is tried again, from the start and timed
+    afresh."""
+    from ...continuum import build_model
+    from ...continuum.dynamics import DynamicOptions, run_dynamic
+
+    for attempt in range(CACHE_SAVE_ATTEMPTS):
+        started = time.perf_counter()
+        try:
+            model = build_model(scene)
+            result = run_dynamic(model, scene, scene.build_motion(),
+                                 DynamicOptions(snapshots=0, energy=False))
+            return model, result, time.perf_counter() - started
+        except ReferenceError as exc:
+            if "vanished" not in str(exc) or attempt == CACHE_SAVE_ATTEMPTS - 1:
+                raise
 
 
 @keyed_as("upliftlab.comparisons.winkler_map:evaluate_dynamic")
@@ -128,16 +149,9 @@ def evaluate_dynamic(point: Mapping) -> dict:
     the settlement every ``history_dt`` s (for figures), the run's steps, DOFs, step (s),
     energy balance error and its own wall time ``wall_time_s`` (model, gravity and time loop,
     s; the kernels are compiled before, :func:`_warm_kernels`). Units of the scene."""
-    from ...continuum import build_model
-    from ...continuum.dynamics import DynamicOptions, run_dynamic
-
     _warm_kernels(point)
-    started = time.perf_counter()
     scene = point_scene(point)
-    motion = scene.build_motion()
-    model = build_model(scene)
-    result = run_dynamic(model, scene, motion, DynamicOptions(snapshots=0, energy=False))
-    wall = time.perf_counter() - started
+    model, result, wall = _timed_run(scene)
     t = np.asarray(result.time, dtype=float)
     t = t - t[0]
     footing = np.asarray(result.footing, dtype=float)
