@@ -116,30 +116,17 @@ def _warm_kernels(point: Mapping) -> None:
     _WARM.add(model_name)
 
 
-#: How often a run is tried when numba fails to write the explicit loop to its cache.
-CACHE_SAVE_ATTEMPTS = 3
-
-
 def _timed_run(scene):
     """(model, result, wall time s) of the continuum's dynamic run of ``scene`` (no
-    snapshots). Numba compiles the explicit loop (``run_steps``, which takes kernels as
-    arguments) in every process and then fails now and then to write it to its cache
-    (``ReferenceError: underlying object has vanished`` from pickling a kernel's type): the
-    loop is compiled in memory by then, so the run is tried again, from the start and timed
-    afresh."""
+    snapshots)."""
     from ...continuum import build_model
     from ...continuum.dynamics import DynamicOptions, run_dynamic
 
-    for attempt in range(CACHE_SAVE_ATTEMPTS):
-        started = time.perf_counter()
-        try:
-            model = build_model(scene)
-            result = run_dynamic(model, scene, scene.build_motion(),
-                                 DynamicOptions(snapshots=0, energy=False))
-            return model, result, time.perf_counter() - started
-        except ReferenceError as exc:
-            if "vanished" not in str(exc) or attempt == CACHE_SAVE_ATTEMPTS - 1:
-                raise
+    started = time.perf_counter()
+    model = build_model(scene)
+    result = run_dynamic(model, scene, scene.build_motion(),
+                         DynamicOptions(snapshots=0, energy=False))
+    return model, result, time.perf_counter() - started
 
 
 @keyed_as("upliftlab.comparisons.winkler_map:evaluate_dynamic")
