@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..study import Axis, plot_error_maps, write_figure
+from ..study import Axis, write_figure
 from .analysis import median_over_motions
 from .beds import BEDS
 from .grid import MEASURE_LABELS, MEASURES, SOIL_LABELS
@@ -39,8 +39,48 @@ def _error_map(data, path: Path, measure: str) -> Path:
              for c, name in enumerate(data.calibrations)] for s, soil in enumerate(g.soils)]
     soils = "; ".join(SOIL_LABELS[s] for s in g.soils)
     title = (f"|bed − continuum| / continuum in {MEASURE_LABELS[measure]}: median over "
-             f"{len(data.motions)} motions, worst over T and intensity ({soils})")
-    return plot_error_maps(path, title, x, y, rows, levels=(0.10, 0.20), annotate=True)
+             f"{len(data.motions)} motions, worst over T and intensity\n({soils})")
+    return _heat_maps(path, title, x, y, rows)
+
+
+def _heat_maps(path: Path, title: str, x: Axis, y: Axis, rows) -> Path:
+    """Panels of |error| (%) on an index grid (log colour scale 1–100 %, viridis), each cell
+    annotated, contours at 10 % (white) and 20 % (red) where the grid allows them."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import LogNorm
+
+    nrows, ncols = len(rows), max(len(r) for r in rows)
+    fig, axes = plt.subplots(nrows, ncols, figsize=(2.4 * ncols + 1.0, 1.0 + 1.6 * nrows),
+                             squeeze=False, constrained_layout=True)
+    norm, image = LogNorm(vmin=1.0, vmax=100.0), None
+    for r, row in enumerate(rows):
+        for c, (name, errors) in enumerate(row):
+            ax = axes[r][c]
+            percent = np.clip(100.0 * np.abs(np.asarray(errors, dtype=float)), 1.0, 100.0)
+            image = ax.imshow(percent, norm=norm, cmap="viridis", origin="lower",
+                              aspect="auto", interpolation="nearest")
+            if min(percent.shape) >= 2 and np.isfinite(percent).any():
+                ax.contour(np.arange(percent.shape[1]), np.arange(percent.shape[0]), percent,
+                           levels=[10.0, 20.0], colors=["white", "red"], linewidths=1.2)
+            for j, i in zip(*np.nonzero(np.isfinite(percent))):
+                ax.text(i, j, f"{percent[j, i]:.2g}" if percent[j, i] < 99.5 else "≥100",
+                        ha="center", va="center", fontsize=8,
+                        color="white" if percent[j, i] < 10 else "black")
+            ax.set_title(name, fontsize=9)
+            ax.set_xticks(range(len(x.values)), [f"{v:g}" for v in x.values], fontsize=8)
+            ax.set_yticks(range(len(y.values)), [f"{v:g}" for v in y.values], fontsize=8)
+            ax.set_xlabel(x.label, fontsize=8)
+            if c == 0:
+                ax.set_ylabel(y.label, fontsize=8)
+        for c in range(len(row), ncols):
+            axes[r][c].set_visible(False)
+    if image is not None:
+        fig.colorbar(image, ax=axes, label="|relative error| (%)", shrink=0.9)
+    fig.suptitle(title, fontsize=9)
+    return write_figure(path, fig)
 
 
 def _short(name: str) -> str:
