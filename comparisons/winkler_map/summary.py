@@ -18,7 +18,8 @@ __all__ = ["summary_numbers", "summary_markdown", "MESH_NOTE", "ENERGY_NOTE", "S
 MESH_NOTE = ("The reference mesh is 16 elements across B: against 32 across it differs by "
              "+0.24 % in peak θ, +0.06 % in peak edge uplift and −1.4 % in residual settlement, "
              "while 8 across differs by −1.1 %, −1.1 % and −7.0 % "
-             "(benchmarks/CONTINUUM_CONVERGENCE.md, 10 s of El Centro on the clay): no coarser "
+             "(the project's mesh-convergence benchmark of the explicit route, 10 s of El "
+             "Centro on the clay): no coarser "
              "mesh is within 1 %, so the full map runs on 16 across.")
 ENERGY_NOTE = ("Dissipated energy is left out: the continuum's energy account (kept by the "
                "explicit route at no cost) books the soil's plastic work together with its "
@@ -175,14 +176,26 @@ def _statics_table(d) -> list[str]:
     return rows
 
 
+#: Short names of the calibrations in table headers (long names break mid-word in print).
+SHORT = {"uniform": "U", "end_stiffened": "ES", "uniform_plastic": "U-p",
+         "end_stiffened_plastic": "ES-p"}
+
+
+def _short(name: str) -> str:
+    return SHORT.get(name, name)
+
+
 def _pick_table(d, a) -> list[str]:
-    head = "| measure | " + " | ".join(d.calibrations) + " | pick |"
+    head = ("| measure (error, %) | " + " | ".join(_short(c) for c in d.calibrations)
+            + " | pick |")
     rows = [head, "|---|" + "---|" * (len(d.calibrations) + 1)]
     for p in a.picks:
-        cells = [f"{_pct(p.median[c])} / {_pct(p.p90[c])}" for c in d.calibrations]
-        rows.append(f"| {MEASURE_LABELS[p.measure]} | " + " | ".join(cells) + f" | {p.best} |")
+        cells = [f"{_num(p.median[c])} / {_num(p.p90[c])}" for c in d.calibrations]
+        rows.append(f"| {MEASURE_LABELS[p.measure]} | " + " | ".join(cells)
+                    + f" | {_short(p.best)} |")
     rows.append("")
-    rows.append("Each cell: median / 90th percentile of |error| over every point of the map "
+    rows.append("; ".join(f"{_short(c)}: `{c}`" for c in d.calibrations) + ". Each cell: "
+                "median / 90th percentile of |error| (%) over every point of the map "
                 f"({a.picks[0].points} points); over the records alone (El Centro and FEMA "
                 "P695): " + ("; ".join(
                     f"{MEASURE_LABELS[p.measure]} {_pct(p.record_median[p.best])} / "
@@ -190,6 +203,10 @@ def _pick_table(d, a) -> list[str]:
                     if any(math.isfinite(v) for v in a.picks[0].record_median.values())
                     else "no record on this grid") + ".")
     return rows
+
+
+def _num(value) -> str:
+    return "n/a" if value is None or not math.isfinite(value) else f"{100 * value:.1f}"
 
 
 def _share_text(a) -> str:
