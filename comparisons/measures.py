@@ -14,7 +14,11 @@ settlement" differently, each way has its own function here, and its name says w
 * **settlement change** (:func:`continuum_settlement_change`): the footing centre's vertical
   displacement from the first to the last step, V(0) − V(end) (down positive);
 * **settlement when flattest** (:func:`settlement_when_flattest`): the settlement history at
-  the step of the last quarter of the run where |θ| is smallest.
+  the step of the last quarter of the run where |θ| is smallest;
+* **residual rotation** (:func:`residual_rotation`): the mean base rotation over the last
+  quarter of the run, the tilt the rocking oscillates about;
+* **peak story shear** (:func:`peak_story_shear`): the largest |k s + c ṡ| of the story spring
+  and its dashpot, from the deformation history s and its rate.
 
 Lengths in the scene's unit; rotations in rad. ``response`` is a reduced-model response
 (:func:`upliftlab.reduced.run`); continuum arguments are arrays of a continuum dynamic result.
@@ -28,7 +32,8 @@ from ..reduced import kernels as kn
 
 __all__ = ["reduced_edge_gap_history", "reduced_peak_edge_gap", "reduced_edge_uplift_from_peaks",
            "reduced_plastic_settlement", "edge_uplift_history", "continuum_peak_edge_gap",
-           "continuum_settlement_change", "settlement_when_flattest"]
+           "continuum_settlement_change", "settlement_when_flattest", "residual_rotation",
+           "peak_story_shear"]
 
 
 def reduced_edge_gap_history(response) -> np.ndarray:
@@ -107,3 +112,21 @@ def settlement_when_flattest(time, theta, settlement) -> float:
     tail = np.flatnonzero(time >= time[0] + 0.75 * (time[-1] - time[0]))
     flat = tail[int(np.argmin(np.abs(theta[tail])))]
     return float(np.asarray(settlement, dtype=float)[flat])
+
+
+def residual_rotation(time, theta) -> float:
+    """The mean of ``theta`` (rad) over the last quarter of the run, by the trapezoidal rule:
+    the tilt left at the end, about which any rocking that goes on oscillates (signed, rad)."""
+    time, theta = np.asarray(time, dtype=float), np.asarray(theta, dtype=float)
+    tail = np.flatnonzero(time >= time[0] + 0.75 * (time[-1] - time[0]))
+    if tail.size < 2:
+        return float(theta[-1])
+    t, th = time[tail], theta[tail]
+    return float(np.sum(0.5 * (th[1:] + th[:-1]) * np.diff(t)) / (t[-1] - t[0]))
+
+
+def peak_story_shear(deformation, rate, stiffness: float, damping: float) -> float:
+    """max |k s + c ṡ| (force) of a story spring ``stiffness`` k and dashpot ``damping`` c over
+    the deformation history s and its rate ṡ: the shear at the base of an SDOF structure."""
+    s, v = np.asarray(deformation, dtype=float), np.asarray(rate, dtype=float)
+    return float(np.max(np.abs(stiffness * s + damping * v)))

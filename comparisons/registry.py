@@ -14,7 +14,8 @@ from .protocol import Study
 __all__ = ["STUDIES", "definition"]
 
 STUDIES: tuple[str, ...] = ("verification", "two_spring_equivalence", "winkler_vs_continuum",
-                            "speed_vs_error", "fixed_vs_uplift", "paper", "uplift_zone")
+                            "winkler_map", "speed_vs_error", "fixed_vs_uplift", "paper",
+                            "uplift_zone")
 
 
 def definition(module: str) -> Study:

@@ -10,7 +10,8 @@ records what each section did.
 
 Sections, in order: the verification anchors (measured error, tolerance, pass/fail) and the
 observed convergence orders (:mod:`.verification`); the two-spring equivalence maps and tables
-(:mod:`.two_spring_equivalence`); Winkler against the continuum (:mod:`.winkler_vs_continuum`);
+(:mod:`.two_spring_equivalence`); Winkler against the continuum (:mod:`.winkler_vs_continuum`)
+and its map over soil, FS_v, h/B, period, intensity and motion (:mod:`.winkler_map`);
 speed against error (:mod:`.speed_vs_error`); fixed base against uplift
 (:mod:`.fixed_vs_uplift`); the founding paper's conclusions (:mod:`.paper`); and the uplift
 zone of a continuum rotation pushover (:mod:`.uplift_zone`: a coarse mesh in fast mode).

@@ -82,7 +82,9 @@ def _tangential(A, b, prescribed, z, u, u_next, v_next, m_eff, h, dt, uy, ux, x,
     return force, q, story, its
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=False)  # takes kernels as arguments: numba cannot reuse a cached copy (it
+# compiled it again in every process) and writing it failed now and then (ReferenceError:
+# underlying object has vanished, pickling a kernel's type), which failed the run
 def run_steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure, contact):
     """Steps k0…k1 (module docstring); returns nothing, the rings hold the state. The arrays
     travel in tuples: ``rings`` (U, V, Z, VZ, FC, ST) and ``carry`` (R_prev, F_prev, Fz_prev,

@@ -66,6 +66,8 @@ EXERCISED = {
     "python -m upliftlab.comparisons.two_spring_equivalence --fast --out "
     "results/two_spring_equivalence-fast":
         ("slow", ("results/two_spring_equivalence-fast/summary.md",)),
+    "python -m upliftlab.comparisons.winkler_map --fast --out results/winkler_map-fast":
+        ("slow", ("results/winkler_map-fast/summary.md", "results/winkler_map-fast/map.nc")),
     "upliftlab continuum strip_footing_clay --analysis impedance --set soil.model=elastic "
     "--json": ("here", ()),
     "upliftlab opensees short_period_elcentro --case A --out results/opensees-A && "

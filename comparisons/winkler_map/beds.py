@@ -1,0 +1,115 @@
+"""The calibrations the map compares: a registry of bed builders.
+
+A bed builder is ``build(reference, options) -> foundation table``: from the continuum's
+reference numbers of one point of the map (:class:`BedReference`: N, B, h, the continuum's K_v,
+K_r and vertical capacity of the soil) and the study's options, the reduced model's
+``[foundation]`` table of that bed. :data:`BEDS` maps a calibration's name to its
+:class:`BedEntry`; a new calibration (a sway spring, impedance dashpots, hysteretic q–z springs)
+plugs into the map by adding one entry here (and, if it needs a continuum quantity that is not
+yet in :class:`BedReference`, one static analysis in :mod:`.statics`).
+
+The four entries of today are the calibrations of :mod:`..winkler_vs_continuum` (built by its
+:func:`~..winkler_vs_continuum.calibrate`, so that both studies build the same beds):
+``uniform`` to K_r, ``end_stiffened`` to K_r and K_v (when some R_k reaches it), and both with
+elasto-plastic springs that yield at FS_v times their static force, FS_v = V_ult/N.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field, replace
+
+from ..winkler_vs_continuum import Options as CalibrationOptions, calibrate
+from ..winkler_vs_continuum.reference import ContinuumReference
+
+__all__ = ["BedReference", "BedEntry", "BEDS", "bed_names", "bed_foundation"]
+
+
+@dataclass(frozen=True)
+class BedReference:
+    """The continuum's numbers a bed is calibrated from, at one point of the map (scene units:
+    kN, m, per metre of footing).
+
+    ``soil`` its name; ``N`` the vertical load, ``B`` the footing width, ``h`` the story height;
+    ``K_v`` and ``K_r`` the continuum footing's vertical and rocking stiffness in full contact;
+    ``V_ult`` the continuum's vertical capacity of the soil (its vertical pushover);
+    ``G``, ``nu`` the soil's shear modulus and Poisson ratio; ``extra`` more continuum
+    quantities a future calibration may need, by name.
+    """
+
+    soil: str
+    N: float
+    B: float
+    h: float
+    K_v: float
+    K_r: float
+    V_ult: float
+    G: float
+    nu: float
+    extra: Mapping = field(default_factory=dict)
+
+    @property
+    def fs_v(self) -> float:
+        """V_ult/N, the vertical factor of safety on the continuum's capacity."""
+        return self.V_ult / self.N
+
+
+@dataclass(frozen=True)
+class BedEntry:
+    """One calibration: ``name`` (a coordinate of the map), ``label`` (text),
+    ``build(reference, options) -> [foundation] table``, and ``matches`` the continuum
+    quantities it is calibrated to (text)."""
+
+    name: str
+    label: str
+    build: Callable
+    matches: str
+
+
+def _calibration(reference: BedReference, options, name: str):
+    """The bed ``name`` of :func:`..winkler_vs_continuum.calibrate` for ``reference``."""
+    ref = ContinuumReference(N=reference.N, B=reference.B, h=reference.h, G=reference.G,
+                             nu=reference.nu, cu=None, K_v=reference.K_v, K_r=reference.K_r,
+                             theta_on=0.0, monotonic={}, cyclic={}, elastic={},
+                             vertical={"capacity": reference.V_ult})
+    calibration = replace(CalibrationOptions(), springs=options.springs,
+                          end_length=options.end_length,
+                          max_end_stiffness_ratio=options.max_end_stiffness_ratio)
+    return next(c for c in calibrate(ref, calibration) if c.name == name)
+
+
+def _builder(name: str) -> Callable:
+    def build(reference: BedReference, options) -> dict:
+        return _calibration(reference, options, name).foundation_table()
+
+    build.__name__ = build.__qualname__ = f"build_{name}"
+    build.__doc__ = (f"The ``{name}`` bed of :func:`..winkler_vs_continuum.calibrate` as a "
+                     "[foundation] table.")
+    return build
+
+
+BEDS: dict[str, BedEntry] = {
+    "uniform": BedEntry("uniform", "uniform bed (K_r)", _builder("uniform"), "K_r"),
+    "end_stiffened": BedEntry("end_stiffened", "end-stiffened bed (K_r, K_v)",
+                              _builder("end_stiffened"), "K_r and K_v where reachable"),
+    "uniform_plastic": BedEntry("uniform_plastic", "uniform elasto-plastic bed (K_r, V_ult)",
+                                _builder("uniform_plastic"), "K_r and V_ult"),
+    "end_stiffened_plastic": BedEntry("end_stiffened_plastic",
+                                      "end-stiffened elasto-plastic bed (K_r, K_v, V_ult)",
+                                      _builder("end_stiffened_plastic"),
+                                      "K_r, K_v where reachable, and V_ult"),
+}
+
+
+def bed_names(options) -> tuple[str, ...]:
+    """The calibrations a run compares: ``options.beds``, or every registered one."""
+    return tuple(options.beds) or tuple(BEDS)
+
+
+def bed_foundation(name: str, reference: BedReference, options) -> dict:
+    """The ``[foundation]`` table of calibration ``name`` at ``reference``: the uplifting
+    support, its half-width and whatever the builder sets."""
+    table = dict(BEDS[name].build(reference, options))
+    table.setdefault("support", "uplift")
+    table.setdefault("half_width", 0.5 * reference.B)
+    return table

@@ -1,0 +1,261 @@
+"""The map's data: the continuum's statics and dynamic runs (stored), every bed's run of the
+same points (live), and the errors of each bed against the continuum.
+
+Arrays are indexed (soil, fs_v, h_over_B, period, intensity, motion[, calibration], measure);
+errors are signed, (bed − continuum)/max(|continuum|, floor), the floor
+:data:`.grid.FLOOR_FRACTION` × the measure's scale (:func:`.points.scales`); NaN where a run
+was refused.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import contextlib
+import itertools
+import os
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...log import logger
+from ...scenes import load_scene, scene_from_dict
+from ..study import relative_error
+from ..sweep import DASK_ENV, run_sweep, sweep_executor
+from .beds import BedReference, bed_foundation
+from .cost import Estimate, estimate_cost, refuse_over_budget
+from .grid import FLOOR_FRACTION, MEASURES, STUDY, Grid, Options
+from .motions import motion_duration
+from .points import (BASE_SCENE, base_table, evaluate_dynamic, point_table, run_bed, scales,
+                     story_constants)
+from .statics import SoilStatics, evaluate_static, soil_statics, static_points
+
+__all__ = ["MapData", "compute_map", "IN_PROCESS_SECONDS"]
+
+#: Continuum work estimated below this (s) runs in this process, one point after the other:
+#: starting worker processes (imports, and the explicit loop's compilation in each, which numba
+#: does not cache) would cost more than it saves.
+IN_PROCESS_SECONDS = 60.0
+
+
+@dataclass(frozen=True, eq=False)
+class MapData:
+    """Everything the map measured (module docstring for the array layout).
+
+    ``continuum`` (…, motion, measure) and ``beds`` (…, motion, calibration, measure) the
+    measures of each model; ``errors`` like ``beds``; ``scale`` (soil, fs_v, h_over_B, period,
+    measure) the floors' basis; ``continuum_wall`` (…, motion) each continuum run's own wall
+    time (s, stored with it), ``bed_wall`` (…, motion, calibration) each bed run's (s, this
+    run); ``steps`` and ``balance`` (…, motion) the continuum run's steps and energy balance
+    error; ``N`` (soil, fs_v) the vertical load V_ult/FS_v; ``bed_K_r``, ``bed_K_v`` (soil,
+    fs_v, calibration) the stiffness of each built bed; ``statics`` per soil; ``refusals``
+    the bed runs the integrator refused; ``estimate`` the cost estimated before the work;
+    ``computed`` the continuum runs this call made (a soil's statics count as one, as in the
+    estimate).
+    """
+
+    grid: Grid
+    options: Options
+    motions: tuple[dict, ...]
+    calibrations: tuple[str, ...]
+    statics: tuple[SoilStatics, ...]
+    N: np.ndarray
+    continuum: np.ndarray
+    beds: np.ndarray
+    errors: np.ndarray
+    scale: np.ndarray
+    continuum_wall: np.ndarray
+    bed_wall: np.ndarray
+    steps: np.ndarray
+    balance: np.ndarray
+    dofs: np.ndarray
+    bed_K_r: np.ndarray
+    bed_K_v: np.ndarray
+    refusals: tuple[str, ...]
+    estimate: Estimate
+    computed: int
+
+    @property
+    def motion_names(self) -> tuple[str, ...]:
+        return tuple(m["name"] for m in self.motions)
+
+    @property
+    def motion_kinds(self) -> tuple[str, ...]:
+        return tuple(m["kind"] for m in self.motions)
+
+    def statics_of(self, soil: str) -> SoilStatics:
+        return next(s for s in self.statics if s.soil == soil)
+
+
+def _cells(grid: Grid):
+    """(index tuple, values) over soil × fs_v × h/B × period × intensity."""
+    axes = (grid.soils, grid.fs_v, grid.h_over_B, grid.periods, grid.intensities)
+    for idx in itertools.product(*(range(len(a)) for a in axes)):
+        yield idx, tuple(a[i] for a, i in zip(axes, idx))
+
+
+def _dynamic_points(grid, options, motions, base, g, loads) -> list[dict]:
+    """Every dynamic point in array order; ``loads[soil]`` the V_ult of each soil (a
+    placeholder before the statics are known: the points then serve only for the estimate)."""
+    points = []
+    for _, (soil, fs, hb, period, intensity) in _cells(grid):
+        table = point_table(base, soil, options.elements_across, loads[soil] / fs, hb, period, g)
+        for motion in motions:
+            points.append({"scene": table, "motion": motion, "intensity": float(intensity),
+                           "history_dt": options.history_dt})
+    return points
+
+
+_FREE = {"type": "free", "velocity": 1.0, "duration": 1.0}  # a scene's motion, unused
+
+
+def _key(point, function) -> str:
+    from ..store import point_key
+
+    return point_key(STUDY, function, point)
+
+
+def _scene(table: Mapping):
+    """The validated scene of a point's table (its motion unused)."""
+    return scene_from_dict({**table, "motion": dict(_FREE)}, merged=True)
+
+
+def _estimate(grid, options, motions, base, g, store, statics_points, loads) -> Estimate:
+    """The cost of what is not stored yet. A soil whose statics are not stored has no vertical
+    load yet: its dynamic points all count as still to run."""
+    static_records = [store.get(_key(p, evaluate_static)) for p in statics_points]
+    static_rows = []
+    for i, soil in enumerate(grid.soils):
+        point = statics_points[2 * i]
+        table = {**base, "soil": point["soil"],
+                 "continuum": {**base.get("continuum", {}), **point["continuum"]}}
+        static_rows.append((soil, _scene(table), soil in loads))
+    dynamic = _dynamic_points(grid, options, motions, base, g,
+                              {s: loads.get(s, 1.0) for s in grid.soils})
+    durations = {m["name"]: motion_duration(m) for m in motions}
+    scenes, rows, records = {}, [], []
+    soils = [soil for _, (soil, *_) in _cells(grid) for _ in motions]
+    for soil, point in zip(soils, dynamic):
+        record = store.get(_key(point, evaluate_dynamic)) if soil in loads else None
+        records.append(record)
+        if soil not in scenes:
+            scenes[soil] = _scene(point["scene"])
+        rows.append((soil, scenes[soil], durations[point["motion"]["name"]], record is not None))
+    pairs = [static_records[i:i + 2] for i in range(0, len(static_records), 2)]
+    stored_static = [{"dofs": a["dofs"], "wall_time_s": a["wall_time_s"] + b["wall_time_s"]}
+                     for a, b in pairs if a is not None and b is not None]
+    return estimate_cost(static_rows, rows, stored_static, [r for r in records if r is not None])
+
+
+def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motions,
+                ctx) -> MapData:
+    """The statics, the continuum runs (both through :func:`.sweep.run_sweep`, stored) and
+    every bed's runs (live), after the cost estimate (logged; refused above
+    ``options.budget``). The sweeps run on ``ctx.executor``, else on a Dask cluster
+    (``ctx.scheduler``), else in this process when the estimate is below
+    :data:`IN_PROCESS_SECONDS`, else on ``ctx.workers`` local processes."""
+    store = ctx.store
+    base = base_table()
+    g = load_scene(BASE_SCENE).g
+    b = base["foundation"]["half_width"]
+    statics_points = [p for soil in grid.soils for p in static_points(soil, options, b)]
+    static_records = [store.get(_key(p, evaluate_static)) for p in statics_points]
+    loads = {soil: static_records[2 * i + 1]["capacity"] for i, soil in enumerate(grid.soils)
+             if static_records[2 * i] is not None and static_records[2 * i + 1] is not None}
+    estimate = _estimate(grid, options, motions, base, g, store, statics_points, loads)
+    local = ctx.scheduler is None and not os.environ.get(DASK_ENV)
+    in_process = ctx.executor is None and local and estimate.seconds < IN_PROCESS_SECONDS
+    workers = 1 if in_process else (ctx.workers or os.cpu_count() or 1)
+    logger(STUDY).info(f"{STUDY}: {estimate.text(workers)}")
+    refuse_over_budget(estimate, options.budget)
+    with contextlib.ExitStack() as stack:
+        executor = ctx.executor
+        if in_process:
+            executor = stack.enter_context(cf.ThreadPoolExecutor(1))  # no pool to start
+        elif executor is None and estimate.runs:
+            n = max(1, min(workers, estimate.runs))
+            executor = stack.enter_context(sweep_executor(ctx.scheduler, workers=n))
+        sweep = {"executor": executor, "chunk": 1, "study": STUDY, "progress": ctx.progress}
+        records = run_sweep(evaluate_static, statics_points, store, **sweep)
+        statics = tuple(soil_statics(soil, records[2 * i:2 * i + 2])
+                        for i, soil in enumerate(grid.soils))
+        loads = {s.soil: s.V_ult for s in statics}
+        points = _dynamic_points(grid, options, motions, base, g, loads)
+        before = sum(1 for p in points if store.has(_key(p, evaluate_dynamic)))
+        runs = run_sweep(evaluate_dynamic, points, store, **sweep)
+    soils_run = sum(1 for i in range(len(grid.soils))
+                    if any(r is None for r in static_records[2 * i:2 * i + 2]))
+    computed = len(points) - before + soils_run
+    return _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
+                     computed)
+
+
+def _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
+              computed) -> MapData:
+    shape = (len(grid.soils), len(grid.fs_v), len(grid.h_over_B), len(grid.periods),
+             len(grid.intensities), len(motions))
+    nb, nm = len(calibrations), len(MEASURES)
+    continuum = np.full(shape + (nm,), np.nan)
+    beds = np.full(shape + (nb, nm), np.nan)
+    errors = np.full_like(beds, np.nan)
+    scale = np.full(shape[:4] + (nm,), np.nan)
+    cwall, steps, balance, dofs = (np.full(shape, np.nan) for _ in range(4))
+    bwall = np.full(shape + (nb,), np.nan)
+    N = np.full(shape[:2], np.nan)
+    bed_K_r = np.full(shape[:2] + (nb,), np.nan)
+    bed_K_v = np.full_like(bed_K_r, np.nan)
+    refusals, warmed = [], set()
+    it = iter(zip(points, runs))
+    by_soil = {s.soil: s for s in statics}
+    for idx, (soil, fs, hb, period, intensity) in _cells(grid):
+        st = by_soil[soil]
+        for m in range(len(motions)):
+            point, run = next(it)
+            at = idx + (m,)
+            scene = _scene(point["scene"])
+            B, h = scene.foundation.width, scene.structure.height
+            ref = BedReference(soil, scene.structure.weight, B, h, st.K_v, st.K_r, st.V_ult,
+                               scene.soil.shear_modulus, scene.soil.poisson_ratio)
+            k_story, _ = story_constants(scene)
+            scl = scales(ref.N, B, h, st.K_v, st.K_r, k_story)
+            scale[idx[:4]] = [scl[q] for q in MEASURES]
+            N[idx[:2]] = ref.N
+            continuum[at] = [run["measures"][q] for q in MEASURES]
+            cwall[at], steps[at], balance[at] = (run["wall_time_s"], run["steps"],
+                                                 run["energy_balance_error"])
+            dofs[at] = run["dofs"]
+            for c, name in enumerate(calibrations):
+                foundation = bed_foundation(name, ref, options)
+                if name not in warmed:  # the first run compiles the kernels: not timed
+                    run_bed(point, foundation)
+                    warmed.add(name)
+                if np.isnan(bed_K_r[idx[:2] + (c,)]):
+                    bed_K_r[idx[:2] + (c,)], bed_K_v[idx[:2] + (c,)] = _bed_stiffness(
+                        point, foundation)
+                bed = run_bed(point, foundation)
+                bwall[at + (c,)] = bed["wall_time_s"]
+                if "refused" in bed:
+                    refusals.append(f"{soil}, FS_v = {fs:g}, h/B = {hb:g}, T = {period:g} s, "
+                                    f"{intensity:g} × a_up, {motions[m]['name']}, {name}: "
+                                    f"{bed['refused']}")
+                    continue
+                for q, measure in enumerate(MEASURES):
+                    value, reference = bed["measures"][measure], run["measures"][measure]
+                    beds[at + (c, q)] = value
+                    errors[at + (c, q)] = relative_error(value, reference,
+                                                         FLOOR_FRACTION * scl[measure])
+    return MapData(grid, options, tuple(motions), tuple(calibrations), tuple(statics), N,
+                   continuum, beds, errors, scale, cwall, bwall, steps, balance, dofs, bed_K_r,
+                   bed_K_v, tuple(refusals), estimate, computed)
+
+
+def _bed_stiffness(point: Mapping, foundation: Mapping) -> tuple[float, float]:
+    """(K_r, K_v) of the built bed: Σ k_i x_i² and Σ k_i of the reduced model's layout."""
+    from ...reduced import build_model
+
+    data = {k: v for k, v in point["scene"].items() if k not in ("soil", "continuum")}
+    data["foundation"] = dict(foundation)
+    data["motion"] = dict(_FREE)
+    layout = build_model(scene_from_dict(data, merged=True)).layout
+    return float(layout.rocking_stiffness), float(layout.vertical_stiffness)
+

@@ -1,0 +1,207 @@
+"""One point of the map: its scene, the continuum's dynamic run (the sweep's point function,
+stored) and a bed's run of the same motion (the reduced model, live), each measured alike.
+
+The scene of a point is ``strip_footing_clay`` (B = 2 m) with the map's soil, mesh and
+structure: a story of weight N = V_ult/FS_v at height h = (h/B) B with the fixed-base period T
+and 5 % damping, and the rotary inertia of a rigid B × h block about its centroid,
+m (B² + h²)/12 with m = N/g (as in the scene). The motion's PGA is the intensity times
+a_up = g B/(6h).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import time
+from collections.abc import Mapping
+
+import numpy as np
+
+from ...scenes import Scene, load_scene, scene_from_dict
+from ..measures import (continuum_peak_edge_gap, edge_uplift_history, peak_story_shear,
+                        reduced_edge_gap_history, residual_rotation, settlement_when_flattest)
+from ..store import keyed_as
+from .grid import MEASURES, SOILS
+
+__all__ = ["BASE_SCENE", "base_table", "point_table", "motion_table", "evaluate_dynamic",
+           "run_bed", "scales", "story_constants"]
+
+BASE_SCENE = "strip_footing_clay"
+STORY_DAMPING = 0.05
+
+
+def base_table() -> dict:
+    """The base scene's table without its motion."""
+    data = copy.deepcopy(load_scene(BASE_SCENE).data)
+    data.pop("motion", None)
+    return data
+
+
+def point_table(base: Mapping, soil: str, elements_across: int, N: float, h_over_B: float,
+                period: float, g: float) -> dict:
+    """The scene table of a point (no motion): the base scene with the map's soil, mesh and
+    structure (module docstring)."""
+    data = copy.deepcopy(dict(base))
+    B = 2.0 * data["foundation"]["half_width"]
+    h = h_over_B * B
+    data["soil"] = copy.deepcopy(SOILS[soil])
+    data["continuum"] = {**data.get("continuum", {}), "elements_across": int(elements_across)}
+    data["structure"] = {"weight": float(N), "height": h, "period": float(period),
+                         "damping_ratio": STORY_DAMPING,
+                         "rotary_inertia": N / g * (B * B + h * h) / 12.0}
+    return data
+
+
+def motion_table(motion: Mapping, intensity: float, B: float, h: float) -> dict:
+    """The scene's ``[motion]`` of a map motion at ``intensity`` × a_up, a_up = g B/(6h):
+    a Ricker pulse of that amplitude (g) lasting 3T plus its tail, or a record scaled to that
+    PGA (located by its ``_path``)."""
+    amplitude = intensity * B / (6.0 * h)
+    if motion["type"] == "ricker":
+        return {"type": "ricker", "amplitude": amplitude, "period": motion["period"],
+                "duration": motion["duration"]}
+    return {"type": "record", "name": motion["_path"], "pga": amplitude}
+
+
+def point_scene(point: Mapping) -> Scene:
+    """The validated scene of a dynamic point (its table and its motion)."""
+    data = copy.deepcopy(point["scene"])
+    B = 2.0 * data["foundation"]["half_width"]
+    data["motion"] = motion_table(point["motion"], point["intensity"], B,
+                                  data["structure"]["height"])
+    return scene_from_dict(data, merged=True)
+
+
+def story_constants(scene: Scene) -> tuple[float, float]:
+    """(k, c) of the story: its stiffness and the dashpot c = 2 ζ √(k m) (force/length,
+    force·time/length), as both models build them."""
+    story = scene.structure.stories[0]
+    m = story.weight / scene.g
+    return story.stiffness, 2.0 * scene.structure.damping_ratio * math.sqrt(story.stiffness * m)
+
+
+def _floats(values) -> list[float]:
+    return [float(v) for v in np.asarray(values, dtype=float).ravel()]
+
+
+def _history(time_, values, step: float) -> list[float]:
+    grid = np.arange(0.0, time_[-1] + 0.5 * step, step)
+    return _floats(np.interp(grid, time_, values))
+
+
+def measured(time_, theta, uplift_peak, settlement, u_peak, shear_peak) -> dict:
+    """The map's measures from a run's histories (:data:`.grid.MEASURES`), the same for both
+    models: peak |θ|, peak edge uplift, the settlement when flattest, the residual rotation
+    (mean θ over the last quarter), peak |u| and peak story shear."""
+    return {"theta": float(np.max(np.abs(theta))), "uplift": float(uplift_peak),
+            "residual_settlement": settlement_when_flattest(time_, theta, settlement),
+            "residual_rotation": residual_rotation(time_, theta), "u": float(u_peak),
+            "base_shear": float(shear_peak)}
+
+
+_WARM: set[str] = set()
+
+
+def _warm_kernels(point: Mapping) -> None:
+    """Compile (or load from numba's cache) the continuum's kernels for this soil model once
+    per process, on a 2-across mesh and a few steps, so that a run's wall time is its own and
+    not the compiler's."""
+    model_name = point["scene"]["soil"]["model"]
+    if model_name in _WARM:
+        return
+    data = copy.deepcopy(point["scene"])
+    data["continuum"] = {**data["continuum"], "elements_across": 2}
+    data["motion"] = {"type": "ricker", "amplitude": 0.1, "period": 0.2, "duration": 0.02}
+    _timed_run(scene_from_dict(data, merged=True))
+    _WARM.add(model_name)
+
+
+def _timed_run(scene):
+    """(model, result, wall time s) of the continuum's dynamic run of ``scene`` (no
+    snapshots)."""
+    from ...continuum import build_model
+    from ...continuum.dynamics import DynamicOptions, run_dynamic
+
+    started = time.perf_counter()
+    model = build_model(scene)
+    result = run_dynamic(model, scene, scene.build_motion(),
+                         DynamicOptions(snapshots=0, energy=False))
+    return model, result, time.perf_counter() - started
+
+
+@keyed_as("upliftlab.comparisons.winkler_map:evaluate_dynamic")
+def evaluate_dynamic(point: Mapping) -> dict:
+    """One continuum dynamic run of a point (explicit route, no soil snapshots): the measures
+    of :func:`measured` from every recorded step, the histories of θ, u, the edge uplift and
+    the settlement every ``history_dt`` s (for figures), the run's steps, DOFs, step (s),
+    energy balance error and its own wall time ``wall_time_s`` (model, gravity and time loop,
+    s; the kernels are compiled before, :func:`_warm_kernels`). Units of the scene."""
+    _warm_kernels(point)
+    scene = point_scene(point)
+    model, result, wall = _timed_run(scene)
+    t = np.asarray(result.time, dtype=float)
+    t = t - t[0]
+    footing = np.asarray(result.footing, dtype=float)
+    theta = footing[:, 2]
+    settlement = -(footing[:, 1] - footing[0, 1])
+    s = np.asarray(result.structure_u, dtype=float).reshape(t.size, -1)[:, -1]
+    s_dot = np.asarray(result.structure_velocity, dtype=float).reshape(t.size, -1)[:, -1]
+    k, c = story_constants(scene)
+    gap = np.asarray(result.gap, dtype=float)
+    uplift = continuum_peak_edge_gap(gap, result.x)
+    order = np.argsort(np.asarray(result.x))
+    step = float(point["history_dt"])
+    return {"measures": measured(t, theta, uplift, settlement, np.max(np.abs(s)),
+                                 peak_story_shear(s, s_dot, k, c)),
+            "time": _floats(np.arange(0.0, t[-1] + 0.5 * step, step)),
+            "theta": _history(t, theta, step), "u": _history(t, s, step),
+            "uplift": _history(t, edge_uplift_history(gap[:, order]), step),
+            "settlement": _history(t, settlement, step),
+            "steps": int(result.metadata.get("steps", t.size - 1)), "dofs": int(model.dofs),
+            "dt": float(result.metadata.get("dt", math.nan)),
+            "duration": float(t[-1]), "compiled": bool(result.metadata.get("compiled", True)),
+            "energy_balance_error": float(result.metadata.get("energy_balance_error", math.nan)),
+            "wall_time_s": wall}
+
+
+def run_bed(point: Mapping, foundation: Mapping) -> dict:
+    """A bed's run of a point's motion (reduced model, live, not stored): the measures of
+    :func:`measured`, its wall time ``wall_time_s`` (the run alone, s), or ``refused`` with the
+    integrator's reason."""
+    from ...reduced import IntegrationError, run as run_reduced
+
+    data = copy.deepcopy(point["scene"])
+    data["foundation"] = dict(foundation)
+    B = 2.0 * data["foundation"]["half_width"]
+    data["motion"] = motion_table(point["motion"], point["intensity"], B,
+                                  data["structure"]["height"])
+    for table in ("soil", "continuum"):
+        data.pop(table, None)
+    scene = scene_from_dict(data, merged=True)
+    started = time.perf_counter()
+    try:
+        response = run_reduced(scene)
+    except IntegrationError as exc:
+        return {"refused": str(exc), "measures": dict.fromkeys(MEASURES, math.nan),
+                "wall_time_s": time.perf_counter() - started}
+    wall = time.perf_counter() - started
+    t = np.asarray(response.time, dtype=float)
+    uplift = float(np.max(edge_uplift_history(reduced_edge_gap_history(response))))
+    u_peak = max(float(np.max(np.abs(response.u))), float(response.peaks["u"]))
+    theta = np.asarray(response.theta, dtype=float)
+    out = measured(t - t[0], theta, uplift, np.asarray(response.settlement, dtype=float), u_peak,
+                   np.max(np.abs(response.base_shear)))
+    out["theta"] = max(out["theta"], float(response.peaks["theta"]))
+    return {"measures": out, "wall_time_s": wall,
+            "energy_balance_error": float(response.peaks["energy_balance_error"])}
+
+
+def scales(N: float, B: float, h: float, K_v: float, K_r: float, k_story: float) -> dict:
+    """Each measure's value at the uplift threshold of a uniform Winkler bed with the
+    continuum's K_r and K_v (the error floors' basis): θ_up = N B/(6 K_r), the static
+    settlement N/K_v (edge uplift, residual settlement), the shear at a_up, N B/(6h), and the
+    story deformation under it."""
+    theta = N * B / (6.0 * K_r)
+    shear = N * B / (6.0 * h)
+    return {"theta": theta, "uplift": N / K_v, "residual_settlement": N / K_v,
+            "residual_rotation": theta, "u": shear / k_story, "base_shear": shear}

@@ -1,0 +1,235 @@
+"""The map's summary: key numbers and the Markdown text, computed from the data."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .analysis import RECORD_KINDS, pick_text
+from .beds import BEDS
+from .cost import SECONDS_PER_DOF_STEP
+from .grid import MEASURE_LABELS, MEASURES, SOIL_LABELS, FLOOR_FRACTION
+
+__all__ = ["summary_numbers", "summary_markdown", "MESH_NOTE", "ENERGY_NOTE", "SOIL_NOTE"]
+
+#: Why the full map runs on 16 elements across (the measured mesh differences of
+#: benchmarks/CONTINUUM_CONVERGENCE.md, 10 s of El Centro on the clay, explicit route).
+MESH_NOTE = ("The reference mesh is 16 elements across B: against 32 across it differs by "
+             "+0.24 % in peak θ, +0.06 % in peak edge uplift and −1.4 % in residual settlement, "
+             "while 8 across differs by −1.1 %, −1.1 % and −7.0 % "
+             "(the project's mesh-convergence benchmark of the explicit route, 10 s of El "
+             "Centro on the clay): no coarser "
+             "mesh is within 1 %, so the full map runs on 16 across.")
+ENERGY_NOTE = ("Dissipated energy is left out: the continuum's energy account (kept by the "
+               "explicit route at no cost) books the soil's plastic work together with its "
+               "stored elastic energy as one strain term, so the energy the soil dissipated is "
+               "not separable from what a run returns, and the reduced model's dissipated "
+               "energy (dashpots, impacts, plastic springs) has nothing alike to be compared "
+               "with.")
+SOIL_NOTE = ("The continuum's soil has one Young's modulus everywhere: its stiffness does not "
+             "grow with confinement (the frictional soil's strength does, through φ).")
+
+
+def _f(value, digits: int = 4) -> str:
+    return "n/a" if value is None or not math.isfinite(value) else f"{value:.{digits}g}"
+
+
+def _pct(value) -> str:
+    return "n/a" if value is None or not math.isfinite(value) else f"{100 * value:.1f} %"
+
+
+def _finite(value):
+    return float(value) if value is not None and math.isfinite(value) else None
+
+
+def summary_numbers(result, elapsed: float) -> dict:
+    d, a = result.data, result.analysis
+    statics = {s.soil: {"K_v": s.K_v, "K_r": s.K_r, "V_ult": s.V_ult, "plateau": s.plateau,
+                        "dofs": s.dofs, "wall_time_s": s.wall_time_s} for s in d.statics}
+    ratio = np.array([s.V_ult for s in d.statics])[:, None] / d.N
+    return {
+        "elements_across": d.options.elements_across,
+        "points": int(d.continuum_wall.size),
+        "calibrations": list(d.calibrations),
+        "motions": list(d.motion_names),
+        "statics": statics,
+        "fs_v_measured": ratio.tolist(),
+        "regions": [{"calibration": r.calibration, "soil": r.soil, "text": r.text,
+                     "passing": r.passing, "total": r.total} for r in a.regions],
+        "picks": {p.measure: {"best": p.best, "median": _clean(p.median), "p90": _clean(p.p90),
+                              "record_median": _clean(p.record_median),
+                              "record_p90": _clean(p.record_p90), "refused": p.refused,
+                              "points": p.points} for p in a.picks},
+        "share": {"threshold": a.share.threshold, "points": a.share.points,
+                  "by_calibration": a.share.by_bed, "best": a.share.best,
+                  "best_share": a.share.best_share, "any_share": a.share.any_share},
+        "speed": {"median": _clean(a.speed.median), "minimum": _clean(a.speed.minimum),
+                  "continuum_median_s": _finite(a.speed.continuum_median),
+                  "bed_median_s": _clean(a.speed.bed_median)},
+        "cost": {"estimated_runs": d.estimate.runs, "estimated_s": d.estimate.seconds,
+                 "estimate_source": d.estimate.source, "computed_runs": d.computed,
+                 "continuum_wall_s": float(np.nansum(d.continuum_wall))
+                 + sum(s.wall_time_s for s in d.statics)},
+        "max_energy_balance_error": _finite(float(np.nanmax(d.balance))),
+        "refusals": list(d.refusals),
+        "elapsed_s": elapsed,
+    }
+
+
+def _clean(mapping: dict) -> dict:
+    return {k: _finite(v) for k, v in mapping.items()}
+
+
+def summary_markdown(result, fast: bool, elapsed: float) -> str:
+    d, a = result.data, result.analysis
+    g, o = d.grid, d.options
+    motions = ", ".join(d.motion_names)
+    records = sum(1 for k in d.motion_kinds if k in RECORD_KINDS)
+    lines = [f"# Winkler beds against the continuum: the map{' (fast)' if fast else ''}", "",
+             f"{d.continuum_wall.size} points: soils {', '.join(SOIL_LABELS[s] for s in g.soils)}; "
+             f"FS_v ∈ {{{', '.join(f'{v:g}' for v in g.fs_v)}}} on the continuum's own vertical "
+             f"capacity (N = V_ult/FS_v); h/B ∈ {{{', '.join(f'{v:g}' for v in g.h_over_B)}}}; "
+             f"fixed-base period T ∈ {{{', '.join(f'{v:g}' for v in g.periods)}}} s; intensity "
+             f"∈ {{{', '.join(f'{v:g}' for v in g.intensities)}}} × a_up, where a_up = g B/(6h) "
+             "is the quasi-static uplift acceleration of a rigid block on a uniform tensionless "
+             f"Winkler bed (e = B/6); motions ({len(d.motions)}, {records} records, each run in "
+             f"full): {motions}. Beds of {o.springs} springs: "
+             + "; ".join(f"`{c}` {BEDS[c].label}" for c in d.calibrations if c in BEDS) + ".",
+             "", _mesh_text(d, fast), "", SOIL_NOTE + _speed_of_soils(d), "", _input_text(d),
+             "",
+             "Errors are (bed − continuum)/max(|continuum|, floor), the floor "
+             f"{FLOOR_FRACTION:g} × the measure at a uniform bed's uplift threshold (θ_up = "
+             "N B/(6 K_r), the settlement N/K_v, the shear N B/(6h) and the story deformation "
+             "under it). Both models are measured alike: peak |θ|, peak edge uplift (the larger "
+             "gap of the two footing edges), residual settlement (the centre's settlement when "
+             "the base is flattest in the last quarter of the run), residual rotation (the mean "
+             "θ over the last quarter), peak |u| and peak story shear |k u + c u̇|. "
+             + ENERGY_NOTE, "", f"Wall time {elapsed:.1f} s.", "",
+             "## The continuum statics", "",
+             "K_v and K_r (every contact node tied to the footing, elastic soil) and V_ult (the "
+             f"largest load of a vertical pushover to {o.settlement_ratio:g} B) do not depend on "
+             "N: one pair of stored static runs per soil serves every FS_v, N = V_ult/FS_v.", "",
+             *_statics_table(d), "",
+             "## Where each bed is enough", "",
+             f"A cell (FS_v, h/B) of a soil passes when, at every period and intensity, the "
+             f"median over the motions of |error| is within {100 * o.theta_tolerance:g} % in peak "
+             f"θ and in peak edge uplift and within {100 * o.settlement_tolerance:g} % in "
+             "residual settlement.", ""]
+    lines += [f"- {r.text}." for r in a.regions]
+    lines += ["", "## Which calibration for which quantity", "",
+              *_pick_table(d, a), "", *[f"- {pick_text(p)}." for p in a.picks], "",
+              "## How much of the map a calibrated bed covers", "", _share_text(a), "",
+              "## Speed", "", _speed_text(a), "", "## Cost", "", _cost_text(d), ""]
+    if d.refusals:
+        lines += [f"Bed runs refused by the integrator: {len(d.refusals)} (their errors are "
+                  "NaN):", ""] + [f"- {r}" for r in d.refusals[:20]] + [""]
+    return "\n".join(lines)
+
+
+def _mesh_text(d, fast: bool) -> str:
+    n = d.options.elements_across
+    dofs = sorted({int(v) for v in d.dofs.ravel() if math.isfinite(v)})
+    which = ("the reference mesh" if n == 16 else
+             "a coarse mesh for a quick check, not the reference: its numbers are not the map's")
+    return (f"The continuum runs on {n} elements across B ({', '.join(map(str, dofs))} DOFs; "
+            f"{which}). " + MESH_NOTE)
+
+
+def _input_text(d) -> str:
+    """Where the motion enters each model, with the soil column's first period."""
+    from .grid import SOILS
+    from .points import base_table
+
+    base = base_table()
+    B = 2.0 * base["foundation"]["half_width"]
+    depth = base.get("continuum", {}).get("domain_depth", 10.0) * B
+    parts = []
+    for soil in d.grid.soils:
+        t = SOILS[soil]
+        vs = math.sqrt(t["youngs_modulus"] / (2.0 * (1.0 + t["poisson_ratio"])) / t["density"])
+        parts.append(f"{soil}: V_s = {vs:.0f} m/s, T_1 = 4H/V_s = {4.0 * depth / vs:.2f} s")
+    return ("The motion enters the continuum at the rigid base of its box, "
+            f"{depth:g} m below the footing (the box's sides move with it horizontally), and "
+            "reaches the footing through the soil (a free column of that depth would have "
+            f"{'; '.join(parts)}); it enters the reduced model at the footing. The map "
+            "compares the responses to one acceleration history applied at these two places, "
+            "so what the soil does to the motion on its way up is part of every error.")
+
+
+def _speed_of_soils(d) -> str:
+    ratio = SECONDS_PER_DOF_STEP[False] / SECONDS_PER_DOF_STEP[True]
+    return (" The explicit route runs the clay's return map compiled and the frictional "
+            "soil's through the vectorised fallback, about "
+            f"{ratio:.0f} × slower per step and DOF on this machine (upliftlab.comparisons."
+            "winkler_map.cost).")
+
+
+def _statics_table(d) -> list[str]:
+    rows = ["| soil | DOFs | K_v (kN/m/m) | K_r (kN m/rad/m) | V_ult (kN/m) | last step's load "
+            "rise | N at each FS_v (kN/m) | V_ult/N − FS_v |", "|---|---|---|---|---|---|---|---|"]
+    for s, st in enumerate(d.statics):
+        loads = ", ".join(f"{v:.4g}" for v in d.N[s])
+        check = max(abs(st.V_ult / n - fs) for n, fs in zip(d.N[s], d.grid.fs_v))
+        rows.append(f"| {st.soil} | {st.dofs} | {st.K_v:.6g} | {st.K_r:.6g} | {st.V_ult:.5g} | "
+                    f"{_pct(st.plateau)} | {loads} | {check:.1e} |")
+    return rows
+
+
+#: Short names of the calibrations in table headers (long names break mid-word in print).
+SHORT = {"uniform": "U", "end_stiffened": "ES", "uniform_plastic": "U-p",
+         "end_stiffened_plastic": "ES-p"}
+
+
+def _short(name: str) -> str:
+    return SHORT.get(name, name)
+
+
+def _pick_table(d, a) -> list[str]:
+    head = ("| measure (error, %) | " + " | ".join(_short(c) for c in d.calibrations)
+            + " | pick |")
+    rows = [head, "|---|" + "---|" * (len(d.calibrations) + 1)]
+    for p in a.picks:
+        cells = [f"{_num(p.median[c])} / {_num(p.p90[c])}" for c in d.calibrations]
+        rows.append(f"| {MEASURE_LABELS[p.measure]} | " + " | ".join(cells)
+                    + f" | {_short(p.best)} |")
+    rows.append("")
+    rows.append("; ".join(f"{_short(c)}: `{c}`" for c in d.calibrations) + ". Each cell: "
+                "median / 90th percentile of |error| (%) over every point of the map "
+                f"({a.picks[0].points} points); over the records alone (El Centro and FEMA "
+                "P695): " + ("; ".join(
+                    f"{MEASURE_LABELS[p.measure]} {_pct(p.record_median[p.best])} / "
+                    f"{_pct(p.record_p90[p.best])} for {p.best}" for p in a.picks)
+                    if any(math.isfinite(v) for v in a.picks[0].record_median.values())
+                    else "no record on this grid") + ".")
+    return rows
+
+
+def _num(value) -> str:
+    return "n/a" if value is None or not math.isfinite(value) else f"{100 * value:.1f}"
+
+
+def _share_text(a) -> str:
+    s = a.share
+    thr = f"{100 * s.threshold:g} %"
+    by_bed = ", ".join(f"{k} {_pct(v)}" for k, v in s.by_bed.items())
+    return (f"Of the map's {s.points} points (cells × motions), the best single calibration "
+            f"({s.best}) is within {thr} of the continuum in both peak θ and peak edge uplift at "
+            f"**{_pct(s.best_share)}**; the best calibration chosen point by point at "
+            f"{_pct(s.any_share)}. Per calibration: {by_bed}.")
+
+
+def _speed_text(a) -> str:
+    sp = a.speed
+    parts = ", ".join(f"{k} {_f(v, 3)} × (at least {_f(sp.minimum[k], 3)} ×; median run "
+                      f"{_f(sp.bed_median[k], 3)} s)" for k, v in sp.median.items())
+    return (f"The continuum's wall time over each bed's, point by point on this machine (the "
+            f"continuum's stored with its run, median {_f(sp.continuum_median, 3)} s; the "
+            f"beds' measured in this run): median {parts}.")
+
+
+def _cost_text(d) -> str:
+    e = d.estimate
+    total = float(np.nansum(d.continuum_wall)) + sum(s.wall_time_s for s in d.statics)
+    return (f"Estimated before any work: {e.text()}. This run computed {d.computed} continuum "
+            f"runs; the continuum's stored runs took {total:.1f} s of wall time in all.")

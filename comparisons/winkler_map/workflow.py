@@ -1,0 +1,84 @@
+"""The study's protocol: compute, run, its definition and its command line."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+from ..protocol import Context, Study, main_for, run_study
+from ..store import Store
+from ..study import require_matplotlib
+from .analysis import analyse
+from .beds import BEDS, bed_names
+from .grid import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS, Grid, Options, STUDY,
+                   check_grid, check_options)
+from .maps import compute_map
+from .motions import study_motions
+from .output import write
+from .result import WinklerMap
+
+
+def compute(scene, ctx: Context) -> WinklerMap:
+    """The map of ``ctx.grid`` (default :data:`FAST_GRID` or :data:`FULL_GRID`) under
+    ``ctx.options`` (default :data:`FAST_OPTIONS` or :data:`FULL_OPTIONS`): every parameter
+    checked, the motions found and the cost estimated (and refused above ``options.budget``)
+    before any run. ``scene`` is not used: the map builds its own scenes."""
+    grid = check_grid(ctx.grid or (FAST_GRID if ctx.fast else FULL_GRID))
+    options = check_options(ctx.options or (FAST_OPTIONS if ctx.fast else FULL_OPTIONS),
+                            tuple(BEDS))
+    if options.figures:
+        require_matplotlib(STUDY)
+    motions = study_motions(grid, options, Path(ctx.out))
+    data = compute_map(grid, options, bed_names(options), motions, ctx)
+    return WinklerMap(None, data, analyse(data))
+
+
+def run(fast: bool = False, *, out: str | Path | None = None,
+        store: Store | str | Path | None = None, grid: Grid | None = None,
+        options: Options | None = None, executor=None, scheduler=None, workers=None,
+        progress=None) -> WinklerMap:
+    """Run the map. ``fast``: :data:`FAST_GRID` and :data:`FAST_OPTIONS` (one soil, two FS_v,
+    one short pulse on 4 elements across) instead of the full grid on the reference mesh.
+    ``out``: output directory (default ``results/winkler_map[-fast]``); ``store`` the results
+    store (default ``<out>/store``); ``executor``/``scheduler``/``workers``/``progress`` go to
+    :func:`.sweep.run_sweep`. Every parameter is checked before anything runs."""
+    return run_study(DEFINITION, None, Context(
+        fast=fast, out=out, store=store, grid=grid, options=options, executor=executor,
+        scheduler=scheduler, workers=workers, progress=progress))
+
+
+# ---------------------------------------------------------------------------------------------
+# Command line
+# ---------------------------------------------------------------------------------------------
+
+
+def _arguments(parser) -> None:
+    parser.add_argument("--budget", type=float, default=None,
+                        help="refuse (exit 2) a run whose estimated continuum cost exceeds "
+                             "this many seconds of one worker")
+
+
+def _context_from(args, ctx: Context, say) -> Context:
+    base = FAST_OPTIONS if args.fast else FULL_OPTIONS
+    options = replace(base, budget=args.budget, figures=not args.no_figures)
+    if options.figures:
+        from ...cli import need_extra
+        need_extra(f"python -m upliftlab.comparisons.{STUDY}", "matplotlib",
+                   why="or add --no-figures")
+    return replace(ctx, options=options)
+
+
+def _describe(result: WinklerMap) -> list[str]:
+    s = result.analysis.share
+    return [f"{STUDY}: {result.data.continuum_wall.size} points; the best calibration "
+            f"({s.best}) is within {100 * s.threshold:g} % in peak θ and edge uplift at "
+            f"{100 * s.best_share:.0f} % of them"]
+
+
+DEFINITION = Study(STUDY, "Winkler beds against the continuum: the map",
+                   "Where is a calibrated bed of springs enough? Every calibration against the "
+                   "continuum over soil, FS_v, h/B, period, intensity and motion.", Options,
+                   compute, write, describe=_describe, arguments=_arguments,
+                   context_from=_context_from,
+                   help_fast="one soil, two FS_v, one short pulse, 4 elements across")
+main = main_for(DEFINITION)

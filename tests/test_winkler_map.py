@@ -1,0 +1,243 @@
+"""The Winkler map (fast grid: the clay of strip_footing_clay, FS_v 2 and 5, h/B 1.5, T 0.2 s,
+3 × a_up, one Ricker pulse of 0.2 s, 4 elements across B): it runs end to end and writes its
+files; its key numbers against anchors; its statements recomputed from the written NetCDF;
+its refusals; and a second run recomputes nothing.
+
+References:
+- calibration identity (anchors §4, calibrate Winkler moduli to K_r): every bed is built so that
+  Σ k_i x_i² equals the continuum's K_r; the reference K_r is the continuum's own
+  :func:`upliftlab.continuum.footing_stiffness` of the same mesh, computed here independently
+  of the study's store, and the bed is rebuilt here by the reduced model (1e-9);
+- the map's FS_v is the continuum's: N = V_ult/FS_v with V_ult the largest load of the
+  continuum's vertical pushover, so V_ult/N reproduces the grid's FS_v to round-off (1e-12);
+  V_ult itself is within 0–8 % above Prandtl's (2 + π) c_u B (anchors §4; displacement FE
+  approaches from above, +6.9 % on 4 across in benchmarks/CONTINUUM.md with a rough base);
+- the regions, the medians and 90th percentiles are recomputed from ``map.nc`` with numpy alone
+  (an independent implementation of the summary's rules), to 1e-12.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import json
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from upliftlab.anchors import prandtl_capacity
+from upliftlab.checks import InputError
+from upliftlab.comparisons import winkler_map as wm
+from upliftlab.comparisons.winkler_map.analysis import regions
+from upliftlab.comparisons.registry import STUDIES, definition
+from upliftlab.continuum import build_model, footing_stiffness
+from upliftlab.reduced import build_model as build_reduced
+from upliftlab.results import read_dataset
+from upliftlab.scenes import load_scene, scene_from_dict
+
+FILES = ("map.nc", "statics.nc", "summary.md", "summary.json", "figures/theta_error.png",
+         "figures/uplift_error.png", "figures/residual_settlement_error.png",
+         "figures/error_distribution.png", "figures/speed.png")
+
+
+@pytest.fixture(scope="module")
+def executor():
+    """One in-process worker: the continuum's explicit loop compiles once per process, so the
+    fast study's runs share this process's compilation with the other continuum tests."""
+    with cf.ThreadPoolExecutor(1) as pool:
+        yield pool
+
+
+@pytest.fixture(scope="module")
+def study(tmp_path_factory, executor):
+    out = tmp_path_factory.mktemp("winkler_map")
+    return wm.run(fast=True, out=out, executor=executor, progress=False)
+
+
+@pytest.fixture(scope="module")
+def written(study):
+    return read_dataset(study.study.directory / "map.nc"), \
+        read_dataset(study.study.directory / "statics.nc")
+
+
+def test_the_fast_map_runs_end_to_end_and_writes_its_files(study):
+    """Every file is written; the map has the grid's points (1 soil × 2 FS_v × 1 × 1 × 1 × 1
+    motion) and the four registered calibrations; every measure is finite; the estimate made
+    before the work counted the runs the grid implies (one soil's statics, 2 dynamic)."""
+    out = study.study.directory
+    for name in FILES:
+        assert (out / name).is_file(), name
+    d = study.data
+    assert d.continuum_wall.shape == (1, 2, 1, 1, 1, 1)
+    assert d.calibrations == tuple(wm.BEDS)
+    assert np.isfinite(d.continuum).all() and np.isfinite(d.beds).all()
+    assert (d.estimate.runs, d.estimate.static, d.estimate.dynamic) == (3, 1, 2)
+    assert d.computed == 3
+    assert "winkler_map" in STUDIES and definition("winkler_map") is wm.DEFINITION
+    tree = study.to_xarray()
+    assert float(tree["map"].error.sel(calibration="uniform", measure="theta", fs_v=2.0)
+                 .squeeze()) == pytest.approx(float(d.errors[0, 0, 0, 0, 0, 0, 0, 0]), abs=0)
+
+
+def test_every_bed_has_the_continuums_rocking_stiffness(study, written):
+    """Calibration identity: Σ k_i x_i² of every built bed equals the continuum's K_r of the
+    4-across mesh (footing_stiffness computed here, not read from the store) to 1e-9, in the
+    file and in a bed rebuilt here from the registry; the continuum's K_r is within 1 % of
+    π G B²/(8(1 − ν)) (anchors §4; +0.76 % on 4 across in benchmarks/CONTINUUM.md)."""
+    ds, statics = written
+    scene = load_scene("strip_footing_clay", overrides=["continuum.elements_across=4"])
+    k = footing_stiffness(build_model(scene))
+    assert float(statics.K_r.sel(soil="clay")) == pytest.approx(k.rocking, rel=1e-12)
+    np.testing.assert_allclose(ds.bed_rocking_stiffness.values, k.rocking, rtol=1e-9)
+    soil = scene.soil
+    closed = math.pi * soil.shear_modulus * 4.0 / (8.0 * (1.0 - soil.poisson_ratio))
+    assert abs(k.rocking / closed - 1.0) < 0.01
+    ref = wm.BedReference("clay", 100.0, 2.0, 3.0, k.vertical, k.rocking, 500.0,
+                          soil.shear_modulus, soil.poisson_ratio)
+    for name in wm.BEDS:
+        table = wm.bed_foundation(name, ref, wm.FAST_OPTIONS)
+        data = {"schema": 1, "units": "kN-m-s",
+                "structure": {"weight": 100.0, "height": 3.0, "period": 0.2,
+                              "damping_ratio": 0.05, "rotary_inertia": 10.0},
+                "foundation": table, "motion": {"type": "free", "velocity": 1.0,
+                                                "duration": 1.0}}
+        layout = build_reduced(scene_from_dict(data)).layout
+        assert layout.rocking_stiffness == pytest.approx(k.rocking, rel=1e-9), name
+
+
+def test_the_maps_fs_v_is_the_continuums_capacity_over_N(written):
+    """V_ult/N = FS_v to 1e-12 (N = V_ult/FS_v by construction, V_ult the continuum's own
+    vertical capacity), and V_ult lies 0–8 % above Prandtl's (2 + π) c_u B (anchors §4)."""
+    ds, statics = written
+    v_ult = float(statics.V_ult.sel(soil="clay"))
+    ratio = v_ult / ds.vertical_load.sel(soil="clay").values
+    np.testing.assert_allclose(ratio, ds.fs_v.values, rtol=1e-12)
+    prandtl = prandtl_capacity(50.0, 2.0)
+    assert 0.0 < v_ult / prandtl - 1.0 < 0.08
+
+
+def test_the_regions_recomputed_from_the_file(study, written):
+    """The region rule, implemented again with numpy on map.nc: a (FS_v, h/B) cell passes when,
+    at every period and intensity, the median over the motions of |error| is ≤ 10 % in peak θ
+    and in edge uplift and ≤ 20 % in residual settlement; the passing counts equal the
+    summary's, and the largest all-passing corner rectangle has the region's size."""
+    ds, _ = written
+    numbers = json.loads((study.study.directory / "summary.json").read_text())["numbers"]
+    err = np.abs(ds.error)
+    med = err.median(dim="motion", skipna=True)
+    ok = ((med.sel(measure="theta") <= 0.10) & (med.sel(measure="uplift") <= 0.10)
+          & (med.sel(measure="residual_settlement") <= 0.20))
+    ok = ok.all(dim=("period", "intensity"))
+    for entry in numbers["regions"]:
+        cells = ok.sel(soil=entry["soil"], calibration=entry["calibration"]).values  # fs, hb
+        assert entry["passing"] == int(cells.sum())
+        assert entry["total"] == cells.size
+        region = study.analysis.region(entry["calibration"], entry["soil"]).region
+        assert region.count == _largest_corner(cells)
+
+
+def test_a_region_stated_in_the_maps_own_parameters(study):
+    """Hand-made errors on a 2 FS_v × 3 h/B grid with three motions: |error| 5 % everywhere,
+    except peak θ 30 % at FS_v = 2 and residual settlement 50 % at h/B = 2.5, and one motion
+    90 % off in peak θ everywhere (the median over the motions ignores it). By hand: the cells
+    FS_v = 5 with h/B ≤ 1.5 pass, a corner region of 2 cells."""
+    grid = replace(wm.FAST_GRID, fs_v=(2.0, 5.0), h_over_B=(1.0, 1.5, 2.5))
+    shape = (1, 2, 3, 1, 1, 3, len(wm.BEDS), len(wm.MEASURES))
+    errors = np.full(shape, 0.05)
+    theta, settle = wm.MEASURES.index("theta"), wm.MEASURES.index("residual_settlement")
+    errors[:, 0, ..., theta] = 0.30
+    errors[:, :, 2, ..., settle] = -0.50
+    errors[..., 2, :, theta] = 0.90
+    data = replace(study.data, grid=grid, errors=errors)
+    for region in regions(data):
+        assert (region.passing, region.total, region.region.count) == (2, 6, 2)
+        assert "for FS_v ≥ 5 and h/B ≤ 1.5 (2 of 6 cells; 2 pass anywhere)" in region.text
+
+
+def _largest_corner(cells: np.ndarray) -> int:
+    """Largest all-true rectangle holding a corner of ``cells`` (brute force)."""
+    nx, ny = cells.shape
+    best = 0
+    for flip_x in (False, True):
+        for flip_y in (False, True):
+            c = cells[::-1] if flip_x else cells
+            c = c[:, ::-1] if flip_y else c
+            for i in range(1, nx + 1):
+                for j in range(1, ny + 1):
+                    if c[:i, :j].all():
+                        best = max(best, i * j)
+    return best
+
+
+def test_medians_and_percentiles_recomputed_from_the_file(study, written):
+    """Per measure and calibration, the median and 90th percentile of |error| over every point
+    of map.nc (numpy, linear interpolation) equal the summary's to 1e-12; the pick is the
+    smallest median."""
+    ds, _ = written
+    numbers = json.loads((study.study.directory / "summary.json").read_text())["numbers"]
+    for measure in wm.MEASURES:
+        pick = numbers["picks"][measure]
+        for name in ds.calibration.values:
+            values = np.abs(ds.error.sel(measure=measure, calibration=name).values).ravel()
+            values = values[np.isfinite(values)]
+            assert pick["median"][name] == pytest.approx(float(np.median(values)), rel=1e-12)
+            assert pick["p90"][name] == pytest.approx(float(np.percentile(values, 90)),
+                                                      rel=1e-12)
+        assert pick["best"] == min(pick["median"], key=lambda n: pick["median"][n])
+    share = numbers["share"]
+    e = np.abs(ds.error)
+    within = ((e.sel(measure="theta") <= 0.10) & (e.sel(measure="uplift") <= 0.10))
+    best = float(within.sel(calibration=share["best"]).mean())
+    assert share["best_share"] == pytest.approx(best, abs=1e-12)
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"fs_v": (0.5, 3.0)}, r"grid\.fs_v\[0\] = 0\.5: valid range is \(1, 100\]"),
+    ({"soils": ("peat",)}, r"grid\.soils\[0\] = 'peat'.*clay.*sand"),
+    ({"h_over_B": (2.5, 1.0)}, r"grid\.h_over_B = \[2\.5, 1\.0\]: values must strictly ascend"),
+    ({"periods": (0.0,)}, r"grid\.periods\[0\] = 0: valid range is \[0\.02, 5\]"),
+    ({"fema_components": 45}, r"grid\.fema_components = 45: valid range is \[0, 44\]"),
+])
+def test_bad_grid_values_are_refused_before_anything_runs(tmp_path, change, message):
+    """One-line InputError naming the field, the value and the valid range; nothing written."""
+    with pytest.raises(InputError, match=message) as info:
+        wm.run(fast=True, out=tmp_path / "out", grid=replace(wm.FAST_GRID, **change),
+               progress=False)
+    assert "\n" not in str(info.value)
+    assert not (tmp_path / "out").exists()
+
+
+def test_bad_options_are_refused(tmp_path):
+    with pytest.raises(InputError, match=r"options\.beds\[0\] = 'winkler'"):
+        wm.run(fast=True, out=tmp_path, options=replace(wm.FAST_OPTIONS, beds=("winkler",)))
+    with pytest.raises(InputError, match=r"options\.elements_across = 1"):
+        wm.run(fast=True, out=tmp_path, options=replace(wm.FAST_OPTIONS, elements_across=1))
+
+
+def test_a_run_over_its_budget_is_refused_with_its_estimate(tmp_path, capsys):
+    """``--budget`` below the estimate: exit 2, one line naming the budget and the estimate,
+    the estimate logged first; no continuum run is made (the store stays empty)."""
+    code = wm.main(["--fast", "--out", str(tmp_path / "o"), "--budget", "0.001",
+                    "--no-figures"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2
+    assert err[-1].startswith("error: options.budget = 0.001 s: the map's 3 continuum runs")
+    assert any("3 continuum runs to make (1 static, 2 dynamic" in line for line in err)
+    assert not any((tmp_path / "o" / "store").glob("??/*.json"))
+
+
+def test_a_second_run_recomputes_nothing(study, executor):
+    """Same grid, same store: no sweep computes a point, the stored records are untouched and
+    the numbers of every continuum run are the same (they are read back)."""
+    store = study.study.directory / "store"
+    before = {p: p.stat().st_mtime_ns for p in store.glob("??/*.json")}
+    seen = []
+    again = wm.run(fast=True, out=study.study.directory, executor=executor,
+                   progress=seen.append,
+                   options=replace(wm.FAST_OPTIONS, figures=False))
+    assert again.data.computed == 0 and again.data.estimate.runs == 0
+    assert all(p.computed == 0 for p in seen)
+    assert {p: p.stat().st_mtime_ns for p in store.glob("??/*.json")} == before
+    np.testing.assert_array_equal(again.data.continuum, study.data.continuum)
+    np.testing.assert_array_equal(again.data.continuum_wall, study.data.continuum_wall)
