@@ -16,7 +16,6 @@ from ..scenes import Scene
 from ..log import announce_compilation, logger
 from ..time_schemes import hht
 from . import kernels as kn
-from . import springs as sp
 from .cost import check_run_cost
 from .integrators import METHODS, StepPlan, method, time_step
 from .model import ReducedModel, build_model

@@ -9,7 +9,7 @@ import numpy as np
 from .analysis import RECORD_KINDS, pick_text
 from .beds import BEDS
 from .cost import SECONDS_PER_DOF_STEP
-from .grid import MEASURE_LABELS, MEASURES, SOIL_LABELS, FLOOR_FRACTION
+from .grid import MEASURE_LABELS, SOIL_LABELS, FLOOR_FRACTION
 
 __all__ = ["summary_numbers", "summary_markdown", "MESH_NOTE", "ENERGY_NOTE", "SOIL_NOTE"]
 
