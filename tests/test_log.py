@@ -89,3 +89,19 @@ def test_provenance_names_the_code_the_libraries_and_the_motion(elcentro):
     assert response.provenance["numba"] == metadata.version("numba")
     assert response.provenance["source_sha256"] == source_digest()
     assert len(source_digest()) == 64
+
+
+def test_an_uncached_kernel_is_announced_as_compiled_in_every_process(monkeypatch, tmp_path,
+                                                                      capsys):
+    # Reference: numba's own cache object of the continuum's explicit time loop, which is
+    # jitted with cache=False (numba gives it a NullCache): "once" would be untrue there.
+    from upliftlab.continuum.explicit_loop import run_steps
+
+    assert type(run_steps._cache).__name__ == "NullCache"
+    log.configure(0)
+    monkeypatch.delenv("NUMBA_DISABLE_JIT", raising=False)
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(log, "_announced", set())
+    log.announce_compilation("the loop", run_steps)
+    err = capsys.readouterr().err
+    assert "compiling the loop (in every new process" in err and "once" not in err

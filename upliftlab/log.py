@@ -82,12 +82,19 @@ def kernels_cached(cache: str | os.PathLike | None, function) -> bool:
 
 def announce_compilation(what: str, function) -> None:
     """Say, once per process, that ``what`` is being compiled when numba's cache does not hold
-    the compiled ``function`` yet (:func:`kernels_cached`)."""
+    the compiled ``function`` yet (:func:`kernels_cached`); a function numba does not cache
+    (``cache=False``) is compiled in every new process, and the notice says that instead."""
     if what in _announced:
         return
     _announced.add(what)
     cache = os.environ.get("NUMBA_CACHE_DIR")
-    if os.environ.get("NUMBA_DISABLE_JIT") == "1" or kernels_cached(cache, function):
+    if os.environ.get("NUMBA_DISABLE_JIT") == "1":
+        return
+    if type(getattr(function, "_cache", None)).__name__ == "NullCache":
+        logger("compile").info(f"upliftlab: compiling {what} (in every new process: they "
+                               "take other kernels as arguments, which numba does not cache)")
+        return
+    if kernels_cached(cache, function):
         return
     logger("compile").info(f"upliftlab: compiling {what} (once: the next runs read them from "
                            f"the cache in {cache or 'the package folder'})")
