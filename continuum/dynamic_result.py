@@ -115,6 +115,13 @@ class DynamicResult:
 
         return to_dataset(self)
 
+    def to_dataframe(self):
+        """The footing's and the structure's scalar histories (u, v, θ, H, N, M, contact length,
+        story deformation, …) as a :class:`pandas.DataFrame` indexed by time (s)."""
+        from .labelled import to_frame
+
+        return to_frame(self.to_xarray(), "time")
+
     def save(self, path) -> Path:
         """Write the labelled dataset of :meth:`to_xarray` (histories, contact, soil fields at the
         snapshots, provenance) to NetCDF-4, atomically."""

@@ -19,7 +19,7 @@ from ..results import cf_attributes
 from .dynamic_result import ENERGY
 from .footing import OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK
 
-__all__ = ["to_dataset", "path_to_dataset"]
+__all__ = ["to_dataset", "path_to_dataset", "to_frame"]
 
 
 def _footing_and_contact(result, dim: str) -> tuple[dict, dict]:
@@ -129,3 +129,15 @@ def path_to_dataset(path):
     if path.has_fields:
         _snapshots(path, data, coords, "1", "load-step number of the snapshot")
     return _dataset(path, data, coords)
+
+
+def to_frame(dataset, index: str):
+    """The one-dimensional variables along ``index`` (``time`` or ``step``) of a result's
+    dataset as a :class:`pandas.DataFrame`; their units are in ``frame.attrs["units"]``."""
+    names = [name for name, var in dataset.data_vars.items() if var.dims == (index,)]
+    names += [name for name, var in dataset.coords.items()
+              if var.dims == (index,) and name != index]
+    frame = dataset[names].to_dataframe()[names]
+    frame.attrs["units"] = {name: dataset[name].attrs.get("units", "") for name in names}
+    frame.attrs["units"][index] = dataset[index].attrs.get("units", "1")
+    return frame

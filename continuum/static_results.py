@@ -115,6 +115,13 @@ class StaticPath:
         """Largest vertical load N reached (force/length)."""
         return float(np.max(self.N))
 
+    def to_dataframe(self):
+        """The path's scalar histories (u, v, θ, H, N, M, contact length, iterations) as a
+        :class:`pandas.DataFrame` indexed by load step."""
+        from .labelled import to_frame
+
+        return to_frame(self.to_xarray(), "step")
+
     def save(self, path) -> Path:
         """Write the labelled dataset of :meth:`to_xarray` (the path, the contact along the
         base, the soil fields at the snapshots, provenance) to NetCDF-4, atomically."""

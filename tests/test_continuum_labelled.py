@@ -64,3 +64,13 @@ def test_the_repr_is_one_short_line_with_the_peaks(result):
     assert "\n" not in text and len(text) < 300, text
     assert f"{np.max(np.abs(result.theta)):.4g} rad" in text
     assert f"{-result.footing[-1, 1]:.4g} m" in text and text.startswith("<DynamicResult ")
+
+
+def test_the_frame_holds_the_scalar_histories_by_time(result):
+    # Reference: the result's own arrays, by label; units from the dataset's attributes.
+    frame = result.to_dataframe()
+    assert frame.index.name == "time" and np.array_equal(frame.index.values, result.time)
+    assert np.array_equal(frame["theta"].values, result.theta)
+    assert np.array_equal(frame["M"].values, result.M)
+    assert frame.attrs["units"]["theta"] == "rad" and frame.attrs["units"]["time"] == "s"
+    assert "pressure" not in frame  # per node: in the dataset, not in the table

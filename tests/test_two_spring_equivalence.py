@@ -238,3 +238,9 @@ def test_study_data_select_by_label_in_memory_and_from_its_files(study):
         assert list(ds.x.values) == [float(v) for v in emap.x.values]
     conv = study.study.to_xarray()["convergence"]
     assert list(conv.springs.values) == list(study.convergence.candidates)
+    first_case = next(iter(study.convergence.dynamic))
+    assert conv[f"case_{first_case}_theta"].attrs["units"] == "rad"
+    frame = study.to_dataframe()
+    rows = frame[(frame["map"] == emap.name) & (frame["case"] == case)
+                 & (frame["layout"] == layout) & (frame["measure"] == "theta")]
+    np.testing.assert_array_equal(np.sort(rows["error"].values), np.sort(by_position.ravel()))

@@ -301,6 +301,9 @@ def test_outputs_written(study):
             == study.table.error("uniform_plastic", "onset_moment")
         assert errors.reference_onset_moment.item() == study.table.reference[k]
         assert errors.reference_K_r.attrs["units"].endswith("/rad/m")
+    frame = study.to_dataframe()
+    assert frame.loc["uniform_plastic", "onset_moment"] == study.table.error(
+        "uniform_plastic", "onset_moment")
     header = (d / "monotonic.csv").read_text().splitlines()
     columns = next(line for line in header if not line.startswith("#")).split(",")
     assert "M_continuum" in columns and "M_uniform_plastic" in columns

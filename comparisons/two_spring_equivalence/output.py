@@ -33,7 +33,8 @@ def write(result: TwoSpringEquivalence, ctx: Context) -> StudyResult:
                       options=asdict(result.options), springs=result.springs,
                       store=str(store.root))
     files = [_write_statics(result.statics, out / "statics.csv"),
-             _write_convergence(result.convergence, out / "convergence.nc", prov)]
+             _write_convergence(result.convergence, out / "convergence.nc", prov,
+                                base.table["units"])]
     files += [_write_map(m, out / f"map_{m.name}.nc", prov, base.table["units"])
               for m in result.maps]
     if result.options.figures:
@@ -56,18 +57,26 @@ def _write_statics(statics: Statics, path: Path) -> Path:
                      f"FS_v = {statics.yield_multiple:g}")
 
 
-def _write_convergence(conv: Convergence, path: Path, prov: Mapping) -> Path:
-    return write_dataset(path, convergence_dataset(conv, prov))
+def _write_convergence(conv: Convergence, path: Path, prov: Mapping, units: str) -> Path:
+    return write_dataset(path, convergence_dataset(conv, prov, units))
 
 
 def _write_map(emap: ErrorMap, path: Path, prov: Mapping, units: str) -> Path:
     return write_dataset(path, map_dataset(emap, prov, units))
 
 
-def convergence_dataset(conv: Convergence, prov: Mapping):
+def measure_units(units: str) -> dict[str, str]:
+    """The unit of each compared measure (:data:`METRICS`) in the scene's unit system."""
+    u = unit_system(units)
+    return {"u": u.length, "theta": "rad", "uplift": u.length, "residual_settlement": u.length,
+            "base_shear": u.force, "dissipated_energy": f"{u.force}*{u.length}"}
+
+
+def convergence_dataset(conv: Convergence, prov: Mapping, units: str):
     """The convergence check in N as a labelled dataset over ``springs``."""
     import xarray as xr
 
+    unit_of = measure_units(units)
     springs = ("springs",)
     data = {f"static_{key}": (springs, np.array(values, dtype=float), {
         "units": "1", "long_name": f"{key} of the uniform bed, M/(N B)"})
@@ -75,7 +84,7 @@ def convergence_dataset(conv: Convergence, prov: Mapping):
     for case, measures in conv.dynamic.items():
         for m, values in measures.items():
             data[f"case_{case}_{m}"] = (springs, np.array(values, dtype=float), {
-                "units": "scene units of the measure",
+                "units": unit_of[m],
                 "long_name": f"Case {case}: {METRIC_LABELS.get(m, m)}"})
     coords = {"springs": (springs, np.array(conv.candidates),
                           {"units": "1", "long_name": "number of springs in the bed"})}
@@ -91,10 +100,7 @@ def map_dataset(emap: ErrorMap, prov: Mapping, units: str):
     values and the bed's reference per measure with its units (``value_u``, ``reference_u``)."""
     import xarray as xr
 
-    u = unit_system(units)
-    unit_of = {"u": u.length, "theta": "rad", "uplift": u.length,
-               "residual_settlement": u.length, "base_shear": u.force,
-               "dissipated_energy": f"{u.force}*{u.length}"}
+    unit_of = measure_units(units)
     numeric_y = all(isinstance(v, (int, float)) for v in emap.y.values)
     coords = {
         "case": ("case", list(emap.cases), {"long_name": "foundation model (Case A, B or C)"}),

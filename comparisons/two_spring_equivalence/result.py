@@ -43,6 +43,16 @@ class TwoSpringEquivalence:
         names = ", ".join(m.name for m in self.maps)
         return f"<TwoSpringEquivalence N = {self.springs} springs, maps: {names}; {self.study!r}>"
 
+    def to_dataframe(self):
+        """Every map's errors in long form, one row per (map, case, layout, measure, y, x), as a
+        :class:`pandas.DataFrame` (column ``error``, relative)."""
+        import pandas as pd
+
+        tree = self.to_xarray()
+        frames = [tree[f"map_{m.name}"].error.to_dataframe().reset_index().assign(map=m.name)
+                  for m in self.maps]
+        return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
+
     def to_xarray(self):
         """The study's data as an :class:`xarray.DataTree`: ``convergence`` and one node per
         error map (``map_aspect``, …), the datasets its files hold, so that
@@ -52,7 +62,7 @@ class TwoSpringEquivalence:
         from .output import convergence_dataset, map_dataset
 
         prov, units = self.study.provenance, self.base.table["units"]
-        nodes = {"convergence": convergence_dataset(self.convergence, prov)}
+        nodes = {"convergence": convergence_dataset(self.convergence, prov, units)}
         nodes.update({f"map_{m.name}": map_dataset(m, prov, units) for m in self.maps})
         return xr.DataTree.from_dict(nodes, name=self.study.name)
 

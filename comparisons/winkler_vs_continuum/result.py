@@ -44,6 +44,11 @@ class WinklerVsContinuum:
         return (f"<WinklerVsContinuum {self.scene.name}: {len(self.calibrations)} calibrations, "
                 f"{len(self.table.quantities)} quantities, motions: {motions}; {self.study!r}>")
 
+    def to_dataframe(self):
+        """The error table as a :class:`pandas.DataFrame`: calibrations as rows, quantities
+        as columns (relative errors; NaN where a bed has no such value)."""
+        return self.to_xarray()["errors"].error.to_pandas()
+
     def to_xarray(self):
         """The study's data as an :class:`xarray.DataTree`: ``errors`` (the error table over
         calibration and quantity) and one node per motion (``dynamic_<key>``), the datasets its
