@@ -94,7 +94,8 @@ def test_every_bed_has_the_continuums_rocking_stiffness(study, written):
     closed = math.pi * soil.shear_modulus * 4.0 / (8.0 * (1.0 - soil.poisson_ratio))
     assert abs(k.rocking / closed - 1.0) < 0.01
     ref = wm.BedReference("clay", 100.0, 2.0, 3.0, k.vertical, k.rocking, 500.0,
-                          soil.shear_modulus, soil.poisson_ratio)
+                          soil.shear_modulus, soil.poisson_ratio,
+                          extra={"density": soil.density})
     for name in wm.BEDS:
         table = wm.bed_foundation(name, ref, wm.FAST_OPTIONS)
         data = {"schema": 1, "units": "kN-m-s",
@@ -241,3 +242,23 @@ def test_a_second_run_recomputes_nothing(study, executor):
     assert {p: p.stat().st_mtime_ns for p in store.glob("??/*.json")} == before
     np.testing.assert_array_equal(again.data.continuum, study.data.continuum)
     np.testing.assert_array_equal(again.data.continuum_wall, study.data.continuum_wall)
+
+
+def test_the_gazetas_bed_carries_the_handbook_strips_dashpots():
+    # Reference: Gazetas' strip written out by hand here: V_La = 3.4 V_s / (π (1 − ν)) (Lysmer's
+    # analog velocity), C_v = ρ V_La B and C_r = ρ V_La B³/12; the bed's springs sit at the
+    # centres of 20 equal strips of the 2 m base. Both sums to 1e-12.
+    G, nu, rho, B = 17_857.0, 0.4, 1.8, 2.0
+    ref = wm.BedReference("clay", 100.0, B, 3.0, 27_000.0, 43_000.0, 500.0, G, nu,
+                          extra={"density": rho})
+    table = wm.bed_foundation("uniform_plastic_gazetas", ref, wm.FAST_OPTIONS)
+    n = table["springs"]
+    x = -1.0 + (2.0 / n) * (np.arange(n) + 0.5)
+    c = np.asarray(table["dashpots"])
+    v_la = 3.4 * math.sqrt(G / rho) / (math.pi * (1.0 - nu))
+    assert c.sum() == pytest.approx(rho * v_la * B, rel=1e-12)
+    assert (c * x**2).sum() == pytest.approx(rho * v_la * B**3 / 12.0, rel=1e-12)
+    assert (c >= 0.0).all() and table["law"] == "elastoplastic"
+    with pytest.raises(InputError, match=r"^soil.density = 0.0: .* valid range is > 0$"):
+        wm.bed_foundation("uniform_plastic_gazetas", replace(ref, extra={"density": 0.0}),
+                          wm.FAST_OPTIONS)

@@ -19,7 +19,10 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 
+from ...checks import InputError
+from ...reduced.compatibility import winkler_bed
 from ..winkler_vs_continuum import Options as CalibrationOptions, calibrate
+from ..winkler_vs_continuum.radiation import distribute, gazetas_dashpots
 from ..winkler_vs_continuum.reference import ContinuumReference
 
 __all__ = ["BedReference", "BedEntry", "BEDS", "bed_names", "bed_foundation"]
@@ -88,6 +91,24 @@ def _builder(name: str) -> Callable:
     return build
 
 
+def build_uniform_plastic_gazetas(reference: BedReference, options) -> dict:
+    """The ``uniform_plastic`` bed with the handbook's radiation dashpots: the strip's C_v and
+    C_r of Gazetas (ρ V_La B and ρ V_La B³/12, frequency-independent) distributed over its
+    springs so that Σ c_i = C_v and Σ c_i x_i² = C_r (:func:`..winkler_vs_continuum.radiation.
+    distribute`); the soil's density comes in ``reference.extra["density"]`` (mass/length³)."""
+    table = _calibration(reference, options, "uniform_plastic").foundation_table()
+    density = reference.extra.get("density", 0.0)
+    if not density > 0.0:
+        raise InputError(f"soil.density = {density!r}: the handbook's radiation dashpots need "
+                         "the soil's density; valid range is > 0")
+    C_v, _, C_r = gazetas_dashpots(shear_modulus=reference.G, poisson=reference.nu,
+                                   density=density, width=reference.B)
+    layout = winkler_bed(0.5 * reference.B, 1.0, table["springs"])
+    dashpots, *_ = distribute(layout.positions, layout.widths, C_v, C_r)
+    table["dashpots"] = [float(c) for c in dashpots]
+    return table
+
+
 BEDS: dict[str, BedEntry] = {
     "uniform": BedEntry("uniform", "uniform bed (K_r)", _builder("uniform"), "K_r"),
     "end_stiffened": BedEntry("end_stiffened", "end-stiffened bed (K_r, K_v)",
@@ -98,6 +119,9 @@ BEDS: dict[str, BedEntry] = {
                                       "end-stiffened elasto-plastic bed (K_r, K_v, V_ult)",
                                       _builder("end_stiffened_plastic"),
                                       "K_r, K_v where reachable, and V_ult"),
+    "uniform_plastic_gazetas": BedEntry(
+        "uniform_plastic_gazetas", "uniform elasto-plastic bed with Gazetas' dashpots",
+        build_uniform_plastic_gazetas, "K_r, V_ult, and the handbook strip's C_v and C_r"),
 }
 
 

@@ -178,7 +178,7 @@ def _statics_table(d) -> list[str]:
 
 #: Short names of the calibrations in table headers (long names break mid-word in print).
 SHORT = {"uniform": "U", "end_stiffened": "ES", "uniform_plastic": "U-p",
-         "end_stiffened_plastic": "ES-p"}
+         "end_stiffened_plastic": "ES-p", "uniform_plastic_gazetas": "U-p-G"}
 
 
 def _short(name: str) -> str:
