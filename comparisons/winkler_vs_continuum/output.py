@@ -16,7 +16,7 @@ from .dynamics import DYNAMIC_LABELS, DYNAMIC_MEASURES, DynamicRun, HISTORIES
 from .figures import write_figures
 from .options import STUDY
 from .result import WinklerVsContinuum
-from .summary import summary_markdown, summary_numbers
+from .summary import quantity_unit, summary_markdown, summary_numbers
 
 
 # ---------------------------------------------------------------------------------------------
@@ -94,7 +94,7 @@ def errors_dataset(table: ErrorTable, prov: Mapping, units):
     data = {"error": (("calibration", "quantity"), table.errors, {
         "units": "1", "long_name": "(bed - continuum)/max(|continuum|, floor); NaN: none"})}
     for k, (key, label) in enumerate(zip(table.quantities, table.labels)):
-        unit = quantity_unit(key, units)
+        unit = quantity_unit(key, units, cf=True)
         data[f"value_{key}"] = ("calibration", table.values[:, k], {
             "units": unit, "long_name": ascii_text(f"{label} of the bed (inf: no capacity)")})
         data[f"reference_{key}"] = ((), table.reference[k], {
@@ -102,23 +102,6 @@ def errors_dataset(table: ErrorTable, prov: Mapping, units):
             "error_floor": float(table.floors[k])})
     attrs = {"Conventions": "CF-1.10", "title": f"{STUDY}: error table", "provenance": prov}
     return xr.Dataset(data, coords=coords, attrs=cf_attributes(attrs))
-
-
-def quantity_unit(key: str, units) -> str:
-    """The unit of a compared quantity (per unit length of the strip, plane strain) by its
-    key: stiffnesses, moments and energies per length, lengths, rotations."""
-    F, L = units.force, units.length
-    if key == "K_r":
-        return f"{F}*{L}/rad/{L}"
-    if key == "K_v":
-        return f"{F}/{L}/{L}"
-    if key == "N_ult":
-        return f"{F}/{L}"
-    if key.endswith("_theta"):
-        return "rad"
-    if key.startswith(("onset_moment", "M_", "cyclic_M", "cyclic_energy")):
-        return f"{F}*{L}/{L}"
-    return L  # contact lengths, settlements, story deformation, uplift
 
 
 def dynamic_dataset(run: DynamicRun, prov: Mapping, units):

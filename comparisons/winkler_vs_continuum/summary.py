@@ -122,9 +122,15 @@ def summary_markdown(result: WinklerVsContinuum, fast: bool, elapsed: float) -> 
     return "\n".join(lines)
 
 
-def quantity_unit(key: str, units) -> str:
+def quantity_unit(key: str, units, *, cf: bool = False) -> str:
     """The unit of error-table quantity ``key`` in the scene's ``units`` (per unit length of
-    the strip: plane strain)."""
+    the strip: plane strain); ``cf``: written as a CF/UDUNITS ``units`` attribute (``*`` for
+    the product, ``/rad``) rather than for reading."""
+    text = _unit_text(key, units)
+    return text.replace("·", "*").replace(" per rad", "/rad") if cf else text
+
+
+def _unit_text(key: str, units) -> str:
     F, L = units.force, units.length
     if key == "K_r":
         return f"{F}·{L}/{L} per rad"
