@@ -7,7 +7,7 @@ Every scene, motion and option passes through these before any work starts. The 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 
 import numpy as np
 
@@ -17,6 +17,7 @@ __all__ = [
     "positive",
     "nonnegative",
     "in_range",
+    "ascending",
     "one_of",
     "integer_at_least",
     "boolean",
@@ -72,6 +73,21 @@ def in_range(field: str, value, low: float, high: float, *,
         right = ")" if high_open else "]"
         raise InputError(f"{field} = {value:g}: valid range is {left}{low:g}, {high:g}{right}")
     return value
+
+
+def ascending(field: str, values, low: float, high: float, *,
+              low_open: bool = False) -> tuple[float, ...]:
+    """A non-empty list of numbers in [low, high] (or (low, high]) that strictly ascend, as a
+    tuple: the axes of a study's grid."""
+    left = "(" if low_open else "["
+    if isinstance(values, (str, bytes)) or not isinstance(values, Sequence) or not values:
+        raise InputError(f"{field} = {values!r}: expected a non-empty list of numbers in "
+                         f"{left}{low:g}, {high:g}]")
+    out = tuple(in_range(f"{field}[{i}]", v, low, high, low_open=low_open)
+                for i, v in enumerate(values))
+    if any(b <= a for a, b in zip(out, out[1:])):
+        raise InputError(f"{field} = {list(values)!r}: values must strictly ascend")
+    return out
 
 
 def one_of(field: str, value, choices: Iterable[str]) -> str:

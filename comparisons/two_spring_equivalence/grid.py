@@ -97,16 +97,6 @@ class Options:
     figures: bool = True
 
 
-def _ascending(name: str, values, low: float, high: float, *, low_open=False) -> tuple:
-    if isinstance(values, (str, bytes)) or not isinstance(values, Sequence) or not values:
-        raise InputError(f"{name} = {values!r}: expected a non-empty list of numbers")
-    out = tuple(checks.in_range(f"{name}[{i}]", v, low, high, low_open=low_open)
-                for i, v in enumerate(values))
-    if any(b <= a for a, b in zip(out, out[1:])):
-        raise InputError(f"{name} = {list(values)!r}: values must strictly ascend")
-    return out
-
-
 def _choices(name: str, values, valid) -> tuple:
     if isinstance(values, str) or not isinstance(values, Sequence) or not values:
         raise InputError(f"{name} = {values!r}: expected a non-empty list from {list(valid)}")
@@ -119,15 +109,15 @@ def _choices(name: str, values, valid) -> tuple:
 
 def check_grid(grid: Grid) -> Grid:
     """Validate every grid; an :class:`InputError` names the field, value and valid range."""
-    _ascending("grid.aspect_ratios", grid.aspect_ratios, 0.5, 20.0)
-    _ascending("grid.intensities", grid.intensities, 0.0, 20.0, low_open=True)
-    _ascending("grid.periods", grid.periods, 0.02, 5.0)
-    _ascending("grid.yield_multiples", grid.yield_multiples, 1.0, 100.0, low_open=True)
-    _ascending("grid.restitutions", grid.restitutions, 0.0, 1.0)
-    _ascending("grid.pulse_periods", grid.pulse_periods, 0.02, 10.0)
-    _ascending("grid.record_intensities", grid.record_intensities, 0.0, 20.0, low_open=True)
+    checks.ascending("grid.aspect_ratios", grid.aspect_ratios, 0.5, 20.0)
+    checks.ascending("grid.intensities", grid.intensities, 0.0, 20.0, low_open=True)
+    checks.ascending("grid.periods", grid.periods, 0.02, 5.0)
+    checks.ascending("grid.yield_multiples", grid.yield_multiples, 1.0, 100.0, low_open=True)
+    checks.ascending("grid.restitutions", grid.restitutions, 0.0, 1.0)
+    checks.ascending("grid.pulse_periods", grid.pulse_periods, 0.02, 10.0)
+    checks.ascending("grid.record_intensities", grid.record_intensities, 0.0, 20.0, low_open=True)
     _choices("grid.cases", grid.cases, tuple(CASES))
-    counts = _ascending("grid.spring_counts", grid.spring_counts, 4, 4096)
+    counts = checks.ascending("grid.spring_counts", grid.spring_counts, 4, 4096)
     for i, n in enumerate(counts):
         checks.integer_at_least(f"grid.spring_counts[{i}]", n, 4)
     if len(counts) < 2:

@@ -103,17 +103,6 @@ FULL_OPTIONS = Options()
 FAST_OPTIONS = Options(elements_across=4, pulse_tail=0.6, vertical_steps=8)
 
 
-def _ascending(name: str, values, low: float, high: float, *, low_open=False) -> tuple:
-    if isinstance(values, (str, bytes)) or not isinstance(values, Sequence) or not values:
-        raise InputError(f"{name} = {values!r}: expected a non-empty list of numbers in "
-                         f"[{low:g}, {high:g}]")
-    out = tuple(checks.in_range(f"{name}[{i}]", v, low, high, low_open=low_open)
-                for i, v in enumerate(values))
-    if any(b <= a for a, b in zip(out, out[1:])):
-        raise InputError(f"{name} = {list(values)!r}: values must strictly ascend")
-    return out
-
-
 def _choices(name: str, values, valid, *, empty: bool = False) -> tuple:
     if isinstance(values, str) or not isinstance(values, Sequence) or (not values and not empty):
         raise InputError(f"{name} = {values!r}: expected a list from {list(valid)}")
@@ -133,12 +122,12 @@ def check_grid(grid: Grid) -> Grid:
     if not isinstance(grid, Grid):
         raise InputError(f"grid = {grid!r}: expected a winkler_map.Grid")
     _choices("grid.soils", grid.soils, tuple(SOILS))
-    _ascending("grid.fs_v", grid.fs_v, 1.0, 100.0, low_open=True)
-    _ascending("grid.h_over_B", grid.h_over_B, 0.25, 10.0)
-    _ascending("grid.periods", grid.periods, 0.02, 5.0)
-    _ascending("grid.intensities", grid.intensities, 0.0, 20.0, low_open=True)
+    checks.ascending("grid.fs_v", grid.fs_v, 1.0, 100.0, low_open=True)
+    checks.ascending("grid.h_over_B", grid.h_over_B, 0.25, 10.0)
+    checks.ascending("grid.periods", grid.periods, 0.02, 5.0)
+    checks.ascending("grid.intensities", grid.intensities, 0.0, 20.0, low_open=True)
     if grid.pulse_periods:
-        _ascending("grid.pulse_periods", grid.pulse_periods, 0.02, 5.0)
+        checks.ascending("grid.pulse_periods", grid.pulse_periods, 0.02, 5.0)
     elif isinstance(grid.pulse_periods, str) or not isinstance(grid.pulse_periods, Sequence):
         raise InputError(f"grid.pulse_periods = {grid.pulse_periods!r}: expected a list of "
                          "periods in [0.02, 5] s")

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass
 
 from ...anchors import (HALF_PLANE_ONSET_ECCENTRICITY, WINKLER_ONSET_ECCENTRICITY,
@@ -83,17 +82,6 @@ FAST_OPTIONS = Options(monotonic_steps=8, cycle_ratios=(2.0, 6.0), cycle_steps=2
                        vertical_steps=8, pulse_duration=2.0, records=())
 
 
-def _ascending(name: str, values, low: float, high: float) -> tuple[float, ...]:
-    if isinstance(values, (str, bytes)) or not isinstance(values, Sequence) or not values:
-        raise InputError(f"{name} = {values!r}: expected a non-empty list of numbers in "
-                         f"({low:g}, {high:g}]")
-    out = tuple(checks.in_range(f"{name}[{i}]", v, low, high, low_open=True)
-                for i, v in enumerate(values))
-    if any(b <= a for a, b in zip(out, out[1:])):
-        raise InputError(f"{name} = {list(values)!r}: values must strictly ascend")
-    return out
-
-
 def check_options(options: Options) -> Options:
     """Validate the options; an :class:`InputError` names the field, value and valid range."""
     if not isinstance(options, Options):
@@ -103,9 +91,9 @@ def check_options(options: Options) -> Options:
                     high_open=True)
     checks.in_range("options.max_end_stiffness_ratio", options.max_end_stiffness_ratio, 1.0,
                     1e4, low_open=True)
-    _ascending("options.theta_ratios", options.theta_ratios, 1.0, 1000.0)
+    checks.ascending("options.theta_ratios", options.theta_ratios, 1.0, 1000.0, low_open=True)
     checks.integer_at_least("options.monotonic_steps", options.monotonic_steps, 2)
-    _ascending("options.cycle_ratios", options.cycle_ratios, 0.0, 1000.0)
+    checks.ascending("options.cycle_ratios", options.cycle_ratios, 0.0, 1000.0, low_open=True)
     checks.integer_at_least("options.cycle_steps", options.cycle_steps, 1)
     checks.in_range("options.settlement_ratio", options.settlement_ratio, 0.0, 0.5,
                     low_open=True)
