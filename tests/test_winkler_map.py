@@ -26,7 +26,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from upliftlab.anchors import prandtl_capacity
+from upliftlab.anchors import prandtl_capacity, winkler_rocking
 from upliftlab.checks import InputError
 from upliftlab.comparisons import winkler_map as wm
 from upliftlab.comparisons.winkler_map.analysis import regions
@@ -63,8 +63,9 @@ def written(study):
 
 def test_the_fast_map_runs_end_to_end_and_writes_its_files(study):
     """Every file is written; the map has the grid's points (1 soil × 2 FS_v × 1 × 1 × 1 × 1
-    motion) and the four registered calibrations; every measure is finite; the estimate made
-    before the work counted the runs the grid implies (one soil's statics, 2 dynamic)."""
+    motion) and the registered calibrations; every measure is finite; the estimate made
+    before the work counted the runs the grid implies (one soil's statics, four rotation
+    pushovers, 2 dynamic)."""
     out = study.study.directory
     for name in FILES:
         assert (out / name).is_file(), name
@@ -72,8 +73,9 @@ def test_the_fast_map_runs_end_to_end_and_writes_its_files(study):
     assert d.continuum_wall.shape == (1, 2, 1, 1, 1, 1)
     assert d.calibrations == tuple(wm.BEDS)
     assert np.isfinite(d.continuum).all() and np.isfinite(d.beds).all()
-    assert (d.estimate.runs, d.estimate.static, d.estimate.dynamic) == (3, 1, 2)
-    assert d.computed == 3
+    # one soil's statics pair, and a cyclic and a monotonic rotation pushover per FS_v
+    assert (d.estimate.runs, d.estimate.static, d.estimate.dynamic) == (7, 5, 2)
+    assert d.computed == 7
     assert "winkler_map" in STUDIES and definition("winkler_map") is wm.DEFINITION
     tree = study.to_xarray()
     assert float(tree["map"].error.sel(calibration="uniform", measure="theta", fs_v=2.0)
@@ -223,8 +225,8 @@ def test_a_run_over_its_budget_is_refused_with_its_estimate(tmp_path, capsys):
                     "--no-figures"])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2
-    assert err[-1].startswith("error: options.budget = 0.001 s: the map's 3 continuum runs")
-    assert any("3 continuum runs to make (1 static, 2 dynamic" in line for line in err)
+    assert err[-1].startswith("error: options.budget = 0.001 s: the map's 7 continuum runs")
+    assert any("7 continuum runs to make (5 static, 2 dynamic" in line for line in err)
     assert not any((tmp_path / "o" / "store").glob("??/*.json"))
 
 
@@ -262,3 +264,52 @@ def test_the_gazetas_bed_carries_the_handbook_strips_dashpots():
     with pytest.raises(InputError, match=r"^soil.density = 0.0: .* valid range is > 0$"):
         wm.bed_foundation("uniform_plastic_gazetas", replace(ref, extra={"density": 0.0}),
                           wm.FAST_OPTIONS)
+
+
+def test_the_uniform_beds_pushover_is_the_tensionless_winkler_closed_form(study, written):
+    # Reference: anchors §3, a rigid strip on a tensionless uniform Winkler bed of modulus
+    # k = K_v/B: M = (N B/6)(3 − 2√(θ_up/θ)) and c = B √(θ_up/θ) past θ_up = 2N/(k B²)
+    # (upliftlab.anchors.winkler_rocking). The study's bed of 48 discrete springs approximates
+    # the continuous bed: measured within 9.4e-4 at 2 and 5 θ_on on both FS_v; asserted 2e-3.
+    ds, statics = written
+    for fs in ds.fs_v.values:
+        N = float(ds.vertical_load.sel(soil="clay", fs_v=fs))
+        k = float(ds.bed_vertical_stiffness.sel(soil="clay", fs_v=fs, calibration="uniform")) / 2.0
+        theta_on = float(statics.theta_on.sel(soil="clay", fs_v=fs))
+        # θ_on of the elastic half-plane, 2N(1 − ν)/(π G B), written out here
+        G = 50.0e3 / (2.0 * 1.3)
+        assert theta_on == pytest.approx(2.0 * N * 0.7 / (math.pi * G * 2.0), rel=1e-12)
+        for r in wm.FAST_OPTIONS.theta_ratios:
+            closed = winkler_rocking(np.array([r * theta_on]), N, 2.0, k)
+            at = {"soil": "clay", "fs_v": fs, "calibration": "uniform"}
+            assert float(statics[f"rocking_bed_M_{r:g}"].sel(**at)) == pytest.approx(
+                closed["M"][0], rel=2e-3)
+            assert float(statics[f"rocking_bed_contact_{r:g}"].sel(**at)) == pytest.approx(
+                closed["c"][0], rel=2e-3)
+
+
+def test_the_statics_rows_errors_recomputed_from_the_file(study, written):
+    """Each statics error in statics.nc is (bed − continuum)/max(|continuum|, floor) of the
+    values and floors in the same file (numpy here, 1e-12); the summary's worst error per
+    group is the largest of them over FS_v and the group's quantities; an elastic bed
+    dissipates nothing on a rotation cycle (its M–θ loop has no area: error −100 %, exact to
+    1e-9), which the continuum's plastic clay does (positive work)."""
+    _, statics = written
+    err = statics.rocking_error
+    for key in statics.statics_quantity.values:
+        bed = statics[f"rocking_bed_{key}"].transpose("soil", "fs_v", "calibration").values
+        cont = statics[f"rocking_continuum_{key}"].values[..., None]
+        floor = statics[f"rocking_floor_{key}"].values[..., None]
+        expected = (bed - cont) / np.maximum(np.abs(cont), floor)
+        got = err.sel(statics_quantity=key).transpose("soil", "fs_v", "calibration").values
+        np.testing.assert_allclose(got, expected, rtol=1e-12, atol=1e-15)
+    worst = study.study.numbers["statics_worst_error"]["clay"]
+    groups = np.array(study.data.rocking.groups)  # the file's statics_group is ASCII
+    for name in study.data.calibrations:
+        for group in set(groups):
+            block = err.sel(calibration=name, soil="clay").values[:, groups == group]
+            assert worst[name][group] == pytest.approx(np.nanmax(np.abs(block)), rel=1e-12)
+    assert (statics.rocking_continuum_cyclic_energy.values > 0).all()
+    np.testing.assert_allclose(
+        err.sel(statics_quantity="cyclic_energy", calibration="uniform").values, -1.0,
+        atol=1e-9)

@@ -110,8 +110,10 @@ def estimate_cost(static: Sequence[tuple[str, object, bool]],
                   ) -> Estimate:
     """The cost of the runs not yet stored.
 
-    ``static``: (soil, scene, stored) per soil, the scene of its soil and mesh (its stiffness
-    and vertical pushover count as one static run); ``dynamic``: (soil, scene, duration in s,
+    ``static``: (soil, scene, stored[, factor]) per static run, the scene of its soil and mesh
+    (a soil's stiffness and vertical pushover count as one static run; ``factor`` scales that
+    pair's cost for another static run, e.g. a rotation pushover's steps over the vertical
+    pushover's); ``dynamic``: (soil, scene, duration in s,
     stored) per dynamic point; ``stored_static`` ({dofs, wall_time_s} of each soil's stored
     pair) and ``stored_dynamic`` (stored dynamic records): their timings replace the default
     rates.
@@ -123,12 +125,12 @@ def estimate_cost(static: Sequence[tuple[str, object, bool]],
     static_rate = (float(np.median([r["wall_time_s"] / r["dofs"] for r in stored_static]))
                    if stored_static else STATIC_SECONDS_PER_DOF)
     by_soil, per_run, n_static, n_dynamic, stored = {}, [], 0, 0, 0
-    for soil, scene, done in static:
+    for soil, scene, done, *factor in static:
         by_soil.setdefault(soil, 0.0)
         if done:
             stored += 1
             continue
-        by_soil[soil] += static_rate * mesh_size(scene)[0]
+        by_soil[soil] += static_rate * mesh_size(scene)[0] * (factor[0] if factor else 1.0)
         n_static += 1
     for soil, scene, duration, done in dynamic:
         by_soil.setdefault(soil, 0.0)

@@ -75,6 +75,10 @@ class Options:
     of the end-stiffened beds; ``beds`` the calibrations compared (names of :data:`.beds.BEDS`;
     empty: all); ``pulse_tail`` (s) of free vibration after a pulse (a pulse run lasts 3 T plus
     this); ``settlement_ratio`` the depth of the vertical pushover (× B) in ``vertical_steps``;
+    ``theta_ratios`` the rotations θ/θ_on at which the statics rows compare M, contact length
+    and settlement (θ_on the elastic half-plane's uplift rotation), reached in
+    ``monotonic_steps`` geometric steps beyond 1.5 θ_on; ``cycle_ratios`` the amplitudes
+    θ/θ_on of the cyclic pushover (one full cycle each, ``cycle_steps`` per quarter);
     ``history_dt`` the step (s) of the histories kept in the store; ``theta_tolerance`` and
     ``settlement_tolerance`` the region's thresholds (peak θ and edge uplift; residual
     settlement); ``budget`` (s): refuse a run whose estimated continuum cost exceeds it (None:
@@ -89,6 +93,10 @@ class Options:
     pulse_tail: float = 2.0
     settlement_ratio: float = 0.05
     vertical_steps: int = 10
+    theta_ratios: tuple[float, ...] = (2.0, 5.0, 10.0, 30.0)
+    monotonic_steps: int = 14
+    cycle_ratios: tuple[float, ...] = (2.0, 5.0, 10.0)
+    cycle_steps: int = 4
     history_dt: float = 0.01
     theta_tolerance: float = 0.10
     settlement_tolerance: float = 0.20
@@ -100,7 +108,9 @@ FULL_GRID = Grid()
 FAST_GRID = Grid(soils=("clay",), fs_v=(2.0, 5.0), h_over_B=(1.5,), periods=(0.2,),
                  intensities=(3.0,), pulse_periods=(0.2,), elcentro=False, fema_components=0)
 FULL_OPTIONS = Options()
-FAST_OPTIONS = Options(elements_across=4, pulse_tail=0.6, vertical_steps=8)
+FAST_OPTIONS = Options(elements_across=4, pulse_tail=0.6, vertical_steps=8,
+                       theta_ratios=(2.0, 5.0), monotonic_steps=3, cycle_ratios=(2.0,),
+                       cycle_steps=2)
 
 
 def _choices(name: str, values, valid, *, empty: bool = False) -> tuple:
@@ -159,6 +169,10 @@ def check_options(options: Options, beds: Sequence[str]) -> Options:
     checks.in_range("options.settlement_ratio", options.settlement_ratio, 0.0, 0.5,
                     low_open=True)
     checks.integer_at_least("options.vertical_steps", options.vertical_steps, 2)
+    checks.ascending("options.theta_ratios", options.theta_ratios, 0.0, 1000.0, low_open=True)
+    checks.integer_at_least("options.monotonic_steps", options.monotonic_steps, 1)
+    checks.ascending("options.cycle_ratios", options.cycle_ratios, 0.0, 1000.0, low_open=True)
+    checks.integer_at_least("options.cycle_steps", options.cycle_steps, 1)
     checks.in_range("options.history_dt", options.history_dt, 0.0, 1.0, low_open=True)
     checks.in_range("options.theta_tolerance", options.theta_tolerance, 0.0, 10.0,
                     low_open=True)

@@ -28,6 +28,7 @@ from .grid import FLOOR_FRACTION, MEASURES, STUDY, Grid, Options
 from .motions import motion_duration
 from .points import (BASE_SCENE, base_table, evaluate_dynamic, point_table, run_bed, scales,
                      story_constants)
+from .rocking import RockingData, bed_rocking, evaluate_continuum, rocking_data, rocking_points
 from .statics import SoilStatics, evaluate_static, soil_statics, static_points
 
 __all__ = ["MapData", "compute_map", "IN_PROCESS_SECONDS"]
@@ -74,6 +75,7 @@ class MapData:
     refusals: tuple[str, ...]
     estimate: Estimate
     computed: int
+    rocking: RockingData
 
     @property
     def motion_names(self) -> tuple[str, ...]:
@@ -120,9 +122,15 @@ def _scene(table: Mapping):
     return scene_from_dict({**table, "motion": dict(_FREE)}, merged=True)
 
 
+def _rocking_points(grid, options, base, loads) -> list[dict]:
+    """The continuum's rotation pushovers, two per (soil, fs_v) in array order."""
+    return [p for soil in grid.soils for fs in grid.fs_v
+            for p in rocking_points(base, soil, loads[soil] / fs, options)]
+
+
 def _estimate(grid, options, motions, base, g, store, statics_points, loads) -> Estimate:
     """The cost of what is not stored yet. A soil whose statics are not stored has no vertical
-    load yet: its dynamic points all count as still to run."""
+    load yet: its dynamic points and its rotation pushovers all count as still to run."""
     static_records = [store.get(_key(p, evaluate_static)) for p in statics_points]
     static_rows = []
     for i, soil in enumerate(grid.soils):
@@ -130,6 +138,12 @@ def _estimate(grid, options, motions, base, g, store, statics_points, loads) -> 
         table = {**base, "soil": point["soil"],
                  "continuum": {**base.get("continuum", {}), **point["continuum"]}}
         static_rows.append((soil, _scene(table), soil in loads))
+    rotations = _rocking_points(grid, options, base, {s: loads.get(s, 1.0) for s in grid.soils})
+    for k, point in enumerate(rotations):
+        soil = grid.soils[k // (2 * len(grid.fs_v))]
+        stored = soil in loads and store.has(_key(point, evaluate_continuum))
+        static_rows.append((soil, _scene(point["scene"]), stored,
+                            len(point["rotations"]) / (options.vertical_steps + 1)))
     dynamic = _dynamic_points(grid, options, motions, base, g,
                               {s: loads.get(s, 1.0) for s in grid.soils})
     durations = {m["name"]: motion_duration(m) for m in motions}
@@ -182,16 +196,46 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
         loads = {s.soil: s.V_ult for s in statics}
         points = _dynamic_points(grid, options, motions, base, g, loads)
         before = sum(1 for p in points if store.has(_key(p, evaluate_dynamic)))
+        rotations = _rocking_points(grid, options, base, loads)
+        before += sum(1 for p in rotations if store.has(_key(p, evaluate_continuum)))
+        rocking_records = run_sweep(evaluate_continuum, rotations, store, **sweep)
         runs = run_sweep(evaluate_dynamic, points, store, **sweep)
     soils_run = sum(1 for i in range(len(grid.soils))
                     if any(r is None for r in static_records[2 * i:2 * i + 2]))
-    computed = len(points) - before + soils_run
+    computed = len(points) + len(rotations) - before + soils_run
+    rocking = _rocking(grid, options, calibrations, statics, base, g, rocking_records)
     return _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
-                     computed)
+                     computed, rocking)
+
+
+def _reference(st: SoilStatics, scene) -> BedReference:
+    """The continuum numbers a bed is calibrated from, at a point's scene."""
+    return BedReference(st.soil, scene.structure.weight, scene.foundation.width,
+                        scene.structure.height, st.K_v, st.K_r, st.V_ult,
+                        scene.soil.shear_modulus, scene.soil.poisson_ratio,
+                        extra={"density": scene.soil.density})
+
+
+def _rocking(grid, options, calibrations, statics, base, g, records) -> RockingData:
+    """Every bed's rocking pushovers on the continuum's rotations, per (soil, fs_v); the
+    beds are built at the grid's first h/B and period (a bed's statics do not depend on
+    them)."""
+    by_soil = {s.soil: s for s in statics}
+    loads = np.array([[by_soil[s].V_ult / fs for fs in grid.fs_v] for s in grid.soils])
+    beds = []
+    for i, (soil, fs) in enumerate((s, f) for s in grid.soils for f in grid.fs_v):
+        table = point_table(base, soil, options.elements_across, by_soil[soil].V_ult / fs,
+                            grid.h_over_B[0], grid.periods[0], g)
+        ref = _reference(by_soil[soil], _scene(table))
+        cyclic, monotonic = records[2 * i]["theta"], records[2 * i + 1]["theta"]
+        beds.append([bed_rocking(table, ref.N, bed_foundation(name, ref, options), cyclic,
+                                 monotonic) for name in calibrations])
+    B = 2.0 * base["foundation"]["half_width"]
+    return rocking_data(grid.soils, grid.fs_v, loads, records, beds, B, options)
 
 
 def _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
-              computed) -> MapData:
+              computed, rocking) -> MapData:
     shape = (len(grid.soils), len(grid.fs_v), len(grid.h_over_B), len(grid.periods),
              len(grid.intensities), len(motions))
     nb, nm = len(calibrations), len(MEASURES)
@@ -214,9 +258,7 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
             at = idx + (m,)
             scene = _scene(point["scene"])
             B, h = scene.foundation.width, scene.structure.height
-            ref = BedReference(soil, scene.structure.weight, B, h, st.K_v, st.K_r, st.V_ult,
-                               scene.soil.shear_modulus, scene.soil.poisson_ratio,
-                               extra={"density": scene.soil.density})
+            ref = _reference(st, scene)
             k_story, _ = story_constants(scene)
             scl = scales(ref.N, B, h, st.K_v, st.K_r, k_story)
             scale[idx[:4]] = [scl[q] for q in MEASURES]
@@ -247,7 +289,7 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                                                          FLOOR_FRACTION * scl[measure])
     return MapData(grid, options, tuple(motions), tuple(calibrations), tuple(statics), N,
                    continuum, beds, errors, scale, cwall, bwall, steps, balance, dofs, bed_K_r,
-                   bed_K_v, tuple(refusals), estimate, computed)
+                   bed_K_v, tuple(refusals), estimate, computed, rocking)
 
 
 def _bed_stiffness(point: Mapping, foundation: Mapping) -> tuple[float, float]:

@@ -14,7 +14,7 @@ from .beds import BEDS
 from .grid import FLOOR_FRACTION, MEASURE_LABELS, MEASURE_UNITS, MEASURES, SOIL_LABELS, STUDY
 from .maps import MapData
 
-__all__ = ["write", "map_dataset", "statics_dataset"]
+__all__ = ["write", "map_dataset", "statics_dataset", "rocking_variables"]
 
 _DIMS = ("soil", "fs_v", "h_over_B", "period", "intensity", "motion")
 
@@ -95,7 +95,8 @@ def map_dataset(data: MapData, prov: Mapping):
 
 
 def statics_dataset(data: MapData, prov: Mapping):
-    """The continuum statics per soil (K_v, K_r, V_ult and the vertical pushover)."""
+    """The continuum statics per soil (K_v, K_r, V_ult and the vertical pushover) and the
+    statics rows: every bed's rocking pushovers against the continuum's per soil and FS_v."""
     import xarray as xr
 
     soils = [s.soil for s in data.statics]
@@ -125,7 +126,19 @@ def statics_dataset(data: MapData, prov: Mapping):
         "wall_time": (("soil",), [s.wall_time_s for s in data.statics], {
             "units": "s", "long_name": "wall time of the two static runs"}),
     }
+    variables.update(rocking_variables(data))
     coords = {"soil": ("soil", soils, {"long_name": "soil of the continuum"}),
+              "fs_v": ("fs_v", np.array(data.grid.fs_v, dtype=float), {
+                  "units": "1", "long_name": "vertical factor of safety V_ult/N"}),
+              "calibration": ("calibration", list(data.calibrations), {
+                  "long_name": "calibrated reduced model (bed)"}),
+              "statics_quantity": ("statics_quantity", list(data.rocking.quantities), {
+                  "long_name": "quantity of the rocking pushovers compared"}),
+              "statics_group": ("statics_quantity", [ascii_text(g)
+                                                     for g in data.rocking.groups], {
+                  "long_name": "what the quantity belongs to: uplift onset, M-theta backbone, "
+                               "contact length, settlement against theta, cyclic dissipation "
+                               "or cyclic settlement"}),
               "soil_label": ("soil", [ascii_text(SOIL_LABELS[s]) for s in soils],
                              {"long_name": "the soil's model and strength"}),
               "step": ("step", np.arange(steps), {"units": "1",
@@ -133,6 +146,35 @@ def statics_dataset(data: MapData, prov: Mapping):
     attrs = {"Conventions": "CF-1.10", "title": "Winkler map: the continuum statics per soil",
              "provenance": dict(prov)}
     return xr.Dataset(variables, coords=coords, attrs=cf_attributes(attrs))
+
+
+def _rocking_units(key: str) -> str:
+    return "m" if key.startswith(("contact", "settlement", "cyclic_settlement")) else "kN m/m"
+
+
+def rocking_variables(data: MapData) -> dict:
+    """The statics rows (:mod:`.rocking`) as variables over soil, fs_v, calibration and
+    statics_quantity: the signed errors, and each quantity's continuum and bed values and floor
+    with its units."""
+    r = data.rocking
+    variables = {
+        "rocking_error": (("soil", "fs_v", "calibration", "statics_quantity"), r.errors, {
+            "units": "1", "long_name": "signed relative error of the bed's rocking pushover "
+                                       "against the continuum's, (bed - continuum)/max("
+                                       "|continuum|, floor)"}),
+        "theta_on": (("soil", "fs_v"), r.theta_on, {
+            "units": "rad", "long_name": "elastic half-plane uplift rotation 2N(1-nu)/(pi G B), "
+                                         "the scale of the rotation paths"}),
+    }
+    for q, key in enumerate(r.quantities):
+        units = _rocking_units(key)
+        variables[f"rocking_continuum_{key}"] = (("soil", "fs_v"), r.continuum[..., q], {
+            "units": units, "long_name": f"{key} of the continuum's pushover"})
+        variables[f"rocking_bed_{key}"] = (("soil", "fs_v", "calibration"), r.beds[..., q], {
+            "units": units, "long_name": f"{key} of the bed's pushover"})
+        variables[f"rocking_floor_{key}"] = (("soil", "fs_v"), r.floors[..., q], {
+            "units": units, "long_name": f"error floor of {key}"})
+    return variables
 
 
 def write(result, ctx: Context) -> StudyResult:

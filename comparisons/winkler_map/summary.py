@@ -48,8 +48,15 @@ def summary_numbers(result, elapsed: float) -> dict:
     statics = {s.soil: {"K_v": s.K_v, "K_r": s.K_r, "V_ult": s.V_ult, "plateau": s.plateau,
                         "dofs": s.dofs, "wall_time_s": s.wall_time_s} for s in d.statics}
     ratio = np.array([s.V_ult for s in d.statics])[:, None] / d.N
+    from .rocking import QUANTITY_GROUPS
+
+    worst = d.rocking.group_worst()
+    rocking = {soil: {name: dict(zip(QUANTITY_GROUPS, (_finite(v) for v in worst[s, c])))
+                      for c, name in enumerate(d.calibrations)}
+               for s, soil in enumerate(d.grid.soils)}
     return {
         "elements_across": d.options.elements_across,
+        "statics_worst_error": rocking,
         "points": int(d.continuum_wall.size),
         "calibrations": list(d.calibrations),
         "motions": list(d.motion_names),
@@ -111,6 +118,8 @@ def summary_markdown(result, fast: bool, elapsed: float) -> str:
              f"largest load of a vertical pushover to {o.settlement_ratio:g} B) do not depend on "
              "N: one pair of stored static runs per soil serves every FS_v, N = V_ult/FS_v.", "",
              *_statics_table(d), "",
+             "## The beds' statics against the continuum's", "",
+             *_rocking_lines(d), "",
              "## Where each bed is enough", "",
              f"A cell (FS_v, h/B) of a soil passes when, at every period and intensity, the "
              f"median over the motions of |error| is within {100 * o.theta_tolerance:g} % in peak "
@@ -174,6 +183,34 @@ def _statics_table(d) -> list[str]:
         rows.append(f"| {st.soil} | {st.dofs} | {st.K_v:.6g} | {st.K_r:.6g} | {st.V_ult:.5g} | "
                     f"{_pct(st.plateau)} | {loads} | {check:.1e} |")
     return rows
+
+
+def _rocking_lines(d) -> list[str]:
+    """The statics rows: the largest |error| of each bed per group over FS_v, per soil."""
+    from .rocking import QUANTITY_GROUPS
+
+    r, o = d.rocking, d.options
+    ratios = ", ".join(f"{v:g}" for v in o.theta_ratios)
+    cycles = ", ".join(f"{v:g}" for v in o.cycle_ratios)
+    lines = [f"Each bed is pushed over on the continuum's rotations at N = V_ult/FS_v: a "
+             f"monotonic path to {max(o.theta_ratios):g} θ_on (θ_on = 2N(1 − ν)/(π G B), the "
+             f"elastic half-plane's uplift rotation) compared at θ/θ_on ∈ {{{ratios}}}, and one "
+             f"full cycle at each of {{{cycles}}} θ_on. Each cell: the largest |error| over "
+             "FS_v and the group's quantities (floors: moments 0.01 N B, contact 0.05 B, "
+             "settlement 0.1 × the continuum's settlement under N, dissipated work "
+             "0.01 N B θ_on).", ""]
+    worst = r.group_worst()
+    groups = list(QUANTITY_GROUPS)
+    for s, soil in enumerate(d.grid.soils):
+        lines += [f"{SOIL_LABELS[soil]}:", "",
+                  r"| bed (largest \|error\|, %) | " + " | ".join(groups) + " |",
+                  "|---|" + "---|" * len(groups)]
+        for c, name in enumerate(d.calibrations):
+            lines.append(f"| {_short(name)} | "
+                         + " | ".join(_num(v) for v in worst[s, c]) + " |")
+        lines.append("")
+    lines += [f"- {f}." for f in r.failures]
+    return lines
 
 
 #: Short names of the calibrations in table headers (long names break mid-word in print).

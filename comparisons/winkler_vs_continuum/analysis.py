@@ -67,9 +67,12 @@ def _quantities(ref: ContinuumReference, options: Options) -> list[tuple[str, st
     return q
 
 
-def _path_values(mono: Mapping, cyc: Mapping, options: Options) -> dict:
+def path_values(mono: Mapping, cyc: Mapping, theta_ratios) -> dict:
+    """M, contact length and settlement at each of ``theta_ratios`` × θ_on (``mono['_theta_on']``)
+    on the monotonic path, the settlement under N, the largest M, and the cyclic path's
+    dissipated work ∮ M dθ, settlement over the cycles and moments at its turning points."""
     out, scale = {}, mono["_theta_on"]
-    for r in options.theta_ratios:
+    for r in theta_ratios:
         out[f"M_{r:g}"] = _at(mono, "M", r * scale)
         out[f"contact_{r:g}"] = _at(mono, "contact", r * scale)
         out[f"settlement_{r:g}"] = _at(mono, "settlement", r * scale)
@@ -122,14 +125,15 @@ def error_table(ref: ContinuumReference, beds: Sequence[BedResponse],
     spec = _quantities(ref, options) + list(dynamic)
     mono = dict(ref.monotonic, _theta_on=ref.theta_on)
     cont = {"K_r": ref.K_r, "K_v": ref.K_v, "onset_moment": _onset_moment(ref),
-            "N_ult": ref.N_ult, **_path_values(mono, ref.cyclic, options)}
+            "N_ult": ref.N_ult, **path_values(mono, ref.cyclic, options.theta_ratios)}
     for run in runs:
         cont.update({f"{run.key}_{m}": run.continuum["peaks"][m] for m in DYNAMIC_MEASURES})
     rows, vals = [], []
     for bed in beds:
         v = {"K_r": bed.K_r, "K_v": bed.K_v, "onset_moment": bed.onset_moment,
              "N_ult": bed.N_ult,
-             **_path_values(dict(bed.monotonic, _theta_on=ref.theta_on), bed.cyclic, options)}
+             **path_values(dict(bed.monotonic, _theta_on=ref.theta_on), bed.cyclic,
+                           options.theta_ratios)}
         for run in runs:
             peaks = run.beds[bed.calibration.name]["peaks"]
             v.update({f"{run.key}_{m}": peaks[m] for m in DYNAMIC_MEASURES})

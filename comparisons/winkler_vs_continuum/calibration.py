@@ -198,7 +198,7 @@ def bed_scene(scene: Scene, cal: Calibration) -> Scene:
     return scene_from_dict(data, source=scene.source, merged=True)
 
 
-def _pushover_record(model, thetas) -> dict:
+def pushover_record(model, thetas) -> dict:
     """A rocking pushover of the bed. The reduced model measures V from static equilibrium, so
     the settlement of the base centre is the static compression there, Σ k_i δ0_i / Σ k_i
     (= N/K_v for a symmetric bed), minus V."""
@@ -216,5 +216,5 @@ def bed_response(scene: Scene, cal: Calibration, ref: ContinuumReference) -> Bed
     onset = uplift_onset_force(model) * float(model.heights[-1])
     N_ult = cal.yield_multiple * model.weight if cal.law == "elastoplastic" else math.inf
     return BedResponse(cal, layout.vertical_stiffness, layout.rocking_stiffness, onset, N_ult,
-                       _pushover_record(model, ref.monotonic["theta"]),
-                       _pushover_record(model, ref.cyclic["theta"]))
+                       pushover_record(model, ref.monotonic["theta"]),
+                       pushover_record(model, ref.cyclic["theta"]))
