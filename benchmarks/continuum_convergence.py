@@ -13,7 +13,11 @@ reduced integration, 10B × 10B box), built and run as in ``continuum_elcentro.p
 - **mass matrix**: the implicit route with the explicit route's row-sum lumped mass as well as
   its default consistent mass, so that the schemes and the mass matrices are told apart;
 - **mesh**: the explicit route on 16 and 32 across and the implicit route on 16 across, each
-  compared with the explicit route on 32 across.
+  compared with the explicit route on 32 across;
+- **sensitivity**: each route with the record scaled by 1 + 1e-6 against the same route
+  unscaled: how far the answer moves when the input moves by one part in a million, which no
+  discretization can do better than (a history that moves by a percent here cannot be compared
+  to a percent between two solvers).
 
 Errors as in ``continuum_elcentro.compare``: peak |θ|, peak edge uplift, residual settlement and
 the largest difference of the θ and v histories over their peaks. Each run's histories are kept
@@ -43,8 +47,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import continuum_elcentro as ec  # noqa: E402
 
 OUT = Path("results/bench/continuum_convergence")
+#: The record's scale factor of the perturbed runs: how far a history moves when the input
+#: moves by one part in a million tells how well posed a history comparison is at all.
+PERTURBATION = 1.0 + 1e-6
 #: (label, route, elements across, step as a fraction of the route's default, mass or None for
-#: the route's own, Newton rtol of the implicit route)
+#: the route's own, Newton rtol of the implicit route[, scale of the record])
 RUNS = (("explicit-8", "explicit", 8, 1.0, None, None),
         ("explicit-8-half", "explicit", 8, 0.5, None, None),
         ("implicit-8", "implicit", 8, 1.0, None, 1e-6),
@@ -54,7 +61,10 @@ RUNS = (("explicit-8", "explicit", 8, 1.0, None, None),
         ("implicit-lumped-8-quarter", "implicit", 8, 0.25, "lumped", 1e-6),
         ("explicit-16", "explicit", 16, 1.0, None, None),
         ("implicit-16", "implicit", 16, 1.0, None, 1e-6),
-        ("explicit-32", "explicit", 32, 1.0, None, None))
+        ("explicit-32", "explicit", 32, 1.0, None, None),
+        ("explicit-8-perturbed", "explicit", 8, 1.0, None, None, PERTURBATION),
+        ("implicit-8-perturbed", "implicit", 8, 1.0, None, 1e-6, PERTURBATION),
+        ("explicit-16-perturbed", "explicit", 16, 1.0, None, None, PERTURBATION))
 #: (what the pair shows, run, reference)
 PAIRS = (("time: explicit, step halved", "explicit-8", "explicit-8-half"),
          ("time: implicit, step halved", "implicit-8", "implicit-8-half"),
@@ -71,19 +81,25 @@ PAIRS = (("time: explicit, step halved", "explicit-8", "explicit-8-half"),
           "implicit-16"),
          ("mesh: explicit 8 across against 32", "explicit-8", "explicit-32"),
          ("mesh: explicit 16 across against 32", "explicit-16", "explicit-32"),
-         ("mesh: implicit 16 across against explicit 32", "implicit-16", "explicit-32"))
+         ("mesh: implicit 16 across against explicit 32", "implicit-16", "explicit-32"),
+         ("sensitivity: explicit, record × (1 + 1e-6)", "explicit-8-perturbed", "explicit-8"),
+         ("sensitivity: implicit, record × (1 + 1e-6)", "implicit-8-perturbed", "implicit-8"),
+         ("sensitivity: explicit 16 across, record × (1 + 1e-6)", "explicit-16-perturbed",
+          "explicit-16"))
 KEYS = ("time", "theta", "v", "edge")
 
 
-def run(route: str, n: int, step: float, mass: str | None, rtol: float | None) -> dict:
-    """One run of 10 s: its histories, step and runtime."""
+def run(route: str, n: int, step: float, mass: str | None, rtol: float | None,
+        scale: float = 1.0) -> dict:
+    """One run of 10 s: its histories, step and runtime (``scale``: the record's factor)."""
     from upliftlab.continuum import build_model
     from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
     from upliftlab.motions import ELCENTRO
     from upliftlab.scenes import load_scene
 
     scene = load_scene("strip_footing_clay", motion=ELCENTRO, overrides=[
-        f"continuum.elements_across={n}", f"continuum.dynamics={route}", "analysis.duration=10"])
+        f"continuum.elements_across={n}", f"continuum.dynamics={route}", "analysis.duration=10",
+        f"motion.scale={scale!r}"])
     motion = scene.build_motion()
     started = time.perf_counter()
     model = build_model(scene)
