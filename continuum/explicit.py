@@ -282,15 +282,14 @@ class _Explicit:
         ST[0] = self.static.status
         energy, counters = np.zeros(5), np.zeros(1, dtype=np.int64)
         lay, m_step = soil.layout, self.mass + 0.5 * dt * self.c
-        lam, G, strength, hardening = soil.params
         free = np.flatnonzero(self.free_q)
         Lf = np.ascontiguousarray(self.L[:nc][:, self.free_q])
         elements, gather = compiled_pair(numba.get_num_threads() > 1)
         done, Fz_prev = -1, np.zeros(4)
         rings, carry = (U, V, Z, VZ, FC, ST), (R_prev, F_prev, Fz_prev, energy, counters)
         soil_data = (lay.nodes, lay.dNdx, lay.dNdy, lay.dx, soil.eigenstrain, soil.plastic,
-                     soil.ebar, soil.kind, lam, G, strength, hardening, soil.stress, soil.work,
-                     fint, lay.ptr, lay.entries)
+                     soil.ebar, soil.kind, soil.constants, soil.stress, soil.work, fint,
+                     lay.ptr, lay.entries)
         loads = (self.datum, self.keep, self.ground_soil, self.incident, ag_all, vinc_all,
                  self.mass, self.c, m_step)
         structure = (z.M, z.C, z.K, z.gravity, self.ground_z)

@@ -2,9 +2,9 @@
 
 :class:`SoilForce` evaluates ∫ Bᵀ σ(u) at every step and keeps the quadrature-point state
 (plastic strain, ε̄p) between steps: an explicit step commits every evaluation, there are no
-iterations to roll back. Elastic, Tresca and von Mises soil run in the compiled kernels of
-:mod:`~upliftlab.continuum.kernels`; any other material (Mohr–Coulomb, Drucker–Prager) falls
-back to the vectorised return map of :mod:`~upliftlab.continuum.materials` through
+iterations to roll back. Elastic, Tresca, von Mises and Mohr–Coulomb soil run in the compiled
+kernels of :mod:`~upliftlab.continuum.kernels`; any other material (Drucker–Prager) falls back
+to the vectorised return map of :mod:`~upliftlab.continuum.materials` through
 :meth:`~upliftlab.continuum.model.ContinuumModel.respond` (the same numbers, slower).
 """
 
@@ -52,10 +52,7 @@ class SoilForce:
             self.ebar = np.ascontiguousarray(state.material.equivalent_plastic_strain, float)
             self.stress = _four(state.stress)
             self.work = np.zeros(self.layout.shape[::2] + (2,))
-            m = model.material
-            self.params = (m.lame, m.shear_modulus,
-                           float(getattr(m, "undrained_strength", 0.0) or 0.0),
-                           float(getattr(m, "hardening_modulus", 0.0) or 0.0))
+            self.constants = kernels.kernel_constants(model.material)
         else:
             self._material, self._stress = state.material, state.stress
             self._eigen = eig
@@ -63,10 +60,9 @@ class SoilForce:
     def __call__(self, u: np.ndarray) -> np.ndarray:
         """∫ Bᵀ σ(u) (ndofs; a buffer reused by the next call) and commit the state."""
         if self.compiled:
-            lam, G, strength, hardening = self.params
             return kernels.internal_force(self.layout, u, self.eigenstrain, self.plastic,
-                                          self.ebar, self.kind, lam, G, strength, hardening,
-                                          self.stress, self.work, self.out)
+                                          self.ebar, self.kind, self.constants, self.stress,
+                                          self.work, self.out)
         response = self.model.respond(u, self._material, self._eigen)
         self._material, self._stress = response.material, response.stress
         np.add(response.residual, self.model.body_force, out=self.out)

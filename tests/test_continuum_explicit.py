@@ -63,13 +63,12 @@ def test_compiled_return_maps_match_the_vectorised_ones(material, kind):
     strain[0, 1] = strain[1, 0] = e[3]
     _, _, old = material(0.7 * strain, material.initial_state(n))
     stress, _, new = material(strain, old)
-    strength = getattr(material, "undrained_strength", 0.0)
-    hardening = getattr(material, "hardening_modulus", 0.0)
+    constants = kernels.kernel_constants(material)
     p = old.plastic_strain
     got = np.array([kernels.point_update(
         kind, strain[0, 0, i], strain[1, 1, i], strain[2, 2, i], strain[0, 1, i], p[0, 0, i],
-        p[1, 1, i], p[2, 2, i], p[0, 1, i], old.equivalent_plastic_strain[i],
-        material.lame, material.shear_modulus, strength, hardening) for i in range(n)])
+        p[1, 1, i], p[2, 2, i], p[0, 1, i], old.equivalent_plastic_strain[i], constants)
+        for i in range(n)])
     ref_stress = np.stack([stress[0, 0], stress[1, 1], stress[2, 2], stress[0, 1]], axis=1)
     dp = new.plastic_strain - p
     ref_plastic = np.stack([dp[0, 0], dp[1, 1], dp[2, 2], dp[0, 1]], axis=1)

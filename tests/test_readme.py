@@ -198,16 +198,21 @@ def test_compiled_kernels_are_cached_outside_the_installed_package(tmp_path):
     in site-packages/upliftlab, ``pip uninstall`` left that folder, and the README's test
     command then imported it as an empty namespace package. The cache now goes to
     $XDG_CACHE_HOME/upliftlab/numba/<digest of the kernels' sources>, also when numba was
-    imported first."""
+    imported first. The digest also covers the continuum's ``continuum/kernels*.py``, whose
+    Mohr–Coulomb point return (kernels_mc.py) is compiled into kernels.py's element loop."""
     code = ("import numba, os, upliftlab\n"
             "print(os.environ['NUMBA_CACHE_DIR'], numba.config.CACHE_DIR)\n")
     env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
     env["XDG_CACHE_HOME"] = str(tmp_path)
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
                          check=True).stdout.split()
-    kernels = sorted((Path(__file__).resolve().parents[1] / "reduced" / "kernels").glob("*.py"))
-    digest = hashlib.sha256(b"".join(p.name.encode() + b"\0" + p.read_bytes() + b"\0"
-                                     for p in kernels)).hexdigest()[:16]
+    root = Path(__file__).resolve().parents[1]
+    kernels = [(p.name, p) for p in sorted((root / "reduced" / "kernels").glob("*.py"))]
+    kernels += [("continuum/" + p.name, p)
+                for p in sorted((root / "continuum").glob("kernels*.py"))]
+    assert len(kernels) > 2 and kernels[-1][0] == "continuum/kernels_mc.py"
+    digest = hashlib.sha256(b"".join(name.encode() + b"\0" + p.read_bytes() + b"\0"
+                                     for name, p in kernels)).hexdigest()[:16]
     assert out == [str(tmp_path / "upliftlab" / "numba" / digest)] * 2
     env["NUMBA_CACHE_DIR"] = str(tmp_path / "mine")  # a user's own choice is kept
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,

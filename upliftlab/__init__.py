@@ -30,20 +30,27 @@ _checkout_subpackages()
 
 def _kernel_sources_digest() -> str:
     """The first 16 hex digits of the SHA-256 of the compiled kernels' sources (every
-    ``reduced/kernels/*.py``, by name; name and content of each), or ``"unknown"`` if they cannot
-    be read. numba keys a cached function on its own file only (numba issue 1833): an edit to a
-    spring law would leave the integrators compiled from it, in other files, stale."""
+    ``reduced/kernels/*.py``, by name, then the continuum's ``continuum/kernels*.py``, by
+    ``continuum/`` and name; name and content of each), or ``"unknown"`` if they cannot be read.
+    numba keys a cached function on its own file only (numba issue 1833): an edit to a spring
+    law would leave the integrators compiled from it, in other files, stale, and an edit to the
+    continuum's Mohr–Coulomb point return (``kernels_mc.py``) the element loop of
+    ``kernels.py`` that inlines it."""
     import hashlib
     from pathlib import Path
 
     for root in __path__:
-        folder = Path(root) / "reduced" / "kernels"
-        if not folder.is_dir():
-            folder = Path(root).parent / "reduced" / "kernels"  # a checkout: reduced/ beside
+        base = Path(root)
+        if not (base / "reduced" / "kernels").is_dir():
+            base = base.parent  # a checkout: reduced/ and continuum/ beside
+        folder = base / "reduced" / "kernels"
         if folder.is_dir():
             digest = hashlib.sha256()
             for path in sorted(folder.glob("*.py")):
                 digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
+            for path in sorted((base / "continuum").glob("kernels*.py")):
+                digest.update(b"continuum/" + path.name.encode() + b"\0" + path.read_bytes()
+                              + b"\0")
             return digest.hexdigest()[:16]
     return "unknown"
 

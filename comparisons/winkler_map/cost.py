@@ -3,20 +3,24 @@
 A dynamic run of the explicit route costs a fixed part (the mesh, the stable step's Lanczos
 eigenvalue, the gravity state) and a part per step, both about proportional to the DOFs:
 ``seconds = F·dofs + R·dofs·steps`` (the explicit loop's compilation, once per process, is not
-counted: numba does not cache it, and each worker pays it once). ``steps`` = duration/dt, with dt the stable step of the
-mesh: from the runs of the same soil and mesh already stored, else from
-:data:`~upliftlab.continuum.explicit.COURANT_ESTIMATE` (V_p dt/h_min, below the measured value,
-so that the estimate errs on the cost's side). R is the stored runs' median of
-(wall − F·dofs)/(dofs·steps) for the same kind of material (a compiled return map: elastic,
-Tresca, von Mises; or the vectorised fallback: Mohr–Coulomb, Drucker–Prager), else the default
-below. A static point (stiffness plus vertical pushover) costs S·dofs, S from the stored
-statics when there are any.
+counted: numba does not cache it, and each worker pays it once). ``steps`` = duration/dt, with
+dt the stable step of the mesh: from the runs of the same soil and mesh already stored, else
+from :data:`~upliftlab.continuum.explicit.COURANT_ESTIMATE` (V_p dt/h_min, below the measured
+value, so that the estimate errs on the cost's side). F depends on the soil: the gravity state
+(Newton with the vectorised return map on either route) of a frictional soil (Mohr–Coulomb,
+Drucker–Prager) is slower than an undrained one's. R is the stored runs' median of
+(wall − F·dofs)/(dofs·steps) for the same kind of return map in the time loop (compiled:
+elastic, Tresca, von Mises, Mohr–Coulomb; or the vectorised fallback: Drucker–Prager), else
+the default below. A static point (stiffness plus vertical pushover) costs S·dofs, S from the
+stored statics when there are any.
 
 The defaults were measured on the project's loaded 2-core machine with kernels compiled
 (runs of 0.01 s and 0.3–1 s of a Ricker pulse on 4 and 16 across, the clay's compiled Tresca
-and the frictional soil's Mohr–Coulomb fallback, and this study's 16-across statics of the
-clay; reported in the issue note); the stored runs replace the per-step rates as soon as there
-are any, so a second estimate is the machine's own.
+and the frictional soil's Mohr–Coulomb, then through the fallback, and this study's 16-across
+statics of the clay; reported in the issue note); the compiled Mohr–Coulomb costs per step
+about what the compiled Tresca does (``benchmarks/EXPLICIT_MATERIALS.md``). The stored runs
+replace the per-step rates as soon as there are any, so a second estimate is the machine's
+own.
 """
 
 from __future__ import annotations
@@ -30,17 +34,22 @@ import numpy as np
 from ...checks import InputError
 
 __all__ = ["Estimate", "estimate_cost", "mesh_size", "refuse_over_budget",
-           "FIXED_SECONDS_PER_DOF", "SECONDS_PER_DOF_STEP", "STATIC_SECONDS_PER_DOF"]
+           "FIXED_SECONDS_PER_DOF", "SECONDS_PER_DOF_STEP", "STATIC_SECONDS_PER_DOF",
+           "COMPILED_MODELS", "FRICTIONAL_MODELS"]
 
-#: Fixed cost of a dynamic run per DOF (s): mesh, stable step, gravity state; with a compiled
-#: return map (True) and with the vectorised fallback (False), whose gravity state is slower.
-FIXED_SECONDS_PER_DOF = {True: 4.0e-4, False: 1.1e-3}
+#: Fixed cost of a dynamic run per DOF (s): mesh, stable step, gravity state; of an undrained
+#: soil (False) and of a frictional one (True, :data:`FRICTIONAL_MODELS`), whose gravity state
+#: is slower.
+FIXED_SECONDS_PER_DOF = {False: 4.0e-4, True: 1.1e-3}
 #: Cost per step and DOF (s): compiled return maps, and the vectorised fallback.
 SECONDS_PER_DOF_STEP = {True: 1.0e-7, False: 6.1e-6}
 #: Cost of a soil's statics (stiffness and vertical pushover) per DOF (s).
 STATIC_SECONDS_PER_DOF = 3.0e-3
-#: Soil models whose return map is compiled for the explicit route.
-COMPILED_MODELS = ("elastic", "tresca", "von_mises")
+#: Soil models whose return map is compiled for the explicit route
+#: (:data:`upliftlab.continuum.kernels.MATERIAL_KINDS`).
+COMPILED_MODELS = ("elastic", "tresca", "von_mises", "mohr_coulomb")
+#: Soil models with a friction angle (the fixed part's key).
+FRICTIONAL_MODELS = ("mohr_coulomb", "drucker_prager")
 
 
 @dataclass(frozen=True)
@@ -91,12 +100,16 @@ def mesh_size(scene) -> tuple[int, float]:
 
 def _stored_rates(stored: Iterable[Mapping]) -> dict:
     """Median per-step rates by compiled flag, and steps per second of simulated time by
-    (dofs, compiled), from stored dynamic records."""
+    dofs, from stored dynamic records. A record's soil is frictional by its ``soil_model``;
+    a record stored before it had one was frictional exactly when its return map was not
+    compiled (then only Mohr–Coulomb and Drucker–Prager were not)."""
     rates, density = {}, {}
     for rec in stored:
         dofs, steps = rec["dofs"], max(1, rec["steps"])
         compiled = bool(rec["compiled"])
-        rest = max(0.0, rec["wall_time_s"] - FIXED_SECONDS_PER_DOF[compiled] * dofs)
+        frictional = (rec["soil_model"] in FRICTIONAL_MODELS if "soil_model" in rec
+                      else not compiled)
+        rest = max(0.0, rec["wall_time_s"] - FIXED_SECONDS_PER_DOF[frictional] * dofs)
         rates.setdefault(compiled, []).append(rest / (dofs * steps))
         if rec["duration"] > 0:
             density.setdefault(dofs, []).append(steps / rec["duration"])
@@ -139,9 +152,10 @@ def estimate_cost(static: Sequence[tuple[str, object, bool]],
             continue
         dofs, h_min = mesh_size(scene)
         compiled = scene.soil.model in COMPILED_MODELS
+        frictional = scene.soil.model in FRICTIONAL_MODELS
         per_second = density.get(dofs) or wave_speeds(scene.soil)[0] / (COURANT_ESTIMATE * h_min)
         rate = rates.get(compiled, SECONDS_PER_DOF_STEP[compiled])
-        cost = (FIXED_SECONDS_PER_DOF[compiled] * dofs
+        cost = (FIXED_SECONDS_PER_DOF[frictional] * dofs
                 + rate * dofs * math.ceil(duration * per_second))
         per_run.append(cost)
         by_soil[soil] += cost

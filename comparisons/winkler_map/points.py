@@ -134,8 +134,10 @@ def evaluate_dynamic(point: Mapping) -> dict:
     """One continuum dynamic run of a point (explicit route, no soil snapshots): the measures
     of :func:`measured` from every recorded step, the histories of θ, u, the edge uplift and
     the settlement every ``history_dt`` s (for figures), the run's steps, DOFs, step (s),
-    energy balance error and its own wall time ``wall_time_s`` (model, gravity and time loop,
-    s; the kernels are compiled before, :func:`_warm_kernels`). Units of the scene."""
+    whether its return map was compiled and its soil model (for the cost estimate,
+    :mod:`.cost`), its energy balance error and its own wall time ``wall_time_s`` (model,
+    gravity and time loop, s; the kernels are compiled before, :func:`_warm_kernels`). Units
+    of the scene."""
     _warm_kernels(point)
     scene = point_scene(point)
     model, result, wall = _timed_run(scene)
@@ -160,6 +162,7 @@ def evaluate_dynamic(point: Mapping) -> dict:
             "steps": int(result.metadata.get("steps", t.size - 1)), "dofs": int(model.dofs),
             "dt": float(result.metadata.get("dt", math.nan)),
             "duration": float(t[-1]), "compiled": bool(result.metadata.get("compiled", True)),
+            "soil_model": scene.soil.model,
             "energy_balance_error": float(result.metadata.get("energy_balance_error", math.nan)),
             "wall_time_s": wall}
 

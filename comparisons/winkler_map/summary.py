@@ -8,7 +8,7 @@ import numpy as np
 
 from .analysis import RECORD_KINDS, pick_text
 from .beds import BEDS
-from .cost import SECONDS_PER_DOF_STEP
+from .cost import COMPILED_MODELS, SECONDS_PER_DOF_STEP
 from .grid import MEASURE_LABELS, SOIL_LABELS, FLOOR_FRACTION
 
 __all__ = ["summary_numbers", "summary_markdown", "MESH_NOTE", "ENERGY_NOTE", "SOIL_NOTE"]
@@ -167,11 +167,15 @@ def _input_text(d) -> str:
 
 
 def _speed_of_soils(d) -> str:
+    from .grid import SOILS
+
+    slow = [soil for soil in d.grid.soils if SOILS[soil]["model"] not in COMPILED_MODELS]
+    if not slow:
+        return " The explicit route runs every soil's return map compiled (numba)."
     ratio = SECONDS_PER_DOF_STEP[False] / SECONDS_PER_DOF_STEP[True]
-    return (" The explicit route runs the clay's return map compiled and the frictional "
-            "soil's through the vectorised fallback, about "
-            f"{ratio:.0f} × slower per step and DOF on this machine (upliftlab.comparisons."
-            "winkler_map.cost).")
+    return (f" The explicit route runs the return map of {', '.join(slow)} through the "
+            f"vectorised fallback, about {ratio:.0f} × slower per step and DOF than a compiled "
+            "one (upliftlab.comparisons.winkler_map.cost).")
 
 
 def _statics_table(d) -> list[str]:
