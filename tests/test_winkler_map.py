@@ -64,8 +64,8 @@ def written(study):
 def test_the_fast_map_runs_end_to_end_and_writes_its_files(study):
     """Every file is written; the map has the grid's points (1 soil × 2 FS_v × 1 × 1 × 1 × 1
     motion) and the registered calibrations; every measure is finite; the estimate made
-    before the work counted the runs the grid implies (one soil's statics, four rotation
-    pushovers, 2 dynamic)."""
+    before the work counted the runs the grid implies (one soil's statics, its impedance for
+    the impedance bed, four rotation pushovers, 2 dynamic)."""
     out = study.study.directory
     for name in FILES:
         assert (out / name).is_file(), name
@@ -73,9 +73,10 @@ def test_the_fast_map_runs_end_to_end_and_writes_its_files(study):
     assert d.continuum_wall.shape == (1, 2, 1, 1, 1, 1)
     assert d.calibrations == tuple(wm.BEDS)
     assert np.isfinite(d.continuum).all() and np.isfinite(d.beds).all()
-    # one soil's statics pair, and a cyclic and a monotonic rotation pushover per FS_v
-    assert (d.estimate.runs, d.estimate.static, d.estimate.dynamic) == (7, 5, 2)
-    assert d.computed == 7
+    # one soil's statics pair, its impedance, and a cyclic and a monotonic rotation pushover
+    # per FS_v
+    assert (d.estimate.runs, d.estimate.static, d.estimate.dynamic) == (8, 6, 2)
+    assert d.computed == 8
     assert "winkler_map" in STUDIES and definition("winkler_map") is wm.DEFINITION
     tree = study.to_xarray()
     assert float(tree["map"].error.sel(calibration="uniform", measure="theta", fs_v=2.0)
