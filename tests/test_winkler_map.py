@@ -96,14 +96,15 @@ def test_every_bed_has_the_continuums_rocking_stiffness(study, written):
     soil = scene.soil
     closed = math.pi * soil.shear_modulus * 4.0 / (8.0 * (1.0 - soil.poisson_ratio))
     assert abs(k.rocking / closed - 1.0) < 0.01
+    structure = {"weight": 100.0, "height": 3.0, "period": 0.2, "damping_ratio": 0.05,
+                 "rotary_inertia": 10.0}
     ref = wm.BedReference("clay", 100.0, 2.0, 3.0, k.vertical, k.rocking, 500.0,
                           soil.shear_modulus, soil.poisson_ratio,
-                          extra={"density": soil.density})
+                          extra={"density": soil.density, "structure": structure,
+                                 "impedance": dict(study.data.impedances)["clay"]})
     for name in wm.BEDS:
         table = wm.bed_foundation(name, ref, wm.FAST_OPTIONS)
-        data = {"schema": 1, "units": "kN-m-s",
-                "structure": {"weight": 100.0, "height": 3.0, "period": 0.2,
-                              "damping_ratio": 0.05, "rotary_inertia": 10.0},
+        data = {"schema": 1, "units": "kN-m-s", "structure": dict(structure),
                 "foundation": table, "motion": {"type": "free", "velocity": 1.0,
                                                 "duration": 1.0}}
         layout = build_reduced(scene_from_dict(data)).layout

@@ -17,11 +17,14 @@ half-plane (within 0.69 % for a0 = 0.1 to 2 on 16 across; within 0.03 % in K_v a
 K_r of the frictionless strip at a0 = 0.02 to 0.4, measured when this point was added). The
 plasticity of the map's soils is not in it: radiation is a small-strain property.
 
-The frequencies :data:`IMPEDANCE_A0` (a0 = ω (B/2)/V_s) cover the rocking frequencies of the
-map's grid (a0 about 0.04 to 0.3 on the clay and the frictional soil), geometrically spaced at
-a ratio of about 1.2 so that C_j, linear in ω between them
-(:func:`..winkler_vs_continuum.radiation.impedance_dashpots`), is within about 0.4 % of its
-value computed at the frequency itself (2 % at a ratio of 1.5, measured at the midpoints).
+The frequencies :data:`IMPEDANCE_A0` (a0 = ω (B/2)/V_s, 0.02 to 0.5) cover the rocking
+frequencies of the map's grid with room on both sides (the clay's full grid on its 16-across
+statics: a0 = 0.064 to 0.25; a soil of larger V_ult carries heavier structures, whose a0 is
+lower); a point outside them is refused before any dynamic run. They are geometrically spaced,
+19 of them (a ratio of 1.196), because C_j is taken linear in ω between them
+(:func:`..winkler_vs_continuum.radiation.impedance_dashpots`) and the 2D C_v grows steeply as
+a0 falls: a ratio of 1.5 put the interpolated C_v up to 2 % off its value computed at the
+midpoint itself.
 """
 
 from __future__ import annotations
