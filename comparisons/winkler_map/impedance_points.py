@@ -23,8 +23,8 @@ statics: a0 = 0.064 to 0.25; a soil of larger V_ult carries heavier structures, 
 lower); a point outside them is refused before any dynamic run. They are geometrically spaced,
 19 of them (a ratio of 1.196), because C_j is taken linear in ω between them
 (:func:`..winkler_vs_continuum.radiation.impedance_dashpots`) and the 2D C_v grows steeply as
-a0 falls: a ratio of 1.5 put the interpolated C_v up to 2 % off its value computed at the
-midpoint itself.
+a0 falls: at the geometric midpoints (16 across) the interpolated C_v is within 0.41 % and C_r
+within 0.58 % of their values computed there (a ratio of 1.5 put C_v up to 2 % off).
 """
 
 from __future__ import annotations
