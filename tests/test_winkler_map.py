@@ -227,8 +227,8 @@ def test_a_run_over_its_budget_is_refused_with_its_estimate(tmp_path, capsys):
                     "--no-figures"])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2
-    assert err[-1].startswith("error: options.budget = 0.001 s: the map's 7 continuum runs")
-    assert any("7 continuum runs to make (5 static, 2 dynamic" in line for line in err)
+    assert err[-1].startswith("error: options.budget = 0.001 s: the map's 8 continuum runs")
+    assert any("8 continuum runs to make (6 static, 2 dynamic" in line for line in err)
     assert not any((tmp_path / "o" / "store").glob("??/*.json"))
 
 
