@@ -114,7 +114,7 @@ def test_a_rocking_frequency_outside_the_impedance_is_refused():
         wm.bed_foundation("uniform_plastic_impedance", reference(), wm.FAST_OPTIONS)
 
 
-def test_a_soils_impedance_is_costed_with_its_statics():
+def test_a_soils_impedance_is_one_static_run_costed_per_dof_and_frequency():
     """An impedance not yet stored costs P·dofs·frequencies and is one static run of its own
     (its soil's statics stored)."""
     scene = load_scene("strip_footing_clay")
