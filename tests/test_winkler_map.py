@@ -64,8 +64,8 @@ def written(study):
 def test_the_fast_map_runs_end_to_end_and_writes_its_files(study):
     """Every file is written; the map has the grid's points (1 soil × 2 FS_v × 1 × 1 × 1 × 1
     motion) and the registered calibrations; every measure is finite; the estimate made
-    before the work counted the runs the grid implies (one soil's statics, four rotation
-    pushovers, 2 dynamic)."""
+    before the work counted the runs the grid implies (one soil's statics, its impedance for
+    the impedance bed, four rotation pushovers, 2 dynamic)."""
     out = study.study.directory
     for name in FILES:
         assert (out / name).is_file(), name
@@ -73,9 +73,10 @@ def test_the_fast_map_runs_end_to_end_and_writes_its_files(study):
     assert d.continuum_wall.shape == (1, 2, 1, 1, 1, 1)
     assert d.calibrations == tuple(wm.BEDS)
     assert np.isfinite(d.continuum).all() and np.isfinite(d.beds).all()
-    # one soil's statics pair, and a cyclic and a monotonic rotation pushover per FS_v
-    assert (d.estimate.runs, d.estimate.static, d.estimate.dynamic) == (7, 5, 2)
-    assert d.computed == 7
+    # one soil's statics pair, its impedance, and a cyclic and a monotonic rotation pushover
+    # per FS_v
+    assert (d.estimate.runs, d.estimate.static, d.estimate.dynamic) == (8, 6, 2)
+    assert d.computed == 8
     assert "winkler_map" in STUDIES and definition("winkler_map") is wm.DEFINITION
     tree = study.to_xarray()
     assert float(tree["map"].error.sel(calibration="uniform", measure="theta", fs_v=2.0)
@@ -95,14 +96,15 @@ def test_every_bed_has_the_continuums_rocking_stiffness(study, written):
     soil = scene.soil
     closed = math.pi * soil.shear_modulus * 4.0 / (8.0 * (1.0 - soil.poisson_ratio))
     assert abs(k.rocking / closed - 1.0) < 0.01
+    structure = {"weight": 100.0, "height": 3.0, "period": 0.2, "damping_ratio": 0.05,
+                 "rotary_inertia": 10.0}
     ref = wm.BedReference("clay", 100.0, 2.0, 3.0, k.vertical, k.rocking, 500.0,
                           soil.shear_modulus, soil.poisson_ratio,
-                          extra={"density": soil.density})
+                          extra={"density": soil.density, "structure": structure,
+                                 "impedance": dict(study.data.impedances)["clay"]})
     for name in wm.BEDS:
         table = wm.bed_foundation(name, ref, wm.FAST_OPTIONS)
-        data = {"schema": 1, "units": "kN-m-s",
-                "structure": {"weight": 100.0, "height": 3.0, "period": 0.2,
-                              "damping_ratio": 0.05, "rotary_inertia": 10.0},
+        data = {"schema": 1, "units": "kN-m-s", "structure": dict(structure),
                 "foundation": table, "motion": {"type": "free", "velocity": 1.0,
                                                 "duration": 1.0}}
         layout = build_reduced(scene_from_dict(data)).layout
@@ -225,8 +227,8 @@ def test_a_run_over_its_budget_is_refused_with_its_estimate(tmp_path, capsys):
                     "--no-figures"])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2
-    assert err[-1].startswith("error: options.budget = 0.001 s: the map's 7 continuum runs")
-    assert any("7 continuum runs to make (5 static, 2 dynamic" in line for line in err)
+    assert err[-1].startswith("error: options.budget = 0.001 s: the map's 8 continuum runs")
+    assert any("8 continuum runs to make (6 static, 2 dynamic" in line for line in err)
     assert not any((tmp_path / "o" / "store").glob("??/*.json"))
 
 

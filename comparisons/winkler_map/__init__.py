@@ -14,9 +14,10 @@ the plane-strain continuum (:mod:`upliftlab.continuum`) over a grid of
 * motions: Ricker pulses, El Centro (on ``UPLIFTLAB_MOTIONS``) and FEMA P695 far-field components
   (the ``records`` extra), each run in full.
 
-Per soil the continuum's statics (K_v, K_r, V_ult) and per point one continuum dynamic run are
-points of :func:`.sweep.run_sweep` in a content-addressed store (resumable, local processes or
-Dask with ``--scheduler``), each stored with its own wall time; each bed's reduced run of the
+Per soil the continuum's statics (K_v, K_r, V_ult; and its dynamic impedance when a bed needs
+it, :mod:`.impedance_points`) and per point one continuum dynamic run are points of
+:func:`.sweep.run_sweep` in a content-addressed store (resumable, local processes or Dask with
+``--scheduler``), each stored with its own wall time; each bed's reduced run of the
 same point is live (milliseconds) and timed in the same run. Measured alike on both models:
 peak θ, peak edge uplift, residual settlement, residual rotation, peak u, peak base shear.
 Before any run the study logs how many continuum runs it will make and what they should cost

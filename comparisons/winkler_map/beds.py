@@ -24,6 +24,7 @@ from ...reduced.compatibility import winkler_bed
 from ..winkler_vs_continuum import Options as CalibrationOptions, calibrate
 from ..winkler_vs_continuum.radiation import distribute, gazetas_dashpots
 from ..winkler_vs_continuum.reference import ContinuumReference
+from .impedance_bed import build_uniform_plastic_impedance
 
 __all__ = ["BedReference", "BedEntry", "BEDS", "bed_names", "bed_foundation"]
 
@@ -60,13 +61,16 @@ class BedReference:
 @dataclass(frozen=True)
 class BedEntry:
     """One calibration: ``name`` (a coordinate of the map), ``label`` (text),
-    ``build(reference, options) -> [foundation] table``, and ``matches`` the continuum
-    quantities it is calibrated to (text)."""
+    ``build(reference, options) -> [foundation] table``, ``matches`` the continuum
+    quantities it is calibrated to (text), and ``needs`` the stored continuum quantities beyond
+    the statics that the map must compute for it (``impedance``: the soil's dynamic impedance,
+    :mod:`.impedance_points`)."""
 
     name: str
     label: str
     build: Callable
     matches: str
+    needs: tuple[str, ...] = ()
 
 
 def _calibration(reference: BedReference, options, name: str):
@@ -122,6 +126,11 @@ BEDS: dict[str, BedEntry] = {
     "uniform_plastic_gazetas": BedEntry(
         "uniform_plastic_gazetas", "uniform elasto-plastic bed with Gazetas' dashpots",
         build_uniform_plastic_gazetas, "K_r, V_ult, and the handbook strip's C_v and C_r"),
+    "uniform_plastic_impedance": BedEntry(
+        "uniform_plastic_impedance", "uniform elasto-plastic bed with the continuum's impedance "
+        "dashpots", build_uniform_plastic_impedance,
+        "K_r, V_ult, and the FE impedance's C_v and C_r at the rocking frequency",
+        needs=("impedance",)),
 }
 
 

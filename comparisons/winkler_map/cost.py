@@ -13,6 +13,9 @@ Drucker–Prager) is slower than an undrained one's. R is the stored runs' media
 elastic, Tresca, von Mises, Mohr–Coulomb; or the vectorised fallback: Drucker–Prager), else
 the default below. A static point (stiffness plus vertical pushover) costs S·dofs, S from the
 stored statics when there are any.
+A soil's impedance (when a bed needs it, :mod:`.impedance_points`) costs P·dofs·frequencies
+on the impedance's own mesh (one complex factorisation per frequency), P from the stored
+impedances when there are any; it is one static run.
 
 The defaults were measured on the project's loaded 2-core machine with kernels compiled
 (runs of 0.01 s and 0.3–1 s of a Ricker pulse on 4 and 16 across, the clay's compiled Tresca
@@ -35,7 +38,7 @@ from ...checks import InputError
 
 __all__ = ["Estimate", "estimate_cost", "mesh_size", "refuse_over_budget",
            "FIXED_SECONDS_PER_DOF", "SECONDS_PER_DOF_STEP", "STATIC_SECONDS_PER_DOF",
-           "COMPILED_MODELS", "FRICTIONAL_MODELS"]
+           "COMPILED_MODELS", "FRICTIONAL_MODELS", "IMPEDANCE_SECONDS_PER_DOF_FREQUENCY"]
 
 #: Fixed cost of a dynamic run per DOF (s): mesh, stable step, gravity state; of an undrained
 #: soil (False) and of a frictional one (True, :data:`FRICTIONAL_MODELS`), whose gravity state
@@ -50,6 +53,9 @@ STATIC_SECONDS_PER_DOF = 3.0e-3
 COMPILED_MODELS = ("elastic", "tresca", "von_mises", "mohr_coulomb")
 #: Soil models with a friction angle (the fixed part's key).
 FRICTIONAL_MODELS = ("mohr_coulomb", "drucker_prager")
+#: Cost of a soil's impedance per DOF of its mesh and per frequency (s): 19 frequencies on 4
+#: and on 16 across, the clay's elastic constants, on the loaded 2-core machine.
+IMPEDANCE_SECONDS_PER_DOF_FREQUENCY = 3.2e-5
 
 
 @dataclass(frozen=True)
@@ -119,17 +125,19 @@ def _stored_rates(stored: Iterable[Mapping]) -> dict:
 
 def estimate_cost(static: Sequence[tuple[str, object, bool]],
                   dynamic: Sequence[tuple[str, object, float, bool]],
-                  stored_static: Sequence[Mapping], stored_dynamic: Sequence[Mapping]
-                  ) -> Estimate:
+                  stored_static: Sequence[Mapping], stored_dynamic: Sequence[Mapping],
+                  impedance: Sequence[tuple[str, int, int, bool]] = (),
+                  stored_impedance: Sequence[Mapping] = ()) -> Estimate:
     """The cost of the runs not yet stored.
 
     ``static``: (soil, scene, stored[, factor]) per static run, the scene of its soil and mesh
     (a soil's stiffness and vertical pushover count as one static run; ``factor`` scales that
     pair's cost for another static run, e.g. a rotation pushover's steps over the vertical
-    pushover's); ``dynamic``: (soil, scene, duration in s,
-    stored) per dynamic point; ``stored_static`` ({dofs, wall_time_s} of each soil's stored
-    pair) and ``stored_dynamic`` (stored dynamic records): their timings replace the default
-    rates.
+    pushover's); ``dynamic``: (soil, scene, duration in s, stored) per dynamic point;
+    ``impedance``: (soil, DOFs of its mesh, frequencies, stored) per soil whose impedance a bed
+    needs (one static run each); ``stored_static`` ({dofs, wall_time_s} of each soil's stored
+    pair), ``stored_dynamic`` (stored dynamic records) and ``stored_impedance`` (stored
+    impedance records): their timings replace the default rates.
     """
     from ...continuum.dynamics import wave_speeds
     from ...continuum.explicit import COURANT_ESTIMATE
@@ -137,6 +145,9 @@ def estimate_cost(static: Sequence[tuple[str, object, bool]],
     rates, density = _stored_rates(stored_dynamic)
     static_rate = (float(np.median([r["wall_time_s"] / r["dofs"] for r in stored_static]))
                    if stored_static else STATIC_SECONDS_PER_DOF)
+    impedance_rate = (float(np.median([r["wall_time_s"] / (r["dofs"] * len(r["a0"]))
+                                       for r in stored_impedance]))
+                      if stored_impedance else IMPEDANCE_SECONDS_PER_DOF_FREQUENCY)
     by_soil, per_run, n_static, n_dynamic, stored = {}, [], 0, 0, 0
     for soil, scene, done, *factor in static:
         by_soil.setdefault(soil, 0.0)
@@ -144,6 +155,13 @@ def estimate_cost(static: Sequence[tuple[str, object, bool]],
             stored += 1
             continue
         by_soil[soil] += static_rate * mesh_size(scene)[0] * (factor[0] if factor else 1.0)
+        n_static += 1
+    for soil, dofs, frequencies, done in impedance:
+        by_soil.setdefault(soil, 0.0)
+        if done:
+            stored += 1
+            continue
+        by_soil[soil] += impedance_rate * dofs * frequencies
         n_static += 1
     for soil, scene, duration, done in dynamic:
         by_soil.setdefault(soil, 0.0)

@@ -22,9 +22,11 @@ from ...log import logger
 from ...scenes import load_scene, scene_from_dict
 from ..study import relative_error
 from ..sweep import DASK_ENV, run_sweep, sweep_executor
-from .beds import BedReference, bed_foundation
+from .beds import BEDS, BedReference, bed_foundation
 from .cost import Estimate, estimate_cost, refuse_over_budget
 from .grid import FLOOR_FRACTION, MEASURES, STUDY, Grid, Options
+from .impedance_points import (evaluate_impedance, impedance_dofs, impedance_point,
+                               soil_impedance)
 from .motions import motion_duration
 from .points import (BASE_SCENE, base_table, evaluate_dynamic, point_table, run_bed, scales,
                      story_constants)
@@ -52,7 +54,9 @@ class MapData:
     fs_v, calibration) the stiffness of each built bed; ``statics`` per soil; ``refusals``
     the bed runs the integrator refused; ``estimate`` the cost estimated before the work;
     ``computed`` the continuum runs this call made (a soil's statics count as one, as in the
-    estimate).
+    estimate, and its impedance as one more); ``impedances`` (soil, :class:`~upliftlab.
+    continuum.impedance.Impedance`) pairs of the soils whose impedance a bed needed (else
+    empty).
     """
 
     grid: Grid
@@ -76,6 +80,7 @@ class MapData:
     estimate: Estimate
     computed: int
     rocking: RockingData
+    impedances: tuple = ()
 
     @property
     def motion_names(self) -> tuple[str, ...]:
@@ -128,10 +133,14 @@ def _rocking_points(grid, options, base, loads) -> list[dict]:
             for p in rocking_points(base, soil, loads[soil] / fs, options)]
 
 
-def _estimate(grid, options, motions, base, g, store, statics_points, loads) -> Estimate:
+def _estimate(grid, options, motions, base, g, store, statics_points, loads,
+              impedance_points) -> Estimate:
     """The cost of what is not stored yet. A soil whose statics are not stored has no vertical
     load yet: its dynamic points and its rotation pushovers all count as still to run."""
     static_records = [store.get(_key(p, evaluate_static)) for p in statics_points]
+    impedance_records = [store.get(_key(p, evaluate_impedance)) for p in impedance_points]
+    impedance_rows = [(soil, impedance_dofs(p), len(p["impedance"]["a0"]), r is not None)
+                      for soil, p, r in zip(grid.soils, impedance_points, impedance_records)]
     static_rows = []
     for i, soil in enumerate(grid.soils):
         point = statics_points[2 * i]
@@ -158,7 +167,8 @@ def _estimate(grid, options, motions, base, g, store, statics_points, loads) -> 
     pairs = [static_records[i:i + 2] for i in range(0, len(static_records), 2)]
     stored_static = [{"dofs": a["dofs"], "wall_time_s": a["wall_time_s"] + b["wall_time_s"]}
                      for a, b in pairs if a is not None and b is not None]
-    return estimate_cost(static_rows, rows, stored_static, [r for r in records if r is not None])
+    return estimate_cost(static_rows, rows, stored_static, [r for r in records if r is not None],
+                         impedance_rows, [r for r in impedance_records if r is not None])
 
 
 def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motions,
@@ -176,7 +186,12 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
     static_records = [store.get(_key(p, evaluate_static)) for p in statics_points]
     loads = {soil: static_records[2 * i + 1]["capacity"] for i, soil in enumerate(grid.soils)
              if static_records[2 * i] is not None and static_records[2 * i + 1] is not None}
-    estimate = _estimate(grid, options, motions, base, g, store, statics_points, loads)
+    needs = {n for c in calibrations for n in BEDS[c].needs}
+    impedance_points = ([impedance_point(soil, options, b) for soil in grid.soils]
+                        if "impedance" in needs else [])
+    impedance_stored = [store.has(_key(p, evaluate_impedance)) for p in impedance_points]
+    estimate = _estimate(grid, options, motions, base, g, store, statics_points, loads,
+                         impedance_points)
     local = ctx.scheduler is None and not os.environ.get(DASK_ENV)
     in_process = ctx.executor is None and local and estimate.seconds < IN_PROCESS_SECONDS
     workers = 1 if in_process else (ctx.workers or os.cpu_count() or 1)
@@ -194,7 +209,10 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
         statics = tuple(soil_statics(soil, records[2 * i:2 * i + 2])
                         for i, soil in enumerate(grid.soils))
         loads = {s.soil: s.V_ult for s in statics}
+        impedances = dict(zip(grid.soils, (soil_impedance(p, r) for p, r in zip(
+            impedance_points, run_sweep(evaluate_impedance, impedance_points, store, **sweep)))))
         points = _dynamic_points(grid, options, motions, base, g, loads)
+        _build_every_bed(grid, options, calibrations, motions, statics, points, impedances)
         before = sum(1 for p in points if store.has(_key(p, evaluate_dynamic)))
         rotations = _rocking_points(grid, options, base, loads)
         before += sum(1 for p in rotations if store.has(_key(p, evaluate_continuum)))
@@ -202,21 +220,40 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
         runs = run_sweep(evaluate_dynamic, points, store, **sweep)
     soils_run = sum(1 for i in range(len(grid.soils))
                     if any(r is None for r in static_records[2 * i:2 * i + 2]))
-    computed = len(points) + len(rotations) - before + soils_run
-    rocking = _rocking(grid, options, calibrations, statics, base, g, rocking_records)
+    computed = (len(points) + len(rotations) - before + soils_run
+                + sum(1 for done in impedance_stored if not done))
+    rocking = _rocking(grid, options, calibrations, statics, base, g, rocking_records,
+                       impedances)
     return _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
-                     computed, rocking)
+                     computed, rocking, impedances)
 
 
-def _reference(st: SoilStatics, scene) -> BedReference:
-    """The continuum numbers a bed is calibrated from, at a point's scene."""
+def _reference(st: SoilStatics, scene, structure: Mapping, impedance=None) -> BedReference:
+    """The continuum numbers a bed is calibrated from, at a point's scene: its numbers, the
+    soil's statics, and in ``extra`` the soil's density, the point's ``[structure]`` table and
+    the soil's impedance (when a bed needs it)."""
+    extra = {"density": scene.soil.density, "structure": dict(structure)}
+    if impedance is not None:
+        extra["impedance"] = impedance
     return BedReference(st.soil, scene.structure.weight, scene.foundation.width,
                         scene.structure.height, st.K_v, st.K_r, st.V_ult,
-                        scene.soil.shear_modulus, scene.soil.poisson_ratio,
-                        extra={"density": scene.soil.density})
+                        scene.soil.shear_modulus, scene.soil.poisson_ratio, extra=extra)
 
 
-def _rocking(grid, options, calibrations, statics, base, g, records) -> RockingData:
+def _build_every_bed(grid, options, calibrations, motions, statics, points, impedances):
+    """Build every bed of every cell once (milliseconds), after the statics and before any
+    further continuum run: a bed that cannot be built at some point (an impedance bed whose
+    rocking frequency is outside the impedance's frequencies) is refused before that work."""
+    by_soil = {s.soil: s for s in statics}
+    for k, (_, (soil, *_)) in enumerate(_cells(grid)):
+        table = points[k * len(motions)]["scene"]
+        ref = _reference(by_soil[soil], _scene(table), table["structure"], impedances.get(soil))
+        for name in calibrations:
+            bed_foundation(name, ref, options)
+
+
+def _rocking(grid, options, calibrations, statics, base, g, records,
+             impedances) -> RockingData:
     """Every bed's rocking pushovers on the continuum's rotations, per (soil, fs_v); the
     beds are built at the grid's first h/B and period (a bed's statics do not depend on
     them)."""
@@ -226,7 +263,8 @@ def _rocking(grid, options, calibrations, statics, base, g, records) -> RockingD
     for i, (soil, fs) in enumerate((s, f) for s in grid.soils for f in grid.fs_v):
         table = point_table(base, soil, options.elements_across, by_soil[soil].V_ult / fs,
                             grid.h_over_B[0], grid.periods[0], g)
-        ref = _reference(by_soil[soil], _scene(table))
+        ref = _reference(by_soil[soil], _scene(table), table["structure"],
+                         impedances.get(soil))
         cyclic, monotonic = records[2 * i]["theta"], records[2 * i + 1]["theta"]
         beds.append([bed_rocking(table, ref.N, bed_foundation(name, ref, options), cyclic,
                                  monotonic) for name in calibrations])
@@ -235,7 +273,7 @@ def _rocking(grid, options, calibrations, statics, base, g, records) -> RockingD
 
 
 def _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
-              computed, rocking) -> MapData:
+              computed, rocking, impedances) -> MapData:
     shape = (len(grid.soils), len(grid.fs_v), len(grid.h_over_B), len(grid.periods),
              len(grid.intensities), len(motions))
     nb, nm = len(calibrations), len(MEASURES)
@@ -258,7 +296,7 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
             at = idx + (m,)
             scene = _scene(point["scene"])
             B, h = scene.foundation.width, scene.structure.height
-            ref = _reference(st, scene)
+            ref = _reference(st, scene, point["scene"]["structure"], impedances.get(soil))
             k_story, _ = story_constants(scene)
             scl = scales(ref.N, B, h, st.K_v, st.K_r, k_story)
             scale[idx[:4]] = [scl[q] for q in MEASURES]
@@ -289,7 +327,8 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                                                          FLOOR_FRACTION * scl[measure])
     return MapData(grid, options, tuple(motions), tuple(calibrations), tuple(statics), N,
                    continuum, beds, errors, scale, cwall, bwall, steps, balance, dofs, bed_K_r,
-                   bed_K_v, tuple(refusals), estimate, computed, rocking)
+                   bed_K_v, tuple(refusals), estimate, computed, rocking,
+                   tuple(impedances.items()))
 
 
 def _bed_stiffness(point: Mapping, foundation: Mapping) -> tuple[float, float]:

@@ -11,7 +11,8 @@ from .beds import BEDS
 from .cost import COMPILED_MODELS, SECONDS_PER_DOF_STEP
 from .grid import MEASURE_LABELS, SOIL_LABELS, FLOOR_FRACTION
 
-__all__ = ["summary_numbers", "summary_markdown", "MESH_NOTE", "ENERGY_NOTE", "SOIL_NOTE"]
+__all__ = ["summary_numbers", "summary_markdown", "MESH_NOTE", "ENERGY_NOTE", "SOIL_NOTE",
+           "SWAY_NOTE"]
 
 #: Why the full map runs on 16 elements across (the measured mesh differences of
 #: benchmarks/CONTINUUM_CONVERGENCE.md, 10 s of El Centro on the clay, explicit route).
@@ -27,6 +28,11 @@ ENERGY_NOTE = ("Dissipated energy is left out: the continuum's energy account (k
                "not separable from what a run returns, and the reduced model's dissipated "
                "energy (dashpots, impacts, plastic springs) has nothing alike to be compared "
                "with.")
+SWAY_NOTE = ("No bed has a sway spring or a horizontal dashpot: the map's soils have a "
+             "frictionless interface, and with it the continuum's explicit route holds the "
+             "footing's horizontal displacement to the base's (the footing's u relative to the "
+             "moving base is zero at every step), so the continuum footing does not sway and a "
+             "sway spring would have nothing to match.")
 SOIL_NOTE = ("The continuum's soil has one Young's modulus everywhere: its stiffness does not "
              "grow with confinement (the frictional soil's strength does, through φ).")
 
@@ -77,7 +83,14 @@ def summary_numbers(result, elapsed: float) -> dict:
         "cost": {"estimated_runs": d.estimate.runs, "estimated_s": d.estimate.seconds,
                  "estimate_source": d.estimate.source, "computed_runs": d.computed,
                  "continuum_wall_s": float(np.nansum(d.continuum_wall))
-                 + sum(s.wall_time_s for s in d.statics)},
+                 + sum(s.wall_time_s for s in d.statics)
+                 + sum(imp.metadata.get("wall_time_s", 0.0) for _, imp in d.impedances)},
+        "impedance": {soil: {"a0": [float(v) for v in imp.a0],
+                             "omega": [float(v) for v in imp.omega],
+                             "C_v": [float(v) for v in imp.dashpot("v")],
+                             "C_r": [float(v) for v in imp.dashpot("r")], "dofs": imp.dofs,
+                             "wall_time_s": imp.metadata.get("wall_time_s")}
+                      for soil, imp in d.impedances},
         "max_energy_balance_error": _finite(float(np.nanmax(d.balance))),
         "refusals": list(d.refusals),
         "elapsed_s": elapsed,
@@ -104,7 +117,7 @@ def summary_markdown(result, fast: bool, elapsed: float) -> str:
              f"full): {motions}. Beds of {o.springs} springs: "
              + "; ".join(f"`{c}` {BEDS[c].label}" for c in d.calibrations if c in BEDS) + ".",
              "", _mesh_text(d, fast), "", SOIL_NOTE + _speed_of_soils(d), "", _input_text(d),
-             "",
+             "", SWAY_NOTE, "",
              "Errors are (bed − continuum)/max(|continuum|, floor), the floor "
              f"{FLOOR_FRACTION:g} × the measure at a uniform bed's uplift threshold (θ_up = "
              "N B/(6 K_r), the settlement N/K_v, the shear N B/(6h) and the story deformation "
@@ -117,7 +130,7 @@ def summary_markdown(result, fast: bool, elapsed: float) -> str:
              "K_v and K_r (every contact node tied to the footing, elastic soil) and V_ult (the "
              f"largest load of a vertical pushover to {o.settlement_ratio:g} B) do not depend on "
              "N: one pair of stored static runs per soil serves every FS_v, N = V_ult/FS_v.", "",
-             *_statics_table(d), "",
+             *_statics_table(d), "", *_impedance_text(d),
              "## The beds' statics against the continuum's", "",
              *_rocking_lines(d), "",
              "## Where each bed is enough", "",
@@ -178,6 +191,24 @@ def _speed_of_soils(d) -> str:
             "one (upliftlab.comparisons.winkler_map.cost).")
 
 
+def _impedance_text(d) -> list[str]:
+    """The soils' FE impedance dashpots (when a bed used them), a few frequencies of each."""
+    if not d.impedances:
+        return []
+    rows = ["The impedance beds' dashpots are those of the continuum's FE impedance of each "
+            "soil (linear elastic, its interface, a PML box; one stored point per soil), "
+            "C_j = Im K_j/ω, linear in ω between its frequencies, taken at each point's "
+            "rocking frequency on its bed:", "",
+            "| soil | DOFs | a0 | ω (rad/s) | C_v (kN s/m/m) | C_r (kN m s/rad/m) |",
+            "|---|---|---|---|---|---|"]
+    for soil, imp in d.impedances:
+        C_v, C_r = imp.dashpot("v"), imp.dashpot("r")
+        for k in range(0, imp.a0.size, 3):
+            rows.append(f"| {soil} | {imp.dofs} | {imp.a0[k]:.3g} | {imp.omega[k]:.4g} | "
+                        f"{C_v[k]:.5g} | {C_r[k]:.4g} |")
+    return rows + [""]
+
+
 def _statics_table(d) -> list[str]:
     rows = ["| soil | DOFs | K_v (kN/m/m) | K_r (kN m/rad/m) | V_ult (kN/m) | last step's load "
             "rise | N at each FS_v (kN/m) | V_ult/N − FS_v |", "|---|---|---|---|---|---|---|---|"]
@@ -219,7 +250,8 @@ def _rocking_lines(d) -> list[str]:
 
 #: Short names of the calibrations in table headers (long names break mid-word in print).
 SHORT = {"uniform": "U", "end_stiffened": "ES", "uniform_plastic": "U-p",
-         "end_stiffened_plastic": "ES-p", "uniform_plastic_gazetas": "U-p-G"}
+         "end_stiffened_plastic": "ES-p", "uniform_plastic_gazetas": "U-p-G",
+         "uniform_plastic_impedance": "U-p-I"}
 
 
 def _short(name: str) -> str:
@@ -271,6 +303,7 @@ def _speed_text(a) -> str:
 
 def _cost_text(d) -> str:
     e = d.estimate
-    total = float(np.nansum(d.continuum_wall)) + sum(s.wall_time_s for s in d.statics)
+    total = (float(np.nansum(d.continuum_wall)) + sum(s.wall_time_s for s in d.statics)
+             + sum(imp.metadata.get("wall_time_s", 0.0) for _, imp in d.impedances))
     return (f"Estimated before any work: {e.text()}. This run computed {d.computed} continuum "
             f"runs; the continuum's stored runs took {total:.1f} s of wall time in all.")
