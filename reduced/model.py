@@ -28,7 +28,7 @@ from ..checks import InputError
 from ..scenes import Scene
 from . import springs as sp
 from .compatibility import DofMap, SpringLayout, compatibility_matrix, layout_for, stiffness_matrix
-from .qz import QZ_SOILS, check_z50, common_zref, qz_springs, static_forces
+from .qz import check_z50, common_zref, qz_shape, qz_springs, static_forces
 
 __all__ = ["ReducedModel", "build_model", "impact_effective_mass", "impact_step"]
 
@@ -348,7 +348,7 @@ def _qz_params(f, layout: SpringLayout, table: np.ndarray, weight: float) -> np.
     """The q–z bed: capacity ``capacity_multiple``·W shared over the tributary widths, one
     near-field z_ref that puts the bed's backbone through (z50, capacity/2), static forces on
     the nonlinear backbones (:func:`.qz.static_forces`) and the drag."""
-    shape = QZ_SOILS[f.qz_soil]
+    shape = qz_shape(f.qz_soil, f.qz_exponent, f.qz_elastic_range)
     k, w = layout.stiffnesses, layout.widths
     qult = f.capacity_multiple * weight * w / w.sum()
     check_z50(k, qult, f.z50)

@@ -31,6 +31,21 @@ class QzShape:
 QZ_SOILS = {"clay": QzShape(n=1.2, elast=0.2, emax=0.7),
             "sand": QzShape(n=5.5, elast=0.3, emax=0.7)}
 SUCTION_MAX = 0.1  # the drag capacity QzSimple allows, as a fraction of q_ult
+EXPONENT_RANGE = (1.0, 50.0)  # n: > 1 (the hyperbola's work integral), ≤ 50 (a sharp enough bend)
+ELASTIC_RANGE_MAX = 0.95  # elast: the pristine half-range below q_ult
+
+
+def qz_shape(soil: str, exponent: float | None = None,
+             elastic_range: float | None = None) -> QzShape:
+    """The backbone shape of ``soil`` (:data:`QZ_SOILS`) with its exponent n and its initial
+    elastic half-range ``elast`` replaced where given (e.g. fitted to a continuum pushover,
+    :mod:`upliftlab.comparisons.winkler_vs_continuum.qz_fit`). The largest range width is the
+    soil's ``emax``, widened to 2·elast when the pristine range is wider, so that the law's cap
+    min(·, emax·q_ult) on a reversal never cuts the range below its pristine width."""
+    base = QZ_SOILS[soil]
+    n = base.n if exponent is None else float(exponent)
+    elast = base.elast if elastic_range is None else float(elastic_range)
+    return QzShape(n=n, elast=elast, emax=max(base.emax, 2.0 * elast))
 
 
 def zref_from_z50(qult, k, z50, shape: QzShape):

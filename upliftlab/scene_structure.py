@@ -18,7 +18,7 @@ SUPPORTS = ("uplift", "bonded", "fixed")
 LAYOUTS = ("winkler", "edges", "equivalent", "end_stiffened", "custom")
 LAWS = ("elastic", "elastoplastic", "qz")
 QZ_SOIL_NAMES = ("clay", "sand")  # the q–z backbone shapes (upliftlab.reduced.qz.QZ_SOILS)
-QZ_KEYS = ("capacity_multiple", "z50", "suction", "qz_soil")
+QZ_KEYS = ("capacity_multiple", "z50", "suction", "qz_soil", "qz_exponent", "qz_elastic_range")
 IMPACT_MASSES = ("point", "tributary")
 KINEMATICS = ("small", "exact")
 
@@ -151,7 +151,9 @@ class Foundation:
     capacity is ``capacity_multiple`` times the weight, shared over the springs' tributary
     widths; ``z50`` (length) the base's settlement at half capacity under a centred load;
     ``suction`` the gap's drag as a fraction of capacity; ``qz_soil`` the backbone's shape,
-    ``clay`` or ``sand``). Dashpots in
+    ``clay`` or ``sand``, whose hyperbola exponent n and initial elastic half-range (fraction of
+    q_ult) ``qz_exponent`` and ``qz_elastic_range`` replace where given, e.g. fitted to a
+    continuum's vertical pushover). Dashpots in
     parallel carry ``damping_ratio`` of critical for the bonded vertical mode. ``restitution`` ε
     < 1 adds Ewing's impact damper with c* = ``impact_multiple`` · c_cr. ``impact_mass``: the
     mass behind a landing spring in c_cr and Δz — ``point`` (the paper's eq. 17: the structure's
@@ -194,6 +196,8 @@ class Foundation:
     z50: float = 0.0
     suction: float = 0.0
     qz_soil: str = "clay"
+    qz_exponent: float | None = None
+    qz_elastic_range: float | None = None
 
     @property
     def width(self) -> float:
@@ -348,4 +352,6 @@ def _qz_keys(table: Table, law: str, support: str, units: UnitSystem) -> dict:
                                            in_range(1.0, 1e6, low_open=True)),
             "z50": table.get("z50", bounds.checker("length", units)),
             "suction": table.get("suction", in_range(0.0, 0.1), 0.0),
-            "qz_soil": table.get("qz_soil", choice(QZ_SOIL_NAMES), "clay")}
+            "qz_soil": table.get("qz_soil", choice(QZ_SOIL_NAMES), "clay"),
+            "qz_exponent": table.get("qz_exponent", in_range(1.0, 50.0, low_open=True), None),
+            "qz_elastic_range": table.get("qz_elastic_range", in_range(0.0, 0.95), None)}

@@ -24,6 +24,7 @@ from ...reduced.compatibility import winkler_bed
 from ..winkler_vs_continuum import Options as CalibrationOptions, calibrate
 from ..winkler_vs_continuum.radiation import distribute, gazetas_dashpots
 from ..winkler_vs_continuum.reference import ContinuumReference
+from .qz_bed import build_qz
 
 __all__ = ["BedReference", "BedEntry", "BEDS", "bed_names", "bed_foundation"]
 
@@ -122,6 +123,8 @@ BEDS: dict[str, BedEntry] = {
     "uniform_plastic_gazetas": BedEntry(
         "uniform_plastic_gazetas", "uniform elasto-plastic bed with Gazetas' dashpots",
         build_uniform_plastic_gazetas, "K_r, V_ult, and the handbook strip's C_v and C_r"),
+    "qz": BedEntry("qz", "hysteretic q–z bed fitted to the vertical pushover", build_qz,
+                   "K_r, K_v where reachable, V_ult, and the whole vertical pushover"),
 }
 
 

@@ -216,7 +216,8 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
             B, h = scene.foundation.width, scene.structure.height
             ref = BedReference(soil, scene.structure.weight, B, h, st.K_v, st.K_r, st.V_ult,
                                scene.soil.shear_modulus, scene.soil.poisson_ratio,
-                               extra={"density": scene.soil.density})
+                               extra={"density": scene.soil.density,
+                                      "settlement": st.settlement, "load": st.load})
             k_story, _ = story_constants(scene)
             scl = scales(ref.N, B, h, st.K_v, st.K_r, k_story)
             scale[idx[:4]] = [scl[q] for q in MEASURES]
