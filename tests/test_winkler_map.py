@@ -93,9 +93,11 @@ def test_every_bed_has_the_continuums_rocking_stiffness(study, written):
     soil = scene.soil
     closed = math.pi * soil.shear_modulus * 4.0 / (8.0 * (1.0 - soil.poisson_ratio))
     assert abs(k.rocking / closed - 1.0) < 0.01
+    pushover = {"settlement": [float(v) for v in statics.settlement.sel(soil="clay").values],
+                "load": [float(v) for v in statics.load.sel(soil="clay").values]}
     ref = wm.BedReference("clay", 100.0, 2.0, 3.0, k.vertical, k.rocking, 500.0,
                           soil.shear_modulus, soil.poisson_ratio,
-                          extra={"density": soil.density})
+                          extra={"density": soil.density, **pushover})
     for name in wm.BEDS:
         table = wm.bed_foundation(name, ref, wm.FAST_OPTIONS)
         data = {"schema": 1, "units": "kN-m-s",
@@ -262,3 +264,13 @@ def test_the_gazetas_bed_carries_the_handbook_strips_dashpots():
     with pytest.raises(InputError, match=r"^soil.density = 0.0: .* valid range is > 0$"):
         wm.bed_foundation("uniform_plastic_gazetas", replace(ref, extra={"density": 0.0}),
                           wm.FAST_OPTIONS)
+
+
+def test_the_qz_bed_runs_on_the_fast_map(study):
+    """The q–z bed's runs on the fast map give finite measures: a run whose energy balance is
+    beyond the project's tolerance (analysis.energy_tolerance, 1e-3 of the input) is refused by
+    reduced.run and would leave NaN here."""
+    d = study.data
+    c = d.calibrations.index("qz")
+    assert np.isfinite(d.beds[..., c, :]).all()
+    assert not [r for r in d.refusals if r.endswith("qz: ") or ", qz:" in r]

@@ -62,11 +62,13 @@ def qz_bed_fit(reference, options) -> tuple[np.ndarray, np.ndarray, np.ndarray, 
 def build_qz(reference, options) -> dict:
     """The ``[foundation]`` table of the q–z bed (module docstring): a custom layout of the
     end-stiffened stiffnesses, capacity V_ult (``capacity_multiple`` = V_ult/N), and the fitted
-    z50, exponent and elastic range; no suction (the continuum's contact is unilateral)."""
+    z_ref, exponent and elastic range (z_ref rather than z50: a fitted elastic range may carry
+    half the capacity on its own, and z50 then does not fix z_ref); no suction (the
+    continuum's contact is unilateral)."""
     x, k, _, fit = qz_bed_fit(reference, options)
     soil = reference.soil if reference.soil in ("clay", "sand") else "clay"
     return {"support": "uplift", "half_width": 0.5 * reference.B, "layout": "custom",
             "positions": [float(v) for v in x], "stiffnesses": [float(v) for v in k],
-            "law": "qz", "capacity_multiple": reference.V_ult / reference.N, "z50": fit.z50,
+            "law": "qz", "capacity_multiple": reference.V_ult / reference.N, "qz_zref": fit.zref,
             "suction": 0.0, "qz_soil": soil, "qz_exponent": fit.exponent,
             "qz_elastic_range": fit.elastic_range}

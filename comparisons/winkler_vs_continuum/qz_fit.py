@@ -22,14 +22,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq, least_squares
+from scipy.optimize import least_squares
 
 from ...checks import InputError
-from ...reduced.qz import (ELASTIC_RANGE_MAX, EXPONENT_RANGE, QzShape, backbone_force, qz_shape,
+from ...reduced.qz import (ELASTIC_RANGE_MAX, EXPONENT_RANGE, QzShape, bed_z50, qz_shape,
                            z50_lower_bound)
 from .qz_calibration import bed_path_at_zref, bed_vertical_path, z50_from_pushover
 
-__all__ = ["QzFit", "fit_backbone", "path_misfit", "one_point_misfit", "bed_z50"]
+__all__ = ["QzFit", "fit_backbone", "path_misfit", "one_point_misfit"]
 
 #: Bounds of the fitted exponent n: above 1 (the law's work integral) and at most the scene's 50;
 #: a pushover of ten points hardly tells a sharper bend apart.
@@ -96,27 +96,14 @@ def one_point_misfit(settlement, load, stiffnesses, capacities, soil: str = "cla
     return float(np.max(np.abs(r))), float(np.sqrt(np.mean(r * r))), z50
 
 
-def bed_z50(stiffnesses, capacities, zref: float, shape: QzShape) -> float:
-    """The settlement (length) at which the bed's springs, all settling alike on their virgin
-    backbones (reference ``zref``), carry half their capacity together."""
-    k, q = np.asarray(stiffnesses, dtype=float), np.asarray(capacities, dtype=float)
-    half = 0.5 * q.sum()
-
-    def excess(z):
-        return backbone_force(z, k, q, zref, shape).sum() - half
-
-    hi = half / k.sum()
-    while excess(hi) < 0.0:
-        hi *= 2.0
-    return float(brentq(excess, 0.0, hi, xtol=1e-15 * hi, rtol=1e-15, maxiter=500))
-
-
 def fit_backbone(settlement, load, stiffnesses, capacities, soil: str = "clay") -> QzFit:
     """The shape (z_ref, elast, n) whose bed path fits the pushover (settlement, length;
     load, force: its points from the first step on, monotonic) best in least squares, for the
     bed of ``stiffnesses`` k_i (force/length) and ``capacities`` q_ult,i (force); emax from the
     ``soil`` (:func:`upliftlab.reduced.qz.qz_shape`). Several starts (:data:`STARTS`), the
-    best kept. z50 of the result is the fitted bed's (:func:`bed_z50`)."""
+    best kept. z50 of the result is the fitted bed's (:func:`upliftlab.reduced.qz.bed_z50`);
+    with an elastic range above half the capacity it does not fix z_ref, which a scene then
+    takes as ``foundation.qz_zref``."""
     s, n = _pushover(settlement, load)
     k, q = np.asarray(stiffnesses, dtype=float), np.asarray(capacities, dtype=float)
     if k.shape != q.shape or k.size == 0 or np.any(k <= 0.0) or np.any(q <= 0.0):
