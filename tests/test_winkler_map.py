@@ -93,8 +93,8 @@ def test_every_bed_has_the_continuums_rocking_stiffness(study, written):
     soil = scene.soil
     closed = math.pi * soil.shear_modulus * 4.0 / (8.0 * (1.0 - soil.poisson_ratio))
     assert abs(k.rocking / closed - 1.0) < 0.01
-    pushover = {"settlement": [float(v) for v in statics.settlement.sel(soil="clay").values],
-                "load": [float(v) for v in statics.load.sel(soil="clay").values]}
+    pushover = {"settlement": [float(v) for v in statics["settlement"].sel(soil="clay").values],
+                "load": [float(v) for v in statics["load"].sel(soil="clay").values]}
     ref = wm.BedReference("clay", 100.0, 2.0, 3.0, k.vertical, k.rocking, 500.0,
                           soil.shear_modulus, soil.poisson_ratio,
                           extra={"density": soil.density, **pushover})
