@@ -31,8 +31,6 @@ class QzShape:
 QZ_SOILS = {"clay": QzShape(n=1.2, elast=0.2, emax=0.7),
             "sand": QzShape(n=5.5, elast=0.3, emax=0.7)}
 SUCTION_MAX = 0.1  # the drag capacity QzSimple allows, as a fraction of q_ult
-EXPONENT_RANGE = (1.0, 50.0)  # n: > 1 (the hyperbola's work integral), ≤ 50 (a sharp enough bend)
-ELASTIC_RANGE_MAX = 0.95  # elast: the pristine half-range below q_ult
 
 
 def qz_shape(soil: str, exponent: float | None = None,

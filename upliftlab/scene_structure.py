@@ -20,6 +20,8 @@ LAWS = ("elastic", "elastoplastic", "qz")
 QZ_SOIL_NAMES = ("clay", "sand")  # the q–z backbone shapes (upliftlab.reduced.qz.QZ_SOILS)
 QZ_KEYS = ("capacity_multiple", "z50", "suction", "qz_soil", "qz_exponent", "qz_elastic_range",
            "qz_zref")
+QZ_EXPONENT_MAX = 50.0  # n of a q–z backbone: > 1 (the hyperbola's work integral), ≤ 50
+QZ_ELASTIC_RANGE_MAX = 0.95  # elast of a q–z backbone: its pristine half-range, below q_ult
 IMPACT_MASSES = ("point", "tributary")
 KINEMATICS = ("small", "exact")
 
@@ -362,5 +364,7 @@ def _qz_keys(table: Table, law: str, support: str, units: UnitSystem) -> dict:
             "qz_zref": zref,
             "suction": table.get("suction", in_range(0.0, 0.1), 0.0),
             "qz_soil": table.get("qz_soil", choice(QZ_SOIL_NAMES), "clay"),
-            "qz_exponent": table.get("qz_exponent", in_range(1.0, 50.0, low_open=True), None),
-            "qz_elastic_range": table.get("qz_elastic_range", in_range(0.0, 0.95), None)}
+            "qz_exponent": table.get("qz_exponent",
+                                     in_range(1.0, QZ_EXPONENT_MAX, low_open=True), None),
+            "qz_elastic_range": table.get("qz_elastic_range",
+                                          in_range(0.0, QZ_ELASTIC_RANGE_MAX), None)}

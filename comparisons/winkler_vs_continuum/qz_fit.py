@@ -25,15 +25,18 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ...checks import InputError
-from ...reduced.qz import (ELASTIC_RANGE_MAX, EXPONENT_RANGE, QzShape, bed_z50, qz_shape,
-                           z50_lower_bound)
+from ...reduced.qz import QzShape, bed_z50, qz_shape, z50_lower_bound
+from ...scene_structure import QZ_ELASTIC_RANGE_MAX, QZ_EXPONENT_MAX
 from .qz_calibration import bed_path_at_zref, bed_vertical_path, z50_from_pushover
 
 __all__ = ["QzFit", "fit_backbone", "path_misfit", "one_point_misfit"]
 
-#: Bounds of the fitted exponent n: above 1 (the law's work integral) and at most the scene's 50;
-#: a pushover of ten points hardly tells a sharper bend apart.
-FIT_EXPONENT = (1.05, 50.0)
+#: Bounds of the fitted exponent n: above 1 (the law's work integral) and at most the scene's
+#: largest; a pushover of ten points hardly tells a sharper bend apart.
+FIT_EXPONENT = (1.05, QZ_EXPONENT_MAX)
+#: Bounds of the fitted elastic range elast: inside the scene's, so that a fitted shape is
+#: always one a scene accepts.
+FIT_ELASTIC_RANGE = (0.0, min(0.9, QZ_ELASTIC_RANGE_MAX))
 #: Starting points (elast, n) of the local fits; the best is kept (the misfit is not convex).
 STARTS = ((0.1, 1.5), (0.3, 3.0), (0.5, 5.0), (0.7, 2.0))
 
@@ -109,8 +112,7 @@ def fit_backbone(settlement, load, stiffnesses, capacities, soil: str = "clay") 
     if k.shape != q.shape or k.size == 0 or np.any(k <= 0.0) or np.any(q <= 0.0):
         raise InputError("fit_backbone: give one positive stiffness and capacity per spring")
     capacity = float(q.sum())
-    elast_hi = min(ELASTIC_RANGE_MAX, 0.9)
-    n_lo, n_hi = max(FIT_EXPONENT[0], EXPONENT_RANGE[0]), min(FIT_EXPONENT[1], EXPONENT_RANGE[1])
+    (e_lo, e_hi), (n_lo, n_hi) = FIT_ELASTIC_RANGE, FIT_EXPONENT
     scale = float(s[-1])
 
     def residuals(x):
@@ -122,8 +124,8 @@ def fit_backbone(settlement, load, stiffnesses, capacities, soil: str = "clay") 
     best = None
     for elast0, n0 in STARTS:
         x0 = np.array([np.log(0.3 * z_half / scale), elast0, n0])
-        fit = least_squares(residuals, x0, bounds=([np.log(1e-8), 0.0, n_lo],
-                                                   [np.log(1e3), elast_hi, n_hi]),
+        fit = least_squares(residuals, x0, bounds=([np.log(1e-8), e_lo, n_lo],
+                                                   [np.log(1e3), e_hi, n_hi]),
                             x_scale=[1.0, 0.1, 1.0], xtol=1e-12, ftol=1e-12, gtol=1e-12,
                             max_nfev=400)
         if best is None or fit.cost < best.cost:
