@@ -33,6 +33,19 @@ QZ_SOILS = {"clay": QzShape(n=1.2, elast=0.2, emax=0.7),
 SUCTION_MAX = 0.1  # the drag capacity QzSimple allows, as a fraction of q_ult
 
 
+def qz_shape(soil: str, exponent: float | None = None,
+             elastic_range: float | None = None) -> QzShape:
+    """The backbone shape of ``soil`` (:data:`QZ_SOILS`) with its exponent n and its initial
+    elastic half-range ``elast`` replaced where given (e.g. fitted to a continuum pushover,
+    :mod:`upliftlab.comparisons.winkler_vs_continuum.qz_fit`). The largest range width is the
+    soil's ``emax``, widened to 2·elast when the pristine range is wider, so that the law's cap
+    min(·, emax·q_ult) on a reversal never cuts the range below its pristine width."""
+    base = QZ_SOILS[soil]
+    n = base.n if exponent is None else float(exponent)
+    elast = base.elast if elastic_range is None else float(elastic_range)
+    return QzShape(n=n, elast=elast, emax=max(base.emax, 2.0 * elast))
+
+
 def zref_from_z50(qult, k, z50, shape: QzShape):
     """z_ref (length) that puts the virgin backbone through (z50, q_ult/2), elastic part
     included: z50 = q_ult/(2k) + z_ref·((2(1 − elast))^(1/n) − 1). Takes arrays; z50 must
@@ -150,12 +163,39 @@ def static_forces(stiffnesses, positions, qult, zref: float, weight: float,
     return forces
 
 
-def check_z50(stiffnesses, qult, z50: float) -> None:
+def bed_z50(stiffnesses, qult, zref: float, shape: QzShape) -> float:
+    """The settlement (length) at which a bed's springs, all settling alike on their virgin
+    backbones (one near-field reference ``zref``), carry half their capacity together: the
+    bed's z50 when z_ref is given instead (a shape whose elastic ranges alone carry half the
+    capacity has no z_ref that z50 fixes)."""
+    k, q = np.asarray(stiffnesses, dtype=float), np.asarray(qult, dtype=float)
+    half = 0.5 * q.sum()
+
+    def excess(z):
+        return backbone_force(z, k, q, zref, shape).sum() - half
+
+    hi = half / k.sum()
+    while excess(hi) < 0.0:
+        hi *= 2.0
+    return float(brentq(excess, 0.0, hi, xtol=1e-15 * hi, rtol=1e-15, maxiter=500))
+
+
+def check_z50(stiffnesses, qult, z50: float, elast: float = 0.0) -> None:
     """z50 must exceed the least settlement at which the bed can carry half its capacity
-    (:func:`z50_lower_bound`)."""
+    (:func:`z50_lower_bound`), and, when the springs' elastic ranges (``elast``·q_ult) alone
+    can carry half of it, stay below the settlement at which they do: beyond it every z_ref
+    puts more than half the capacity on the bed at z50."""
     least = z50_lower_bound(stiffnesses, qult, float(np.sum(qult)))
     if z50 <= least:
         raise InputError(f"foundation.z50 = {z50:g}: the bed cannot carry half its capacity at "
                          f"that settlement even with rigid–plastic near fields (its springs, "
                          f"elastic up to q_ult, reach it at {least:.4g}); valid range is "
                          f"> {least:.4g}")
+    q = np.asarray(qult, dtype=float)
+    if elast * q.sum() > 0.5 * q.sum():
+        most = z50_lower_bound(stiffnesses, elast * q, float(q.sum()))
+        if z50 >= most:
+            raise InputError(f"foundation.z50 = {z50:g}: the springs' far fields alone carry "
+                             f"half the capacity at {most:.4g} (elastic range {elast:g} of "
+                             f"q_ult), so no z_ref puts the bed through z50; valid range is "
+                             f"({least:.4g}, {most:.4g}), or give foundation.qz_zref")

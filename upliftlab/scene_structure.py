@@ -18,7 +18,10 @@ SUPPORTS = ("uplift", "bonded", "fixed")
 LAYOUTS = ("winkler", "edges", "equivalent", "end_stiffened", "custom")
 LAWS = ("elastic", "elastoplastic", "qz")
 QZ_SOIL_NAMES = ("clay", "sand")  # the q–z backbone shapes (upliftlab.reduced.qz.QZ_SOILS)
-QZ_KEYS = ("capacity_multiple", "z50", "suction", "qz_soil")
+QZ_KEYS = ("capacity_multiple", "z50", "suction", "qz_soil", "qz_exponent", "qz_elastic_range",
+           "qz_zref")
+QZ_EXPONENT_MAX = 50.0  # n of a q–z backbone: > 1 (the hyperbola's work integral), ≤ 50
+QZ_ELASTIC_RANGE_MAX = 0.95  # elast of a q–z backbone: its pristine half-range, below q_ult
 IMPACT_MASSES = ("point", "tributary")
 KINEMATICS = ("small", "exact")
 
@@ -151,7 +154,11 @@ class Foundation:
     capacity is ``capacity_multiple`` times the weight, shared over the springs' tributary
     widths; ``z50`` (length) the base's settlement at half capacity under a centred load;
     ``suction`` the gap's drag as a fraction of capacity; ``qz_soil`` the backbone's shape,
-    ``clay`` or ``sand``). Dashpots in
+    ``clay`` or ``sand``, whose hyperbola exponent n and initial elastic half-range (fraction of
+    q_ult) ``qz_exponent`` and ``qz_elastic_range`` replace where given, e.g. fitted to a
+    continuum's vertical pushover; ``qz_zref`` (length) gives the springs' near-field reference
+    instead of ``z50``, which cannot fix it when the elastic ranges alone carry half the
+    capacity). Dashpots in
     parallel carry ``damping_ratio`` of critical for the bonded vertical mode. ``restitution`` ε
     < 1 adds Ewing's impact damper with c* = ``impact_multiple`` · c_cr. ``impact_mass``: the
     mass behind a landing spring in c_cr and Δz — ``point`` (the paper's eq. 17: the structure's
@@ -191,9 +198,12 @@ class Foundation:
     sway_damping: float | None = None
     sliding_friction: float | None = None
     capacity_multiple: float = math.inf
-    z50: float = 0.0
+    z50: float | None = 0.0
     suction: float = 0.0
     qz_soil: str = "clay"
+    qz_exponent: float | None = None
+    qz_elastic_range: float | None = None
+    qz_zref: float | None = None
 
     @property
     def width(self) -> float:
@@ -344,8 +354,17 @@ def _qz_keys(table: Table, law: str, support: str, units: UnitSystem) -> dict:
     if support != "uplift":
         raise InputError(f"foundation.support = {support!r} with foundation.law = 'qz': the "
                          "q–z spring opens a gap on uplift; valid: 'uplift'")
+    zref = table.get("qz_zref", bounds.checker("length", units), None)
+    if zref is not None and table.has("z50"):
+        raise InputError("foundation.z50 with foundation.qz_zref: each fixes the springs' "
+                         "near-field reference; give one of them")
     return {"capacity_multiple": table.get("capacity_multiple",
                                            in_range(1.0, 1e6, low_open=True)),
-            "z50": table.get("z50", bounds.checker("length", units)),
+            "z50": table.get("z50", bounds.checker("length", units)) if zref is None else None,
+            "qz_zref": zref,
             "suction": table.get("suction", in_range(0.0, 0.1), 0.0),
-            "qz_soil": table.get("qz_soil", choice(QZ_SOIL_NAMES), "clay")}
+            "qz_soil": table.get("qz_soil", choice(QZ_SOIL_NAMES), "clay"),
+            "qz_exponent": table.get("qz_exponent",
+                                     in_range(1.0, QZ_EXPONENT_MAX, low_open=True), None),
+            "qz_elastic_range": table.get("qz_elastic_range",
+                                          in_range(0.0, QZ_ELASTIC_RANGE_MAX), None)}

@@ -25,6 +25,7 @@ from ..winkler_vs_continuum import Options as CalibrationOptions, calibrate
 from ..winkler_vs_continuum.radiation import distribute, gazetas_dashpots
 from ..winkler_vs_continuum.reference import ContinuumReference
 from .impedance_bed import build_uniform_plastic_impedance
+from .qz_bed import build_qz
 
 __all__ = ["BedReference", "BedEntry", "BEDS", "bed_names", "bed_foundation"]
 
@@ -131,6 +132,8 @@ BEDS: dict[str, BedEntry] = {
         "dashpots", build_uniform_plastic_impedance,
         "K_r, V_ult, and the FE impedance's C_v and C_r at the rocking frequency",
         needs=("impedance",)),
+    "qz": BedEntry("qz", "hysteretic q–z bed fitted to the vertical pushover", build_qz,
+                   "K_r, K_v where reachable, V_ult, and the whole vertical pushover"),
 }
 
 

@@ -232,7 +232,8 @@ def _reference(st: SoilStatics, scene, structure: Mapping, impedance=None) -> Be
     """The continuum numbers a bed is calibrated from, at a point's scene: its numbers, the
     soil's statics, and in ``extra`` the soil's density, the point's ``[structure]`` table and
     the soil's impedance (when a bed needs it)."""
-    extra = {"density": scene.soil.density, "structure": dict(structure)}
+    extra = {"density": scene.soil.density, "structure": dict(structure),
+             "settlement": st.settlement, "load": st.load}
     if impedance is not None:
         extra["impedance"] = impedance
     return BedReference(st.soil, scene.structure.weight, scene.foundation.width,

@@ -29,7 +29,8 @@ import numpy as np
 from ...checks import InputError
 from ...reduced.compatibility import end_stiffened_bed
 from ...reduced.kernels import HISTORY_DTYPE, QZ, qz_commit, qz_start
-from ...reduced.qz import QZ_SOILS, SUCTION_MAX, common_zref, qz_springs, z50_lower_bound
+from ...reduced.qz import (QZ_SOILS, SUCTION_MAX, QzShape, common_zref, qz_springs,
+                           z50_lower_bound)
 from ...reduced.springs import derive_columns, spring_table
 from .calibration import end_stiffening
 
@@ -153,18 +154,26 @@ def calibrate_qz(ref, springs: int, end_length: float, max_ratio: float, soil: s
 
 
 def bed_vertical_path(stiffnesses, capacities, z50: float, settlements, soil: str = "clay",
-                      suction: float = 0.0) -> np.ndarray:
+                      suction: float = 0.0, shape: QzShape | None = None) -> np.ndarray:
     """The force (force) a q–z bed carries along a centred settlement path (length, positive
     down, from the unloaded state; any sequence, cyclic too): every spring settles as much,
     each through the compiled law and its history, z_ref from
     :func:`~upliftlab.reduced.qz.common_zref` — what the continuum's vertical pushover is
-    compared with."""
+    compared with. ``shape`` (None: the ``soil``'s) is the backbone's shape."""
     k, q = np.asarray(stiffnesses, dtype=float), np.asarray(capacities, dtype=float)
-    shape = QZ_SOILS[soil]
+    shape = QZ_SOILS[soil] if shape is None else shape
+    return bed_path_at_zref(k, q, common_zref(k, q, z50, shape), settlements, shape, suction,
+                            0.5 * z50)
+
+
+def bed_path_at_zref(stiffnesses, capacities, zref: float, settlements, shape: QzShape,
+                     suction: float = 0.0, zd: float = 0.0) -> np.ndarray:
+    """:func:`bed_vertical_path` of a bed given its near-field reference ``zref`` (length)
+    instead of z50, and the drag's reference ``zd`` (length; read only with ``suction`` > 0)."""
+    k, q = np.asarray(stiffnesses, dtype=float), np.asarray(capacities, dtype=float)
     table = spring_table(k.size)
     table["kind"], table["k"] = QZ, k
-    P = derive_columns(qz_springs(table, q, common_zref(k, q, z50, shape), suction, 0.5 * z50,
-                                  shape))
+    P = derive_columns(qz_springs(table, q, zref, suction, zd, shape))
     H = np.zeros(k.size, dtype=HISTORY_DTYPE)
     for j in range(k.size):
         qz_start(P[j], H[j], 0.0)
@@ -176,5 +185,5 @@ def bed_vertical_path(stiffnesses, capacities, z50: float, settlements, soil: st
     return np.array(forces)
 
 
-__all__ = ["bed_vertical_path", "QZ_SOILS", "QzCalibration", "calibrate_qz", "elastic_range_from_unloading",
+__all__ = ["bed_path_at_zref", "bed_vertical_path", "QZ_SOILS", "QzCalibration", "calibrate_qz", "elastic_range_from_unloading",
            "qz_stiffnesses", "spring_capacities", "suction_from_cyclic", "z50_from_pushover"]
