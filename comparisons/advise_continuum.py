@@ -165,7 +165,8 @@ class ContinuumAdvice:
 
 
 def _at_mesh(scene: Scene, elements_across: int) -> Scene:
-    return scene.replace("continuum", elements_across=int(elements_across))
+    """The scene on ``elements_across`` (its ``[continuum]`` table made if it has none)."""
+    return scene.with_overrides(f"continuum.elements_across={int(elements_across)}")
 
 
 def _duration(scene: Scene) -> float:
@@ -181,8 +182,6 @@ def plan_continuum(scene: Scene, measure: str, tol: float, *, fast: bool = False
         raise InputError(f"units = {scene.data.get('units')!r}: the continuum ladder builds its "
                          f"beds from the map's statics, in {base_table()['units']!r}; write the "
                          "scene in those units")
-    if scene.continuum is None:
-        scene = scene.replace("continuum", elements_across=FAST_MESHES[0])
     meshes = FAST_MESHES if fast else FULL_MESHES
     scenes = [_at_mesh(scene, n) for n in meshes]
     soil = scene.soil.model
