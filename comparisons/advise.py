@@ -238,7 +238,8 @@ def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str 
     floor = sve.FLOOR_FRACTION * sve.scales(scene)[q]
     available, why = sve.continuum_status()
     continuum = ("not in the ladder: the scene has no [soil] table" if scene.soil is None else
-                 "in the ladder: the map's calibrated beds against the continuum, below")
+                 "in the ladder: the map's calibrated beds against the continuum, below"
+                 if plan.run else "not run (over --budget): the Winkler map's evidence, below")
     if not available:
         continuum = why
     try:

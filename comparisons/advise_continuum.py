@@ -26,7 +26,7 @@ import copy
 import math
 import statistics
 import time
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 import numpy as np
 
@@ -152,8 +152,6 @@ class ContinuumAdvice:
     map: MapEvidence | None
 
     def to_dict(self) -> dict:
-        from dataclasses import asdict
-
         out = asdict(self)
         out["plan"]["estimate"] = {"seconds": self.plan.estimate.seconds,
                                    "text": self.plan.estimate.text()}

@@ -65,6 +65,13 @@ class MapEvidence:
     elements_across: int
     motions: tuple[str, ...]
 
+    @property
+    def best(self) -> BedEvidence | None:
+        """The bed of least median |error| in the nearest cells (None: outside, or no
+        values)."""
+        beds = [b for b in self.beds if b.count]
+        return min(beds, key=lambda b: b.median) if beds else None
+
 
 def find_map(path: str | Path | None) -> Path | None:
     """The map to read: ``path`` (refused when it is not a file), else :data:`DEFAULT_MAP` if
@@ -197,4 +204,9 @@ def format_evidence(e: MapEvidence, tol: float) -> list[str]:
         lines.append(f"  {b.name:26s} |error| median {100 * b.median:.3g} %, 90th percentile "
                      f"{100 * b.p90:.3g} %, within {100 * tol:g} % in {100 * b.share_within:.0f}"
                      f" % of {b.count} cells")
+    if e.best is not None:
+        b = e.best
+        lines.append(f"map's verdict (evidence, not a certification): {b.name} has the least "
+                     f"median |error|, {100 * b.median:.3g} %, "
+                     f"{'within' if b.median <= tol else 'above'} {100 * tol:g} %")
     return lines

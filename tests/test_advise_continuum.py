@@ -127,6 +127,7 @@ def test_map_evidence_recomputed_from_the_map(advice, fast_map):
         assert bed.median == pytest.approx(np.median(values), rel=1e-12)
         assert bed.p90 == pytest.approx(np.percentile(values, 90), rel=1e-12)
         assert bed.share_within == pytest.approx(np.mean(values <= TOL), rel=1e-12)
+    assert e.best == min(e.beds, key=lambda b: b.median)
     text = adv.format_advice(advice)
     assert "map's evidence" in text and "not this scene's runs" in text
     assert "certified against: the continuum (plane strain, explicit route) on 8 elements" \
@@ -176,15 +177,24 @@ def test_over_budget_inside_the_map_gives_the_maps_verdict_without_running(
     """Over --budget but inside the map: the continuum is not run, nothing is certified
     (exit 3), and the map's evidence is reported as the map's."""
     _no_runs(monkeypatch)
-    monkeypatch.setattr(adv, "_reference", lambda *a, **k: (_ for _ in ()).throw(
-        adv.InputError("reduced reference not run in this test")))
+
+    def reduced_refused(*args, **kwargs):
+        raise adv.InputError("the reduced reference is not run in this test")
+
+    monkeypatch.setattr(adv, "_reference", reduced_refused)
     args = ["advise", SCENE, "--quantity", "peak_theta", "--fast", "--budget", "1",
             "--map", str(fast_map)]
     code = cli.main(args + [x for s in ON_MAP for x in ("--set", s)])
     out = capsys.readouterr().out
     assert code == cli.EXIT_NUMERICS
     assert "the continuum was not run" in out and "map's evidence" in out
-    assert "certifies nothing" in out
+    assert "certifies nothing" in out and "beds against the continuum (measured" not in out
+    err = read_dataset(fast_map)["error"].sel(soil="clay", measure="theta")
+    medians = {str(c): float(np.nanmedian(np.abs(err.sel(calibration=c).values)))
+               for c in err["calibration"].values}
+    best = min(medians, key=medians.get)
+    assert f"map's verdict (evidence, not a certification): {best} has the least median " \
+           f"|error|, {100 * medians[best]:.3g} %" in out
 
 
 def test_cli_json_fast(advice, fast_map, capsys):
