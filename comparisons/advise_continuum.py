@@ -196,8 +196,8 @@ def plan_continuum(scene: Scene, measure: str, tol: float, *, fast: bool = False
                  if evidence is None else f"the scene is outside the map: {evidence.outside}")
         raise InputError(f"--budget = {budget:g} s: the continuum ladder ({ladder} elements "
                          f"across) is estimated at {estimate.seconds:.0f} s; valid range is "
-                         f"[{estimate.seconds:.0f}, ...) s{'' if fast else ', or --fast'}; "
-                         f"{where}")
+                         f"[{math.ceil(estimate.seconds)}, ...) s"
+                         f"{'' if fast else ', or --fast'}; {where}")
     return ContinuumPlan(tuple(meshes), estimate, budget, run, evidence,
                          None if path is None else str(path))
 

@@ -153,7 +153,15 @@ def map_evidence(path: str | Path, scene: Scene, measure: str, tol: float,
     from ..results import read_dataset
 
     path = Path(path)
-    ds = read_dataset(path)
+    try:
+        ds = read_dataset(path)
+    except (OSError, ValueError) as exc:
+        raise InputError(f"--map = {str(path)!r}: not a readable NetCDF file ({exc})") from None
+    missing = [n for n in ("error", "soil", "motion", "calibration", "measure", *AXES)
+               if n not in ds.variables]
+    if missing:
+        raise InputError(f"--map = {str(path)!r}: not a Winkler map (no {', '.join(missing)}); "
+                         "give a map.nc written by python -m upliftlab.comparisons.winkler_map")
     soils = [str(s) for s in ds["soil"].values]
     motions = tuple(str(m) for m in ds["motion"].values)
     mesh = int(ds.attrs.get("elements_across", 0))

@@ -231,3 +231,16 @@ def test_cli_bad_continuum_options_refused_before_any_run(args, words, monkeypat
     assert code == 2 and len(err) == 1
     for w in words:
         assert w in err[0]
+
+
+def test_a_file_that_is_not_a_map_is_refused(tmp_path):
+    """--map pointing at a NetCDF file without the map's variables: one InputError naming what
+    is missing, before any run."""
+    import xarray as xr
+
+    from upliftlab.results import write_dataset
+
+    path = write_dataset(tmp_path / "other.nc", xr.Dataset({"x": ("n", np.arange(3.0))}))
+    scene = load_scene(SCENE, overrides=ON_MAP)
+    with pytest.raises(adv.InputError, match=r"--map = .*other.nc.*not a Winkler map \(no error"):
+        am.map_evidence(path, scene, "theta", TOL)
