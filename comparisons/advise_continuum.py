@@ -153,6 +153,7 @@ class ContinuumAdvice:
 
     def to_dict(self) -> dict:
         out = asdict(self)
+        out["certified_against"] = certified_against_continuum(self)
         out["plan"]["estimate"] = {"seconds": self.plan.estimate.seconds,
                                    "text": self.plan.estimate.text()}
         if self.reference is not None:

@@ -210,6 +210,8 @@ def test_cli_json_fast(advice, fast_map, capsys):
     assert c["reference"]["uncertainty"] == pytest.approx(mine.reference.uncertainty,
                                                           rel=1e-12)
     assert c["reference"]["elements_across"] == 8
+    assert c["certified_against"].startswith("the continuum (plane strain, explicit route) on "
+                                             "8 elements across")
     for got, bed in zip(c["beds"], mine.beds):
         assert got["name"] == bed.name
         assert got["error"] == pytest.approx(bed.error, rel=1e-12)
