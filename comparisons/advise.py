@@ -231,6 +231,10 @@ def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str 
         raise InputError("foundation.dashpots: the advisor changes the number of springs, "
                          "and these dashpots are given one per spring; use "
                          "foundation.damping_ratio")
+    if scene.soil is None and (budget is not None or map_path is not None):
+        raise InputError(f"{'--budget' if budget is not None else '--map'}: has no effect: "
+                         f"scene {scene.name!r} has no [soil] table, so the advisor ladders "
+                         "the reduced model only (no continuum run to budget, no map to read)")
     plan = (plan_continuum(scene, q, tol, fast=fast, budget=budget, map_path=map_path)
             if scene.soil is not None else None)
     sizes = FAST if fast else FULL

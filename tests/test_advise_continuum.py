@@ -235,6 +235,17 @@ def test_cli_bad_continuum_options_refused_before_any_run(args, words, monkeypat
         assert w in err[0]
 
 
+@pytest.mark.parametrize("args", [["--budget", "100"], ["--map", "map.nc"]])
+def test_continuum_options_on_a_scene_without_soil_are_refused(args, monkeypatch, capsys):
+    """--budget and --map have no effect on a scene without [soil]: refused in one line
+    before any run (the project's rule for inputs without effect)."""
+    _no_runs(monkeypatch)
+    code = cli.main(["advise", "short_period_elcentro", "--case", "B", "--fast"] + args)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1
+    assert f"{args[0]}: has no effect" in err[0] and "no [soil] table" in err[0]
+
+
 def test_a_file_that_is_not_a_map_is_refused(tmp_path):
     """--map pointing at a NetCDF file without the map's variables: one InputError naming what
     is missing, before any run."""
