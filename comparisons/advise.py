@@ -8,7 +8,13 @@ and recommends the candidate of least measured runtime whose error, plus the ref
 uncertainty (its change from the next-finer level), is within the tolerance. Runtimes are
 measured fresh in this process (median of repeats after a warm-up); nothing is stored.
 
-Used by ``upliftlab advise SCENE --quantity peak_u --tol 5% [--case C] [--set K=V] [--fast]``.
+For a scene with ``[soil]`` it also ladders the continuum (:mod:`.advise_continuum`): the
+Winkler map's calibrated beds certified against the continuum's own finest mesh, and the map's
+evidence where the scene falls inside a Winkler map (:mod:`.advise_map`). Its cost is estimated
+before any run; above ``budget`` it is refused, unless a map covers the scene.
+
+Used by ``upliftlab advise SCENE --quantity peak_u --tol 5% [--case C] [--set K=V] [--fast]
+[--budget SECONDS] [--map PATH]``.
 """
 
 from __future__ import annotations
@@ -21,6 +27,7 @@ from .. import checks
 from ..checks import InputError
 from ..scenes import Scene, load_scene
 from . import speed_vs_error as sve
+from .advise_continuum import ContinuumAdvice, format_continuum, plan_continuum, run_continuum
 
 __all__ = ["QUANTITIES", "Candidate", "Measured", "ReferenceCheck", "Advice", "advise",
            "parse_tolerance", "ladder", "format_advice"]
@@ -94,13 +101,14 @@ class ReferenceCheck:
 class Advice:
     """What :func:`advise` measured and recommends (``recommendation`` None when nothing can be
     certified: ``reason`` says why). ``certified_against`` says what the errors are measured
-    against: the reduced model's own finest bed, never the continuum."""
+    against: the reduced model's own finest bed; for a scene with ``[soil]``,
+    ``continuum_advice`` holds the beds certified against the continuum itself."""
 
     scene: str
     quantity: str
     tolerance: float
     units: str
-    reference: ReferenceCheck
+    reference: ReferenceCheck | None
     measured: tuple[Measured, ...]
     skipped: tuple[Candidate, ...]
     recommendation: Measured | None
@@ -108,11 +116,23 @@ class Advice:
     continuum: str
     fast: bool
     certified_against: str = ""
+    continuum_advice: ContinuumAdvice | None = None
 
     def to_dict(self) -> dict:
         out = asdict(self)
-        out["reference"]["uncertainty"] = self.reference.uncertainty
+        if self.reference is not None:
+            out["reference"]["uncertainty"] = self.reference.uncertainty
+        if self.continuum_advice is not None:
+            out["continuum_advice"] = self.continuum_advice.to_dict()
         return out
+
+    @property
+    def certified(self) -> bool:
+        """Whether something was certified: against the continuum for a scene with
+        ``[soil]``, else against the reduced model's finest bed."""
+        if self.continuum_advice is not None:
+            return self.continuum_advice.recommendation is not None
+        return self.recommendation is not None
 
 
 def parse_tolerance(text) -> float:
@@ -183,17 +203,23 @@ def _measure(scene, data, c, q, ref: ReferenceCheck, tol, repeats) -> Measured:
 
 
 def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str | None = None,
-           overrides: Sequence[str] = (), fast: bool = False, repeats: int = 3) -> Advice:
+           overrides: Sequence[str] = (), fast: bool = False, repeats: int = 3,
+           budget: float | None = None, map_path=None) -> Advice:
     """Measure the ladder on ``scene`` and recommend the cheapest candidate within ``tol``.
 
     ``quantity``: one of :data:`QUANTITIES`; ``tol``: ``"5%"`` or a fraction in (0, 1).
     ``fast`` uses a reference bed of 160 springs and a ladder up to N = 80 (seconds) instead of
-    640 and 320. Every input is checked before any run.
+    640 and 320, and continuum meshes of 2, 4, 8 elements across instead of 4, 8, 16. For a
+    scene with ``[soil]``: ``budget`` (s) caps the continuum ladder's estimated cost,
+    ``map_path`` a Winkler map's ``map.nc`` (:mod:`.advise_continuum`). Every input is checked,
+    and the continuum's cost estimated, before any run.
     """
     q = _quantity(quantity)
     tol = parse_tolerance(tol)
     checks.boolean("fast", fast)
     checks.integer_at_least("repeats", repeats, 1)
+    if budget is not None:
+        checks.in_range("--budget", budget, 0.0, 1e9, low_open=True)
     if not isinstance(scene, Scene):
         scene = load_scene(scene, case=case, overrides=list(overrides))
     if scene.foundation.support != "uplift" or len(scene.structure.stories) != 1:
@@ -205,17 +231,34 @@ def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str 
         raise InputError("foundation.dashpots: the advisor changes the number of springs, "
                          "and these dashpots are given one per spring; use "
                          "foundation.damping_ratio")
+    if scene.soil is None and (budget is not None or map_path is not None):
+        raise InputError(f"{'--budget' if budget is not None else '--map'}: has no effect: "
+                         f"scene {scene.name!r} has no [soil] table, so the advisor ladders "
+                         "the reduced model only (no continuum run to budget, no map to read)")
+    plan = (plan_continuum(scene, q, tol, fast=fast, budget=budget, map_path=map_path)
+            if scene.soil is not None else None)
     sizes = FAST if fast else FULL
     data = {"scene": scene.data, "motion": sve.motion_entry(scene)}
     floor = sve.FLOOR_FRACTION * sve.scales(scene)[q]
-    ref = _reference(scene, data, q, sizes["reference_springs"], sve.FULL_GRID.reference_dt,
-                     floor, repeats)
-    against = certified_against(scene, ref)
     available, why = sve.continuum_status()
-    continuum = ("not in the ladder: " + ("the scene has no [soil] table" if scene.soil is None
-                                          else "the advisor ladders the reduced model only; "
-                                          "the speed_vs_error study times continuum meshes")
-                 if available else why)
+    continuum = ("not in the ladder: the scene has no [soil] table" if scene.soil is None else
+                 "in the ladder: the map's calibrated beds against the continuum, below"
+                 if plan.run else "not run (over --budget): the Winkler map's evidence, below")
+    if not available:
+        continuum = why
+    try:
+        ref = _reference(scene, data, q, sizes["reference_springs"],
+                         sve.FULL_GRID.reference_dt, floor, repeats)
+    except InputError as exc:  # the reduced reference's runs failed: with soil, go on
+        if plan is None:
+            raise
+        advice_c = run_continuum(scene, quantity, q, tol, plan, fast=fast)
+        return Advice(scene.name, quantity, tol, scene.units.length, None, (), (), None,
+                      f"the reduced ladder was not run: {exc}", continuum, fast,
+                      "nothing (the reduced ladder's reference failed)", advice_c)
+    against = certified_against(scene, ref)
+    advice_c = (run_continuum(scene, quantity, q, tol, plan, fast=fast)
+                if plan is not None else None)
     if ref.uncertainty > tol / 2:
         return Advice(scene.name, quantity, tol, scene.units.length, ref, (), (), None,
                       f"the reference is not converged to what {100 * tol:g} % needs: it "
@@ -223,7 +266,7 @@ def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str 
                       f"(more than half the tolerance); no candidate can be certified. Use a "
                       "larger tolerance, or a scene whose reference converges (Case C's impact "
                       "dashpots are sized per spring and do not converge in N)",
-                      continuum, fast, against)
+                      continuum, fast, against, advice_c)
     measured, skipped, cap = [], [], math.inf
     for c in sorted(ladder(sizes["ladder_springs"]), key=_estimate):
         if _estimate(c) > cap:
@@ -241,19 +284,19 @@ def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str 
               f"use the reference discretization (Winkler N = {ref.springs}, events, "
               f"Δt = {ref.dt:g} s)")
     return Advice(scene.name, quantity, tol, scene.units.length, ref, tuple(measured),
-                  tuple(skipped), best, reason, continuum, fast, against)
+                  tuple(skipped), best, reason, continuum, fast, against, advice_c)
 
 
 def certified_against(scene: Scene, ref: ReferenceCheck) -> str:
-    """What a recommendation is certified against, in words: the reduced model's finest bed
-    (and, for a scene with soil, what it is *not* certified against)."""
+    """What the reduced ladder's recommendation is certified against, in words: the reduced
+    model's finest bed (for a scene with soil, not the soil: the continuum ladder's beds are
+    certified against the continuum, :func:`.advise_continuum.certified_against_continuum`)."""
     text = (f"the reduced model's own Winkler bed of N = {ref.springs} springs (events, "
             f"Δt = {ref.dt:g} s), itself checked against N = {ref.springs // 2} and "
             f"Δt = {2 * ref.dt:g} s")
     if scene.soil is not None:
-        text += ("; NOT against the soil of the scene's [soil] table: the continuum model is "
-                 "not in the ladder, and how far any bed is from it is measured by "
-                 "`upliftlab continuum` and the winkler_vs_continuum study")
+        text += ("; NOT against the soil of the scene's [soil] table (that is the continuum "
+                 "ladder's part, below)")
     return text
 
 
@@ -264,8 +307,12 @@ def _pct(v: float) -> str:
 def format_advice(a: Advice) -> str:
     """The advice as text: the reference, every measured candidate, the recommendation."""
     r = a.reference
-    lines = [f"upliftlab advise: {a.scene}, {a.quantity} within {_pct(a.tolerance)}"
-             f"{' (fast)' if a.fast else ''}",
+    head = (f"upliftlab advise: {a.scene}, {a.quantity} within {_pct(a.tolerance)}"
+            f"{' (fast)' if a.fast else ''}")
+    if r is None:
+        lines = [head, f"reduced ladder: none — {a.reason}", f"continuum: {a.continuum}"]
+        return "\n".join(lines + format_continuum(a.continuum_advice))
+    lines = [head,
              f"reference: Winkler N = {r.springs}, events, dt = {r.dt:g} s: {a.quantity} = "
              f"{r.value:.6g} {a.units}, runtime {r.runtime * 1e3:.4g} ms; change from "
              f"N = {r.springs // 2}: {_pct(r.change_springs)}, from dt = {2 * r.dt:g} s: "
@@ -291,4 +338,6 @@ def format_advice(a: Advice) -> str:
                      f"≤ {_pct(a.tolerance)}, {m.runtime * 1e3:.3g} ms "
                      f"({r.runtime / m.runtime:.3g}× faster than the reference)")
     lines.append(f"continuum: {a.continuum}")
+    if a.continuum_advice is not None:
+        lines += format_continuum(a.continuum_advice)
     return "\n".join(lines)

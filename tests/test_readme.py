@@ -63,6 +63,8 @@ EXERCISED = {
     "upliftlab report --fast": ("tests/test_report.py::test_report_writes_one_self_contained_html",
                                 ()),
     "upliftlab advise short_period_elcentro --case B --quantity peak_u --tol 1%": ("slow", ()),
+    "upliftlab advise strip_footing_clay --quantity peak_theta --tol 10% --fast "
+    "--set motion.period=0.2 --set motion.duration=0.6": ("slow", ()),
     "python -m upliftlab.comparisons.two_spring_equivalence --fast --out "
     "results/two_spring_equivalence-fast":
         ("slow", ("results/two_spring_equivalence-fast/summary.md",)),

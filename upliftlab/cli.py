@@ -5,7 +5,7 @@
     upliftlab paper [--out DIR] [--motion PATH] [--force]
     upliftlab scenes
     upliftlab advise SCENE --quantity peak_u --tol 5% [--case C] [--set KEY=VALUE ...] [--fast]
-                     [--json]
+                     [--budget SECONDS] [--map PATH] [--json]
     upliftlab report [--fast] [--out DIR] [--scheduler ADDR] [--force]
     upliftlab continuum SCENE [--analysis pushover|dynamic|impedance] [--case C]
                         [--set KEY=VALUE ...] [--mesh KEY=VALUE[,KEY=VALUE ...] ...]
@@ -120,7 +120,13 @@ def parser() -> argparse.ArgumentParser:
     a.add_argument("--case", help="a case of the scene, e.g. A, B or C")
     a.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
                    help="override a scene field by its dotted TOML key (repeatable)")
-    a.add_argument("--fast", action="store_true", help="reference N = 160, ladder up to N = 80")
+    a.add_argument("--fast", action="store_true", help="reference N = 160, ladder up to N = 80; "
+                   "continuum meshes 2, 4, 8 elements across instead of 4, 8, 16")
+    a.add_argument("--budget", help="scene with [soil]: refuse (exit 2) before any run when the "
+                                    "continuum ladder's estimated cost exceeds this many seconds "
+                                    "(unless a Winkler map covers the scene: its evidence then)")
+    a.add_argument("--map", dest="map_path", metavar="PATH",
+                   help="a Winkler map's map.nc (default results/winkler_map/map.nc if present)")
     a.add_argument("--json", action="store_true", help="print the advice as one JSON object")
 
     rp = sub.add_parser("report", help="one self-contained HTML report: verification anchors, "
@@ -318,18 +324,24 @@ ADVISE_KEYS = ("schema", "units", "title", "description", "reference", "structur
                                              "damping_ratio", "restitution", "impact_multiple",
                                              "impact_mass", "sway_stiffness", "sway_damping",
                                              "sliding_friction")),
-               "motion*", "analysis.duration", "analysis.max_steps", "analysis.max_memory")
+               "motion*", "analysis.duration", "analysis.max_steps", "analysis.max_memory",
+               "soil.*", *(f"continuum.{k}" for k in ("domain_width", "domain_depth", "element",
+                                                      "grading", "base", "boundary", "intorder",
+                                                      "energy_tolerance")))
 
 
 def _advise(args) -> int:
     from .comparisons.advise import advise, format_advice
 
     refuse_without_effect(args.overrides, "upliftlab advise (it chooses the integrator and "
-                          "step of the reduced model)", ADVISE_KEYS)
+                          "step of the reduced model, the continuum's mesh and route)",
+                          ADVISE_KEYS)
+    budget = number("--budget", args.budget, high=1e9)
     advice = advise(args.scene, args.quantity, args.tol, case=args.case,
-                    overrides=args.overrides, fast=args.fast)
+                    overrides=args.overrides, fast=args.fast, budget=budget,
+                    map_path=args.map_path)
     print(json.dumps(advice.to_dict()) if args.json else format_advice(advice))
-    return 0 if advice.recommendation is not None else EXIT_NUMERICS
+    return 0 if advice.certified else EXIT_NUMERICS
 
 
 def _opensees(args) -> int:

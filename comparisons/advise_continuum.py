@@ -1,0 +1,430 @@
+"""The continuum ladder of ``upliftlab advise``: for a scene with ``[soil]``, certify the
+Winkler map's calibrated beds against the continuum itself, not against a finer bed.
+
+The reference is the continuum's dynamic run of the scene (explicit route, no snapshots, the
+kernels compiled before the clock starts, as :func:`.winkler_map.points.evaluate_dynamic` runs
+a map point) on a mesh ladder — 4, 8, 16 elements across (``fast``: 2, 4, 8) — measured as the
+map measures both models (:func:`.winkler_map.points.measured`). The finest mesh is the
+reference; its uncertainty is its relative change from the next-coarser mesh. Each bed of
+:data:`.winkler_map.beds.BEDS` is built from the continuum statics of the scene's soil on the
+finest mesh (K_v, K_r with every contact node tied; V_ult from a vertical pushover,
+:func:`.winkler_map.statics.evaluate_static`) and the scene's N, B and h, and run on the
+scene's own motion (the reduced model, the median of a few timed runs after an untimed one).
+A bed is certified when |error| + the reference's uncertainty ≤ tol; the advisor recommends the
+certified bed of least measured runtime, with its speed ratio against the reference run.
+Errors are (bed − continuum)/max(|continuum|, floor), the floor the map's: a tenth of the
+measure's value at a uniform bed's uplift threshold (:func:`.winkler_map.points.scales`).
+
+The cost of the continuum runs is estimated before any of them (:mod:`.winkler_map.cost`);
+above ``budget`` the ladder is refused, unless the scene falls inside a Winkler map
+(:mod:`.advise_map`), whose evidence is then reported in place of runs that were not made.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import statistics
+import time
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from ..checks import InputError
+from ..log import logger
+from ..scenes import Scene, scene_from_dict
+from ..units import unit_system
+from .advise_map import MapEvidence, find_map, format_evidence, map_evidence
+from .measures import (continuum_peak_edge_gap, edge_uplift_history, peak_story_shear,
+                       reduced_edge_gap_history)
+from .study import relative_error
+from .winkler_map.beds import BEDS, BedReference, bed_foundation
+from .winkler_map.cost import Estimate, estimate_cost
+from .winkler_map.grid import FAST_OPTIONS, FLOOR_FRACTION, FULL_OPTIONS
+from .winkler_map.points import base_table, measured, scales, story_constants
+from .winkler_map.statics import evaluate_static
+
+__all__ = ["FULL_MESHES", "FAST_MESHES", "MeshRun", "ContinuumReference", "SoilNumbers",
+           "BedCheck", "ContinuumPlan", "ContinuumAdvice", "plan_continuum", "run_continuum",
+           "continuum_run", "bed_run", "soil_numbers", "format_continuum"]
+
+FULL_MESHES = (4, 8, 16)
+FAST_MESHES = (2, 4, 8)
+BED_REPEATS = 3
+
+
+@dataclass(frozen=True)
+class MeshRun:
+    """One continuum run of the ladder: ``elements_across``, ``dofs``, the quantity's
+    ``value`` (scene units), ``steps``, ``dt`` (s), ``wall_time_s`` (model, gravity and time
+    loop, s) and ``energy_balance_error`` (fraction of the input)."""
+
+    elements_across: int
+    dofs: int
+    value: float
+    steps: int
+    dt: float
+    wall_time_s: float
+    energy_balance_error: float
+
+
+@dataclass(frozen=True)
+class ContinuumReference:
+    """The ladder's runs, coarse to fine; the reference is the finest, its ``uncertainty`` the
+    relative change from the next-coarser mesh (over max(|value|, ``floor``))."""
+
+    runs: tuple[MeshRun, ...]
+    floor: float
+
+    @property
+    def finest(self) -> MeshRun:
+        return self.runs[-1]
+
+    @property
+    def value(self) -> float:
+        return self.finest.value
+
+    @property
+    def uncertainty(self) -> float:
+        return abs(relative_error(self.runs[-2].value, self.value, self.floor))
+
+
+@dataclass(frozen=True)
+class SoilNumbers:
+    """The continuum statics of the scene's soil the beds are built from, on
+    ``elements_across``: ``K_v`` (force/length/length), ``K_r`` (force·length/rad/length),
+    ``V_ult`` (force/length), ``fs_v`` = V_ult/N, ``wall_time_s`` of both analyses (s)."""
+
+    elements_across: int
+    K_v: float
+    K_r: float
+    V_ult: float
+    fs_v: float
+    wall_time_s: float
+
+
+@dataclass(frozen=True)
+class BedCheck:
+    """A bed against the continuum reference: ``value``, signed relative ``error``,
+    ``wall_time_s`` (median of the timed runs, s), ``speed_ratio`` (reference run's wall time
+    over the bed's), ``meets`` (|error| + reference uncertainty ≤ tol), or ``failure``."""
+
+    name: str
+    label: str
+    value: float
+    error: float
+    wall_time_s: float
+    speed_ratio: float
+    meets: bool
+    failure: str | None = None
+
+
+@dataclass(frozen=True)
+class ContinuumPlan:
+    """What the ladder will run and what it should cost, decided before any run: ``meshes``,
+    ``estimate`` (seconds of one worker, the statics included, the explicit loop's one-off
+    compilation not), ``run`` (False: over ``budget``, the map's evidence stands in),
+    ``map`` the map's evidence (None: no map)."""
+
+    meshes: tuple[int, ...]
+    estimate: Estimate
+    budget: float | None
+    run: bool
+    map: MapEvidence | None
+    map_path: str | None
+
+
+@dataclass(frozen=True)
+class ContinuumAdvice:
+    """The continuum ladder's outcome for ``quantity`` (the map's ``measure``) within
+    ``tolerance``: the ``plan``, the ``reference`` and ``statics`` (None when not run), each
+    bed's check, the ``recommendation`` (None: ``reason`` says why) and the map's evidence."""
+
+    quantity: str
+    measure: str
+    tolerance: float
+    plan: ContinuumPlan
+    reference: ContinuumReference | None
+    statics: SoilNumbers | None
+    beds: tuple[BedCheck, ...]
+    recommendation: BedCheck | None
+    reason: str
+    map: MapEvidence | None
+
+    def to_dict(self) -> dict:
+        out = asdict(self)
+        out["certified_against"] = certified_against_continuum(self)
+        out["plan"]["estimate"] = {"seconds": self.plan.estimate.seconds,
+                                   "text": self.plan.estimate.text()}
+        if self.reference is not None:
+            out["reference"].update(value=self.reference.value,
+                                    uncertainty=self.reference.uncertainty,
+                                    elements_across=self.reference.finest.elements_across)
+        return out
+
+
+def _at_mesh(scene: Scene, elements_across: int) -> Scene:
+    """The scene on ``elements_across`` (its ``[continuum]`` table made if it has none)."""
+    return scene.with_overrides(f"continuum.elements_across={int(elements_across)}")
+
+
+def _duration(scene: Scene) -> float:
+    return float(scene.analysis.duration or scene.build_motion().duration)
+
+
+def plan_continuum(scene: Scene, measure: str, tol: float, *, fast: bool = False,
+                   budget: float | None = None, map_path=None) -> ContinuumPlan:
+    """Check the scene, estimate the ladder's cost and read the map, before any run; over
+    ``budget`` (s) refuse (:class:`InputError`) unless the scene falls inside the map."""
+    base_units = unit_system(base_table()["units"])
+    if scene.units != base_units:
+        raise InputError(f"units = {scene.data.get('units')!r}: the continuum ladder builds its "
+                         f"beds from the map's statics, in {base_table()['units']!r}; write the "
+                         "scene in those units")
+    meshes = FAST_MESHES if fast else FULL_MESHES
+    scenes = [_at_mesh(scene, n) for n in meshes]
+    soil = scene.soil.model
+    estimate = estimate_cost([(soil, scenes[-1], False)],
+                             [(soil, s, _duration(scene), False) for s in scenes], [], [])
+    path = find_map(map_path)
+    evidence = map_evidence(path, scene, measure, tol) if path is not None else None
+    ladder = ", ".join(map(str, meshes))
+    logger("advise").info(f"advise: continuum ladder on {ladder} elements across: "
+                          f"{estimate.text()}")
+    run = budget is None or estimate.seconds <= budget
+    if not run and not (evidence is not None and evidence.inside):
+        where = ("no Winkler map to fall back on (--map, or results/winkler_map/map.nc)"
+                 if evidence is None else f"the scene is outside the map: {evidence.outside}")
+        raise InputError(f"--budget = {budget:g} s: the continuum ladder ({ladder} elements "
+                         f"across) is estimated at {estimate.seconds:.0f} s; valid range is "
+                         f"[{math.ceil(estimate.seconds)}, ...) s"
+                         f"{'' if fast else ', or --fast'}; {where}")
+    return ContinuumPlan(tuple(meshes), estimate, budget, run, evidence,
+                         None if path is None else str(path))
+
+
+# ---------------------------------------------------------------------------------------------
+# The runs: the continuum on one mesh, a bed, the statics
+# ---------------------------------------------------------------------------------------------
+
+def _dynamic(scene: Scene, duration: float | None = None):
+    from ..continuum import build_model
+    from ..continuum.dynamics import DynamicOptions, run_dynamic
+
+    started = time.perf_counter()
+    model = build_model(scene)
+    result = run_dynamic(model, scene, scene.build_motion(),
+                         DynamicOptions(snapshots=0, energy=False, method="explicit",
+                                        duration=duration))
+    return model, result, time.perf_counter() - started
+
+
+def continuum_run(scene: Scene) -> dict:
+    """One continuum dynamic run of ``scene`` (explicit route, no snapshots): the measures of
+    :func:`.winkler_map.points.measured` from every recorded step, ``dofs``, ``steps``, ``dt``
+    (s), ``energy_balance_error`` and its wall time ``wall_time_s`` (s), the explicit loop
+    compiled before (an untimed run of 0.02 s on 2 elements across)."""
+    _dynamic(_at_mesh(scene, 2), duration=0.02)
+    model, result, wall = _dynamic(scene)
+    t = np.asarray(result.time, dtype=float)
+    t = t - t[0]
+    footing = np.asarray(result.footing, dtype=float)
+    theta = footing[:, 2]
+    settlement = -(footing[:, 1] - footing[0, 1])
+    s = np.asarray(result.structure_u, dtype=float).reshape(t.size, -1)[:, -1]
+    s_dot = np.asarray(result.structure_velocity, dtype=float).reshape(t.size, -1)[:, -1]
+    k, c = story_constants(scene)
+    uplift = continuum_peak_edge_gap(np.asarray(result.gap, dtype=float), result.x)
+    return {"measures": measured(t, theta, uplift, settlement, np.max(np.abs(s)),
+                                 peak_story_shear(s, s_dot, k, c)),
+            "dofs": int(model.dofs), "steps": int(result.metadata.get("steps", t.size - 1)),
+            "dt": float(result.metadata.get("dt", math.nan)),
+            "energy_balance_error": float(result.metadata.get("energy_balance_error",
+                                                              math.nan)),
+            "wall_time_s": wall}
+
+
+def bed_scene(scene: Scene, foundation: dict) -> Scene:
+    """The reduced model's scene of a bed: ``scene`` with the bed's ``[foundation]`` table and
+    without ``[soil]`` and ``[continuum]``."""
+    data = copy.deepcopy(scene.data)
+    data["foundation"] = dict(foundation)
+    for table in ("soil", "continuum"):
+        data.pop(table, None)
+    return scene_from_dict(data, merged=True)
+
+
+def bed_run(scene: Scene, foundation: dict, repeats: int = BED_REPEATS) -> dict:
+    """A bed's run of the scene's motion, measured as :func:`.winkler_map.points.run_bed`
+    measures it: ``measures``, ``wall_time_s`` (median of ``repeats`` timed runs after an
+    untimed one, s), or ``refused`` with the integrator's reason."""
+    from ..reduced import IntegrationError, run as run_reduced
+
+    reduced_scene = bed_scene(scene, foundation)
+    walls = []
+    try:
+        for i in range(repeats + 1):
+            started = time.perf_counter()
+            response = run_reduced(reduced_scene)
+            if i:
+                walls.append(time.perf_counter() - started)
+    except IntegrationError as exc:
+        return {"refused": str(exc)}
+    t = np.asarray(response.time, dtype=float)
+    uplift = float(np.max(edge_uplift_history(reduced_edge_gap_history(response))))
+    u_peak = max(float(np.max(np.abs(response.u))), float(response.peaks["u"]))
+    theta = np.asarray(response.theta, dtype=float)
+    out = measured(t - t[0], theta, uplift, np.asarray(response.settlement, dtype=float), u_peak,
+                   np.max(np.abs(response.base_shear)))
+    out["theta"] = max(out["theta"], float(response.peaks["theta"]))
+    return {"measures": out, "wall_time_s": statistics.median(walls)}
+
+
+def soil_numbers(scene: Scene, elements_across: int, fast: bool) -> SoilNumbers:
+    """The continuum statics of the scene's soil on ``elements_across``: stiffness in full
+    contact and a vertical pushover to 5 % of B (the map's, in its fast or full steps)."""
+    options = FAST_OPTIONS if fast else FULL_OPTIONS
+    B = scene.foundation.width
+    point = {"soil": copy.deepcopy(scene.data["soil"]),
+             "continuum": {**copy.deepcopy(scene.data.get("continuum", {})),
+                           "elements_across": int(elements_across)},
+             "half_width": 0.5 * B}
+    settlements = np.linspace(0.0, options.settlement_ratio * B, options.vertical_steps + 1)[1:]
+    stiffness = evaluate_static({**point, "analysis": "stiffness"})
+    vertical = evaluate_static({**point, "analysis": "vertical",
+                                "settlements": [float(s) for s in settlements]})
+    V_ult = vertical["capacity"]
+    return SoilNumbers(int(elements_across), stiffness["K_v"], stiffness["K_r"], V_ult,
+                       V_ult / scene.structure.weight,
+                       stiffness["wall_time_s"] + vertical["wall_time_s"])
+
+
+# ---------------------------------------------------------------------------------------------
+# The ladder
+# ---------------------------------------------------------------------------------------------
+
+def _progress(step: str, started: float, done: float, total: float) -> None:
+    elapsed = time.perf_counter() - started
+    left = max(0.0, total - done)
+    logger("advise").info(f"advise: {step}; {elapsed:.0f} s elapsed, about {left:.0f} s of "
+                          "continuum runs left (estimate)")
+
+
+def run_continuum(scene: Scene, quantity: str, measure: str, tol: float, plan: ContinuumPlan,
+                  *, fast: bool = False) -> ContinuumAdvice:
+    """Run the plan: the mesh ladder, the statics, every bed; certify and recommend."""
+    if not plan.run:
+        return ContinuumAdvice(quantity, measure, tol, plan, None, None, (), None,
+                               f"the continuum was not run: its ladder is estimated at "
+                               f"{plan.estimate.seconds:.0f} s, above --budget = "
+                               f"{plan.budget:g} s; the map's evidence below is the map's, not "
+                               "a measurement of this scene, and certifies nothing", plan.map)
+    started = time.perf_counter()
+    per_run = plan.estimate.seconds / (len(plan.meshes) + 1)
+    runs = []
+    for i, n in enumerate(plan.meshes):
+        _progress(f"continuum on {n} elements across ({i + 1}/{len(plan.meshes)})", started,
+                  i * per_run, plan.estimate.seconds)
+        r = continuum_run(_at_mesh(scene, n))
+        runs.append(MeshRun(n, r["dofs"], r["measures"][measure], r["steps"], r["dt"],
+                            r["wall_time_s"], r["energy_balance_error"]))
+    _progress(f"continuum statics on {plan.meshes[-1]} elements across", started,
+              len(plan.meshes) * per_run, plan.estimate.seconds)
+    statics = soil_numbers(scene, plan.meshes[-1], fast)
+    B, h, N = scene.foundation.width, scene.structure.height, scene.structure.weight
+    soil = scene.soil
+    reference_numbers = BedReference(soil.model, N, B, h, statics.K_v, statics.K_r,
+                                     statics.V_ult, soil.shear_modulus, soil.poisson_ratio,
+                                     extra={"density": soil.density})
+    floor = FLOOR_FRACTION * scales(N, B, h, statics.K_v, statics.K_r,
+                                    story_constants(scene)[0])[measure]
+    ref = ContinuumReference(tuple(runs), floor)
+    options = FAST_OPTIONS if fast else FULL_OPTIONS
+    beds = []
+    for name, entry in BEDS.items():
+        r = bed_run(scene, bed_foundation(name, reference_numbers, options))
+        if "refused" in r:
+            beds.append(BedCheck(name, entry.label, math.nan, math.nan, math.nan, math.nan,
+                                 False, r["refused"]))
+            continue
+        value = r["measures"][measure]
+        error = relative_error(value, ref.value, floor)
+        beds.append(BedCheck(name, entry.label, value, error, r["wall_time_s"],
+                             ref.finest.wall_time_s / r["wall_time_s"],
+                             abs(error) + ref.uncertainty <= tol))
+    evidence = plan.map
+    if plan.map_path is not None and evidence is not None and evidence.soil and \
+            not evidence.coordinates:  # no statics.nc beside the map: FS_v on this capacity
+        evidence = map_evidence(plan.map_path, scene, measure, tol, V_ult=statics.V_ult)
+    passing = [b for b in beds if b.meets]
+    best = min(passing, key=lambda b: b.wall_time_s) if passing else None
+    if best is not None:
+        reason = ("the certified bed of least measured runtime: |error| plus the continuum "
+                  "reference's uncertainty within the tolerance")
+    elif ref.uncertainty >= tol:
+        reason = (f"the continuum reference is not converged to what {100 * tol:g} % needs: "
+                  f"it changes by {100 * ref.uncertainty:.3g} % from {runs[-2].elements_across}"
+                  f" to {runs[-1].elements_across} elements across; no bed can be certified")
+    else:
+        finite = [b for b in beds if math.isfinite(b.error)]
+        closest = min(finite, key=lambda b: abs(b.error)) if finite else None
+        reason = ("no bed is within the tolerance" + (
+            f"; the closest, {closest.name}, is off by {100 * closest.error:.3g} % (+ the "
+            f"reference's uncertainty {100 * ref.uncertainty:.3g} %)" if closest else "")
+                  + "; use the continuum")
+    return ContinuumAdvice(quantity, measure, tol, plan, ref, statics, tuple(beds), best,
+                           reason, evidence)
+
+
+def certified_against_continuum(a: ContinuumAdvice) -> str:
+    """What the bed errors are measured against, in words."""
+    if a.reference is None:
+        return ("nothing: the continuum was not run (over --budget); the map's numbers are "
+                "the map's own measurements on its scenes")
+    r, prev = a.reference.finest, a.reference.runs[-2]
+    return (f"the continuum (plane strain, explicit route) on {r.elements_across} elements "
+            f"across ({r.dofs} DOFs), with an uncertainty of {100 * a.reference.uncertainty:.3g}"
+            f" % (its change from {prev.elements_across} across)")
+
+
+def format_continuum(a: ContinuumAdvice) -> list[str]:
+    """The continuum ladder as text lines."""
+    e = a.plan.estimate
+    lines = [f"continuum ladder: {', '.join(map(str, a.plan.meshes))} elements across, "
+             f"estimated {e.seconds:.0f} s before running (plus the explicit loop's "
+             "compilation once per process)"]
+    if a.reference is not None:
+        for r in a.reference.runs:
+            lines.append(f"  {r.elements_across:3d} across ({r.dofs:6d} DOFs, {r.steps} steps "
+                         f"of {r.dt:.3g} s): {a.quantity} = {r.value:.6g}, {r.wall_time_s:.3g} "
+                         f"s, energy balance {100 * r.energy_balance_error:.2g} %")
+        s = a.statics
+        lines.append(f"  reference: {a.quantity} = {a.reference.value:.6g} on "
+                     f"{a.reference.finest.elements_across} across, uncertainty "
+                     f"{100 * a.reference.uncertainty:.3g} %; statics on {s.elements_across} "
+                     f"across: K_v = {s.K_v:.6g}, K_r = {s.K_r:.6g}, V_ult = {s.V_ult:.6g} "
+                     f"(FS_v = {s.fs_v:.3g})")
+        lines.append("beds against the continuum (measured on this scene):")
+        for b in a.beds:
+            if b.failure:
+                lines.append(f"  {b.name:26s} refused: {b.failure}")
+                continue
+            lines.append(f"  {b.name:26s} error {100 * b.error:8.3g} %  runtime "
+                         f"{b.wall_time_s * 1e3:8.3f} ms  {b.speed_ratio:8.4g}× faster  "
+                         f"{'meets' if b.meets else 'fails'}")
+        lines.append(f"certified against: {certified_against_continuum(a)}")
+    if a.recommendation is None:
+        lines.append(f"continuum recommendation: none — {a.reason}")
+    else:
+        b = a.recommendation
+        lines.append(f"continuum recommendation: {b.name} ({b.label}): error "
+                     f"{100 * b.error:.3g} % (+ reference uncertainty "
+                     f"{100 * a.reference.uncertainty:.3g} %) ≤ {100 * a.tolerance:g} %, "
+                     f"{b.wall_time_s * 1e3:.3g} ms, {b.speed_ratio:.4g}× faster than the "
+                     "continuum reference run")
+    if a.map is not None:
+        lines += format_evidence(a.map, a.tolerance)
+    else:
+        lines.append("map: none (give --map PATH to a winkler_map map.nc, or run the study "
+                     "into results/winkler_map)")
+    return lines

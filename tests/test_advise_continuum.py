@@ -1,0 +1,259 @@
+"""``upliftlab advise`` on a scene with ``[soil]``: the continuum ladder and the Winkler map.
+
+The scene is ``strip_footing_clay`` made to sit on the fast Winkler map's grid (h/B = 1.5,
+T = 0.2 s, a Ricker pulse of 0.2 s at 3 a_up, FS_v = 3.1 on the map's capacity), on the fast
+ladder (2, 4, 8 elements across). References, each by another call path than the advisor's:
+the map's own point function :func:`winkler_map.evaluate_dynamic` for the continuum values; a
+direct :func:`upliftlab.reduced.run` of each bed's table for the bed errors; the map's
+``map.nc`` read with xarray and reduced with numpy for the map's evidence. Runtimes are never
+asserted.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from upliftlab import cli
+from upliftlab.comparisons import advise as adv
+from upliftlab.comparisons import advise_continuum as ac
+from upliftlab.comparisons import advise_map as am
+from upliftlab.comparisons import winkler_map as wm
+from upliftlab.comparisons.winkler_map.grid import FAST_OPTIONS
+from upliftlab.reduced import run as reduced_run
+from upliftlab.results import read_dataset
+from upliftlab.scenes import load_scene, scene_from_dict
+
+SCENE = "strip_footing_clay"
+#: h = 3 m (h/B = 1.5), T = 0.2 s, amplitude 3 a_up = 3 g B/(6h) = 1/3 g.
+ON_MAP = ["structure.height=3.0", "structure.period=0.2", "motion.period=0.2",
+          "motion.duration=0.6", "motion.amplitude=0.3333333333333333"]
+TOL = 0.10
+
+
+@pytest.fixture(scope="module")
+def fast_map(tmp_path_factory):
+    out = tmp_path_factory.mktemp("winkler_map")
+    wm.run(fast=True, out=out, options=replace(FAST_OPTIONS, figures=False))
+    return out / "map.nc"
+
+
+@pytest.fixture(scope="module")
+def advice(fast_map):
+    return adv.advise(SCENE, "peak_theta", TOL, overrides=ON_MAP, fast=True,
+                      map_path=fast_map)
+
+
+def _direct_continuum(n: int) -> float:
+    """Peak θ of the map's own point function on ``n`` elements across (the same scene as a
+    map point: intensity 3 × a_up)."""
+    data = copy.deepcopy(load_scene(SCENE, overrides=ON_MAP).data)
+    data.pop("motion")
+    data["continuum"]["elements_across"] = n
+    point = {"scene": data, "motion": {"type": "ricker", "period": 0.2, "duration": 0.6},
+             "intensity": 3.0, "history_dt": 0.01}
+    return wm.evaluate_dynamic(point)["measures"]["theta"]
+
+
+def test_ladder_values_equal_the_maps_point_function(advice):
+    """Each rung's peak θ equals the map's evaluate_dynamic on the same mesh (1e-12): the
+    advisor runs the continuum as the map does. Reference = finest mesh; uncertainty = its
+    change from 4 across, recomputed."""
+    c = advice.continuum_advice
+    assert [r.elements_across for r in c.reference.runs] == [2, 4, 8]
+    values = {n: _direct_continuum(n) for n in (2, 4, 8)}
+    for r in c.reference.runs:
+        assert r.value == pytest.approx(values[r.elements_across], rel=1e-12)
+    assert c.reference.value == pytest.approx(values[8], rel=1e-12)
+    assert abs(values[8]) > c.reference.floor
+    assert c.reference.uncertainty == pytest.approx(abs(values[4] - values[8]) / abs(values[8]),
+                                                    rel=1e-12)
+
+
+def test_bed_errors_from_a_direct_reduced_run(advice):
+    """Each bed's error equals (bed − continuum)/continuum with the bed run directly from its
+    [foundation] table (built from the reported statics, scene N, B, h) and the continuum value
+    of the map's point function (1e-12); the certification rule holds on these numbers and the
+    recommendation is the certified bed of least runtime."""
+    c = advice.continuum_advice
+    scene = load_scene(SCENE, overrides=ON_MAP)
+    soil, s = scene.soil, c.statics
+    reference = wm.BedReference("tresca", scene.structure.weight, 2.0, 3.0, s.K_v, s.K_r,
+                                s.V_ult, soil.shear_modulus, soil.poisson_ratio,
+                                extra={"density": soil.density})
+    continuum = _direct_continuum(8)
+    uncertainty = abs(_direct_continuum(4) - continuum) / abs(continuum)
+    assert len(c.beds) == len(wm.BEDS)
+    for bed in c.beds:
+        data = copy.deepcopy(scene.data)
+        data["foundation"] = wm.bed_foundation(bed.name, reference, FAST_OPTIONS)
+        del data["soil"], data["continuum"]
+        response = reduced_run(scene_from_dict(data, merged=True))
+        value = max(float(np.max(np.abs(response.theta))), float(response.peaks["theta"]))
+        assert bed.value == pytest.approx(value, rel=1e-12)
+        assert bed.error == pytest.approx((value - continuum) / continuum, rel=1e-12, abs=1e-15)
+        assert bed.meets == (abs(bed.error) + uncertainty <= TOL)
+        assert bed.speed_ratio == pytest.approx(c.reference.finest.wall_time_s
+                                                / bed.wall_time_s, rel=1e-12)
+    passing = [b for b in c.beds if b.meets]
+    if passing:
+        assert c.recommendation == min(passing, key=lambda b: b.wall_time_s)
+    else:
+        assert c.recommendation is None and "closest" in c.reason
+
+
+def test_map_evidence_recomputed_from_the_map(advice, fast_map):
+    """The scene sits inside the fast map (clay; FS_v between the map's 2 and 5; h/B, T and
+    intensity on its single values): each bed's median, 90th percentile and share within tol of
+    |error| in peak θ over the cells fs_v ∈ {2, 5} and every motion, recomputed with numpy from
+    map.nc (1e-12)."""
+    e = advice.continuum_advice.map
+    assert e.inside and e.soil == "clay"
+    ds = read_dataset(fast_map)
+    V_ult = float(read_dataset(fast_map.with_name("statics.nc"))["V_ult"].sel(soil="clay"))
+    assert e.coordinates["fs_v"] == pytest.approx(V_ult / 171.39, rel=1e-12)
+    assert 2.0 < e.coordinates["fs_v"] < 5.0
+    assert e.cells == {"fs_v": [2.0, 5.0], "h_over_B": [1.5], "period": [0.2],
+                       "intensity": [3.0]}
+    err = ds["error"].sel(soil="clay", measure="theta")
+    for bed in e.beds:
+        values = np.abs(err.sel(calibration=bed.name).values.ravel())
+        values = values[np.isfinite(values)]
+        assert bed.count == values.size == 2
+        assert bed.median == pytest.approx(np.median(values), rel=1e-12)
+        assert bed.p90 == pytest.approx(np.percentile(values, 90), rel=1e-12)
+        assert bed.share_within == pytest.approx(np.mean(values <= TOL), rel=1e-12)
+    assert e.best == min(e.beds, key=lambda b: b.median)
+    text = adv.format_advice(advice)
+    assert "map's evidence" in text and "not this scene's runs" in text
+    assert "certified against: the continuum (plane strain, explicit route) on 8 elements" \
+        in text
+
+
+@pytest.mark.parametrize("override, words", [
+    ("structure.height=5.0", ["h_over_B = 2.5", "1 above the map's range [1.5, 1.5]"]),
+    ("soil.undrained_strength=40.0", ["soil.undrained_strength = 40.0",
+                                      "the map's clay: 50.0"]),
+])
+def test_scene_outside_the_map_says_which_parameter(fast_map, override, words):
+    """Outside the map's box: the reason names the parameter, its value and the map's range."""
+    scene = load_scene(SCENE, overrides=ON_MAP + [override])
+    e = am.map_evidence(fast_map, scene, "theta", TOL)
+    assert not e.inside and e.beds == ()
+    for w in words:
+        assert w in e.outside
+
+
+def _no_runs(monkeypatch):
+    def refuse(*args, **kwargs):
+        raise AssertionError("a run started")
+
+    monkeypatch.setattr(ac, "continuum_run", refuse)
+    monkeypatch.setattr(ac, "soil_numbers", refuse)
+    monkeypatch.setattr(adv.sve, "evaluate_point", refuse)
+
+
+def test_budget_below_the_estimate_is_refused_before_any_run(monkeypatch, tmp_path, capsys):
+    """--budget below the estimate, and no map: exit 2, one line naming --budget and the
+    estimate (the same number the plan estimates), and no run of either model."""
+    _no_runs(monkeypatch)
+    monkeypatch.chdir(tmp_path)  # no results/winkler_map/map.nc here
+    plan = ac.plan_continuum(load_scene(SCENE, overrides=ON_MAP), "theta", TOL, fast=True)
+    args = ["advise", SCENE, "--quantity", "peak_theta", "--fast", "--budget", "1"]
+    code = cli.main(args + [x for s in ON_MAP for x in ("--set", s)])
+    err = capsys.readouterr().err.strip().splitlines()[-1]
+    assert code == 2
+    assert err.startswith("upliftlab: error: --budget = 1 s")
+    assert f"estimated at {plan.estimate.seconds:.0f} s" in err and "no Winkler map" in err
+    assert plan.estimate.seconds > 1.0
+
+
+def test_over_budget_inside_the_map_gives_the_maps_verdict_without_running(
+        monkeypatch, fast_map, capsys):
+    """Over --budget but inside the map: the continuum is not run, nothing is certified
+    (exit 3), and the map's evidence is reported as the map's."""
+    _no_runs(monkeypatch)
+
+    def reduced_refused(*args, **kwargs):
+        raise adv.InputError("the reduced reference is not run in this test")
+
+    monkeypatch.setattr(adv, "_reference", reduced_refused)
+    args = ["advise", SCENE, "--quantity", "peak_theta", "--fast", "--budget", "1",
+            "--map", str(fast_map)]
+    code = cli.main(args + [x for s in ON_MAP for x in ("--set", s)])
+    out = capsys.readouterr().out
+    assert code == cli.EXIT_NUMERICS
+    assert "the continuum was not run" in out and "map's evidence" in out
+    assert "certifies nothing" in out and "beds against the continuum (measured" not in out
+    err = read_dataset(fast_map)["error"].sel(soil="clay", measure="theta")
+    medians = {str(c): float(np.nanmedian(np.abs(err.sel(calibration=c).values)))
+               for c in err["calibration"].values}
+    best = min(medians, key=medians.get)
+    assert f"map's verdict (evidence, not a certification): {best} has the least median " \
+           f"|error|, {100 * medians[best]:.3g} %" in out
+
+
+def test_cli_json_fast(advice, fast_map, capsys):
+    """The command line on the fast ladder: the JSON carries the continuum reference, its
+    uncertainty and each bed's error, equal to the Python API's (a deterministic re-run)."""
+    args = ["advise", SCENE, "--quantity", "peak_theta", "--tol", "10%", "--fast", "--json",
+            "--map", str(fast_map)]
+    code = cli.main(args + [x for s in ON_MAP for x in ("--set", s)])
+    out = json.loads(capsys.readouterr().out)
+    c, mine = out["continuum_advice"], advice.continuum_advice
+    assert code == (0 if mine.recommendation is not None else cli.EXIT_NUMERICS)
+    assert c["reference"]["value"] == pytest.approx(mine.reference.value, rel=1e-12)
+    assert c["reference"]["uncertainty"] == pytest.approx(mine.reference.uncertainty,
+                                                          rel=1e-12)
+    assert c["reference"]["elements_across"] == 8
+    assert c["certified_against"].startswith("the continuum (plane strain, explicit route) on "
+                                             "8 elements across")
+    for got, bed in zip(c["beds"], mine.beds):
+        assert got["name"] == bed.name
+        assert got["error"] == pytest.approx(bed.error, rel=1e-12)
+    assert c["map"]["inside"] is True
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--budget", "0"], ["--budget = 0", "valid range is (0, 1e+09]"]),
+    (["--budget", "nan"], ["--budget = nan", "valid range"]),
+    (["--map", "no/such/map.nc"], ["--map = 'no/such/map.nc'", "no such file"]),
+    (["--set", "continuum.elements_across=4"], ["has no effect", "continuum.elements_across"]),
+])
+def test_cli_bad_continuum_options_refused_before_any_run(args, words, monkeypatch, capsys):
+    """Bad --budget, a missing --map and an override of the mesh the ladder chooses: exit 2,
+    one line naming the option, and no run of either model."""
+    _no_runs(monkeypatch)
+    code = cli.main(["advise", SCENE, "--fast"] + args)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1
+    for w in words:
+        assert w in err[0]
+
+
+@pytest.mark.parametrize("args", [["--budget", "100"], ["--map", "map.nc"]])
+def test_continuum_options_on_a_scene_without_soil_are_refused(args, monkeypatch, capsys):
+    """--budget and --map have no effect on a scene without [soil]: refused in one line
+    before any run (the project's rule for inputs without effect)."""
+    _no_runs(monkeypatch)
+    code = cli.main(["advise", "short_period_elcentro", "--case", "B", "--fast"] + args)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1
+    assert f"{args[0]}: has no effect" in err[0] and "no [soil] table" in err[0]
+
+
+def test_a_file_that_is_not_a_map_is_refused(tmp_path):
+    """--map pointing at a NetCDF file without the map's variables: one InputError naming what
+    is missing, before any run."""
+    import xarray as xr
+
+    from upliftlab.results import write_dataset
+
+    path = write_dataset(tmp_path / "other.nc", xr.Dataset({"x": ("n", np.arange(3.0))}))
+    scene = load_scene(SCENE, overrides=ON_MAP)
+    with pytest.raises(adv.InputError, match=r"--map = .*other.nc.*not a Winkler map \(no error"):
+        am.map_evidence(path, scene, "theta", TOL)
