@@ -7,8 +7,10 @@ a map point) on a mesh ladder — 4, 8, 16 elements across (``fast``: 2, 4, 8) �
 map measures both models (:func:`.winkler_map.points.measured`). The finest mesh is the
 reference; its uncertainty is its relative change from the next-coarser mesh. Each bed of
 :data:`.winkler_map.beds.BEDS` is built from the continuum statics of the scene's soil on the
-finest mesh (K_v, K_r with every contact node tied; V_ult from a vertical pushover,
-:func:`.winkler_map.statics.evaluate_static`) and the scene's N, B and h, and run on the
+finest mesh (K_v, K_r with every contact node tied; V_ult and the load–settlement path from a
+vertical pushover, :func:`.winkler_map.statics.evaluate_static`; the elastic soil's dynamic
+impedance for the bed with the continuum's dashpots, :mod:`.winkler_map.impedance_points`),
+the scene's N, B, h and ``[structure]``, and run on the
 scene's own motion (the reduced model, the median of a few timed runs after an untimed one).
 A bed is certified when |error| + the reference's uncertainty ≤ tol; the advisor recommends the
 certified bed of least measured runtime, with its speed ratio against the reference run.
@@ -41,12 +43,15 @@ from .study import relative_error
 from .winkler_map.beds import BEDS, BedReference, bed_foundation
 from .winkler_map.cost import Estimate, estimate_cost
 from .winkler_map.grid import FAST_OPTIONS, FLOOR_FRACTION, FULL_OPTIONS
+from .winkler_map.impedance_points import (evaluate_impedance, impedance_dofs,
+                                           impedance_point_of, soil_impedance)
 from .winkler_map.points import base_table, measured, scales, story_constants
 from .winkler_map.statics import evaluate_static
 
 __all__ = ["FULL_MESHES", "FAST_MESHES", "MeshRun", "ContinuumReference", "SoilNumbers",
            "BedCheck", "ContinuumPlan", "ContinuumAdvice", "plan_continuum", "run_continuum",
-           "continuum_run", "bed_run", "soil_numbers", "format_continuum"]
+           "continuum_run", "bed_run", "soil_numbers", "scene_impedance", "bed_reference",
+           "format_continuum"]
 
 FULL_MESHES = (4, 8, 16)
 FAST_MESHES = (2, 4, 8)
@@ -93,7 +98,8 @@ class ContinuumReference:
 class SoilNumbers:
     """The continuum statics of the scene's soil the beds are built from, on
     ``elements_across``: ``K_v`` (force/length/length), ``K_r`` (force·length/rad/length),
-    ``V_ult`` (force/length), ``fs_v`` = V_ult/N, ``wall_time_s`` of both analyses (s)."""
+    ``V_ult`` (force/length), ``fs_v`` = V_ult/N, the vertical pushover's ``settlement``
+    (length) and ``load`` (force/length), ``wall_time_s`` of both analyses (s)."""
 
     elements_across: int
     K_v: float
@@ -101,6 +107,8 @@ class SoilNumbers:
     V_ult: float
     fs_v: float
     wall_time_s: float
+    settlement: tuple[float, ...] = ()
+    load: tuple[float, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -184,8 +192,11 @@ def plan_continuum(scene: Scene, measure: str, tol: float, *, fast: bool = False
     meshes = FAST_MESHES if fast else FULL_MESHES
     scenes = [_at_mesh(scene, n) for n in meshes]
     soil = scene.soil.model
+    impedance = _impedance_point(scene, meshes[-1])
     estimate = estimate_cost([(soil, scenes[-1], False)],
-                             [(soil, s, _duration(scene), False) for s in scenes], [], [])
+                             [(soil, s, _duration(scene), False) for s in scenes], [], [],
+                             [(soil, impedance_dofs(impedance),
+                               len(impedance["impedance"]["a0"]), False)], [])
     path = find_map(map_path)
     evidence = map_evidence(path, scene, measure, tol) if path is not None else None
     ladder = ", ".join(map(str, meshes))
@@ -296,7 +307,34 @@ def soil_numbers(scene: Scene, elements_across: int, fast: bool) -> SoilNumbers:
     V_ult = vertical["capacity"]
     return SoilNumbers(int(elements_across), stiffness["K_v"], stiffness["K_r"], V_ult,
                        V_ult / scene.structure.weight,
-                       stiffness["wall_time_s"] + vertical["wall_time_s"])
+                       stiffness["wall_time_s"] + vertical["wall_time_s"],
+                       tuple(vertical["settlement"]), tuple(vertical["N"]))
+
+
+def _impedance_point(scene: Scene, elements_across: int) -> dict:
+    continuum = {**copy.deepcopy(scene.data.get("continuum", {})),
+                 "elements_across": int(elements_across)}
+    return impedance_point_of(scene.data["soil"], continuum, 0.5 * scene.foundation.width)
+
+
+def scene_impedance(scene: Scene, elements_across: int):
+    """The footing's dynamic impedance (:class:`~upliftlab.continuum.impedance.Impedance`) on
+    the scene's soil made linear elastic, on ``elements_across``, at the map's frequencies."""
+    point = _impedance_point(scene, elements_across)
+    return soil_impedance(point, evaluate_impedance(point))
+
+
+def bed_reference(scene: Scene, statics: SoilNumbers, impedance) -> BedReference:
+    """The continuum numbers the beds are built from: the statics, the scene's N, B, h,
+    density and ``[structure]``, the pushover, and the impedance."""
+    soil = scene.soil
+    return BedReference(soil.model, scene.structure.weight, scene.foundation.width,
+                        scene.structure.height, statics.K_v, statics.K_r, statics.V_ult,
+                        soil.shear_modulus, soil.poisson_ratio,
+                        extra={"density": soil.density,
+                               "structure": copy.deepcopy(scene.data["structure"]),
+                               "settlement": statics.settlement, "load": statics.load,
+                               "impedance": impedance})
 
 
 # ---------------------------------------------------------------------------------------------
@@ -331,18 +369,20 @@ def run_continuum(scene: Scene, quantity: str, measure: str, tol: float, plan: C
     _progress(f"continuum statics on {plan.meshes[-1]} elements across", started,
               len(plan.meshes) * per_run, plan.estimate.seconds)
     statics = soil_numbers(scene, plan.meshes[-1], fast)
+    reference_numbers = bed_reference(scene, statics, scene_impedance(scene, plan.meshes[-1]))
     B, h, N = scene.foundation.width, scene.structure.height, scene.structure.weight
-    soil = scene.soil
-    reference_numbers = BedReference(soil.model, N, B, h, statics.K_v, statics.K_r,
-                                     statics.V_ult, soil.shear_modulus, soil.poisson_ratio,
-                                     extra={"density": soil.density})
     floor = FLOOR_FRACTION * scales(N, B, h, statics.K_v, statics.K_r,
                                     story_constants(scene)[0])[measure]
     ref = ContinuumReference(tuple(runs), floor)
     options = FAST_OPTIONS if fast else FULL_OPTIONS
     beds = []
     for name, entry in BEDS.items():
-        r = bed_run(scene, bed_foundation(name, reference_numbers, options))
+        try:
+            table = bed_foundation(name, reference_numbers, options)
+        except InputError as exc:  # e.g. a rocking frequency outside the impedance's a0
+            r = {"refused": f"cannot be built for this scene: {exc}"}
+        else:
+            r = bed_run(scene, table)
         if "refused" in r:
             beds.append(BedCheck(name, entry.label, math.nan, math.nan, math.nan, math.nan,
                                  False, r["refused"]))

@@ -41,7 +41,7 @@ from ..store import keyed_as
 from .grid import SOILS, Options
 from .points import base_table
 
-__all__ = ["IMPEDANCE_A0", "impedance_point", "evaluate_impedance", "soil_impedance",
+__all__ = ["IMPEDANCE_A0", "impedance_point", "impedance_point_of", "evaluate_impedance", "soil_impedance",
            "elastic_soil", "impedance_dofs"]
 
 #: The dimensionless frequencies a0 = ω (B/2)/V_s of the map's impedance (module docstring).
@@ -54,8 +54,7 @@ _ELASTIC_KEYS = ("youngs_modulus", "poisson_ratio", "density", "interface")
 def elastic_soil(soil: str) -> dict:
     """The ``[soil]`` table of the map's ``soil`` made linear elastic: its Young's modulus
     (kPa), Poisson ratio, density (t/m³) and interface, no strength."""
-    table = SOILS[soil]
-    return {**{k: table[k] for k in _ELASTIC_KEYS if k in table}, "model": "elastic"}
+    return impedance_point_of(SOILS[soil], {}, 0.0)["soil"]
 
 
 def _options(a0=IMPEDANCE_A0):
@@ -65,13 +64,23 @@ def _options(a0=IMPEDANCE_A0):
 
 
 def impedance_point(soil: str, options: Options, half_width: float) -> dict:
-    """The impedance point of ``soil`` on the options' mesh: the elastic soil, the mesh, the
-    footing's half-width (m), the frequencies and every impedance option (so that the stored
-    point's key names them)."""
+    """The impedance point of the map's ``soil`` on the options' mesh: the elastic soil, the
+    mesh, the footing's half-width (m), the frequencies and every impedance option (so that
+    the stored point's key names them)."""
+    return impedance_point_of(SOILS[soil], {"elements_across": int(options.elements_across)},
+                              half_width)
+
+
+def impedance_point_of(soil_table: Mapping, continuum_table: Mapping,
+                       half_width: float) -> dict:
+    """The impedance point of any ``[soil]`` table (made linear elastic: its Young's modulus,
+    Poisson ratio, density and interface) on the ``[continuum]`` table's mesh, under a footing
+    of ``half_width`` (m)."""
     opts = asdict(_options())
     opts["a0"] = list(opts["a0"])
-    return {"soil": elastic_soil(soil),
-            "continuum": {"elements_across": int(options.elements_across)},
+    return {"soil": {**{k: soil_table[k] for k in _ELASTIC_KEYS if k in soil_table},
+                     "model": "elastic"},
+            "continuum": dict(continuum_table),
             "half_width": float(half_width), "analysis": "impedance", "impedance": opts}
 
 
