@@ -70,6 +70,10 @@ EXERCISED = {
         ("slow", ("results/two_spring_equivalence-fast/summary.md",)),
     "python -m upliftlab.comparisons.winkler_map --fast --out results/winkler_map-fast":
         ("slow", ("results/winkler_map-fast/summary.md", "results/winkler_map-fast/map.nc")),
+    "python -m upliftlab.comparisons.winkler_map --grid soils=clay --grid h_over_B=1.5 "
+    "--grid periods=0.5 --grid fema_components=2":
+        ("tests/test_winkler_map.py::test_the_readme_clay_slice_is_estimated_before_it_runs",
+         ()),
     "upliftlab continuum strip_footing_clay --analysis impedance --set soil.model=elastic "
     "--json": ("here", ()),
     "upliftlab opensees short_period_elcentro --case A --out results/opensees-A && "

@@ -327,3 +327,38 @@ def test_the_qz_bed_runs_on_the_fast_map(study):
     c = d.calibrations.index("qz")
     assert np.isfinite(d.beds[..., c, :]).all()
     assert not [r for r in d.refusals if r.endswith("qz: ") or ", qz:" in r]
+
+
+def test_the_readme_clay_slice_is_estimated_before_it_runs(tmp_path):
+    """The README's clay slice (its second finding), run as written with --budget 1 added: the
+    grid is the one the README describes and its cost is estimated and refused before any run
+    (exit 2). Hand count: 4 FS_v × 2 intensities × 5 motions (2 pulses, El Centro, 2 FEMA
+    components) = 40 dynamic runs; statics, impedance and a cyclic and a monotonic rotation
+    pushover per FS_v = 10 static runs."""
+    import subprocess
+    import sys
+
+    # the README's command, as test_readme finds it here
+    argv = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "h_over_B=1.5", "--grid", "periods=0.5", "--grid", "fema_components=2", "--out"]  # noqa: E501
+    result = subprocess.run([sys.executable, *argv, str(tmp_path / "out"), "--budget", "1"],
+                            capture_output=True, text=True, timeout=600, cwd=tmp_path)
+    assert result.returncode == 2, result.stderr[-2000:]
+    assert "50 continuum runs to make (10 static, 40 dynamic; 0 already stored)" in result.stderr
+    assert result.stderr.strip().splitlines()[-1].startswith("error: options.budget = 1 s")
+    assert not (tmp_path / "out" / "map.nc").exists()
+    grid = wm.grid_with(wm.FULL_GRID, ["soils=clay", "h_over_B=1.5", "periods=0.5",
+                                       "fema_components=2"])
+    assert grid == replace(wm.FULL_GRID, soils=("clay",), h_over_B=(1.5,), periods=(0.5,),
+                           fema_components=2)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("soil=clay", "expected FIELD=VALUES with FIELD one of"),
+    ("fs_v=2,a", "--grid fs_v = '2,a': expected comma-separated numbers"),
+    ("elcentro=yes", "--grid elcentro = 'yes': expected true or false"),
+])
+def test_grid_assignments_are_refused_in_one_line(text, message):
+    """A --grid text that is not FIELD=VALUES of a known field is one InputError line."""
+    with pytest.raises(InputError) as exc:
+        wm.grid_with(wm.FULL_GRID, [text])
+    assert message in str(exc.value) and "\n" not in str(exc.value)

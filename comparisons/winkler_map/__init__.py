@@ -39,7 +39,7 @@ from .analysis import (Analysis, BedRegion, Pick, Share, Speed, analyse, cell_pa
 from .beds import BEDS, BedEntry, BedReference, bed_foundation, bed_names
 from .cost import Estimate, estimate_cost
 from .grid import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS, Grid, MEASURES, Options,
-                   SOILS, STUDY, check_grid, check_options)
+                   SOILS, STUDY, check_grid, check_options, grid_with)
 from .maps import MapData, compute_map
 from .output import write
 from .points import evaluate_dynamic, run_bed
@@ -48,8 +48,8 @@ from .statics import SoilStatics, evaluate_static
 from .workflow import DEFINITION, compute, main, run
 
 __all__ = ["STUDY", "SOILS", "MEASURES", "Grid", "Options", "FULL_GRID", "FAST_GRID",
-           "FULL_OPTIONS", "FAST_OPTIONS", "check_grid", "check_options", "BEDS", "BedEntry",
-           "BedReference", "bed_foundation", "bed_names", "Estimate", "estimate_cost",
+           "FULL_OPTIONS", "FAST_OPTIONS", "check_grid", "check_options", "grid_with", "BEDS",
+           "BedEntry", "BedReference", "bed_foundation", "bed_names", "Estimate", "estimate_cost",
            "MapData", "compute_map", "SoilStatics", "evaluate_static", "evaluate_dynamic",
            "run_bed", "Analysis", "BedRegion", "Pick", "Share", "Speed", "analyse",
            "cell_passes", "median_over_motions", "WinklerMap", "DEFINITION", "compute",

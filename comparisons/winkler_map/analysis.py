@@ -132,8 +132,8 @@ def regions(data: MapData) -> list[BedRegion]:
             cells = ok[s, :, :, c].T  # (h_over_B, fs_v)
             region = corner_region(cells, x, y, x_sides=(">=", "<="), y_sides=("<=", ">="))
             where = region.condition
-            where = where if region.count == 0 or where == "over the whole map" \
-                else f"for {where}"
+            where = ("nowhere on the map" if not cells.any() else where
+                     if region.count == 0 or where == "over the whole map" else f"for {where}")
             text = (f"On {SOIL_LABELS[soil]}, the {_subject(name)} is within "
                     f"{100 * o.theta_tolerance:g} % in peak θ and edge uplift and "
                     f"{100 * o.settlement_tolerance:g} % in residual settlement (median over "

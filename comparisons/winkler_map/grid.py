@@ -7,7 +7,7 @@ names the field, the value and the valid range.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ... import checks
 from ...checks import InputError
@@ -111,6 +111,36 @@ FULL_OPTIONS = Options()
 FAST_OPTIONS = Options(elements_across=4, pulse_tail=0.6, vertical_steps=8,
                        theta_ratios=(2.0, 5.0), monotonic_steps=3, cycle_ratios=(2.0,),
                        cycle_steps=2)
+
+
+def grid_with(base: Grid, assignments: Sequence[str]) -> Grid:
+    """``base`` with fields replaced from ``FIELD=VALUES`` texts (the command line's
+    ``--grid``): a list field takes comma-separated values (``soils=clay``,
+    ``fs_v=2,3,5,10``), ``elcentro`` true or false, ``fema_components`` an integer. An unknown
+    field or an unreadable value is one :class:`InputError` line; the ranges are
+    :func:`check_grid`'s."""
+    lists = {"soils": str, "fs_v": float, "h_over_B": float, "periods": float,
+             "intensities": float, "pulse_periods": float}
+    changes = {}
+    for text in assignments:
+        field_name, sep, value = text.partition("=")
+        field_name = field_name.strip()
+        if not sep or field_name not in {*lists, "elcentro", "fema_components"}:
+            raise InputError(f"--grid {text!r}: expected FIELD=VALUES with FIELD one of "
+                             f"{[*lists, 'elcentro', 'fema_components']}")
+        try:
+            if field_name in lists:
+                items = [v.strip() for v in value.split(",") if v.strip()]
+                changes[field_name] = tuple(lists[field_name](v) for v in items)
+            elif field_name == "elcentro":
+                changes[field_name] = {"true": True, "false": False}[value.strip().lower()]
+            else:
+                changes[field_name] = int(value)
+        except (ValueError, KeyError):
+            kind = {"elcentro": "true or false", "fema_components": "an integer"}.get(
+                field_name, "comma-separated numbers" if field_name != "soils" else "names")
+            raise InputError(f"--grid {field_name} = {value!r}: expected {kind}") from None
+    return replace(base, **changes)
 
 
 def _choices(name: str, values, valid, *, empty: bool = False) -> tuple:

@@ -173,10 +173,13 @@ def _input_text(d) -> str:
         parts.append(f"{soil}: V_s = {vs:.0f} m/s, T_1 = 4H/V_s = {4.0 * depth / vs:.2f} s")
     return ("The motion enters the continuum at the rigid base of its box, "
             f"{depth:g} m below the footing (the box's sides move with it horizontally), and "
-            "reaches the footing through the soil (a free column of that depth would have "
-            f"{'; '.join(parts)}); it enters the reduced model at the footing. The map "
-            "compares the responses to one acceleration history applied at these two places, "
-            "so what the soil does to the motion on its way up is part of every error.")
+            "the reduced model at the footing. The structure feels the same horizontal "
+            "acceleration in both: through the frictionless interface the soil cannot push the "
+            "footing sideways, and the continuum holds the footing's u to the base's (next "
+            "paragraph). What the soil column does on the way up (a free column of that depth "
+            f"would have {'; '.join(parts)}) still reaches the footing through its stresses: "
+            "the shaking column's shear adds to what the soil under the edges carries and "
+            "where it yields, which a bed does not have, and that is part of every error.")
 
 
 def _speed_of_soils(d) -> str:

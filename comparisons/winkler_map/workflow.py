@@ -11,7 +11,7 @@ from ..study import require_matplotlib
 from .analysis import analyse
 from .beds import BEDS, bed_names
 from .grid import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS, Grid, Options, STUDY,
-                   check_grid, check_options)
+                   check_grid, check_options, grid_with)
 from .maps import compute_map
 from .motions import study_motions
 from .output import write
@@ -56,6 +56,10 @@ def _arguments(parser) -> None:
     parser.add_argument("--budget", type=float, default=None,
                         help="refuse (exit 2) a run whose estimated continuum cost exceeds "
                              "this many seconds of one worker")
+    parser.add_argument("--grid", action="append", default=[], metavar="FIELD=VALUES",
+                        help="replace one axis of the grid (repeatable), e.g. soils=clay, "
+                             "fs_v=2,3,5,10, h_over_B=1.5, periods=0.5, intensities=1.5,3, "
+                             "pulse_periods=0.25,0.6, elcentro=true, fema_components=2")
 
 
 def _context_from(args, ctx: Context, say) -> Context:
@@ -65,7 +69,8 @@ def _context_from(args, ctx: Context, say) -> Context:
         from ...cli import need_extra
         need_extra(f"python -m upliftlab.comparisons.{STUDY}", "matplotlib",
                    why="or add --no-figures")
-    return replace(ctx, options=options)
+    grid = check_grid(grid_with(FAST_GRID if args.fast else FULL_GRID, args.grid))
+    return replace(ctx, options=options, grid=grid)
 
 
 def _describe(result: WinklerMap) -> list[str]:
