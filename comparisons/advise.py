@@ -102,7 +102,8 @@ class Advice:
     """What :func:`advise` measured and recommends (``recommendation`` None when nothing can be
     certified: ``reason`` says why). ``certified_against`` says what the errors are measured
     against: the reduced model's own finest bed; for a scene with ``[soil]``,
-    ``continuum_advice`` holds the beds certified against the continuum itself."""
+    ``continuum_advice`` holds the beds certified against the continuum itself. ``units``:
+    the quantity's unit (rad for peak θ, the scene's length otherwise)."""
 
     scene: str
     quantity: str
@@ -253,14 +254,14 @@ def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str 
         if plan is None:
             raise
         advice_c = run_continuum(scene, quantity, q, tol, plan, fast=fast)
-        return Advice(scene.name, quantity, tol, scene.units.length, None, (), (), None,
+        return Advice(scene.name, quantity, tol, _unit(scene, q), None, (), (), None,
                       f"the reduced ladder was not run: {exc}", continuum, fast,
                       "nothing (the reduced ladder's reference failed)", advice_c)
     against = certified_against(scene, ref)
     advice_c = (run_continuum(scene, quantity, q, tol, plan, fast=fast)
                 if plan is not None else None)
     if ref.uncertainty > tol / 2:
-        return Advice(scene.name, quantity, tol, scene.units.length, ref, (), (), None,
+        return Advice(scene.name, quantity, tol, _unit(scene, q), ref, (), (), None,
                       f"the reference is not converged to what {100 * tol:g} % needs: it "
                       f"changes by {100 * ref.uncertainty:.3g} % from the next-finer level "
                       f"(more than half the tolerance); no candidate can be certified. Use a "
@@ -283,8 +284,13 @@ def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str 
               f"no candidate up to N = {sizes['ladder_springs'][-1]} is within the tolerance; "
               f"use the reference discretization (Winkler N = {ref.springs}, events, "
               f"Δt = {ref.dt:g} s)")
-    return Advice(scene.name, quantity, tol, scene.units.length, ref, tuple(measured),
+    return Advice(scene.name, quantity, tol, _unit(scene, q), ref, tuple(measured),
                   tuple(skipped), best, reason, continuum, fast, against, advice_c)
+
+
+def _unit(scene: Scene, measure: str) -> str:
+    """The unit of a measure's value: rad for θ, the scene's length for the others."""
+    return "rad" if measure == "theta" else scene.units.length
 
 
 def certified_against(scene: Scene, ref: ReferenceCheck) -> str:

@@ -114,3 +114,14 @@ def test_parse_tolerance():
     assert adv.parse_tolerance(0.2) == pytest.approx(0.2)
     with pytest.raises(adv.InputError, match="valid range"):
         adv.parse_tolerance("100%")
+
+
+def test_the_quantitys_unit_is_radians_for_theta_and_length_otherwise():
+    """The advice states a rotation in rad and a displacement in the scene's length (the
+    paper's building is in kip-in-s: in)."""
+    from upliftlab.comparisons.advise import _unit
+    from upliftlab.scenes import load_scene
+
+    scene = load_scene("short_period_elcentro", case="B")
+    assert _unit(scene, "theta") == "rad"
+    assert _unit(scene, "u") == scene.units.length == "in"
