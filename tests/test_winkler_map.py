@@ -362,3 +362,23 @@ def test_grid_assignments_are_refused_in_one_line(text, message):
     with pytest.raises(InputError) as exc:
         wm.grid_with(wm.FULL_GRID, [text])
     assert message in str(exc.value) and "\n" not in str(exc.value)
+
+
+def test_the_signed_bias_recomputed_from_the_file(study, written):
+    """summary.json's signed median error per soil, FS_v, bed and measure equals numpy's
+    median of map.nc's signed errors over h/B, period, intensity and motion (1e-12); the
+    summary prints it as a table per soil with one column per FS_v."""
+    ds, _ = written
+    bias = study.study.numbers["signed_bias"]
+    for soil in ds.soil.values:
+        for name in ds.calibration.values:
+            for measure in ("theta", "uplift", "residual_settlement"):
+                err = ds.error.sel(soil=soil, calibration=name, measure=measure)
+                for f, fs in enumerate(ds.fs_v.values):
+                    values = err.sel(fs_v=fs).values.ravel()
+                    expected = np.median(values[np.isfinite(values)])
+                    assert bias[str(soil)][str(name)][measure][f] == pytest.approx(
+                        expected, rel=1e-12, abs=1e-15)
+    text = (study.study.directory / "summary.md").read_text()
+    assert "## Where the beds miss" in text
+    assert "| bed | FS_v = 2 | FS_v = 5 |" in text

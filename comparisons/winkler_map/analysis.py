@@ -15,7 +15,10 @@ from .grid import MEASURE_LABELS, MEASURES, SOIL_LABELS
 from .maps import MapData
 
 __all__ = ["BedRegion", "Pick", "Share", "Speed", "Analysis", "analyse", "cell_passes",
-           "median_over_motions"]
+           "median_over_motions", "signed_bias", "BIAS_MEASURES"]
+
+#: The measures whose signed error is summarised by FS_v (:func:`signed_bias`).
+BIAS_MEASURES = ("theta", "uplift", "residual_settlement")
 
 RECORD_KINDS = ("elcentro", "fema_p695")
 
@@ -194,6 +197,21 @@ def speed(data: MapData) -> Speed:
         minimum[name] = float(np.min(ratio)) if ratio.size else math.nan
         bed_median[name] = float(np.nanmedian(data.bed_wall[..., c]))
     return Speed(median, minimum, float(np.nanmedian(cw)), bed_median)
+
+
+def signed_bias(data: MapData) -> np.ndarray:
+    """(soil, fs_v, calibration, measure of :data:`BIAS_MEASURES`): the median of the signed
+    error over h/B, period, intensity and motion (NaN runs left out). Where the |error| is
+    large, its sign says whether a bed overshoots or falls short everywhere at that FS_v (a
+    missing mechanism) or scatters both ways (a mismatch of timing)."""
+    q = [MEASURES.index(m) for m in BIAS_MEASURES]
+    e = np.moveaxis(data.errors[..., q], 6, 2)  # (soil, fs_v, cal, h, T, I, motion, 3)
+    flat = e.reshape(e.shape[:3] + (-1, len(q)))  # (soil, fs_v, calibration, points, 3)
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return np.nanmedian(flat, axis=3)
 
 
 def analyse(data: MapData) -> Analysis:

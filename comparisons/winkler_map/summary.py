@@ -63,6 +63,7 @@ def summary_numbers(result, elapsed: float) -> dict:
     return {
         "elements_across": d.options.elements_across,
         "statics_worst_error": rocking,
+        "signed_bias": _bias_numbers(d),
         "points": int(d.continuum_wall.size),
         "calibrations": list(d.calibrations),
         "motions": list(d.motion_names),
@@ -95,6 +96,17 @@ def summary_numbers(result, elapsed: float) -> dict:
         "refusals": list(d.refusals),
         "elapsed_s": elapsed,
     }
+
+
+def _bias_numbers(d) -> dict:
+    """{soil: {calibration: {measure: [signed median per FS_v]}}} (fractions)."""
+    from .analysis import BIAS_MEASURES, signed_bias
+
+    bias = signed_bias(d)
+    return {soil: {name: {m: [_finite(float(v)) for v in bias[s, :, c, k]]
+                          for k, m in enumerate(BIAS_MEASURES)}
+                   for c, name in enumerate(d.calibrations)}
+            for s, soil in enumerate(d.grid.soils)}
 
 
 def _clean(mapping: dict) -> dict:
@@ -141,6 +153,7 @@ def summary_markdown(result, fast: bool, elapsed: float) -> str:
     lines += [f"- {r.text}." for r in a.regions]
     lines += ["", "## Which calibration for which quantity", "",
               *_pick_table(d, a), "", *[f"- {pick_text(p)}." for p in a.picks], "",
+              "## Where the beds miss", "", *_bias_lines(d), "",
               "## How much of the map a calibrated bed covers", "", _share_text(a), "",
               "## Speed", "", _speed_text(a), "", "## Cost", "", _cost_text(d), ""]
     if d.refusals:
@@ -279,6 +292,27 @@ def _pick_table(d, a) -> list[str]:
                     if any(math.isfinite(v) for v in a.picks[0].record_median.values())
                     else "no record on this grid") + ".")
     return rows
+
+
+def _bias_lines(d) -> list[str]:
+    """Per soil: each bed's signed median error by FS_v in peak θ, edge uplift and residual
+    settlement (:func:`.analysis.signed_bias`)."""
+    from .analysis import signed_bias
+
+    bias = signed_bias(d)
+    lines = ["The signed median error (bed − continuum, %) at each FS_v over h/B, period, "
+             "intensity and motion, as peak θ / peak edge uplift / residual settlement: a "
+             "large error of one sign over a whole FS_v is a mechanism the bed lacks there.", ""]
+    for s, soil in enumerate(d.grid.soils):
+        head = " | ".join(f"FS_v = {v:g}" for v in d.grid.fs_v)
+        lines += [f"{SOIL_LABELS[soil]}:", "", f"| bed | {head} |",
+                  "|---|" + "---|" * len(d.grid.fs_v)]
+        for c, name in enumerate(d.calibrations):
+            cells = [" / ".join("n/a" if not math.isfinite(v) else f"{100 * v:+.0f}"
+                                for v in bias[s, f, c]) for f in range(len(d.grid.fs_v))]
+            lines.append(f"| {_short(name)} | " + " | ".join(cells) + " |")
+        lines.append("")
+    return lines[:-1]
 
 
 def _num(value) -> str:
