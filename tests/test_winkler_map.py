@@ -382,3 +382,12 @@ def test_the_signed_bias_recomputed_from_the_file(study, written):
     text = (study.study.directory / "summary.md").read_text()
     assert "## Where the beds miss" in text
     assert "| bed | FS_v = 2 | FS_v = 5 |" in text
+
+
+def test_the_estimate_divides_by_workers_only_when_it_knows_them():
+    """On local workers the line states the wall time on them (3600 s over 2: 30 min); on a
+    Dask cluster, whose worker count the estimate cannot know, it divides by nothing."""
+    e = wm.Estimate(3, 1, 2, 0, 3600.0, {"clay": 3600.0}, 1000.0, "default")
+    assert "about 30 min on 2 workers" in e.text(2)
+    text = e.text(None)
+    assert "split over the cluster's workers" in text and " on " not in text.split(";")[1]

@@ -74,13 +74,18 @@ class Estimate:
     per_run: float
     source: str
 
-    def text(self, workers: int = 1) -> str:
-        wall = self.seconds / max(1, workers)
+    def text(self, workers: int | None = 1) -> str:
+        """The estimate in one line; ``workers`` None: a Dask cluster, whose worker count is
+        not known before it is reached, so no wall time is divided out."""
         soils = ", ".join(f"{k} {_duration(v)}" for k, v in self.by_soil.items())
+        if workers is None:
+            split = "split over the cluster's workers"
+        else:
+            split = (f"about {_duration(self.seconds / max(1, workers))} on {workers} worker"
+                     f"{'s' if workers > 1 else ''}")
         return (f"{self.runs} continuum runs to make ({self.static} static, {self.dynamic} "
                 f"dynamic; {self.stored} already stored), estimated {_duration(self.seconds)} "
-                f"of one worker ({soils}; about {_duration(wall)} on {workers} worker"
-                f"{'s' if workers > 1 else ''}; a "
+                f"of one worker ({soils}; {split}; a "
                 f"dynamic run about {_duration(self.per_run)}; rates {self.source})")
 
 

@@ -195,7 +195,7 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
     local = ctx.scheduler is None and not os.environ.get(DASK_ENV)
     in_process = ctx.executor is None and local and estimate.seconds < IN_PROCESS_SECONDS
     workers = 1 if in_process else (ctx.workers or os.cpu_count() or 1)
-    logger(STUDY).info(f"{STUDY}: {estimate.text(workers)}")
+    logger(STUDY).info(f"{STUDY}: {estimate.text(workers if local else None)}")
     refuse_over_budget(estimate, options.budget)
     with contextlib.ExitStack() as stack:
         executor = ctx.executor
