@@ -28,9 +28,9 @@ from ..log import configure, logger
 from .store import Store
 
 __all__ = ["Study", "Context", "run_study", "main_for", "default_out", "EXIT_OK", "EXIT_FAILED",
-           "EXIT_INPUT"]
+           "EXIT_INPUT", "EXIT_NUMERICS"]
 
-EXIT_OK, EXIT_FAILED, EXIT_INPUT = 0, 1, 2
+EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_NUMERICS = 0, 1, 2, 3
 
 
 def default_out(name: str, fast: bool) -> Path:
@@ -156,6 +156,11 @@ def main_for(study: Study) -> Callable[[Sequence[str] | None], int]:
         except InputError as exc:
             print(f"error: {exc}", file=sys.stderr)
             return EXIT_INPUT
+        except RuntimeError as exc:  # a solver that gave up names its step (as the CLI does)
+            message = " ".join(str(exc).split())
+            print(f"error: {study.name} failed ({type(exc).__name__}): {message}",
+                  file=sys.stderr)
+            return EXIT_NUMERICS
         for line in study.describe(result):
             print(line)
         print(f"wrote {len(result.study.files)} files to {result.study.directory} in "

@@ -295,7 +295,16 @@ def _respond(model, u, state, soil_term):
 
 
 def _condense(model, tangent, soil_term):
-    return model.condense(tangent, None if soil_term is None else soil_term.data)
+    """The tangent condensed onto the contact DOFs; a singular tangent (a perfectly plastic
+    mechanism has one: the soil can no longer carry the prescribed load) is a Newton failure
+    of this step, which the step cutting of :func:`follow` then retries smaller."""
+    try:
+        return model.condense(tangent, None if soil_term is None else soil_term.data)
+    except RuntimeError as exc:
+        if "singular" not in str(exc).lower():
+            raise
+        raise ConvergenceError(f"the tangent is singular ({exc}): the soil has reached a "
+                               "mechanism under the prescribed loads") from exc
 
 
 def _footing_terms(term: FootingTerm | None, q: np.ndarray):

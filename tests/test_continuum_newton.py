@@ -163,6 +163,27 @@ def test_newton_gives_up_with_the_step_and_residual():
     assert isinstance(error.value, RuntimeError)
 
 
+def test_a_singular_tangent_is_a_newton_failure_that_the_step_cutting_handles(monkeypatch):
+    """A factorisation that finds the tangent singular (a perfectly plastic mechanism under
+    the prescribed loads: it stopped a Mohr–Coulomb rotation pushover of the Winkler map on
+    16 across) is a ConvergenceError of the step, bisected and then given up on with the step
+    named, never scipy's bare RuntimeError. Counted here: every bisection asked for a new
+    factorisation (max_cuts = 3: the step and its three halvings)."""
+    model = make_model(soil(**SOILS["tresca"]), B, SMALL)
+    state = geostatic(model)
+    calls = []
+
+    def singular(*args, **kwargs):
+        calls.append(1)
+        raise RuntimeError("Factor is exactly singular")
+
+    monkeypatch.setattr(type(model), "condense", singular)
+    controls = [Control((True, False, True), (0.0, -50.0, 0.0))]
+    with pytest.raises(ConvergenceError, match=r"^load step 0 .*the tangent is singular"):
+        follow(model, state, controls, NewtonOptions(max_cuts=3))
+    assert len(calls) == 4
+
+
 @pytest.mark.parametrize("field, value", [("rtol", 0.0), ("max_iterations", 0),
                                           ("max_cuts", 1.5)])
 def test_bad_newton_options(field, value):

@@ -85,3 +85,19 @@ def test_main_for_refuses_bad_input_in_one_line(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--workers" in err
     assert not out.exists()
+
+
+def test_main_for_reports_a_solver_failure_in_one_line(tmp_path, capsys):
+    # A solver that gave up (here a stand-in ConvergenceError with a two-line message): exit 3,
+    # one line on stderr naming the study, the error's kind and its message; no traceback.
+    from upliftlab.comparisons.fixed_vs_uplift import DEFINITION
+    from upliftlab.continuum import ConvergenceError
+
+    def gives_up(scene, context):
+        raise ConvergenceError("load step 3: gave up\nafter bisecting it")
+
+    main = protocol.main_for(replace(DEFINITION, compute=gives_up))
+    assert main(["--fast", "--out", str(tmp_path / "out")]) == protocol.EXIT_NUMERICS == 3
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert f"{DEFINITION.name} failed (ConvergenceError): load step 3: gave up after " in err

@@ -391,3 +391,22 @@ def test_the_estimate_divides_by_workers_only_when_it_knows_them():
     assert "about 30 min on 2 workers" in e.text(2)
     text = e.text(None)
     assert "split over the cluster's workers" in text and " on " not in text.split(";")[1]
+
+
+def test_a_continuum_pushover_that_stopped_leaves_its_statics_row_empty_and_says_why():
+    """A rotation pushover the soil could not follow is stored as an error record: its
+    (soil, FS_v) row of the statics is NaN for the continuum and every bed, and the failure
+    names the soil, FS_v, which path and the solver's message (no exception)."""
+    from upliftlab.comparisons.winkler_map.rocking import rocking_data
+
+    records = [{"error": "the rotation pushover stopped: load step 9: gave up"},
+               {"error": "the rotation pushover stopped: load step 4: gave up"}]
+    data = rocking_data(("clay",), (3.0,), np.array([[173.0]]), records, [[]], 2.0,
+                        wm.FAST_OPTIONS, 7)
+    assert np.isnan(data.continuum).all() and np.isnan(data.beds).all()
+    assert data.beds.shape[:3] == (1, 1, 7)
+    assert len(data.failures) == 1
+    text = data.failures[0]
+    assert text.startswith("clay, FS_v = 3: the continuum's rotation pushover did not reach")
+    assert "cyclic: the rotation pushover stopped: load step 9" in text
+    assert "monotonic: the rotation pushover stopped: load step 4" in text

@@ -266,11 +266,15 @@ def _rocking(grid, options, calibrations, statics, base, g, records,
                             grid.h_over_B[0], grid.periods[0], g)
         ref = _reference(by_soil[soil], _scene(table), table["structure"],
                          impedances.get(soil))
+        if "error" in records[2 * i] or "error" in records[2 * i + 1]:
+            beds.append([])  # the continuum's path stopped: nothing to push the beds over on
+            continue
         cyclic, monotonic = records[2 * i]["theta"], records[2 * i + 1]["theta"]
         beds.append([bed_rocking(table, ref.N, bed_foundation(name, ref, options), cyclic,
                                  monotonic) for name in calibrations])
     B = 2.0 * base["foundation"]["half_width"]
-    return rocking_data(grid.soils, grid.fs_v, loads, records, beds, B, options)
+    return rocking_data(grid.soils, grid.fs_v, loads, records, beds, B, options,
+                        len(calibrations))
 
 
 def _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,

@@ -155,13 +155,15 @@ class RockingData:
 
 def rocking_data(soils: Sequence[str], fs_v: Sequence[float], loads: np.ndarray,
                  records: Sequence[Mapping], bed_records: Sequence[Sequence[Mapping]],
-                 B: float, options: Options) -> RockingData:
+                 B: float, options: Options, calibrations: int | None = None) -> RockingData:
     """The :class:`RockingData` from the continuum's ``records`` (two per (soil, fs_v), in
     :func:`rocking_points` order) and ``bed_records[i][c]`` (:func:`bed_rocking` of bed c at the
-    i-th (soil, fs_v)); ``loads`` (soil, fs_v) the vertical loads N."""
+    i-th (soil, fs_v); empty where the continuum's path stopped); ``loads`` (soil, fs_v) the
+    vertical loads N; ``calibrations`` how many beds (default: the longest row)."""
     spec = rocking_quantities(options)
     keys, groups = tuple(k for k, _ in spec), tuple(g for _, g in spec)
-    ns, nf, nc = len(soils), len(fs_v), len(bed_records[0]) if bed_records else 0
+    ns, nf = len(soils), len(fs_v)
+    nc = calibrations if calibrations is not None else max(map(len, bed_records), default=0)
     cont = np.full((ns, nf, len(keys)), np.nan)
     floors = np.full_like(cont, np.nan)
     beds = np.full((ns, nf, nc, len(keys)), np.nan)
@@ -172,6 +174,14 @@ def rocking_data(soils: Sequence[str], fs_v: Sequence[float], loads: np.ndarray,
         N = float(loads[s, f])
         theta_on[s, f] = theta_onset(N, soils[s], B)
         cyclic, monotonic = records[2 * i], records[2 * i + 1]
+        stopped = [f"{kind}: {r['error']}" for kind, r in (("cyclic", cyclic),
+                                                             ("monotonic", monotonic))
+                   if "error" in r]
+        if stopped:
+            failures.append(f"{soils[s]}, FS_v = {fs_v[f]:g}: the continuum's rotation "
+                            f"pushover did not reach the path's end, so no statics row "
+                            f"({'; '.join(stopped)})")
+            continue
         onset = monotonic.get("onset", {})
         if "M" not in onset:
             failures.append(f"{soils[s]}, FS_v = {fs_v[f]:g}: no uplift onset on the continuum's "

@@ -36,9 +36,10 @@ def evaluate_continuum(point: Mapping) -> dict:
     ``rotation`` (a rotation pushover at ``N`` through ``rotations``), ``vertical`` (a vertical
     pushover through ``settlements``) or ``dynamic`` (:func:`evaluate_dynamic`). ``soil`` =
     ``elastic`` swaps the scene's soil for an elastic one of the same E and ν. Returns JSON
-    values (units of the scene)."""
-    from ...continuum import (build_model, footing_stiffness, rotation_pushover, uplift_onset,
-                             vertical_pushover)
+    values (units of the scene). A rotation pushover the soil cannot follow (Newton gives up
+    after bisecting a step: a mechanism at this N) gives ``{"error": message, "dofs": ...}``."""
+    from ...continuum import (ConvergenceError, build_model, footing_stiffness,
+                              rotation_pushover, uplift_onset, vertical_pushover)
     from ...continuum.footing import OPEN
 
     kind = point["analysis"]
@@ -52,7 +53,10 @@ def evaluate_continuum(point: Mapping) -> dict:
         path = vertical_pushover(model, point["settlements"])
         return {"settlement": floats(path.settlement), "N": floats(path.N),
                 "capacity": path.capacity, "dofs": int(model.dofs)}
-    path = rotation_pushover(model, point["N"], point["rotations"])
+    try:
+        path = rotation_pushover(model, point["N"], point["rotations"])
+    except ConvergenceError as exc:  # the soil cannot follow the path: a result, stored
+        return {"error": f"the rotation pushover stopped: {exc}", "dofs": int(model.dofs)}
     try:
         onset = uplift_onset(path)
         onset = {"theta": onset.theta, "M": onset.M, "e": onset.e}

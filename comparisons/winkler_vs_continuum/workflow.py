@@ -45,6 +45,10 @@ def compute(scene: str | Scene, ctx: Context) -> WinklerVsContinuum:
             executor = stack.enter_context(sweep_executor(ctx.scheduler, workers=workers))
         records = run_sweep(evaluate_continuum, static + dynamic, ctx.store, study=STUDY,
                             chunk=1, executor=executor, progress=ctx.progress)  # statics first
+    stopped = [r["error"] for r in records[:len(static)] if "error" in r]
+    if stopped:  # the study's whole comparison rests on these paths
+        raise RuntimeError(f"the continuum's statics of {scene.name} did not finish: "
+                           f"{stopped[0]}")
     ref = continuum_reference(scene, theta_on, records[:len(static)])
     calibrations = calibrate(ref, options)
     beds = tuple(bed_response(scene, c, ref) for c in calibrations)
