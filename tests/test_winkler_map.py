@@ -381,7 +381,7 @@ def test_the_signed_bias_recomputed_from_the_file(study, written):
                         expected, rel=1e-12, abs=1e-15)
     text = (study.study.directory / "summary.md").read_text()
     assert "## Where the beds miss" in text
-    assert "| bed | FS_v = 2 | FS_v = 5 |" in text
+    assert "| bed (signed median error, %) | FS_v = 2 | FS_v = 5 |" in text
 
 
 def test_the_estimate_divides_by_workers_only_when_it_knows_them():

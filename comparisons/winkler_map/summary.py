@@ -305,7 +305,7 @@ def _bias_lines(d) -> list[str]:
              "large error of one sign over a whole FS_v is a mechanism the bed lacks there.", ""]
     for s, soil in enumerate(d.grid.soils):
         head = " | ".join(f"FS_v = {v:g}" for v in d.grid.fs_v)
-        lines += [f"{SOIL_LABELS[soil]}:", "", f"| bed | {head} |",
+        lines += [f"{SOIL_LABELS[soil]}:", "", f"| bed (signed median error, %) | {head} |",
                   "|---|" + "---|" * len(d.grid.fs_v)]
         for c, name in enumerate(d.calibrations):
             cells = [" / ".join("n/a" if not math.isfinite(v) else f"{100 * v:+.0f}"
