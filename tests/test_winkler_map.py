@@ -410,3 +410,32 @@ def test_a_continuum_pushover_that_stopped_leaves_its_statics_row_empty_and_says
     assert text.startswith("clay, FS_v = 3: the continuum's rotation pushover did not reach")
     assert "cyclic: the rotation pushover stopped: load step 9" in text
     assert "monotonic: the rotation pushover stopped: load step 4" in text
+
+
+def test_a_continuum_run_that_fails_is_reported_and_left_out(tmp_path, executor, monkeypatch):
+    """The fast map with the continuum's run of its FS_v = 5 point made to diverge (a stand-in
+    ConvergenceError): the study finishes; that point's measures and every bed's errors are
+    NaN; the failure is listed with the point and the solver's message; the share counts the
+    one point that ran. The failure is stored: a second run does not retry it."""
+    from upliftlab.comparisons.winkler_map import points as wmp
+    from upliftlab.continuum import ConvergenceError
+
+    real = wmp._timed_run
+
+    def diverges_when_light(scene):
+        if scene.structure.weight < 200.0:  # N = V_ult/5 ≈ 105 kN/m, not V_ult/2
+            raise ConvergenceError("explicit steps 10…14 diverged\n(stand-in)")
+        return real(scene)
+
+    monkeypatch.setattr(wmp, "_timed_run", diverges_when_light)
+    result = wm.run(fast=True, out=tmp_path / "out", executor=executor, progress=False)
+    d = result.data
+    assert np.isfinite(d.continuum[0, 0]).all() and np.isnan(d.continuum[0, 1]).all()
+    assert np.isnan(d.errors[0, 1]).all() and np.isfinite(d.errors[0, 0, ..., :2]).all()
+    failed = [r for r in d.refusals if "the continuum:" in r]
+    assert len(failed) == 1 and failed[0].startswith("clay, FS_v = 5")
+    assert "ConvergenceError: explicit steps 10…14 diverged (stand-in)" in failed[0]
+    assert result.analysis.share.points == 1
+    monkeypatch.setattr(wmp, "_timed_run", real)
+    again = wm.run(fast=True, out=tmp_path / "out", executor=executor, progress=False)
+    assert again.data.computed == 0 and np.isnan(again.data.continuum[0, 1]).all()

@@ -176,11 +176,14 @@ def _inf(value: float) -> float:
 
 
 def share(data: MapData) -> Share:
-    """Shares of points within ``theta_tolerance`` in peak θ and edge uplift (:class:`Share`)."""
+    """Shares of points within ``theta_tolerance`` in peak θ and edge uplift (:class:`Share`),
+    over the points whose continuum run finished."""
     thr = data.options.theta_tolerance
     e = np.nan_to_num(np.abs(data.errors), nan=np.inf)
     ok = (e[..., MEASURES.index("theta")] <= thr) & (e[..., MEASURES.index("uplift")] <= thr)
     ok = ok.reshape(-1, len(data.calibrations))  # (points, calibration)
+    ran = np.isfinite(data.continuum[..., MEASURES.index("theta")]).ravel()
+    ok = ok[ran]  # a point whose continuum run failed has nothing to be within of
     by_bed = {name: float(ok[:, c].mean()) for c, name in enumerate(data.calibrations)}
     best = max(data.calibrations, key=lambda n: (by_bed[n], -data.calibrations.index(n)))
     return Share(thr, ok.shape[0], by_bed, best, by_bed[best], float(ok.any(axis=1).mean()))

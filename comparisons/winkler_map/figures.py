@@ -5,6 +5,7 @@ each bed is than the continuum."""
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -31,7 +32,8 @@ def _error_map(data, path: Path, measure: str) -> Path:
     intensities; one row per soil, one panel per calibration; contours at 10 and 20 %."""
     g = data.grid
     med = median_over_motions(data)[..., MEASURES.index(measure)]
-    with np.errstate(all="ignore"):
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # a cell whose every run failed: NaN
         worst = np.nanmax(med, axis=(3, 4)) if np.isfinite(med).any() else med[:, :, :, 0, 0]
     x = Axis("fs_v", "FS_v", tuple(g.fs_v))
     y = Axis("h_over_B", "h/B", tuple(g.h_over_B))

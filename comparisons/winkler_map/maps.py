@@ -167,7 +167,8 @@ def _estimate(grid, options, motions, base, g, store, statics_points, loads,
     pairs = [static_records[i:i + 2] for i in range(0, len(static_records), 2)]
     stored_static = [{"dofs": a["dofs"], "wall_time_s": a["wall_time_s"] + b["wall_time_s"]}
                      for a, b in pairs if a is not None and b is not None]
-    return estimate_cost(static_rows, rows, stored_static, [r for r in records if r is not None],
+    timed = [r for r in records if r is not None and "error" not in r]
+    return estimate_cost(static_rows, rows, stored_static, timed,
                          impedance_rows, [r for r in impedance_records if r is not None])
 
 
@@ -306,6 +307,10 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
             scl = scales(ref.N, B, h, st.K_v, st.K_r, k_story)
             scale[idx[:4]] = [scl[q] for q in MEASURES]
             N[idx[:2]] = ref.N
+            if "error" in run:  # the continuum's run failed: nothing to compare a bed with
+                refusals.append(f"{_where(soil, fs, hb, period, intensity, motions[m])}, the "
+                                f"continuum: {run['error']}")
+                continue
             continuum[at] = [run["measures"][q] for q in MEASURES]
             cwall[at], steps[at], balance[at] = (run["wall_time_s"], run["steps"],
                                                  run["energy_balance_error"])
@@ -321,9 +326,8 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                 bed = run_bed(point, foundation)
                 bwall[at + (c,)] = bed["wall_time_s"]
                 if "refused" in bed:
-                    refusals.append(f"{soil}, FS_v = {fs:g}, h/B = {hb:g}, T = {period:g} s, "
-                                    f"{intensity:g} × a_up, {motions[m]['name']}, {name}: "
-                                    f"{bed['refused']}")
+                    refusals.append(f"{_where(soil, fs, hb, period, intensity, motions[m])}, "
+                                    f"{name}: {bed['refused']}")
                     continue
                 for q, measure in enumerate(MEASURES):
                     value, reference = bed["measures"][measure], run["measures"][measure]
@@ -334,6 +338,11 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                    continuum, beds, errors, scale, cwall, bwall, steps, balance, dofs, bed_K_r,
                    bed_K_v, tuple(refusals), estimate, computed, rocking,
                    tuple(impedances.items()))
+
+
+def _where(soil, fs, hb, period, intensity, motion) -> str:
+    return (f"{soil}, FS_v = {fs:g}, h/B = {hb:g}, T = {period:g} s, {intensity:g} × a_up, "
+            f"{motion['name']}")
 
 
 def _bed_stiffness(point: Mapping, foundation: Mapping) -> tuple[float, float]:

@@ -137,10 +137,20 @@ def evaluate_dynamic(point: Mapping) -> dict:
     whether its return map was compiled and its soil model (for the cost estimate,
     :mod:`.cost`), its energy balance error and its own wall time ``wall_time_s`` (model,
     gravity and time loop, s; the kernels are compiled before, :func:`_warm_kernels`). Units
-    of the scene."""
+    of the scene. A run the solver gives up on (it diverged, its contact failed or its energy
+    does not balance) is a stored result too: ``{"error": kind and message, "soil_model",
+    "wall_time_s"}``, which the map reports with the point and leaves out of every error."""
+    from ...continuum import ContactError, ConvergenceError
+    from ...continuum.run_control import EnergyBalanceError
+
     _warm_kernels(point)
     scene = point_scene(point)
-    model, result, wall = _timed_run(scene)
+    started = time.perf_counter()
+    try:
+        model, result, wall = _timed_run(scene)
+    except (ConvergenceError, ContactError, EnergyBalanceError) as exc:
+        return {"error": f"{type(exc).__name__}: {' '.join(str(exc).split())}",
+                "soil_model": scene.soil.model, "wall_time_s": time.perf_counter() - started}
     t = np.asarray(result.time, dtype=float)
     t = t - t[0]
     footing = np.asarray(result.footing, dtype=float)

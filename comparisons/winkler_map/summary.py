@@ -157,8 +157,10 @@ def summary_markdown(result, fast: bool, elapsed: float) -> str:
               "## How much of the map a calibrated bed covers", "", _share_text(a), "",
               "## Speed", "", _speed_text(a), "", "## Cost", "", _cost_text(d), ""]
     if d.refusals:
-        lines += [f"Bed runs refused by the integrator: {len(d.refusals)} (their errors are "
-                  "NaN):", ""] + [f"- {r}" for r in d.refusals[:20]] + [""]
+        lines += [f"Runs that failed: {len(d.refusals)} (a bed refused by its integrator, or "
+                  "a continuum run its solver gave up on, whose point then has no bed "
+                  "compared; their errors are NaN and every statistic above leaves them out):",
+                  ""] + [f"- {r}" for r in d.refusals[:20]] + [""]
     return "\n".join(lines)
 
 
