@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import shutil
 from dataclasses import replace
 from pathlib import Path
 
+from ...checks import InputError
 from ..protocol import Context, Study, main_for, run_study
 from ..store import Store
 from ..study import require_matplotlib
@@ -28,9 +30,28 @@ def compute(scene, ctx: Context) -> WinklerMap:
                             tuple(BEDS))
     if options.figures:
         require_matplotlib(STUDY)
-    motions = study_motions(grid, options, Path(ctx.out))
-    data = compute_map(grid, options, bed_names(options), motions, ctx)
+    out = Path(ctx.out)
+    fresh = [p for p in (out, out / "motions") if not p.exists()]
+    motions = study_motions(grid, options, out)
+    try:
+        data = compute_map(grid, options, bed_names(options), motions, ctx)
+    except InputError:  # refused: leave no copied records behind, and no empty folders
+        if out / "motions" in fresh:
+            shutil.rmtree(out / "motions", ignore_errors=True)
+        if out in fresh:
+            _remove_empty_folders(out)
+        raise
     return WinklerMap(None, data, analyse(data))
+
+
+def _remove_empty_folders(root: Path) -> None:
+    """Remove ``root`` and the folders below it that hold no file (a store with records
+    stays)."""
+    for folder in sorted((p for p in root.rglob("*") if p.is_dir()), reverse=True) + [root]:
+        try:
+            folder.rmdir()
+        except OSError:
+            pass
 
 
 def run(fast: bool = False, *, out: str | Path | None = None,
