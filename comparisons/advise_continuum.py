@@ -37,15 +37,15 @@ from ..log import logger
 from ..scenes import Scene, scene_from_dict
 from ..units import unit_system
 from .advise_map import MapEvidence, find_map, format_evidence, map_evidence
-from .measures import (continuum_peak_edge_gap, edge_uplift_history, peak_story_shear,
-                       reduced_edge_gap_history)
+from .measures import edge_uplift_history, reduced_edge_gap_history
 from .study import relative_error
 from .winkler_map.beds import BEDS, BedReference, bed_foundation
 from .winkler_map.cost import Estimate, estimate_cost
 from .winkler_map.grid import FAST_OPTIONS, FLOOR_FRACTION, FULL_OPTIONS
 from .winkler_map.impedance_points import (evaluate_impedance, impedance_dofs,
                                            impedance_point_of, soil_impedance)
-from .winkler_map.points import base_table, measured, scales, story_constants
+from .winkler_map.points import (base_table, continuum_measures, measured, scales,
+                                 story_constants)
 from .winkler_map.statics import evaluate_static
 
 __all__ = ["FULL_MESHES", "FAST_MESHES", "MeshRun", "ContinuumReference", "SoilNumbers",
@@ -237,17 +237,8 @@ def continuum_run(scene: Scene) -> dict:
     compiled before (an untimed run of 0.02 s on 2 elements across)."""
     _dynamic(_at_mesh(scene, 2), duration=0.02)
     model, result, wall = _dynamic(scene)
-    t = np.asarray(result.time, dtype=float)
-    t = t - t[0]
-    footing = np.asarray(result.footing, dtype=float)
-    theta = footing[:, 2]
-    settlement = -(footing[:, 1] - footing[0, 1])
-    s = np.asarray(result.structure_u, dtype=float).reshape(t.size, -1)[:, -1]
-    s_dot = np.asarray(result.structure_velocity, dtype=float).reshape(t.size, -1)[:, -1]
-    k, c = story_constants(scene)
-    uplift = continuum_peak_edge_gap(np.asarray(result.gap, dtype=float), result.x)
-    return {"measures": measured(t, theta, uplift, settlement, np.max(np.abs(s)),
-                                 peak_story_shear(s, s_dot, k, c)),
+    t, *_, measures = continuum_measures(scene, result)
+    return {"measures": measures,
             "dofs": int(model.dofs), "steps": int(result.metadata.get("steps", t.size - 1)),
             "dt": float(result.metadata.get("dt", math.nan)),
             "energy_balance_error": float(result.metadata.get("energy_balance_error",

@@ -29,25 +29,22 @@ within 0.58 % of their values computed there (a ratio of 1.5 put C_v up to 2 % o
 
 from __future__ import annotations
 
-import copy
 import time
 from collections.abc import Mapping
 from dataclasses import asdict
 
 import numpy as np
 
-from ...scenes import scene_from_dict
 from ..store import keyed_as
 from .grid import SOILS, Options
-from .points import base_table
+from .statics import static_scene
 
-__all__ = ["IMPEDANCE_A0", "impedance_point", "impedance_point_of", "evaluate_impedance", "soil_impedance",
-           "elastic_soil", "impedance_dofs"]
+__all__ = ["IMPEDANCE_A0", "impedance_point", "impedance_point_of", "evaluate_impedance",
+           "soil_impedance", "elastic_soil", "impedance_dofs"]
 
 #: The dimensionless frequencies a0 = ω (B/2)/V_s of the map's impedance (module docstring).
 IMPEDANCE_A0 = tuple(float(v) for v in np.round(np.geomspace(0.02, 0.5, 19), 6))
 
-_NOMINAL_MOTION = {"type": "free", "velocity": 1.0, "duration": 1.0}  # unused
 _ELASTIC_KEYS = ("youngs_modulus", "poisson_ratio", "density", "interface")
 
 
@@ -85,12 +82,7 @@ def impedance_point_of(soil_table: Mapping, continuum_table: Mapping,
 
 
 def _scene(point: Mapping):
-    data = base_table()
-    data["soil"] = copy.deepcopy(dict(point["soil"]))
-    data["continuum"] = {**data.get("continuum", {}), **point["continuum"]}
-    data["foundation"] = {**data["foundation"], "half_width": point["half_width"]}
-    data["motion"] = dict(_NOMINAL_MOTION)
-    return scene_from_dict(data, merged=True)
+    return static_scene(point)
 
 
 def _impedance_options(point: Mapping):

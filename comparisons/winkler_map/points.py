@@ -129,6 +129,25 @@ def _timed_run(scene):
     return model, result, time.perf_counter() - started
 
 
+def continuum_measures(scene, result):
+    """(t from 0 (s), θ (rad), settlement of the centre from its static position (length,
+    down), story deformation u (length), the gap history (nodes × steps, length), and the
+    measures of :func:`measured`) of a continuum dynamic ``result`` of ``scene``."""
+    t = np.asarray(result.time, dtype=float)
+    t = t - t[0]
+    footing = np.asarray(result.footing, dtype=float)
+    theta = footing[:, 2]
+    settlement = -(footing[:, 1] - footing[0, 1])
+    s = np.asarray(result.structure_u, dtype=float).reshape(t.size, -1)[:, -1]
+    s_dot = np.asarray(result.structure_velocity, dtype=float).reshape(t.size, -1)[:, -1]
+    k, c = story_constants(scene)
+    gap = np.asarray(result.gap, dtype=float)
+    uplift = continuum_peak_edge_gap(gap, result.x)
+    measures = measured(t, theta, uplift, settlement, np.max(np.abs(s)),
+                        peak_story_shear(s, s_dot, k, c))
+    return t, theta, settlement, s, gap, measures
+
+
 @keyed_as("upliftlab.comparisons.winkler_map:evaluate_dynamic")
 def evaluate_dynamic(point: Mapping) -> dict:
     """One continuum dynamic run of a point (explicit route, no soil snapshots): the measures
@@ -151,20 +170,10 @@ def evaluate_dynamic(point: Mapping) -> dict:
     except (ConvergenceError, ContactError, EnergyBalanceError) as exc:
         return {"error": f"{type(exc).__name__}: {' '.join(str(exc).split())}",
                 "soil_model": scene.soil.model, "wall_time_s": time.perf_counter() - started}
-    t = np.asarray(result.time, dtype=float)
-    t = t - t[0]
-    footing = np.asarray(result.footing, dtype=float)
-    theta = footing[:, 2]
-    settlement = -(footing[:, 1] - footing[0, 1])
-    s = np.asarray(result.structure_u, dtype=float).reshape(t.size, -1)[:, -1]
-    s_dot = np.asarray(result.structure_velocity, dtype=float).reshape(t.size, -1)[:, -1]
-    k, c = story_constants(scene)
-    gap = np.asarray(result.gap, dtype=float)
-    uplift = continuum_peak_edge_gap(gap, result.x)
+    t, theta, settlement, s, gap, measures = continuum_measures(scene, result)
     order = np.argsort(np.asarray(result.x))
     step = float(point["history_dt"])
-    return {"measures": measured(t, theta, uplift, settlement, np.max(np.abs(s)),
-                                 peak_story_shear(s, s_dot, k, c)),
+    return {"measures": measures,
             "time": _floats(np.arange(0.0, t[-1] + 0.5 * step, step)),
             "theta": _history(t, theta, step), "u": _history(t, s, step),
             "uplift": _history(t, edge_uplift_history(gap[:, order]), step),

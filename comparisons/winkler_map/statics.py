@@ -19,7 +19,7 @@ from ..store import keyed_as
 from .grid import SOILS, Options
 from .points import base_table
 
-__all__ = ["SoilStatics", "static_points", "evaluate_static", "soil_statics"]
+__all__ = ["SoilStatics", "static_points", "evaluate_static", "soil_statics", "static_scene"]
 
 _NOMINAL_MOTION = {"type": "free", "velocity": 1.0, "duration": 1.0}  # unused by the statics
 
@@ -36,7 +36,9 @@ def static_points(soil: str, options: Options, half_width: float) -> list[dict]:
             {**base, "analysis": "vertical", "settlements": [float(s) for s in settlements]}]
 
 
-def _static_scene(point: Mapping):
+def static_scene(point: Mapping):
+    """The validated scene of a static point: the map's base scene with the point's soil,
+    continuum options and half-width (its motion unused)."""
     data = base_table()
     data["soil"] = copy.deepcopy(dict(point["soil"]))
     data["continuum"] = {**data.get("continuum", {}), **point["continuum"]}
@@ -54,7 +56,7 @@ def evaluate_static(point: Mapping) -> dict:
     from ...continuum import build_model, footing_stiffness, vertical_pushover
 
     started = time.perf_counter()
-    model = build_model(_static_scene(point))
+    model = build_model(static_scene(point))
     if point["analysis"] == "stiffness":
         k = footing_stiffness(model)
         out = {"K_v": float(k.vertical), "K_r": float(k.rocking)}
