@@ -37,14 +37,13 @@ from ..log import logger
 from ..scenes import Scene, scene_from_dict
 from ..units import unit_system
 from .advise_map import MapEvidence, find_map, format_evidence, map_evidence
-from .measures import edge_uplift_history, reduced_edge_gap_history
 from .study import relative_error
 from .winkler_map.beds import BEDS, BedReference, bed_foundation
 from .winkler_map.cost import Estimate, estimate_cost
 from .winkler_map.grid import FAST_OPTIONS, FLOOR_FRACTION, FULL_OPTIONS
 from .winkler_map.impedance_points import (evaluate_impedance, impedance_dofs,
                                            impedance_point_of, soil_impedance)
-from .winkler_map.points import (base_table, continuum_measures, measured, scales,
+from .winkler_map.points import (base_table, continuum_measures, reduced_measures, scales,
                                  story_constants)
 from .winkler_map.statics import evaluate_static
 
@@ -272,14 +271,7 @@ def bed_run(scene: Scene, foundation: dict, repeats: int = BED_REPEATS) -> dict:
                 walls.append(time.perf_counter() - started)
     except IntegrationError as exc:
         return {"refused": str(exc)}
-    t = np.asarray(response.time, dtype=float)
-    uplift = float(np.max(edge_uplift_history(reduced_edge_gap_history(response))))
-    u_peak = max(float(np.max(np.abs(response.u))), float(response.peaks["u"]))
-    theta = np.asarray(response.theta, dtype=float)
-    out = measured(t - t[0], theta, uplift, np.asarray(response.settlement, dtype=float), u_peak,
-                   np.max(np.abs(response.base_shear)))
-    out["theta"] = max(out["theta"], float(response.peaks["theta"]))
-    return {"measures": out, "wall_time_s": statistics.median(walls)}
+    return {"measures": reduced_measures(response), "wall_time_s": statistics.median(walls)}
 
 
 def soil_numbers(scene: Scene, elements_across: int, fast: bool) -> SoilNumbers:
