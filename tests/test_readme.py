@@ -71,8 +71,12 @@ EXERCISED = {
     "python -m upliftlab.comparisons.winkler_map --fast --out results/winkler_map-fast":
         ("slow", ("results/winkler_map-fast/summary.md", "results/winkler_map-fast/map.nc")),
     "python -m upliftlab.comparisons.winkler_map --grid soils=clay --grid h_over_B=1.5 "
-    "--grid periods=0.5 --grid fema_components=2":
-        ("tests/test_winkler_map.py::test_the_readme_clay_slice_is_estimated_before_it_runs",
+    "--grid periods=0.5 --grid fema_components=4":
+        ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
+         ()),
+    "python -m upliftlab.comparisons.winkler_map --grid periods=0.2,0.5 --grid elcentro=false "
+    "--grid fema_components=0 --out results/winkler_map-pulses":
+        ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
     "upliftlab continuum strip_footing_clay --analysis impedance --set soil.model=elastic "
     "--json": ("here", ()),

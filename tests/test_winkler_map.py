@@ -329,27 +329,36 @@ def test_the_qz_bed_runs_on_the_fast_map(study):
     assert not [r for r in d.refusals if r.endswith("qz: ") or ", qz:" in r]
 
 
-def test_the_readme_clay_slice_is_estimated_before_it_runs(tmp_path):
-    """The README's clay slice (its second finding), run as written with --budget 1 added: the
-    grid is the one the README describes and its cost is estimated and refused before any run
-    (exit 2). Hand count: 4 FS_v × 2 intensities × 5 motions (2 pulses, El Centro, 2 FEMA
-    components) = 40 dynamic runs; statics, impedance and a cyclic and a monotonic rotation
-    pushover per FS_v = 10 static runs."""
+#: The README's two map commands, as test_readme finds them here (argv after ``python``, the
+#: test's ``--out`` last: argparse takes the last one).
+README_SLICE = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "h_over_B=1.5", "--grid", "periods=0.5", "--grid", "fema_components=4", "--out"]  # noqa: E501
+README_PULSES = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "periods=0.2,0.5", "--grid", "elcentro=false", "--grid", "fema_components=0", "--out", "results/winkler_map-pulses", "--out"]  # noqa: E501
+
+
+@pytest.mark.parametrize("argv, counted, grid", [
+    # 4 FS_v × 2 intensities × 7 motions (2 pulses, El Centro, 4 FEMA components) = 56
+    # dynamic; statics, impedance and a cyclic and a monotonic rotation pushover per FS_v = 10
+    (README_SLICE, "66 continuum runs to make (10 static, 56 dynamic; 0 already stored)",
+     dict(soils=("clay",), h_over_B=(1.5,), periods=(0.5,), fema_components=4)),
+    # 2 soils × 4 FS_v × 3 h/B × 2 T × 2 intensities × 2 pulses = 192 dynamic; 2 × 10 static
+    (README_PULSES, "212 continuum runs to make (20 static, 192 dynamic; 0 already stored)",
+     dict(periods=(0.2, 0.5), elcentro=False, fema_components=0)),
+])
+def test_the_readme_map_commands_are_estimated_before_they_run(tmp_path, argv, counted, grid):
+    """The README's map commands (its second finding), run as written with --budget 1 added:
+    the grid is the one the README describes (hand count above) and its cost is estimated and
+    refused before any run (exit 2), leaving nothing behind."""
     import subprocess
     import sys
 
-    # the README's command, as test_readme finds it here
-    argv = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "h_over_B=1.5", "--grid", "periods=0.5", "--grid", "fema_components=2", "--out"]  # noqa: E501
     result = subprocess.run([sys.executable, *argv, str(tmp_path / "out"), "--budget", "1"],
                             capture_output=True, text=True, timeout=600, cwd=tmp_path)
     assert result.returncode == 2, result.stderr[-2000:]
-    assert "50 continuum runs to make (10 static, 40 dynamic; 0 already stored)" in result.stderr
+    assert counted in result.stderr
     assert result.stderr.strip().splitlines()[-1].startswith("error: options.budget = 1 s")
     assert not (tmp_path / "out").exists()  # no copied records left behind
-    grid = wm.grid_with(wm.FULL_GRID, ["soils=clay", "h_over_B=1.5", "periods=0.5",
-                                       "fema_components=2"])
-    assert grid == replace(wm.FULL_GRID, soils=("clay",), h_over_B=(1.5,), periods=(0.5,),
-                           fema_components=2)
+    texts = [a for a, flag in zip(argv[1:], argv) if flag == "--grid"]
+    assert wm.grid_with(wm.FULL_GRID, texts) == replace(wm.FULL_GRID, **grid)
 
 
 @pytest.mark.parametrize("text, message", [
