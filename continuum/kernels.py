@@ -42,7 +42,7 @@ import numba as nb
 import numpy as np
 
 from ..checks import InputError
-from .kernels_mc import mohr_coulomb_point
+from .kernels_mc import mohr_coulomb_point, rotate_back, sorted_principal
 
 __all__ = ["ELASTIC", "TRESCA", "VON_MISES", "MOHR_COULOMB", "MATERIAL_KINDS", "Layout",
            "layout", "material_kind", "kernel_constants", "internal_force", "point_update"]
@@ -127,21 +127,7 @@ def kernel_constants(material) -> tuple[float, ...]:
 @nb.njit(cache=True, inline="always")
 def _tresca(sxx, syy, szz, sxy, G, k):
     """Tresca return of the trial stress; returns the stress (xx, yy, zz, xy)."""
-    c = 0.5 * (sxx + syy)
-    half = 0.5 * (sxx - syy)
-    r = math.sqrt(half * half + sxy * sxy)
-    if r > 0.0:
-        cos2, sin2 = half / r, sxy / r
-    else:
-        cos2, sin2 = 1.0, 0.0
-    pa, pb = c + r, c - r  # in-plane principal values, pa >= pb
-    # sort (pa, pb, szz) descending; case says where z sits (0 first, 1 middle, 2 last)
-    if szz >= pa:
-        case, s1, s2, s3 = 0, szz, pa, pb
-    elif szz >= pb:
-        case, s1, s2, s3 = 1, pa, szz, pb
-    else:
-        case, s1, s2, s3 = 2, pa, pb, szz
+    case, s1, s2, s3, cos2, sin2 = sorted_principal(sxx, syy, szz, sxy)
     f = (s1 - s3) - k
     if not f > _RTOL * (k + max(abs(s1), abs(s3))):
         return sxx, syy, szz, sxy
@@ -159,14 +145,7 @@ def _tresca(sxx, syy, szz, sxy, G, k):
             n2 = s2 - (2.0 * f2 - f1) / 3.0
             n3 = s3 + (f1 + f2) / 3.0
             n1 = n2 = 0.5 * (n1 + n2)
-    if case == 0:
-        nz, na, nb = n1, n2, n3
-    elif case == 1:
-        na, nz, nb = n1, n2, n3
-    else:
-        na, nb, nz = n1, n2, n3
-    c2, r2 = 0.5 * (na + nb), 0.5 * (na - nb)
-    return c2 + r2 * cos2, c2 - r2 * cos2, nz, r2 * sin2
+    return rotate_back(case, n1, n2, n3, cos2, sin2)
 
 
 @nb.njit(cache=True, inline="always")

@@ -39,7 +39,28 @@ _SQRT23 = math.sqrt(2.0 / 3.0)
 
 
 @nb.njit(cache=True, inline="always")
-def _rotate_back(case, v1, v2, v3, cos2, sin2):
+def sorted_principal(sxx, syy, szz, sxy):
+    """The plane-strain stress (xx, yy, zz, xy) in principal values, sorted: (``case``, s1 ≥
+    s2 ≥ s3, cos 2α, sin 2α) with z at position ``case`` (0 first, 1 middle, 2 last) and α
+    the in-plane principal axis; :func:`rotate_back` undoes it. Shared by the Tresca and
+    Mohr–Coulomb returns."""
+    centre = 0.5 * (sxx + syy)
+    half = 0.5 * (sxx - syy)
+    r = math.sqrt(half * half + sxy * sxy)
+    if r > 0.0:
+        cos2, sin2 = half / r, sxy / r
+    else:
+        cos2, sin2 = 1.0, 0.0
+    pa, pb = centre + r, centre - r  # in-plane principal values, pa >= pb
+    if szz >= pa:
+        return 0, szz, pa, pb, cos2, sin2
+    if szz >= pb:
+        return 1, pa, szz, pb, cos2, sin2
+    return 2, pa, pb, szz, cos2, sin2
+
+
+@nb.njit(cache=True, inline="always")
+def rotate_back(case, v1, v2, v3, cos2, sin2):
     """(xx, yy, zz, xy) of the principal values v1 ≥ v2 ≥ v3 (of the trial's order) with z at
     position ``case`` (0 first, 1 middle, 2 last) and the in-plane pair at the others, the
     in-plane principal axis at the angle whose (cos 2α, sin 2α) = (``cos2``, ``sin2``)."""
@@ -58,20 +79,7 @@ def mohr_coulomb_point(sxx, syy, szz, sxy, lam, G, cohesion, sin_phi, cos_phi, s
     """Mohr–Coulomb return of the plane-strain trial stress (xx, yy, zz, xy) (module
     docstring; λ, G in kPa, c in kPa) -> (stress xx, yy, zz, xy, plastic strain increment xx,
     yy, zz, xy (tensorial shear), Δε̄p)."""
-    centre = 0.5 * (sxx + syy)
-    half = 0.5 * (sxx - syy)
-    r = math.sqrt(half * half + sxy * sxy)
-    if r > 0.0:
-        cos2, sin2 = half / r, sxy / r
-    else:
-        cos2, sin2 = 1.0, 0.0
-    pa, pb = centre + r, centre - r  # in-plane principal values, pa >= pb
-    if szz >= pa:
-        case, s1, s2, s3 = 0, szz, pa, pb
-    elif szz >= pb:
-        case, s1, s2, s3 = 1, pa, szz, pb
-    else:
-        case, s1, s2, s3 = 2, pa, pb, szz
+    case, s1, s2, s3, cos2, sin2 = sorted_principal(sxx, syy, szz, sxy)
     k = 2.0 * cohesion * cos_phi
     f = (s1 - s3) + (s1 + s3) * sin_phi - k
     if not f > _RTOL * (k + max(abs(s1), abs(s3))):
@@ -113,7 +121,7 @@ def mohr_coulomb_point(sxx, syy, szz, sxy, lam, G, cohesion, sin_phi, cos_phi, s
     d1, d2, d3 = s1 - n1, s2 - n2, s3 - n3
     shift = lam / (3.0 * lam + 2.0 * G) * (d1 + d2 + d3)
     e1, e2, e3 = (d1 - shift) / (2.0 * G), (d2 - shift) / (2.0 * G), (d3 - shift) / (2.0 * G)
-    nxx, nyy, nzz, nxy = _rotate_back(case, n1, n2, n3, cos2, sin2)
-    pxx, pyy, pzz, pxy = _rotate_back(case, e1, e2, e3, cos2, sin2)
+    nxx, nyy, nzz, nxy = rotate_back(case, n1, n2, n3, cos2, sin2)
+    pxx, pyy, pzz, pxy = rotate_back(case, e1, e2, e3, cos2, sin2)
     return (nxx, nyy, nzz, nxy, pxx, pyy, pzz, pxy,
             _SQRT23 * math.sqrt(e1 * e1 + e2 * e2 + e3 * e3))
