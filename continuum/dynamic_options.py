@@ -49,6 +49,12 @@ class DynamicOptions:
     :class:`~upliftlab.continuum.run_control.EnergyBalanceError`. ``threads`` (explicit route):
     numba threads of the internal-force kernels (1: serial; more split the elements, which pays
     only on an otherwise idle machine; at most numba's ``NUMBA_NUM_THREADS``).
+    ``soil_mass_scale`` (explicit route, rigid base without dashpots): the soil's lumped mass
+    times this factor in (0, 1], its weight unchanged. A diagnostic, not a speed-up: below 1
+    the soil's own inertia (its site response, the seismic load on the soil and the footing's
+    radiation) shrinks while its weight, stiffness and strength stay, so the run tells how much
+    of an answer the soil's dynamics make; the step shrinks as √scale, the cost grows as
+    1/√scale.
     """
 
     scheme: str = "hht"
@@ -68,6 +74,7 @@ class DynamicOptions:
     record_every: int | None = None
     energy_tolerance: float | None = None
     threads: int = 1
+    soil_mass_scale: float = 1.0
 
     def __post_init__(self):
         checks.one_of("DynamicOptions.scheme", self.scheme, SCHEMES)
@@ -100,6 +107,8 @@ class DynamicOptions:
             checks.in_range("DynamicOptions.energy_tolerance", self.energy_tolerance, 0.0, 1.0,
                             low_open=True)
         checks.integer_at_least("DynamicOptions.threads", self.threads, 1)
+        checks.in_range("DynamicOptions.soil_mass_scale", self.soil_mass_scale, 0.0, 1.0,
+                        low_open=True)
         checks.integer_at_least("DynamicOptions.snapshots", self.snapshots, 0)
         checks.integer_at_least("DynamicOptions.load_steps", self.load_steps, 1)
         if not isinstance(self.predict, bool):

@@ -65,6 +65,10 @@ def run_dynamic(model, scene, motion, options: DynamicOptions = DynamicOptions()
         raise InputError(f"DynamicOptions.scheme = {options.scheme!r}, alpha = {options.alpha}: "
                          "the scheme and α are the implicit route's; valid with the explicit "
                          "route: scheme 'hht', alpha None (or method = 'implicit')")
+    if method != "explicit" and options.soil_mass_scale != 1.0:
+        raise InputError(f"DynamicOptions.soil_mass_scale = {options.soil_mass_scale:g}: only "
+                         "the explicit route scales the soil's mass; valid with the implicit "
+                         "route: 1 (or method = 'explicit')")
     if method == "explicit":
         from .explicit import run_explicit
         result = run_explicit(model, scene, motion, options, progress=progress)

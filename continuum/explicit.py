@@ -44,6 +44,7 @@ import time as _time
 import numba
 import numpy as np
 
+from ..checks import InputError
 from ..log import announce_compilation
 from . import explicit_step, ground
 from .contact_step import footing_schur, frictionless_step, tangential_step
@@ -107,8 +108,13 @@ class _Structure:
 def run_explicit(model, scene, motion, options, *, progress=None) -> DynamicResult:
     """Gravity, then ``motion`` by central differences (module docstring); the arguments and
     the result are those of :func:`~upliftlab.continuum.dynamics.run_dynamic`."""
-    mass = lumped_mass(model)
     base, sides = boundaries(model, options)
+    if options.soil_mass_scale != 1.0 and (base != "rigid" or sides == "lysmer"):
+        raise InputError(f"DynamicOptions.soil_mass_scale = {options.soil_mass_scale:g}: a "
+                         f"scaled soil mass with base {base!r} and sides {sides!r} would keep "
+                         "the dashpots of the unscaled soil; valid there: 1 (a scaled mass "
+                         "needs a rigid base and sides without dashpots)")
+    mass = options.soil_mass_scale * lumped_mass(model)
     fixed = dynamic_fixed(model, base, sides)
     free = np.setdiff1d(np.arange(model.disc.ndofs), fixed)
     settings = explicit_settings(model, scene, motion, options, mass, free)

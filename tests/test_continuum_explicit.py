@@ -369,3 +369,48 @@ def test_a_footing_without_rotary_inertia_is_refused_by_the_explicit_route():
     result = run_dynamic(model, scene, scene.build_motion(),
                          DynamicOptions(method="implicit", snapshots=0))
     assert np.isfinite(result.footing).all()
+
+
+# ---------------------------------------------------------------------------------------------
+# The soil's mass scaled (a diagnostic of the soil's own dynamics)
+# ---------------------------------------------------------------------------------------------
+
+
+def test_a_scaled_soil_mass_shrinks_the_stable_step_as_its_square_root():
+    # Reference: K x = ω² s M x has the eigenvalues of K x = ω² M x over s, so the
+    # central-difference limit 2/ω_max scales as √s (eigsh's tolerance 1e-8 bounds the
+    # agreement). The scaled run still closes its energy account (the scaled mass in the
+    # kinetic energy and in the soil's seismic load alike) and keeps its contact exact.
+    scene = load_scene(SCENE, overrides=COARSE + ["analysis.duration=0.3"])
+    model = build_model(scene)
+    runs = {s: run_dynamic(model, scene, scene.build_motion(),
+                           DynamicOptions(method="explicit", snapshots=0, soil_mass_scale=s))
+            for s in (1.0, 0.25)}
+    ratio = runs[0.25].metadata["dt_critical"] / runs[1.0].metadata["dt_critical"]
+    assert ratio == pytest.approx(0.5, rel=1e-6)
+    scaled = runs[0.25]
+    assert scaled.energy_balance_error < 1e-3
+    assert scaled.pressure.min() >= -1e-9 * np.abs(scaled.pressure).max()
+    assert scaled.gap.min() >= -1e-9 * model.width
+
+
+@pytest.mark.parametrize("options, field", [
+    (dict(method="implicit", soil_mass_scale=0.5), "only the explicit route"),
+    (dict(method="explicit", sides="lysmer", soil_mass_scale=0.5), "keep the dashpots"),
+])
+def test_a_scaled_soil_mass_that_would_do_nothing_or_half_is_refused(options, field,
+                                                                     monkeypatch):
+    # The implicit route has no scaled mass, and the Lysmer dashpots (ρ V) would stay those of
+    # the unscaled soil: refused before any work, naming the field and what is valid.
+    scene = load_scene(SCENE, overrides=COARSE)
+    model = build_model(scene)
+    monkeypatch.setattr(ground, "gravity_state", lambda *a, **k: pytest.fail("work started"))
+    with pytest.raises(InputError, match=rf"DynamicOptions.soil_mass_scale = 0.5: .*{field}"):
+        run_dynamic(model, scene, scene.build_motion(), DynamicOptions(**options))
+
+
+@pytest.mark.parametrize("value, why", [(0.0, "valid range"), (-0.1, "valid range"),
+                                        (1.5, "valid range"), (float("nan"), "finite")])
+def test_a_soil_mass_scale_outside_zero_to_one_is_refused(value, why):
+    with pytest.raises(InputError, match=rf"DynamicOptions.soil_mass_scale = .*{why}"):
+        DynamicOptions(soil_mass_scale=value)
