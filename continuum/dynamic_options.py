@@ -29,8 +29,8 @@ class DynamicOptions:
     module docstring); ``duration`` (s; None: the scene's ``analysis.duration``, else the
     motion's);
     ``base`` rigid or compliant and ``sides`` rollers, shear or lysmer (None: from the scene's
-    ``continuum.base`` and ``continuum.boundary``: lysmer -> lysmer; fixed -> rollers on a
-    rigid base, shear on a compliant one, where rollers would block the S wave);
+    ``continuum.base`` and ``continuum.boundary``: lysmer -> lysmer; shear -> shear; fixed ->
+    rollers on a rigid base, shear on a compliant one, where rollers would block the S wave);
     ``wave`` S or P (compliant base: the incident wave); ``mass`` consistent or lumped (None:
     consistent for the implicit route, lumped for the explicit one, which needs it);
     ``snapshots`` soil-field snapshots, evenly spaced (0: none); ``energy`` records the energy

@@ -36,7 +36,8 @@ def boundaries(model, options) -> tuple[str, str]:
     cont = model.options
     base = options.base or cont.base
     sides = options.sides or ("lysmer" if cont.boundary == "lysmer" else
-                              "rollers" if base == "rigid" else "shear")
+                              "rollers" if base == "rigid" and cont.boundary == "fixed" else
+                              "shear")
     tangential = model.footing.interface.tangential
     if base == "compliant" and not tangential:
         raise InputError("soil.interface = 'frictionless' with base = 'compliant': a frictionless "

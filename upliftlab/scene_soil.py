@@ -90,7 +90,11 @@ def read_soil(data, units: UnitSystem) -> Soil:
 class ContinuumOptions:
     """Continuum domain and mesh: a box ``domain_width`` × ``domain_depth`` (multiples of the
     footing width B), ``element`` type, ``elements_across`` the footing, ``grading`` towards the
-    footing edges, ``base`` (rigid or compliant) and side/bottom ``boundary`` (fixed or lysmer).
+    footing edges, ``base`` (rigid or compliant) and side/bottom ``boundary`` of a dynamic run:
+    ``fixed`` (the sides' u_x held, moving with a rigid base: a rigid container; on a compliant
+    base the sides are ``shear``), ``shear`` (the sides' u_y held and u_x free: a free-field
+    column, exact for a vertically incident S wave in a layered soil) or ``lysmer`` (dashpots).
+    Statics hold the sides' u_x whatever ``boundary`` says.
     ``intorder`` is the quadrature order (None: the element's default, Q2 2×2 reduced).
     ``dynamics``: the time integration of a dynamic run, ``explicit`` (central differences,
     lumped mass; the default) or ``implicit`` (HHT-α with Newton). ``energy_tolerance``: the
@@ -125,7 +129,7 @@ def read_continuum(data) -> ContinuumOptions:
         elements_across=table.get("elements_across", bounded_integer(2, MAX_ELEMENTS_ACROSS), 16),
         grading=table.get("grading", in_range(1.0, 100.0), 1.0),
         base=table.get("base", choice(("rigid", "compliant")), "rigid"),
-        boundary=table.get("boundary", choice(("fixed", "lysmer")), "fixed"),
+        boundary=table.get("boundary", choice(("fixed", "shear", "lysmer")), "fixed"),
         intorder=table.get("intorder", bounded_integer(1, 10), None),
         dynamics=table.get("dynamics", choice(DYNAMICS), "explicit"),
         energy_tolerance=table.get("energy_tolerance", in_range(0.0, 1.0, low_open=True), 0.05),

@@ -187,7 +187,9 @@ def _input_text(d) -> str:
         vs = math.sqrt(t["youngs_modulus"] / (2.0 * (1.0 + t["poisson_ratio"])) / t["density"])
         parts.append(f"{soil}: V_s = {vs:.0f} m/s, T_1 = 4H/V_s = {4.0 * depth / vs:.2f} s")
     return ("The motion enters the continuum at the rigid base of its box, "
-            f"{depth:g} m below the footing (the box's sides move with it horizontally), and "
+            f"{depth:g} m below the footing (its sides a free-field column: u_x free, u_y "
+            "held; a rigid container instead squeezes the soil against its sides and makes it "
+            "yield where a site would not), and "
             "the reduced model at the footing. The structure feels the same horizontal "
             "acceleration in both: through the frictionless interface the soil cannot push the "
             "footing sideways, and the continuum holds the footing's u to the base's (next "
