@@ -3,7 +3,9 @@ calibrated bed was from the continuum in the map's cells nearest to it.
 
 The map (``map.nc`` of :mod:`.winkler_map`, with its ``statics.nc`` beside it) spans soil ×
 FS_v × h/B × period × intensity × motion. A scene falls inside it when its soil is one of the
-map's soils (the same validated ``[soil]`` record) and its FS_v (on the map's own continuum
+map's soils (the same validated ``[soil]`` record), its box has the map's sides
+(``continuum.boundary``, the map's ``continuum_boundary``; a map without it had a rigid
+container, ``fixed``), and its FS_v (on the map's own continuum
 capacity V_ult of that soil, ``statics.nc``), h/B, fixed-base period and intensity (PGA over
 a_up = g B/(6h); a Ricker pulse's amplitude, as the map sets it) lie within the ranges of the
 map's axes. The nearest cells are, per axis, the grid value the scene sits on or the two that
@@ -173,6 +175,12 @@ def map_evidence(path: str | Path, scene: Scene, measure: str, tol: float,
     if not soil or V_ult is None:
         why = why or f"FS_v: no statics.nc beside {path} and no continuum capacity to place it"
         return MapEvidence(str(path), False, why, soil, {}, {}, (), mesh, motions)
+    sides = str(ds.attrs.get("continuum_boundary", "fixed"))
+    boundary = scene.continuum.boundary if scene.continuum is not None else "fixed"
+    if boundary != sides:
+        return MapEvidence(str(path), False, f"continuum.boundary = {boundary!r}: the map's "
+                           f"runs have the box's sides {sides!r}", soil, {}, {}, (), mesh,
+                           motions)
     coords = scene_coordinates(scene, V_ult)
     axes = {a: np.asarray(ds[a].values, dtype=float) for a in AXES}
     reasons = [r for r in (_outside(a, coords[a], axes[a]) for a in AXES) if r]

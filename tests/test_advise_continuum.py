@@ -31,7 +31,8 @@ from upliftlab.scenes import load_scene, scene_from_dict
 SCENE = "strip_footing_clay"
 #: h = 3 m (h/B = 1.5), T = 0.2 s, amplitude 3 a_up = 3 g B/(6h) = 1/3 g.
 ON_MAP = ["structure.height=3.0", "structure.period=0.2", "motion.period=0.2",
-          "motion.duration=0.6", "motion.amplitude=0.3333333333333333"]
+          "motion.duration=0.6", "motion.amplitude=0.3333333333333333",
+          "continuum.boundary=shear"]
 TOL = 0.10
 
 
@@ -143,6 +144,7 @@ def test_map_evidence_recomputed_from_the_map(advice, fast_map):
     ("structure.height=5.0", ["h_over_B = 2.5", "1 above the map's range [1.5, 1.5]"]),
     ("soil.undrained_strength=40.0", ["soil.undrained_strength = 40.0",
                                       "the map's clay: 50.0"]),
+    ("continuum.boundary=fixed", ["continuum.boundary = 'fixed'", "sides 'shear'"]),
 ])
 def test_scene_outside_the_map_says_which_parameter(fast_map, override, words):
     """Outside the map's box: the reason names the parameter, its value and the map's range."""

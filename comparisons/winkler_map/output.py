@@ -13,6 +13,7 @@ from ..study import StudyResult, ascii_text, write_summary
 from .beds import BEDS
 from .grid import FLOOR_FRACTION, MEASURE_LABELS, MEASURE_UNITS, MEASURES, SOIL_LABELS, STUDY
 from .maps import MapData
+from .points import SIDES
 
 __all__ = ["write", "map_dataset", "statics_dataset", "rocking_variables"]
 
@@ -89,6 +90,7 @@ def map_dataset(data: MapData, prov: Mapping):
                                          "value at a uniform bed's uplift threshold"})
     attrs = {"Conventions": "CF-1.10", "title": "Winkler beds against the continuum: the map",
              "elements_across": data.options.elements_across,
+             "continuum_boundary": SIDES,
              "floor_fraction": FLOOR_FRACTION, "refusals": list(data.refusals),
              "provenance": dict(prov)}
     return xr.Dataset(variables, coords=_coords(data), attrs=cf_attributes(attrs))
