@@ -170,7 +170,8 @@ def evaluate_dynamic(point: Mapping) -> dict:
     does not balance) is a stored result too: ``{"error": kind and message, "soil_model",
     "wall_time_s"}``, which the map reports with the point and leaves out of every error.
     A point with ``soil_mass_scale`` runs with the soil's mass scaled (a diagnostic of the soil's
-    own dynamics, ``benchmarks/winkler_soil_inertia.py``); the map's points have none (1)."""
+    own dynamics, :class:`~upliftlab.continuum.dynamics.DynamicOptions`); the map's points have
+    none (1)."""
     from ...continuum import ContactError, ConvergenceError
     from ...continuum.run_control import EnergyBalanceError
 
