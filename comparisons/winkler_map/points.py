@@ -125,17 +125,16 @@ def _warm_kernels(point: Mapping) -> None:
     _WARM.add(model_name)
 
 
-def _timed_run(scene, soil_mass_scale: float = 1.0):
+def _timed_run(scene):
     """(model, result, wall time s) of the continuum's dynamic run of ``scene`` (no
-    snapshots; the soil's mass times ``soil_mass_scale``, :class:`DynamicOptions`)."""
+    snapshots)."""
     from ...continuum import build_model
     from ...continuum.dynamics import DynamicOptions, run_dynamic
 
     started = time.perf_counter()
     model = build_model(scene)
     result = run_dynamic(model, scene, scene.build_motion(),
-                         DynamicOptions(snapshots=0, energy=False,
-                                        soil_mass_scale=soil_mass_scale))
+                         DynamicOptions(snapshots=0, energy=False))
     return model, result, time.perf_counter() - started
 
 
@@ -168,10 +167,7 @@ def evaluate_dynamic(point: Mapping) -> dict:
     gravity and time loop, s; the kernels are compiled before, :func:`_warm_kernels`). Units
     of the scene. A run the solver gives up on (it diverged, its contact failed or its energy
     does not balance) is a stored result too: ``{"error": kind and message, "soil_model",
-    "wall_time_s"}``, which the map reports with the point and leaves out of every error.
-    A point with ``soil_mass_scale`` runs with the soil's mass scaled (a diagnostic of the soil's
-    own dynamics, :class:`~upliftlab.continuum.dynamics.DynamicOptions`); the map's points have
-    none (1)."""
+    "wall_time_s"}``, which the map reports with the point and leaves out of every error."""
     from ...continuum import ContactError, ConvergenceError
     from ...continuum.run_control import EnergyBalanceError
 
@@ -179,7 +175,7 @@ def evaluate_dynamic(point: Mapping) -> dict:
     scene = point_scene(point)
     started = time.perf_counter()
     try:
-        model, result, wall = _timed_run(scene, float(point.get("soil_mass_scale", 1.0)))
+        model, result, wall = _timed_run(scene)
     except (ConvergenceError, ContactError, EnergyBalanceError) as exc:
         return {"error": f"{type(exc).__name__}: {' '.join(str(exc).split())}",
                 "soil_model": scene.soil.model, "wall_time_s": time.perf_counter() - started}
