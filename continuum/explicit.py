@@ -212,7 +212,7 @@ class _Explicit:
         recorded = status
         for k in range(n_steps + 1):
             first = k == 0
-            with self.diverging(k, k, u):
+            with self.diverging(k, k, u, u_prev, zn[:3]):
                 fint = self.soil(u)
             ag = ag_all[k]
             Fz = self.ground_z * ag + z.gravity
@@ -303,17 +303,21 @@ class _Explicit:
                    f.interface.mu, f.width, f.interface.tangential)
         announce_compilation("the continuum's explicit kernels", run_steps)
         for k in recorded_steps(st):
-            with self.diverging(done + 1, k, U[k % 3]):
+            with self.diverging(done + 1, k, U[k % 3], U[(k - 1) % 3], Z[k % 3][:3]):
                 run_steps(done + 1, k, dt, rings, carry, soil_data, elements, gather, loads,
                           structure, contact)
             done = k
             self.record(rec, progress, k, U, V, Z, VZ, FC, ST, energy, counters, ag_all[k])
 
     @contextlib.contextmanager
-    def diverging(self, k0, k1, u):
+    def diverging(self, k0, k1, u, u_prev, footing):
         """Turn a diverged solution in steps k0…k1 (a failed contact solve, or ``u``, the
         displacement after them, not finite or beyond a footing width) into a
-        :class:`ConvergenceError` naming the time."""
+        :class:`ConvergenceError` naming the time, and for a displacement beyond a footing
+        width where it is, how fast it grew over the last step (``u_prev`` the step before)
+        and where the footing (u, v, θ) was: a blow-up of the scheme grows by a fixed factor
+        above 1 every step (about 1.5 just beyond the stability limit), a footing punching
+        into a failing soil by almost nothing, and both leave the small-strain continuum."""
         st = self.settings
         why = None
         try:
@@ -325,10 +329,24 @@ class _Explicit:
             if top <= self.model.width:
                 return
             why = f"a displacement of {top:.3g} (the footing is {self.model.width:g} wide)"
+            if math.isfinite(top):
+                why += self._where(u, u_prev, footing)
         raise ConvergenceError(
             f"explicit steps {k0}…{k1} (t = {k0 * st.dt:.6g}…{k1 * st.dt:.6g} s) diverged: "
             f"{why}; dt = {st.dt:.4g} s is {st.dt / st.critical:.3g} of the stability limit "
             f"2/ω_max = {st.critical:.4g} s", step=k1) from None
+
+    def _where(self, u, u_prev, footing) -> str:
+        """Where the largest displacement of ``u`` is, its growth over the step from
+        ``u_prev``, and the footing's (u, v, θ): the words that tell a blow-up from a bearing
+        failure."""
+        j = int(np.argmax(np.abs(u)))
+        x, y = self.model.disc.basis.doflocs[:, j]
+        before = float(np.max(np.abs(u_prev)))
+        growth = float(np.max(np.abs(u))) / before if before > 0.0 else math.inf
+        return (f" at x = {x:.3g}, y = {y:.3g}, grown ×{growth:.6g} over the last step, with "
+                f"the footing at v = {footing[1]:.3g}, θ = {footing[2]:.3g} rad: beyond the "
+                f"small-strain continuum's range")
 
     def record(self, rec, progress, k, U, V, Z, VZ, FC, ST, energy, counters, ag) -> None:
         """Row of step k from the rings of :meth:`compiled_steps`."""

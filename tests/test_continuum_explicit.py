@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import itertools
 
+import types
+
 import numpy as np
 import pytest
 
@@ -187,6 +189,36 @@ def test_central_differences_are_stable_up_to_two_over_omega_max(fraction, stabl
             run_dynamic(model, scene, motion, options)
         assert f"dt = {fraction * critical:.4g} s is {fraction:.3g} of the stability limit" \
             in str(info.value)
+
+
+@pytest.mark.parametrize("growth", [1.0001, 1.49])
+def test_a_displacement_beyond_the_footing_width_is_reported_with_where_and_how_fast(growth):
+    # Reference: the hand-made state. A soil DOF moved 1.5 B (beyond the check's one footing
+    # width) after growing by ``growth`` over the last step: 1.0001 is a footing punching into
+    # failing soil (found on the Winkler map's sand at FS_v = 2: 2 m at the footing's edge
+    # after 11 s of slow growth), 1.49 the highest mode's amplification per step just beyond
+    # the stability limit (|λ| of λ² − (2 − (ω dt)²) λ + 1 = 0 at ω dt = 2.04). The message
+    # names the DOF's place, the growth and the footing's state, before the step's share of
+    # the stability limit.
+    scene, model, _ = _free_rocking()
+    run = object.__new__(ex._Explicit)
+    run.model, run.settings = model, types.SimpleNamespace(dt=1e-3, critical=2e-3)
+    j = 17
+    u = np.zeros(model.disc.ndofs)
+    u[j] = -1.5 * model.width
+    footing = np.array([0.0, -0.35, -0.037])
+    with pytest.raises(ConvergenceError) as info:
+        with run.diverging(40, 44, u, u / growth, footing):
+            pass
+    text = str(info.value)
+    x, y = model.disc.basis.doflocs[:, j]
+    assert f"a displacement of {1.5 * model.width:.3g}" in text
+    assert f"at x = {x:.3g}, y = {y:.3g}, grown ×{growth:.6g} over the last step" in text
+    assert "the footing at v = -0.35, θ = -0.037 rad" in text
+    assert "dt = 0.001 s is 0.5 of the stability limit" in text
+    u[j] = 0.9 * model.width  # within a footing width: no error
+    with run.diverging(40, 44, u, u / growth, footing):
+        pass
 
 
 # ---------------------------------------------------------------------------------------------
