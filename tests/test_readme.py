@@ -74,6 +74,10 @@ EXERCISED = {
     "--grid periods=0.5 --grid fema_components=4":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
+    "python -m upliftlab.comparisons.winkler_map --grid soils=sand --grid h_over_B=1.5 "
+    "--grid periods=0.5 --grid fema_components=4 --out results/winkler_map-sand":
+        ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
+         ()),
     "python -m upliftlab.comparisons.winkler_map --grid periods=0.2,0.5 --grid elcentro=false "
     "--grid fema_components=0 --out results/winkler_map-pulses":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",

@@ -329,9 +329,10 @@ def test_the_qz_bed_runs_on_the_fast_map(study):
     assert not [r for r in d.refusals if r.endswith("qz: ") or ", qz:" in r]
 
 
-#: The README's two map commands, as test_readme finds them here (argv after ``python``, the
+#: The README's three map commands, as test_readme finds them here (argv after ``python``, the
 #: test's ``--out`` last: argparse takes the last one).
 README_SLICE = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "h_over_B=1.5", "--grid", "periods=0.5", "--grid", "fema_components=4", "--out"]  # noqa: E501
+README_SAND = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=sand", "--grid", "h_over_B=1.5", "--grid", "periods=0.5", "--grid", "fema_components=4", "--out", "results/winkler_map-sand", "--out"]  # noqa: E501
 README_PULSES = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "periods=0.2,0.5", "--grid", "elcentro=false", "--grid", "fema_components=0", "--out", "results/winkler_map-pulses", "--out"]  # noqa: E501
 
 
@@ -340,6 +341,8 @@ README_PULSES = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "periods=0
     # dynamic; statics, impedance and a cyclic and a monotonic rotation pushover per FS_v = 10
     (README_SLICE, "66 continuum runs to make (10 static, 56 dynamic; 0 already stored)",
      dict(soils=("clay",), h_over_B=(1.5,), periods=(0.5,), fema_components=4)),
+    (README_SAND, "66 continuum runs to make (10 static, 56 dynamic; 0 already stored)",
+     dict(soils=("sand",), h_over_B=(1.5,), periods=(0.5,), fema_components=4)),
     # 2 soils × 4 FS_v × 3 h/B × 2 T × 2 intensities × 2 pulses = 192 dynamic; 2 × 10 static
     (README_PULSES, "212 continuum runs to make (20 static, 192 dynamic; 0 already stored)",
      dict(periods=(0.2, 0.5), elcentro=False, fema_components=0)),
