@@ -39,7 +39,8 @@ Pieces
     :mod:`.implicit` (HHT-α route) with :mod:`.step_rules` and :mod:`.iteration_matrix`;
     :mod:`.explicit` (central-difference route) with :mod:`.kernels`, :mod:`.soil_force`,
     :mod:`.contact_step` and :mod:`.explicit_loop` (its compiled pieces);
-    :mod:`.impedance`; :mod:`.run_control` (energy check, interruption).
+    :mod:`.impedance`; :mod:`.run_control` (energy check, interruption, and
+    :class:`BearingFailure`: the soil cannot carry the footing through the motion).
 """
 
 from .dynamics import DynamicOptions, DynamicResult, run_dynamic
@@ -49,6 +50,7 @@ from .impedance import Impedance, ImpedanceOptions, impedance, impedance_model
 from .model import ContinuumModel, build_model, default_k0, make_model
 from .newton import (ContinuumState, Control, ConvergenceError, FootingTerm, NewtonOptions,
                      SoilTerm, equilibrium, follow, footing_tangent)
+from .run_control import BearingFailure
 from .statics import (Envelope, FootingStiffness, StaticPath, UpliftOnset,
                       elastic_gravity_stress, footing_stiffness, geostatic, k0_stress,
                       moment_pushover, rotation_pushover, uplift_onset, vertical_pushover,
@@ -57,6 +59,7 @@ from .statics import (Envelope, FootingStiffness, StaticPath, UpliftOnset,
 __all__ = [
     "ContinuumModel", "build_model", "make_model", "default_k0",
     "ContinuumState", "Control", "NewtonOptions", "ConvergenceError", "ContactError",
+    "BearingFailure",
     "FootingTerm", "SoilTerm", "equilibrium", "follow", "footing_tangent",
     "Footing", "Interface", "OPEN", "STICK", "SLIP_POSITIVE", "SLIP_NEGATIVE",
     "geostatic", "k0_stress", "elastic_gravity_stress",

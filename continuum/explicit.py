@@ -58,7 +58,7 @@ from .ground import boundaries, dynamic_fixed, ground_velocity, static_fixed, x_
 from .iteration_matrix import soil_residual
 from .kernels import compiled_pair, soil_predict
 from .newton import ConvergenceError
-from .run_control import Interrupted
+from .run_control import FAILURE_SETTLEMENT, MECHANISM_GROWTH, BearingFailure, Interrupted
 from .soil_force import SoilForce
 from .superstructure import (MIN_ROTARY_INERTIA, central_difference_form, check_footing_mass,
                              structure_matrices, structure_work)
@@ -317,36 +317,49 @@ class _Explicit:
         width where it is, how fast it grew over the last step (``u_prev`` the step before)
         and where the footing (u, v, θ) was: a blow-up of the scheme grows by a fixed factor
         above 1 every step (about 1.5 just beyond the stability limit), a footing punching
-        into a failing soil by almost nothing, and both leave the small-strain continuum."""
+        into a failing soil by almost nothing, and both leave the small-strain continuum.
+        The second, with the footing settled by :data:`~.run_control.FAILURE_SETTLEMENT` B or
+        more, is a :class:`~.run_control.BearingFailure`."""
         st = self.settings
         why = None
         try:
             yield
         except (np.linalg.LinAlgError, RuntimeError, FloatingPointError, ZeroDivisionError) as exc:
             why = f"{type(exc).__name__}: {exc}"
+        when = f"explicit steps {k0}…{k1} (t = {k0 * st.dt:.6g}…{k1 * st.dt:.6g} s)"
+        limit = (f"dt = {st.dt:.4g} s is {st.dt / st.critical:.3g} of the stability limit "
+                 f"2/ω_max = {st.critical:.4g} s")
         if why is None:
             top = float(np.max(np.abs(u))) if np.isfinite(u).all() else math.inf
             if top <= self.model.width:
                 return
             why = f"a displacement of {top:.3g} (the footing is {self.model.width:g} wide)"
             if math.isfinite(top):
-                why += self._where(u, u_prev, footing)
-        raise ConvergenceError(
-            f"explicit steps {k0}…{k1} (t = {k0 * st.dt:.6g}…{k1 * st.dt:.6g} s) diverged: "
-            f"{why}; dt = {st.dt:.4g} s is {st.dt / st.critical:.3g} of the stability limit "
-            f"2/ω_max = {st.critical:.4g} s", step=k1) from None
+                where, growth = self._where(u, u_prev, footing)
+                settlement = -float(footing[1])
+                if (growth <= MECHANISM_GROWTH
+                        and settlement >= FAILURE_SETTLEMENT * self.model.width):
+                    raise BearingFailure(
+                        f"the soil failed in bearing in {when}: the footing settled "
+                        f"{settlement:.3g} ({settlement / self.model.width:.3g} B, at least "
+                        f"the {FAILURE_SETTLEMENT:g} B of a conventional failure) and {why}"
+                        f"{where}; a mechanism, not a blow-up of the scheme ({limit})",
+                        step=k1, time=k1 * st.dt, settlement=settlement,
+                        rotation=float(footing[2])) from None
+                why += where
+        raise ConvergenceError(f"{when} diverged: {why}; {limit}", step=k1) from None
 
-    def _where(self, u, u_prev, footing) -> str:
+    def _where(self, u, u_prev, footing) -> tuple[str, float]:
         """Where the largest displacement of ``u`` is, its growth over the step from
         ``u_prev``, and the footing's (u, v, θ): the words that tell a blow-up from a bearing
-        failure."""
+        failure; and the growth."""
         j = int(np.argmax(np.abs(u)))
         x, y = self.model.disc.basis.doflocs[:, j]
         before = float(np.max(np.abs(u_prev)))
         growth = float(np.max(np.abs(u))) / before if before > 0.0 else math.inf
         return (f" at x = {x:.3g}, y = {y:.3g}, grown ×{growth:.6g} over the last step, with "
                 f"the footing at v = {footing[1]:.3g}, θ = {footing[2]:.3g} rad: beyond the "
-                f"small-strain continuum's range")
+                f"small-strain continuum's range"), growth
 
     def record(self, rec, progress, k, U, V, Z, VZ, FC, ST, energy, counters, ag) -> None:
         """Row of step k from the rings of :meth:`compiled_steps`."""

@@ -1,4 +1,5 @@
-"""What ends a dynamic run early or fails it: an interruption, and the energy check.
+"""What ends a dynamic run early or fails it: an interruption, the energy check, and a bearing
+failure of the soil.
 
 **Interruption.** A run stopped by the user (KeyboardInterrupt; the command line turns SIGTERM
 into one) raises :class:`Interrupted`, which carries the :class:`DynamicResult` of the rows
@@ -14,6 +15,15 @@ N B (the footing's weight times its width): below it an energy is round-off of t
 in the first milliseconds of a pulse. A run whose error exceeds its tolerance
 (``continuum.energy_tolerance``) raises :class:`EnergyBalanceError`, which carries the result
 and the figure.
+
+**Bearing failure.** A footing that punches into failing soil drives the soil beside it far
+beyond the small-strain continuum's range. The explicit route stops there (a displacement
+beyond a footing width) and tells it from a blow-up of its scheme: a blow-up grows by a fixed
+factor above 1 every step, a mechanism by almost nothing, and in a bearing failure the footing
+itself has settled by at least :data:`FAILURE_SETTLEMENT` B, the settlement that load tests
+on footings conventionally call failure where the load–settlement curve has no peak. Such a
+run raises :class:`BearingFailure`: an outcome of the physics (the soil cannot carry the
+footing through the motion), not a number to compare.
 """
 
 from __future__ import annotations
@@ -22,11 +32,22 @@ import math
 
 import numpy as np
 
-__all__ = ["ENERGY_FLOOR", "Interrupted", "EnergyBalanceError", "balance_error",
-           "check_energy", "energy_floor"]
+from .newton import ConvergenceError
+
+__all__ = ["ENERGY_FLOOR", "FAILURE_SETTLEMENT", "MECHANISM_GROWTH", "Interrupted",
+           "EnergyBalanceError", "BearingFailure", "balance_error", "check_energy",
+           "energy_floor"]
 
 #: The energy below which a balance is round-off, as a fraction of N B (module docstring).
 ENERGY_FLOOR = 1e-9
+#: The footing settlement, as a fraction of its width B, that counts as a bearing failure
+#: (module docstring).
+FAILURE_SETTLEMENT = 0.1
+#: The largest growth of the largest displacement over one step that is a mechanism and not a
+#: blow-up of the scheme: the highest mode's amplification just beyond the stability limit
+#: (dt ω_max = 2.0002) is already 1.03 per step, a footing punching into failing soil grows by
+#: 1.00003 (measured on the Winkler map's sand at FS_v = 2).
+MECHANISM_GROWTH = 1.001
 
 
 class Interrupted(KeyboardInterrupt):
@@ -50,6 +71,18 @@ class EnergyBalanceError(RuntimeError):
             f"{result.metadata.get('dt', math.nan):.3g} s); the run is not trustworthy: "
             "refine the step or the mesh, or relax the tolerance if the loss is understood")
         self.result, self.error, self.tolerance = result, error, tolerance
+
+
+class BearingFailure(ConvergenceError):
+    """The soil failed in bearing under the footing (module docstring): ``time`` (s) and the
+    footing's ``settlement`` (m, downward positive) and ``rotation`` (rad) when the run
+    stopped. A :class:`ConvergenceError` so that every caller that stops on one stops on it
+    too; a caller that maps results tells it apart."""
+
+    def __init__(self, message: str, *, step: int, time: float, settlement: float,
+                 rotation: float):
+        super().__init__(message, step=step)
+        self.time, self.settlement, self.rotation = time, settlement, rotation
 
 
 def energy_floor(scene, width: float) -> float:

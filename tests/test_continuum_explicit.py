@@ -38,6 +38,7 @@ from upliftlab.continuum.footing import (ContactError, ContactProblem, Footing, 
                                          solve_contact)
 from upliftlab.continuum.materials import Elastic, Tresca, VonMises
 from upliftlab.continuum.newton import ConvergenceError
+from upliftlab.continuum.run_control import BearingFailure
 from upliftlab.motions import free_vibration
 from upliftlab.scenes import load_scene
 
@@ -191,31 +192,45 @@ def test_central_differences_are_stable_up_to_two_over_omega_max(fraction, stabl
             in str(info.value)
 
 
-@pytest.mark.parametrize("growth", [1.0001, 1.49])
-def test_a_displacement_beyond_the_footing_width_is_reported_with_where_and_how_fast(growth):
+@pytest.mark.parametrize("growth, settlement, bearing", [(1.0001, 0.35, True),
+                                                         (1.49, 0.35, False),
+                                                         (1.0001, 0.15, False)])
+def test_a_displacement_beyond_the_footing_width_is_reported_with_where_and_how_fast(
+        growth, settlement, bearing):
     # Reference: the hand-made state. A soil DOF moved 1.5 B (beyond the check's one footing
     # width) after growing by ``growth`` over the last step: 1.0001 is a footing punching into
     # failing soil (found on the Winkler map's sand at FS_v = 2: 2 m at the footing's edge
-    # after 11 s of slow growth), 1.49 the highest mode's amplification per step just beyond
-    # the stability limit (|λ| of λ² − (2 − (ω dt)²) λ + 1 = 0 at ω dt = 2.04). The message
-    # names the DOF's place, the growth and the footing's state, before the step's share of
-    # the stability limit.
+    # after 11 s of slow growth, the footing settled 0.35 m = 0.17 B), 1.49 the highest
+    # mode's amplification per step just beyond the stability limit (|λ| of
+    # λ² − (2 − (ω dt)²) λ + 1 = 0 at ω dt = 2.04). The message names the DOF's place, the
+    # growth and the footing's state, before the step's share of the stability limit. Slow
+    # growth with the footing settled by 0.1 B or more (B = 2 m here: 0.35 m is 0.175 B,
+    # 0.15 m is 0.075 B) is a bearing failure; anything else stays a divergence.
     scene, model, _ = _free_rocking()
+    assert model.width == 2.0
     run = object.__new__(ex._Explicit)
     run.model, run.settings = model, types.SimpleNamespace(dt=1e-3, critical=2e-3)
     j = 17
     u = np.zeros(model.disc.ndofs)
     u[j] = -1.5 * model.width
-    footing = np.array([0.0, -0.35, -0.037])
+    footing = np.array([0.0, -settlement, -0.037])
     with pytest.raises(ConvergenceError) as info:
         with run.diverging(40, 44, u, u / growth, footing):
             pass
+    assert isinstance(info.value, BearingFailure) is bearing
     text = str(info.value)
     x, y = model.disc.basis.doflocs[:, j]
     assert f"a displacement of {1.5 * model.width:.3g}" in text
     assert f"at x = {x:.3g}, y = {y:.3g}, grown ×{growth:.6g} over the last step" in text
-    assert "the footing at v = -0.35, θ = -0.037 rad" in text
+    assert f"the footing at v = {-settlement:.3g}, θ = -0.037 rad" in text
     assert "dt = 0.001 s is 0.5 of the stability limit" in text
+    if bearing:
+        assert text.startswith("the soil failed in bearing in explicit steps 40…44")
+        assert "the footing settled 0.35 (0.175 B, at least the 0.1 B" in text
+        assert (info.value.time, info.value.settlement, info.value.rotation) == (
+            pytest.approx(0.044), pytest.approx(0.35), pytest.approx(-0.037))
+    else:
+        assert text.startswith("explicit steps 40…44 (t = 0.04…0.044 s) diverged")
     u[j] = 0.9 * model.width  # within a footing width: no error
     with run.diverging(40, 44, u, u / growth, footing):
         pass

@@ -144,6 +144,37 @@ def test_the_regions_recomputed_from_the_file(study, written):
         assert region.count == _largest_corner(cells)
 
 
+def test_a_bearing_failure_is_a_hit_only_for_a_bed_that_fails_too(study):
+    """The fast map's data with its FS_v = 5 point turned into a bearing failure of the
+    continuum (measures and errors NaN) that the first calibration's bed called and the others
+    did not. Reference, by hand from the unchanged errors: the FS_v = 2 point is a hit where
+    |error| ≤ 10 % in peak θ and edge uplift; the failed point is a hit for the first bed only;
+    each share is (hit at FS_v = 2 + hit at the failure)/2, and only the other beds miss the
+    failure."""
+    from upliftlab.comparisons.winkler_map.analysis import missed_failures, share
+
+    d = study.data
+    nb = len(d.calibrations)
+    bearing = np.zeros(d.continuum.shape[:-1], bool)
+    bearing[0, 1] = True
+    called = np.zeros(bearing.shape + (nb,), bool)
+    called[0, 1, ..., 0] = True
+    continuum, errors = d.continuum.copy(), d.errors.copy()
+    continuum[0, 1], errors[0, 1] = np.nan, np.nan
+    failed = replace(d, continuum=continuum, errors=errors, bearing_failure=bearing,
+                     bed_bearing_failure=called)
+    got = share(failed)
+    e = np.abs(d.errors[0, 0]).reshape(nb, -1)  # one motion at FS_v = 2: (calibration, measure)
+    q = wm.MEASURES.index
+    hit = (e[:, q("theta")] <= 0.10) & (e[:, q("uplift")] <= 0.10)
+    assert got.points == 2 and got.bearing_failures == 1
+    assert got.by_bed == {n: (float(hit[c]) + (c == 0)) / 2 for c, n in enumerate(d.calibrations)}
+    assert got.called == {n: int(c == 0) for c, n in enumerate(d.calibrations)}
+    missed = missed_failures(failed)
+    assert not missed[0, 0].any() and not missed[0, 1, ..., 0].any()
+    assert missed[0, 1, ..., 1:].all()
+
+
 def test_a_region_stated_in_the_maps_own_parameters(study):
     """Hand-made errors on a 2 FS_v × 3 h/B grid with three motions: |error| 5 % everywhere,
     except peak θ 30 % at FS_v = 2 and residual settlement 50 % at h/B = 2.5, and one motion
@@ -424,30 +455,60 @@ def test_a_continuum_pushover_that_stopped_leaves_its_statics_row_empty_and_says
     assert "monotonic: the rotation pushover stopped: load step 4" in text
 
 
-def test_a_continuum_run_that_fails_is_reported_and_left_out(tmp_path, executor, monkeypatch):
+def test_a_continuum_run_that_fails_is_reported_and_left_out_or_held_to(tmp_path, executor,
+                                                                        monkeypatch):
     """The fast map with the continuum's run of its FS_v = 5 point made to diverge (a stand-in
-    ConvergenceError): the study finishes; that point's measures and every bed's errors are
-    NaN; the failure is listed with the point and the solver's message; the share counts the
-    one point that ran. The failure is stored: a second run does not retry it."""
+    ConvergenceError) and that of its FS_v = 2 point to end in a bearing failure (a stand-in
+    BearingFailure, the footing settled 0.25 m = 0.125 B): the study finishes; both points'
+    continuum measures and every bed's errors are NaN; both failures are listed with the
+    point and the message. The diverged point is left out of the share; the bearing failure
+    is counted, and each bed is held to it: a hit where the bed's base settled 0.1 B = 0.2 m
+    or more in its run of the point, else a miss. Reference for the flags: the beds' peak
+    settlements from their own runs of the point (``run_bed``), against 0.2 m. The failures
+    are stored: a second run does not retry them."""
     from upliftlab.comparisons.winkler_map import points as wmp
-    from upliftlab.continuum import ConvergenceError
+    from upliftlab.comparisons.winkler_map.beds import bed_foundation
+    from upliftlab.comparisons.winkler_map.maps import _dynamic_points, _reference, _scene
+    from upliftlab.continuum import BearingFailure, ConvergenceError
+    from upliftlab.scenes import load_scene
 
     real = wmp._timed_run
 
-    def diverges_when_light(scene):
+    def fails(scene):
+        if scene.continuum.elements_across == 2:  # the kernels' warm-up run
+            return real(scene)
         if scene.structure.weight < 200.0:  # N = V_ult/5 ≈ 105 kN/m, not V_ult/2
             raise ConvergenceError("explicit steps 10…14 diverged\n(stand-in)")
-        return real(scene)
+        raise BearingFailure("the soil failed in bearing (stand-in)", step=14, time=0.5,
+                             settlement=0.25, rotation=0.01)
 
-    monkeypatch.setattr(wmp, "_timed_run", diverges_when_light)
+    monkeypatch.setattr(wmp, "_timed_run", fails)
     result = wm.run(fast=True, out=tmp_path / "out", executor=executor, progress=False)
-    d = result.data
-    assert np.isfinite(d.continuum[0, 0]).all() and np.isnan(d.continuum[0, 1]).all()
-    assert np.isnan(d.errors[0, 1]).all() and np.isfinite(d.errors[0, 0, ..., :2]).all()
+    d, share = result.data, result.analysis.share
+    assert np.isnan(d.continuum).all() and np.isnan(d.errors).all()
+    assert d.bearing_failure[0, 0].all() and not d.bearing_failure[0, 1].any()
     failed = [r for r in d.refusals if "the continuum:" in r]
-    assert len(failed) == 1 and failed[0].startswith("clay, FS_v = 5")
-    assert "ConvergenceError: explicit steps 10…14 diverged (stand-in)" in failed[0]
-    assert result.analysis.share.points == 1
+    assert len(failed) == 2
+    assert failed[0].startswith("clay, FS_v = 2")
+    assert "BearingFailure: the soil failed in bearing (stand-in)" in failed[0]
+    assert failed[1].startswith("clay, FS_v = 5")
+    assert "ConvergenceError: explicit steps 10…14 diverged (stand-in)" in failed[1]
+    assert np.isfinite(d.beds[0, 0, ..., :2]).all() and np.isnan(d.beds[0, 1]).all()
+    # each bed's flag against its own peak settlement at the failed point
+    st = d.statics_of("clay")
+    point = _dynamic_points(d.grid, d.options, list(d.motions), wmp.base_table(),
+                            load_scene(wmp.BASE_SCENE).g, {"clay": st.V_ult})[0]
+    ref = _reference(st, _scene(point["scene"]), point["scene"]["structure"],
+                     dict(d.impedances).get("clay"))
+    called = {name: wmp.run_bed(point, bed_foundation(name, ref, d.options))["peak_settlement"]
+              >= 0.2 for name in d.calibrations}
+    assert {n: bool(d.bed_bearing_failure[0, 0, 0, 0, 0, 0, c])
+            for c, n in enumerate(d.calibrations)} == called
+    assert share.points == 1 and share.bearing_failures == 1
+    assert share.by_bed == {n: float(v) for n, v in called.items()}
+    assert share.called == {n: int(v) for n, v in called.items()}
+    assert "1 of the points ended in a bearing failure" in (tmp_path / "out" /
+                                                            "summary.md").read_text()
     monkeypatch.setattr(wmp, "_timed_run", real)
     again = wm.run(fast=True, out=tmp_path / "out", executor=executor, progress=False)
-    assert again.data.computed == 0 and np.isnan(again.data.continuum[0, 1]).all()
+    assert again.data.computed == 0 and again.data.bearing_failure[0, 0].all()

@@ -15,6 +15,7 @@ from .grid import MEASURE_LABELS, MEASURES, SOIL_LABELS
 from .maps import MapData
 
 __all__ = ["BedRegion", "Pick", "Share", "Speed", "Analysis", "analyse", "cell_passes",
+           "missed_failures",
            "median_over_motions", "signed_bias", "BIAS_MEASURES"]
 
 #: The measures whose signed error is summarised by FS_v (:func:`signed_bias`).
@@ -34,16 +35,27 @@ def median_over_motions(data: MapData) -> np.ndarray:
             return np.nanmedian(np.abs(data.errors), axis=5)
 
 
+def missed_failures(data: MapData) -> np.ndarray:
+    """(…, motion, calibration): the continuum's soil failed in bearing and the bed's did not
+    (:attr:`MapData.bearing_failure`): a bed that misses the outcome misses the point."""
+    shape = data.errors.shape[:-1]
+    if data.bearing_failure is None:
+        return np.zeros(shape, bool)
+    return data.bearing_failure[..., None] & ~data.bed_bearing_failure
+
+
 def cell_passes(data: MapData) -> np.ndarray:
     """(soil, fs_v, h_over_B, period, intensity, calibration): the median |error| over the
     motions is within ``theta_tolerance`` in peak θ and in peak edge uplift and within
-    ``settlement_tolerance`` in residual settlement (NaN fails)."""
+    ``settlement_tolerance`` in residual settlement (NaN fails), and the bed fails in
+    bearing wherever the continuum does (:func:`missed_failures`)."""
     med = np.nan_to_num(median_over_motions(data), nan=np.inf)
     o = data.options
     q = MEASURES.index
     return ((med[..., q("theta")] <= o.theta_tolerance)
             & (med[..., q("uplift")] <= o.theta_tolerance)
-            & (med[..., q("residual_settlement")] <= o.settlement_tolerance))
+            & (med[..., q("residual_settlement")] <= o.settlement_tolerance)
+            & ~missed_failures(data).any(axis=5))
 
 
 @dataclass(frozen=True)
@@ -81,7 +93,10 @@ class Pick:
 class Share:
     """Shares of the map's points (cells × motions) within ``threshold`` in peak θ and in peak
     edge uplift: per calibration (``by_bed``), for the best single calibration (``best``,
-    ``best_share``) and for the best calibration chosen point by point (``any_share``)."""
+    ``best_share``) and for the best calibration chosen point by point (``any_share``). Of
+    the ``points``, ``bearing_failures`` ended in a bearing failure of the continuum's soil:
+    each counts as a hit for a bed that fails in bearing too (``called``, per calibration)
+    and as a miss for the others."""
 
     threshold: float
     points: int
@@ -89,6 +104,8 @@ class Share:
     best: str
     best_share: float
     any_share: float
+    bearing_failures: int = 0
+    called: dict | None = None
 
 
 @dataclass(frozen=True)
@@ -177,16 +194,25 @@ def _inf(value: float) -> float:
 
 def share(data: MapData) -> Share:
     """Shares of points within ``theta_tolerance`` in peak θ and edge uplift (:class:`Share`),
-    over the points whose continuum run finished."""
+    over the points whose continuum run finished or ended in a bearing failure (there, a bed
+    that fails too is a hit); a point whose solver gave up has nothing to be within of."""
     thr = data.options.theta_tolerance
+    nb = len(data.calibrations)
     e = np.nan_to_num(np.abs(data.errors), nan=np.inf)
     ok = (e[..., MEASURES.index("theta")] <= thr) & (e[..., MEASURES.index("uplift")] <= thr)
-    ok = ok.reshape(-1, len(data.calibrations))  # (points, calibration)
+    ok = ok.reshape(-1, nb)  # (points, calibration)
     ran = np.isfinite(data.continuum[..., MEASURES.index("theta")]).ravel()
-    ok = ok[ran]  # a point whose continuum run failed has nothing to be within of
-    by_bed = {name: float(ok[:, c].mean()) for c, name in enumerate(data.calibrations)}
-    best = max(data.calibrations, key=lambda n: (by_bed[n], -data.calibrations.index(n)))
-    return Share(thr, ok.shape[0], by_bed, best, by_bed[best], float(ok.any(axis=1).mean()))
+    failed = (np.zeros_like(ran) if data.bearing_failure is None
+              else data.bearing_failure.ravel())
+    called = (np.zeros((ran.size, nb), bool) if data.bed_bearing_failure is None
+              else data.bed_bearing_failure.reshape(-1, nb))
+    ok = np.where(failed[:, None], called, ok)[ran | failed]
+    by_bed = {name: float(ok[:, c].mean()) if ok.size else math.nan
+              for c, name in enumerate(data.calibrations)}
+    best = max(data.calibrations, key=lambda n: (_inf(by_bed[n]), -data.calibrations.index(n)))
+    return Share(thr, ok.shape[0], by_bed, best, by_bed[best],
+                 float(ok.any(axis=1).mean()) if ok.size else math.nan, int(failed.sum()),
+                 {name: int(called[failed, c].sum()) for c, name in enumerate(data.calibrations)})
 
 
 def speed(data: MapData) -> Speed:
@@ -199,7 +225,8 @@ def speed(data: MapData) -> Speed:
         median[name] = float(np.median(ratio)) if ratio.size else math.nan
         minimum[name] = float(np.min(ratio)) if ratio.size else math.nan
         bed_median[name] = float(np.nanmedian(data.bed_wall[..., c]))
-    return Speed(median, minimum, float(np.nanmedian(cw)), bed_median)
+    ran = cw[np.isfinite(cw)]
+    return Speed(median, minimum, float(np.median(ran)) if ran.size else math.nan, bed_median)
 
 
 def signed_bias(data: MapData) -> np.ndarray:

@@ -56,7 +56,11 @@ class MapData:
     ``computed`` the continuum runs this call made (a soil's statics count as one, as in the
     estimate, and its impedance as one more); ``impedances`` (soil, :class:`~upliftlab.
     continuum.impedance.Impedance`) pairs of the soils whose impedance a bed needed (else
-    empty).
+    empty); ``bearing_failure`` (…, motion) where the continuum's run ended in a bearing
+    failure of the soil (its measures NaN, its point counted: a bed is held to the outcome),
+    ``bed_bearing_failure`` (…, motion, calibration) where a bed's base settled by
+    :data:`~upliftlab.continuum.run_control.FAILURE_SETTLEMENT` B or more in its run of such
+    a point (it fails in bearing too).
     """
 
     grid: Grid
@@ -81,6 +85,8 @@ class MapData:
     computed: int
     rocking: RockingData
     impedances: tuple = ()
+    bearing_failure: np.ndarray | None = None
+    bed_bearing_failure: np.ndarray | None = None
 
     @property
     def motion_names(self) -> tuple[str, ...]:
@@ -280,6 +286,8 @@ def _rocking(grid, options, calibrations, statics, base, g, records,
 
 def _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
               computed, rocking, impedances) -> MapData:
+    from ...continuum.run_control import FAILURE_SETTLEMENT
+
     shape = (len(grid.soils), len(grid.fs_v), len(grid.h_over_B), len(grid.periods),
              len(grid.intensities), len(motions))
     nb, nm = len(calibrations), len(MEASURES)
@@ -289,6 +297,7 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
     scale = np.full(shape[:4] + (nm,), np.nan)
     cwall, steps, balance, dofs = (np.full(shape, np.nan) for _ in range(4))
     bwall = np.full(shape + (nb,), np.nan)
+    bearing, bed_bearing = np.zeros(shape, bool), np.zeros(shape + (nb,), bool)
     N = np.full(shape[:2], np.nan)
     bed_K_r = np.full(shape[:2] + (nb,), np.nan)
     bed_K_v = np.full_like(bed_K_r, np.nan)
@@ -307,14 +316,18 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
             scl = scales(ref.N, B, h, st.K_v, st.K_r, k_story)
             scale[idx[:4]] = [scl[q] for q in MEASURES]
             N[idx[:2]] = ref.N
+            failed = run.get("failure") == "bearing"
             if "error" in run:  # the continuum's run failed: nothing to compare a bed with
                 refusals.append(f"{_where(soil, fs, hb, period, intensity, motions[m])}, the "
                                 f"continuum: {run['error']}")
-                continue
-            continuum[at] = [run["measures"][q] for q in MEASURES]
-            cwall[at], steps[at], balance[at] = (run["wall_time_s"], run["steps"],
-                                                 run["energy_balance_error"])
-            dofs[at] = run["dofs"]
+                if not failed:  # the solver gave up: the point is left out
+                    continue
+                bearing[at] = True  # its wall time is a part run's: not in the speed
+            else:
+                continuum[at] = [run["measures"][q] for q in MEASURES]
+                cwall[at], steps[at], balance[at] = (run["wall_time_s"], run["steps"],
+                                                     run["energy_balance_error"])
+                dofs[at] = run["dofs"]
             for c, name in enumerate(calibrations):
                 foundation = bed_foundation(name, ref, options)
                 if name not in warmed:  # the first run compiles the kernels: not timed
@@ -329,15 +342,18 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                     refusals.append(f"{_where(soil, fs, hb, period, intensity, motions[m])}, "
                                     f"{name}: {bed['refused']}")
                     continue
+                beds[at + (c,)] = [bed["measures"][q] for q in MEASURES]
+                if failed:  # the bed is held to the outcome: does it fail in bearing too?
+                    bed_bearing[at + (c,)] = bed["peak_settlement"] >= FAILURE_SETTLEMENT * B
+                    continue
                 for q, measure in enumerate(MEASURES):
-                    value, reference = bed["measures"][measure], run["measures"][measure]
-                    beds[at + (c, q)] = value
-                    errors[at + (c, q)] = relative_error(value, reference,
+                    errors[at + (c, q)] = relative_error(beds[at + (c, q)],
+                                                         run["measures"][measure],
                                                          FLOOR_FRACTION * scl[measure])
     return MapData(grid, options, tuple(motions), tuple(calibrations), tuple(statics), N,
                    continuum, beds, errors, scale, cwall, bwall, steps, balance, dofs, bed_K_r,
                    bed_K_v, tuple(refusals), estimate, computed, rocking,
-                   tuple(impedances.items()))
+                   tuple(impedances.items()), bearing, bed_bearing)
 
 
 def _where(soil, fs, hb, period, intensity, motion) -> str:

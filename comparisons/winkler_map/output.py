@@ -59,7 +59,8 @@ def map_dataset(data: MapData, prov: Mapping):
         "error": (d + ("calibration", "measure"), data.errors, {
             "units": "1", "long_name": "signed relative error of the bed against the "
                                        "continuum, (bed - continuum)/max(|continuum|, floor); "
-                                       "NaN: the bed's run was refused"}),
+                                       "NaN: the bed's run was refused or the "
+                                       "continuum's did not finish"}),
         "continuum_wall_time": (d, data.continuum_wall, {
             "units": "s", "long_name": "wall time of the continuum run (stored with it)"}),
         "bed_wall_time": (d + ("calibration",), data.bed_wall, {
@@ -79,6 +80,14 @@ def map_dataset(data: MapData, prov: Mapping):
         "bed_vertical_stiffness": (("soil", "fs_v", "calibration"), data.bed_K_v, {
             "units": "kN/m/m", "long_name": "vertical stiffness of the built bed, sum k_i"}),
     }
+    if data.bearing_failure is not None:
+        variables["continuum_bearing_failure"] = (d, data.bearing_failure.astype("i1"), {
+            "units": "1", "long_name": "1: the continuum's run ended in a bearing failure of "
+                                       "the soil (its measures NaN)"})
+        variables["bed_bearing_failure"] = (d + ("calibration",),
+                                            data.bed_bearing_failure.astype("i1"), {
+            "units": "1", "long_name": "1: at a bearing failure of the continuum, the bed's "
+                                       "base settled by the failure settlement too"})
     for q, m in enumerate(MEASURES):
         label, units = ascii_text(MEASURE_LABELS[m]), MEASURE_UNITS[m]
         variables[f"bed_{m}"] = (d + ("calibration",), data.beds[..., q], {

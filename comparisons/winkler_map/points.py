@@ -167,8 +167,12 @@ def evaluate_dynamic(point: Mapping) -> dict:
     gravity and time loop, s; the kernels are compiled before, :func:`_warm_kernels`). Units
     of the scene. A run the solver gives up on (it diverged, its contact failed or its energy
     does not balance) is a stored result too: ``{"error": kind and message, "soil_model",
-    "wall_time_s"}``, which the map reports with the point and leaves out of every error."""
-    from ...continuum import ContactError, ConvergenceError
+    "wall_time_s"}``, which the map reports with the point and leaves out of every error. A
+    run that ends in a bearing failure of the soil (:class:`~upliftlab.continuum.
+    BearingFailure`) adds ``"failure": "bearing"``, its time ``failure_time_s`` and the
+    footing's ``failure_settlement`` (m) and ``failure_rotation`` (rad): an outcome the map
+    holds the beds to."""
+    from ...continuum import BearingFailure, ContactError, ConvergenceError
     from ...continuum.run_control import EnergyBalanceError
 
     _warm_kernels(point)
@@ -177,8 +181,12 @@ def evaluate_dynamic(point: Mapping) -> dict:
     try:
         model, result, wall = _timed_run(scene)
     except (ConvergenceError, ContactError, EnergyBalanceError) as exc:
-        return {"error": f"{type(exc).__name__}: {' '.join(str(exc).split())}",
-                "soil_model": scene.soil.model, "wall_time_s": time.perf_counter() - started}
+        out = {"error": f"{type(exc).__name__}: {' '.join(str(exc).split())}",
+               "soil_model": scene.soil.model, "wall_time_s": time.perf_counter() - started}
+        if isinstance(exc, BearingFailure):
+            out.update(failure="bearing", failure_time_s=exc.time,
+                       failure_settlement=exc.settlement, failure_rotation=exc.rotation)
+        return out
     t, theta, settlement, s, gap, measures = continuum_measures(scene, result)
     order = np.argsort(np.asarray(result.x))
     step = float(point["history_dt"])
@@ -197,8 +205,9 @@ def evaluate_dynamic(point: Mapping) -> dict:
 
 def run_bed(point: Mapping, foundation: Mapping) -> dict:
     """A bed's run of a point's motion (reduced model, live, not stored): the measures of
-    :func:`measured`, its wall time ``wall_time_s`` (the run alone, s), or ``refused`` with the
-    integrator's reason."""
+    :func:`measured`, its ``peak_settlement`` (the base centre's largest settlement, down),
+    its wall time ``wall_time_s`` (the run alone, s), or ``refused`` with the integrator's
+    reason."""
     from ...reduced import IntegrationError, run as run_reduced
 
     data = copy.deepcopy(point["scene"])
@@ -217,6 +226,7 @@ def run_bed(point: Mapping, foundation: Mapping) -> dict:
                 "wall_time_s": time.perf_counter() - started}
     wall = time.perf_counter() - started
     return {"measures": reduced_measures(response), "wall_time_s": wall,
+            "peak_settlement": float(np.max(response.settlement)),
             "energy_balance_error": float(response.peaks["energy_balance_error"])}
 
 

@@ -77,7 +77,9 @@ def summary_numbers(result, elapsed: float) -> dict:
                               "points": p.points} for p in a.picks},
         "share": {"threshold": a.share.threshold, "points": a.share.points,
                   "by_calibration": a.share.by_bed, "best": a.share.best,
-                  "best_share": a.share.best_share, "any_share": a.share.any_share},
+                  "best_share": a.share.best_share, "any_share": a.share.any_share,
+                  "bearing_failures": a.share.bearing_failures,
+                  "bearing_failures_called": a.share.called},
         "speed": {"median": _clean(a.speed.median), "minimum": _clean(a.speed.minimum),
                   "continuum_median_s": _finite(a.speed.continuum_median),
                   "bed_median_s": _clean(a.speed.bed_median)},
@@ -92,7 +94,8 @@ def summary_numbers(result, elapsed: float) -> dict:
                              "C_r": [float(v) for v in imp.dashpot("r")], "dofs": imp.dofs,
                              "wall_time_s": imp.metadata.get("wall_time_s")}
                       for soil, imp in d.impedances},
-        "max_energy_balance_error": _finite(float(np.nanmax(d.balance))),
+        "max_energy_balance_error": (_finite(float(np.nanmax(d.balance)))
+                                     if np.isfinite(d.balance).any() else None),
         "refusals": list(d.refusals),
         "elapsed_s": elapsed,
     }
@@ -157,9 +160,11 @@ def summary_markdown(result, fast: bool, elapsed: float) -> str:
               "## How much of the map a calibrated bed covers", "", _share_text(a), "",
               "## Speed", "", _speed_text(a), "", "## Cost", "", _cost_text(d), ""]
     if d.refusals:
-        lines += [f"Runs that failed: {len(d.refusals)} (a bed refused by its integrator, or "
-                  "a continuum run its solver gave up on, whose point then has no bed "
-                  "compared; their errors are NaN and every statistic above leaves them out):",
+        lines += [f"Runs that failed: {len(d.refusals)} (a bed refused by its integrator, a "
+                  "continuum run its solver gave up on, whose point then has no bed compared, "
+                  "or a continuum run that ended in a bearing failure of the soil; their "
+                  "errors are NaN and every statistic above leaves them out, except the "
+                  "bearing failures, which the share and the regions hold the beds to):",
                   ""] + [f"- {r}" for r in d.refusals[:20]] + [""]
     return "\n".join(lines)
 
@@ -327,10 +332,20 @@ def _share_text(a) -> str:
     s = a.share
     thr = f"{100 * s.threshold:g} %"
     by_bed = ", ".join(f"{k} {_pct(v)}" for k, v in s.by_bed.items())
-    return (f"Of the map's {s.points} points (cells × motions), the best single calibration "
-            f"({s.best}) is within {thr} of the continuum in both peak θ and peak edge uplift at "
-            f"**{_pct(s.best_share)}**; the best calibration chosen point by point at "
+    text = (f"Of the map's {s.points} points (cells × motions), the best single calibration "
+            f"({s.best}) is within {thr} of the continuum in both peak θ and peak edge uplift "
+            f"at **{_pct(s.best_share)}**; the best calibration chosen point by point at "
             f"{_pct(s.any_share)}. Per calibration: {by_bed}.")
+    if s.bearing_failures:
+        from ...continuum.run_control import FAILURE_SETTLEMENT
+
+        called = ", ".join(f"{k} {v}" for k, v in s.called.items())
+        text += (f" {s.bearing_failures} of the points ended in a bearing failure of the "
+                 f"continuum's soil (its footing settled {FAILURE_SETTLEMENT:g} B or more in a "
+                 "mechanism): each is a hit for a bed whose base settles "
+                 f"{FAILURE_SETTLEMENT:g} B too and a miss for the others; beds that failed "
+                 f"with it: {called}.")
+    return text
 
 
 def _speed_text(a) -> str:
