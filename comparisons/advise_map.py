@@ -40,13 +40,23 @@ AXES = ("fs_v", "h_over_B", "period", "intensity")
 class BedEvidence:
     """One bed's |error| against the continuum in the nearest cells (every motion):
     ``median`` and ``p90`` (90th percentile) of |error|, ``share_within`` the fraction of
-    cells with |error| ≤ tol, ``count`` the cells with a value (refused runs have none)."""
+    runs with |error| ≤ tol, ``count`` the runs with a value (refused runs have none).
+    ``bearing_failures`` the runs where the continuum's soil failed in bearing (no error:
+    they count in ``share_within`` as a hit where the bed's base settled the failure
+    settlement too, ``called`` of them, and as a miss otherwise, as the map counts them)."""
 
     name: str
     median: float
     p90: float
     share_within: float
     count: int
+    bearing_failures: int = 0
+    called: int = 0
+
+    @property
+    def missed(self) -> int:
+        """Bearing failures of the continuum that the bed did not fail with."""
+        return self.bearing_failures - self.called
 
 
 @dataclass(frozen=True)
@@ -190,16 +200,22 @@ def map_evidence(path: str | Path, scene: Scene, measure: str, tol: float,
     index = {a: _nearest(coords[a], axes[a]) for a in AXES}
     cells = {a: [float(axes[a][i]) for i in index[a]] for a in AXES}
     error = ds["error"].sel(soil=soil, measure=measure).isel(**index)
+    failed = (int(ds["continuum_bearing_failure"].sel(soil=soil).isel(**index).values.sum())
+              if "continuum_bearing_failure" in ds.variables else 0)
     beds = []
     for name in (str(c) for c in ds["calibration"].values):
         values = np.abs(np.asarray(error.sel(calibration=name).values, dtype=float)).ravel()
         values = values[np.isfinite(values)]
+        called = (int(ds["bed_bearing_failure"].sel(soil=soil, calibration=name)
+                      .isel(**index).values.sum()) if failed else 0)
+        runs = values.size + failed
+        share = (float(np.sum(values <= tol) + called) / runs) if runs else math.nan
         if values.size == 0:
-            beds.append(BedEvidence(name, math.nan, math.nan, math.nan, 0))
+            beds.append(BedEvidence(name, math.nan, math.nan, share, 0, failed, called))
             continue
         beds.append(BedEvidence(name, float(np.median(values)),
-                                float(np.percentile(values, 90)),
-                                float(np.mean(values <= tol)), int(values.size)))
+                                float(np.percentile(values, 90)), share, int(values.size),
+                                failed, called))
     return MapEvidence(str(path), True, "", soil, coords, cells, tuple(beds), mesh, motions)
 
 
@@ -214,15 +230,22 @@ def format_evidence(e: MapEvidence, tol: float) -> list[str]:
              f"intensity = {c['intensity']:.3g} a_up; nearest cells "
              + ", ".join(f"{a} ∈ {v}" for a, v in e.cells.items())]
     for b in e.beds:
+        failures = (f"; the continuum failed in bearing in {b.bearing_failures} run(s) here, "
+                    f"this bed with it in {b.called}" if b.bearing_failures else "")
         if b.count == 0:
-            lines.append(f"  {b.name:26s} no value (every run refused)")
+            lines.append(f"  {b.name:26s} no value (every run refused or failed){failures}")
             continue
         lines.append(f"  {b.name:26s} |error| median {100 * b.median:.3g} %, 90th percentile "
                      f"{100 * b.p90:.3g} %, within {100 * tol:g} % in {100 * b.share_within:.0f}"
-                     f" % of {b.count} cells")
+                     f" % of {b.count + b.bearing_failures} runs{failures}")
     if e.best is not None:
         b = e.best
-        lines.append(f"map's verdict (evidence, not a certification): {b.name} has the least "
-                     f"median |error|, {100 * b.median:.3g} %, "
-                     f"{'within' if b.median <= tol else 'above'} {100 * tol:g} %")
+        verdict = (f"map's verdict (evidence, not a certification): {b.name} has the least "
+                   f"median |error|, {100 * b.median:.3g} %, "
+                   f"{'within' if b.median <= tol else 'above'} {100 * tol:g} %")
+        if b.missed:
+            verdict += (f", but the continuum failed in bearing in {b.missed} run(s) of these "
+                        "cells where this bed did not: near this scene the soil may not carry "
+                        "the footing through the motion, which no error of a bed measures")
+        lines.append(verdict)
     return lines

@@ -17,6 +17,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+import xarray as xr
 
 from upliftlab import cli
 from upliftlab.comparisons import advise as adv
@@ -138,6 +139,42 @@ def test_map_evidence_recomputed_from_the_map(advice, fast_map):
     assert "map's evidence" in text and "not this scene's runs" in text
     assert "certified against: the continuum (plane strain, explicit route) on 8 elements" \
         in text
+
+
+def test_map_evidence_holds_each_bed_to_a_bearing_failure(fast_map, tmp_path):
+    """The fast map rewritten with its FS_v = 5 run a bearing failure of the continuum (its
+    errors NaN) that the first bed failed with and the others did not. Reference, by hand from
+    the unchanged map.nc: each bed keeps the FS_v = 2 run's |error| alone as its median; its
+    share within tol is (hit at FS_v = 2 + hit at the failure)/2, the hit at the failure being
+    the first bed's only; the verdict warns when its bed missed the failure."""
+    import shutil
+
+    ds = read_dataset(fast_map).load()
+    err = np.abs(ds["error"].sel(soil="clay", measure="theta"))
+    first = str(ds["calibration"].values[0])
+    failed = ds.copy(deep=True)
+    failed["error"].loc[dict(soil="clay", fs_v=5.0)] = np.nan
+    bearing = xr.zeros_like(ds["continuum_steps"], dtype="i1")
+    bearing.loc[dict(soil="clay", fs_v=5.0)] = 1
+    called = xr.zeros_like(ds["bed_wall_time"], dtype="i1")
+    called.loc[dict(soil="clay", fs_v=5.0, calibration=first)] = 1
+    failed["continuum_bearing_failure"], failed["bed_bearing_failure"] = bearing, called
+    path = tmp_path / "map.nc"
+    failed.to_netcdf(path)
+    shutil.copy(fast_map.with_name("statics.nc"), tmp_path / "statics.nc")
+    scene = load_scene(SCENE, overrides=ON_MAP)
+    e = am.map_evidence(path, scene, "theta", TOL)
+    assert e.inside
+    for bed in e.beds:
+        at_2 = float(err.sel(calibration=bed.name, fs_v=2.0).values.ravel()[0])
+        assert (bed.count, bed.bearing_failures) == (1, 1)
+        assert bed.called == int(bed.name == first)
+        assert bed.median == pytest.approx(at_2, rel=1e-12)
+        assert bed.share_within == pytest.approx(((at_2 <= TOL) + (bed.name == first)) / 2,
+                                                 rel=1e-12)
+    text = "\n".join(am.format_evidence(e, TOL))
+    assert "the continuum failed in bearing in 1 run(s) here" in text
+    assert ("which no error of a bed measures" in text) is (e.best.name != first)
 
 
 @pytest.mark.parametrize("override, words", [
