@@ -49,6 +49,7 @@ from .footing import ContactError
 from .ground import static_fixed, x_dofs, ground_velocity
 from .iteration_matrix import FrozenTangent, dynamic_model, soil_residual
 from .newton import Anderson, Control, ConvergenceError, FootingTerm, SoilTerm, equilibrium
+from .run_control import FAILURE_SETTLEMENT, BearingFailure
 from .run_control import Interrupted
 from .step_rules import implicit_settings
 from .superstructure import (eliminate_story, hht_form, story_deformation, structure_matrices,
@@ -232,7 +233,10 @@ class ImplicitRun:
         """One step: modified Newton (for elastic soil the exact tangent), then, for plastic
         soil, the consistent tangent refactorised each iteration. Returns (state, refactored).
         A step that fails both raises :class:`ConvergenceError` naming the time: a contact set
-        is never held or guessed."""
+        is never held or guessed. If the footing had by then settled
+        :data:`~.run_control.FAILURE_SETTLEMENT` B or more, the error is a
+        :class:`~.run_control.BearingFailure`: the run has reached the settlement that load
+        tests call failure, whatever stopped Newton."""
         opts, errors = self.options.newton, []
         attempts = [self.frozen] + ([self.dyn] if self.frozen is not self.dyn else [])
         for model in attempts:
@@ -246,8 +250,17 @@ class ImplicitRun:
                     model is not self.frozen
             except (ConvergenceError, ContactError, FloatingPointError) as exc:
                 errors.append(str(exc))
-        raise ConvergenceError(f"time step {k} (t = {k * self.settings.dt:.6g} s): "
-                               f"{'; then '.join(errors)}", step=k)
+        when, why = f"time step {k} (t = {k * self.settings.dt:.6g} s)", "; then ".join(errors)
+        settlement, width = -float(state.q[1]), self.dyn.width
+        if settlement >= FAILURE_SETTLEMENT * width:
+            raise BearingFailure(
+                f"the soil failed in bearing at {when}: the footing had settled "
+                f"{settlement:.3g} ({settlement / width:.3g} B, at least the "
+                f"{FAILURE_SETTLEMENT:g} B of a conventional failure) and tilted "
+                f"{float(state.q[2]):.3g} rad when Newton could not follow the step ({why})",
+                step=k, time=k * self.settings.dt, settlement=settlement,
+                rotation=float(state.q[2]))
+        raise ConvergenceError(f"{when}: {why}", step=k)
 
     def kinetic(self, v, zv) -> float:
         return 0.5 * float(v @ (self.M @ v)) + 0.5 * float(zv @ self.z.M @ zv)

@@ -21,9 +21,11 @@ beyond the small-strain continuum's range. The explicit route stops there (a dis
 beyond a footing width) and tells it from a blow-up of its scheme: a blow-up grows by a fixed
 factor above 1 every step, a mechanism by almost nothing, and in a bearing failure the footing
 itself has settled by at least :data:`FAILURE_SETTLEMENT` B, the settlement that load tests
-on footings conventionally call failure where the load–settlement curve has no peak. Such a
-run raises :class:`BearingFailure`: an outcome of the physics (the soil cannot carry the
-footing through the motion), not a number to compare.
+on footings conventionally call failure where the load–settlement curve has no peak. The
+implicit route stops where Newton cannot follow a step; its last converged state is sound, so
+a footing settled by :data:`FAILURE_SETTLEMENT` B there has failed by the same criterion.
+Either run raises :class:`BearingFailure`: an outcome of the physics (the soil cannot carry
+the footing through the motion), not a number to compare.
 """
 
 from __future__ import annotations

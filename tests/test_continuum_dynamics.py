@@ -532,3 +532,44 @@ def test_single_precision_condensation_is_an_iteration_matrix():
     assert np.linalg.norm(y - x) <= 1e-2 * np.linalg.norm(x)
     assert np.abs(single.S - double.S).max() <= 1e-3 * np.abs(double.S).max()
     assert np.linalg.norm(y - x) > 0.0  # it is single precision
+
+
+@pytest.mark.parametrize("settlement, bearing", [(0.25, True), (0.15, False)])
+def test_an_implicit_step_newton_cannot_follow_is_a_bearing_failure_past_a_tenth_of_b(
+        settlement, bearing, monkeypatch):
+    # Reference: the conventional failure settlement of a footing, 0.1 B (B = 2 m: 0.2 m). A
+    # step whose Newton attempts both fail (stand-ins) from a state with the footing settled
+    # 0.25 m (0.125 B) is a bearing failure naming the settlement and tilt; from 0.15 m
+    # (0.075 B) it stays a ConvergenceError naming the time and both attempts.
+    import types
+
+    from upliftlab.continuum import implicit
+    from upliftlab.continuum.newton import ConvergenceError
+    from upliftlab.continuum.run_control import BearingFailure
+
+    model = build_model(load_scene(SCENE, overrides=COARSE))
+    assert model.width == 2.0
+    attempts = []
+
+    def gives_up(model, state, control, options, **_):
+        attempts.append(model)
+        raise ConvergenceError(f"stand-in {len(attempts)}")
+
+    monkeypatch.setattr(implicit, "equilibrium", gives_up)
+    run = object.__new__(implicit.ImplicitRun)
+    run.dyn, run.frozen, run.anderson = model, object(), None
+    run.options = DynamicOptions()
+    run.settings = types.SimpleNamespace(dt=0.01)
+    state = types.SimpleNamespace(q=np.array([0.0, -settlement, 0.02]))
+    with pytest.raises(ConvergenceError) as info:
+        run.step(state, None, None, None, 40)
+    assert len(attempts) == 2 and isinstance(info.value, BearingFailure) is bearing
+    text = str(info.value)
+    assert "stand-in 1; then stand-in 2" in text
+    if bearing:
+        assert text.startswith("the soil failed in bearing at time step 40 (t = 0.4 s): the "
+                               "footing had settled 0.25 (0.125 B, at least the 0.1 B")
+        assert "tilted 0.02 rad" in text
+        assert (info.value.time, info.value.settlement) == (pytest.approx(0.4), 0.25)
+    else:
+        assert text == "time step 40 (t = 0.4 s): stand-in 1; then stand-in 2"
