@@ -11,8 +11,9 @@ built and run as in ``continuum_elcentro.py``:
 
 - **time**: each route at its default step and at fractions of it, 8 elements across (the
   implicit route refuses steps below 0.21 h_min/V_s, so a quarter is its finest there), and
-  the implicit route on 16 across at half its step: is the implicit reference of the speed
-  benchmark itself converged in time to the tolerance the explicit route is held to?
+  the implicit route on 16 across at a half and a quarter of its step: is the implicit
+  reference of the speed benchmark itself converged in time to the tolerance the explicit
+  route is held to?
 - **mass matrix**: the implicit route with the explicit route's row-sum lumped mass as well as
   its default consistent mass, so that the schemes and the mass matrices are told apart;
 - **mesh**: the explicit route on 16 and 32 across and the implicit route on 16 across, each
@@ -69,6 +70,7 @@ RUNS = (("explicit-8", "explicit", 8, 1.0, None, None),
         ("explicit-16", "explicit", 16, 1.0, None, None),
         ("implicit-16", "implicit", 16, 1.0, None, 1e-6),
         ("implicit-16-half", "implicit", 16, 0.5, None, 1e-6),
+        ("implicit-16-quarter", "implicit", 16, 0.25, None, 1e-6),
         ("explicit-32", "explicit", 32, 1.0, None, None),
         ("explicit-8-perturbed", "explicit", 8, 1.0, None, None, PERTURBATION),
         ("implicit-8-perturbed", "implicit", 8, 1.0, None, 1e-6, PERTURBATION),
@@ -92,6 +94,10 @@ PAIRS = (("time: explicit, step halved", "explicit-8", "explicit-8-half"),
          ("time: implicit 16 across, step halved", "implicit-16", "implicit-16-half"),
          ("both: explicit against implicit consistent, 16 across, half step", "explicit-16",
           "implicit-16-half"),
+         ("time: implicit 16 across, step halved again", "implicit-16-half",
+          "implicit-16-quarter"),
+         ("both: explicit against implicit consistent, 16 across, quarter step", "explicit-16",
+          "implicit-16-quarter"),
          ("sides: explicit against implicit, 16 across, free-field column", "explicit-16-shear",
           "implicit-16-shear"),
          ("mesh: explicit 8 across against 32", "explicit-8", "explicit-32"),
