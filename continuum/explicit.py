@@ -184,6 +184,10 @@ class _Explicit:
         except KeyboardInterrupt:
             raise Interrupted(rec.result(self.model, self.motion, self.metadata(),
                                          rows=rec.rows)) from None
+        except BearingFailure as exc:
+            exc.result = rec.result(self.model, self.motion,
+                                    {**self.metadata(), **exc.metadata()}, rows=rec.rows)
+            raise
         return rec.result(self.model, self.motion, self.metadata())
 
     def steps(self, rec, progress) -> None:

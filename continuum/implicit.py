@@ -49,8 +49,7 @@ from .footing import ContactError
 from .ground import static_fixed, x_dofs, ground_velocity
 from .iteration_matrix import FrozenTangent, dynamic_model, soil_residual
 from .newton import Anderson, Control, ConvergenceError, FootingTerm, SoilTerm, equilibrium
-from .run_control import FAILURE_SETTLEMENT, BearingFailure
-from .run_control import Interrupted
+from .run_control import FAILURE_SETTLEMENT, BearingFailure, Interrupted
 from .step_rules import implicit_settings
 from .superstructure import (eliminate_story, hht_form, story_deformation, structure_matrices,
                              structure_work)
@@ -170,6 +169,10 @@ class ImplicitRun:
         except KeyboardInterrupt:
             raise Interrupted(rec.result(dyn, self.motion, self.metadata(), rows=rec.rows)) \
                 from None
+        except BearingFailure as exc:
+            exc.result = rec.result(dyn, self.motion, {**self.metadata(), **exc.metadata()},
+                                    rows=rec.rows)
+            raise
         return rec.result(dyn, self.motion, self.metadata())
 
     def metadata(self) -> dict:

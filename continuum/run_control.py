@@ -78,13 +78,21 @@ class EnergyBalanceError(RuntimeError):
 class BearingFailure(ConvergenceError):
     """The soil failed in bearing under the footing (module docstring): ``time`` (s) and the
     footing's ``settlement`` (m, downward positive) and ``rotation`` (rad) when the run
-    stopped. A :class:`ConvergenceError` so that every caller that stops on one stops on it
-    too; a caller that maps results tells it apart."""
+    stopped; ``result`` the :class:`DynamicResult` of the rows and snapshots recorded until
+    then (marked ``incomplete``, ``failure = "bearing"``), attached by the time loop, so that
+    the mechanism can be looked at. A :class:`ConvergenceError` so that every caller that
+    stops on one stops on it too; a caller that maps results tells it apart."""
 
     def __init__(self, message: str, *, step: int, time: float, settlement: float,
                  rotation: float):
         super().__init__(message, step=step)
         self.time, self.settlement, self.rotation = time, settlement, rotation
+        self.result = None
+
+    def metadata(self) -> dict:
+        """What a result records of the failure."""
+        return {"failure": "bearing", "failure_time": self.time,
+                "failure_settlement": self.settlement, "failure_rotation": self.rotation}
 
 
 def energy_floor(scene, width: float) -> float:

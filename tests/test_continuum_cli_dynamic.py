@@ -51,6 +51,60 @@ def test_dynamics_key_selects_the_implicit_route(tmp_path, capsys):
     assert read_netcdf(out / "result.nc")[1]["scheme"] == "hht"
 
 
+@pytest.mark.parametrize("route", ["explicit", "implicit"])
+def test_a_bearing_failure_writes_what_it_computed_and_exits_3(route, tmp_path, capsys,
+                                                               monkeypatch):
+    # A stand-in bearing failure after t = 0.2 s of a 0.5 s run (the route's divergence check,
+    # or its step, made to raise it): exit 3 (upliftlab/cli.py: a failed run) with one line
+    # that says so; result.nc holds the rows until the failure, marked incomplete with the
+    # failure's kind, time and settlement; the snapshots' fields are written for a look at
+    # the mechanism; the folder has no completion marker (it holds a failed run).
+    import contextlib
+
+    from upliftlab.continuum import explicit, implicit
+    from upliftlab.continuum.run_control import BearingFailure
+    from upliftlab.outdir import read_marker
+
+    def failure(k, dt):
+        return BearingFailure("the soil failed in bearing (stand-in)", step=k, time=k * dt,
+                              settlement=0.3, rotation=0.01)
+
+    if route == "explicit":
+        real = explicit._Explicit.diverging
+
+        @contextlib.contextmanager
+        def fails_late(self, k0, k1, u, u_prev, footing):
+            with real(self, k0, k1, u, u_prev, footing):
+                yield
+            if k1 * self.settings.dt > 0.2:
+                raise failure(k1, self.settings.dt)
+
+        monkeypatch.setattr(explicit._Explicit, "diverging", fails_late)
+    else:
+        real_step = implicit.ImplicitRun.step
+
+        def fails_late(self, state, control, term, fterm, k, start=None):
+            if k * self.settings.dt > 0.2:
+                raise failure(k, self.settings.dt)
+            return real_step(self, state, control, term, fterm, k, start)
+
+        monkeypatch.setattr(implicit.ImplicitRun, "step", fails_late)
+    code, out = _run(tmp_path, "--set", "analysis.duration=0.5", "--set",
+                     f"continuum.dynamics={route}")
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 3
+    assert err[-1].startswith("upliftlab: error: the soil failed in bearing (stand-in) (the "
+                              "rows and snapshots until t = ")
+    assert "result.nc marked incomplete = 1, failure = bearing)" in err[-1]
+    variables, attrs = read_netcdf(out / "result.nc")
+    assert attrs["incomplete"] == 1 and attrs["failure"] == "bearing"
+    assert attrs["failure_settlement"] == pytest.approx(0.3)
+    assert 0.2 - 0.05 <= attrs["completed_until"] <= 0.2 + 0.05
+    assert variables["time"][-1] == pytest.approx(attrs["completed_until"], rel=1e-6)
+    assert np.isfinite(variables["theta"]).all()
+    assert (out / "fields.xdmf").is_file() and read_marker(out) is None
+
+
 def test_bad_dynamics_key_is_refused(tmp_path, capsys):
     code, out = _run(tmp_path, "--set", "continuum.dynamics=leapfrog")
     err = capsys.readouterr().err.strip().splitlines()

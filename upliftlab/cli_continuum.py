@@ -223,10 +223,18 @@ def continuum(args) -> int:
         model = build_model(scene)
         say(f"{scene.name}: {model.disc.element}, {model.mesh.nelements} elements, "
              f"{model.dofs} DOFs, soil {scene.soil.model}")
+        failed = None  # a bearing failure: its rows and snapshots are written, then exit 3
         if args.analysis == "pushover":
             result = _pushover(model, scene, options["theta_max"], options["steps"])
         else:
-            result = _dynamic(model, scene, motion, options["threads"] or 1, out, started)
+            from .continuum.run_control import BearingFailure
+
+            try:
+                result = _dynamic(model, scene, motion, options["threads"] or 1, out, started)
+            except BearingFailure as exc:
+                if exc.result is None or exc.result.time.size < 2:
+                    raise
+                result, failed = exc.result, exc
             if isinstance(result, int):
                 return result
             say_if_rounded("upliftlab continuum", scene.analysis.duration or motion.duration,
@@ -242,6 +250,12 @@ def continuum(args) -> int:
         written = write_outputs(out.path, model, result, scene=scene,
                                 renders=not args.no_render, scale=options["scale"],
                                 progress=say)
+        if failed is not None:  # no completion marker: the folder holds a failed run
+            print(f"upliftlab: error: {' '.join(str(failed).split())} (the rows and snapshots "
+                  f"until t = {float(result.time[-1]):.4g} s written to "
+                  f"{out.path}, result.nc marked incomplete = 1, failure = bearing)",
+                  file=sys.stderr)
+            return EXIT_NUMERICS
         out.complete(written.values() if isinstance(written, dict) else written)
     if args.json:
         import json
