@@ -129,7 +129,10 @@ class DynamicResult:
 
 
 class Recorder:
-    """Per-step histories and the snapshots."""
+    """Per-step histories and the snapshots, and the largest equivalent plastic strain ε̄p at
+    any quadrature point of the soil (``peak_plastic_strain``, accumulated, so the last row's):
+    a run whose ε̄p reaches 1 has left the small-strain continuum's range, whatever its footing
+    does."""
 
     def __init__(self, model, steps: int, snapshots: int):
         f = model.footing
@@ -148,6 +151,7 @@ class Recorder:
             if snapshots else np.zeros(0, dtype=np.int64)
         self.snap_steps = chosen
         self.rows = 0
+        self.peak_plastic_strain = 0.0
         self.snap_index = {int(k): i for i, k in enumerate(chosen)}
         ne = model.mesh.nelements
         self.disp = np.zeros((chosen.size, model.disc.ndofs))
@@ -167,6 +171,11 @@ class Recorder:
         self.iterations[k], self.refactored[k] = iterations, refactored
         self.energy[k] = energy
         self.energy[k, 0] = kinetic
+        peak = getattr(state, "peak_plastic_strain", None)
+        if peak is None:
+            ebar = state.material.equivalent_plastic_strain
+            peak = float(np.max(ebar)) if np.size(ebar) else 0.0
+        self.peak_plastic_strain = max(self.peak_plastic_strain, float(peak))
         i = self.snap_index.get(int(k))
         if i is not None:
             self.disp[i] = state.u
@@ -178,7 +187,7 @@ class Recorder:
         were recorded (an interrupted run), marked ``incomplete`` with ``completed_until``."""
         n = self.time.size if rows is None else rows
         extra = {**extra, "motion": motion.name, "motion_source": motion.source,
-                 "width": model.width}
+                 "width": model.width, "max_plastic_strain": self.peak_plastic_strain}
         if n < self.time.size:
             extra.update(incomplete=True, completed_until=float(self.time[n - 1]))
         snaps = self.snap_steps < n

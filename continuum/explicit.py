@@ -96,6 +96,10 @@ class _Row:
         return self._soil.material
 
     @property
+    def peak_plastic_strain(self) -> float:
+        return self._soil.peak_plastic_strain
+
+    @property
     def stress(self):
         return self._soil.stress_tensor
 

@@ -78,6 +78,12 @@ class SoilForce:
                      np.zeros(shape, dtype=np.int8))
 
     @property
+    def peak_plastic_strain(self) -> float:
+        """The largest committed equivalent plastic strain ε̄p at a quadrature point."""
+        ebar = self.ebar if self.compiled else self._material.equivalent_plastic_strain
+        return float(np.max(ebar)) if np.size(ebar) else 0.0
+
+    @property
     def stress_tensor(self) -> np.ndarray:
         """The stress of the last call, (3, 3, nel, nqp) (a copy)."""
         return _tensor(self.stress) if self.compiled else self._stress.copy()

@@ -60,7 +60,9 @@ def dynamic_summary(result, width: float | None = None) -> dict:
     ``metadata['width']``), the largest gap at either edge of the footing
     (``peak_edge_uplift``), the settlement the motion left (``residual_settlement``, v at
     t = 0 less v at the end, down positive), the energy balance error and its tolerance, the
-    time integration (``method``, ``dt``) and, for an interrupted run, ``completed_until``."""
+    largest equivalent plastic strain ε̄p at a quadrature point (``max_plastic_strain``; None
+    for a result that did not record it), the time integration (``method``, ``dt``) and, for
+    an interrupted run, ``completed_until``."""
     time = np.asarray(result.time)
     footing = np.asarray(result.footing)
     theta = footing[:, 2]
@@ -80,11 +82,16 @@ def dynamic_summary(result, width: float | None = None) -> dict:
         "residual_settlement": float(footing[0, 1] - footing[-1, 1]),
         "energy_balance_error": _energy_error(result),
         "energy_tolerance": result.metadata.get("energy_tolerance"),
+        "max_plastic_strain": _finite_or_none(result.metadata.get("max_plastic_strain")),
         "method": result.metadata.get("method"), "dt": result.metadata.get("dt"),
     }
     if result.metadata.get("incomplete"):
         out["completed_until"] = result.metadata.get("completed_until")
     return out
+
+
+def _finite_or_none(value) -> float | None:
+    return None if value is None or not math.isfinite(float(value)) else float(value)
 
 
 def _edge_uplift(result) -> float | None:
@@ -127,4 +134,21 @@ def summary_line(summary: dict, units: dict | None = None) -> str:
             f"{summary['peak_structure_u']:.3g} {length} at t = "
             f"{summary['time_of_peak_u']:.2f} s"
             + ("" if loss is None else f"; max contact loss {loss:.0%} of B")
-            + ("" if energy is None else f"; energy balance error {energy:.2g} of the input"))
+            + ("" if energy is None else f"; energy balance error {energy:.2g} of the input")
+            + _strain_words(summary.get("max_plastic_strain")))
+
+
+#: The equivalent plastic strain from which the soil at a point has left small strain. A
+#: point value: at a rigid footing's corner it grows as the mesh is refined (the strain is
+#: singular there), so it says where to look, not that the footing's response is wrong.
+LARGE_STRAIN = 1.0
+
+
+def _strain_words(peak: float | None) -> str:
+    if peak is None:
+        return ""
+    words = f"; largest plastic strain ε̄p = {peak:.3g}"
+    if peak >= LARGE_STRAIN:
+        words += (f" (at or above {LARGE_STRAIN:g}: the soil has left small strain at a point "
+                  "at least; see the plastic strain in fields.xdmf)")
+    return words

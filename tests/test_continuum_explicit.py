@@ -185,6 +185,7 @@ def test_central_differences_are_stable_up_to_two_over_omega_max(fraction, stabl
     if stable:
         result = run_dynamic(model, scene, motion, options)
         assert result.energy_balance_error < 1e-3
+        assert result.metadata["max_plastic_strain"] == 0.0  # elastic soil
     else:
         with pytest.raises(ConvergenceError, match="diverged") as info:
             run_dynamic(model, scene, motion, options)
@@ -319,6 +320,18 @@ def pulse():
     implicit = run_dynamic(model, scene, motion, DynamicOptions(
         method="implicit", snapshots=0, dt=0.25 * dyn.time_step_limit(model)))
     return model, explicit, implicit
+
+
+def test_the_largest_plastic_strain_of_a_run_is_recorded(pulse):
+    # Reference: the snapshot at the last step, whose element averages of ε̄p bound the
+    # largest quadrature-point value: avg ≤ max ≤ 4 avg over a 2×2 rule of non-negative values
+    # (ε̄p only accumulates, so the last step's largest value is the run's). Both routes.
+    model, explicit, implicit = pulse
+    last = float(np.max(explicit.plastic_strain[-1]))
+    assert explicit.snapshot_step[-1] == explicit.time.size - 1 and last > 0.0
+    peak = explicit.metadata["max_plastic_strain"]
+    assert last <= peak <= 4.0 * last
+    assert implicit.metadata["max_plastic_strain"] > 0.0
 
 
 def test_explicit_agrees_with_implicit_on_a_pulse(pulse):

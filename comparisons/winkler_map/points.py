@@ -163,7 +163,8 @@ def evaluate_dynamic(point: Mapping) -> dict:
     of :func:`measured` from every recorded step, the histories of θ, u, the edge uplift and
     the settlement every ``history_dt`` s (for figures), the run's steps, DOFs, step (s),
     whether its return map was compiled and its soil model (for the cost estimate,
-    :mod:`.cost`), its energy balance error and its own wall time ``wall_time_s`` (model,
+    :mod:`.cost`), its energy balance error, its largest plastic strain ε̄p at a quadrature
+    point (``max_plastic_strain``) and its own wall time ``wall_time_s`` (model,
     gravity and time loop, s; the kernels are compiled before, :func:`_warm_kernels`). Units
     of the scene. A run the solver gives up on (it diverged, its contact failed or its energy
     does not balance) is a stored result too: ``{"error": kind and message, "soil_model",
@@ -186,6 +187,8 @@ def evaluate_dynamic(point: Mapping) -> dict:
         if isinstance(exc, BearingFailure):
             out.update(failure="bearing", failure_time_s=exc.time,
                        failure_settlement=exc.settlement, failure_rotation=exc.rotation)
+            if exc.result is not None:
+                out["max_plastic_strain"] = float(exc.result.metadata["max_plastic_strain"])
         return out
     t, theta, settlement, s, gap, measures = continuum_measures(scene, result)
     order = np.argsort(np.asarray(result.x))
@@ -200,6 +203,7 @@ def evaluate_dynamic(point: Mapping) -> dict:
             "duration": float(t[-1]), "compiled": bool(result.metadata.get("compiled", True)),
             "soil_model": scene.soil.model,
             "energy_balance_error": float(result.metadata.get("energy_balance_error", math.nan)),
+            "max_plastic_strain": float(result.metadata.get("max_plastic_strain", math.nan)),
             "wall_time_s": wall}
 
 
