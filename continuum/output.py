@@ -31,7 +31,7 @@ __all__ = ["FieldHistory", "check_history", "TimeAxis", "time_axis", "write_xdmf
            "write_footing_xdmf", "read_xdmf", "winkler_rocking",
            "half_plane_rocking", "moment_rotation_figure", "save_figure", "rotation_schedule",
            "pushover_summary",
-           "dynamic_summary", "summary_line", "write_outputs"]
+           "dynamic_summary", "summary_line", "figure_title", "write_outputs"]
 
 
 def _soil(metadata: dict) -> dict:
@@ -123,6 +123,19 @@ def save_figure(fig, path) -> Path:
 # ---------------------------------------------------------------------------------------------
 
 
+def figure_title(result, scene=None) -> str:
+    """The title of a run's figures: the scene, and for a run that did not finish, why and
+    when it stopped (a bearing failure, or an interruption), so that a picture of a failed
+    run is never taken for a finished one."""
+    meta = result.metadata
+    title = meta.get("scene", "") or (scene.name if scene else "")
+    if meta.get("failure") == "bearing":
+        title += f" (failed in bearing at t = {float(meta['failure_time']):.4g} s)"
+    elif meta.get("incomplete"):
+        title += f" (incomplete: until t = {float(meta['completed_until']):.4g} s)"
+    return title
+
+
 def write_outputs(directory, model, result, *, scene=None, renders: bool = True,
                   scale: float | None = None, progress=None) -> dict[str, Path]:
     """Write a run's files into ``directory``: ``result.nc`` (``result.save``), ``fields.xdmf``
@@ -153,7 +166,7 @@ def write_outputs(directory, model, result, *, scene=None, renders: bool = True,
         written["moment_rotation.png"] = save_figure(fig, directory / "moment_rotation.png")
         say(f"wrote {written['moment_rotation.png']}")
     if renders:
-        title = result.metadata.get("scene", "") or (scene.name if scene else "")
+        title = figure_title(result, scene)
         rows = snapshot_rows(result)
         peak = int(np.argmax(np.abs(np.asarray(result.footing)[rows, 2])))
         written["uplift.png"] = Path(render_uplift(directory / "uplift.png", result,

@@ -26,9 +26,10 @@ import pytest
 from upliftlab import cli
 from upliftlab.checks import InputError
 from upliftlab.continuum import OPEN, build_model, make_model, rotation_pushover
-from upliftlab.continuum.output import (half_plane_rocking, moment_rotation_figure,
-                                        pushover_summary, read_xdmf, rotation_schedule,
-                                        save_figure, winkler_rocking, write_xdmf)
+from upliftlab.continuum.output import (figure_title, half_plane_rocking,
+                                        moment_rotation_figure, pushover_summary, read_xdmf,
+                                        rotation_schedule, save_figure, winkler_rocking,
+                                        write_xdmf)
 from upliftlab.meshes import soil_mesh
 from upliftlab.meshes.render import (animate_uplift, linear_submesh, render_uplift,
                                      snapshot_rows)
@@ -293,3 +294,16 @@ def test_elastic_soil_renders_without_plasticity(tmp_path):
     assert path.plastic_strain.max() == 0.0
     render_uplift(tmp_path / "e.png", path, model.disc.basis, model.width)
     assert os.path.getsize(tmp_path / "e.png") > 10_000
+
+
+@pytest.mark.parametrize("metadata, title", [
+    ({"scene": "sand"}, "sand"),
+    ({"scene": "sand", "incomplete": 1, "completed_until": 4.5},
+     "sand (incomplete: until t = 4.5 s)"),
+    ({"scene": "sand", "incomplete": 1, "completed_until": 11.3424, "failure": "bearing",
+      "failure_time": 11.34353}, "sand (failed in bearing at t = 11.34 s)"),
+])
+def test_a_figure_of_a_run_that_did_not_finish_says_so(metadata, title):
+    # Reference: the metadata written by the time loops for a finished, an interrupted and a
+    # failed run; the title is what a reader of the picture alone sees.
+    assert figure_title(SimpleNamespace(metadata=metadata)) == title
