@@ -130,9 +130,8 @@ class DynamicResult:
 
 class Recorder:
     """Per-step histories and the snapshots, and the largest equivalent plastic strain ε̄p at
-    any quadrature point of the soil (``peak_plastic_strain``, accumulated, so the last row's):
-    a run whose ε̄p reaches 1 has left the small-strain continuum's range, whatever its footing
-    does."""
+    any quadrature point of the soil (``peak_plastic_strain``; ε̄p only accumulates, so it is
+    the last row's): where the soil left small strain, whatever its footing does."""
 
     def __init__(self, model, steps: int, snapshots: int):
         f = model.footing

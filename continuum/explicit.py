@@ -58,7 +58,8 @@ from .ground import boundaries, dynamic_fixed, ground_velocity, static_fixed, x_
 from .iteration_matrix import soil_residual
 from .kernels import compiled_pair, soil_predict
 from .newton import ConvergenceError
-from .run_control import FAILURE_SETTLEMENT, MECHANISM_GROWTH, BearingFailure, Interrupted
+from .run_control import (MECHANISM_GROWTH, BearingFailure, keeping_what_ran,
+                          settled_to_failure)
 from .soil_force import SoilForce
 from .superstructure import (MIN_ROTARY_INERTIA, central_difference_form, check_footing_mass,
                              structure_matrices, structure_work)
@@ -180,18 +181,11 @@ class _Explicit:
     def loop(self, progress) -> DynamicResult:
         st = self.settings
         rec = Recorder(self.model, recorded_steps(st).size - 1, self.options.snapshots)
-        try:
+        with keeping_what_ran(rec, self.model, self.motion, self.metadata):
             if self.compiled:
                 self.compiled_steps(rec, progress)
             else:
                 self.steps(rec, progress)
-        except KeyboardInterrupt:
-            raise Interrupted(rec.result(self.model, self.motion, self.metadata(),
-                                         rows=rec.rows)) from None
-        except BearingFailure as exc:
-            exc.result = rec.result(self.model, self.motion,
-                                    {**self.metadata(), **exc.metadata()}, rows=rec.rows)
-            raise
         return rec.result(self.model, self.motion, self.metadata())
 
     def steps(self, rec, progress) -> None:
@@ -345,15 +339,12 @@ class _Explicit:
             if math.isfinite(top):
                 where, growth = self._where(u, u_prev, footing)
                 settlement = -float(footing[1])
-                if (growth <= MECHANISM_GROWTH
-                        and settlement >= FAILURE_SETTLEMENT * self.model.width):
-                    raise BearingFailure(
-                        f"the soil failed in bearing in {when}: the footing settled "
-                        f"{settlement:.3g} ({settlement / self.model.width:.3g} B, at least "
-                        f"the {FAILURE_SETTLEMENT:g} B of a conventional failure) and {why}"
-                        f"{where}; a mechanism, not a blow-up of the scheme ({limit})",
-                        step=k1, time=k1 * st.dt, settlement=settlement,
-                        rotation=float(footing[2])) from None
+                if growth <= MECHANISM_GROWTH and settled_to_failure(settlement,
+                                                                     self.model.width):
+                    raise BearingFailure.of(
+                        f"in {when}", settlement, self.model.width, float(footing[2]),
+                        f"{why}{where}; a mechanism, not a blow-up of the scheme ({limit})",
+                        step=k1, time=k1 * st.dt) from None
                 why += where
         raise ConvergenceError(f"{when} diverged: {why}; {limit}", step=k1) from None
 

@@ -49,7 +49,7 @@ from .footing import ContactError
 from .ground import static_fixed, x_dofs, ground_velocity
 from .iteration_matrix import FrozenTangent, dynamic_model, soil_residual
 from .newton import Anderson, Control, ConvergenceError, FootingTerm, SoilTerm, equilibrium
-from .run_control import FAILURE_SETTLEMENT, BearingFailure, Interrupted
+from .run_control import BearingFailure, keeping_what_ran, settled_to_failure
 from .step_rules import implicit_settings
 from .superstructure import (eliminate_story, hht_form, story_deformation, structure_matrices,
                              structure_work)
@@ -164,15 +164,8 @@ class ImplicitRun:
                    kinetic=self.kinetic(soil.v, zk.v) if opts.energy else math.nan)
         soil_term_data = self.soil_data
         control = Control((st.prescribe_u, False, False), (0.0, 0.0, 0.0))
-        try:
+        with keeping_what_ran(rec, dyn, self.motion, self.metadata):
             self.steps(rec, state, soil, zk, R, energy, soil_term_data, control, progress)
-        except KeyboardInterrupt:
-            raise Interrupted(rec.result(dyn, self.motion, self.metadata(), rows=rec.rows)) \
-                from None
-        except BearingFailure as exc:
-            exc.result = rec.result(dyn, self.motion, {**self.metadata(), **exc.metadata()},
-                                    rows=rec.rows)
-            raise
         return rec.result(dyn, self.motion, self.metadata())
 
     def metadata(self) -> dict:
@@ -255,14 +248,10 @@ class ImplicitRun:
                 errors.append(str(exc))
         when, why = f"time step {k} (t = {k * self.settings.dt:.6g} s)", "; then ".join(errors)
         settlement, width = -float(state.q[1]), self.dyn.width
-        if settlement >= FAILURE_SETTLEMENT * width:
-            raise BearingFailure(
-                f"the soil failed in bearing at {when}: the footing had settled "
-                f"{settlement:.3g} ({settlement / width:.3g} B, at least the "
-                f"{FAILURE_SETTLEMENT:g} B of a conventional failure) and tilted "
-                f"{float(state.q[2]):.3g} rad when Newton could not follow the step ({why})",
-                step=k, time=k * self.settings.dt, settlement=settlement,
-                rotation=float(state.q[2]))
+        if settled_to_failure(settlement, width):
+            raise BearingFailure.of(f"at {when}", settlement, width, float(state.q[2]),
+                                    f"Newton could not follow the step ({why})", step=k,
+                                    time=k * self.settings.dt)
         raise ConvergenceError(f"{when}: {why}", step=k)
 
     def kinetic(self, v, zv) -> float:

@@ -30,6 +30,7 @@ the footing through the motion), not a number to compare.
 
 from __future__ import annotations
 
+import contextlib
 import math
 
 import numpy as np
@@ -37,8 +38,8 @@ import numpy as np
 from .newton import ConvergenceError
 
 __all__ = ["ENERGY_FLOOR", "FAILURE_SETTLEMENT", "MECHANISM_GROWTH", "Interrupted",
-           "EnergyBalanceError", "BearingFailure", "balance_error", "check_energy",
-           "energy_floor"]
+           "EnergyBalanceError", "BearingFailure", "settled_to_failure", "keeping_what_ran",
+           "balance_error", "check_energy", "energy_floor"]
 
 #: The energy below which a balance is round-off, as a fraction of N B (module docstring).
 ENERGY_FLOOR = 1e-9
@@ -89,10 +90,44 @@ class BearingFailure(ConvergenceError):
         self.time, self.settlement, self.rotation = time, settlement, rotation
         self.result = None
 
+    @classmethod
+    def of(cls, when: str, settlement: float, width: float, rotation: float, why: str, *,
+           step: int, time: float) -> BearingFailure:
+        """The failure ``when`` (the steps, in words) of a footing ``width`` wide that has
+        settled ``settlement`` and tilted ``rotation``; ``why`` what stopped the run."""
+        return cls(f"the soil failed in bearing {when}: the footing had settled "
+                   f"{settlement:.3g} ({settlement / width:.3g} B, at least the "
+                   f"{FAILURE_SETTLEMENT:g} B of a conventional failure) and tilted "
+                   f"{rotation:.3g} rad; {why}", step=step, time=time,
+                   settlement=settlement, rotation=rotation)
+
     def metadata(self) -> dict:
         """What a result records of the failure."""
         return {"failure": "bearing", "failure_time": self.time,
                 "failure_settlement": self.settlement, "failure_rotation": self.rotation}
+
+
+def settled_to_failure(settlement: float, width: float) -> bool:
+    """Whether a footing ``width`` wide that has settled ``settlement`` (down positive) has
+    reached the conventional failure settlement :data:`FAILURE_SETTLEMENT` B."""
+    return settlement >= FAILURE_SETTLEMENT * width
+
+
+@contextlib.contextmanager
+def keeping_what_ran(recorder, model, motion, metadata):
+    """Around a time loop: an interruption becomes :class:`Interrupted` and a
+    :class:`BearingFailure` gets its ``result``, each carrying the rows ``recorder`` (a
+    :class:`~upliftlab.continuum.dynamic_result.Recorder`) holds, with ``metadata()`` (the
+    run's settings) and the failure's own."""
+    try:
+        yield
+    except KeyboardInterrupt:
+        raise Interrupted(recorder.result(model, motion, metadata(),
+                                          rows=recorder.rows)) from None
+    except BearingFailure as exc:
+        exc.result = recorder.result(model, motion, {**metadata(), **exc.metadata()},
+                                     rows=recorder.rows)
+        raise
 
 
 def energy_floor(scene, width: float) -> float:

@@ -105,7 +105,7 @@ def _energy_error(result) -> float | None:
     error = getattr(result, "energy_balance_error", None)
     if error is None:
         error = result.metadata.get("energy_balance_error")
-    return None if error is None or not math.isfinite(float(error)) else float(error)
+    return _finite_or_none(error)
 
 
 def summary_line(summary: dict, units: dict | None = None) -> str:
