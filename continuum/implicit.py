@@ -113,6 +113,8 @@ class ImplicitRun:
         self.C = pattern.matrix(dashpot_data(dyn, boundaries))
         self.soil_data = c.a0 / (1.0 + alpha) * self.M.data + c.c0 * self.C.data
         self.soil_matrix = pattern.matrix(self.soil_data)
+        self.C = self.C.copy()  # its own index arrays: the pattern's are shared
+        self.C.eliminate_zeros()  # a box without dashpots: its products then cost nothing
         released = np.setdiff1d(static_fixed(dyn), dyn.blocks.fixed)
         R0 = soil_residual(dyn, static.stress)
         self.release = np.zeros(dyn.disc.ndofs)

@@ -15,7 +15,9 @@ of an iteration. The default tolerance is rtol = 1e-5. Every step starts with th
 factorisation; a step still unconverged after ``FrozenTangent.SWITCH`` = 20 iterations
 refactorises once at its current consistent tangent and finishes with it. A step that still
 fails is retried with the consistent tangent refactorised at every iteration. ``refactored``
-records the steps that refactorised. What each of these choices saves is measured in
+records the steps that refactorised. The frozen matrix's residuals come from the compiled
+kernels (:mod:`~upliftlab.continuum.kernel_response`), which skip the tangent that such an
+iteration never reads. What each of these choices saves is measured in
 ``benchmarks/CONTINUUM_DESIGN.md``.
 """
 
@@ -28,7 +30,8 @@ import numpy as np
 from . import assembly
 from .ground import dynamic_fixed
 from .materials import plane_strain_stress, plane_strain_tangent
-from .model import ContinuumModel, make_blocks, node_groups
+from .kernel_response import KernelResponse
+from .model import ContinuumModel, Response, evaluated, make_blocks, node_groups
 
 __all__ = ["SINGLE", "FrozenTangent", "elastic_plane_tangent", "dynamic_model", "soil_residual"]
 
@@ -52,11 +55,27 @@ class FrozenTangent(ContinuumModel):
     #: kept for many iterations.
     SWITCH = 20
 
+    def respond(self, u, state, eigenstrain):
+        """The soil's response by the compiled kernels where the material has them
+        (:mod:`~upliftlab.continuum.kernel_response`: the same numbers as the vectorised
+        return map, whose tangent is computed only if a step refactorises), else the model's
+        own."""
+        kernel = self._cache.get("kernel")
+        if kernel is None:
+            kernel = self._cache["kernel"] = KernelResponse.of(self) or False
+        if not kernel:
+            return super().respond(u, state, eigenstrain)
+        stress, material, residual = kernel.respond(u, state, eigenstrain)
+
+        def tangent():
+            return ContinuumModel.respond(self, u, state, eigenstrain).tangent
+        return Response(stress, tangent, material, residual)
+
     def condense(self, tangent, extra=None):
         cache = self._cache
         cache["calls"] = cache.get("calls", 0) + 1
         if cache["calls"] > self.SWITCH and tangent is not None and not cache.get("fresh"):
-            cache["fresh"] = (extra, self._condense(tangent, extra, reused=True))
+            cache["fresh"] = (extra, self._condense(evaluated(tangent), extra, reused=True))
         if cache.get("fresh") and cache["fresh"][0] is extra:
             return cache["fresh"][1]
         hit = cache.get("elastic")

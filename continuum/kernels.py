@@ -279,15 +279,18 @@ def _gather_serial(fe, nodes, out2):
 
 
 def internal_force(lay: Layout, u, eigenstrain, plastic, ebar, kind: int,
-                   constants: tuple[float, ...], stress, work, out) -> np.ndarray:
+                   constants: tuple[float, ...], stress, work, out,
+                   parallel: bool | None = None) -> np.ndarray:
     """∫ Bᵀ σ (ndofs) into ``out`` for the displacement ``u``: the return map of ``kind`` with
     the material's :func:`kernel_constants` at every quadrature point from the state
     (``plastic`` (nel, nqp, 4), ``ebar`` (nel, nqp)), which is **updated in place** (an
     explicit step commits every evaluation), the stress written to ``stress`` (nel, nqp, 4).
     ``eigenstrain`` (nel, nqp, 4) is added to the strain of u (the geostatic stress); ``work``
     (nel, nnode, 2) is scratch. With more than one numba thread (``numba.get_num_threads()``)
-    the elements and the DOFs are split among the threads."""
-    elements, gather = compiled_pair(nb.get_num_threads() > 1)
+    the elements and the DOFs are split among the threads, unless ``parallel`` is False."""
+    if parallel is None:
+        parallel = nb.get_num_threads() > 1
+    elements, gather = compiled_pair(parallel)
     elements(u.reshape(-1, 2), lay.nodes, lay.dNdx, lay.dNdy, lay.dx, eigenstrain, plastic, ebar,
              kind, constants, stress, work)
     gather(work, lay.nodes, lay.ptr, lay.entries, out)

@@ -30,7 +30,7 @@ from .materials import (DruckerPrager, Elastic, MohrCoulomb, State, material_fro
                         plane_strain, plane_strain_stress, plane_strain_tangent)
 
 __all__ = ["ContinuumModel", "Blocks", "Condensation", "Response", "build_model", "make_model",
-           "default_k0", "validate", "make_blocks", "node_groups"]
+           "default_k0", "validate", "make_blocks", "node_groups", "evaluated"]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -88,13 +88,32 @@ def default_k0(soil: Soil) -> float:
 @dataclass(frozen=True, eq=False)
 class Response:
     """The soil's response to a displacement ``u`` from a converged material ``state``:
-    ``stress`` (3, 3, nelems, nqp), plane ``tangent`` (3, 3, nelems, nqp), the ``material``
-    state it would commit, and the out-of-balance force ``residual`` = f_int − f_body (ndofs)."""
+    ``stress`` (3, 3, nelems, nqp), the plane consistent ``tangent`` (3, 3, nelems, nqp), the
+    ``material`` state it would commit, and the out-of-balance force ``residual`` =
+    f_int − f_body (ndofs).
+
+    ``lazy_tangent`` is the tangent, or a function of no arguments that computes it: a
+    response for an iteration with a frozen matrix (:mod:`~upliftlab.continuum.kernel_response`)
+    computes it only if asked. :attr:`tangent` always gives the array; a solver that may not
+    need it passes ``lazy_tangent`` on (:func:`evaluated` turns either into the array)."""
 
     stress: np.ndarray
-    tangent: np.ndarray
+    lazy_tangent: object
     material: State
     residual: np.ndarray
+
+    @property
+    def tangent(self) -> np.ndarray:
+        """The plane consistent tangent (3, 3, nelems, nqp), computed on first use."""
+        tangent = evaluated(self.lazy_tangent)
+        object.__setattr__(self, "lazy_tangent", tangent)
+        return tangent
+
+
+def evaluated(tangent):
+    """A tangent given as an array or as a function that computes it (``lazy_tangent``), as
+    the array (None stays None)."""
+    return tangent() if callable(tangent) else tangent
 
 
 @dataclass(frozen=True, eq=False)
@@ -155,12 +174,13 @@ class ContinuumModel:
             - self.body_force
         return Response(stress, plane_strain_tangent(tangent), new_state, residual)
 
-    def condense(self, tangent: np.ndarray, extra: np.ndarray | None = None) -> Condensation:
-        """The :class:`Condensation` of a plane tangent plus an ``extra`` matrix given by its
-        CSR data in the model's pattern. For elastic soil the tangent is constant and the
+    def condense(self, tangent, extra: np.ndarray | None = None) -> Condensation:
+        """The :class:`Condensation` of a plane tangent (an array, or a function that computes
+        it: :attr:`Response.lazy_tangent`) plus an ``extra`` matrix given by its CSR data in the
+        model's pattern. For elastic soil the tangent is constant and the
         condensation is computed once per ``extra`` (cached)."""
         if not self.linear:
-            return self._condense(tangent, extra)
+            return self._condense(evaluated(tangent), extra)
         key = None if extra is None else id(extra)
         cached = self._cache.get(key)
         if cached is None or cached[0] is not extra:

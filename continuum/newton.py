@@ -41,6 +41,7 @@ from ..checks import InputError
 from .anderson import Anderson
 from .footing import OPEN, ContactError, ContactProblem, solve_contact
 from .materials import State
+from .model import evaluated
 
 __all__ = ["Anderson", "NewtonOptions", "ConvergenceError", "ContinuumState", "Control",
            "FootingTerm", "SoilTerm", "equilibrium", "follow", "start_state", "footing_tangent"]
@@ -95,7 +96,8 @@ class ContinuumState:
     None); ``reaction`` = Lᵀ f_c, the generalised force (H, −N, M) the contact carries;
     ``iterations`` Newton iterations of the step that produced it, ``cuts`` the bisections
     :func:`follow` needed to reach its target; ``tangent`` (3, 3, nelems,
-    nqp) the consistent tangent of that step, which linearises the next step's predictor.
+    nqp) the consistent tangent of that step, which linearises the next step's predictor (or
+    the function that computes it: :attr:`~upliftlab.continuum.model.Response.lazy_tangent`).
     """
 
     u: np.ndarray
@@ -108,7 +110,7 @@ class ContinuumState:
     reaction: np.ndarray
     iterations: int = 0
     cuts: int = 0
-    tangent: np.ndarray | None = field(default=None, repr=False)
+    tangent: object = field(default=None, repr=False)
 
     @property
     def H(self) -> float:
@@ -200,7 +202,7 @@ def equilibrium(model, state: ContinuumState, control: Control,
         u, q = start
     response = _respond(model, u, state, soil_term)
     scale = _scale(model)
-    tangent = response.tangent if state.tangent is None else state.tangent
+    tangent = response.lazy_tangent if state.tangent is None else state.tangent
     smallest, merit = math.inf, math.inf
     if anderson is None:
         anderson = Anderson(options.anderson)
@@ -228,13 +230,13 @@ def equilibrium(model, state: ContinuumState, control: Control,
             step = _line_search(model, state, soil_term, (u, q), (du, sol.dq, sol.force),
                                 response, options.line_search)
         (u, q, force), response, merit = step
-        status, tangent = sol.status, response.tangent
+        status, tangent = sol.status, response.lazy_tangent
         relative = merit / (scale + np.linalg.norm(force))
         if relative <= options.rtol and settled:
             return ContinuumState(u=u, q=q, force=force, status=status,
                                   material=response.material, stress=response.stress,
                                   eigenstrain=state.eigenstrain, reaction=L.T @ force,
-                                  iterations=iteration, tangent=response.tangent)
+                                  iterations=iteration, tangent=response.lazy_tangent)
         smallest = min(smallest, relative)
         if not relative < min(1e3, 1e3 * smallest):  # diverging: the caller cuts the step
             break
@@ -356,7 +358,7 @@ def footing_tangent(model, state: ContinuumState, *, soil_term: SoilTerm | None 
     carries with respect to the footing motion (u, v, θ), at ``state`` with its contact status
     and its material history frozen (the tangent Newton uses). Columns are unit motions of
     u, v and θ; a frictionless footing's u column and row are zero."""
-    tangent = state.tangent
+    tangent = evaluated(state.tangent)
     if tangent is None:
         tangent = _respond(model, state.u, state, soil_term).tangent
     S = _condense(model, tangent, soil_term).S

@@ -15,16 +15,16 @@ import numpy as np
 from . import kernels
 from .materials import State
 
-__all__ = ["SoilForce"]
+__all__ = ["SoilForce", "four_components", "tensor_of"]
 
 
-def _four(tensor: np.ndarray) -> np.ndarray:
+def four_components(tensor: np.ndarray) -> np.ndarray:
     """(nel, nqp, 4) components xx, yy, zz, xy of a tensor field (3, 3, nel, nqp)."""
     return np.ascontiguousarray(np.stack([tensor[0, 0], tensor[1, 1], tensor[2, 2],
                                           tensor[0, 1]], axis=-1))
 
 
-def _tensor(four: np.ndarray) -> np.ndarray:
+def tensor_of(four: np.ndarray) -> np.ndarray:
     """The (3, 3, nel, nqp) tensor of (nel, nqp, 4) components."""
     out = np.zeros((3, 3) + four.shape[:2])
     out[0, 0], out[1, 1], out[2, 2] = four[..., 0], four[..., 1], four[..., 2]
@@ -42,15 +42,15 @@ class SoilForce:
         self.model = model
         nel, nqp = model.disc.qp_shape
         eig = state.eigenstrain
-        self.eigenstrain = np.zeros((nel, nqp, 4)) if eig is None else _four(eig)
+        self.eigenstrain = np.zeros((nel, nqp, 4)) if eig is None else four_components(eig)
         self.kind = kernels.material_kind(model.material)
         self.compiled = self.kind is not None
         self.out = np.zeros(model.disc.ndofs)
         if self.compiled:
             self.layout = kernels.layout(model.disc)
-            self.plastic = _four(state.material.plastic_strain)
+            self.plastic = four_components(state.material.plastic_strain)
             self.ebar = np.ascontiguousarray(state.material.equivalent_plastic_strain, float)
-            self.stress = _four(state.stress)
+            self.stress = four_components(state.stress)
             self.work = np.zeros(self.layout.shape[::2] + (2,))
             self.constants = kernels.kernel_constants(model.material)
         else:
@@ -74,7 +74,7 @@ class SoilForce:
         if not self.compiled:
             return self._material
         shape = self.ebar.shape
-        return State(_tensor(self.plastic), self.ebar.copy(),
+        return State(tensor_of(self.plastic), self.ebar.copy(),
                      np.zeros(shape, dtype=np.int8))
 
     @property
@@ -86,4 +86,4 @@ class SoilForce:
     @property
     def stress_tensor(self) -> np.ndarray:
         """The stress of the last call, (3, 3, nel, nqp) (a copy)."""
-        return _tensor(self.stress) if self.compiled else self._stress.copy()
+        return tensor_of(self.stress) if self.compiled else self._stress.copy()
