@@ -365,6 +365,7 @@ def test_the_qz_bed_runs_on_the_fast_map(study):
 README_SLICE = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "h_over_B=1.5", "--grid", "periods=0.5", "--grid", "fema_components=4", "--out"]  # noqa: E501
 README_SAND = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=sand", "--grid", "h_over_B=1.5", "--grid", "periods=0.5", "--grid", "fema_components=4", "--out", "results/winkler_map-sand", "--out"]  # noqa: E501
 README_PULSES = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "periods=0.2,0.5", "--grid", "elcentro=false", "--grid", "fema_components=0", "--out", "results/winkler_map-pulses", "--out"]  # noqa: E501
+README_FEMA10 = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "fs_v=2,5", "--grid", "h_over_B=1.5", "--grid", "periods=0.5", "--grid", "intensities=3", "--grid", "pulse_periods=", "--grid", "elcentro=false", "--grid", "fema_components=10", "--out", "results/winkler_map-fema10", "--out"]  # noqa: E501
 
 
 @pytest.mark.parametrize("argv, counted, grid", [
@@ -377,6 +378,11 @@ README_PULSES = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "periods=0
     # 2 soils × 4 FS_v × 3 h/B × 2 T × 2 intensities × 2 pulses = 192 dynamic; 2 × 10 static
     (README_PULSES, "212 continuum runs to make (20 static, 192 dynamic; 0 already stored)",
      dict(periods=(0.2, 0.5), elcentro=False, fema_components=0)),
+    # 2 FS_v × 1 intensity × 10 FEMA components = 20 dynamic; the two statics (stiffness,
+    # vertical pushover) and a cyclic and a monotonic rotation pushover per FS_v = 6
+    (README_FEMA10, "26 continuum runs to make (6 static, 20 dynamic; 0 already stored)",
+     dict(soils=("clay",), fs_v=(2.0, 5.0), h_over_B=(1.5,), periods=(0.5,),
+          intensities=(3.0,), pulse_periods=(), elcentro=False, fema_components=10)),
 ])
 def test_the_readme_map_commands_are_estimated_before_they_run(tmp_path, argv, counted, grid):
     """The README's map commands (its second finding), run as written with --budget 1 added:
