@@ -87,6 +87,11 @@ EXERCISED = {
     "--grid elcentro=false --grid fema_components=10 --out results/winkler_map-fema10":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
+    "python -m upliftlab.comparisons.winkler_map --grid soils=clay --grid fs_v=2,5 "
+    "--grid h_over_B=1,2.5 --grid periods=0.5 --grid intensities=3 --grid pulse_periods= "
+    "--grid elcentro=false --grid fema_components=10 --out results/winkler_map-fema10-hb":
+        ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
+         ()),
     "upliftlab continuum strip_footing_clay --analysis impedance --set soil.model=elastic "
     "--json": ("here", ()),
     "upliftlab opensees short_period_elcentro --case A --out results/opensees-A && "

@@ -360,12 +360,13 @@ def test_the_qz_bed_runs_on_the_fast_map(study):
     assert not [r for r in d.refusals if r.endswith("qz: ") or ", qz:" in r]
 
 
-#: The README's three map commands, as test_readme finds them here (argv after ``python``, the
+#: The README's map commands, as test_readme finds them here (argv after ``python``, the
 #: test's ``--out`` last: argparse takes the last one).
 README_SLICE = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "h_over_B=1.5", "--grid", "periods=0.5", "--grid", "fema_components=4", "--out"]  # noqa: E501
 README_SAND = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=sand", "--grid", "h_over_B=1.5", "--grid", "periods=0.5", "--grid", "fema_components=4", "--out", "results/winkler_map-sand", "--out"]  # noqa: E501
 README_PULSES = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "periods=0.2,0.5", "--grid", "elcentro=false", "--grid", "fema_components=0", "--out", "results/winkler_map-pulses", "--out"]  # noqa: E501
 README_FEMA10 = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "fs_v=2,5", "--grid", "h_over_B=1.5", "--grid", "periods=0.5", "--grid", "intensities=3", "--grid", "pulse_periods=", "--grid", "elcentro=false", "--grid", "fema_components=10", "--out", "results/winkler_map-fema10", "--out"]  # noqa: E501
+README_FEMA10_HB = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "fs_v=2,5", "--grid", "h_over_B=1,2.5", "--grid", "periods=0.5", "--grid", "intensities=3", "--grid", "pulse_periods=", "--grid", "elcentro=false", "--grid", "fema_components=10", "--out", "results/winkler_map-fema10-hb", "--out"]  # noqa: E501
 
 
 @pytest.mark.parametrize("argv, counted, grid", [
@@ -382,6 +383,11 @@ README_FEMA10 = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=cla
     # vertical pushover) and a cyclic and a monotonic rotation pushover per FS_v = 6
     (README_FEMA10, "26 continuum runs to make (6 static, 20 dynamic; 0 already stored)",
      dict(soils=("clay",), fs_v=(2.0, 5.0), h_over_B=(1.5,), periods=(0.5,),
+          intensities=(3.0,), pulse_periods=(), elcentro=False, fema_components=10)),
+    # the same at h/B = 1 and 2.5: 2 h/B × 2 FS_v × 10 components = 40 dynamic; the same 6
+    # statics (the rotation pushovers are of the footing alone: one pair per FS_v, not per h/B)
+    (README_FEMA10_HB, "46 continuum runs to make (6 static, 40 dynamic; 0 already stored)",
+     dict(soils=("clay",), fs_v=(2.0, 5.0), h_over_B=(1.0, 2.5), periods=(0.5,),
           intensities=(3.0,), pulse_periods=(), elcentro=False, fema_components=10)),
 ])
 def test_the_readme_map_commands_are_estimated_before_they_run(tmp_path, argv, counted, grid):
