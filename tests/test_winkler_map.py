@@ -524,3 +524,16 @@ def test_a_continuum_run_that_fails_is_reported_and_left_out_or_held_to(tmp_path
     monkeypatch.setattr(wmp, "_timed_run", real)
     again = wm.run(fast=True, out=tmp_path / "out", executor=executor, progress=False)
     assert again.data.computed == 0 and again.data.bearing_failure[0, 0].all()
+
+
+def test_the_summary_states_the_workers_the_map_ran_on(study):
+    """The summary's cost line divides the estimate by the workers of the run that made it, as
+    the line logged before the work does (reference: :meth:`Estimate.text` of the same
+    estimate, tested above), not always by one."""
+    from upliftlab.comparisons.winkler_map.summary import _cost_text
+
+    d = study.data
+    for workers in (1, 2, None):
+        text = _cost_text(replace(d, workers=workers))
+        assert f"Estimated before any work: {d.estimate.text(workers)}." in text
+    assert "on 2 workers" in _cost_text(replace(d, workers=2))

@@ -60,7 +60,8 @@ class MapData:
     failure of the soil (its measures NaN, its point counted: a bed is held to the outcome),
     ``bed_bearing_failure`` (…, motion, calibration) where a bed's base settled by
     :data:`~upliftlab.continuum.run_control.FAILURE_SETTLEMENT` B or more in its run of such
-    a point (it fails in bearing too).
+    a point (it fails in bearing too); ``workers`` the local worker processes the estimate
+    divided the work by (1 in this process; None: a Dask cluster, whose count is not known).
     """
 
     grid: Grid
@@ -87,6 +88,7 @@ class MapData:
     impedances: tuple = ()
     bearing_failure: np.ndarray | None = None
     bed_bearing_failure: np.ndarray | None = None
+    workers: int | None = 1
 
     @property
     def motion_names(self) -> tuple[str, ...]:
@@ -232,7 +234,7 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
     rocking = _rocking(grid, options, calibrations, statics, base, g, rocking_records,
                        impedances)
     return _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
-                     computed, rocking, impedances)
+                     computed, rocking, impedances, workers if local else None)
 
 
 def _reference(st: SoilStatics, scene, structure: Mapping, impedance=None) -> BedReference:
@@ -285,7 +287,7 @@ def _rocking(grid, options, calibrations, statics, base, g, records,
 
 
 def _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
-              computed, rocking, impedances) -> MapData:
+              computed, rocking, impedances, workers) -> MapData:
     from ...continuum.run_control import FAILURE_SETTLEMENT
 
     shape = (len(grid.soils), len(grid.fs_v), len(grid.h_over_B), len(grid.periods),
@@ -353,7 +355,7 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
     return MapData(grid, options, tuple(motions), tuple(calibrations), tuple(statics), N,
                    continuum, beds, errors, scale, cwall, bwall, steps, balance, dofs, bed_K_r,
                    bed_K_v, tuple(refusals), estimate, computed, rocking,
-                   tuple(impedances.items()), bearing, bed_bearing)
+                   tuple(impedances.items()), bearing, bed_bearing, workers)
 
 
 def _where(soil, fs, hb, period, intensity, motion) -> str:
