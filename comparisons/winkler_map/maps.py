@@ -204,7 +204,8 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
     local = ctx.scheduler is None and not os.environ.get(DASK_ENV)
     in_process = ctx.executor is None and local and estimate.seconds < IN_PROCESS_SECONDS
     workers = 1 if in_process else (ctx.workers or os.cpu_count() or 1)
-    logger(STUDY).info(f"{STUDY}: {estimate.text(workers if local else None)}")
+    split = workers if local else None  # what the estimate is divided by: log and summary
+    logger(STUDY).info(f"{STUDY}: {estimate.text(split)}")
     refuse_over_budget(estimate, options.budget)
     with contextlib.ExitStack() as stack:
         executor = ctx.executor
@@ -234,7 +235,7 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
     rocking = _rocking(grid, options, calibrations, statics, base, g, rocking_records,
                        impedances)
     return _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
-                     computed, rocking, impedances, workers if local else None)
+                     computed, rocking, impedances, split)
 
 
 def _reference(st: SoilStatics, scene, structure: Mapping, impedance=None) -> BedReference:

@@ -361,5 +361,5 @@ def _cost_text(d) -> str:
     e = d.estimate
     total = (float(np.nansum(d.continuum_wall)) + sum(s.wall_time_s for s in d.statics)
              + sum(imp.metadata.get("wall_time_s", 0.0) for _, imp in d.impedances))
-    return (f"Estimated before any work: {e.text(d.workers)}. This run computed {d.computed} continuum "
-            f"runs; the continuum's stored runs took {total:.1f} s of wall time in all.")
+    return (f"Estimated before any work: {e.text(d.workers)}. This run computed {d.computed} "
+            f"continuum runs; the continuum's stored runs took {total:.1f} s of wall time in all.")
