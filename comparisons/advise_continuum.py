@@ -38,13 +38,12 @@ from ..scenes import Scene, scene_from_dict
 from ..units import unit_system
 from .advise_map import MapEvidence, find_map, format_evidence, map_evidence
 from .study import relative_error
+from .winkler_map.bed_runs import reduced_measures
 from .winkler_map.beds import BEDS, BedReference, bed_foundation
-from .winkler_map.cost import Estimate, estimate_cost
+from .winkler_map.cost import Estimate, estimate_cost, impedance_dofs
 from .winkler_map.grid import FAST_OPTIONS, FLOOR_FRACTION, FULL_OPTIONS
-from .winkler_map.impedance_points import (evaluate_impedance, impedance_dofs,
-                                           impedance_point_of, soil_impedance)
-from .winkler_map.points import (base_table, continuum_measures, reduced_measures, scales,
-                                 story_constants)
+from .winkler_map.impedance_points import evaluate_impedance, impedance_point_of, soil_impedance
+from .winkler_map.points import base_table, continuum_measures, scales, story_constants
 from .winkler_map.statics import evaluate_static
 
 __all__ = ["FULL_MESHES", "FAST_MESHES", "MeshRun", "ContinuumReference", "SoilNumbers",
@@ -256,7 +255,7 @@ def bed_scene(scene: Scene, foundation: dict) -> Scene:
 
 
 def bed_run(scene: Scene, foundation: dict, repeats: int = BED_REPEATS) -> dict:
-    """A bed's run of the scene's motion, measured as :func:`.winkler_map.points.run_bed`
+    """A bed's run of the scene's motion, measured as :func:`.winkler_map.bed_runs.run_bed`
     measures it: ``measures``, ``wall_time_s`` (median of ``repeats`` timed runs after an
     untimed one, s), or ``refused`` with the integrator's reason."""
     from ..reduced import IntegrationError, run as run_reduced

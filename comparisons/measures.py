@@ -22,13 +22,13 @@ settlement" differently, each way has its own function here, and its name says w
 
 Lengths in the scene's unit; rotations in rad. ``response`` is a reduced-model response
 (:func:`upliftlab.reduced.run`); continuum arguments are arrays of a continuum dynamic result.
+The module imports neither model (it reads what their results hold), so the stored continuum
+runs that use it do not depend on the reduced model's code (:mod:`.fingerprint`).
 """
 
 from __future__ import annotations
 
 import numpy as np
-
-from ..reduced import kernels as kn
 
 __all__ = ["reduced_edge_gap_history", "reduced_peak_edge_gap", "reduced_edge_uplift_from_peaks",
            "reduced_plastic_settlement", "edge_uplift_history", "continuum_peak_edge_gap",
@@ -66,7 +66,7 @@ def reduced_edge_uplift_from_peaks(response) -> float:
     rigid-base estimate for springs inside it (``equivalent``)."""
     model = response.model
     found = model.foundation_slice
-    gaps = response.raw_peaks[kn.N_PEAK_SCALARS::2][found]
+    gaps = np.asarray(response.tracked.opening)[found]
     x = model.params["x"][found]
     b = model.layout.half_width
     theta = response.peaks["theta"]

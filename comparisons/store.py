@@ -1,8 +1,10 @@
 """Content-addressed results: one small JSON file per evaluated point.
 
 A point's key is the SHA-256 of its study name, the function that evaluates it, its parameters
-as canonical JSON and the upliftlab version (:func:`point_key`). Equal keys mean equal inputs, so
-a sweep or a report never re-runs a point that is already stored. Parameters named ``_…`` are
+as canonical JSON, the upliftlab version and, for a point function of the package, the code it
+computes with (:func:`point_key`, :mod:`.fingerprint`). Equal keys mean equal inputs computed by
+the same code, so a sweep or a report never re-runs a point that is already stored, and a store
+resumed after the code changed never mixes the old code's records with the new. Parameters named ``_…`` are
 locators (file paths) and stay out of the key; the content they locate is keyed by a digest.
 
 Each record is written to a temporary file beside its final name, flushed to disk and moved into
@@ -26,8 +28,9 @@ import numpy as np
 from .. import __version__
 from ..checks import InputError
 from ..results import atomic_path
+from .fingerprint import code_fingerprint
 
-__all__ = ["Store", "point_key", "canonical_json", "function_name", "keyed_as"]
+__all__ = ["Store", "point_key", "canonical_json", "function_name", "function_code", "keyed_as"]
 
 _SUFFIX = ".json"
 
@@ -92,17 +95,32 @@ def function_name(function) -> str:
     return f"{module}:{qualname}"
 
 
+def function_code(function) -> str | None:
+    """The fingerprint of the code ``function`` computes with, if it is defined in the
+    ``upliftlab`` package (:func:`.fingerprint.code_fingerprint`), else None."""
+    module = getattr(function, "__module__", None)
+    if isinstance(module, str) and (module == "upliftlab" or module.startswith("upliftlab.")):
+        return code_fingerprint(module)
+    return None
+
+
 def point_key(study: str, function, params: Mapping, version: str = __version__, *,
               where: str = "params") -> str:
-    """SHA-256 (hex) of (study, function, canonical parameters, upliftlab version).
+    """SHA-256 (hex) of (study, function, canonical parameters, upliftlab version[, code]).
 
-    ``function`` is a function or its ``module:qualname``. A parameter that is not a finite
-    JSON value is refused with an :class:`InputError` naming it (``where`` prefixes its path).
+    ``function`` is a function or its ``module:qualname``. A function defined in the
+    ``upliftlab`` package adds the fingerprint of its module's code
+    (:func:`.fingerprint.code_fingerprint`); a name, or a function of another package, keys by
+    the version alone. A parameter that is not a finite JSON value is refused with an
+    :class:`InputError` naming it (``where`` prefixes its path).
     """
     name = function if isinstance(function, str) else function_name(function)
-    text = "\n".join([canonical_json(study, "study"), canonical_json(name, "function"),
-                      canonical_json(params, where), canonical_json(version, "version")])
-    return hashlib.sha256(text.encode()).hexdigest()
+    parts = [canonical_json(study, "study"), canonical_json(name, "function"),
+             canonical_json(params, where), canonical_json(version, "version")]
+    code = None if isinstance(function, str) else function_code(function)
+    if code is not None:
+        parts.append(canonical_json(code, "code"))
+    return hashlib.sha256("\n".join(parts).encode()).hexdigest()
 
 
 @dataclass(frozen=True)
@@ -146,7 +164,7 @@ class Store:
     def put(self, key: str, record, meta: Mapping | None = None) -> Path:
         """Store ``record`` (JSON: numbers, text, lists, tables) under ``key``, atomically.
 
-        ``meta`` (study, function, params, version) is kept beside the record for provenance.
+        ``meta`` (study, function, params, version, code) is kept beside the record for provenance.
         """
         entry = {"key": key, "record": record, **dict(meta or {})}
         try:

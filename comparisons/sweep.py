@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 from .. import __version__
 from ..checks import InputError, integer_at_least
-from .store import Store, function_name, point_key
+from .store import Store, function_code, function_name, point_key
 
 __all__ = ["run_sweep", "sweep_executor", "SweepProgress", "StderrProgress",
            "SINGLE_THREAD_ENVIRONMENT", "DASK_ENV"]
@@ -170,12 +170,12 @@ def _check_function(function, kind: str) -> None:
                          "of a module they can import (not a lambda or a nested def)")
 
 
-def _keys(study: str, name: str, points: list) -> list[str]:
+def _keys(study: str, function, points: list) -> list[str]:
     keys = []
     for i, point in enumerate(points):
         if not isinstance(point, Mapping):
             raise InputError(f"points[{i}] = {point!r}: a point is a table of parameters (dict)")
-        keys.append(point_key(study, name, point, where=f"points[{i}]"))
+        keys.append(point_key(study, function, point, where=f"points[{i}]"))
     return keys
 
 
@@ -215,7 +215,7 @@ def run_sweep(function: Callable, points: Iterable[Mapping], store: Store | str 
     name = function_name(function)
     study = study or name.split(":", 1)[0].rsplit(".", 1)[-1]
     points = list(points)
-    keys = _keys(study, name, points)
+    keys = _keys(study, function, points)
     if chunk is not None:
         chunk = integer_at_least("chunk", chunk, 1)
     if workers is not None:
@@ -226,6 +226,8 @@ def run_sweep(function: Callable, points: Iterable[Mapping], store: Store | str 
     todo = {k: p for k, p in zip(keys, points) if not store.has(k)}
     report = StderrProgress() if progress is None else (progress or None)
     meta = {"study": study, "function": name, "version": __version__}
+    if (code := function_code(function)) is not None:
+        meta["code"] = code
     if todo:
         through = (kind != "Dask") if write_through is None else bool(write_through)
         with contextlib.ExitStack() as stack:

@@ -57,7 +57,7 @@ def _direct_continuum(n: int) -> float:
     data.pop("motion")
     data["continuum"]["elements_across"] = n
     point = {"scene": data, "motion": {"type": "ricker", "period": 0.2, "duration": 0.6},
-             "intensity": 3.0, "history_dt": 0.01}
+             "intensity": 3.0}
     return wm.evaluate_dynamic(point)["measures"]["theta"]
 
 

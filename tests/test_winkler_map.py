@@ -512,7 +512,7 @@ def test_a_continuum_run_that_fails_is_reported_and_left_out_or_held_to(tmp_path
                             load_scene(wmp.BASE_SCENE).g, {"clay": st.V_ult})[0]
     ref = _reference(st, _scene(point["scene"]), point["scene"]["structure"],
                      dict(d.impedances).get("clay"))
-    called = {name: wmp.run_bed(point, bed_foundation(name, ref, d.options))["peak_settlement"]
+    called = {name: wm.run_bed(point, bed_foundation(name, ref, d.options))["peak_settlement"]
               >= 0.2 for name in d.calibrations}
     assert {n: bool(d.bed_bearing_failure[0, 0, 0, 0, 0, 0, c])
             for c, n in enumerate(d.calibrations)} == called

@@ -17,8 +17,11 @@ the plane-strain continuum (:mod:`upliftlab.continuum`) over a grid of
 Per soil the continuum's statics (K_v, K_r, V_ult; and its dynamic impedance when a bed needs
 it, :mod:`.impedance_points`) and per point one continuum dynamic run are points of
 :func:`.sweep.run_sweep` in a content-addressed store (resumable, local processes or Dask with
-``--scheduler``), each stored with its own wall time; each bed's reduced run of the
-same point is live (milliseconds) and timed in the same run. Measured alike on both models:
+``--scheduler``), each stored with its own wall time and keyed with the fingerprint of the
+code it ran (:mod:`..fingerprint`: the continuum, the scenes and the measures, not the beds or
+the grid), so that a store kept with the repository (``benchmarks/winkler_map_store``) is
+reused exactly while that code is unchanged; each bed's reduced run of the same point is live
+(milliseconds) and timed in the same run. Measured alike on both models:
 peak θ, peak edge uplift, residual settlement, residual rotation, peak u, peak base shear.
 Before any run the study logs how many continuum runs it will make and what they should cost
 (:mod:`.cost`), and refuses above ``--budget``.
@@ -42,7 +45,8 @@ from .grid import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS, Grid, MEASU
                    SOILS, STUDY, check_grid, check_options, grid_with)
 from .maps import MapData, compute_map
 from .output import write
-from .points import evaluate_dynamic, run_bed
+from .bed_runs import run_bed
+from .points import evaluate_dynamic
 from .result import WinklerMap
 from .statics import SoilStatics, evaluate_static
 from .workflow import DEFINITION, compute, main, run

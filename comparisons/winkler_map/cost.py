@@ -36,7 +36,7 @@ import numpy as np
 
 from ...checks import InputError
 
-__all__ = ["Estimate", "estimate_cost", "mesh_size", "refuse_over_budget",
+__all__ = ["Estimate", "estimate_cost", "mesh_size", "impedance_dofs", "refuse_over_budget",
            "FIXED_SECONDS_PER_DOF", "SECONDS_PER_DOF_STEP", "STATIC_SECONDS_PER_DOF",
            "COMPILED_MODELS", "FRICTIONAL_MODELS", "IMPEDANCE_SECONDS_PER_DOF_FREQUENCY"]
 
@@ -107,6 +107,14 @@ def mesh_size(scene) -> tuple[int, float]:
     order = 2 if options.element in ("P2", "Q2") else 1
     dofs = 2 * (order * (x.size - 1) + 1) * (order * (y.size - 1) + 1)
     return dofs, float(min(np.diff(x).min(), np.diff(y).min()))
+
+
+def impedance_dofs(point: Mapping) -> int:
+    """The DOFs of an impedance point's mesh (its own box), from its grid lines, without
+    meshing."""
+    from .impedance_points import impedance_box_scene
+
+    return mesh_size(impedance_box_scene(point))[0]
 
 
 def _stored_rates(stored: Iterable[Mapping]) -> dict:

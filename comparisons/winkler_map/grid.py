@@ -11,23 +11,9 @@ from dataclasses import dataclass, replace
 
 from ... import checks
 from ...checks import InputError
+from .soils import SOIL_LABELS, SOILS  # noqa: F401  (re-exported: the map's soils)
 
 STUDY = "winkler_map"
-
-#: The soils of the map, as the continuum's ``[soil]`` tables (kPa, t/m³, degrees): the clay of
-#: ``strip_footing_clay`` (Tresca, c_u) and a frictional soil of the same elastic constants
-#: (Mohr–Coulomb, c and φ, associated flow ψ = φ: with ψ = 0 the continuum's vertical pushover
-#: does not converge on 4 across). The continuum's soil has one Young's modulus everywhere: its
-#: stiffness does not grow with confinement.
-SOILS = {
-    "clay": {"youngs_modulus": 50.0e3, "poisson_ratio": 0.3, "density": 1.8,
-             "model": "tresca", "undrained_strength": 50.0, "interface": "frictionless"},
-    "sand": {"youngs_modulus": 50.0e3, "poisson_ratio": 0.3, "density": 1.8,
-             "model": "mohr_coulomb", "cohesion": 5.0, "friction_angle": 30.0,
-             "dilation_angle": 30.0, "interface": "frictionless"},
-}
-SOIL_LABELS = {"clay": "clay (Tresca, c_u = 50 kPa)",
-               "sand": "frictional soil (Mohr–Coulomb, c = 5 kPa, φ = ψ = 30°)"}
 
 #: The measures, each taken alike on both models (:mod:`..measures`, :mod:`.points`).
 MEASURES = ("theta", "uplift", "residual_settlement", "residual_rotation", "u", "base_shear")
@@ -79,7 +65,7 @@ class Options:
     and settlement (θ_on the elastic half-plane's uplift rotation), reached in
     ``monotonic_steps`` geometric steps beyond 1.5 θ_on; ``cycle_ratios`` the amplitudes
     θ/θ_on of the cyclic pushover (one full cycle each, ``cycle_steps`` per quarter);
-    ``history_dt`` the step (s) of the histories kept in the store; ``theta_tolerance`` and
+    ``theta_tolerance`` and
     ``settlement_tolerance`` the region's thresholds (peak θ and edge uplift; residual
     settlement); ``budget`` (s): refuse a run whose estimated continuum cost exceeds it (None:
     no limit); ``figures``: write PNGs.
@@ -97,7 +83,6 @@ class Options:
     monotonic_steps: int = 14
     cycle_ratios: tuple[float, ...] = (2.0, 5.0, 10.0)
     cycle_steps: int = 4
-    history_dt: float = 0.01
     theta_tolerance: float = 0.10
     settlement_tolerance: float = 0.20
     budget: float | None = None
@@ -203,7 +188,6 @@ def check_options(options: Options, beds: Sequence[str]) -> Options:
     checks.integer_at_least("options.monotonic_steps", options.monotonic_steps, 1)
     checks.ascending("options.cycle_ratios", options.cycle_ratios, 0.0, 1000.0, low_open=True)
     checks.integer_at_least("options.cycle_steps", options.cycle_steps, 1)
-    checks.in_range("options.history_dt", options.history_dt, 0.0, 1.0, low_open=True)
     checks.in_range("options.theta_tolerance", options.theta_tolerance, 0.0, 10.0,
                     low_open=True)
     checks.in_range("options.settlement_tolerance", options.settlement_tolerance, 0.0, 10.0,

@@ -32,15 +32,19 @@ from __future__ import annotations
 import time
 from collections.abc import Mapping
 from dataclasses import asdict
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..store import keyed_as
-from .grid import SOILS, Options
 from .statics import static_scene
+from .soils import SOILS
+
+if TYPE_CHECKING:  # annotations only: the stored runs do not depend on the grid
+    from .grid import Options
 
 __all__ = ["IMPEDANCE_A0", "impedance_point", "impedance_point_of", "evaluate_impedance",
-           "soil_impedance", "elastic_soil", "impedance_dofs"]
+           "soil_impedance", "elastic_soil", "impedance_box_scene"]
 
 #: The dimensionless frequencies a0 = ω (B/2)/V_s of the map's impedance (module docstring).
 IMPEDANCE_A0 = tuple(float(v) for v in np.round(np.geomspace(0.02, 0.5, 19), 6))
@@ -126,14 +130,13 @@ def soil_impedance(point: Mapping, record: Mapping):
                      metadata={"wall_time_s": float(record["wall_time_s"])})
 
 
-def impedance_dofs(point: Mapping) -> int:
-    """The DOFs of the impedance's mesh (its own box), from its grid lines, without meshing."""
+def impedance_box_scene(point: Mapping):
+    """The point's scene with the impedance's own box (its width and depth), as the impedance
+    meshes it (for the cost estimate: :func:`.cost.impedance_dofs`)."""
     from dataclasses import replace
-
-    from .cost import mesh_size
 
     scene = _scene(point)
     options = _impedance_options(point)
     continuum = replace(scene.continuum, domain_width=options.domain_width,
                         domain_depth=options.domain_depth)
-    return mesh_size(replace(scene, continuum=continuum))[0]
+    return replace(scene, continuum=continuum)

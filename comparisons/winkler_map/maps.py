@@ -22,13 +22,13 @@ from ...log import logger
 from ...scenes import load_scene, scene_from_dict
 from ..study import relative_error
 from ..sweep import DASK_ENV, run_sweep, sweep_executor
+from .bed_runs import run_bed
 from .beds import BEDS, BedReference, bed_foundation
-from .cost import Estimate, estimate_cost, refuse_over_budget
+from .cost import Estimate, estimate_cost, impedance_dofs, refuse_over_budget
 from .grid import FLOOR_FRACTION, MEASURES, STUDY, Grid, Options
-from .impedance_points import (evaluate_impedance, impedance_dofs, impedance_point,
-                               soil_impedance)
+from .impedance_points import evaluate_impedance, impedance_point, soil_impedance
 from .motions import motion_duration
-from .points import (BASE_SCENE, base_table, evaluate_dynamic, point_table, run_bed, scales,
+from .points import (BASE_SCENE, base_table, evaluate_dynamic, point_table, scales,
                      story_constants)
 from .rocking import RockingData, bed_rocking, evaluate_continuum, rocking_data, rocking_points
 from .statics import SoilStatics, evaluate_static, soil_statics, static_points
@@ -116,8 +116,7 @@ def _dynamic_points(grid, options, motions, base, g, loads) -> list[dict]:
     for _, (soil, fs, hb, period, intensity) in _cells(grid):
         table = point_table(base, soil, options.elements_across, loads[soil] / fs, hb, period, g)
         for motion in motions:
-            points.append({"scene": table, "motion": motion, "intensity": float(intensity),
-                           "history_dt": options.history_dt})
+            points.append({"scene": table, "motion": motion, "intensity": float(intensity)})
     return points
 
 

@@ -1,5 +1,5 @@
-"""One point of the map: its scene, the continuum's dynamic run (the sweep's point function,
-stored) and a bed's run of the same motion (the reduced model, live), each measured alike.
+"""One point of the map: its scene and the continuum's dynamic run (the sweep's point function,
+stored), measured as a bed's run of the same motion is (:mod:`.bed_runs`).
 
 The scene of a point is ``strip_footing_clay`` (B = 2 m) with the map's soil, mesh, box sides
 (:data:`SIDES`) and structure: a story of weight N = V_ult/FS_v at height h = (h/B) B with
@@ -18,13 +18,13 @@ from collections.abc import Mapping
 import numpy as np
 
 from ...scenes import Scene, load_scene, scene_from_dict
-from ..measures import (continuum_peak_edge_gap, edge_uplift_history, peak_story_shear,
-                        reduced_edge_gap_history, residual_rotation, settlement_when_flattest)
+from ..measures import (continuum_peak_edge_gap, peak_story_shear, residual_rotation,
+                        settlement_when_flattest)
 from ..store import keyed_as
-from .grid import MEASURES, SOILS
+from .soils import SOILS
 
 __all__ = ["BASE_SCENE", "base_table", "point_table", "motion_table", "evaluate_dynamic",
-           "run_bed", "scales", "story_constants"]
+           "scales", "story_constants"]
 
 BASE_SCENE = "strip_footing_clay"
 STORY_DAMPING = 0.05
@@ -89,15 +89,6 @@ def story_constants(scene: Scene) -> tuple[float, float]:
     return story.stiffness, 2.0 * scene.structure.damping_ratio * math.sqrt(story.stiffness * m)
 
 
-def _floats(values) -> list[float]:
-    return [float(v) for v in np.asarray(values, dtype=float).ravel()]
-
-
-def _history(time_, values, step: float) -> list[float]:
-    grid = np.arange(0.0, time_[-1] + 0.5 * step, step)
-    return _floats(np.interp(grid, time_, values))
-
-
 def measured(time_, theta, uplift_peak, settlement, u_peak, shear_peak) -> dict:
     """The map's measures from a run's histories (:data:`.grid.MEASURES`), the same for both
     models: peak |θ|, peak edge uplift, the settlement when flattest, the residual rotation
@@ -160,8 +151,7 @@ def continuum_measures(scene, result):
 @keyed_as("upliftlab.comparisons.winkler_map:evaluate_dynamic")
 def evaluate_dynamic(point: Mapping) -> dict:
     """One continuum dynamic run of a point (explicit route, no soil snapshots): the measures
-    of :func:`measured` from every recorded step, the histories of θ, u, the edge uplift and
-    the settlement every ``history_dt`` s (for figures), the run's steps, DOFs, step (s),
+    of :func:`measured` from every recorded step, the run's steps, DOFs, step (s),
     whether its return map was compiled and its soil model (for the cost estimate,
     :mod:`.cost`), its energy balance error, its largest plastic strain ε̄p at a quadrature
     point (``max_plastic_strain``) and its own wall time ``wall_time_s`` (model,
@@ -172,7 +162,8 @@ def evaluate_dynamic(point: Mapping) -> dict:
     run that ends in a bearing failure of the soil (:class:`~upliftlab.continuum.
     BearingFailure`) adds ``"failure": "bearing"``, its time ``failure_time_s`` and the
     footing's ``failure_settlement`` (m) and ``failure_rotation`` (rad): an outcome the map
-    holds the beds to."""
+    holds the beds to. No histories: the map reads none, and a record of a few hundred bytes
+    lets a store of the whole grid be kept with the repository."""
     from ...continuum import BearingFailure, ContactError, ConvergenceError
     from ...continuum.run_control import EnergyBalanceError
 
@@ -190,14 +181,8 @@ def evaluate_dynamic(point: Mapping) -> dict:
             if exc.result is not None:
                 out["max_plastic_strain"] = float(exc.result.metadata["max_plastic_strain"])
         return out
-    t, theta, settlement, s, gap, measures = continuum_measures(scene, result)
-    order = np.argsort(np.asarray(result.x))
-    step = float(point["history_dt"])
+    t, *_, measures = continuum_measures(scene, result)
     return {"measures": measures,
-            "time": _floats(np.arange(0.0, t[-1] + 0.5 * step, step)),
-            "theta": _history(t, theta, step), "u": _history(t, s, step),
-            "uplift": _history(t, edge_uplift_history(gap[:, order]), step),
-            "settlement": _history(t, settlement, step),
             "steps": int(result.metadata.get("steps", t.size - 1)), "dofs": int(model.dofs),
             "dt": float(result.metadata.get("dt", math.nan)),
             "duration": float(t[-1]), "compiled": bool(result.metadata.get("compiled", True)),
@@ -205,46 +190,6 @@ def evaluate_dynamic(point: Mapping) -> dict:
             "energy_balance_error": float(result.metadata.get("energy_balance_error", math.nan)),
             "max_plastic_strain": float(result.metadata.get("max_plastic_strain", math.nan)),
             "wall_time_s": wall}
-
-
-def run_bed(point: Mapping, foundation: Mapping) -> dict:
-    """A bed's run of a point's motion (reduced model, live, not stored): the measures of
-    :func:`measured`, its ``peak_settlement`` (the base centre's largest settlement, down),
-    its wall time ``wall_time_s`` (the run alone, s), or ``refused`` with the integrator's
-    reason."""
-    from ...reduced import IntegrationError, run as run_reduced
-
-    data = copy.deepcopy(point["scene"])
-    data["foundation"] = dict(foundation)
-    B = 2.0 * data["foundation"]["half_width"]
-    data["motion"] = motion_table(point["motion"], point["intensity"], B,
-                                  data["structure"]["height"])
-    for table in ("soil", "continuum"):
-        data.pop(table, None)
-    scene = scene_from_dict(data, merged=True)
-    started = time.perf_counter()
-    try:
-        response = run_reduced(scene)
-    except IntegrationError as exc:
-        return {"refused": str(exc), "measures": dict.fromkeys(MEASURES, math.nan),
-                "wall_time_s": time.perf_counter() - started}
-    wall = time.perf_counter() - started
-    return {"measures": reduced_measures(response), "wall_time_s": wall,
-            "peak_settlement": float(np.max(response.settlement)),
-            "energy_balance_error": float(response.peaks["energy_balance_error"])}
-
-
-def reduced_measures(response) -> dict:
-    """The measures of :func:`measured` of a reduced model's ``response`` (its peaks where the
-    event stepper caught a peak between recorded steps)."""
-    t = np.asarray(response.time, dtype=float)
-    uplift = float(np.max(edge_uplift_history(reduced_edge_gap_history(response))))
-    u_peak = max(float(np.max(np.abs(response.u))), float(response.peaks["u"]))
-    theta = np.asarray(response.theta, dtype=float)
-    out = measured(t - t[0], theta, uplift, np.asarray(response.settlement, dtype=float), u_peak,
-                   np.max(np.abs(response.base_shear)))
-    out["theta"] = max(out["theta"], float(response.peaks["theta"]))
-    return out
 
 
 def scales(N: float, B: float, h: float, K_v: float, K_r: float, k_story: float) -> dict:

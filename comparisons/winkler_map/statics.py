@@ -11,13 +11,17 @@ import math
 import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ...scenes import scene_from_dict
 from ..store import keyed_as
-from .grid import SOILS, Options
 from .points import base_table
+from .soils import SOILS
+
+if TYPE_CHECKING:  # annotations only: the stored runs do not depend on the grid
+    from .grid import Options
 
 __all__ = ["SoilStatics", "static_points", "evaluate_static", "soil_statics", "static_scene"]
 
