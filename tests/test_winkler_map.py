@@ -441,11 +441,12 @@ def test_the_signed_bias_recomputed_from_the_file(study, written):
 
 def test_the_estimate_divides_by_workers_only_when_it_knows_them():
     """On local workers the line states the wall time on them (3600 s over 2: 30 min); on a
-    Dask cluster, whose worker count the estimate cannot know, it divides by nothing."""
+    Dask cluster or a caller's executor, whose worker count the estimate cannot know, it
+    divides by nothing."""
     e = wm.Estimate(3, 1, 2, 0, 3600.0, {"clay": 3600.0}, 1000.0, "default")
     assert "about 30 min on 2 workers" in e.text(2)
     text = e.text(None)
-    assert "split over the cluster's workers" in text and " on " not in text.split(";")[1]
+    assert "split over the executor's workers" in text and " on " not in text.split(";")[1]
 
 
 def test_a_continuum_pushover_that_stopped_leaves_its_statics_row_empty_and_says_why():

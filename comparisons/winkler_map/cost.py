@@ -75,11 +75,11 @@ class Estimate:
     source: str
 
     def text(self, workers: int | None = 1) -> str:
-        """The estimate in one line; ``workers`` None: a Dask cluster, whose worker count is
-        not known before it is reached, so no wall time is divided out."""
+        """The estimate in one line; ``workers`` None: a Dask cluster or a caller's executor,
+        whose worker count is not known here, so no wall time is divided out."""
         soils = ", ".join(f"{k} {_duration(v)}" for k, v in self.by_soil.items())
         if workers is None:
-            split = "split over the cluster's workers"
+            split = "split over the executor's workers"
         else:
             split = (f"about {_duration(self.seconds / max(1, workers))} on {workers} worker"
                      f"{'s' if workers > 1 else ''}")

@@ -61,7 +61,8 @@ class MapData:
     ``bed_bearing_failure`` (…, motion, calibration) where a bed's base settled by
     :data:`~upliftlab.continuum.run_control.FAILURE_SETTLEMENT` B or more in its run of such
     a point (it fails in bearing too); ``workers`` the local worker processes the estimate
-    divided the work by (1 in this process; None: a Dask cluster, whose count is not known).
+    divided the work by (1 in this process; None: a Dask cluster or the caller's executor,
+    whose count is not known).
     """
 
     grid: Grid
@@ -203,7 +204,8 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
     local = ctx.scheduler is None and not os.environ.get(DASK_ENV)
     in_process = ctx.executor is None and local and estimate.seconds < IN_PROCESS_SECONDS
     workers = 1 if in_process else (ctx.workers or os.cpu_count() or 1)
-    split = workers if local else None  # what the estimate is divided by: log and summary
+    # what the estimate is divided by (log and summary): not known for a cluster or an executor
+    split = workers if local and ctx.executor is None else None
     logger(STUDY).info(f"{STUDY}: {estimate.text(split)}")
     refuse_over_budget(estimate, options.budget)
     with contextlib.ExitStack() as stack:
