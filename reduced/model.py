@@ -30,7 +30,8 @@ from . import springs as sp
 from .compatibility import DofMap, SpringLayout, compatibility_matrix, layout_for, stiffness_matrix
 from .qz import bed_z50, check_z50, common_zref, qz_shape, qz_springs, static_forces
 
-__all__ = ["ReducedModel", "build_model", "impact_effective_mass", "impact_step"]
+__all__ = ["ReducedModel", "build_model", "impact_effective_mass", "impact_step",
+           "bearing_yield_forces", "plastic_static_forces"]
 
 
 @dataclass(frozen=True)
@@ -302,23 +303,59 @@ def _story_params(s, masses) -> np.ndarray:
 
 def _static_forces(layout: SpringLayout, weight: float) -> tuple[np.ndarray, float]:
     """Spring compressions F0 at rest under W (bonded equilibrium), and the static rotation."""
-    k, x = layout.stiffnesses, layout.positions
-    Kb = np.array([[np.sum(k * x * x), -np.sum(k * x)], [-np.sum(k * x), np.sum(k)]])
-    # generalised forces on (θ, V) from compression F_i = k_i (x_i θ − V): −A F; gravity −W on V
-    theta, v = np.linalg.solve(Kb, [0.0, -weight])
-    forces = k * (x * theta - v)
-    bad = np.flatnonzero(forces <= 0.0)
-    if bad.size:
-        i = bad[0]
-        raise InputError(f"foundation spring {i} at x = {x[i]:g} would be in tension at rest "
-                         f"(F0 = {forces[i]:g}): the layout cannot carry the weight in compression")
-    return forces, theta
+    return plastic_static_forces(layout, weight, np.full(layout.stiffnesses.size, np.inf))
+
+
+def bearing_yield_forces(layout: SpringLayout, capacity: float) -> np.ndarray:
+    """Yield forces of a bed with a uniform bearing capacity: ``capacity`` (force) shared over
+    the springs' tributary widths, whatever their stiffness (the soil's bearing pressure does
+    not grow where a bed is stiffened)."""
+    return capacity * layout.widths / layout.widths.sum()
+
+
+def plastic_static_forces(layout: SpringLayout, weight: float,
+                          yield_forces: np.ndarray) -> tuple[np.ndarray, float]:
+    """Spring compressions F0 at rest under W with each capped at its yield force, and the static
+    rotation: the springs stiffer than the load's share reach their cap while the weight is
+    applied and carry it there, the others share the rest elastically. Piecewise linear in
+    (θ, V), solved by adding the springs beyond their cap to the capped set (and taking back
+    any that would unload) until the set holds."""
+    k, x, fy = layout.stiffnesses, layout.positions, np.asarray(yield_forces, dtype=float)
+    capped = np.zeros(k.size, dtype=bool)
+    for _ in range(k.size + 1):
+        ke, fc = np.where(capped, 0.0, k), np.where(capped, fy, 0.0)
+        Kb = np.array([[np.sum(ke * x * x), -np.sum(ke * x)], [-np.sum(ke * x), np.sum(ke)]])
+        if abs(np.linalg.det(Kb)) <= 1e-12 * max(np.sum(k * x * x) * np.sum(k), 1e-300):
+            break
+        # generalised forces on (θ, V) from compression F_i = k_i (x_i θ − V): −A F; gravity −W
+        # on V; a capped spring's F_i = Fy_i moves to the right-hand side
+        theta, v = np.linalg.solve(Kb, [-np.sum(fc * x), -(weight - np.sum(fc))])
+        trial = k * (x * theta - v)
+        now = np.where(capped, trial >= fy * (1.0 - 1e-12), trial > fy)
+        if (now == capped).all():
+            forces = np.where(capped, fy, trial)
+            bad = np.flatnonzero(forces <= 0.0)
+            if bad.size:
+                i = bad[0]
+                raise InputError(f"foundation spring {i} at x = {x[i]:g} would be in tension at "
+                                 f"rest (F0 = {forces[i]:g}): the layout cannot carry the weight "
+                                 "in compression")
+            return forces, float(theta)
+        capped = now
+    raise InputError(f"foundation: the springs' yield forces (sum {fy.sum():g}) cannot carry the "
+                     f"weight {weight:g} at rest with the springs below them sharing the rest; "
+                     "valid: a bed whose springs below their cap can balance the load")
 
 
 def _foundation_params(f, layout: SpringLayout, weight, rotary_mass, vertical_mass):
     """Foundation springs: k_i, F0_i from static equilibrium, dashpots, yield, impact damper."""
     k, x = layout.stiffnesses, layout.positions
-    F0, theta_s = _static_forces(layout, weight)
+    bearing = f.law == "elastoplastic" and math.isfinite(f.capacity_multiple)
+    if bearing:
+        fy = bearing_yield_forces(layout, f.capacity_multiple * weight)
+        F0, theta_s = plastic_static_forces(layout, weight, fy)
+    else:
+        F0, theta_s = _static_forces(layout, weight)
     table = sp.spring_table(layout.count)
     table["kind"] = sp.UPLIFT if f.support == "uplift" else sp.BONDED
     table["k"] = k
@@ -329,7 +366,10 @@ def _foundation_params(f, layout: SpringLayout, weight, rotary_mass, vertical_ma
         table["c"] = (f.damping_ratio * 2.0 * math.sqrt(f.stiffness * vertical_mass) * k
                       / layout.vertical_stiffness)
     table["f0"] = F0
-    table["fy"] = f.yield_multiple * F0 if f.law == "elastoplastic" else np.inf
+    if bearing:
+        table["fy"] = fy
+    else:
+        table["fy"] = f.yield_multiple * F0 if f.law == "elastoplastic" else np.inf
     table["x"] = x
     if f.law == "qz":
         table = _qz_params(f, layout, table, weight)

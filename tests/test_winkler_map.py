@@ -301,6 +301,44 @@ def test_the_gazetas_bed_carries_the_handbook_strips_dashpots():
                           wm.FAST_OPTIONS)
 
 
+def test_the_bearing_bed_yields_at_one_pressure_where_the_plastic_bed_yields_at_its_stiffness(
+        study):
+    # Reference: the bearing capacity V_ult shared over the tributary widths (V_ult/B per unit
+    # width, by hand); the springs and the dashpots are those of the end-stiffened plastic and
+    # the impedance beds, built here from the registry (1e-12)
+    G, nu, B, V_ult, N = 19_230.8, 0.3, 2.0, 500.0, 200.0
+    structure = {"weight": N, "height": 3.0, "period": 0.2, "damping_ratio": 0.05,
+                 "rotary_inertia": 10.0}
+    ref = wm.BedReference("clay", N, B, 3.0, 27_000.0, 43_000.0, V_ult, G, nu,
+                          extra={"density": 1.8, "structure": structure,
+                                 "impedance": dict(study.data.impedances)["clay"]})
+    tables = {name: wm.bed_foundation(name, ref, wm.FAST_OPTIONS)
+              for name in ("end_stiffened_plastic", "end_stiffened_bearing",
+                           "end_stiffened_bearing_impedance", "uniform_plastic_impedance")}
+    models = {}
+    for name, table in tables.items():
+        data = {"schema": 1, "units": "kN-m-s", "structure": dict(structure),
+                "foundation": table, "motion": {"type": "free", "velocity": 1.0,
+                                                "duration": 1.0}}
+        models[name] = build_reduced(scene_from_dict(data))
+    bearing = models["end_stiffened_bearing"]
+    widths = bearing.layout.widths
+    fy = bearing.params["fy"][bearing.foundation_slice]
+    np.testing.assert_allclose(fy / widths, V_ult / B, rtol=1e-12)
+    weighted = models["end_stiffened_plastic"]
+    np.testing.assert_allclose(bearing.layout.stiffnesses, weighted.layout.stiffnesses,
+                               rtol=1e-12)
+    f0 = weighted.params["f0"][weighted.foundation_slice]
+    # at a uniform settlement F0 ∝ k: the stiffened ends hold R_k times the middle's pressure
+    q_w = weighted.params["fy"][weighted.foundation_slice] / widths
+    R_k = tables["end_stiffened_plastic"]["end_stiffness_ratio"]
+    assert R_k > 1.0 and q_w[0] / q_w[q_w.size // 2] == pytest.approx(R_k, rel=1e-12)
+    np.testing.assert_allclose(weighted.params["fy"][weighted.foundation_slice], 2.5 * f0,
+                               rtol=1e-12)
+    assert tables["end_stiffened_bearing_impedance"]["dashpots"] == \
+        tables["uniform_plastic_impedance"]["dashpots"]
+
+
 def test_the_uniform_beds_pushover_is_the_tensionless_winkler_closed_form(study, written):
     # Reference: anchors §3, a rigid strip on a tensionless uniform Winkler bed of modulus
     # k = K_v/B: M = (N B/6)(3 − 2√(θ_up/θ)) and c = B √(θ_up/θ) past θ_up = 2N/(k B²)

@@ -71,6 +71,8 @@ def _foundation_table(foundation) -> dict:
         skip |= {"end_stiffness_ratio", "end_length"}
     if foundation.law != "qz":
         skip |= set(QZ_KEYS)
+    if foundation.law == "elastoplastic" and math.isfinite(foundation.capacity_multiple):
+        skip = (skip - {"capacity_multiple"}) | {"yield_multiple"}  # a uniform bearing capacity
     return _plain(foundation, [f.name for f in dataclasses.fields(foundation)
                                if f.name not in skip])
 

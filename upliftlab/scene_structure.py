@@ -20,6 +20,9 @@ LAWS = ("elastic", "elastoplastic", "qz")
 QZ_SOIL_NAMES = ("clay", "sand")  # the q–z backbone shapes (upliftlab.reduced.qz.QZ_SOILS)
 QZ_KEYS = ("capacity_multiple", "z50", "suction", "qz_soil", "qz_exponent", "qz_elastic_range",
            "qz_zref")
+#: The laws that read ``capacity_multiple``: the q–z bed's capacity (required) and, optionally,
+#: the elasto-plastic bed's uniform bearing capacity in place of ``yield_multiple``.
+CAPACITY_LAWS = ("elastoplastic", "qz")
 QZ_EXPONENT_MAX = 50.0  # n of a q–z backbone: > 1 (the hyperbola's work integral), ≤ 50
 QZ_ELASTIC_RANGE_MAX = 0.95  # elast of a q–z backbone: its pristine half-range, below q_ult
 IMPACT_MASSES = ("point", "tributary")
@@ -278,6 +281,10 @@ def read_foundation(data, vertical_mass: float, units: UnitSystem) -> Foundation
     dashpots = _dashpots(table, springs, damping_ratio, units)
     sway_stiffness, sway_damping, friction = _sway(table, units)
     law = table.get("law", choice(LAWS), "elastic")
+    if law == "elastoplastic" and table.has("capacity_multiple") and table.has("yield_multiple"):
+        raise InputError("foundation.yield_multiple with foundation.capacity_multiple: each sets "
+                         "the elasto-plastic springs' yield forces (a multiple of each static "
+                         "compression, or a uniform bearing capacity); give one of them")
     qz = _qz_keys(table, law, support, units)
     foundation = Foundation(
         support=support,
@@ -343,13 +350,20 @@ def _sway(table: Table, units: UnitSystem):
     damping = table.get("sway_damping", bounds.checker("dashpot", units), None)
     friction = table.get("sliding_friction", in_range(0.0, MAX_FRICTION, low_open=True), None)
     return stiffness, damping, friction
+
+
 def _qz_keys(table: Table, law: str, support: str, units: UnitSystem) -> dict:
-    """The q–z keys of a ``[foundation]`` table: read with law ``qz``, refused without it."""
+    """The q–z keys of a ``[foundation]`` table: read with law ``qz``, refused without it
+    (``capacity_multiple`` is read with ``elastoplastic`` too)."""
     if law != "qz":
         for key in QZ_KEYS:
-            if table.has(key):
-                raise InputError(f"foundation.{key} is read only with foundation.law = 'qz' "
+            if table.has(key) and not (key == "capacity_multiple" and law in CAPACITY_LAWS):
+                laws = "'qz'" if key != "capacity_multiple" else "'qz' or 'elastoplastic'"
+                raise InputError(f"foundation.{key} is read only with foundation.law = {laws} "
                                  f"(law is {law!r}); remove it or set the law")
+        if table.has("capacity_multiple"):  # the elasto-plastic bed's uniform capacity
+            return {"capacity_multiple": table.get("capacity_multiple",
+                                                   in_range(1.0, 1e6, low_open=True))}
         return {}
     if support != "uplift":
         raise InputError(f"foundation.support = {support!r} with foundation.law = 'qz': the "

@@ -28,7 +28,7 @@ from ...reduced.compatibility import winkler_bed
 from ..winkler_vs_continuum import Options as CalibrationOptions, calibrate
 from ..winkler_vs_continuum.radiation import distribute, gazetas_dashpots
 from ..winkler_vs_continuum.reference import ContinuumReference
-from .impedance_bed import build_uniform_plastic_impedance
+from .impedance_bed import build_uniform_plastic_impedance, impedance_dashpots_of
 from .qz_bed import build_qz
 
 __all__ = ["BedReference", "BedEntry", "BEDS", "bed_names", "bed_foundation"]
@@ -118,6 +118,29 @@ def build_uniform_plastic_gazetas(reference: BedReference, options) -> dict:
     return table
 
 
+def build_end_stiffened_bearing(reference: BedReference, options) -> dict:
+    """The ``end_stiffened_plastic`` bed with a uniform bearing capacity: the same springs
+    (K_r, and K_v where reachable), each yielding at the bearing pressure V_ult/B over its
+    tributary width (``capacity_multiple`` = V_ult/N) instead of FS_v times its own static
+    force. The stiffened ends then carry no more pressure than the middle before they yield,
+    as the soil under a footing's edge does not, and the bed's moment capacity under N is the
+    stress block's N B/2 (1 − N/V_ult) (the practice of beam-on-nonlinear-Winkler models:
+    Harden et al. 2005, Raychowdhury and Hutchinson 2009, and ASCE 41's end zones, where the
+    stiffness is stiffened and the capacity is q_ult over each spring's area)."""
+    table = _calibration(reference, options, "end_stiffened_plastic").foundation_table()
+    table.pop("yield_multiple")
+    table["capacity_multiple"] = reference.V_ult / reference.N
+    return table
+
+
+def build_end_stiffened_bearing_impedance(reference: BedReference, options) -> dict:
+    """:func:`build_end_stiffened_bearing` with the dashpots of the continuum's impedance at
+    the point's rocking frequency (:mod:`.impedance_bed`: Σ c_i = C_v, Σ c_i x_i² = C_r)."""
+    table = build_end_stiffened_bearing(reference, options)
+    table["dashpots"] = list(impedance_dashpots_of(reference, options).dashpots)
+    return table
+
+
 BEDS: dict[str, BedEntry] = {
     "uniform": BedEntry("uniform", "uniform bed (K_r)", _builder("uniform"), "K_r"),
     "end_stiffened": BedEntry("end_stiffened", "end-stiffened bed (K_r, K_v)",
@@ -138,6 +161,15 @@ BEDS: dict[str, BedEntry] = {
         needs=("impedance",)),
     "qz": BedEntry("qz", "hysteretic q–z bed fitted to the vertical pushover", build_qz,
                    "K_r, K_v where reachable, V_ult, and the whole vertical pushover"),
+    "end_stiffened_bearing": BedEntry(
+        "end_stiffened_bearing", "end-stiffened elasto-plastic bed, uniform bearing capacity",
+        build_end_stiffened_bearing,
+        "K_r, K_v where reachable, and V_ult as a uniform bearing pressure"),
+    "end_stiffened_bearing_impedance": BedEntry(
+        "end_stiffened_bearing_impedance", "end-stiffened elasto-plastic bed, uniform bearing "
+        "capacity, with the continuum's impedance dashpots", build_end_stiffened_bearing_impedance,
+        "K_r, K_v where reachable, V_ult as a uniform bearing pressure, and the FE impedance's "
+        "C_v and C_r at the rocking frequency", needs=("impedance",)),
 }
 
 

@@ -276,7 +276,8 @@ def _rocking_lines(d) -> list[str]:
 #: Short names of the calibrations in table headers (long names break mid-word in print).
 SHORT = {"uniform": "U", "end_stiffened": "ES", "uniform_plastic": "U-p",
          "end_stiffened_plastic": "ES-p", "uniform_plastic_gazetas": "U-p-G",
-         "uniform_plastic_impedance": "U-p-I"}
+         "uniform_plastic_impedance": "U-p-I", "end_stiffened_bearing": "ES-b",
+         "end_stiffened_bearing_impedance": "ES-b-I"}
 
 
 def _short(name: str) -> str:
