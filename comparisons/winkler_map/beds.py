@@ -8,14 +8,19 @@ K_r and vertical capacity of the soil) and the study's options, the reduced mode
 plugs into the map by adding one entry here (and, if it needs a continuum quantity that is not
 yet in :class:`BedReference`, one static analysis in :mod:`.statics`).
 
-Seven entries today. Four are the calibrations of :mod:`..winkler_vs_continuum` (built by its
+Nine entries today. Four are the calibrations of :mod:`..winkler_vs_continuum` (built by its
 :func:`~..winkler_vs_continuum.calibrate`, so that both studies build the same beds):
 ``uniform`` to K_r, ``end_stiffened`` to K_r and K_v (when some R_k reaches it), and both with
 elasto-plastic springs that yield at FS_v times their static force, FS_v = V_ult/N
 (``uniform_plastic``, ``end_stiffened_plastic``). Three add what those lack: radiation
 dashpots from Gazetas' strip formulas (``uniform_plastic_gazetas``) or from the continuum's own
 impedance (``uniform_plastic_impedance``, :mod:`.impedance_bed`), and hysteretic q–z springs
-fitted to the continuum's whole vertical pushover (``qz``, :mod:`.qz_bed`).
+fitted to the continuum's whole vertical pushover (``qz``, :mod:`.qz_bed`). Two keep the
+end-stiffened springs but let each yield at the soil's one bearing pressure V_ult/B over its
+tributary width (``end_stiffened_bearing``, and ``end_stiffened_bearing_impedance`` with the
+impedance dashpots): ``end_stiffened_plastic`` yields each spring at FS_v times its static
+force, which gives the stiffened ends R_k times the middle's pressure capacity, and the soil
+under a footing's edge has no such reserve.
 """
 
 from __future__ import annotations
