@@ -314,7 +314,7 @@ def test_the_bearing_bed_yields_at_one_pressure_where_the_plastic_bed_yields_at_
                                  "impedance": dict(study.data.impedances)["clay"]})
     tables = {name: wm.bed_foundation(name, ref, wm.FAST_OPTIONS)
               for name in ("end_stiffened_plastic", "end_stiffened_bearing",
-                           "end_stiffened_bearing_impedance", "uniform_plastic_impedance")}
+                           "end_stiffened_plastic_impedance", "uniform_plastic_impedance")}
     models = {}
     for name, table in tables.items():
         data = {"schema": 1, "units": "kN-m-s", "structure": dict(structure),
@@ -335,8 +335,10 @@ def test_the_bearing_bed_yields_at_one_pressure_where_the_plastic_bed_yields_at_
     assert R_k > 1.0 and q_w[0] / q_w[q_w.size // 2] == pytest.approx(R_k, rel=1e-12)
     np.testing.assert_allclose(weighted.params["fy"][weighted.foundation_slice], 2.5 * f0,
                                rtol=1e-12)
-    assert tables["end_stiffened_bearing_impedance"]["dashpots"] == \
+    assert tables["end_stiffened_plastic_impedance"]["dashpots"] == \
         tables["uniform_plastic_impedance"]["dashpots"]
+    assert {k: v for k, v in tables["end_stiffened_plastic_impedance"].items()
+            if k != "dashpots"} == tables["end_stiffened_plastic"]
 
 
 def test_the_uniform_beds_pushover_is_the_tensionless_winkler_closed_form(study, written):

@@ -15,12 +15,13 @@ elasto-plastic springs that yield at FS_v times their static force, FS_v = V_ult
 (``uniform_plastic``, ``end_stiffened_plastic``). Three add what those lack: radiation
 dashpots from Gazetas' strip formulas (``uniform_plastic_gazetas``) or from the continuum's own
 impedance (``uniform_plastic_impedance``, :mod:`.impedance_bed`), and hysteretic q–z springs
-fitted to the continuum's whole vertical pushover (``qz``, :mod:`.qz_bed`). Two keep the
-end-stiffened springs but let each yield at the soil's one bearing pressure V_ult/B over its
-tributary width (``end_stiffened_bearing``, and ``end_stiffened_bearing_impedance`` with the
-impedance dashpots): ``end_stiffened_plastic`` yields each spring at FS_v times its static
-force, which gives the stiffened ends R_k times the middle's pressure capacity, and the soil
-under a footing's edge has no such reserve.
+fitted to the continuum's whole vertical pushover (``qz``, :mod:`.qz_bed`).
+``end_stiffened_plastic_impedance`` gives the end-stiffened elasto-plastic bed the impedance
+dashpots too. ``end_stiffened_bearing``
+keeps its springs but lets each yield at the soil's one bearing pressure V_ult/B over its
+tributary width, the convention of beam-on-nonlinear-Winkler practice, where
+``end_stiffened_plastic`` yields each spring at FS_v times its static force, which gives the
+stiffened ends R_k times the middle's pressure capacity.
 """
 
 from __future__ import annotations
@@ -138,10 +139,10 @@ def build_end_stiffened_bearing(reference: BedReference, options) -> dict:
     return table
 
 
-def build_end_stiffened_bearing_impedance(reference: BedReference, options) -> dict:
-    """:func:`build_end_stiffened_bearing` with the dashpots of the continuum's impedance at
-    the point's rocking frequency (:mod:`.impedance_bed`: Σ c_i = C_v, Σ c_i x_i² = C_r)."""
-    table = build_end_stiffened_bearing(reference, options)
+def build_end_stiffened_plastic_impedance(reference: BedReference, options) -> dict:
+    """The ``end_stiffened_plastic`` bed with the dashpots of the continuum's impedance at the
+    point's rocking frequency (:mod:`.impedance_bed`: Σ c_i = C_v, Σ c_i x_i² = C_r)."""
+    table = _calibration(reference, options, "end_stiffened_plastic").foundation_table()
     table["dashpots"] = list(impedance_dashpots_of(reference, options).dashpots)
     return table
 
@@ -170,11 +171,11 @@ BEDS: dict[str, BedEntry] = {
         "end_stiffened_bearing", "end-stiffened elasto-plastic bed, uniform bearing capacity",
         build_end_stiffened_bearing,
         "K_r, K_v where reachable, and V_ult as a uniform bearing pressure"),
-    "end_stiffened_bearing_impedance": BedEntry(
-        "end_stiffened_bearing_impedance", "end-stiffened elasto-plastic bed, uniform bearing "
-        "capacity, with the continuum's impedance dashpots", build_end_stiffened_bearing_impedance,
-        "K_r, K_v where reachable, V_ult as a uniform bearing pressure, and the FE impedance's "
-        "C_v and C_r at the rocking frequency", needs=("impedance",)),
+    "end_stiffened_plastic_impedance": BedEntry(
+        "end_stiffened_plastic_impedance", "end-stiffened elasto-plastic bed with the "
+        "continuum's impedance dashpots", build_end_stiffened_plastic_impedance,
+        "K_r, K_v where reachable, V_ult, and the FE impedance's C_v and C_r at the rocking "
+        "frequency", needs=("impedance",)),
 }
 
 

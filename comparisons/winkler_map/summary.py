@@ -277,7 +277,7 @@ def _rocking_lines(d) -> list[str]:
 SHORT = {"uniform": "U", "end_stiffened": "ES", "uniform_plastic": "U-p",
          "end_stiffened_plastic": "ES-p", "uniform_plastic_gazetas": "U-p-G",
          "uniform_plastic_impedance": "U-p-I", "end_stiffened_bearing": "ES-b",
-         "end_stiffened_bearing_impedance": "ES-b-I"}
+         "end_stiffened_plastic_impedance": "ES-p-I"}
 
 
 def _short(name: str) -> str:
