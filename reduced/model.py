@@ -350,9 +350,14 @@ def plastic_static_forces(layout: SpringLayout, weight: float,
 def _foundation_params(f, layout: SpringLayout, weight, rotary_mass, vertical_mass):
     """Foundation springs: k_i, F0_i from static equilibrium, dashpots, yield, impact damper."""
     k, x = layout.stiffnesses, layout.positions
-    bearing = f.law == "elastoplastic" and math.isfinite(f.capacity_multiple)
+    bearing = f.law == "elastoplastic" and (math.isfinite(f.capacity_multiple)
+                                            or f.yield_forces is not None)
     if bearing:
-        fy = bearing_yield_forces(layout, f.capacity_multiple * weight)
+        if f.yield_forces is not None:  # one per spring; a custom layout's follow its positions
+            fy = np.asarray(f.yield_forces, dtype=float)
+            fy = fy[np.argsort(f.positions, kind="stable")] if f.layout == "custom" else fy
+        else:
+            fy = bearing_yield_forces(layout, f.capacity_multiple * weight)
         F0, theta_s = plastic_static_forces(layout, weight, fy)
     else:
         F0, theta_s = _static_forces(layout, weight)

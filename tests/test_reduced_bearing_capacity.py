@@ -34,6 +34,7 @@ def bed_scene(**foundation):
          "springs": SPRINGS, "stiffness": 2.0e5, "end_stiffness_ratio": R_K,
          "end_length": R_E, "law": "elastoplastic"}
     f.update(foundation)
+    f = {key: value for key, value in f.items() if value is not None}  # None: key removed
     return scene_from_dict({
         "schema": 1, "units": "kN-m-s",
         "structure": {"weight": W, "height": 3.0, "period": 0.3, "damping_ratio": 0.05,
@@ -125,9 +126,40 @@ def test_a_run_on_a_bed_yielded_at_rest_closes_its_energy_and_integrators_agree(
         assert out.settlement[-1] == pytest.approx(ref.settlement[-1], rel=0.01)
 
 
+def test_given_yield_forces_are_the_capacity_beds_forces():
+    # the uniform capacity written out as one force per spring (FS_v W/B times each strip's
+    # width, by hand) builds the same model as capacity_multiple, to round-off
+    fs = 2.0
+    widths = np.full(SPRINGS, B / SPRINGS)
+    given = build_model(bed_scene(yield_forces=[fs * W / B * w for w in widths]))
+    bearing = build_model(bed_scene(capacity_multiple=fs))
+    for field in ("fy", "f0", "k"):
+        np.testing.assert_allclose(given.params[field], bearing.params[field], rtol=1e-12)
+    # a custom layout's forces follow its positions, as its dashpots do
+    x, k, fy = [0.5, -0.5, 0.0], [2e4, 1e4, 1e4], [70.0, 50.0, 60.0]
+    custom = build_model(bed_scene(layout="custom", positions=x, stiffnesses=k,
+                                   yield_forces=fy, springs=3, stiffness=None,
+                                   end_stiffness_ratio=None, end_length=None))
+    order = np.argsort(x)
+    np.testing.assert_allclose(custom.params["fy"][custom.foundation_slice],
+                               np.array(fy)[order], rtol=0)
+
+
 def test_capacity_keys_are_checked_up_front():
     with pytest.raises(InputError, match="yield_multiple with foundation.capacity_multiple"):
         bed_scene(capacity_multiple=3.0, yield_multiple=3.0)
+    with pytest.raises(InputError, match="capacity_multiple with foundation.yield_forces"):
+        bed_scene(capacity_multiple=3.0, yield_forces=[10.0] * SPRINGS)
+    with pytest.raises(InputError, match=r"yield_forces has 3 entries: give one per spring "
+                                         r"\(48\)"):
+        bed_scene(yield_forces=[10.0] * 3)
+    with pytest.raises(InputError, match=r"foundation.yield_forces\[1\] = -1"):
+        bed_scene(yield_forces=[10.0, -1.0] + [10.0] * (SPRINGS - 2))
+    with pytest.raises(InputError, match=r"yield_forces is read only with foundation.law = "
+                                         r"'elastoplastic' \(law is 'elastic'\)"):
+        bed_scene(yield_forces=[10.0] * SPRINGS, law="elastic")
+    with pytest.raises(InputError, match=r"cannot carry the weight|tension at rest"):
+        build_model(bed_scene(yield_forces=[1.0] * SPRINGS))  # Σ Fy = 48 kN/m < W
     with pytest.raises(InputError, match=r"capacity_multiple is read only with foundation.law = "
                                          r"'qz' or 'elastoplastic' \(law is 'elastic'\)"):
         bed_scene(capacity_multiple=3.0, law="elastic")
@@ -146,3 +178,17 @@ def test_a_bearing_capacity_bed_is_written_back_as_it_was_read():
     plain = scene_table(bed_scene(yield_multiple=2.5))["foundation"]
     assert plain["yield_multiple"] == 2.5 and "capacity_multiple" not in plain
     assert math.isinf(bed_scene().foundation.capacity_multiple)
+    forces = [5.0] * SPRINGS
+    table = scene_table(bed_scene(yield_forces=forces))["foundation"]
+    assert table["yield_forces"] == forces and "yield_multiple" not in table
+    assert scene_from_dict(scene_table(bed_scene(yield_forces=forces))).foundation == \
+        bed_scene(yield_forces=forces).foundation
+
+
+def test_the_opensees_bridge_refuses_a_bed_yielding_at_other_forces():
+    from upliftlab.comparisons.opensees.spec import check_representable
+
+    check_representable(bed_scene(yield_multiple=3.0))  # written: yield_multiple x F0
+    for key, value in (("capacity_multiple", 3.0), ("yield_forces", [5.0] * SPRINGS)):
+        with pytest.raises(InputError, match=rf"^foundation.{key}: the OpenSees script yields "):
+            check_representable(bed_scene(**{key: value}))

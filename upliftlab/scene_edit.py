@@ -73,6 +73,8 @@ def _foundation_table(foundation) -> dict:
         skip |= set(QZ_KEYS)
     if foundation.law == "elastoplastic" and math.isfinite(foundation.capacity_multiple):
         skip = (skip - {"capacity_multiple"}) | {"yield_multiple"}  # a uniform bearing capacity
+    if foundation.yield_forces is not None:
+        skip.add("yield_multiple")  # the springs' own yield forces
     return _plain(foundation, [f.name for f in dataclasses.fields(foundation)
                                if f.name not in skip])
 

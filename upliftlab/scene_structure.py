@@ -152,7 +152,11 @@ class Foundation:
     ``support``: ``uplift`` (compression-only springs), ``bonded`` (springs also carry tension)
     or ``fixed`` (θ and V locked). ``half_width`` b (length). ``layout`` and ``springs`` (N) place
     the springs; ``stiffness`` is their total K_v (force/length). ``law`` is ``elastic`` or
-    ``elastoplastic`` (yield at ``yield_multiple`` times the static compression) or ``qz``
+    ``elastoplastic`` (yield at ``yield_multiple`` times the static compression; or, with
+    ``capacity_multiple``, at a uniform bearing pressure: the bed's capacity, that multiple of
+    the weight, shared over the springs' tributary widths, whatever their stiffness; or at the
+    given ``yield_forces``, one per spring in the order of ``dashpots``; the springs that reach
+    their yield force under the weight start at it) or ``qz``
     (hysteretic q–z springs, :mod:`upliftlab.reduced.kernels.qz_law`: the bed's bearing
     capacity is ``capacity_multiple`` times the weight, shared over the springs' tributary
     widths; ``z50`` (length) the base's settlement at half capacity under a centred load;
@@ -197,6 +201,7 @@ class Foundation:
     positions: tuple[float, ...] = ()
     stiffnesses: tuple[float, ...] = ()
     dashpots: tuple[float, ...] | None = None
+    yield_forces: tuple[float, ...] | None = None
     sway_stiffness: float | None = None
     sway_damping: float | None = None
     sliding_friction: float | None = None
@@ -281,10 +286,7 @@ def read_foundation(data, vertical_mass: float, units: UnitSystem) -> Foundation
     dashpots = _dashpots(table, springs, damping_ratio, units)
     sway_stiffness, sway_damping, friction = _sway(table, units)
     law = table.get("law", choice(LAWS), "elastic")
-    if law == "elastoplastic" and table.has("capacity_multiple") and table.has("yield_multiple"):
-        raise InputError("foundation.yield_multiple with foundation.capacity_multiple: each sets "
-                         "the elasto-plastic springs' yield forces (a multiple of each static "
-                         "compression, or a uniform bearing capacity); give one of them")
+    yield_forces = _yield_forces(table, law, springs, units)
     qz = _qz_keys(table, law, support, units)
     foundation = Foundation(
         support=support,
@@ -303,6 +305,7 @@ def read_foundation(data, vertical_mass: float, units: UnitSystem) -> Foundation
         positions=positions,
         stiffnesses=stiffnesses,
         dashpots=dashpots,
+        yield_forces=yield_forces,
         sway_stiffness=sway_stiffness,
         sway_damping=sway_damping,
         sliding_friction=friction,
@@ -318,6 +321,35 @@ def read_foundation(data, vertical_mass: float, units: UnitSystem) -> Foundation
 
 #: Largest sliding friction coefficient μ: beyond it the base never slides in any record.
 MAX_FRICTION = 10.0
+
+
+#: The keys that set the elasto-plastic springs' yield forces; at most one is given.
+YIELD_KEYS = ("yield_multiple", "capacity_multiple", "yield_forces")
+
+
+def _yield_forces(table: Table, law: str, springs: int,
+                  units: UnitSystem) -> tuple[float, ...] | None:
+    """``foundation.yield_forces`` (force, one per spring), or None; refused with a law other
+    than ``elastoplastic`` and beside another of :data:`YIELD_KEYS`."""
+    if law == "elastoplastic":
+        given = [key for key in YIELD_KEYS if table.has(key)]
+        if len(given) > 1:
+            raise InputError(f"foundation.{given[0]} with foundation.{given[1]}: each sets the "
+                             "elasto-plastic springs' yield forces (a multiple of each static "
+                             "compression, a uniform bearing capacity, or one force per "
+                             "spring); give one of them")
+    if not table.has("yield_forces"):
+        return None
+    if law != "elastoplastic":
+        raise InputError(f"foundation.yield_forces is read only with foundation.law = "
+                         f"'elastoplastic' (law is {law!r}); remove it or set the law")
+    forces = table.get("yield_forces", numbers)
+    if len(forces) != springs:
+        raise InputError(f"foundation.yield_forces has {len(forces)} entries: give one per "
+                         f"spring ({springs})")
+    for i, f in enumerate(forces):
+        bounds.check(f"foundation.yield_forces[{i}]", f, "force", units)
+    return forces
 
 
 def _dashpots(table: Table, springs: int, damping_ratio: float,

@@ -137,6 +137,13 @@ def check_representable(scene: Scene) -> None:
             "upliftlab's q–z spring differs from OpenSees QzSimple2 (rigid closure and near "
             "field, calibrated far field), so it is not written; valid: 'elastic', "
             "'elastoplastic'")
+    if f.law == "elastoplastic" and (math.isfinite(f.capacity_multiple)
+                                     or f.yield_forces is not None):
+        key = "yield_forces" if f.yield_forces is not None else "capacity_multiple"
+        raise InputError(
+            f"foundation.{key}: the OpenSees script yields each spring at yield_multiple x F0, "
+            "its elastic static force; a bed whose springs yield at other forces (some at rest) "
+            "is not written; remove it and give foundation.yield_multiple")
     if s.kinematics != "small":
         raise InputError(
             f"structure.kinematics = {s.kinematics!r}: the OpenSees model (zeroLength springs "
