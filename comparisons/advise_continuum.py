@@ -9,8 +9,10 @@ reference; its uncertainty is its relative change from the next-coarser mesh. Ea
 :data:`.winkler_map.beds.BEDS` is built from the continuum statics of the scene's soil on the
 finest mesh (K_v, K_r with every contact node tied; V_ult and the load–settlement path from a
 vertical pushover, :func:`.winkler_map.statics.evaluate_static`; the elastic soil's dynamic
-impedance for the bed with the continuum's dashpots, :mod:`.winkler_map.impedance_points`),
-the scene's N, B, h and ``[structure]``, and run on the
+impedance for the beds with the continuum's dashpots, :mod:`.winkler_map.impedance_points`;
+the two rotation pushovers at the scene's N, a cycle per amplitude and a monotonic path, for
+the bed whose capacity profile is fitted to them, :mod:`.winkler_map.fitted_bed`), the scene's
+N, B, h and ``[structure]``, and run on the
 scene's own motion (the reduced model, the median of a few timed runs after an untimed one).
 A bed is certified when |error| + the reference's uncertainty ≤ tol; the advisor recommends the
 certified bed of least measured runtime, with its speed ratio against the reference run.
@@ -32,6 +34,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from ..anchors import half_plane_onset_rotation
 from ..checks import InputError
 from ..log import logger
 from ..scenes import Scene, scene_from_dict
@@ -44,11 +47,13 @@ from .winkler_map.cost import Estimate, estimate_cost, impedance_dofs
 from .winkler_map.grid import FAST_OPTIONS, FLOOR_FRACTION, FULL_OPTIONS
 from .winkler_map.impedance_points import evaluate_impedance, impedance_point_of, soil_impedance
 from .winkler_map.points import base_table, continuum_measures, scales, story_constants
+from .winkler_map.rocking import evaluate_continuum, pushover_points
 from .winkler_map.statics import evaluate_static
 
 __all__ = ["FULL_MESHES", "FAST_MESHES", "MeshRun", "ContinuumReference", "SoilNumbers",
            "BedCheck", "ContinuumPlan", "ContinuumAdvice", "plan_continuum", "run_continuum",
-           "continuum_run", "bed_run", "soil_numbers", "scene_impedance", "bed_reference",
+           "continuum_run", "bed_run", "soil_numbers", "scene_impedance", "scene_pushovers",
+           "bed_reference",
            "format_continuum"]
 
 FULL_MESHES = (4, 8, 16)
@@ -191,7 +196,10 @@ def plan_continuum(scene: Scene, measure: str, tol: float, *, fast: bool = False
     scenes = [_at_mesh(scene, n) for n in meshes]
     soil = scene.soil.model
     impedance = _impedance_point(scene, meshes[-1])
-    estimate = estimate_cost([(soil, scenes[-1], False)],
+    options = FAST_OPTIONS if fast else FULL_OPTIONS
+    rotations = [(soil, scenes[-1], False, len(p["rotations"]) / (options.vertical_steps + 1))
+                 for p in _pushover_points(scene, meshes[-1], fast)]
+    estimate = estimate_cost([(soil, scenes[-1], False), *rotations],
                              [(soil, s, _duration(scene), False) for s in scenes], [], [],
                              [(soil, impedance_dofs(impedance),
                                len(impedance["impedance"]["a0"]), False)], [])
@@ -306,17 +314,44 @@ def scene_impedance(scene: Scene, elements_across: int):
     return soil_impedance(point, evaluate_impedance(point))
 
 
-def bed_reference(scene: Scene, statics: SoilNumbers, impedance) -> BedReference:
-    """The continuum numbers the beds are built from: the statics, the scene's N, B, h,
-    density and ``[structure]``, the pushover, and the impedance."""
+def _onset_rotation(scene: Scene) -> float:
+    """θ_on = 2N(1 − ν)/(π G B), the elastic half-plane's uplift rotation of the scene (rad)."""
     soil = scene.soil
+    return half_plane_onset_rotation(scene.structure.weight, scene.foundation.width,
+                                     soil.shear_modulus, soil.poisson_ratio)
+
+
+def _pushover_points(scene: Scene, elements_across: int, fast: bool) -> list[dict]:
+    table = {k: copy.deepcopy(v) for k, v in scene.data.items() if k != "motion"}
+    table["continuum"] = {**table.get("continuum", {}), "elements_across": int(elements_across)}
+    table["motion"] = {"type": "free", "velocity": 1.0, "duration": 1.0}  # unused
+    return pushover_points(table, scene.structure.weight, _onset_rotation(scene),
+                           FAST_OPTIONS if fast else FULL_OPTIONS)
+
+
+def scene_pushovers(scene: Scene, elements_across: int, fast: bool) -> dict | None:
+    """The continuum's two rotation pushovers of the scene under its N on ``elements_across``
+    (the map's paths, scaled by θ_on): ``cyclic``, ``monotonic`` and ``theta_on``, or None
+    when the soil could not follow a path (the fitted bed is then refused, with why)."""
+    cyclic, monotonic = (evaluate_continuum(p) for p in
+                         _pushover_points(scene, elements_across, fast))
+    if "error" in cyclic or "error" in monotonic:
+        return None
+    return {"cyclic": cyclic, "monotonic": monotonic, "theta_on": _onset_rotation(scene)}
+
+
+def bed_reference(scene: Scene, statics: SoilNumbers, impedance,
+                  pushovers: dict | None = None) -> BedReference:
+    """The continuum numbers the beds are built from: the statics, the scene's N, B, h,
+    density and ``[structure]``, the pushover, the impedance and the rotation pushovers."""
+    soil = scene.soil
+    extra = {"density": soil.density, "structure": copy.deepcopy(scene.data["structure"]),
+             "settlement": statics.settlement, "load": statics.load, "impedance": impedance}
+    if pushovers is not None:
+        extra["rocking"] = pushovers
     return BedReference(soil.model, scene.structure.weight, scene.foundation.width,
                         scene.structure.height, statics.K_v, statics.K_r, statics.V_ult,
-                        soil.shear_modulus, soil.poisson_ratio,
-                        extra={"density": soil.density,
-                               "structure": copy.deepcopy(scene.data["structure"]),
-                               "settlement": statics.settlement, "load": statics.load,
-                               "impedance": impedance})
+                        soil.shear_modulus, soil.poisson_ratio, extra=extra)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -351,7 +386,9 @@ def run_continuum(scene: Scene, quantity: str, measure: str, tol: float, plan: C
     _progress(f"continuum statics on {plan.meshes[-1]} elements across", started,
               len(plan.meshes) * per_run, plan.estimate.seconds)
     statics = soil_numbers(scene, plan.meshes[-1], fast)
-    reference_numbers = bed_reference(scene, statics, scene_impedance(scene, plan.meshes[-1]))
+    pushovers = scene_pushovers(scene, plan.meshes[-1], fast)
+    reference_numbers = bed_reference(scene, statics, scene_impedance(scene, plan.meshes[-1]),
+                                      pushovers)
     B, h, N = scene.foundation.width, scene.structure.height, scene.structure.weight
     floor = FLOOR_FRACTION * scales(N, B, h, statics.K_v, statics.K_r,
                                     story_constants(scene)[0])[measure]

@@ -104,8 +104,11 @@ def test_every_bed_has_the_continuums_rocking_stiffness(study, written):
                           soil.shear_modulus, soil.poisson_ratio,
                           extra={"density": soil.density, "structure": structure,
                                  "impedance": dict(study.data.impedances)["clay"], **pushover})
+    pushovers = dict(study.data.pushovers)
     for name in wm.BEDS:
-        table = wm.bed_foundation(name, ref, wm.FAST_OPTIONS)
+        rocking = pushovers["clay", 2.0]  # the fitted bed's statics (any FS_v: K_r is kept)
+        table = wm.bed_foundation(name, replace(ref, extra={**ref.extra, "rocking": rocking}),
+                                  wm.FAST_OPTIONS)
         data = {"schema": 1, "units": "kN-m-s", "structure": dict(structure),
                 "foundation": table, "motion": {"type": "free", "velocity": 1.0,
                                                 "duration": 1.0}}
@@ -552,7 +555,7 @@ def test_a_continuum_run_that_fails_is_reported_and_left_out_or_held_to(tmp_path
     point = _dynamic_points(d.grid, d.options, list(d.motions), wmp.base_table(),
                             load_scene(wmp.BASE_SCENE).g, {"clay": st.V_ult})[0]
     ref = _reference(st, _scene(point["scene"]), point["scene"]["structure"],
-                     dict(d.impedances).get("clay"))
+                     dict(d.impedances).get("clay"), dict(d.pushovers)["clay", 2.0])
     called = {name: wm.run_bed(point, bed_foundation(name, ref, d.options))["peak_settlement"]
               >= 0.2 for name in d.calibrations}
     assert {n: bool(d.bed_bearing_failure[0, 0, 0, 0, 0, 0, c])

@@ -34,6 +34,7 @@ from ...reduced.compatibility import winkler_bed
 from ..winkler_vs_continuum import Options as CalibrationOptions, calibrate
 from ..winkler_vs_continuum.radiation import distribute, gazetas_dashpots
 from ..winkler_vs_continuum.reference import ContinuumReference
+from .fitted_bed import build_end_stiffened_fitted_impedance
 from .impedance_bed import build_uniform_plastic_impedance, impedance_dashpots_of
 from .qz_bed import build_qz
 
@@ -176,6 +177,12 @@ BEDS: dict[str, BedEntry] = {
         "continuum's impedance dashpots", build_end_stiffened_plastic_impedance,
         "K_r, K_v where reachable, V_ult, and the FE impedance's C_v and C_r at the rocking "
         "frequency", needs=("impedance",)),
+    "end_stiffened_fitted_impedance": BedEntry(
+        "end_stiffened_fitted_impedance", "end-stiffened elasto-plastic bed, capacity profile "
+        "fitted to the continuum's rocking, with its impedance dashpots",
+        build_end_stiffened_fitted_impedance,
+        "K_r, K_v where reachable, V_ult, the capacity profile to the rotation pushovers, and "
+        "the FE impedance's C_v and C_r at the rocking frequency", needs=("impedance",)),
 }
 
 

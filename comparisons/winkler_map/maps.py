@@ -26,11 +26,13 @@ from .bed_runs import run_bed
 from .beds import BEDS, BedReference, bed_foundation
 from .cost import Estimate, estimate_cost, impedance_dofs, refuse_over_budget
 from .grid import FLOOR_FRACTION, MEASURES, STUDY, Grid, Options
+from .fitted_bed import FITTED, fit_capacity_profile
 from .impedance_points import evaluate_impedance, impedance_point, soil_impedance
 from .motions import motion_duration
 from .points import (BASE_SCENE, base_table, evaluate_dynamic, point_table, scales,
                      story_constants)
-from .rocking import RockingData, bed_rocking, evaluate_continuum, rocking_data, rocking_points
+from .rocking import (RockingData, bed_rocking, evaluate_continuum, rocking_data,
+                      rocking_points, theta_onset)
 from .statics import SoilStatics, evaluate_static, soil_statics, static_points
 
 __all__ = ["MapData", "compute_map", "IN_PROCESS_SECONDS"]
@@ -62,7 +64,10 @@ class MapData:
     :data:`~upliftlab.continuum.run_control.FAILURE_SETTLEMENT` B or more in its run of such
     a point (it fails in bearing too); ``workers`` the local worker processes the estimate
     divided the work by (1 in this process; None: a Dask cluster or the caller's executor,
-    whose count is not known).
+    whose count is not known); ``capacity_fits`` ((soil, fs_v), :class:`~.fitted_bed.
+    CapacityFit`) pairs of the fitted bed's capacity profile (when it is compared);
+    ``pushovers`` ((soil, fs_v), the continuum's rotation pushovers a bed is calibrated to, or
+    None where a path stopped) pairs.
     """
 
     grid: Grid
@@ -90,6 +95,8 @@ class MapData:
     bearing_failure: np.ndarray | None = None
     bed_bearing_failure: np.ndarray | None = None
     workers: int | None = 1
+    capacity_fits: tuple = ()
+    pushovers: tuple = ()
 
     @property
     def motion_names(self) -> tuple[str, ...]:
@@ -223,49 +230,70 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
         impedances = dict(zip(grid.soils, (soil_impedance(p, r) for p, r in zip(
             impedance_points, run_sweep(evaluate_impedance, impedance_points, store, **sweep)))))
         points = _dynamic_points(grid, options, motions, base, g, loads)
-        _build_every_bed(grid, options, calibrations, motions, statics, points, impedances)
         before = sum(1 for p in points if store.has(_key(p, evaluate_dynamic)))
         rotations = _rocking_points(grid, options, base, loads)
         before += sum(1 for p in rotations if store.has(_key(p, evaluate_continuum)))
         rocking_records = run_sweep(evaluate_continuum, rotations, store, **sweep)
+        pushovers = _pushovers(grid, loads, base, rocking_records)
+        _build_every_bed(grid, options, calibrations, motions, statics, points, impedances,
+                         pushovers)
         runs = run_sweep(evaluate_dynamic, points, store, **sweep)
     soils_run = sum(1 for i in range(len(grid.soils))
                     if any(r is None for r in static_records[2 * i:2 * i + 2]))
     computed = (len(points) + len(rotations) - before + soils_run
                 + sum(1 for done in impedance_stored if not done))
     rocking = _rocking(grid, options, calibrations, statics, base, g, rocking_records,
-                       impedances)
+                       impedances, pushovers)
     return _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
-                     computed, rocking, impedances, split)
+                     computed, rocking, impedances, split, pushovers)
 
 
-def _reference(st: SoilStatics, scene, structure: Mapping, impedance=None) -> BedReference:
+def _pushovers(grid, loads, base, records) -> dict:
+    """(soil, fs_v) → the continuum's ``cyclic`` and ``monotonic`` rotation pushovers and
+    their ``theta_on``, for a bed calibrated to them; None where a path stopped."""
+    B = 2.0 * base["foundation"]["half_width"]
+    out = {}
+    for i, (soil, fs) in enumerate((s, f) for s in grid.soils for f in grid.fs_v):
+        cyclic, monotonic = records[2 * i], records[2 * i + 1]
+        out[soil, fs] = None if "error" in cyclic or "error" in monotonic else {
+            "cyclic": cyclic, "monotonic": monotonic,
+            "theta_on": theta_onset(loads[soil] / fs, soil, B)}
+    return out
+
+
+def _reference(st: SoilStatics, scene, structure: Mapping, impedance=None,
+               rocking=None) -> BedReference:
     """The continuum numbers a bed is calibrated from, at a point's scene: its numbers, the
-    soil's statics, and in ``extra`` the soil's density, the point's ``[structure]`` table and
-    the soil's impedance (when a bed needs it)."""
+    soil's statics, and in ``extra`` the soil's density, the point's ``[structure]`` table,
+    the soil's impedance (when a bed needs it) and the continuum's rotation pushovers at the
+    point's N (``rocking``, where they ran to their end)."""
     extra = {"density": scene.soil.density, "structure": dict(structure),
              "settlement": st.settlement, "load": st.load}
     if impedance is not None:
         extra["impedance"] = impedance
+    if rocking is not None:
+        extra["rocking"] = rocking
     return BedReference(st.soil, scene.structure.weight, scene.foundation.width,
                         scene.structure.height, st.K_v, st.K_r, st.V_ult,
                         scene.soil.shear_modulus, scene.soil.poisson_ratio, extra=extra)
 
 
-def _build_every_bed(grid, options, calibrations, motions, statics, points, impedances):
+def _build_every_bed(grid, options, calibrations, motions, statics, points, impedances,
+                     pushovers):
     """Build every bed of every cell once (milliseconds), after the statics and before any
     further continuum run: a bed that cannot be built at some point (an impedance bed whose
     rocking frequency is outside the impedance's frequencies) is refused before that work."""
     by_soil = {s.soil: s for s in statics}
-    for k, (_, (soil, *_)) in enumerate(_cells(grid)):
+    for k, (_, (soil, fs, *_)) in enumerate(_cells(grid)):
         table = points[k * len(motions)]["scene"]
-        ref = _reference(by_soil[soil], _scene(table), table["structure"], impedances.get(soil))
+        ref = _reference(by_soil[soil], _scene(table), table["structure"], impedances.get(soil),
+                         pushovers[soil, fs])
         for name in calibrations:
             bed_foundation(name, ref, options)
 
 
-def _rocking(grid, options, calibrations, statics, base, g, records,
-             impedances) -> RockingData:
+def _rocking(grid, options, calibrations, statics, base, g, records, impedances,
+             pushovers) -> RockingData:
     """Every bed's rocking pushovers on the continuum's rotations, per (soil, fs_v); the
     beds are built at the grid's first h/B and period (a bed's statics do not depend on
     them)."""
@@ -276,7 +304,7 @@ def _rocking(grid, options, calibrations, statics, base, g, records,
         table = point_table(base, soil, options.elements_across, by_soil[soil].V_ult / fs,
                             grid.h_over_B[0], grid.periods[0], g)
         ref = _reference(by_soil[soil], _scene(table), table["structure"],
-                         impedances.get(soil))
+                         impedances.get(soil), pushovers[soil, fs])
         if "error" in records[2 * i] or "error" in records[2 * i + 1]:
             beds.append([])  # the continuum's path stopped: nothing to push the beds over on
             continue
@@ -289,7 +317,7 @@ def _rocking(grid, options, calibrations, statics, base, g, records,
 
 
 def _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
-              computed, rocking, impedances, workers) -> MapData:
+              computed, rocking, impedances, workers, pushovers) -> MapData:
     from ...continuum.run_control import FAILURE_SETTLEMENT
 
     shape = (len(grid.soils), len(grid.fs_v), len(grid.h_over_B), len(grid.periods),
@@ -315,7 +343,8 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
             at = idx + (m,)
             scene = _scene(point["scene"])
             B, h = scene.foundation.width, scene.structure.height
-            ref = _reference(st, scene, point["scene"]["structure"], impedances.get(soil))
+            ref = _reference(st, scene, point["scene"]["structure"], impedances.get(soil),
+                             pushovers[soil, fs])
             k_story, _ = story_constants(scene)
             scl = scales(ref.N, B, h, st.K_v, st.K_r, k_story)
             scale[idx[:4]] = [scl[q] for q in MEASURES]
@@ -354,10 +383,19 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                     errors[at + (c, q)] = relative_error(beds[at + (c, q)],
                                                          run["measures"][measure],
                                                          FLOOR_FRACTION * scl[measure])
+    fits = ()
+    if FITTED in calibrations:  # the fitted bed's profile per (soil, fs_v): built above, cached
+        fits = tuple(((soil, fs), fit_capacity_profile(_reference(
+            by_soil[soil], _scene(point["scene"]), point["scene"]["structure"],
+            impedances.get(soil), pushovers[soil, fs]), options))
+            for (_, (soil, fs, *_)), point in zip(_cells(grid), points[::len(motions)])
+            if pushovers[soil, fs] is not None)
+        fits = tuple(dict(fits).items())
     return MapData(grid, options, tuple(motions), tuple(calibrations), tuple(statics), N,
                    continuum, beds, errors, scale, cwall, bwall, steps, balance, dofs, bed_K_r,
                    bed_K_v, tuple(refusals), estimate, computed, rocking,
-                   tuple(impedances.items()), bearing, bed_bearing, workers)
+                   tuple(impedances.items()), bearing, bed_bearing, workers, fits,
+                   tuple(pushovers.items()))
 
 
 def _where(soil, fs, hb, period, intensity, motion) -> str:

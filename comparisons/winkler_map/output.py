@@ -138,6 +138,13 @@ def statics_dataset(data: MapData, prov: Mapping):
             "units": "s", "long_name": "wall time of the two static runs"}),
     }
     variables.update(rocking_variables(data))
+    if data.capacity_fits:
+        fits = dict(data.capacity_fits)
+        beta = [[fits[s, fs].beta if (s, fs) in fits else np.nan for fs in data.grid.fs_v]
+                for s in soils]
+        variables["capacity_beta"] = (("soil", "fs_v"), np.array(beta, dtype=float), {
+            "units": "1", "long_name": "the fitted bed's capacity exponent: yield pressure "
+                                       "proportional to (k_i/w_i)**beta"})
     coords = {"soil": ("soil", soils, {"long_name": "soil of the continuum"}),
               "fs_v": ("fs_v", np.array(data.grid.fs_v, dtype=float), {
                   "units": "1", "long_name": "vertical factor of safety V_ult/N"}),

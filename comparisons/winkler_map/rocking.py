@@ -32,7 +32,8 @@ from ..winkler_vs_continuum.points import evaluate_continuum, floats
 from ..winkler_vs_continuum.reference import cyclic_path, rotation_path
 from .grid import SOILS, Options
 
-__all__ = ["QUANTITY_GROUPS", "RockingData", "rocking_points", "rocking_quantities",
+__all__ = ["QUANTITY_GROUPS", "RockingData", "rocking_points", "pushover_points",
+           "rocking_quantities",
            "bed_rocking", "rocking_data", "evaluate_continuum"]
 
 #: The groups of statics quantities the issue names, and the quantity keys in each (``{r}``:
@@ -67,8 +68,14 @@ def rocking_points(base: Mapping, soil: str, N: float, options: Options) -> list
     """The continuum's two rotation pushovers of ``soil`` under N (kN/m) on the options' mesh,
     as points of :func:`evaluate_continuum`: the cyclic path, then the monotonic one."""
     B = 2.0 * base["foundation"]["half_width"]
-    theta_on = theta_onset(N, soil, B)
-    table = _scene_table(base, soil, options, N)
+    return pushover_points(_scene_table(base, soil, options, N), N,
+                           theta_onset(N, soil, B), options)
+
+
+def pushover_points(table: Mapping, N: float, theta_on: float, options: Options) -> list[dict]:
+    """The two rotation pushovers of a scene ``table`` (with its soil and mesh) under N, as
+    points of :func:`evaluate_continuum`: one cycle per amplitude of ``options.cycle_ratios``,
+    then the monotonic path, both scaled by ``theta_on`` (rad)."""
     return [{"scene": table, "soil": "scene", "analysis": "rotation", "N": float(N),
              "rotations": floats(path(theta_on, options))}
             for path in (cyclic_path, rotation_path)]

@@ -88,6 +88,8 @@ def summary_numbers(result, elapsed: float) -> dict:
                  "continuum_wall_s": float(np.nansum(d.continuum_wall))
                  + sum(s.wall_time_s for s in d.statics)
                  + sum(imp.metadata.get("wall_time_s", 0.0) for _, imp in d.impedances)},
+        "capacity_fits": {f"{soil} FS_v={fs:g}": {"beta": fit.beta, "misfit": fit.misfit}
+                          for (soil, fs), fit in d.capacity_fits},
         "impedance": {soil: {"a0": [float(v) for v in imp.a0],
                              "omega": [float(v) for v in imp.omega],
                              "C_v": [float(v) for v in imp.dashpot("v")],
@@ -145,7 +147,7 @@ def summary_markdown(result, fast: bool, elapsed: float) -> str:
              "K_v and K_r (every contact node tied to the footing, elastic soil) and V_ult (the "
              f"largest load of a vertical pushover to {o.settlement_ratio:g} B) do not depend on "
              "N: one pair of stored static runs per soil serves every FS_v, N = V_ult/FS_v.", "",
-             *_statics_table(d), "", *_impedance_text(d),
+             *_statics_table(d), "", *_impedance_text(d), *_capacity_fit_text(d),
              "## The beds' statics against the continuum's", "",
              *_rocking_lines(d), "",
              "## Where each bed is enough", "",
@@ -234,6 +236,21 @@ def _impedance_text(d) -> list[str]:
     return rows + [""]
 
 
+def _capacity_fit_text(d) -> list[str]:
+    """The fitted bed's exponent β per soil and FS_v, and its misfit to the statics."""
+    if not d.capacity_fits:
+        return []
+    rows = ["The fitted bed's springs yield at bearing pressures ∝ (k_i/w_i)^β (β = 0 one "
+            "pressure, V_ult/B; β = 1 FS_v times each spring's static force, as the "
+            "end-stiffened elasto-plastic bed), β fitted to the continuum's rotation pushovers "
+            "at each N (moment and settlement on the monotonic path, settlement over the "
+            "cycles; the misfit is the root-mean-square relative error):", "",
+            "| soil | FS_v | β | misfit |", "|---|---|---|---|"]
+    for (soil, fs), fit in d.capacity_fits:
+        rows.append(f"| {soil} | {fs:g} | {fit.beta:g} | {fit.misfit:.3g} |")
+    return rows + [""]
+
+
 def _statics_table(d) -> list[str]:
     rows = ["| soil | DOFs | K_v (kN/m/m) | K_r (kN m/rad/m) | V_ult (kN/m) | last step's load "
             "rise | N at each FS_v (kN/m) | V_ult/N − FS_v |", "|---|---|---|---|---|---|---|---|"]
@@ -277,7 +294,8 @@ def _rocking_lines(d) -> list[str]:
 SHORT = {"uniform": "U", "end_stiffened": "ES", "uniform_plastic": "U-p",
          "end_stiffened_plastic": "ES-p", "uniform_plastic_gazetas": "U-p-G",
          "uniform_plastic_impedance": "U-p-I", "end_stiffened_bearing": "ES-b",
-         "end_stiffened_plastic_impedance": "ES-p-I"}
+         "end_stiffened_plastic_impedance": "ES-p-I",
+         "end_stiffened_fitted_impedance": "ES-f-I"}
 
 
 def _short(name: str) -> str:

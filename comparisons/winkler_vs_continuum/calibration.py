@@ -200,12 +200,18 @@ def bed_scene(scene: Scene, cal: Calibration) -> Scene:
 
 def pushover_record(model, thetas) -> dict:
     """A rocking pushover of the bed. The reduced model measures V from static equilibrium, so
-    the settlement of the base centre is the static compression there, Σ k_i δ0_i / Σ k_i
-    (= N/K_v for a symmetric bed), minus V."""
+    the settlement of the base centre is its static settlement minus V: Σ k_i δ0_i / Σ k_i
+    (= N/K_v for a symmetric bed); where springs reached their yield force under the weight
+    (and settled plastically beyond their elastic compression δ0), the compression at rest of
+    a spring below it less x_i θ_s (θ_s the static rotation), the same for each such spring."""
     p = rocking_pushover(model, thetas)
     found = model.foundation_slice
-    k, d0 = model.params["k"][found], model.params["d0"][found]
-    static = float(np.sum(k * d0) / np.sum(k))
+    P = model.params[found]
+    capped = P["f0"] >= P["fy"] * (1.0 - 1e-12)
+    if capped.any():
+        static = float(np.mean((P["d0"] - P["x"] * model.static_rotation)[~capped]))
+    else:
+        static = float(np.sum(P["k"] * P["d0"]) / np.sum(P["k"]))
     return {"theta": np.asarray(thetas, dtype=float), "M": p.moment,
             "settlement": static - p.vertical, "contact": p.contact}
 
