@@ -245,7 +245,7 @@ def _capacity_fit_text(d) -> list[str]:
             "end-stiffened elasto-plastic bed), β fitted to the continuum's rotation pushovers "
             "at each N (moment and settlement on the monotonic path, settlement over the "
             "cycles; the misfit is the root-mean-square relative error):", "",
-            "| soil | FS_v | β | misfit |", "|---|---|---|---|"]
+            "| soil | FS_v (1) | β (1) | misfit (1) |", "|---|---|---|---|"]
     for (soil, fs), fit in d.capacity_fits:
         rows.append(f"| {soil} | {fs:g} | {fit.beta:g} | {fit.misfit:.3g} |")
     return rows + [""]
