@@ -329,14 +329,17 @@ def _pushover_points(scene: Scene, elements_across: int, fast: bool) -> list[dic
                            FAST_OPTIONS if fast else FULL_OPTIONS)
 
 
-def scene_pushovers(scene: Scene, elements_across: int, fast: bool) -> dict | None:
+def scene_pushovers(scene: Scene, elements_across: int, fast: bool) -> dict:
     """The continuum's two rotation pushovers of the scene under its N on ``elements_across``
-    (the map's paths, scaled by θ_on): ``cyclic``, ``monotonic`` and ``theta_on``, or None
-    when the soil could not follow a path (the fitted bed is then refused, with why)."""
+    (the map's paths, scaled by θ_on): ``cyclic``, ``monotonic`` and ``theta_on``, or
+    ``error`` when the soil could not follow a path (the fitted bed is then refused, with
+    it)."""
     cyclic, monotonic = (evaluate_continuum(p) for p in
                          _pushover_points(scene, elements_across, fast))
-    if "error" in cyclic or "error" in monotonic:
-        return None
+    errors = [f"{name}: {r['error']}" for name, r in (("cyclic", cyclic),
+                                                      ("monotonic", monotonic)) if "error" in r]
+    if errors:
+        return {"error": "; ".join(errors)}
     return {"cyclic": cyclic, "monotonic": monotonic, "theta_on": _onset_rotation(scene)}
 
 

@@ -97,3 +97,8 @@ def test_the_fitted_bed_needs_the_continuums_pushovers():
 
     with pytest.raises(InputError, match=r"extra\['rocking'\] is missing"):
         wm.bed_foundation("end_stiffened_fitted_impedance", reference(100.0), wm.FULL_OPTIONS)
+    stopped = reference(100.0, {"error": "monotonic: the rotation pushover stopped: step 9"})
+    with pytest.raises(InputError, match=r"^the fitted bed at N = 100 \(clay\): the continuum's "
+                                         r"rotation pushover stopped \(monotonic: the rotation "
+                                         r"pushover stopped: step 9\)"):
+        wm.bed_foundation("end_stiffened_fitted_impedance", stopped, wm.FULL_OPTIONS)

@@ -71,6 +71,11 @@ def _rocking(reference) -> dict:
     if rocking is None:
         raise InputError("BedReference.extra['rocking'] is missing: the fitted bed needs the "
                          "continuum's cyclic and monotonic rotation pushovers at the point's N")
+    if "error" in rocking:
+        raise InputError(f"the fitted bed at N = {reference.N:g} ({reference.soil}): the "
+                         f"continuum's rotation pushover stopped ({rocking['error']}), so there "
+                         f"is nothing to fit its capacity profile to; leave the bed out "
+                         f"(options.beds) or mend the pushover")
     return rocking
 
 

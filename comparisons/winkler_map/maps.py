@@ -67,7 +67,7 @@ class MapData:
     whose count is not known); ``capacity_fits`` ((soil, fs_v), :class:`~.fitted_bed.
     CapacityFit`) pairs of the fitted bed's capacity profile (when it is compared);
     ``pushovers`` ((soil, fs_v), the continuum's rotation pushovers a bed is calibrated to, or
-    None where a path stopped) pairs.
+    why a path stopped) pairs.
     """
 
     grid: Grid
@@ -250,12 +250,16 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
 
 def _pushovers(grid, loads, base, records) -> dict:
     """(soil, fs_v) → the continuum's ``cyclic`` and ``monotonic`` rotation pushovers and
-    their ``theta_on``, for a bed calibrated to them; None where a path stopped."""
+    their ``theta_on``, for a bed calibrated to them; where a path stopped, ``error`` says
+    why (a bed that needs them is then refused, with it, before any dynamic run)."""
     B = 2.0 * base["foundation"]["half_width"]
     out = {}
     for i, (soil, fs) in enumerate((s, f) for s in grid.soils for f in grid.fs_v):
         cyclic, monotonic = records[2 * i], records[2 * i + 1]
-        out[soil, fs] = None if "error" in cyclic or "error" in monotonic else {
+        errors = [f"{name}: {r['error']}" for name, r in (("cyclic", cyclic),
+                                                          ("monotonic", monotonic))
+                  if "error" in r]
+        out[soil, fs] = {"error": "; ".join(errors)} if errors else {
             "cyclic": cyclic, "monotonic": monotonic,
             "theta_on": theta_onset(loads[soil] / fs, soil, B)}
     return out
@@ -388,8 +392,7 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
         fits = tuple(((soil, fs), fit_capacity_profile(_reference(
             by_soil[soil], _scene(point["scene"]), point["scene"]["structure"],
             impedances.get(soil), pushovers[soil, fs]), options))
-            for (_, (soil, fs, *_)), point in zip(_cells(grid), points[::len(motions)])
-            if pushovers[soil, fs] is not None)
+            for (_, (soil, fs, *_)), point in zip(_cells(grid), points[::len(motions)]))
         fits = tuple(dict(fits).items())
     return MapData(grid, options, tuple(motions), tuple(calibrations), tuple(statics), N,
                    continuum, beds, errors, scale, cwall, bwall, steps, balance, dofs, bed_K_r,
