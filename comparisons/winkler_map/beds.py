@@ -76,13 +76,14 @@ class BedEntry:
     ``build(reference, options) -> [foundation] table``, ``matches`` the continuum
     quantities it is calibrated to (text), and ``needs`` the stored continuum quantities beyond
     the statics that the map must compute for it (``impedance``: the soil's dynamic impedance,
-    :mod:`.impedance_points`)."""
+    :mod:`.impedance_points`); ``short`` its abbreviation in tables and figures."""
 
     name: str
     label: str
     build: Callable
     matches: str
     needs: tuple[str, ...] = ()
+    short: str = ""
 
 
 def _calibration(reference: BedReference, options, name: str):
@@ -149,40 +150,45 @@ def build_end_stiffened_plastic_impedance(reference: BedReference, options) -> d
 
 
 BEDS: dict[str, BedEntry] = {
-    "uniform": BedEntry("uniform", "uniform bed (K_r)", _builder("uniform"), "K_r"),
+    "uniform": BedEntry("uniform", "uniform bed (K_r)", _builder("uniform"), "K_r",
+                         short="U"),
     "end_stiffened": BedEntry("end_stiffened", "end-stiffened bed (K_r, K_v)",
-                              _builder("end_stiffened"), "K_r and K_v where reachable"),
+                              _builder("end_stiffened"), "K_r and K_v where reachable",
+                              short="ES"),
     "uniform_plastic": BedEntry("uniform_plastic", "uniform elasto-plastic bed (K_r, V_ult)",
-                                _builder("uniform_plastic"), "K_r and V_ult"),
+                                _builder("uniform_plastic"), "K_r and V_ult", short="U-p"),
     "end_stiffened_plastic": BedEntry("end_stiffened_plastic",
                                       "end-stiffened elasto-plastic bed (K_r, K_v, V_ult)",
                                       _builder("end_stiffened_plastic"),
-                                      "K_r, K_v where reachable, and V_ult"),
+                                      "K_r, K_v where reachable, and V_ult", short="ES-p"),
     "uniform_plastic_gazetas": BedEntry(
         "uniform_plastic_gazetas", "uniform elasto-plastic bed with Gazetas' dashpots",
-        build_uniform_plastic_gazetas, "K_r, V_ult, and the handbook strip's C_v and C_r"),
+        build_uniform_plastic_gazetas, "K_r, V_ult, and the handbook strip's C_v and C_r",
+        short="U-p-G"),
     "uniform_plastic_impedance": BedEntry(
         "uniform_plastic_impedance", "uniform elasto-plastic bed with the continuum's impedance "
         "dashpots", build_uniform_plastic_impedance,
         "K_r, V_ult, and the FE impedance's C_v and C_r at the rocking frequency",
-        needs=("impedance",)),
+        needs=("impedance",), short="U-p-I"),
     "qz": BedEntry("qz", "hysteretic q–z bed fitted to the vertical pushover", build_qz,
-                   "K_r, K_v where reachable, V_ult, and the whole vertical pushover"),
+                   "K_r, K_v where reachable, V_ult, and the whole vertical pushover",
+                   short="qz"),
     "end_stiffened_bearing": BedEntry(
         "end_stiffened_bearing", "end-stiffened elasto-plastic bed, uniform bearing capacity",
         build_end_stiffened_bearing,
-        "K_r, K_v where reachable, and V_ult as a uniform bearing pressure"),
+        "K_r, K_v where reachable, and V_ult as a uniform bearing pressure", short="ES-b"),
     "end_stiffened_plastic_impedance": BedEntry(
         "end_stiffened_plastic_impedance", "end-stiffened elasto-plastic bed with the "
         "continuum's impedance dashpots", build_end_stiffened_plastic_impedance,
         "K_r, K_v where reachable, V_ult, and the FE impedance's C_v and C_r at the rocking "
-        "frequency", needs=("impedance",)),
+        "frequency", needs=("impedance",), short="ES-p-I"),
     "end_stiffened_fitted_impedance": BedEntry(
         "end_stiffened_fitted_impedance", "end-stiffened elasto-plastic bed, capacity profile "
         "fitted to the continuum's rocking, with its impedance dashpots",
         build_end_stiffened_fitted_impedance,
         "K_r, K_v where reachable, V_ult, the capacity profile to the rotation pushovers, and "
-        "the FE impedance's C_v and C_r at the rocking frequency", needs=("impedance",)),
+        "the FE impedance's C_v and C_r at the rocking frequency", needs=("impedance",),
+        short="ES-f-I"),
 }
 
 

@@ -86,7 +86,21 @@ def _heat_maps(path: Path, title: str, x: Axis, y: Axis, rows) -> Path:
 
 
 def _short(name: str) -> str:
-    return BEDS[name].label if name in BEDS else name
+    """A calibration's abbreviation (its registry entry's), or its name."""
+    entry = BEDS.get(name)
+    return entry.short if entry is not None and entry.short else name
+
+
+def _legend_label(name: str) -> str:
+    entry = BEDS.get(name)
+    return f"{_short(name)}: {entry.label}" if entry is not None else name
+
+
+def _colours(count: int):
+    import matplotlib
+
+    cmap = matplotlib.colormaps["tab10" if count <= 10 else "tab20"]
+    return [cmap(i) for i in range(count)]
 
 
 def _distributions(data, analysis, path: Path) -> Path:
@@ -97,24 +111,27 @@ def _distributions(data, analysis, path: Path) -> Path:
     import matplotlib.pyplot as plt
 
     names = data.calibrations
-    fig, ax = plt.subplots(figsize=(9.5, 4.2), constrained_layout=True)
+    fig, ax = plt.subplots(figsize=(9.5, 4.2 + 0.16 * ((len(names) + 1) // 2)),
+                           constrained_layout=True)
     width = 0.8 / len(names)
     x = np.arange(len(MEASURES))
-    for c, name in enumerate(names):
+    for c, (name, colour) in enumerate(zip(names, _colours(len(names)))):
         med = [100 * analysis.pick(m).median[name] for m in MEASURES]
         p90 = [100 * analysis.pick(m).p90[name] for m in MEASURES]
-        bars = ax.bar(x + (c - (len(names) - 1) / 2) * width, med, width, label=_short(name))
-        ax.plot(x + (c - (len(names) - 1) / 2) * width, p90, "v", color=bars[0].get_facecolor(),
+        ax.bar(x + (c - (len(names) - 1) / 2) * width, med, width, color=colour,
+               label=_legend_label(name))
+        ax.plot(x + (c - (len(names) - 1) / 2) * width, p90, "v", color=colour,
                 markeredgecolor="k", markersize=6)
     for level in (10, 20):
         ax.axhline(level, color="k", ls=":", lw=0.8)
     ax.set_yscale("log")
     ax.set_xticks(x, [MEASURE_LABELS[m] for m in MEASURES], fontsize=8)
     ax.set_ylabel("|bed − continuum| / continuum (%)")
-    best = ", ".join(f"{MEASURE_LABELS[m]}: {analysis.pick(m).best}" for m in MEASURES)
+    best = ", ".join(f"{MEASURE_LABELS[m]}: {_short(analysis.pick(m).best)}" for m in MEASURES)
     ax.set_title(f"Which calibration for which quantity? Bars: median, ▼: 90th percentile over "
                  f"{analysis.pick(MEASURES[0]).points} points\nbest: {best}", fontsize=8)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.1),
+              frameon=False)
     ax.grid(True, which="both", axis="y", alpha=0.3)
     return write_figure(path, fig)
 
@@ -135,7 +152,7 @@ def _speed(data, analysis, path: Path) -> Path:
         ax.plot([c - 0.3, c + 0.3], [analysis.speed.median[name]] * 2, "k-")
     ax.axhline(1000, color="r", ls=":", label="1000 ×")
     ax.set_yscale("log")
-    ax.set_xticks(range(len(names)), [_short(n) for n in names], fontsize=7, rotation=10)
+    ax.set_xticks(range(len(names)), [_short(n) for n in names], fontsize=7)
     ax.set_ylabel("continuum wall time / bed wall time")
     ax.set_title(f"How much faster is each bed? (median: line; continuum runs: median "
                  f"{analysis.speed.continuum_median:.3g} s)", fontsize=8)

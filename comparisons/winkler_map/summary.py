@@ -290,16 +290,10 @@ def _rocking_lines(d) -> list[str]:
     return lines
 
 
-#: Short names of the calibrations in table headers (long names break mid-word in print).
-SHORT = {"uniform": "U", "end_stiffened": "ES", "uniform_plastic": "U-p",
-         "end_stiffened_plastic": "ES-p", "uniform_plastic_gazetas": "U-p-G",
-         "uniform_plastic_impedance": "U-p-I", "end_stiffened_bearing": "ES-b",
-         "end_stiffened_plastic_impedance": "ES-p-I",
-         "end_stiffened_fitted_impedance": "ES-f-I"}
-
-
 def _short(name: str) -> str:
-    return SHORT.get(name, name)
+    """A calibration's abbreviation in table headers (long names break mid-word in print)."""
+    entry = BEDS.get(name)
+    return entry.short if entry is not None and entry.short else name
 
 
 def _pick_table(d, a) -> list[str]:
