@@ -256,6 +256,24 @@ def test_bad_options_are_refused(tmp_path):
         wm.run(fast=True, out=tmp_path, options=replace(wm.FAST_OPTIONS, elements_across=1))
 
 
+def test_the_command_lines_beds_are_the_options_beds(tmp_path, capsys):
+    # --beds names the calibrations compared: an unknown one is refused in one line before
+    # anything runs (exit 2, nothing written); known ones become options.beds
+    from upliftlab.comparisons.winkler_map.workflow import _arguments, _context_from
+    import argparse
+
+    code = wm.main(["--fast", "--out", str(tmp_path / "o"), "--beds", "qz,winkler"])
+    assert code == 2 and not (tmp_path / "o").exists()
+    assert "options.beds[1] = 'winkler'" in capsys.readouterr().err
+    parser = argparse.ArgumentParser()
+    _arguments(parser)
+    parser.add_argument("--fast", action="store_true")
+    parser.add_argument("--no-figures", action="store_true")
+    args = parser.parse_args(["--fast", "--no-figures", "--beds", " qz, uniform "])
+    ctx = _context_from(args, wm.workflow.Context(fast=True), print)
+    assert ctx.options.beds == ("qz", "uniform")
+
+
 def test_a_run_over_its_budget_is_refused_with_its_estimate(tmp_path, capsys):
     """``--budget`` below the estimate: exit 2, one line naming the budget and the estimate,
     the estimate logged first; no continuum run is made (the store stays empty)."""

@@ -75,7 +75,7 @@ def _rocking(reference) -> dict:
         raise InputError(f"the fitted bed at N = {reference.N:g} ({reference.soil}): the "
                          f"continuum's rotation pushover stopped ({rocking['error']}), so there "
                          f"is nothing to fit its capacity profile to; leave the bed out "
-                         f"(options.beds) or mend the pushover")
+                         f"(--beds, options.beds) or mend the pushover")
     return rocking
 
 

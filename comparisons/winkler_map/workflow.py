@@ -81,11 +81,17 @@ def _arguments(parser) -> None:
                         help="replace one axis of the grid (repeatable), e.g. soils=clay, "
                              "fs_v=2,3,5,10, h_over_B=1.5, periods=0.5, intensities=1.5,3, "
                              "pulse_periods=0.25,0.6, elcentro=true, fema_components=2")
+    parser.add_argument("--beds", default=None, metavar="NAME,NAME",
+                        help="compare only these calibrations (names of the bed registry, "
+                             "e.g. end_stiffened_plastic,qz; default: every one)")
 
 
 def _context_from(args, ctx: Context, say) -> Context:
     base = FAST_OPTIONS if args.fast else FULL_OPTIONS
     options = replace(base, budget=args.budget, figures=not args.no_figures)
+    if args.beds is not None:
+        options = replace(options, beds=tuple(b.strip() for b in args.beds.split(",")
+                                              if b.strip()))
     if options.figures:
         from ...cli import need_extra
         need_extra(f"python -m upliftlab.comparisons.{STUDY}", "matplotlib",
