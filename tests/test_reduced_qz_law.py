@@ -241,3 +241,44 @@ def test_the_dispatching_forms_agree_with_the_qz_functions():
         assert work == qz_commit(p, copy, p["zs"] + e)
         assert contact == (0 if h["zg"] < 0 else 1)
         assert h["ep"] == pytest.approx(h["zp"] - (p["zs"] - p["d0"]), abs=1e-15)
+
+
+def _steep_spring():
+    """A spring of the shape the Winkler map's q–z bed fits to the clay (n = 7.83, elastic
+    range 0.68 q_ult, Masing ranges up to 1.36 q_ult): its hyperbola all but reaches q_ult within
+    a few z_ref, and a reload after a reversal near capacity has a range reaching past q_ult."""
+    table = sp.spring_table(1)
+    table["kind"], table["nnz"], table["k"] = QZ, 2, K
+    table["qult"], table["npow"], table["elast"], table["emax"] = QULT, 7.83, 0.68, 1.36
+    table["zref"], table["zd"] = 0.06, 0.25
+    P = sp.derive_columns(table)
+    H = np.zeros(1, dtype=sp.HISTORY_DTYPE)
+    qz_start(P[0], H[0], 0.0)
+    return P[0], H[0]
+
+
+def test_the_work_done_on_the_spring_is_stored_or_dissipated_up_to_its_capacity():
+    # Load to 0.3 (Q ≈ 0.998 q_ult), unload to 0.2 (a reversal: the next range is as wide as
+    # the loop, ~1.36 q_ult from the reversal's force, reaching past q_ult), reload to 1.0 far
+    # past the capacity. Reference: the work ∫ Q dz by the trapezoid rule over the fine path
+    # equals the dissipation the law books plus the far field's stored Q²/(2k) (its change);
+    # the force never exceeds q_ult; beyond the capacity the spring flows perfectly plastically,
+    # dissipating q_ult per unit of z (hand: 10 × 0.5 over the last half of the path).
+    p, h = _steep_spring()
+    path = np.concatenate([np.linspace(0.0, 0.3, 3001), np.linspace(0.3, 0.2, 1001)[1:],
+                           np.linspace(0.2, 1.0, 8001)[1:]])
+    q_prev, work, booked = qz_trial(p, h, path[0])[0], 0.0, 0.0
+    flow = None
+    for i, z in enumerate(path[1:], start=1):
+        q = qz_trial(p, h, z)[0]
+        assert q <= QULT
+        work += 0.5 * (q_prev + q) * (z - path[i - 1])
+        step = qz_commit(p, h, z)
+        booked += step
+        if z > 0.5 and flow is None:
+            flow = booked
+        q_prev = q
+    stored = 0.5 * q_prev**2 / K
+    assert booked + stored == pytest.approx(work, rel=1e-5)
+    assert booked - flow == pytest.approx(QULT * (1.0 - path[path > 0.5][0]), rel=1e-6)
+    assert q_prev == pytest.approx(QULT, rel=1e-9)

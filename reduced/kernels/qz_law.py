@@ -21,6 +21,9 @@ parts in series, each carrying Q:
   loop's force span (at least its previous width w, at most ``emax``·q_ult): Masing-type
   reloading, so that every reload to the same force yields again, a little less each cycle —
   the settlement a one-sided cyclic load accumulates. The pristine range is ±``elast``·q_ult.
+  A range ends at the capacity at the latest, and where the series carries the capacity (to
+  a part in 10¹²; the hyperbola only tends to it) the near field flows perfectly plastically:
+  whatever compression is left goes into z_p at Q = q_ult and is dissipated.
 - *gap*: a rigid closure (the footing cannot penetrate the settled surface: z_g ≤ 0, and
   z_g = 0 carries any compression) in parallel with a drag (suction) element of capacity
   q_d = suction·q_ult, a hyperbola of reference z_d = z50/2 (length):
@@ -99,16 +102,26 @@ def qz_start(p, h, q0):
 
 
 @njit(cache=True)
+def cap(p):
+    """The largest force the series carries: q_ult less a part in 10¹² (the hyperbola only
+    tends to q_ult), where the near field flows perfectly plastically."""
+    return p.qult * (1.0 - 1e-12)
+
+
+@njit(cache=True)
 def near_branch(p, h, d):
     """The near field's range and anchor (q_r, q_l, z_in, w) for a move in direction d (±1)
-    from the committed state: a reversal from a yielding state starts a new range there."""
+    from the committed state: a reversal from a yielding state starts a new range there. The
+    range ends at the capacity ±:func:`cap` at the latest: a Masing range wider than the room
+    left below q_ult would hold the near field rigid up to a force the soil cannot carry."""
     qr, ql, zin, w = h.qr, h.ql, h.zin, h.wel
-    if d < 0 and h.qc > qr:
+    # yielding: past the range's end, or flowing at the capacity where the range ends there
+    if d < 0 and (h.qc > qr or h.zp > h.zin):
         w = min(max(w, h.qc - ql), p.emax * p.qult)
-        qr, ql, zin = h.qc, h.qc - w, h.zp
-    elif d > 0 and h.qc < ql:
+        qr, ql, zin = h.qc, max(h.qc - w, -cap(p)), h.zp
+    elif d > 0 and (h.qc < ql or h.zp < h.zin):
         w = min(max(w, qr - h.qc), p.emax * p.qult)
-        qr, ql, zin = h.qc + w, h.qc, h.zp
+        qr, ql, zin = min(h.qc + w, cap(p)), h.qc, h.zp
     return qr, ql, zin, w
 
 
@@ -190,6 +203,20 @@ def solve_chain(p, z, d, lo, hi, q0, nf, dr, drag):
 
 
 @njit(cache=True)
+def at_capacity(p, z, q, dz, zp, zg):
+    """(Q, dz/dQ, z_p) of a loading move: where the series reaches :func:`cap` before the
+    trial compression z, the rest of z flows plastically at the capacity (z_p takes it, the
+    compliance is infinite), so that the work Q dz of that flow is the near field's, booked by
+    :func:`step_dissipation`, and not lost."""
+    if q < cap(p) * (1.0 - 1e-9):  # the solver stops within round-off of its bracket's end
+        return q, dz, zp
+    excess = z - (q / p.k + zp + zg)
+    if excess <= 0.0:
+        return q, dz, zp
+    return q, math.inf, zp + excess
+
+
+@njit(cache=True)
 def qz_trial(p, h, z):
     """The trial state at total compression z (length) from the committed history ``h``.
 
@@ -202,10 +229,11 @@ def qz_trial(p, h, z):
     qa, za = drag_branch(h, d)
     nf = (qr, ql, zin)
     dr = (qa, za)
-    top = p.qult * (1.0 - 1e-12)
+    top = cap(p)
     if p.qd > 0.0:
         if d > 0:
             q, dz, zp, zg = solve_chain(p, z, d, h.qc, top, h.qc, nf, dr, True)
+            q, dz, zp = at_capacity(p, z, q, dz, zp, zg)
         else:
             q, dz, zp, zg = solve_chain(p, z, d, -p.qd * (1.0 - 1e-12), h.qc, h.qc, nf, dr,
                                         True)
@@ -215,6 +243,7 @@ def qz_trial(p, h, z):
         if h.zg < 0.0 and z <= h.zc - h.zg:
             return 0.0, math.inf, h.zp, h.zg + (z - h.zc), d, qr, ql, zin, w, qa, za
         q, dz, zp, zg = solve_chain(p, z, d, max(h.qc, 0.0), top, h.qc, nf, dr, False)
+        q, dz, zp = at_capacity(p, z, q, dz, zp, zg)
         return q, dz, zp, zg, d, qr, ql, zin, w, qa, za
     z0, _, zp0, _ = chain(p, 0.0, d, nf, dr, False)
     if z <= z0:
