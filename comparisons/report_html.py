@@ -52,6 +52,7 @@ th,td{border:1px solid #d6dae1;padding:3px 6px;vertical-align:top;text-align:lef
 th{background:#eef1f5;position:sticky;top:0}tbody tr:nth-child(even){background:#fafbfc}
 td.num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
 td.tol{white-space:nowrap}
+td.name,th.name{white-space:nowrap}
 .ok{color:#12733a;font-weight:600}.bad{color:#b3261e;font-weight:700}.skip{color:#8a6d00}
 tr.fail td{background:#fdecea}tr.skipped td{color:#6b6f78;background:#fffbea}
 .status{border:1px solid #d6dae1;border-left:6px solid #12733a;padding:10px 14px;

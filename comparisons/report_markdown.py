@@ -67,11 +67,18 @@ _RULE = re.compile(r"^\s*\|?\s*:?-{3,}:?\s*(\|\s*:?-{3,}:?\s*)*\|?\s*$")
 def _table(lines: list[str]) -> str:
     columns = len(_cells(lines[1]))
     head, body = _fit(_cells(lines[0]), columns), [_fit(_cells(x), columns) for x in lines[2:]]
-    rows = ["<tr>" + "".join(f"<th>{_inline(c)}</th>" for c in head) + "</tr>"]
+    rows = ["<tr>" + "".join(f"<th{_name_class(c)}>{_inline(c)}</th>" for c in head) + "</tr>"]
     for cells in body:
-        rows.append("<tr>" + "".join(f"<td>{_badge(_inline(c))}</td>" for c in cells) + "</tr>")
+        rows.append("<tr>" + "".join(f"<td{_name_class(c)}>{_badge(_inline(c))}</td>"
+                                     for c in cells) + "</tr>")
     return ('<div class="scroll"><table>' + "<thead>" + rows[0] + "</thead><tbody>"
             + "".join(rows[1:]) + "</tbody></table></div>")
+
+
+def _name_class(cell: str) -> str:
+    """A cell that is one short hyphenated name (a bed's abbreviation, "ES-f-I") is kept on one
+    line: a browser breaks after a hyphen, and a narrow printed column showed "ES-f-" over "I"."""
+    return ' class="name"' if re.fullmatch(r"[\w.]+(-[\w.]+)+", cell) and len(cell) <= 10 else ""
 
 
 def _badge(cell: str) -> str:

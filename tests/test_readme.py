@@ -70,26 +70,17 @@ EXERCISED = {
         ("slow", ("results/two_spring_equivalence-fast/summary.md",)),
     "python -m upliftlab.comparisons.winkler_map --fast --out results/winkler_map-fast":
         ("slow", ("results/winkler_map-fast/summary.md", "results/winkler_map-fast/map.nc")),
-    "python -m upliftlab.comparisons.winkler_map --grid soils=clay --grid h_over_B=1.5 "
-    "--grid periods=0.5 --grid fema_components=4":
+    "python -m upliftlab.comparisons.winkler_map --grid elcentro=false --grid "
+    "fema_components=0 --store benchmarks/winkler_map_store --out results/winkler_map-pulses":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
-    "python -m upliftlab.comparisons.winkler_map --grid soils=sand --grid h_over_B=1.5 "
-    "--grid periods=0.5 --grid fema_components=4 --out results/winkler_map-sand":
+    "python -m upliftlab.comparisons.winkler_map --grid soils=clay --grid periods=0.5 --grid "
+    "intensities=3 --grid pulse_periods= --grid fema_components=10 --store "
+    "benchmarks/winkler_map_store --out results/winkler_map-clay-records":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
-    "python -m upliftlab.comparisons.winkler_map --grid periods=0.2,0.5 --grid elcentro=false "
-    "--grid fema_components=0 --out results/winkler_map-pulses":
-        ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
-         ()),
-    "python -m upliftlab.comparisons.winkler_map --grid soils=clay --grid fs_v=2,5 "
-    "--grid h_over_B=1.5 --grid periods=0.5 --grid intensities=3 --grid pulse_periods= "
-    "--grid elcentro=false --grid fema_components=10 --out results/winkler_map-fema10":
-        ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
-         ()),
-    "python -m upliftlab.comparisons.winkler_map --grid soils=clay --grid fs_v=2,5 "
-    "--grid h_over_B=1,2.5 --grid periods=0.5 --grid intensities=3 --grid pulse_periods= "
-    "--grid elcentro=false --grid fema_components=10 --out results/winkler_map-fema10-hb":
+    "python -m upliftlab.comparisons.winkler_map --store benchmarks/winkler_map_store "
+    "--budget 3600":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
     "upliftlab continuum strip_footing_clay --analysis impedance --set soil.model=elastic "

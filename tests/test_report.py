@@ -445,3 +445,11 @@ def test_markdown_subset():
     assert "<ul><li>one</li><li>two</li></ul>" in out
     assert "<th>|err|</th>" in out and '<span class="ok">pass</span>' in out
     assert "&lt;raw&gt;" in out and "<b>" not in out
+
+
+def test_a_cell_that_is_one_hyphenated_name_stays_on_one_line():
+    # A browser breaks after a hyphen: the printed map table showed "ES-f-" over "I". A cell that
+    # is one short hyphenated name is kept whole; a cell of words is free to wrap.
+    out = rp.markdown_to_html("| pick | note |\n|---|---|\n| ES-f-I | a well-kept bed |")
+    assert '<td class="name">ES-f-I</td>' in out and "<td>a well-kept bed</td>" in out
+    assert '<th>pick</th>' in out
