@@ -67,3 +67,15 @@ def test_the_clay_under_the_records_is_the_readmes(tmp_path):
     assert theta.best == "uniform_plastic_impedance" and _pct(theta.median[theta.best]) == 14.1
     assert uplift.best == "end_stiffened_plastic" and _pct(uplift.median[uplift.best]) == 17.8
     assert _pct(theta.median["end_stiffened_fitted_impedance"]) == 14.9
+
+
+def test_the_sand_under_the_records_is_the_readmes(tmp_path):
+    a = _map(tmp_path, soils=("sand",), periods=(0.5,), intensities=(3.0,), pulse_periods=(),
+             elcentro=True, fema_components=10).analysis
+    assert a.share.points == 132
+    assert a.share.best == "qz" and _pct(a.share.best_share) == 2.3
+    assert _pct(a.share.any_share) == 3.0
+    theta, uplift = a.pick("theta"), a.pick("uplift")
+    assert theta.best == "end_stiffened_fitted_impedance" and _pct(theta.median[theta.best]) == 33.6
+    assert uplift.best == "end_stiffened_fitted_impedance"
+    assert _pct(uplift.median[uplift.best]) == 114.9
