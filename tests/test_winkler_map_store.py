@@ -76,6 +76,7 @@ def test_the_sand_under_the_records_is_the_readmes(tmp_path):
     assert a.share.best == "qz" and _pct(a.share.best_share) == 2.3
     assert _pct(a.share.any_share) == 3.0
     theta, uplift = a.pick("theta"), a.pick("uplift")
-    assert theta.best == "end_stiffened_fitted_impedance" and _pct(theta.median[theta.best]) == 33.6
+    assert theta.best == "end_stiffened_fitted_impedance"
+    assert _pct(theta.median[theta.best]) == 33.6
     assert uplift.best == "end_stiffened_fitted_impedance"
     assert _pct(uplift.median[uplift.best]) == 114.9
