@@ -48,7 +48,9 @@ class Context:
     full default). ``executor``, ``scheduler``, ``workers`` and ``progress`` go to the study's
     sweeps (:func:`.sweep.run_sweep`). ``results``: results of studies already run in the same
     report, by name (a study may reuse one instead of computing it again). ``started``: the
-    wall clock (``time.perf_counter``, s) the study's elapsed time counts from.
+    wall clock (``time.perf_counter``, s) the study's elapsed time counts from. ``budget``
+    (s of one worker): a study that estimates its runs' cost before it starts them refuses
+    above it, when its own options set no budget (None: no limit; the report passes its own).
     """
 
     fast: bool = False
@@ -62,6 +64,7 @@ class Context:
     progress: object = None
     results: Mapping = field(default_factory=dict)
     started: float = field(default_factory=time.perf_counter)
+    budget: float | None = None
 
     def elapsed(self) -> float:
         """Seconds since :attr:`started`."""
@@ -81,7 +84,10 @@ class Study:
     ``arguments(parser)`` adds the study's own command-line options and
     ``context_from(args, context)`` folds them into the context. ``own_store``: the study keys
     its whole result itself (the verification): the report hands it the report's store and
-    does not cache it again.
+    does not cache it again. ``kept_store``: the folder, relative to the checkout's root, where
+    the points of the study's full build are kept with the repository; the report's full build
+    resumes from it when it is there (a run whose points are all kept costs minutes, not the
+    hours its continuum runs took).
     """
 
     name: str
@@ -96,6 +102,7 @@ class Study:
     arguments: Callable | None = None
     context_from: Callable | None = None
     own_store: bool = False
+    kept_store: str | None = None
     help_fast: str = "small grids and coarse meshes"
 
 

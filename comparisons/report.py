@@ -80,6 +80,13 @@ __all__ = ["STUDIES", "Section", "Report", "build_report", "markdown_to_html", "
 
 EXIT_VERIFICATION = EXIT_FAILED  # the earlier name of the same exit code
 REPORT = "report"
+#: The report's default budget (s of one worker) for a study that estimates its runs' cost
+#: before it starts them (the Winkler map): above it the study's section is refused with its
+#: estimate, and the rest of the report is built.
+REPORT_BUDGET = 3600.0
+#: The checkout the package runs from (an editable install); a study's kept store is looked
+#: for under it (:attr:`.protocol.Study.kept_store`).
+CHECKOUT = Path(__file__).resolve().parents[1]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -96,10 +103,28 @@ class _Run:
     out: Path
     store: Store
     scheduler: str | None
+    budget: float | None = None
     results: dict = field(default_factory=dict)
 
     def study_dir(self, name: str) -> Path:
         return self.out / "studies" / (name + ("-fast" if self.fast else ""))
+
+    def study_store(self, study: Study, say) -> Store | None:
+        """The store ``study``'s sweeps use: the report's own for a study that keys its whole
+        result (``own_store``); in a full build the study's points kept with the repository
+        when the checkout has them (:attr:`.protocol.Study.kept_store`); else None (the
+        study's own under its folder)."""
+        if study.own_store:
+            return self.store
+        if self.fast or study.kept_store is None:
+            return None
+        kept = CHECKOUT / study.kept_store
+        if not kept.is_dir():
+            say(f"{study.name}: no kept runs at {kept} (not a checkout): its runs start "
+                "from nothing")
+            return None
+        say(f"{study.name}: resuming the runs kept in {kept}")
+        return Store(kept)
 
 
 @dataclass(frozen=True)
@@ -218,9 +243,9 @@ def _run_section(item: str | Study, run: _Run, record_sha: str | None, say) -> S
                            time.perf_counter() - start, _study_from(stored))
     say(f"{study.name}: running")
     context = Context(fast=run.fast, out=run.study_dir(study.name),
-                      store=run.store if study.own_store else None,
+                      store=run.study_store(study, say),
                       scheduler=None if study.own_store else run.scheduler,
-                      results=run.results, started=start)
+                      results=run.results, started=start, budget=run.budget)
     try:
         with single_threaded():
             result = run_study(study, None, context)
@@ -248,11 +273,14 @@ def _failed(name: str, title: str, intro: str, start: float, exc: BaseException)
 
 def build_report(fast: bool = False, *, out: str | Path | None = None,
                  scheduler: str | None = None, studies: Sequence[str | Study] = STUDIES,
-                 progress=None, force: bool = False) -> Report:
+                 progress=None, force: bool = False,
+                 budget: float | None = REPORT_BUDGET) -> Report:
     """Run (or read from the stores) every study of ``studies`` (module names under
     ``upliftlab.comparisons``, or :class:`.protocol.Study` records; default the registry's)
-    and write ``<out>/report.html`` and ``report.json``. Options and the output folder are
-    checked before anything runs (:class:`InputError`)."""
+    and write ``<out>/report.html`` and ``report.json``. ``budget`` (s of one worker, None: no
+    limit) refuses a study whose estimated cost exceeds it (its section fails with the
+    estimate). Options and the output folder are checked before anything runs
+    (:class:`InputError`)."""
     from ..outdir import claim
 
     start = time.perf_counter()
@@ -260,18 +288,20 @@ def build_report(fast: bool = False, *, out: str | Path | None = None,
     if scheduler is not None and (not isinstance(scheduler, str) or not scheduler.strip()):
         raise InputError(f"--scheduler = {scheduler!r}: expected a Dask scheduler address such "
                          "as tcp://host:8786")
+    if budget is not None:
+        checks.positive("--budget", budget)
     default = Path("results") / (REPORT + ("-fast" if fast else ""))
     with claim(out, default, settings={"command": "report", "fast": fast},
                force=force) as folder:
-        report = _build(fast, folder, scheduler, studies, progress, start)
+        report = _build(fast, folder, scheduler, studies, progress, start, budget)
     return report
 
 
-def _build(fast, folder, scheduler, studies, progress, start) -> Report:
+def _build(fast, folder, scheduler, studies, progress, start, budget) -> Report:
     out = folder.path
     os.environ.setdefault("MPLBACKEND", "Agg")
     say = progress or (lambda message: None)
-    run = _Run(fast, out, Store(out / "store"), scheduler)
+    run = _Run(fast, out, Store(out / "store"), scheduler, budget)
     record_sha = _record_sha()
     sections = tuple(_run_section(item, run, record_sha, say) for item in studies)
     verification = next((s for s in sections if s.name == "verification"), None)
@@ -307,6 +337,10 @@ def add_arguments(parser) -> None:
     parser.add_argument("--out", help="output directory (default results/report[-fast])")
     parser.add_argument("--scheduler", help="Dask scheduler address for the studies' sweeps")
     parser.add_argument("--force", action="store_true", help="replace a different run in --out")
+    parser.add_argument("--budget", default=None, metavar="SECONDS",
+                        help="refuse a study whose continuum runs are estimated above this many "
+                             f"seconds of one worker (default {REPORT_BUDGET:g}; the Winkler "
+                             "map estimates its runs, its kept runs cost nothing)")
 
 
 def command(args) -> int:
@@ -315,8 +349,12 @@ def command(args) -> int:
     def say(message):
         logger("report").info(f"upliftlab report: {message}")
 
+    from ..cli import number
+
+    budget = number("--budget", getattr(args, "budget", None), high=1e9)
     report = build_report(args.fast, out=args.out, scheduler=args.scheduler, progress=say,
-                          force=getattr(args, "force", False))
+                          force=getattr(args, "force", False),
+                          budget=REPORT_BUDGET if budget is None else budget)
     failed = [s for s in report.sections if s.status != "ok"]
     for s in failed:
         say(f"section {s.name}: {s.status}: {s.error.split(chr(10), 1)[0]}")

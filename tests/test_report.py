@@ -426,6 +426,9 @@ def test_bad_options_are_refused_with_exit_code_2(tmp_path, capsys):
                      str(tmp_path / "x")]) == 2
     assert "--scheduler" in capsys.readouterr().err
     assert not (tmp_path / "x").exists()
+    assert cli_main(["report", "--fast", "--budget", "0", "--out", str(tmp_path / "x")]) == 2
+    assert "--budget = 0" in capsys.readouterr().err
+    assert not (tmp_path / "x").exists()
     assert cli_main(["report", "--no-such-option"]) == 2
     assert capsys.readouterr().err.count("\n") == 1  # one line, not the usage
     assert cli_main(["report", "--fast", "--out", str(afile / "under")]) == 2
@@ -453,3 +456,42 @@ def test_a_cell_that_is_one_hyphenated_name_stays_on_one_line():
     out = rp.markdown_to_html("| pick | note |\n|---|---|\n| ES-f-I | a well-kept bed |")
     assert '<td class="name">ES-f-I</td>' in out and "<td>a well-kept bed</td>" in out
     assert '<th>pick</th>' in out
+
+
+def test_a_full_build_resumes_the_kept_map_runs_and_refuses_what_they_do_not_cover(tmp_path):
+    # The full build's Winkler map resumes the continuum runs kept with the repository
+    # (benchmarks/winkler_map_store) and, under the report's budget, refuses the runs they do
+    # not cover before any of them starts: the section fails with the estimate in one line, the
+    # kept store is left as it was. The whole grid is 1268 runs by hand (2 soils × 4 FS_v × 3
+    # h/B × 2 periods × 2 intensities × 13 motions = 1248 dynamic, and 20 static), so what the
+    # estimate counts as stored and as still to run must add up to it; the README keeps 488
+    # dynamic runs at least.
+    from upliftlab.comparisons.winkler_map import DEFINITION
+
+    kept = rp.CHECKOUT / DEFINITION.kept_store
+    if not kept.is_dir():  # an installed package, not a checkout: CI always runs a checkout
+        if os.environ.get("CI"):
+            pytest.fail(f"no kept map runs at {kept}: CI runs from a checkout")
+        pytest.skip("not a checkout: the kept map runs are not installed with the package")
+    before = sorted(p.name for p in kept.rglob("*.json"))
+    report = rp.build_report(False, out=tmp_path / "r", studies=("winkler_map",),
+                             budget=3600.0)
+    section = report.section("winkler_map")
+    assert report.code == rp.EXIT_FAILED and section.status == "error"
+    line = section.error.splitlines()[0]
+    found = re.search(r"the map's (\d+) continuum runs not yet stored \((\d+) are\) are "
+                      r"estimated at (\d+) s", line)
+    assert line.startswith("InputError: options.budget = 3600 s") and found, line
+    runs, stored, seconds = map(int, found.groups())
+    assert runs + stored == 1268 and stored >= 488 + 20 and seconds > 3600
+    assert sorted(p.name for p in kept.rglob("*.json")) == before
+    assert not list((tmp_path / "r").rglob("store/??/*.json"))  # no continuum run was made
+
+
+def test_a_fast_build_keeps_to_its_own_stores():
+    # The kept runs are the full grid's on the reference mesh: a fast build (4 elements
+    # across) never reads or writes them.
+    from upliftlab.comparisons.winkler_map import DEFINITION
+
+    run = rp._Run(True, Path("unused"), None, None, 3600.0)
+    assert DEFINITION.kept_store and run.study_store(DEFINITION, print) is None

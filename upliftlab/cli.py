@@ -6,7 +6,7 @@
     upliftlab scenes
     upliftlab advise SCENE --quantity peak_u --tol 5% [--case C] [--set KEY=VALUE ...] [--fast]
                      [--budget SECONDS] [--map PATH] [--json]
-    upliftlab report [--fast] [--out DIR] [--scheduler ADDR] [--force]
+    upliftlab report [--fast] [--out DIR] [--scheduler ADDR] [--force] [--budget SECONDS]
     upliftlab continuum SCENE [--analysis pushover|dynamic|impedance] [--case C]
                         [--set KEY=VALUE ...] [--mesh KEY=VALUE[,KEY=VALUE ...] ...]
                         [--theta-max RAD] [--steps N] [--motion NAME|PATH] [--a0 LIST]
@@ -135,6 +135,10 @@ def parser() -> argparse.ArgumentParser:
     rp.add_argument("--out", help="output directory (default results/report[-fast])")
     rp.add_argument("--scheduler", help="Dask scheduler address for the studies' sweeps")
     rp.add_argument("--force", action="store_true", help="replace a different run in --out")
+    rp.add_argument("--budget", metavar="SECONDS",
+                    help="refuse a study whose continuum runs are estimated above this many "
+                         "seconds of one worker (default 3600; the Winkler map's kept runs "
+                         "cost nothing)")
 
     add_continuum(sub)
 

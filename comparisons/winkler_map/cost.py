@@ -202,5 +202,6 @@ def refuse_over_budget(estimate: Estimate, budget: float | None) -> None:
     """Refuse (one :class:`InputError` line) a run whose estimate exceeds ``budget`` (s)."""
     if budget is not None and estimate.seconds > budget:
         raise InputError(f"options.budget = {budget:g} s: the map's {estimate.runs} continuum "
-                         f"runs are estimated at {estimate.seconds:.0f} s; valid range is "
+                         f"runs not yet stored ({estimate.stored} are) are estimated at "
+                         f"{estimate.seconds:.0f} s; valid range is "
                          f"[{estimate.seconds:.0f}, ...) s for this grid, or a smaller grid")

@@ -19,15 +19,22 @@ from .motions import study_motions
 from .output import write
 from .result import WinklerMap
 
+#: Where the full grid's continuum runs are kept with the repository (relative to the checkout):
+#: the report's full build and the README's map commands resume from it.
+KEPT_STORE = "benchmarks/winkler_map_store"
+
 
 def compute(scene, ctx: Context) -> WinklerMap:
     """The map of ``ctx.grid`` (default :data:`FAST_GRID` or :data:`FULL_GRID`) under
     ``ctx.options`` (default :data:`FAST_OPTIONS` or :data:`FULL_OPTIONS`): every parameter
     checked, the motions found and the cost estimated (and refused above ``options.budget``)
-    before any run. ``scene`` is not used: the map builds its own scenes."""
+    before any run; ``ctx.budget`` (the report's) applies when the options set none.
+    ``scene`` is not used: the map builds its own scenes."""
     grid = check_grid(ctx.grid or (FAST_GRID if ctx.fast else FULL_GRID))
-    options = check_options(ctx.options or (FAST_OPTIONS if ctx.fast else FULL_OPTIONS),
-                            tuple(BEDS))
+    options = ctx.options or (FAST_OPTIONS if ctx.fast else FULL_OPTIONS)
+    if isinstance(options, Options) and options.budget is None and ctx.budget is not None:
+        options = replace(options, budget=ctx.budget)
+    options = check_options(options, tuple(BEDS))
     if options.figures:
         require_matplotlib(STUDY)
     out = Path(ctx.out)
@@ -111,6 +118,6 @@ DEFINITION = Study(STUDY, "Winkler beds against the continuum: the map",
                    "Where is a calibrated bed of springs enough? Every calibration against the "
                    "continuum over soil, FS_v, h/B, period, intensity and motion.", Options,
                    compute, write, describe=_describe, arguments=_arguments,
-                   context_from=_context_from,
+                   context_from=_context_from, kept_store=KEPT_STORE,
                    help_fast="one soil, two FS_v, one short pulse, 4 elements across")
 main = main_for(DEFINITION)
