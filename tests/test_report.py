@@ -484,6 +484,10 @@ def test_a_full_build_resumes_the_kept_map_runs_and_refuses_what_they_do_not_cov
     assert line.startswith("InputError: options.budget = 3600 s") and found, line
     runs, stored, seconds = map(int, found.groups())
     assert runs + stored == 1268 and stored >= 488 + 20 and seconds > 3600
+    # the README states the same count and estimate (its report section and second finding)
+    readme = " ".join((rp.CHECKOUT / "README.md").read_text().split())
+    assert f"{runs:,} of its 1,268 continuum runs are not, estimated at {seconds:,} s" in readme
+    assert f"resumes the other {runs:,}, which the map estimates at {seconds / 3600:.1f} h" in readme
     assert sorted(p.name for p in kept.rglob("*.json")) == before
     assert not list((tmp_path / "r").rglob("store/??/*.json"))  # no continuum run was made
 

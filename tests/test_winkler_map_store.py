@@ -15,6 +15,7 @@ import shutil
 from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from upliftlab.comparisons import winkler_map as wm
@@ -24,6 +25,7 @@ PULSES = {"elcentro": False, "fema_components": 0}
 # El Centro and FF-01a..FF-10a, each in full, at T = 0.5 s and 3 a_up: the README's record slices
 RECORDS = {"periods": (0.5,), "intensities": (3.0,), "pulse_periods": (), "elcentro": True,
            "fema_components": 10}
+RECORDS_HALF = {**RECORDS, "intensities": (1.5,)}  # the same records at 1.5 a_up
 
 pytestmark = pytest.mark.slow
 
@@ -81,3 +83,22 @@ def test_the_sand_under_the_records_is_the_readmes(tmp_path):
     assert _pct(theta.median[theta.best]) == 33.6
     assert uplift.best == "end_stiffened_fitted_impedance"
     assert _pct(uplift.median[uplift.best]) == 114.9
+
+
+def test_the_clay_under_the_records_at_half_the_intensity_is_the_readmes(tmp_path):
+    result = _map(tmp_path, soils=("clay",), **RECORDS_HALF)
+    a = result.analysis
+    assert a.share.points == 132
+    assert a.share.best == "end_stiffened_plastic_impedance" and _pct(a.share.best_share) == 20.5
+    assert _pct(a.share.any_share) == 49.2
+    theta, uplift = a.pick("theta"), a.pick("uplift")
+    assert theta.best == "end_stiffened_fitted_impedance"
+    assert (_pct(theta.median[theta.best]), _pct(theta.p90[theta.best])) == (14.2, 48.7)
+    assert uplift.best == "uniform_plastic_gazetas"
+    assert (_pct(uplift.median[uplift.best]), _pct(uplift.p90[uplift.best])) == (24.0, 76.2)
+    # ES-p-I's share within 10 % in both per FS_v, counted from the errors with numpy
+    k = result.data.calibrations.index("end_stiffened_plastic_impedance")
+    errors = np.abs(result.data.errors[0, :, :, 0, 0, :, k, :2])  # fs_v, h/B, motion; θ, uplift
+    hits = (errors <= 0.10).all(axis=-1)
+    assert [round(100 * hits[f].mean()) for f in range(4)] == [9, 3, 15, 55]
+    assert not result.data.bearing_failure.any()
