@@ -59,7 +59,8 @@ EXERCISED = {
     "f['times'][-1])\"":
         ("here", ("results/clay-coarse/result.nc", "results/clay-coarse/fields.xdmf",
                   "results/clay-coarse/footing.xdmf", "results/clay-coarse/footing.h5")),
-    "upliftlab report --out results/report": ("slow", ("results/report/report.html",)),
+    "upliftlab report --out results/report":
+        ("tests/test_report.py::test_the_readmes_full_build_refuses_only_the_unkept_map", ()),
     "upliftlab report --fast": ("tests/test_report.py::test_report_writes_one_self_contained_html",
                                 ()),
     "upliftlab advise short_period_elcentro --case B --quantity peak_u --tol 1%": ("slow", ()),
@@ -77,6 +78,11 @@ EXERCISED = {
     "python -m upliftlab.comparisons.winkler_map --grid soils=clay --grid periods=0.5 --grid "
     "intensities=3 --grid pulse_periods= --grid fema_components=10 --store "
     "benchmarks/winkler_map_store --out results/winkler_map-clay-records":
+        ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
+         ()),
+    "python -m upliftlab.comparisons.winkler_map --grid soils=clay --grid periods=0.5 --grid "
+    "intensities=1.5 --grid pulse_periods= --grid fema_components=10 --store "
+    "benchmarks/winkler_map_store --out results/winkler_map-clay-records-1.5":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
     "python -m upliftlab.comparisons.winkler_map --grid soils=sand --grid periods=0.5 --grid "

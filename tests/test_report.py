@@ -499,3 +499,20 @@ def test_a_fast_build_keeps_to_its_own_stores():
 
     run = rp._Run(True, Path("unused"), None, None, 3600.0)
     assert DEFINITION.kept_store and run.study_store(DEFINITION, print) is None
+
+
+#: The README's full build (after ``upliftlab``; the test adds the value of the last --out).
+README_FULL = ["report", "--out", "results/report", "--out"]
+
+
+@pytest.mark.slow
+def test_the_readmes_full_build_refuses_only_the_unkept_map(tmp_path, elcentro):
+    # The README's `upliftlab report --out results/report` from a checkout: every section is
+    # built but the Winkler map's, which is refused under the default budget while its whole
+    # grid is not kept (the README says so); the command exits 1 and the page is written.
+    out = tmp_path / "report"
+    assert cli_main([*README_FULL, str(out)]) == rp.EXIT_FAILED
+    sections = json.loads((out / "report.json").read_text())["sections"]
+    failed = {name: s["error"] for name, s in sections.items() if s["status"] != "ok"}
+    assert list(failed) == ["winkler_map"] and "options.budget = 3600 s" in failed["winkler_map"]
+    assert (out / "report.html").is_file()
