@@ -31,6 +31,12 @@ calling the study; any edit to those sources makes a new key and the study runs 
 verification table is cached the same way by :mod:`.verification`. ``report.json`` says for
 each section whether it was ``computed`` or read from the ``store``.
 
+**Cost.** A study that estimates its runs before it starts them (the Winkler map) is refused
+above ``--budget`` (s of one worker, :data:`REPORT_BUDGET` by default): its section fails with
+the estimate and the rest of the report is built. In a full build from a checkout the map
+resumes the continuum runs kept with the repository (:attr:`.protocol.Study.kept_store`), so
+only the runs not kept count; a fast build never touches them.
+
 **Threads.** The studies run one after another in this process with BLAS limited to one thread
 (:func:`.verification.single_threaded`), as the sweeps' worker processes are: on a loaded
 two-core machine a two-thread BLAS under the continuum's small dense kernels ran the fast
