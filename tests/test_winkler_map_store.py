@@ -4,8 +4,8 @@ carry its fingerprint) and runs every bed live, so the numbers the README states
 the data, not copied by hand.
 
 Reference: the README's second finding (its numbers are rounded there to the digits asserted
-here). With a budget of a microsecond the map refuses before any continuum run: a store that no longer
-matches the continuum's code (a changed continuum, measures or scene) fails here, with the
+here). With a budget of a microsecond the map refuses before any continuum run: a store that
+no longer matches the continuum's code (a changed continuum, measures or scene) fails here, with the
 count of runs it would have to make, instead of recomputing hours of runs in a test.
 """
 
@@ -62,40 +62,39 @@ def test_the_sands_pulse_grid_is_the_readmes(tmp_path):
     assert _pct(a.pick("theta").median["end_stiffened_plastic_impedance"]) == 12.8
 
 
+def _records_slice_is(a, share, theta, uplift) -> None:
+    """A record slice of 132 points as the README states it: ``share`` (best single bed, its
+    share %, the share % with the best bed point by point), ``theta`` and ``uplift`` (the bed
+    picked, its median |error| %)."""
+    best, best_share, any_share = share
+    assert a.share.points == 132
+    assert a.share.best == best and _pct(a.share.best_share) == best_share
+    assert _pct(a.share.any_share) == any_share
+    for measure, (bed, median) in (("theta", theta), ("uplift", uplift)):
+        pick = a.pick(measure)
+        assert pick.best == bed and _pct(pick.median[bed]) == median
+
+
 def test_the_clay_under_the_records_is_the_readmes(tmp_path):
     a = _map(tmp_path, soils=("clay",), **RECORDS).analysis
-    assert a.share.points == 132
-    assert a.share.best == "end_stiffened_fitted_impedance" and _pct(a.share.best_share) == 26.5
-    assert _pct(a.share.any_share) == 65.9
-    theta, uplift = a.pick("theta"), a.pick("uplift")
-    assert theta.best == "uniform_plastic_impedance" and _pct(theta.median[theta.best]) == 14.1
-    assert uplift.best == "end_stiffened_plastic" and _pct(uplift.median[uplift.best]) == 17.8
-    assert _pct(theta.median["end_stiffened_fitted_impedance"]) == 14.9
+    _records_slice_is(a, ("end_stiffened_fitted_impedance", 26.5, 65.9),
+                      ("uniform_plastic_impedance", 14.1), ("end_stiffened_plastic", 17.8))
+    assert _pct(a.pick("theta").median["end_stiffened_fitted_impedance"]) == 14.9
 
 
 def test_the_sand_under_the_records_is_the_readmes(tmp_path):
     a = _map(tmp_path, soils=("sand",), **RECORDS).analysis
-    assert a.share.points == 132
-    assert a.share.best == "qz" and _pct(a.share.best_share) == 2.3
-    assert _pct(a.share.any_share) == 3.0
-    theta, uplift = a.pick("theta"), a.pick("uplift")
-    assert theta.best == "end_stiffened_fitted_impedance"
-    assert _pct(theta.median[theta.best]) == 33.6
-    assert uplift.best == "end_stiffened_fitted_impedance"
-    assert _pct(uplift.median[uplift.best]) == 114.9
+    _records_slice_is(a, ("qz", 2.3, 3.0), ("end_stiffened_fitted_impedance", 33.6),
+                      ("end_stiffened_fitted_impedance", 114.9))
 
 
 def test_the_clay_under_the_records_at_half_the_intensity_is_the_readmes(tmp_path):
     result = _map(tmp_path, soils=("clay",), **RECORDS_HALF)
     a = result.analysis
-    assert a.share.points == 132
-    assert a.share.best == "end_stiffened_plastic_impedance" and _pct(a.share.best_share) == 20.5
-    assert _pct(a.share.any_share) == 49.2
+    _records_slice_is(a, ("end_stiffened_plastic_impedance", 20.5, 49.2),
+                      ("end_stiffened_fitted_impedance", 14.2), ("uniform_plastic_gazetas", 24.0))
     theta, uplift = a.pick("theta"), a.pick("uplift")
-    assert theta.best == "end_stiffened_fitted_impedance"
-    assert (_pct(theta.median[theta.best]), _pct(theta.p90[theta.best])) == (14.2, 48.7)
-    assert uplift.best == "uniform_plastic_gazetas"
-    assert (_pct(uplift.median[uplift.best]), _pct(uplift.p90[uplift.best])) == (24.0, 76.2)
+    assert _pct(theta.p90[theta.best]) == 48.7 and _pct(uplift.p90[uplift.best]) == 76.2
     # ES-p-I's share within 10 % in both per FS_v, counted from the errors with numpy
     k = result.data.calibrations.index("end_stiffened_plastic_impedance")
     errors = np.abs(result.data.errors[0, :, :, 0, 0, :, k, :2])  # fs_v, h/B, motion; θ, uplift
