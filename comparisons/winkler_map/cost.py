@@ -23,7 +23,8 @@ and the frictional soil's Mohr–Coulomb, then through the fallback, and this st
 statics of the clay; reported in the issue note); the compiled Mohr–Coulomb costs per step
 about what the compiled Tresca does (``benchmarks/EXPLICIT_MATERIALS.md``). The stored runs
 replace the per-step rates as soon as there are any, so a second estimate is the machine's
-own.
+own: the grid's own runs, else (a new slice of a kept store) the store's other dynamic runs of
+the same code.
 """
 
 from __future__ import annotations

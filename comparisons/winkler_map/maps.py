@@ -142,6 +142,19 @@ def _scene(table: Mapping):
     return scene_from_dict({**table, "motion": dict(_FREE)}, merged=True)
 
 
+def _timed_elsewhere(store) -> list[dict]:
+    """The timed dynamic runs of the current code anywhere in ``store``: the rates of a grid
+    none of whose own runs are stored yet (a new slice of a kept store) are this machine's
+    rates for the other slices, not the defaults measured once on short pulses."""
+    from ..store import function_code, function_name
+
+    name, code = function_name(evaluate_dynamic), function_code(evaluate_dynamic)
+    entries = (store.entry(key) for key in store.keys())
+    return [e["record"] for e in entries
+            if e is not None and e.get("function") == name and e.get("code") == code
+            and isinstance(e["record"], dict) and "error" not in e["record"]]
+
+
 def _rocking_points(grid, options, base, loads) -> list[dict]:
     """The continuum's rotation pushovers, two per (soil, fs_v) in array order."""
     return [p for soil in grid.soils for fs in grid.fs_v
@@ -151,7 +164,8 @@ def _rocking_points(grid, options, base, loads) -> list[dict]:
 def _estimate(grid, options, motions, base, g, store, statics_points, loads,
               impedance_points) -> Estimate:
     """The cost of what is not stored yet. A soil whose statics are not stored has no vertical
-    load yet: its dynamic points and its rotation pushovers all count as still to run."""
+    load yet: its dynamic points and its rotation pushovers all count as still to run. The
+    rates are those of the grid's stored dynamic runs, else of the store's others."""
     static_records = [store.get(_key(p, evaluate_static)) for p in statics_points]
     impedance_records = [store.get(_key(p, evaluate_impedance)) for p in impedance_points]
     impedance_rows = [(soil, impedance_dofs(p), len(p["impedance"]["a0"]), r is not None)
@@ -182,7 +196,7 @@ def _estimate(grid, options, motions, base, g, store, statics_points, loads,
     pairs = [static_records[i:i + 2] for i in range(0, len(static_records), 2)]
     stored_static = [{"dofs": a["dofs"], "wall_time_s": a["wall_time_s"] + b["wall_time_s"]}
                      for a, b in pairs if a is not None and b is not None]
-    timed = [r for r in records if r is not None and "error" not in r]
+    timed = [r for r in records if r is not None and "error" not in r] or _timed_elsewhere(store)
     return estimate_cost(static_rows, rows, stored_static, timed,
                          impedance_rows, [r for r in impedance_records if r is not None])
 
