@@ -76,6 +76,18 @@ def _records_slice_is(a, share, theta, uplift) -> None:
         assert pick.best == bed and _pct(pick.median[bed]) == median
 
 
+def _p90s_and_shares_by_fs_v_are(result, p90s, bed, shares) -> None:
+    """The 90th percentiles (%) of the picked θ and uplift beds, ``bed``'s share (%) within
+    10 % in both per FS_v (counted from the errors with numpy), and no bearing failure."""
+    theta, uplift = result.analysis.pick("theta"), result.analysis.pick("uplift")
+    assert (_pct(theta.p90[theta.best]), _pct(uplift.p90[uplift.best])) == p90s
+    k = result.data.calibrations.index(bed)
+    errors = np.abs(result.data.errors[0, :, :, 0, 0, :, k, :2])  # fs_v, h/B, motion; θ, uplift
+    hits = (errors <= 0.10).all(axis=-1)
+    assert [round(100 * hits[f].mean()) for f in range(len(shares))] == shares
+    assert not result.data.bearing_failure.any()
+
+
 def test_the_clay_under_the_records_is_the_readmes(tmp_path):
     a = _map(tmp_path, soils=("clay",), **RECORDS).analysis
     _records_slice_is(a, ("end_stiffened_fitted_impedance", 26.5, 65.9),
@@ -94,14 +106,8 @@ def test_the_clay_under_the_records_at_half_the_intensity_is_the_readmes(tmp_pat
     a = result.analysis
     _records_slice_is(a, ("end_stiffened_plastic_impedance", 20.5, 49.2),
                       ("end_stiffened_fitted_impedance", 14.2), ("uniform_plastic_gazetas", 24.0))
-    theta, uplift = a.pick("theta"), a.pick("uplift")
-    assert _pct(theta.p90[theta.best]) == 48.7 and _pct(uplift.p90[uplift.best]) == 76.2
-    # ES-p-I's share within 10 % in both per FS_v, counted from the errors with numpy
-    k = result.data.calibrations.index("end_stiffened_plastic_impedance")
-    errors = np.abs(result.data.errors[0, :, :, 0, 0, :, k, :2])  # fs_v, h/B, motion; θ, uplift
-    hits = (errors <= 0.10).all(axis=-1)
-    assert [round(100 * hits[f].mean()) for f in range(4)] == [9, 3, 15, 55]
-    assert not result.data.bearing_failure.any()
+    _p90s_and_shares_by_fs_v_are(result, (48.7, 76.2), "end_stiffened_plastic_impedance",
+                                 [9, 3, 15, 55])
 
 
 def test_the_clay_under_the_records_on_the_stiffer_structure_is_the_readmes(tmp_path):
@@ -110,12 +116,6 @@ def test_the_clay_under_the_records_on_the_stiffer_structure_is_the_readmes(tmp_
     _records_slice_is(a, ("uniform_plastic_impedance", 22.7, 53.8),
                       ("uniform_plastic_impedance", 16.2),
                       ("end_stiffened_plastic_impedance", 21.5))
-    theta, uplift = a.pick("theta"), a.pick("uplift")
-    assert _pct(theta.p90[theta.best]) == 45.3 and _pct(uplift.p90[uplift.best]) == 58.6
     assert _pct(a.share.by_bed["end_stiffened_fitted_impedance"]) == 18.9
-    # U-p-I's share within 10 % in both per FS_v, counted from the errors with numpy
-    k = result.data.calibrations.index("uniform_plastic_impedance")
-    errors = np.abs(result.data.errors[0, :, :, 0, 0, :, k, :2])  # fs_v, h/B, motion; θ, uplift
-    hits = (errors <= 0.10).all(axis=-1)
-    assert [round(100 * hits[f].mean()) for f in range(4)] == [3, 15, 39, 33]
-    assert not result.data.bearing_failure.any()
+    _p90s_and_shares_by_fs_v_are(result, (45.3, 58.6), "uniform_plastic_impedance",
+                                 [3, 15, 39, 33])
