@@ -19,8 +19,9 @@ certified bed of least measured runtime, with its speed ratio against the refere
 Errors are (bed − continuum)/max(|continuum|, floor), the floor the map's: a tenth of the
 measure's value at a uniform bed's uplift threshold (:func:`.winkler_map.points.scales`).
 
-The cost of the continuum runs is estimated before any of them (:mod:`.winkler_map.cost`);
-above ``budget`` the ladder is refused, unless the scene falls inside a Winkler map
+The cost of the continuum runs is estimated before any of them (:mod:`.winkler_map.cost`), at
+the rates of the map's runs kept with the repository when the package runs from a checkout
+(this machine's measured rates, as the map's own estimate), else at the defaults; above ``budget`` the ladder is refused, unless the scene falls inside a Winkler map
 (:mod:`.advise_map`), whose evidence is then reported in place of runs that were not made.
 """
 
@@ -40,21 +41,24 @@ from ..log import logger
 from ..scenes import Scene, scene_from_dict
 from ..units import unit_system
 from .advise_map import MapEvidence, find_map, format_evidence, map_evidence
+from .protocol import CHECKOUT
+from .store import Store
 from .study import relative_error
 from .winkler_map.bed_runs import reduced_measures
 from .winkler_map.beds import BEDS, BedReference, bed_foundation
 from .winkler_map.cost import Estimate, estimate_cost, impedance_dofs
 from .winkler_map.grid import FAST_OPTIONS, FLOOR_FRACTION, FULL_OPTIONS
 from .winkler_map.impedance_points import evaluate_impedance, impedance_point_of, soil_impedance
+from .winkler_map.maps import timed_dynamic_runs
 from .winkler_map.points import base_table, continuum_measures, scales, story_constants
 from .winkler_map.rocking import evaluate_continuum, pushover_points
 from .winkler_map.statics import evaluate_static
+from .winkler_map.workflow import KEPT_STORE
 
 __all__ = ["FULL_MESHES", "FAST_MESHES", "MeshRun", "ContinuumReference", "SoilNumbers",
            "BedCheck", "ContinuumPlan", "ContinuumAdvice", "plan_continuum", "run_continuum",
            "continuum_run", "bed_run", "soil_numbers", "scene_impedance", "scene_pushovers",
-           "bed_reference",
-           "format_continuum"]
+           "bed_reference", "kept_timings", "format_continuum"]
 
 FULL_MESHES = (4, 8, 16)
 FAST_MESHES = (2, 4, 8)
@@ -183,6 +187,14 @@ def _duration(scene: Scene) -> float:
     return float(scene.analysis.duration or scene.build_motion().duration)
 
 
+def kept_timings() -> list[dict]:
+    """The timed dynamic runs of the Winkler map kept with the repository under the current
+    code (:data:`.winkler_map.workflow.KEPT_STORE`), when the package runs from a checkout that
+    has them; else none (the estimate's default rates)."""
+    kept = CHECKOUT / KEPT_STORE
+    return timed_dynamic_runs(Store(kept)) if kept.is_dir() else []
+
+
 def plan_continuum(scene: Scene, measure: str, tol: float, *, fast: bool = False,
                    budget: float | None = None, map_path=None) -> ContinuumPlan:
     """Check the scene, estimate the ladder's cost and read the map, before any run; over
@@ -200,7 +212,8 @@ def plan_continuum(scene: Scene, measure: str, tol: float, *, fast: bool = False
     rotations = [(soil, scenes[-1], False, len(p["rotations"]) / (options.vertical_steps + 1))
                  for p in _pushover_points(scene, meshes[-1], fast)]
     estimate = estimate_cost([(soil, scenes[-1], False), *rotations],
-                             [(soil, s, _duration(scene), False) for s in scenes], [], [],
+                             [(soil, s, _duration(scene), False) for s in scenes], [],
+                             kept_timings(),
                              [(soil, impedance_dofs(impedance),
                                len(impedance["impedance"]["a0"]), False)], [])
     path = find_map(map_path)

@@ -27,10 +27,13 @@ from ..checks import InputError
 from ..log import configure, logger
 from .store import Store
 
-__all__ = ["Study", "Context", "run_study", "main_for", "default_out", "EXIT_OK", "EXIT_FAILED",
-           "EXIT_INPUT", "EXIT_NUMERICS"]
+__all__ = ["Study", "Context", "run_study", "main_for", "default_out", "CHECKOUT", "EXIT_OK",
+           "EXIT_FAILED", "EXIT_INPUT", "EXIT_NUMERICS"]
 
 EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_NUMERICS = 0, 1, 2, 3
+#: The checkout the package runs from (an editable install); a study's kept store is looked
+#: for under it (:attr:`Study.kept_store`).
+CHECKOUT = Path(__file__).resolve().parents[1]
 
 
 def default_out(name: str, fast: bool) -> Path:

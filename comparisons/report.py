@@ -72,7 +72,7 @@ from .. import __version__, checks
 from ..checks import InputError
 from ..log import logger
 from ..results import provenance, write_text
-from .protocol import Context, EXIT_FAILED, EXIT_INPUT, EXIT_OK, Study, run_study
+from .protocol import CHECKOUT, Context, EXIT_FAILED, EXIT_INPUT, EXIT_OK, Study, run_study
 from .registry import STUDIES, definition
 from .report_html import Section, render_html
 from .report_markdown import markdown_to_html
@@ -90,9 +90,6 @@ REPORT = "report"
 #: before it starts them (the Winkler map): above it the study's section is refused with its
 #: estimate, and the rest of the report is built.
 REPORT_BUDGET = 3600.0
-#: The checkout the package runs from (an editable install); a study's kept store is looked
-#: for under it (:attr:`.protocol.Study.kept_store`).
-CHECKOUT = Path(__file__).resolve().parents[1]
 
 
 # ---------------------------------------------------------------------------------------------

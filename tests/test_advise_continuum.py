@@ -218,6 +218,48 @@ def test_budget_below_the_estimate_is_refused_before_any_run(monkeypatch, tmp_pa
     assert plan.estimate.seconds > 1.0
 
 
+def _kept(checkout, rate: float, code: str | None = None) -> None:
+    """A kept map store under ``checkout`` with one timed dynamic run whose per-step rate
+    (the wall time less the fixed cost, per DOF and step) is ``rate`` s, on a mesh (one DOF)
+    that no ladder mesh has, so only its rate can change an estimate."""
+    from upliftlab.comparisons.store import Store, function_code, function_name
+    from upliftlab.comparisons.winkler_map.cost import FIXED_SECONDS_PER_DOF
+    from upliftlab.comparisons.winkler_map.points import evaluate_dynamic
+    from upliftlab.comparisons.winkler_map.workflow import KEPT_STORE
+
+    dofs, steps = 1, 1000
+    record = {"dofs": dofs, "steps": steps, "duration": 1.0, "compiled": True,
+              "soil_model": "tresca",
+              "wall_time_s": FIXED_SECONDS_PER_DOF[False] * dofs + rate * dofs * steps}
+    meta = {"function": function_name(evaluate_dynamic),
+            "code": code or function_code(evaluate_dynamic)}
+    Store(checkout / KEPT_STORE).put("0" * 63 + "1", record, meta)
+
+
+def test_the_ladders_estimate_is_at_the_kept_runs_rates(monkeypatch, tmp_path):
+    """The estimate is linear in the per-step rate of the dynamic runs (the cost model:
+    fixed + rate × DOFs × steps per run), so with kept runs at rates r1 and r2 and the default
+    r0 (no kept store, or kept runs of another code), (E0 − E1)/(E0 − E2) = (r0 − r1)/(r0 − r2):
+    a hand relation that holds only if the ladder is estimated at the kept runs' rate."""
+    from upliftlab.comparisons.winkler_map.cost import SECONDS_PER_DOF_STEP
+
+    scene = load_scene(SCENE, overrides=ON_MAP)
+
+    def estimate(rate=None, code=None):
+        checkout = tmp_path / f"checkout-{rate}-{code}"
+        checkout.mkdir()
+        if rate is not None:
+            _kept(checkout, rate, code)
+        monkeypatch.setattr(ac, "CHECKOUT", checkout)
+        return ac.plan_continuum(scene, "theta", TOL, fast=False).estimate.seconds
+
+    r0, r1, r2 = SECONDS_PER_DOF_STEP[True], 2.5e-8, 5.0e-8
+    e0, e1, e2 = estimate(), estimate(r1), estimate(r2)
+    assert e1 < e2 < e0
+    assert (e0 - e1) / (e0 - e2) == pytest.approx((r0 - r1) / (r0 - r2), rel=1e-9)
+    assert estimate(r1, code="0" * 64) == pytest.approx(e0, rel=1e-12)  # another code's runs
+
+
 def test_over_budget_inside_the_map_gives_the_maps_verdict_without_running(
         monkeypatch, fast_map, capsys):
     """Over --budget but inside the map: the continuum is not run, nothing is certified

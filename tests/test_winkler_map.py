@@ -430,6 +430,7 @@ README_PULSES = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "elcentro=
 README_CLAY_RECORDS = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "periods=0.5", "--grid", "intensities=3", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-clay-records", "--out"]  # noqa: E501
 README_CLAY_RECORDS_HALF = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "periods=0.5", "--grid", "intensities=1.5", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-clay-records-1.5", "--out"]  # noqa: E501
 README_CLAY_RECORDS_STIFF = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "periods=0.2", "--grid", "intensities=3", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-clay-records-0.2s", "--out"]  # noqa: E501
+README_CLAY_RECORDS_STIFF_HALF = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "periods=0.2", "--grid", "intensities=1.5", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-clay-records-0.2s-1.5", "--out"]  # noqa: E501
 README_SAND_RECORDS = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=sand", "--grid", "periods=0.5", "--grid", "intensities=3", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-sand-records", "--out"]  # noqa: E501
 README_WHOLE = ["-m", "upliftlab.comparisons.winkler_map", "--store", "benchmarks/winkler_map_store", "--budget", "3600", "--out"]  # noqa: E501
 README_MAP_COMMANDS = [
@@ -448,6 +449,10 @@ README_MAP_COMMANDS = [
     (README_CLAY_RECORDS_STIFF,
      "142 continuum runs to make (10 static, 132 dynamic; 0 already stored)",
      dict(soils=("clay",), periods=(0.2,), intensities=(3.0,), pulse_periods=(),
+          fema_components=10)),
+    (README_CLAY_RECORDS_STIFF_HALF,
+     "142 continuum runs to make (10 static, 132 dynamic; 0 already stored)",
+     dict(soils=("clay",), periods=(0.2,), intensities=(1.5,), pulse_periods=(),
           fema_components=10)),
     (README_SAND_RECORDS, "142 continuum runs to make (10 static, 132 dynamic; 0 already stored)",
      dict(soils=("sand",), periods=(0.5,), intensities=(3.0,), pulse_periods=(),
@@ -633,13 +638,13 @@ def test_the_stores_timed_runs_are_its_dynamic_runs_of_the_current_code(study, t
     wall times are the map's own, read from its result), none of its statics, and none at all
     once the runs carry another code's fingerprint."""
     from upliftlab.comparisons.store import Store
-    from upliftlab.comparisons.winkler_map.maps import _timed_elsewhere
+    from upliftlab.comparisons.winkler_map.maps import timed_dynamic_runs
 
-    timed = _timed_elsewhere(Store(_copied_store(study, tmp_path)))
+    timed = timed_dynamic_runs(Store(_copied_store(study, tmp_path)))
     walls = np.sort(np.ravel(study.data.continuum_wall))
     assert sorted(r["wall_time_s"] for r in timed) == pytest.approx(walls, rel=1e-12)
     stale = Store(_copied_store(study, tmp_path / "stale", code="0" * 64))
-    assert _timed_elsewhere(stale) == []
+    assert timed_dynamic_runs(stale) == []
 
 
 def test_a_new_slice_of_a_kept_store_is_estimated_at_its_rates(study, tmp_path, capsys):

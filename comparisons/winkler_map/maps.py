@@ -35,7 +35,7 @@ from .rocking import (RockingData, bed_rocking, evaluate_continuum, rocking_data
                       rocking_points, theta_onset)
 from .statics import SoilStatics, evaluate_static, soil_statics, static_points
 
-__all__ = ["MapData", "compute_map", "IN_PROCESS_SECONDS"]
+__all__ = ["MapData", "compute_map", "timed_dynamic_runs", "IN_PROCESS_SECONDS"]
 
 #: Continuum work estimated below this (s) runs in this process, one point after the other:
 #: starting worker processes (imports, and the explicit loop's compilation in each, which numba
@@ -142,10 +142,11 @@ def _scene(table: Mapping):
     return scene_from_dict({**table, "motion": dict(_FREE)}, merged=True)
 
 
-def _timed_elsewhere(store) -> list[dict]:
+def timed_dynamic_runs(store) -> list[dict]:
     """The timed dynamic runs of the current code anywhere in ``store``: the rates of a grid
-    none of whose own runs are stored yet (a new slice of a kept store) are this machine's
-    rates for the other slices, not the defaults measured once on short pulses."""
+    none of whose own runs are stored yet (a new slice of a kept store, or the advisor's
+    ladder) are this machine's rates for the other slices, not the defaults measured once on
+    short pulses."""
     from ..store import function_code, function_name
 
     name, code = function_name(evaluate_dynamic), function_code(evaluate_dynamic)
@@ -196,7 +197,7 @@ def _estimate(grid, options, motions, base, g, store, statics_points, loads,
     pairs = [static_records[i:i + 2] for i in range(0, len(static_records), 2)]
     stored_static = [{"dofs": a["dofs"], "wall_time_s": a["wall_time_s"] + b["wall_time_s"]}
                      for a, b in pairs if a is not None and b is not None]
-    timed = [r for r in records if r is not None and "error" not in r] or _timed_elsewhere(store)
+    timed = [r for r in records if r is not None and "error" not in r] or timed_dynamic_runs(store)
     return estimate_cost(static_rows, rows, stored_static, timed,
                          impedance_rows, [r for r in impedance_records if r is not None])
 
