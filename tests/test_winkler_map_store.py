@@ -27,6 +27,7 @@ RECORDS = {"periods": (0.5,), "intensities": (3.0,), "pulse_periods": (), "elcen
            "fema_components": 10}
 RECORDS_HALF = {**RECORDS, "intensities": (1.5,)}  # the same records at 1.5 a_up
 RECORDS_STIFF = {**RECORDS, "periods": (0.2,)}  # the same records on the stiffer structure
+RECORDS_STIFF_HALF = {**RECORDS_STIFF, "intensities": (1.5,)}  # ... at 1.5 a_up
 
 pytestmark = pytest.mark.slow
 
@@ -119,3 +120,16 @@ def test_the_clay_under_the_records_on_the_stiffer_structure_is_the_readmes(tmp_
     assert _pct(a.share.by_bed["end_stiffened_fitted_impedance"]) == 18.9
     _p90s_and_shares_by_fs_v_are(result, (45.3, 58.6), "uniform_plastic_impedance",
                                  [3, 15, 39, 33])
+
+
+def test_the_clay_under_the_records_on_the_stiffer_structure_at_half_the_intensity(tmp_path):
+    result = _map(tmp_path, soils=("clay",), **RECORDS_STIFF_HALF)
+    a = result.analysis
+    _records_slice_is(a, ("end_stiffened_plastic", 14.4, 45.5),
+                      ("uniform_plastic_gazetas", 20.8), ("end_stiffened_plastic", 31.3))
+    _p90s_and_shares_by_fs_v_are(result, (65.8, 88.5), "end_stiffened_plastic", [6, 9, 6, 36])
+    # the continuum's edge uplift over a uniform bed's at its uplift threshold (the errors'
+    # scale, :func:`.winkler_map.points.scales`), median per FS_v
+    d = result.data
+    ratio = d.continuum[0, ..., 1] / d.scale[0, ..., None, None, 1]  # fs_v, h/B, T, I, motion
+    assert [round(float(np.median(ratio[f])), 1) for f in range(4)] == [1.0, 3.1, 5.1, 3.6]
