@@ -95,6 +95,10 @@ EXERCISED = {
     "benchmarks/winkler_map_store --out results/winkler_map-clay-records-0.2s-1.5":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
+    "python -m upliftlab.comparisons.winkler_map --grid soils=clay --store "
+    "benchmarks/winkler_map_store --out results/winkler_map-clay":
+        ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
+         ()),
     "python -m upliftlab.comparisons.winkler_map --grid soils=sand --grid periods=0.5 --grid "
     "intensities=3 --grid pulse_periods= --grid fema_components=10 --store "
     "benchmarks/winkler_map_store --out results/winkler_map-sand-records":

@@ -431,6 +431,7 @@ README_CLAY_RECORDS = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soi
 README_CLAY_RECORDS_HALF = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "periods=0.5", "--grid", "intensities=1.5", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-clay-records-1.5", "--out"]  # noqa: E501
 README_CLAY_RECORDS_STIFF = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "periods=0.2", "--grid", "intensities=3", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-clay-records-0.2s", "--out"]  # noqa: E501
 README_CLAY_RECORDS_STIFF_HALF = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "periods=0.2", "--grid", "intensities=1.5", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-clay-records-0.2s-1.5", "--out"]  # noqa: E501
+README_CLAY = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-clay", "--out"]  # noqa: E501
 README_SAND_RECORDS = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=sand", "--grid", "periods=0.5", "--grid", "intensities=3", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-sand-records", "--out"]  # noqa: E501
 README_WHOLE = ["-m", "upliftlab.comparisons.winkler_map", "--store", "benchmarks/winkler_map_store", "--budget", "3600", "--out"]  # noqa: E501
 README_MAP_COMMANDS = [
@@ -454,6 +455,9 @@ README_MAP_COMMANDS = [
      "142 continuum runs to make (10 static, 132 dynamic; 0 already stored)",
      dict(soils=("clay",), periods=(0.2,), intensities=(1.5,), pulse_periods=(),
           fema_components=10)),
+    # the clay's whole grid: 4 × 3 × 2 × 2 × 13 motions = 624 dynamic; 10 static
+    (README_CLAY, "634 continuum runs to make (10 static, 624 dynamic; 0 already stored)",
+     dict(soils=("clay",))),
     (README_SAND_RECORDS, "142 continuum runs to make (10 static, 132 dynamic; 0 already stored)",
      dict(soils=("sand",), periods=(0.5,), intensities=(3.0,), pulse_periods=(),
           fema_components=10)),
