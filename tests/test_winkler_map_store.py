@@ -133,3 +133,32 @@ def test_the_clay_under_the_records_on_the_stiffer_structure_at_half_the_intensi
     d = result.data
     ratio = d.continuum[0, ..., 1] / d.scale[0, ..., None, None, 1]  # fs_v, h/B, T, I, motion
     assert [round(float(np.median(ratio[f])), 1) for f in range(4)] == [1.0, 3.1, 5.1, 3.6]
+
+
+def test_the_clays_whole_grid_is_the_readmes(tmp_path):
+    # every run of the clay's whole grid is kept: 4 FS_v × 3 h/B × 2 T × 2 intensities × 13
+    # motions (two pulses, El Centro, FF-01a..FF-10a) = 624 points
+    result = _map(tmp_path, soils=("clay",))
+    a, d = result.analysis, result.data
+    assert a.share.points == 624 and a.share.best == "end_stiffened_fitted_impedance"
+    assert (_pct(a.share.best_share), _pct(a.share.any_share)) == (23.1, 55.0)
+    for measure, bed, median, p90 in (("theta", "end_stiffened_fitted_impedance", 14.5, 48.7),
+                                      ("uplift", "end_stiffened_plastic", 23.8, 78.0),
+                                      ("u", "uniform_plastic_impedance", 7.6, 21.9),
+                                      ("base_shear", "uniform_plastic_impedance", 7.7, 22.1)):
+        pick = a.pick(measure)
+        assert pick.best == bed and (_pct(pick.median[bed]), _pct(pick.p90[bed])) == (median, p90)
+    # ES-f-I's share within 10 % in θ and uplift, counted from the errors with numpy
+    k = d.calibrations.index("end_stiffened_fitted_impedance")
+    hits = (np.abs(d.errors[0, ..., k, :2]) <= 0.10).all(axis=-1)  # fs_v, h/B, T, I, motion
+    assert [round(100 * hits[f].mean()) for f in range(4)] == [5, 12, 26, 49]
+    assert [round(100 * hits[:, :, t].mean()) for t in range(2)] == [18, 29]  # T 0.2, 0.5 s
+    assert [round(100 * hits[:, :, :, i].mean()) for i in range(2)] == [19, 27]  # 1.5, 3 a_up
+    es_p = (np.abs(d.errors[0, :, :, :, 0, :, d.calibrations.index("end_stiffened_plastic"),
+                            :2]) <= 0.10).all(axis=-1)  # at 1.5 a_up: fs_v, h/B, T, motion
+    assert [round(100 * es_p[:, :, t].mean()) for t in range(2)] == [17, 28]
+    u = np.abs(d.errors[0, ..., d.calibrations.index("uniform_plastic_impedance"), 4])
+    assert round(100 * (u <= 0.20).mean()) == 88
+    pulses = [i for i, m in enumerate(d.motions) if m["type"] == "ricker"]
+    assert len(pulses) == 2 and _pct(hits[..., pulses].mean()) == 49.0
+    assert not d.bearing_failure.any() and np.nanmax(d.balance) < 2e-5
