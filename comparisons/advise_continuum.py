@@ -21,7 +21,8 @@ measure's value at a uniform bed's uplift threshold (:func:`.winkler_map.points.
 
 The cost of the continuum runs is estimated before any of them (:mod:`.winkler_map.cost`), at
 the rates of the map's runs kept with the repository when the package runs from a checkout
-(this machine's measured rates, as the map's own estimate), else at the defaults; above ``budget`` the ladder is refused, unless the scene falls inside a Winkler map
+(this machine's measured rates, as the map's own estimate), else at the defaults; above
+``budget`` the ladder is refused, unless the scene falls inside a Winkler map
 (:mod:`.advise_map`), whose evidence is then reported in place of runs that were not made.
 """
 
@@ -46,10 +47,9 @@ from .store import Store
 from .study import relative_error
 from .winkler_map.bed_runs import reduced_measures
 from .winkler_map.beds import BEDS, BedReference, bed_foundation
-from .winkler_map.cost import Estimate, estimate_cost, impedance_dofs
+from .winkler_map.cost import Estimate, estimate_cost, impedance_dofs, timed_dynamic_runs
 from .winkler_map.grid import FAST_OPTIONS, FLOOR_FRACTION, FULL_OPTIONS
 from .winkler_map.impedance_points import evaluate_impedance, impedance_point_of, soil_impedance
-from .winkler_map.maps import timed_dynamic_runs
 from .winkler_map.points import base_table, continuum_measures, scales, story_constants
 from .winkler_map.rocking import evaluate_continuum, pushover_points
 from .winkler_map.statics import evaluate_static

@@ -642,7 +642,7 @@ def test_the_stores_timed_runs_are_its_dynamic_runs_of_the_current_code(study, t
     wall times are the map's own, read from its result), none of its statics, and none at all
     once the runs carry another code's fingerprint."""
     from upliftlab.comparisons.store import Store
-    from upliftlab.comparisons.winkler_map.maps import timed_dynamic_runs
+    from upliftlab.comparisons.winkler_map.cost import timed_dynamic_runs
 
     timed = timed_dynamic_runs(Store(_copied_store(study, tmp_path)))
     walls = np.sort(np.ravel(study.data.continuum_wall))

@@ -38,6 +38,7 @@ import numpy as np
 from ...checks import InputError
 
 __all__ = ["Estimate", "estimate_cost", "mesh_size", "impedance_dofs", "refuse_over_budget",
+           "timed_dynamic_runs",
            "FIXED_SECONDS_PER_DOF", "SECONDS_PER_DOF_STEP", "STATIC_SECONDS_PER_DOF",
            "COMPILED_MODELS", "FRICTIONAL_MODELS", "IMPEDANCE_SECONDS_PER_DOF_FREQUENCY"]
 
@@ -135,6 +136,21 @@ def _stored_rates(stored: Iterable[Mapping]) -> dict:
             density.setdefault(dofs, []).append(steps / rec["duration"])
     return ({k: float(np.median(v)) for k, v in rates.items()},
             {k: float(np.median(v)) for k, v in density.items()})
+
+
+def timed_dynamic_runs(store) -> list[dict]:
+    """The timed dynamic runs of the current code anywhere in ``store``: the rates of a grid
+    none of whose own runs are stored yet (a new slice of a kept store, or the advisor's
+    ladder) are this machine's rates for the other slices, not the defaults measured once on
+    short pulses."""
+    from ..store import function_code, function_name
+    from .points import evaluate_dynamic
+
+    name, code = function_name(evaluate_dynamic), function_code(evaluate_dynamic)
+    entries = (store.entry(key) for key in store.keys())
+    return [e["record"] for e in entries
+            if e is not None and e.get("function") == name and e.get("code") == code
+            and isinstance(e["record"], dict) and "error" not in e["record"]]
 
 
 def estimate_cost(static: Sequence[tuple[str, object, bool]],

@@ -24,7 +24,8 @@ from ..study import relative_error
 from ..sweep import DASK_ENV, run_sweep, sweep_executor
 from .bed_runs import run_bed
 from .beds import BEDS, BedReference, bed_foundation
-from .cost import Estimate, estimate_cost, impedance_dofs, refuse_over_budget
+from .cost import (Estimate, estimate_cost, impedance_dofs, refuse_over_budget,
+                   timed_dynamic_runs)
 from .grid import FLOOR_FRACTION, MEASURES, STUDY, Grid, Options
 from .fitted_bed import FITTED, fit_capacity_profile
 from .impedance_points import evaluate_impedance, impedance_point, soil_impedance
@@ -35,7 +36,7 @@ from .rocking import (RockingData, bed_rocking, evaluate_continuum, rocking_data
                       rocking_points, theta_onset)
 from .statics import SoilStatics, evaluate_static, soil_statics, static_points
 
-__all__ = ["MapData", "compute_map", "timed_dynamic_runs", "IN_PROCESS_SECONDS"]
+__all__ = ["MapData", "compute_map", "IN_PROCESS_SECONDS"]
 
 #: Continuum work estimated below this (s) runs in this process, one point after the other:
 #: starting worker processes (imports, and the explicit loop's compilation in each, which numba
@@ -140,20 +141,6 @@ def _key(point, function) -> str:
 def _scene(table: Mapping):
     """The validated scene of a point's table (its motion unused)."""
     return scene_from_dict({**table, "motion": dict(_FREE)}, merged=True)
-
-
-def timed_dynamic_runs(store) -> list[dict]:
-    """The timed dynamic runs of the current code anywhere in ``store``: the rates of a grid
-    none of whose own runs are stored yet (a new slice of a kept store, or the advisor's
-    ladder) are this machine's rates for the other slices, not the defaults measured once on
-    short pulses."""
-    from ..store import function_code, function_name
-
-    name, code = function_name(evaluate_dynamic), function_code(evaluate_dynamic)
-    entries = (store.entry(key) for key in store.keys())
-    return [e["record"] for e in entries
-            if e is not None and e.get("function") == name and e.get("code") == code
-            and isinstance(e["record"], dict) and "error" not in e["record"]]
 
 
 def _rocking_points(grid, options, base, loads) -> list[dict]:
