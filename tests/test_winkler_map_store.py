@@ -106,6 +106,22 @@ def test_the_sand_under_the_records_is_the_readmes(tmp_path):
                       ("end_stiffened_fitted_impedance", 114.9))
 
 
+def test_the_sand_under_the_records_at_half_the_intensity_is_the_readmes(tmp_path):
+    result = _map(tmp_path, soils=("sand",), **RECORDS_HALF)
+    a = result.analysis
+    _records_slice_is(a, ("end_stiffened_plastic", 3.8, 13.6),
+                      ("end_stiffened_fitted_impedance", 19.2),
+                      ("end_stiffened_fitted_impedance", 56.3))
+    u, settlement = a.pick("u"), a.pick("residual_settlement")
+    assert (u.best, _pct(u.median["qz"]), _pct(settlement.median["qz"])) == ("qz", 18.8, 89.8)
+    # six bearing failures: five at FS_v = 2 (four of them at h/B = 1), one at FS_v = 3; no
+    # bed's base settles with any of them
+    failed = result.data.bearing_failure[0]  # fs_v, h/B, T, intensity, motion
+    assert [int(failed[f].sum()) for f in range(4)] == [5, 1, 0, 0]
+    assert int(failed[0, 0].sum()) == 4
+    assert not result.data.bed_bearing_failure[0][failed].any()
+
+
 #: The clay's record slices with their per-FS_v shares, as the README states them: the grid;
 #: (best single bed, its share %, the share % with the best bed point by point); the θ and
 #: uplift picks (bed, median |error| %); their 90th percentiles (%); the bed whose share within
