@@ -109,6 +109,11 @@ EXERCISED = {
     "benchmarks/winkler_map_store --out results/winkler_map-sand-records-1.5":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
+    "python -m upliftlab.comparisons.winkler_map --grid soils=sand --grid periods=0.2 --grid "
+    "intensities=1.5 --grid pulse_periods= --grid fema_components=10 --store "
+    "benchmarks/winkler_map_store --out results/winkler_map-sand-records-0.2s-1.5":
+        ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
+         ()),
     "python -m upliftlab.comparisons.winkler_map --store benchmarks/winkler_map_store "
     "--budget 3600":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",

@@ -434,6 +434,7 @@ README_CLAY_RECORDS_STIFF_HALF = ["-m", "upliftlab.comparisons.winkler_map", "--
 README_CLAY = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-clay", "--out"]  # noqa: E501
 README_SAND_RECORDS = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=sand", "--grid", "periods=0.5", "--grid", "intensities=3", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-sand-records", "--out"]  # noqa: E501
 README_SAND_RECORDS_HALF = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=sand", "--grid", "periods=0.5", "--grid", "intensities=1.5", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-sand-records-1.5", "--out"]  # noqa: E501
+README_SAND_RECORDS_STIFF_HALF = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=sand", "--grid", "periods=0.2", "--grid", "intensities=1.5", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-sand-records-0.2s-1.5", "--out"]  # noqa: E501
 README_WHOLE = ["-m", "upliftlab.comparisons.winkler_map", "--store", "benchmarks/winkler_map_store", "--budget", "3600", "--out"]  # noqa: E501
 README_MAP_COMMANDS = [
     # 2 soils × 4 FS_v × 3 h/B × 2 T × 2 intensities × 2 pulses = 192 dynamic; per soil the
@@ -465,6 +466,10 @@ README_MAP_COMMANDS = [
     (README_SAND_RECORDS_HALF,
      "142 continuum runs to make (10 static, 132 dynamic; 0 already stored)",
      dict(soils=("sand",), periods=(0.5,), intensities=(1.5,), pulse_periods=(),
+          fema_components=10)),
+    (README_SAND_RECORDS_STIFF_HALF,
+     "142 continuum runs to make (10 static, 132 dynamic; 0 already stored)",
+     dict(soils=("sand",), periods=(0.2,), intensities=(1.5,), pulse_periods=(),
           fema_components=10)),
     # the whole grid: 2 × 4 × 3 × 2 × 2 × 13 motions = 1248 dynamic; 2 × 10 static
     (README_WHOLE, "1268 continuum runs to make (20 static, 1248 dynamic; 0 already stored)", {}),

@@ -106,6 +106,24 @@ def test_the_sand_under_the_records_is_the_readmes(tmp_path):
                       ("end_stiffened_fitted_impedance", 114.9))
 
 
+#: The sand's bearing failures under the records at 1.5 a_up, the same at T = 0.5 and 0.2 s, as
+#: the README states them: (FS_v, h/B, record): five at FS_v = 2 (four at h/B = 1), one at 3.
+SAND_FAILURES_AT_HALF = [(2, 1.0, "elcentro_1940_ns"), (2, 1.0, "FEMA-P695-FF-01a"),
+                         (2, 1.0, "FEMA-P695-FF-05a"), (2, 1.0, "FEMA-P695-FF-08a"),
+                         (2, 1.5, "FEMA-P695-FF-05a"), (3, 1.0, "FEMA-P695-FF-05a")]
+
+
+def _bearing_failures_are(result, failures) -> None:
+    """The continuum's bearing failures of a one-period, one-intensity slice at ``failures``
+    ((FS_v, h/B, motion)), and no bed's base settling with any of them."""
+    d = result.data
+    failed = d.bearing_failure[0, :, :, 0, 0, :]  # fs_v, h/B, motion
+    where = [(d.grid.fs_v[f], d.grid.h_over_B[s], d.motion_names[m])
+             for f, s, m in np.argwhere(failed)]
+    assert where == failures
+    assert not d.bed_bearing_failure[0, :, :, 0, 0, :][failed].any()
+
+
 def test_the_sand_under_the_records_at_half_the_intensity_is_the_readmes(tmp_path):
     result = _map(tmp_path, soils=("sand",), **RECORDS_HALF)
     a = result.analysis
@@ -114,12 +132,19 @@ def test_the_sand_under_the_records_at_half_the_intensity_is_the_readmes(tmp_pat
                       ("end_stiffened_fitted_impedance", 56.3))
     u, settlement = a.pick("u"), a.pick("residual_settlement")
     assert (u.best, _pct(u.median["qz"]), _pct(settlement.median["qz"])) == ("qz", 18.8, 89.8)
-    # six bearing failures: five at FS_v = 2 (four of them at h/B = 1), one at FS_v = 3; no
-    # bed's base settles with any of them
-    failed = result.data.bearing_failure[0]  # fs_v, h/B, T, intensity, motion
-    assert [int(failed[f].sum()) for f in range(4)] == [5, 1, 0, 0]
-    assert int(failed[0, 0].sum()) == 4
-    assert not result.data.bed_bearing_failure[0][failed].any()
+    _bearing_failures_are(result, SAND_FAILURES_AT_HALF)
+
+
+def test_the_sand_on_the_stiffer_structure_at_half_the_intensity_is_the_readmes(tmp_path):
+    result = _map(tmp_path, soils=("sand",), **RECORDS_STIFF_HALF)
+    a = result.analysis
+    _records_slice_is(a, ("uniform_plastic_gazetas", 10.6, 16.7),
+                      ("end_stiffened_fitted_impedance", 25.4),
+                      ("end_stiffened_fitted_impedance", 54.4))
+    u, settlement = a.pick("u"), a.pick("residual_settlement")
+    assert (u.best, _pct(u.median[u.best]), _pct(settlement.median["qz"])) == \
+        ("uniform_plastic_gazetas", 32.3, 87.1)
+    _bearing_failures_are(result, SAND_FAILURES_AT_HALF)
 
 
 #: The clay's record slices with their per-FS_v shares, as the README states them: the grid;
