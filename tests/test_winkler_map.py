@@ -233,6 +233,61 @@ def test_medians_and_percentiles_recomputed_from_the_file(study, written):
     assert share["best_share"] == pytest.approx(best, abs=1e-12)
 
 
+def test_the_goal_verdict_counts_the_best_fast_bed_and_how_it_misses(study):
+    """The goal (one bed within 10 % in peak θ and edge uplift at more than half the points,
+    at least 1000 times faster) on the fast map's two points with errors set by hand: the
+    first bed hits both, the second only at FS_v = 5 (at FS_v = 2 its edge uplift is 30 %
+    short), every other misses both (50 % over). Reference, by hand: with the first bed too
+    slow (500 ×) the second is the best fast bed, at 50 %, which is not most, so the goal is
+    not met; its one miss lifts less; with every bed fast the first covers 100 % and meets
+    it; with none fast the verdict names the best bed and says none is that fast."""
+    from upliftlab.comparisons.winkler_map.analysis import share
+    from upliftlab.comparisons.winkler_map.goal import goal, goal_text
+
+    d = study.data
+    names, q = d.calibrations, wm.MEASURES.index
+    errors = np.full(d.errors.shape, 0.5)
+    errors[..., 0, :] = 0.0
+    errors[0, 1, ..., 1, :] = 0.0
+    errors[0, 0, ..., 1, :] = 0.0
+    errors[0, 0, ..., 1, q("uplift")] = -0.3
+    data = replace(d, errors=errors, bearing_failure=None, bed_bearing_failure=None)
+    by_bed = share(data).by_bed
+    slow_first = goal(data, by_bed, {n: 500.0 if n == names[0] else 2000.0 for n in names})
+    assert (slow_first.met, slow_first.bed, slow_first.share) == (False, names[1], 0.5)
+    assert slow_first.by_soil_fs_v == {("clay", 2.0): 0.0, ("clay", 5.0): 1.0}
+    assert (slow_first.misses, slow_first.over, slow_first.under) == (1, 0.0, 1.0)
+    every_fast = goal(data, by_bed, dict.fromkeys(names, 2000.0))
+    assert (every_fast.met, every_fast.bed, every_fast.share, every_fast.misses) == \
+        (True, names[0], 1.0, 0)
+    none_fast = goal(data, by_bed, dict.fromkeys(names, 500.0))
+    assert (none_fast.met, none_fast.bed) == (False, names[0])
+    assert "is **not met**: no bed is that fast; the best bed, " + names[0] in \
+        goal_text(none_fast)
+    assert "is **met**" in goal_text(every_fast)
+    assert "lifts the edge further than the continuum by more than 10 % at 0 % and less by " \
+        "more than 10 % at 100 %" in goal_text(slow_first)
+
+
+def test_the_summarys_goal_is_recomputed_from_the_file(study, written):
+    """summary.json's goal: its bed's share per FS_v counted from map.nc's errors with numpy
+    (within 10 % in peak θ and edge uplift; the fast map has no bearing failure) and its
+    share the summary's share of that bed; the summary states the verdict."""
+    ds, _ = written
+    summary = study.study.directory / "summary.json"
+    numbers = json.loads(summary.read_text())["numbers"]
+    g = numbers["goal"]
+    e = np.abs(ds.error.sel(calibration=g["calibration"]))
+    within = (e.sel(measure="theta") <= 0.10) & (e.sel(measure="uplift") <= 0.10)
+    for fs in ds.fs_v.values:
+        assert g["share_by_soil_fs_v"][f"clay FS_v={fs:g}"] == pytest.approx(
+            float(within.sel(soil="clay", fs_v=fs).mean()), abs=1e-12)
+    assert g["share"] == numbers["share"]["by_calibration"][g["calibration"]]
+    assert g["met"] == (g["share"] > 0.5 and g["median_speedup"] >= 1000)
+    verdict = "is **met**" if g["met"] else "is **not met**"
+    assert verdict in (study.study.directory / "summary.md").read_text()
+
+
 @pytest.mark.parametrize("change, message", [
     ({"fs_v": (0.5, 3.0)}, r"grid\.fs_v\[0\] = 0\.5: valid range is \(1, 100\]"),
     ({"soils": ("peat",)}, r"grid\.soils\[0\] = 'peat'.*clay.*sand"),
@@ -421,58 +476,45 @@ def test_the_qz_bed_runs_on_the_fast_map(study):
     assert not [r for r in d.refusals if r.endswith("qz: ") or ", qz:" in r]
 
 
-#: The README's map commands, as test_readme finds them here (argv after ``python``, the
-#: test's ``--out`` last: argparse takes the last one).
 #: The README's map commands (its second finding and "Comparisons and the report") as argv
-#: (after ``python``; the test adds the value of the last ``--out``), with the count of the runs
-#: each makes from an empty store (by hand) and its grid.
-README_PULSES = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "elcentro=false", "--grid", "fema_components=0", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-pulses", "--out"]  # noqa: E501
-README_CLAY_RECORDS = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "periods=0.5", "--grid", "intensities=3", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-clay-records", "--out"]  # noqa: E501
-README_CLAY_RECORDS_HALF = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "periods=0.5", "--grid", "intensities=1.5", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-clay-records-1.5", "--out"]  # noqa: E501
-README_CLAY_RECORDS_STIFF = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "periods=0.2", "--grid", "intensities=3", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-clay-records-0.2s", "--out"]  # noqa: E501
-README_CLAY_RECORDS_STIFF_HALF = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--grid", "periods=0.2", "--grid", "intensities=1.5", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-clay-records-0.2s-1.5", "--out"]  # noqa: E501
-README_CLAY = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=clay", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-clay", "--out"]  # noqa: E501
-README_SAND_RECORDS = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=sand", "--grid", "periods=0.5", "--grid", "intensities=3", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-sand-records", "--out"]  # noqa: E501
-README_SAND_RECORDS_HALF = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=sand", "--grid", "periods=0.5", "--grid", "intensities=1.5", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-sand-records-1.5", "--out"]  # noqa: E501
-README_SAND_RECORDS_STIFF_HALF = ["-m", "upliftlab.comparisons.winkler_map", "--grid", "soils=sand", "--grid", "periods=0.2", "--grid", "intensities=1.5", "--grid", "pulse_periods=", "--grid", "fema_components=10", "--store", "benchmarks/winkler_map_store", "--out", "results/winkler_map-sand-records-0.2s-1.5", "--out"]  # noqa: E501
-README_WHOLE = ["-m", "upliftlab.comparisons.winkler_map", "--store", "benchmarks/winkler_map_store", "--budget", "3600", "--out"]  # noqa: E501
+#: (after ``python``; the test adds the value of the last ``--out``: argparse takes the last
+#: one), with the count of the runs each makes from an empty store (by hand) and its grid.
+_MAP = ["-m", "upliftlab.comparisons.winkler_map"]
+_KEPT = ["--store", "benchmarks/winkler_map_store"]
+
+
+def _records_slice(soil: str, period: str, intensity: str, out: str) -> tuple:
+    """The README's command for one soil under El Centro and FF-01a..FF-10a at one period and
+    intensity: 4 FS_v × 3 h/B × 11 records = 132 dynamic runs, and the soil's 10 static."""
+    argv = [*_MAP, "--grid", f"soils={soil}", "--grid", f"periods={period}", "--grid",
+            f"intensities={intensity}", "--grid", "pulse_periods=", "--grid",
+            "fema_components=10", *_KEPT, "--out", out, "--out"]
+    return (argv, "142 continuum runs to make (10 static, 132 dynamic; 0 already stored)",
+            dict(soils=(soil,), periods=(float(period),), intensities=(float(intensity),),
+                 pulse_periods=(), fema_components=10))
+
+
 README_MAP_COMMANDS = [
     # 2 soils × 4 FS_v × 3 h/B × 2 T × 2 intensities × 2 pulses = 192 dynamic; per soil the
     # statics pair, the impedance and a cyclic and a monotonic rotation pushover per FS_v = 10
-    (README_PULSES, "212 continuum runs to make (20 static, 192 dynamic; 0 already stored)",
+    ([*_MAP, "--grid", "elcentro=false", "--grid", "fema_components=0", *_KEPT, "--out",
+      "results/winkler_map-pulses", "--out"],
+     "212 continuum runs to make (20 static, 192 dynamic; 0 already stored)",
      dict(elcentro=False, fema_components=0)),
-    # 4 FS_v × 3 h/B × 11 records (El Centro and FF-01a to FF-10a) = 132 dynamic; 10 static
-    (README_CLAY_RECORDS, "142 continuum runs to make (10 static, 132 dynamic; 0 already stored)",
-     dict(soils=("clay",), periods=(0.5,), intensities=(3.0,), pulse_periods=(),
-          fema_components=10)),
-    (README_CLAY_RECORDS_HALF,
-     "142 continuum runs to make (10 static, 132 dynamic; 0 already stored)",
-     dict(soils=("clay",), periods=(0.5,), intensities=(1.5,), pulse_periods=(),
-          fema_components=10)),
-    (README_CLAY_RECORDS_STIFF,
-     "142 continuum runs to make (10 static, 132 dynamic; 0 already stored)",
-     dict(soils=("clay",), periods=(0.2,), intensities=(3.0,), pulse_periods=(),
-          fema_components=10)),
-    (README_CLAY_RECORDS_STIFF_HALF,
-     "142 continuum runs to make (10 static, 132 dynamic; 0 already stored)",
-     dict(soils=("clay",), periods=(0.2,), intensities=(1.5,), pulse_periods=(),
-          fema_components=10)),
+    _records_slice("clay", "0.5", "3", "results/winkler_map-clay-records"),
+    _records_slice("clay", "0.5", "1.5", "results/winkler_map-clay-records-1.5"),
+    _records_slice("clay", "0.2", "3", "results/winkler_map-clay-records-0.2s"),
+    _records_slice("clay", "0.2", "1.5", "results/winkler_map-clay-records-0.2s-1.5"),
     # the clay's whole grid: 4 × 3 × 2 × 2 × 13 motions = 624 dynamic; 10 static
-    (README_CLAY, "634 continuum runs to make (10 static, 624 dynamic; 0 already stored)",
+    ([*_MAP, "--grid", "soils=clay", *_KEPT, "--out", "results/winkler_map-clay", "--out"],
+     "634 continuum runs to make (10 static, 624 dynamic; 0 already stored)",
      dict(soils=("clay",))),
-    (README_SAND_RECORDS, "142 continuum runs to make (10 static, 132 dynamic; 0 already stored)",
-     dict(soils=("sand",), periods=(0.5,), intensities=(3.0,), pulse_periods=(),
-          fema_components=10)),
-    (README_SAND_RECORDS_HALF,
-     "142 continuum runs to make (10 static, 132 dynamic; 0 already stored)",
-     dict(soils=("sand",), periods=(0.5,), intensities=(1.5,), pulse_periods=(),
-          fema_components=10)),
-    (README_SAND_RECORDS_STIFF_HALF,
-     "142 continuum runs to make (10 static, 132 dynamic; 0 already stored)",
-     dict(soils=("sand",), periods=(0.2,), intensities=(1.5,), pulse_periods=(),
-          fema_components=10)),
+    _records_slice("sand", "0.5", "3", "results/winkler_map-sand-records"),
+    _records_slice("sand", "0.5", "1.5", "results/winkler_map-sand-records-1.5"),
+    _records_slice("sand", "0.2", "1.5", "results/winkler_map-sand-records-0.2s-1.5"),
     # the whole grid: 2 × 4 × 3 × 2 × 2 × 13 motions = 1248 dynamic; 2 × 10 static
-    (README_WHOLE, "1268 continuum runs to make (20 static, 1248 dynamic; 0 already stored)", {}),
+    ([*_MAP, *_KEPT, "--budget", "3600", "--out"],
+     "1268 continuum runs to make (20 static, 1248 dynamic; 0 already stored)", {}),
 ]
 
 

@@ -43,7 +43,7 @@ from .beds import BEDS, BedEntry, BedReference, bed_foundation, bed_names
 from .cost import Estimate, estimate_cost
 from .grid import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS, Grid, MEASURES, Options,
                    SOILS, STUDY, check_grid, check_options, grid_with)
-from .maps import MapData, compute_map
+from .maps import MapData, compute_map, estimate_map
 from .output import write
 from .bed_runs import run_bed
 from .points import evaluate_dynamic
@@ -54,7 +54,7 @@ from .workflow import DEFINITION, compute, main, run
 __all__ = ["STUDY", "SOILS", "MEASURES", "Grid", "Options", "FULL_GRID", "FAST_GRID",
            "FULL_OPTIONS", "FAST_OPTIONS", "check_grid", "check_options", "grid_with", "BEDS",
            "BedEntry", "BedReference", "bed_foundation", "bed_names", "Estimate", "estimate_cost",
-           "MapData", "compute_map", "SoilStatics", "evaluate_static", "evaluate_dynamic",
-           "run_bed", "Analysis", "BedRegion", "Pick", "Share", "Speed", "analyse",
-           "cell_passes", "median_over_motions", "WinklerMap", "DEFINITION", "compute",
+           "MapData", "compute_map", "estimate_map", "SoilStatics", "evaluate_static",
+           "evaluate_dynamic", "run_bed", "Analysis", "BedRegion", "Pick", "Share", "Speed",
+           "analyse", "cell_passes", "median_over_motions", "WinklerMap", "DEFINITION", "compute",
            "write", "run", "main"]

@@ -1,6 +1,6 @@
 """What the map says, computed from its data: each bed's region, the calibration to pick per
-quantity with its error distribution, the share of the map a calibrated bed covers, and the
-speed of each bed against the continuum."""
+quantity with its error distribution, the share of the map a calibrated bed covers, the
+speed of each bed against the continuum, and whether one bed is enough (:mod:`.goal`)."""
 
 from __future__ import annotations
 
@@ -11,6 +11,7 @@ import numpy as np
 
 from ..study import Axis, Region, corner_region
 from .beds import BEDS
+from .goal import Goal, goal, hits
 from .grid import MEASURE_LABELS, MEASURES, SOIL_LABELS
 from .maps import MapData
 
@@ -126,6 +127,7 @@ class Analysis:
     picks: tuple[Pick, ...]
     share: Share
     speed: Speed
+    goal: Goal
 
     def pick(self, measure: str) -> Pick:
         return next(p for p in self.picks if p.measure == measure)
@@ -195,24 +197,17 @@ def _inf(value: float) -> float:
 def share(data: MapData) -> Share:
     """Shares of points within ``theta_tolerance`` in peak θ and edge uplift (:class:`Share`),
     over the points whose continuum run finished or ended in a bearing failure (there, a bed
-    that fails too is a hit); a point whose solver gave up has nothing to be within of."""
-    thr = data.options.theta_tolerance
+    that fails too is a hit; :func:`.goal.hits`)."""
     nb = len(data.calibrations)
-    e = np.nan_to_num(np.abs(data.errors), nan=np.inf)
-    ok = (e[..., MEASURES.index("theta")] <= thr) & (e[..., MEASURES.index("uplift")] <= thr)
-    ok = ok.reshape(-1, nb)  # (points, calibration)
-    ran = np.isfinite(data.continuum[..., MEASURES.index("theta")]).ravel()
-    failed = (np.zeros_like(ran) if data.bearing_failure is None
-              else data.bearing_failure.ravel())
-    called = (np.zeros((ran.size, nb), bool) if data.bed_bearing_failure is None
-              else data.bed_bearing_failure.reshape(-1, nb))
-    ok = np.where(failed[:, None], called, ok)[ran | failed]
+    hit, counted, failed, called = hits(data)
+    ok = hit[counted]  # (points, calibration)
     by_bed = {name: float(ok[:, c].mean()) if ok.size else math.nan
               for c, name in enumerate(data.calibrations)}
     best = max(data.calibrations, key=lambda n: (_inf(by_bed[n]), -data.calibrations.index(n)))
-    return Share(thr, ok.shape[0], by_bed, best, by_bed[best],
+    called = called.reshape(-1, nb)[failed.ravel()]
+    return Share(data.options.theta_tolerance, ok.shape[0], by_bed, best, by_bed[best],
                  float(ok.any(axis=1).mean()) if ok.size else math.nan, int(failed.sum()),
-                 {name: int(called[failed, c].sum()) for c, name in enumerate(data.calibrations)})
+                 {name: int(called[:, c].sum()) for c, name in enumerate(data.calibrations)})
 
 
 def speed(data: MapData) -> Speed:
@@ -246,7 +241,9 @@ def signed_bias(data: MapData) -> np.ndarray:
 
 def analyse(data: MapData) -> Analysis:
     """Every statement of the summary, from the data."""
-    return Analysis(tuple(regions(data)), tuple(picks(data)), share(data), speed(data))
+    covered, fast = share(data), speed(data)
+    return Analysis(tuple(regions(data)), tuple(picks(data)), covered, fast,
+                    goal(data, covered.by_bed, fast.median))
 
 
 def pick_text(pick: Pick) -> str:

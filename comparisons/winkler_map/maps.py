@@ -36,7 +36,7 @@ from .rocking import (RockingData, bed_rocking, evaluate_continuum, rocking_data
                       rocking_points, theta_onset)
 from .statics import SoilStatics, evaluate_static, soil_statics, static_points
 
-__all__ = ["MapData", "compute_map", "IN_PROCESS_SECONDS"]
+__all__ = ["MapData", "compute_map", "estimate_map", "IN_PROCESS_SECONDS"]
 
 #: Continuum work estimated below this (s) runs in this process, one point after the other:
 #: starting worker processes (imports, and the explicit loop's compilation in each, which numba
@@ -189,14 +189,16 @@ def _estimate(grid, options, motions, base, g, store, statics_points, loads,
                          impedance_rows, [r for r in impedance_records if r is not None])
 
 
-def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motions,
-                ctx) -> MapData:
-    """The statics, the continuum runs (both through :func:`.sweep.run_sweep`, stored) and
-    every bed's runs (live), after the cost estimate (logged; refused above
-    ``options.budget``). The sweeps run on ``ctx.executor``, else on a Dask cluster
-    (``ctx.scheduler``), else in this process when the estimate is below
-    :data:`IN_PROCESS_SECONDS`, else on ``ctx.workers`` local processes."""
-    store = ctx.store
+def estimate_map(grid: Grid, options: Options, calibrations: Sequence[str], motions,
+                 store) -> Estimate:
+    """What the map of ``grid`` would cost with ``store``: the continuum runs it holds and
+    those it would still make, estimated as :func:`compute_map` does before its first run
+    (nothing is run or written)."""
+    return _plan(grid, options, calibrations, motions, store)[-1]
+
+
+def _plan(grid, options, calibrations, motions, store) -> tuple:
+    """The statics points and their stored records, the impedance points and the estimate."""
     base = base_table()
     g = load_scene(BASE_SCENE).g
     b = base["foundation"]["half_width"]
@@ -207,9 +209,24 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
     needs = {n for c in calibrations for n in BEDS[c].needs}
     impedance_points = ([impedance_point(soil, options, b) for soil in grid.soils]
                         if "impedance" in needs else [])
-    impedance_stored = [store.has(_key(p, evaluate_impedance)) for p in impedance_points]
     estimate = _estimate(grid, options, motions, base, g, store, statics_points, loads,
                          impedance_points)
+    return statics_points, static_records, impedance_points, estimate
+
+
+def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motions,
+                ctx) -> MapData:
+    """The statics, the continuum runs (both through :func:`.sweep.run_sweep`, stored) and
+    every bed's runs (live), after the cost estimate (logged; refused above
+    ``options.budget``). The sweeps run on ``ctx.executor``, else on a Dask cluster
+    (``ctx.scheduler``), else in this process when the estimate is below
+    :data:`IN_PROCESS_SECONDS`, else on ``ctx.workers`` local processes."""
+    store = ctx.store
+    base = base_table()
+    g = load_scene(BASE_SCENE).g
+    statics_points, static_records, impedance_points, estimate = _plan(
+        grid, options, calibrations, motions, store)
+    impedance_stored = [store.has(_key(p, evaluate_impedance)) for p in impedance_points]
     local = ctx.scheduler is None and not os.environ.get(DASK_ENV)
     in_process = ctx.executor is None and local and estimate.seconds < IN_PROCESS_SECONDS
     workers = 1 if in_process else (ctx.workers or os.cpu_count() or 1)

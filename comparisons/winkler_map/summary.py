@@ -9,6 +9,7 @@ import numpy as np
 from .analysis import RECORD_KINDS, pick_text
 from .beds import BEDS
 from .cost import COMPILED_MODELS, SECONDS_PER_DOF_STEP
+from .goal import goal_text
 from .grid import MEASURE_LABELS, SOIL_LABELS, FLOOR_FRACTION
 
 __all__ = ["summary_numbers", "summary_markdown", "MESH_NOTE", "ENERGY_NOTE", "SOIL_NOTE",
@@ -80,6 +81,13 @@ def summary_numbers(result, elapsed: float) -> dict:
                   "best_share": a.share.best_share, "any_share": a.share.any_share,
                   "bearing_failures": a.share.bearing_failures,
                   "bearing_failures_called": a.share.called},
+        "goal": {"met": a.goal.met, "calibration": a.goal.bed, "share": a.goal.share,
+                 "median_speedup": _finite(a.goal.speedup), "share_needed": a.goal.share_needed,
+                 "speedup_needed": a.goal.speedup_needed,
+                 "share_by_soil_fs_v": {f"{soil} FS_v={fs:g}": _finite(v)
+                                        for (soil, fs), v in a.goal.by_soil_fs_v.items()},
+                 "misses": a.goal.misses, "misses_over": _finite(a.goal.over),
+                 "misses_under": _finite(a.goal.under)},
         "speed": {"median": _clean(a.speed.median), "minimum": _clean(a.speed.minimum),
                   "continuum_median_s": _finite(a.speed.continuum_median),
                   "bed_median_s": _clean(a.speed.bed_median)},
@@ -160,6 +168,7 @@ def summary_markdown(result, fast: bool, elapsed: float) -> str:
               *_pick_table(d, a), "", *[f"- {pick_text(p)}." for p in a.picks], "",
               "## Where the beds miss", "", *_bias_lines(d), "",
               "## How much of the map a calibrated bed covers", "", _share_text(a), "",
+              goal_text(a.goal), "",
               "## Speed", "", _speed_text(a), "", "## Cost", "", _cost_text(d), ""]
     if d.refusals:
         lines += [f"Runs that failed: {len(d.refusals)} (a bed refused by its integrator, a "
