@@ -233,6 +233,18 @@ def test_medians_and_percentiles_recomputed_from_the_file(study, written):
     assert share["best_share"] == pytest.approx(best, abs=1e-12)
 
 
+def test_the_beds_pass_reports_its_progress(study, tmp_path, executor):
+    """The beds' live runs (minutes over the whole grid, after the stored continuum runs are
+    read) report their progress as a sweep does: the fast map again on its own store (every
+    continuum run stored, so none is made) reports its two points' beds 0, 1 and 2 of 2."""
+    seen = []
+    again = wm.run(fast=True, out=tmp_path / "again", store=study.study.directory / "store",
+                   executor=executor, progress=seen.append)
+    assert again.data.computed == 0
+    assert [(p.done, p.total) for p in seen if p.study == "winkler_map beds"] == \
+        [(0, 2), (1, 2), (2, 2)]
+
+
 def test_the_goal_verdict_counts_the_best_fast_bed_and_how_it_misses(study):
     """The goal (one bed within 10 % in peak θ and edge uplift at more than half the points,
     at least 1000 times faster) on the fast map's two points with errors set by hand: the
@@ -512,8 +524,9 @@ README_MAP_COMMANDS = [
     _records_slice("sand", "0.5", "3", "results/winkler_map-sand-records"),
     _records_slice("sand", "0.5", "1.5", "results/winkler_map-sand-records-1.5"),
     _records_slice("sand", "0.2", "1.5", "results/winkler_map-sand-records-0.2s-1.5"),
+    _records_slice("sand", "0.2", "3", "results/winkler_map-sand-records-0.2s"),
     # the whole grid: 2 × 4 × 3 × 2 × 2 × 13 motions = 1248 dynamic; 2 × 10 static
-    ([*_MAP, *_KEPT, "--budget", "3600", "--out"],
+    ([*_MAP, *_KEPT, "--out", "results/winkler_map", "--out"],
      "1268 continuum runs to make (20 static, 1248 dynamic; 0 already stored)", {}),
 ]
 

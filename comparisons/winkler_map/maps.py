@@ -13,6 +13,7 @@ import concurrent.futures as cf
 import contextlib
 import itertools
 import os
+import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -21,7 +22,8 @@ import numpy as np
 from ...log import logger
 from ...scenes import load_scene, scene_from_dict
 from ..study import relative_error
-from ..sweep import DASK_ENV, run_sweep, sweep_executor
+from ..sweep import (DASK_ENV, StderrProgress, SweepProgress, run_sweep,
+                     sweep_executor)
 from .bed_runs import run_bed
 from .beds import BEDS, BedReference, bed_foundation
 from .cost import (Estimate, estimate_cost, impedance_dofs, refuse_over_budget,
@@ -264,7 +266,7 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
     rocking = _rocking(grid, options, calibrations, statics, base, g, rocking_records,
                        impedances, pushovers)
     return _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
-                     computed, rocking, impedances, split, pushovers)
+                     computed, rocking, impedances, split, pushovers, ctx.progress)
 
 
 def _pushovers(grid, loads, base, records) -> dict:
@@ -340,8 +342,14 @@ def _rocking(grid, options, calibrations, statics, base, g, records, impedances,
 
 
 def _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
-              computed, rocking, impedances, workers, pushovers) -> MapData:
+              computed, rocking, impedances, workers, pushovers, progress=None) -> MapData:
+    """Every bed's run of every point (live, in this process) against the continuum's stored
+    run. ``progress`` as :func:`.sweep.run_sweep`'s (None: a line on stderr every 10 s of a
+    long pass, with the time left; False: silent): the beds of the whole grid take minutes."""
     from ...continuum.run_control import FAILURE_SETTLEMENT
+
+    report = StderrProgress() if progress is None else (progress or None)
+    start, done = time.perf_counter(), 0
 
     shape = (len(grid.soils), len(grid.fs_v), len(grid.h_over_B), len(grid.periods),
              len(grid.intensities), len(motions))
@@ -363,6 +371,7 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
         st = by_soil[soil]
         for m in range(len(motions)):
             point, run = next(it)
+            done = _tick(report, done, len(points), start)
             at = idx + (m,)
             scene = _scene(point["scene"])
             B, h = scene.foundation.width, scene.structure.height
@@ -406,6 +415,7 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                     errors[at + (c, q)] = relative_error(beds[at + (c, q)],
                                                          run["measures"][measure],
                                                          FLOOR_FRACTION * scl[measure])
+    _tick(report, done, len(points), start)
     fits = ()
     if FITTED in calibrations:  # the fitted bed's profile per (soil, fs_v): built above, cached
         fits = tuple(((soil, fs), fit_capacity_profile(_reference(
@@ -418,6 +428,13 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                    bed_K_v, tuple(refusals), estimate, computed, rocking,
                    tuple(impedances.items()), bearing, bed_bearing, workers, fits,
                    tuple(pushovers.items()))
+
+
+def _tick(report, done: int, total: int, start: float) -> int:
+    """Report ``done`` of ``total`` points' beds run (``report`` None: silent); one more."""
+    if report:
+        report(SweepProgress(f"{STUDY} beds", done, total, done, time.perf_counter() - start))
+    return done + 1
 
 
 def _where(soil, fs, hb, period, intensity, motion) -> str:
