@@ -236,11 +236,13 @@ def test_medians_and_percentiles_recomputed_from_the_file(study, written):
 def test_the_beds_pass_reports_its_progress(study, tmp_path, executor):
     """The beds' live runs (minutes over the whole grid, after the stored continuum runs are
     read) report their progress as a sweep does: the fast map again on its own store (every
-    continuum run stored, so none is made) reports its two points' beds 0, 1 and 2 of 2."""
+    continuum run stored, so none is made, and its estimate says so) reports its two points'
+    beds 0, 1 and 2 of 2."""
     seen = []
     again = wm.run(fast=True, out=tmp_path / "again", store=study.study.directory / "store",
                    executor=executor, progress=seen.append)
-    assert again.data.computed == 0
+    assert again.data.computed == 0 and again.data.estimate.runs == 0
+    assert "already stored): every run is read from the store" in again.data.estimate.text(1)
     assert [(p.done, p.total) for p in seen if p.study == "winkler_map beds"] == \
         [(0, 2), (1, 2), (2, 2)]
 

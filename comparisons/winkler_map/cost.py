@@ -79,6 +79,9 @@ class Estimate:
     def text(self, workers: int | None = 1) -> str:
         """The estimate in one line; ``workers`` None: a Dask cluster or a caller's executor,
         whose worker count is not known here, so no wall time is divided out."""
+        if self.runs == 0:
+            return (f"0 continuum runs to make (0 static, 0 dynamic; {self.stored} already "
+                    "stored): every run is read from the store")
         soils = ", ".join(f"{k} {_duration(v)}" for k, v in self.by_soil.items())
         if workers is None:
             split = "split over the executor's workers"
