@@ -106,6 +106,26 @@ def test_the_sand_under_the_records_is_the_readmes(tmp_path):
                       ("end_stiffened_fitted_impedance", 114.9))
 
 
+def test_the_sand_on_the_stiffer_structure_under_the_records_is_the_readmes(tmp_path):
+    # T = 0.2 s, 3 a_up: 25 bearing failures (17, 7, 1 and 0 at FS_v 2, 3, 5 and 10), at most
+    # two failing in any bed; ES-p's three hits, two of them failures it fails with too
+    result = _map(tmp_path, soils=("sand",), **RECORDS_STIFF)
+    a, d = result.analysis, result.data
+    _records_slice_is(a, ("end_stiffened_plastic", 2.3, 3.0),
+                      ("end_stiffened_fitted_impedance", 39.2),
+                      ("end_stiffened_fitted_impedance", 125.9))
+    u, shear, qz = a.pick("u"), a.pick("base_shear"), a.pick("residual_settlement")
+    assert (u.best, _pct(u.median["qz"]), _pct(u.p90["qz"])) == ("qz", 40.8, 94.9)
+    assert (shear.best, _pct(shear.median["qz"])) == ("qz", 40.8)
+    assert (qz.best, _pct(qz.median["qz"]), _pct(qz.p90["qz"])) == ("qz", 94.3, 99.1)
+    failed = d.bearing_failure[0]  # fs_v, h/B, T, I, motion
+    assert [int(failed[f].sum()) for f in range(4)] == [17, 7, 1, 0]
+    assert max(a.share.called.values()) == 2
+    es_p = d.calibrations.index("end_stiffened_plastic")
+    assert int(d.bed_bearing_failure[0, ..., es_p][failed].sum()) == 2
+    assert f"{np.nanmax(d.balance):.1e}" == "2.2e-06"
+
+
 #: The sand's bearing failures under the records at 1.5 a_up, the same at T = 0.5 and 0.2 s, as
 #: the README states them: (FS_v, h/B, record): five at FS_v = 2 (four at h/B = 1), one at 3.
 SAND_FAILURES_AT_HALF = [(2, 1.0, "elcentro_1940_ns"), (2, 1.0, "FEMA-P695-FF-01a"),
