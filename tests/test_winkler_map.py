@@ -291,13 +291,20 @@ def test_the_summarys_goal_is_recomputed_from_the_file(study, written):
     summary = study.study.directory / "summary.json"
     numbers = json.loads(summary.read_text())["numbers"]
     g = numbers["goal"]
-    e = np.abs(ds.error.sel(calibration=g["calibration"]))
+    e = np.abs(ds.error)
     within = (e.sel(measure="theta") <= 0.10) & (e.sel(measure="uplift") <= 0.10)
     for fs in ds.fs_v.values:
-        assert g["share_by_soil_fs_v"][f"clay FS_v={fs:g}"] == pytest.approx(
-            float(within.sel(soil="clay", fs_v=fs).mean()), abs=1e-12)
-    assert g["share"] == numbers["share"]["by_calibration"][g["calibration"]]
-    assert g["met"] == (g["share"] > 0.5 and g["median_speedup"] >= 1000)
+        assert g["share_by_soil_fs_v"][f"clay FS_v={fs:g}"] == pytest.approx(float(
+            within.sel(soil="clay", fs_v=fs, calibration=g["calibration"]).mean()), abs=1e-12)
+    # the bed: the largest share among those at least 1000 times faster (else among all)
+    shares, speed = numbers["share"]["by_calibration"], numbers["speed"]["median"]
+    fast = [n for n in ds.calibration.values if (speed[n] or 0) >= 1000] or \
+        list(ds.calibration.values)
+    expected = max(fast, key=lambda n: (float(within.sel(calibration=n).mean()),
+                                        -list(ds.calibration.values).index(n)))
+    assert g["calibration"] == expected
+    assert g["share"] == pytest.approx(float(within.sel(calibration=expected).mean()), abs=1e-12)
+    assert g["met"] == (g["share"] > 0.5 and (g["median_speedup"] or 0) >= 1000)
     verdict = "is **met**" if g["met"] else "is **not met**"
     assert verdict in (study.study.directory / "summary.md").read_text()
 
@@ -365,7 +372,7 @@ def test_a_second_run_recomputes_nothing(study, executor):
                    progress=seen.append,
                    options=replace(wm.FAST_OPTIONS, figures=False))
     assert again.data.computed == 0 and again.data.estimate.runs == 0
-    assert all(p.computed == 0 for p in seen)
+    assert all(p.computed == 0 for p in seen if p.study == wm.STUDY)  # the sweeps'
     assert {p: p.stat().st_mtime_ns for p in store.glob("??/*.json")} == before
     np.testing.assert_array_equal(again.data.continuum, study.data.continuum)
     np.testing.assert_array_equal(again.data.continuum_wall, study.data.continuum_wall)

@@ -72,7 +72,7 @@ def goal(data, by_bed: dict, speedup: dict) -> Goal:
     :func:`.analysis.share` counts it) and median speed-up (``speedup``)."""
     names = list(data.calibrations)
     fast = [n for n in names if math.isfinite(speedup[n]) and speedup[n] >= GOAL_SPEEDUP]
-    bed = max(fast or names, key=lambda n: (by_bed[n], -names.index(n)))
+    bed = max(fast or names, key=lambda n: (_or_less(by_bed[n]), -names.index(n)))
     c = names.index(bed)
     hit, counted, failed, _ = hits(data)
     g = data.grid
@@ -96,6 +96,15 @@ def goal(data, by_bed: dict, speedup: dict) -> Goal:
                 n, over, under)
 
 
+def _or_less(value: float) -> float:
+    """A share to compare: NaN (no point counted) below every measured share."""
+    return value if math.isfinite(value) else -math.inf
+
+
+def _share(value: float) -> str:
+    return f"{100 * value:.0f} %" if math.isfinite(value) else "no point"
+
+
 def goal_text(goal: Goal) -> str:
     """The verdict in a paragraph, every number from :class:`Goal`."""
     thr = f"{100 * goal.threshold:g} %"
@@ -106,12 +115,13 @@ def goal_text(goal: Goal) -> str:
     speed = (f"a median speed-up of {goal.speedup:,.0f}" if math.isfinite(goal.speedup)
              else "no measured speed-up")
     which = ("the best bed at that speed" if goal.speedup >= goal.speedup_needed
-             else "no bed is that fast; the best bed")
-    head += (f"{which}, {goal.bed} ({speed}), is within {thr} at {100 * goal.share:.1f} % of "
-             "the points.")
+             else "no bed is that fast; the best bed" if math.isfinite(goal.speedup)
+             else "no speed-up was measured; the best bed")
+    share = f"{100 * goal.share:.1f} %" if math.isfinite(goal.share) else "none"
+    head += f"{which}, {goal.bed} ({speed}), is within {thr} at {share} of the points."
     soils = {}
     for (soil, fs), value in goal.by_soil_fs_v.items():
-        soils.setdefault(soil, []).append(f"{100 * value:.0f} % at FS_v = {fs:g}")
+        soils.setdefault(soil, []).append(f"{_share(value)} at FS_v = {fs:g}")
     where = "; ".join(f"on {SOIL_LABELS[s]} {', '.join(v)}" for s, v in soils.items())
     text = f"{head} Its share by soil and FS_v: {where}."
     if goal.misses:
