@@ -200,7 +200,8 @@ def estimate_map(grid: Grid, options: Options, calibrations: Sequence[str], moti
 
 
 def _plan(grid, options, calibrations, motions, store) -> tuple:
-    """The statics points and their stored records, the impedance points and the estimate."""
+    """The base table and g, the statics points and their stored records, the impedance
+    points and the estimate."""
     base = base_table()
     g = load_scene(BASE_SCENE).g
     b = base["foundation"]["half_width"]
@@ -213,7 +214,7 @@ def _plan(grid, options, calibrations, motions, store) -> tuple:
                         if "impedance" in needs else [])
     estimate = _estimate(grid, options, motions, base, g, store, statics_points, loads,
                          impedance_points)
-    return statics_points, static_records, impedance_points, estimate
+    return base, g, statics_points, static_records, impedance_points, estimate
 
 
 def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motions,
@@ -224,9 +225,7 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
     (``ctx.scheduler``), else in this process when the estimate is below
     :data:`IN_PROCESS_SECONDS`, else on ``ctx.workers`` local processes."""
     store = ctx.store
-    base = base_table()
-    g = load_scene(BASE_SCENE).g
-    statics_points, static_records, impedance_points, estimate = _plan(
+    base, g, statics_points, static_records, impedance_points, estimate = _plan(
         grid, options, calibrations, motions, store)
     impedance_stored = [store.has(_key(p, evaluate_impedance)) for p in impedance_points]
     local = ctx.scheduler is None and not os.environ.get(DASK_ENV)
