@@ -65,7 +65,8 @@ def test_the_fast_map_runs_end_to_end_and_writes_its_files(study):
     """Every file is written; the map has the grid's points (1 soil × 2 FS_v × 1 × 1 × 1 × 1
     motion) and the registered calibrations; every measure is finite; the estimate made
     before the work counted the runs the grid implies (one soil's statics, its impedance for
-    the impedance bed, four rotation pushovers, 2 dynamic)."""
+    the impedance bed, four rotation pushovers, 2 dynamic and, the fast options making E_F, the
+    2 dynamic points' energy runs)."""
     out = study.study.directory
     for name in FILES:
         assert (out / name).is_file(), name
@@ -74,9 +75,9 @@ def test_the_fast_map_runs_end_to_end_and_writes_its_files(study):
     assert d.calibrations == tuple(wm.BEDS)
     assert np.isfinite(d.continuum).all() and np.isfinite(d.beds).all()
     # one soil's statics pair, its impedance, and a cyclic and a monotonic rotation pushover
-    # per FS_v
-    assert (d.estimate.runs, d.estimate.static, d.estimate.dynamic) == (8, 6, 2)
-    assert d.computed == 8
+    # per FS_v; each dynamic point twice (its run and its energy run)
+    assert (d.estimate.runs, d.estimate.static, d.estimate.dynamic) == (10, 6, 4)
+    assert d.computed == 10
     assert "winkler_map" in STUDIES and definition("winkler_map") is wm.DEFINITION
     tree = study.to_xarray()
     assert float(tree["map"].error.sel(calibration="uniform", measure="theta", fs_v=2.0)
@@ -309,6 +310,32 @@ def test_the_summarys_goal_is_recomputed_from_the_file(study, written):
     assert verdict in (study.study.directory / "summary.md").read_text()
 
 
+
+def test_the_summarys_foundation_energy_is_recomputed_from_the_file(study, written):
+    """E_F (the fast options make the continuum's energy runs): every point has the continuum's
+    E_F, positive (the clay takes energy from the structure); each error is (bed −
+    continuum)/max(|continuum|, floor) from map.nc's E_F and floor, and summary.json's median,
+    90th percentile and pick per bed are numpy's over those errors (1e-12)."""
+    ds, _ = written
+    numbers = json.loads((study.study.directory / "summary.json").read_text())["numbers"]
+    e = numbers["foundation_energy"]
+    continuum = ds.continuum_foundation_energy
+    assert e["points"] == continuum.size == 2 and float(continuum.min()) > 0.0
+    floor = ds.floor_foundation_energy.broadcast_like(continuum)
+    expected = (ds.bed_foundation_energy - continuum) / np.maximum(np.abs(continuum), floor)
+    np.testing.assert_allclose(ds.foundation_energy_error.values,
+                               expected.transpose(*ds.foundation_energy_error.dims).values,
+                               rtol=1e-12)
+    err = np.abs(ds.foundation_energy_error)
+    for name in ds.calibration.values:
+        values = err.sel(calibration=name).values.ravel()
+        assert e["median"][name] == pytest.approx(float(np.median(values)), abs=1e-12)
+        assert e["p90"][name] == pytest.approx(float(np.percentile(values, 90)), abs=1e-12)
+    best = min(ds.calibration.values, key=lambda n: (e["median"][n], e["p90"][n]))
+    assert e["best"] == best
+    assert "Points with the continuum's E_F: 2 of 2." in \
+        (study.study.directory / "summary.md").read_text()
+
 @pytest.mark.parametrize("change, message", [
     ({"fs_v": (0.5, 3.0)}, r"grid\.fs_v\[0\] = 0\.5: valid range is \(1, 100\]"),
     ({"soils": ("peat",)}, r"grid\.soils\[0\] = 'peat'.*clay.*sand"),
@@ -357,8 +384,8 @@ def test_a_run_over_its_budget_is_refused_with_its_estimate(tmp_path, capsys):
                     "--no-figures"])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2
-    assert err[-1].startswith("error: options.budget = 0.001 s: the map's 8 continuum runs")
-    assert any("8 continuum runs to make (6 static, 2 dynamic" in line for line in err)
+    assert err[-1].startswith("error: options.budget = 0.001 s: the map's 10 continuum runs")
+    assert any("10 continuum runs to make (6 static, 4 dynamic" in line for line in err)
     assert not any((tmp_path / "o" / "store").glob("??/*.json"))
 
 
@@ -726,15 +753,15 @@ def test_the_stores_timed_runs_are_its_dynamic_runs_of_the_current_code(study, t
 
 
 def test_a_new_slice_of_a_kept_store_is_estimated_at_its_rates(study, tmp_path, capsys):
-    """The fast grid at another intensity (its statics stored, none of its dynamic runs): the
-    estimate takes the per-step rate of the store's other runs, not the default; with those
+    """The fast grid at another intensity (its statics stored, none of its dynamic runs: two
+    points, each run twice as the fast options make E_F): the estimate takes the per-step rate of the store's other runs, not the default; with those
     runs stored by other code it falls back to the default, and both refuse a budget of 1 ms
     before any run."""
     def source(root):
         code = wm.main(["--fast", "--out", str(tmp_path / "o"), "--store", str(root),
                         "--grid", "intensities=1.5", "--budget", "0.001", "--no-figures"])
         err = capsys.readouterr().err
-        assert code == 2 and "2 continuum runs to make (0 static, 2 dynamic" in err
+        assert code == 2 and "4 continuum runs to make (0 static, 4 dynamic" in err
         return err.split("compiled return map: ")[1].split(",")[0]
 
     assert source(_copied_store(study, tmp_path)) == "the stored runs'"

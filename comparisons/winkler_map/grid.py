@@ -67,8 +67,10 @@ class Options:
     θ/θ_on of the cyclic pushover (one full cycle each, ``cycle_steps`` per quarter);
     ``theta_tolerance`` and
     ``settlement_tolerance`` the region's thresholds (peak θ and edge uplift; residual
-    settlement); ``budget`` (s): refuse a run whose estimated continuum cost exceeds it (None:
-    no limit); ``figures``: write PNGs.
+    settlement); ``energy``: make the continuum's foundation-energy run of every point
+    (:mod:`.energy_points`, one more continuum run each, stored; off: the map compares E_F where
+    the store holds those runs); ``budget`` (s): refuse a run whose estimated continuum cost
+    exceeds it (None: no limit); ``figures``: write PNGs.
     """
 
     elements_across: int = 16
@@ -85,6 +87,7 @@ class Options:
     cycle_steps: int = 4
     theta_tolerance: float = 0.10
     settlement_tolerance: float = 0.20
+    energy: bool = False
     budget: float | None = None
     figures: bool = True
 
@@ -95,7 +98,7 @@ FAST_GRID = Grid(soils=("clay",), fs_v=(2.0, 5.0), h_over_B=(1.5,), periods=(0.2
 FULL_OPTIONS = Options()
 FAST_OPTIONS = Options(elements_across=4, pulse_tail=0.6, vertical_steps=8,
                        theta_ratios=(2.0, 5.0), monotonic_steps=3, cycle_ratios=(2.0,),
-                       cycle_steps=2)
+                       cycle_steps=2, energy=True)
 
 
 def grid_with(base: Grid, assignments: Sequence[str]) -> Grid:
@@ -194,5 +197,6 @@ def check_options(options: Options, beds: Sequence[str]) -> Options:
                     low_open=True)
     if options.budget is not None:
         checks.in_range("options.budget", options.budget, 0.0, 1e9, low_open=True)
+    checks.boolean("options.energy", options.energy)
     checks.boolean("options.figures", options.figures)
     return options

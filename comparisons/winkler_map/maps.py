@@ -25,6 +25,8 @@ from ..study import relative_error
 from ..sweep import (DASK_ENV, StderrProgress, SweepProgress, run_sweep,
                      sweep_executor)
 from .bed_runs import run_bed
+from .energy import energy_scale, same_run
+from .energy_points import evaluate_energy
 from .beds import BEDS, BedReference, bed_foundation
 from .cost import (Estimate, estimate_cost, impedance_dofs, refuse_over_budget,
                    timed_dynamic_runs)
@@ -70,7 +72,11 @@ class MapData:
     whose count is not known); ``capacity_fits`` ((soil, fs_v), :class:`~.fitted_bed.
     CapacityFit`) pairs of the fitted bed's capacity profile (when it is compared);
     ``pushovers`` ((soil, fs_v), the continuum's rotation pushovers a bed is calibrated to, or
-    why a path stopped) pairs.
+    why a path stopped) pairs. The foundation energy E_F (:mod:`.foundation_energy`):
+    ``continuum_energy`` (…, motion) from the continuum's energy run of a point where the store
+    holds one (NaN elsewhere), ``bed_energy`` (…, motion, calibration), ``energy_errors`` like
+    it (NaN where either is missing) and ``energy_scale`` (soil, fs_v, h_over_B, period) the
+    floor's basis (:func:`.energy.energy_scale`).
     """
 
     grid: Grid
@@ -100,6 +106,10 @@ class MapData:
     workers: int | None = 1
     capacity_fits: tuple = ()
     pushovers: tuple = ()
+    continuum_energy: np.ndarray | None = None
+    bed_energy: np.ndarray | None = None
+    energy_errors: np.ndarray | None = None
+    energy_scale: np.ndarray | None = None
 
     @property
     def motion_names(self) -> tuple[str, ...]:
@@ -183,6 +193,9 @@ def _estimate(grid, options, motions, base, g, store, statics_points, loads,
         if soil not in scenes:
             scenes[soil] = _scene(point["scene"])
         rows.append((soil, scenes[soil], durations[point["motion"]["name"]], record is not None))
+        if options.energy:  # the same run again, with E_F
+            rows.append((soil, scenes[soil], durations[point["motion"]["name"]],
+                         soil in loads and store.has(_key(point, evaluate_energy))))
     pairs = [static_records[i:i + 2] for i in range(0, len(static_records), 2)]
     stored_static = [{"dofs": a["dofs"], "wall_time_s": a["wall_time_s"] + b["wall_time_s"]}
                      for a, b in pairs if a is not None and b is not None]
@@ -258,14 +271,19 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
         _build_every_bed(grid, options, calibrations, motions, statics, points, impedances,
                          pushovers)
         runs = run_sweep(evaluate_dynamic, points, store, **sweep)
+        if options.energy:
+            before += sum(1 for p in points if store.has(_key(p, evaluate_energy)))
+            energy_runs = run_sweep(evaluate_energy, points, store, **sweep)
+        else:  # the energy runs the store holds
+            energy_runs = [store.get(_key(p, evaluate_energy)) for p in points]
     soils_run = sum(1 for i in range(len(grid.soils))
                     if any(r is None for r in static_records[2 * i:2 * i + 2]))
-    computed = (len(points) + len(rotations) - before + soils_run
+    computed = (len(points) * (2 if options.energy else 1) + len(rotations) - before + soils_run
                 + sum(1 for done in impedance_stored if not done))
     rocking = _rocking(grid, options, calibrations, statics, base, g, rocking_records,
                        impedances, pushovers)
     return _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
-                     computed, rocking, impedances, split, pushovers, ctx.progress)
+                     computed, rocking, impedances, split, pushovers, ctx.progress, energy_runs)
 
 
 def _pushovers(grid, loads, base, records) -> dict:
@@ -341,9 +359,11 @@ def _rocking(grid, options, calibrations, statics, base, g, records, impedances,
 
 
 def _assemble(grid, options, calibrations, motions, statics, points, runs, estimate,
-              computed, rocking, impedances, workers, pushovers, progress=None) -> MapData:
+              computed, rocking, impedances, workers, pushovers, progress=None,
+              energy_runs=None) -> MapData:
     """Every bed's run of every point (live, in this process) against the continuum's stored
-    run. ``progress`` as :func:`.sweep.run_sweep`'s (None: a line on stderr every 10 s of a
+    run, and its E_F against the continuum's energy run where ``energy_runs`` has one (None
+    items: not stored). ``progress`` as :func:`.sweep.run_sweep`'s (None: a line on stderr every 10 s of a
     long pass, with the time left; False: silent): the beds of the whole grid take minutes."""
     from ...continuum.run_control import FAILURE_SETTLEMENT
 
@@ -364,12 +384,15 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
     bed_K_r = np.full(shape[:2] + (nb,), np.nan)
     bed_K_v = np.full_like(bed_K_r, np.nan)
     refusals, warmed = [], set()
-    it = iter(zip(points, runs))
+    cen, ben = np.full(shape, np.nan), np.full(shape + (nb,), np.nan)
+    eerr, escale = np.full(shape + (nb,), np.nan), np.full(shape[:4], np.nan)
+    energy_runs = energy_runs if energy_runs is not None else [None] * len(points)
+    it = iter(zip(points, runs, energy_runs))
     by_soil = {s.soil: s for s in statics}
     for idx, (soil, fs, hb, period, intensity) in _cells(grid):
         st = by_soil[soil]
         for m in range(len(motions)):
-            point, run = next(it)
+            point, run, erun = next(it)
             done = _tick(report, done, len(points), start)
             at = idx + (m,)
             scene = _scene(point["scene"])
@@ -379,6 +402,7 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
             k_story, _ = story_constants(scene)
             scl = scales(ref.N, B, h, st.K_v, st.K_r, k_story)
             scale[idx[:4]] = [scl[q] for q in MEASURES]
+            escale[idx[:4]] = energy_scale(ref.N, B, st.K_r)
             N[idx[:2]] = ref.N
             failed = run.get("failure") == "bearing"
             if "error" in run:  # the continuum's run failed: nothing to compare a bed with
@@ -392,6 +416,9 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                 cwall[at], steps[at], balance[at] = (run["wall_time_s"], run["steps"],
                                                      run["energy_balance_error"])
                 dofs[at] = run["dofs"]
+                if erun is not None and "error" not in erun:
+                    same_run(erun, run, _where(soil, fs, hb, period, intensity, motions[m]))
+                    cen[at] = erun["foundation_energy"]
             for c, name in enumerate(calibrations):
                 foundation = bed_foundation(name, ref, options)
                 if name not in warmed:  # the first run compiles the kernels: not timed
@@ -407,6 +434,7 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                                     f"{name}: {bed['refused']}")
                     continue
                 beds[at + (c,)] = [bed["measures"][q] for q in MEASURES]
+                ben[at + (c,)] = bed["foundation_energy"]
                 if failed:  # the bed is held to the outcome: does it fail in bearing too?
                     bed_bearing[at + (c,)] = bed["peak_settlement"] >= FAILURE_SETTLEMENT * B
                     continue
@@ -414,6 +442,9 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                     errors[at + (c, q)] = relative_error(beds[at + (c, q)],
                                                          run["measures"][measure],
                                                          FLOOR_FRACTION * scl[measure])
+                if np.isfinite(cen[at]):
+                    eerr[at + (c,)] = relative_error(ben[at + (c,)], cen[at],
+                                                     FLOOR_FRACTION * escale[idx[:4]])
     _tick(report, done, len(points), start)
     fits = ()
     if FITTED in calibrations:  # the fitted bed's profile per (soil, fs_v): built above, cached
@@ -426,7 +457,7 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                    continuum, beds, errors, scale, cwall, bwall, steps, balance, dofs, bed_K_r,
                    bed_K_v, tuple(refusals), estimate, computed, rocking,
                    tuple(impedances.items()), bearing, bed_bearing, workers, fits,
-                   tuple(pushovers.items()))
+                   tuple(pushovers.items()), cen, ben, eerr, escale)
 
 
 def _tick(report, done: int, total: int, start: float) -> int:

@@ -88,6 +88,8 @@ def map_dataset(data: MapData, prov: Mapping):
                                             data.bed_bearing_failure.astype("i1"), {
             "units": "1", "long_name": "1: at a bearing failure of the continuum, the bed's "
                                        "base settled by the failure settlement too"})
+    if data.energy_errors is not None:
+        variables.update(_energy_variables(data, d))
     for q, m in enumerate(MEASURES):
         label, units = ascii_text(MEASURE_LABELS[m]), MEASURE_UNITS[m]
         variables[f"bed_{m}"] = (d + ("calibration",), data.beds[..., q], {
@@ -103,6 +105,26 @@ def map_dataset(data: MapData, prov: Mapping):
              "floor_fraction": FLOOR_FRACTION, "refusals": list(data.refusals),
              "provenance": dict(prov)}
     return xr.Dataset(variables, coords=_coords(data), attrs=cf_attributes(attrs))
+
+
+def _energy_variables(data: MapData, d: tuple) -> dict:
+    """The foundation energy E_F of both models, its error and its floor (:mod:`.energy`)."""
+    what = ("foundation energy E_F, the energy the structure lost to its foundation over the "
+            "run")
+    return {
+        "continuum_foundation_energy": (d, data.continuum_energy, {
+            "units": "kN m/m", "long_name": f"{what}, of the continuum's energy run (NaN: "
+                                           "not stored)"}),
+        "bed_foundation_energy": (d + ("calibration",), data.bed_energy, {
+            "units": "kN m/m", "long_name": f"{what}, of the bed's run"}),
+        "foundation_energy_error": (d + ("calibration",), data.energy_errors, {
+            "units": "1", "long_name": "signed relative error of the bed's E_F against the "
+                                       "continuum's, (bed - continuum)/max(|continuum|, floor)"}),
+        "floor_foundation_energy": (d[:4], FLOOR_FRACTION * data.energy_scale, {
+            "units": "kN m/m", "long_name": f"error floor of E_F: {FLOOR_FRACTION:g} x "
+                                            "(N B/6)^2/(2 K_r), a uniform bed's strain energy "
+                                            "at its uplift threshold"}),
+    }
 
 
 def statics_dataset(data: MapData, prov: Mapping):

@@ -88,6 +88,11 @@ def _arguments(parser) -> None:
                         help="replace one axis of the grid (repeatable), e.g. soils=clay, "
                              "fs_v=2,3,5,10, h_over_B=1.5, periods=0.5, intensities=1.5,3, "
                              "pulse_periods=0.25,0.6, elcentro=true, fema_components=2")
+    parser.add_argument("--energy", action="store_true", default=None,
+                        help="also make the continuum's foundation-energy run of every point "
+                             "(one more continuum run each, stored), so that the map compares "
+                             "E_F everywhere; without it, E_F is compared where the store "
+                             "holds those runs (the fast map always makes them)")
     parser.add_argument("--beds", default=None, metavar="NAME,NAME",
                         help="compare only these calibrations (names of the bed registry, "
                              "e.g. end_stiffened_plastic,qz; default: every one)")
@@ -95,7 +100,8 @@ def _arguments(parser) -> None:
 
 def _context_from(args, ctx: Context, say) -> Context:
     base = FAST_OPTIONS if args.fast else FULL_OPTIONS
-    options = replace(base, budget=args.budget, figures=not args.no_figures)
+    options = replace(base, budget=args.budget, figures=not args.no_figures,
+                      energy=bool(args.energy) or base.energy)
     if args.beds is not None:
         options = replace(options, beds=tuple(b.strip() for b in args.beds.split(",")
                                               if b.strip()))
