@@ -312,29 +312,31 @@ def test_the_summarys_goal_is_recomputed_from_the_file(study, written):
 
 
 def test_the_summarys_foundation_energy_is_recomputed_from_the_file(study, written):
-    """E_F (the fast options make the continuum's energy runs): every point has the continuum's
-    E_F, positive (the clay takes energy from the structure); each error is (bed −
-    continuum)/max(|continuum|, floor) from map.nc's E_F and floor, and summary.json's median,
-    90th percentile and pick per bed are numpy's over those errors (1e-12)."""
+    """E_F and E_M (the fast options make the continuum's energy runs): every point has the
+    continuum's, positive (the clay takes energy from the structure, and of the motion's input);
+    each error is (bed − continuum)/max(|continuum|, floor) from map.nc's energies and floor,
+    and summary.json's median, 90th percentile and pick per bed are numpy's over those errors
+    (1e-12)."""
     ds, _ = written
     numbers = json.loads((study.study.directory / "summary.json").read_text())["numbers"]
-    e = numbers["foundation_energy"]
-    continuum = ds.continuum_foundation_energy
-    assert e["points"] == continuum.size == 2 and float(continuum.min()) > 0.0
-    floor = ds.floor_foundation_energy.broadcast_like(continuum)
-    expected = (ds.bed_foundation_energy - continuum) / np.maximum(np.abs(continuum), floor)
-    np.testing.assert_allclose(ds.foundation_energy_error.values,
-                               expected.transpose(*ds.foundation_energy_error.dims).values,
-                               rtol=1e-12)
-    err = np.abs(ds.foundation_energy_error)
-    for name in ds.calibration.values:
-        values = err.sel(calibration=name).values.ravel()
-        assert e["median"][name] == pytest.approx(float(np.median(values)), abs=1e-12)
-        assert e["p90"][name] == pytest.approx(float(np.percentile(values, 90)), abs=1e-12)
-    best = min(ds.calibration.values, key=lambda n: (e["median"][n], e["p90"][n]))
-    assert e["best"] == best
+    for name in ("foundation_energy", "motion_energy"):
+        e = numbers["foundation_energy"][name]
+        continuum = ds[f"continuum_{name}"]
+        assert e["points"] == continuum.size == 2 and float(continuum.min()) > 0.0
+        floor = ds.floor_energy.broadcast_like(continuum)
+        expected = (ds[f"bed_{name}"] - continuum) / np.maximum(np.abs(continuum), floor)
+        error = ds[f"{name}_error"]
+        np.testing.assert_allclose(error.values, expected.transpose(*error.dims).values,
+                                   rtol=1e-12)
+        for bed in ds.calibration.values:
+            values = np.abs(error.sel(calibration=bed).values.ravel())
+            assert e["median"][bed] == pytest.approx(float(np.median(values)), abs=1e-12)
+            assert e["p90"][bed] == pytest.approx(float(np.percentile(values, 90)), abs=1e-12)
+        assert e["best"] == min(ds.calibration.values,
+                                key=lambda n: (e["median"][n], e["p90"][n]))
     assert "Points with the continuum's E_F: 2 of 2." in \
         (study.study.directory / "summary.md").read_text()
+
 
 @pytest.mark.parametrize("change, message", [
     ({"fs_v": (0.5, 3.0)}, r"grid\.fs_v\[0\] = 0\.5: valid range is \(1, 100\]"),

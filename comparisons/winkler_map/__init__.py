@@ -22,7 +22,10 @@ code it ran (:mod:`..fingerprint`: the continuum, the scenes and the measures, n
 the grid), so that a store kept with the repository (``benchmarks/winkler_map_store``) is
 reused exactly while that code is unchanged; each bed's reduced run of the same point is live
 (milliseconds) and timed in the same run. Measured alike on both models:
-peak θ, peak edge uplift, residual settlement, residual rotation, peak u, peak base shear.
+peak θ, peak edge uplift, residual settlement, residual rotation, peak u, peak base shear; and
+the foundation energy E_F, the energy the structure lost to its foundation (:mod:`.energy`), at
+the points whose continuum energy run is stored (``--energy`` makes them: one more continuum run
+per point, :mod:`.energy_points`).
 Before any run the study logs how many continuum runs it will make and what they should cost
 (:mod:`.cost`), and refuses above ``--budget``.
 
@@ -32,7 +35,7 @@ Written: ``map.nc`` and ``statics.nc`` (NetCDF-4, CF), figures (one question eac
 percentile of its error, the share of the map the best bed covers, the speed of each bed.
 
 Run it with ``python -m upliftlab.comparisons.winkler_map [--fast] [--out DIR] [--scheduler
-ADDR] [--budget SECONDS]``.
+ADDR] [--budget SECONDS] [--energy]``.
 """
 
 from __future__ import annotations
@@ -46,6 +49,7 @@ from .grid import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS, Grid, MEASU
 from .maps import MapData, compute_map, estimate_map
 from .output import write
 from .bed_runs import run_bed
+from .energy_points import evaluate_energy
 from .points import evaluate_dynamic
 from .result import WinklerMap
 from .statics import SoilStatics, evaluate_static
@@ -55,6 +59,6 @@ __all__ = ["STUDY", "SOILS", "MEASURES", "Grid", "Options", "FULL_GRID", "FAST_G
            "FULL_OPTIONS", "FAST_OPTIONS", "check_grid", "check_options", "grid_with", "BEDS",
            "BedEntry", "BedReference", "bed_foundation", "bed_names", "Estimate", "estimate_cost",
            "MapData", "compute_map", "estimate_map", "SoilStatics", "evaluate_static",
-           "evaluate_dynamic", "run_bed", "Analysis", "BedRegion", "Pick", "Share", "Speed",
+           "evaluate_dynamic", "evaluate_energy", "run_bed", "Analysis", "BedRegion", "Pick", "Share", "Speed",
            "analyse", "cell_passes", "median_over_motions", "WinklerMap", "DEFINITION", "compute",
            "write", "run", "main"]

@@ -11,7 +11,7 @@ import numpy as np
 
 from ..study import Axis, Region, corner_region
 from .beds import BEDS
-from .energy import EnergyPick, energy_pick
+from .energy import EnergyPick, energy_picks
 from .goal import Goal, goal, hits
 from .grid import MEASURE_LABELS, MEASURES, SOIL_LABELS
 from .maps import MapData
@@ -129,7 +129,7 @@ class Analysis:
     share: Share
     speed: Speed
     goal: Goal
-    energy: EnergyPick | None = None
+    energy: tuple[EnergyPick, ...] = ()
 
     def pick(self, measure: str) -> Pick:
         return next(p for p in self.picks if p.measure == measure)
@@ -245,7 +245,7 @@ def analyse(data: MapData) -> Analysis:
     """Every statement of the summary, from the data."""
     covered, fast = share(data), speed(data)
     return Analysis(tuple(regions(data)), tuple(picks(data)), covered, fast,
-                    goal(data, covered.by_bed, fast.median), energy_pick(data))
+                    goal(data, covered.by_bed, fast.median), energy_picks(data))
 
 
 def pick_text(pick: Pick) -> str:

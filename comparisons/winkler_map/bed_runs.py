@@ -17,14 +17,14 @@ from ..measures import edge_uplift_history, reduced_edge_gap_history
 from .grid import MEASURES
 from .points import measured, motion_table
 
-__all__ = ["run_bed", "reduced_measures", "reduced_energy_loss"]
+__all__ = ["run_bed", "reduced_measures", "reduced_energy_terms"]
 
 
 def run_bed(point: Mapping, foundation: Mapping) -> dict:
     """A bed's run of a point's motion (reduced model, live, not stored): the measures of
     :func:`measured`, its ``peak_settlement`` (the base centre's largest settlement, down),
-    its wall time ``wall_time_s`` (the run alone, s), its ``foundation_energy`` E_F
-    (:func:`reduced_energy_loss`), or ``refused`` with the integrator's
+    its wall time ``wall_time_s`` (the run alone, s), its foundation energy E_F and the
+    work of gravity in it (``energy``, :func:`reduced_energy_terms`), or ``refused`` with the integrator's
     reason."""
     from ...reduced import IntegrationError, run as run_reduced
 
@@ -44,7 +44,7 @@ def run_bed(point: Mapping, foundation: Mapping) -> dict:
                 "wall_time_s": time.perf_counter() - started}
     wall = time.perf_counter() - started
     return {"measures": reduced_measures(response), "wall_time_s": wall,
-            "foundation_energy": reduced_energy_loss(response),
+            "energy": reduced_energy_terms(response),
             "peak_settlement": float(np.max(response.settlement)),
             "energy_balance_error": float(response.peaks["energy_balance_error"])}
 
@@ -62,12 +62,14 @@ def reduced_measures(response) -> dict:
     return out
 
 
-def reduced_energy_loss(response) -> float:
-    """E_F of a reduced model's run (:mod:`.foundation_energy`: the energy its structure lost
-    to the foundation, force·length per length) from the integrator's own energy account: the
-    foundation's books, its springs' change of strain energy and its dashpot, impact and
-    plastic work. The account books the story with them, so the story's strain energy ½ k u²
-    and its dashpot's work ∫ c u̇² dt (trapezoidal over the stored rows) are taken out."""
+def reduced_energy_terms(response) -> dict:
+    """``foundation``: E_F of a reduced model's run (:mod:`.foundation_energy`: the energy its
+    structure lost to the foundation, force·length per length) from the integrator's own
+    energy account: the foundation's books, its springs' change of strain energy and its
+    dashpot, impact and plastic work. The account books the story with them, so the story's
+    strain energy ½ k u² and its dashpot's work ∫ c u̇² dt (trapezoidal over the stored rows)
+    are taken out. ``gravity``: the work of the structure's weight over the run (its loss of
+    gravity energy: W times the settlement)."""
     from ...reduced.response import ENERGY_NAMES
 
     e = np.asarray(response.energy, dtype=float)
@@ -81,5 +83,6 @@ def reduced_energy_loss(response) -> float:
     power = (rate * rate) @ c
     t = np.asarray(response.time, dtype=float)
     story_dashpot = float(np.sum(0.5 * (power[1:] + power[:-1]) * np.diff(t)))
-    return (change["strain"] - story_strain + change["viscous"] - story_dashpot
-            + change["impact"] + change["plastic"])
+    foundation = (change["strain"] - story_strain + change["viscous"] - story_dashpot
+                  + change["impact"] + change["plastic"])
+    return {"foundation": float(foundation), "gravity": float(-change["gravity"])}

@@ -3,9 +3,13 @@ energy run of a point is stored (:mod:`.energy_points`, :mod:`.foundation_energy
 
 E_F is the energy the structure lost to its foundation over the run: a bed's dashpot, impact and
 plastic work and the change of its springs' energy; the continuum soil's plastic work, the
-waves the footing sent into it and the change of its elastic energy. Its error floor is
-:data:`.grid.FLOOR_FRACTION` × the strain energy of a uniform bed at its uplift threshold,
-½ M_up θ_up = ½ (N B/6)²/K_r (:func:`energy_scale`).
+waves the footing sent into it and the change of its elastic energy. Part of it is the work of
+the structure's weight as the footing settles (W times the residual settlement); the rest,
+E_M = E_F − W s, is what the foundation took of the ground motion's input (the input less
+what the structure keeps or its story dashpot takes): the foundation's damping of the motion.
+Both are compared (:data:`ENERGIES`). Their error floor is :data:`.grid.FLOOR_FRACTION` × the
+strain energy of a uniform bed at its uplift threshold, ½ M_up θ_up = ½ (N B/6)²/K_r
+(:func:`energy_scale`).
 """
 
 from __future__ import annotations
@@ -17,8 +21,14 @@ import numpy as np
 
 from .beds import BEDS
 
-__all__ = ["EnergyPick", "energy_scale", "same_run", "energy_pick", "energy_lines",
-           "energy_numbers", "RUN_TOLERANCE"]
+__all__ = ["ENERGIES", "ENERGY_LABELS", "ENERGY_SYMBOLS", "EnergyPick", "energy_scale", "energies_of",
+           "same_run", "energy_picks", "energy_lines", "energy_numbers", "RUN_TOLERANCE"]
+
+#: The energies compared: E_F, and E_M = E_F less the work of the weight (:func:`energies_of`).
+ENERGIES = ("foundation_energy", "motion_energy")
+ENERGY_LABELS = {"foundation_energy": "foundation energy E_F",
+                 "motion_energy": "E_M, from the motion"}
+ENERGY_SYMBOLS = {"foundation_energy": "E_F", "motion_energy": "E_M"}
 
 #: The largest relative difference allowed between a measure of a point's energy run and of
 #: its dynamic run: the same run of the same code, deterministic on one thread, so equal.
@@ -30,6 +40,12 @@ def energy_scale(N: float, B: float, K_r: float) -> float:
     rocking stiffness K_r at its uplift threshold (force·length per length)."""
     moment = N * B / 6.0
     return 0.5 * moment * moment / K_r
+
+
+def energies_of(terms: dict) -> tuple[float, float]:
+    """(E_F, E_M) of a run's energy terms: ``foundation`` E_F and ``gravity`` the work of the
+    weight in it (force·length per length)."""
+    return float(terms["foundation"]), float(terms["foundation"] - terms["gravity"])
 
 
 def same_run(energy_record: dict, dynamic_record: dict, where: str) -> None:
@@ -46,11 +62,12 @@ def same_run(energy_record: dict, dynamic_record: dict, where: str) -> None:
 
 @dataclass(frozen=True)
 class EnergyPick:
-    """E_F over the points with a continuum energy run (``points``): each calibration's
-    |error| ``median`` and ``p90`` and its signed median ``bias`` (fractions), the ``best``
-    calibration (smallest median, then p90; None if no bed was compared) and per soil
-    (``soils``: {soil: (points, best, median, p90)})."""
+    """One energy of :data:`ENERGIES` over the points with a continuum energy run
+    (``points``): each calibration's |error| ``median`` and ``p90`` and its signed median
+    ``bias`` (fractions), the ``best`` calibration (smallest median, then p90; None if no bed
+    was compared) and per soil (``soils``: {soil: (points, best, median, p90)})."""
 
+    quantity: str
     points: int
     median: dict
     p90: dict
@@ -72,25 +89,31 @@ def _rank(median: dict, p90: dict, names) -> str | None:
     return min(finite, key=lambda n: (median[n], p90[n])) if finite else None
 
 
-def energy_pick(data) -> EnergyPick | None:
-    """The error distribution of E_F per calibration (:class:`EnergyPick`) over the points
-    whose continuum energy run is stored; None when the map holds none."""
+def energy_picks(data) -> tuple[EnergyPick, ...]:
+    """The error distribution of each energy of :data:`ENERGIES` per calibration
+    (:class:`EnergyPick`) over the points whose continuum energy run is stored; empty when the
+    map holds none."""
     if data.energy_errors is None or not np.isfinite(data.continuum_energy).any():
-        return None
+        return ()
+    return tuple(_pick(data, k, quantity) for k, quantity in enumerate(ENERGIES))
+
+
+def _pick(data, k: int, quantity: str) -> EnergyPick:
+    errors, continuum = data.energy_errors[..., k], data.continuum_energy[..., k]
     median, p90, bias = {}, {}, {}
     for c, name in enumerate(data.calibrations):
-        median[name], p90[name], bias[name] = _stats(data.energy_errors[..., c].ravel())
+        median[name], p90[name], bias[name] = _stats(errors[..., c].ravel())
     soils = {}
     for s, soil in enumerate(data.grid.soils):
-        n = int(np.isfinite(data.continuum_energy[s]).sum())
+        n = int(np.isfinite(continuum[s]).sum())
         if n:
-            stats = {name: _stats(data.energy_errors[s, ..., c].ravel())
+            stats = {name: _stats(errors[s, ..., c].ravel())
                      for c, name in enumerate(data.calibrations)}
             best = _rank({k: v[0] for k, v in stats.items()},
                          {k: v[1] for k, v in stats.items()}, data.calibrations)
             soils[soil] = (n, best, stats[best][0] if best else math.nan,
                            stats[best][1] if best else math.nan)
-    return EnergyPick(int(np.isfinite(data.continuum_energy).sum()), median, p90, bias,
+    return EnergyPick(quantity, int(np.isfinite(continuum).sum()), median, p90, bias,
                       _rank(median, p90, data.calibrations), soils)
 
 
@@ -98,52 +121,70 @@ def _pct(value: float) -> str:
     return "n/a" if not math.isfinite(value) else f"{100 * value:.1f} %"
 
 
-def energy_lines(data, pick: EnergyPick | None) -> list[str]:
-    """The summary's section on E_F (markdown lines)."""
+def energy_lines(data, picks: tuple[EnergyPick, ...]) -> list[str]:
+    """The summary's section on E_F and E_M (markdown lines)."""
     intro = ("E_F is the energy the structure lost to its foundation over the run, from the "
              "structure's own side of the balance (the ground's input less the change of its "
              "kinetic, story and gravity energy and its story dashpot's work): a bed's dashpot, "
              "impact and plastic work and the change of its springs' energy; the continuum "
              "soil's plastic work, the waves the footing sent into it and the change of its "
-             "elastic energy. It is the foundation's damping as the structure sees it. The "
+             "elastic energy. It is the foundation's damping as the structure sees it. E_M is "
+             "E_F less the work of the structure's weight as the footing settles (W times the "
+             "residual settlement): what the foundation took of the motion's input. The "
              "continuum's own energy account cannot give the soil's dissipation apart: it "
              "books plastic work with stored elastic energy, and the soil's own free-field "
              "response with them. Errors are relative, with the floor "
              "0.1 × ½ (N B/6)²/K_r (a uniform bed's strain energy at its uplift threshold).")
     total = data.continuum_wall.size
-    if pick is None:
+    if not picks:
         return [intro, "", f"No point of this map has a continuum energy run stored (0 of "
                            f"{total}): E_F is not compared. Run the map with --energy to make "
                            "them (one more continuum run per point)."]
-    lines = [intro, "", f"Points with the continuum's E_F: {pick.points} of {total}.", "",
-             "| calibration | median |error| | 90th percentile | signed median |",
-             "|---|---|---|---|"]
+    f, m = picks
+    lines = [intro, "", f"Points with the continuum's E_F: {f.points} of {total}.", "",
+             "| calibration | E_F: median |error| | 90th pct | signed median | "
+             "E_M: median |error| | 90th pct | signed median |", "|---|---|---|---|---|---|---|"]
     for name in data.calibrations:
-        lines.append(f"| `{name}` | {_pct(pick.median[name])} | {_pct(pick.p90[name])} | "
-                     f"{_pct(pick.bias[name])} |")
+        lines.append(f"| `{name}` | {_pct(f.median[name])} | {_pct(f.p90[name])} | "
+                     f"{_pct(f.bias[name])} | {_pct(m.median[name])} | {_pct(m.p90[name])} | "
+                     f"{_pct(m.bias[name])} |")
     lines.append("")
-    if pick.best is not None:
+    held = data.continuum_energy_left / np.abs(data.continuum_energy[..., 1])
+    held = held[np.isfinite(held)]
+    if held.size:
+        lines += [f"Both are taken at the end of the run. There the continuum's structure "
+                  f"still holds (kinetic and story energy) a median {_pct(float(np.median(held)))} "
+                  f"of its E_M (90th percentile {_pct(float(np.percentile(held, 90)))}): where "
+                  "it still rocks, part of E_F is energy swinging between the structure and its "
+                  "foundation, not yet dissipated, in both models.", ""]
+    for pick in picks:
+        if pick.best is None:
+            continue
         label = BEDS[pick.best].label if pick.best in BEDS else pick.best
-        lines.append(f"For E_F, pick the {label}: |error| median {_pct(pick.median[pick.best])}, 90th percentile "
+        lines.append(f"For {ENERGY_LABELS[pick.quantity]}, pick the {label}: |error| median "
+                     f"{_pct(pick.median[pick.best])}, 90th percentile "
                      f"{_pct(pick.p90[pick.best])} over {pick.points} points.")
-    for soil, (n, best, med, p90) in pick.soils.items():
-        if best is not None:
-            lines.append(f"- {soil} ({n} points): `{best}`, median {_pct(med)}, 90th "
-                         f"percentile {_pct(p90)}.")
+        for soil, (n, best, med, p90) in pick.soils.items():
+            if best is not None:
+                lines.append(f"- {soil} ({n} points): `{best}`, median {_pct(med)}, 90th "
+                             f"percentile {_pct(p90)}.")
+        lines.append("")
     return lines
 
 
-def energy_numbers(pick: EnergyPick | None) -> dict | None:
+def energy_numbers(picks: tuple[EnergyPick, ...]) -> dict | None:
     """The section's numbers for summary.json (fractions; None: not compared)."""
-    if pick is None:
+    if not picks:
         return None
 
     def clean(mapping):
         return {k: (v if math.isfinite(v) else None) for k, v in mapping.items()}
 
-    return {"points": pick.points, "best": pick.best, "median": clean(pick.median),
-            "p90": clean(pick.p90), "signed_median": clean(pick.bias),
-            "by_soil": {soil: {"points": n, "best": best,
-                               "median": med if math.isfinite(med) else None,
-                               "p90": p90 if math.isfinite(p90) else None}
-                        for soil, (n, best, med, p90) in pick.soils.items()}}
+    return {pick.quantity: {
+        "points": pick.points, "best": pick.best, "median": clean(pick.median),
+        "p90": clean(pick.p90), "signed_median": clean(pick.bias),
+        "by_soil": {soil: {"points": n, "best": best,
+                           "median": med if math.isfinite(med) else None,
+                           "p90": p90 if math.isfinite(p90) else None}
+                    for soil, (n, best, med, p90) in pick.soils.items()}}
+        for pick in picks}

@@ -13,6 +13,7 @@ import numpy as np
 from ..study import Axis, write_figure
 from .analysis import median_over_motions
 from .beds import BEDS
+from .energy import ENERGY_LABELS, ENERGY_SYMBOLS
 from .grid import MEASURE_LABELS, MEASURES, SOIL_LABELS
 
 __all__ = ["write_figures"]
@@ -104,20 +105,26 @@ def _colours(count: int):
 
 
 def _distributions(data, analysis, path: Path) -> Path:
-    """Per measure and calibration: the median and 90th percentile of |error| over the map."""
+    """Per measure and calibration: the median and 90th percentile of |error| over the map, and
+    of the foundation energy E_F over the points whose continuum energy run is stored."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     names = data.calibrations
-    fig, ax = plt.subplots(figsize=(9.5, 4.2 + 0.16 * ((len(names) + 1) // 2)),
+    groups = [(MEASURE_LABELS[m], analysis.pick(m).median, analysis.pick(m).p90)
+              for m in MEASURES]
+    groups += [(f"{ENERGY_LABELS[e.quantity]}\n({e.points} points)", e.median, e.p90)
+               for e in analysis.energy]
+    fig, ax = plt.subplots(figsize=(9.5 + 1.2 * len(analysis.energy),
+                                    4.2 + 0.16 * ((len(names) + 1) // 2)),
                            constrained_layout=True)
     width = 0.8 / len(names)
-    x = np.arange(len(MEASURES))
+    x = np.arange(len(groups))
     for c, (name, colour) in enumerate(zip(names, _colours(len(names)))):
-        med = [100 * analysis.pick(m).median[name] for m in MEASURES]
-        p90 = [100 * analysis.pick(m).p90[name] for m in MEASURES]
+        med = [100 * g[1][name] for g in groups]
+        p90 = [100 * g[2][name] for g in groups]
         ax.bar(x + (c - (len(names) - 1) / 2) * width, med, width, color=colour,
                label=_legend_label(name))
         ax.plot(x + (c - (len(names) - 1) / 2) * width, p90, "v", color=colour,
@@ -125,9 +132,11 @@ def _distributions(data, analysis, path: Path) -> Path:
     for level in (10, 20):
         ax.axhline(level, color="k", ls=":", lw=0.8)
     ax.set_yscale("log")
-    ax.set_xticks(x, [MEASURE_LABELS[m] for m in MEASURES], fontsize=8)
+    ax.set_xticks(x, [g[0] for g in groups], fontsize=8)
     ax.set_ylabel("|bed − continuum| / continuum (%)")
     best = ", ".join(f"{MEASURE_LABELS[m]}: {_short(analysis.pick(m).best)}" for m in MEASURES)
+    best += "".join(f", {ENERGY_SYMBOLS[e.quantity]}: {_short(e.best)}"
+                    for e in analysis.energy if e.best is not None)
     ax.set_title(f"Which calibration for which quantity? Bars: median, ▼: 90th percentile over "
                  f"{analysis.pick(MEASURES[0]).points} points\nbest: {best}", fontsize=8)
     ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.1),

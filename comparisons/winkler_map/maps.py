@@ -25,7 +25,7 @@ from ..study import relative_error
 from ..sweep import (DASK_ENV, StderrProgress, SweepProgress, run_sweep,
                      sweep_executor)
 from .bed_runs import run_bed
-from .energy import energy_scale, same_run
+from .energy import ENERGIES, energies_of, energy_scale, same_run
 from .energy_points import evaluate_energy
 from .beds import BEDS, BedReference, bed_foundation
 from .cost import (Estimate, estimate_cost, impedance_dofs, refuse_over_budget,
@@ -72,11 +72,13 @@ class MapData:
     whose count is not known); ``capacity_fits`` ((soil, fs_v), :class:`~.fitted_bed.
     CapacityFit`) pairs of the fitted bed's capacity profile (when it is compared);
     ``pushovers`` ((soil, fs_v), the continuum's rotation pushovers a bed is calibrated to, or
-    why a path stopped) pairs. The foundation energy E_F (:mod:`.foundation_energy`):
-    ``continuum_energy`` (…, motion) from the continuum's energy run of a point where the store
-    holds one (NaN elsewhere), ``bed_energy`` (…, motion, calibration), ``energy_errors`` like
-    it (NaN where either is missing) and ``energy_scale`` (soil, fs_v, h_over_B, period) the
-    floor's basis (:func:`.energy.energy_scale`).
+    why a path stopped) pairs. The energies of :data:`.energy.ENERGIES` (the foundation energy
+    E_F and its part from the motion, :mod:`.energy`): ``continuum_energy`` (…, motion,
+    energy) from the continuum's energy run of a point where the store holds one (NaN
+    elsewhere), ``bed_energy`` (…, motion, calibration, energy), ``energy_errors`` like it
+    (NaN where either is missing) and ``energy_scale`` (soil, fs_v, h_over_B, period) the
+    floor's basis (:func:`.energy.energy_scale`); ``continuum_energy_left`` (…, motion) the
+    energy the continuum's structure still holds at the end of its run (kinetic and story).
     """
 
     grid: Grid
@@ -110,6 +112,7 @@ class MapData:
     bed_energy: np.ndarray | None = None
     energy_errors: np.ndarray | None = None
     energy_scale: np.ndarray | None = None
+    continuum_energy_left: np.ndarray | None = None
 
     @property
     def motion_names(self) -> tuple[str, ...]:
@@ -384,8 +387,10 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
     bed_K_r = np.full(shape[:2] + (nb,), np.nan)
     bed_K_v = np.full_like(bed_K_r, np.nan)
     refusals, warmed = [], set()
-    cen, ben = np.full(shape, np.nan), np.full(shape + (nb,), np.nan)
-    eerr, escale = np.full(shape + (nb,), np.nan), np.full(shape[:4], np.nan)
+    ne = len(ENERGIES)
+    cen, ben = np.full(shape + (ne,), np.nan), np.full(shape + (nb, ne), np.nan)
+    eerr, escale = np.full(shape + (nb, ne), np.nan), np.full(shape[:4], np.nan)
+    left = np.full(shape, np.nan)
     energy_runs = energy_runs if energy_runs is not None else [None] * len(points)
     it = iter(zip(points, runs, energy_runs))
     by_soil = {s.soil: s for s in statics}
@@ -418,7 +423,9 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                 dofs[at] = run["dofs"]
                 if erun is not None and "error" not in erun:
                     same_run(erun, run, _where(soil, fs, hb, period, intensity, motions[m]))
-                    cen[at] = erun["foundation_energy"]
+                    terms = erun["energy_terms"]
+                    cen[at] = energies_of(terms)
+                    left[at] = terms["kinetic"] + terms["story"]
             for c, name in enumerate(calibrations):
                 foundation = bed_foundation(name, ref, options)
                 if name not in warmed:  # the first run compiles the kernels: not timed
@@ -434,7 +441,7 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                                     f"{name}: {bed['refused']}")
                     continue
                 beds[at + (c,)] = [bed["measures"][q] for q in MEASURES]
-                ben[at + (c,)] = bed["foundation_energy"]
+                ben[at + (c,)] = energies_of(bed["energy"])
                 if failed:  # the bed is held to the outcome: does it fail in bearing too?
                     bed_bearing[at + (c,)] = bed["peak_settlement"] >= FAILURE_SETTLEMENT * B
                     continue
@@ -442,9 +449,10 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                     errors[at + (c, q)] = relative_error(beds[at + (c, q)],
                                                          run["measures"][measure],
                                                          FLOOR_FRACTION * scl[measure])
-                if np.isfinite(cen[at]):
-                    eerr[at + (c,)] = relative_error(ben[at + (c,)], cen[at],
-                                                     FLOOR_FRACTION * escale[idx[:4]])
+                for k in range(ne):
+                    if np.isfinite(cen[at + (k,)]):
+                        eerr[at + (c, k)] = relative_error(ben[at + (c, k)], cen[at + (k,)],
+                                                           FLOOR_FRACTION * escale[idx[:4]])
     _tick(report, done, len(points), start)
     fits = ()
     if FITTED in calibrations:  # the fitted bed's profile per (soil, fs_v): built above, cached
@@ -457,7 +465,7 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
                    continuum, beds, errors, scale, cwall, bwall, steps, balance, dofs, bed_K_r,
                    bed_K_v, tuple(refusals), estimate, computed, rocking,
                    tuple(impedances.items()), bearing, bed_bearing, workers, fits,
-                   tuple(pushovers.items()), cen, ben, eerr, escale)
+                   tuple(pushovers.items()), cen, ben, eerr, escale, left)
 
 
 def _tick(report, done: int, total: int, start: float) -> int:

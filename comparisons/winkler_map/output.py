@@ -11,6 +11,7 @@ from ...results import cf_attributes, provenance, write_dataset
 from ..protocol import Context
 from ..study import StudyResult, ascii_text, write_summary
 from .beds import BEDS
+from .energy import ENERGIES
 from .grid import FLOOR_FRACTION, MEASURE_LABELS, MEASURE_UNITS, MEASURES, SOIL_LABELS, STUDY
 from .maps import MapData
 from .points import SIDES
@@ -108,23 +109,29 @@ def map_dataset(data: MapData, prov: Mapping):
 
 
 def _energy_variables(data: MapData, d: tuple) -> dict:
-    """The foundation energy E_F of both models, its error and its floor (:mod:`.energy`)."""
-    what = ("foundation energy E_F, the energy the structure lost to its foundation over the "
-            "run")
-    return {
-        "continuum_foundation_energy": (d, data.continuum_energy, {
-            "units": "kN m/m", "long_name": f"{what}, of the continuum's energy run (NaN: "
-                                           "not stored)"}),
-        "bed_foundation_energy": (d + ("calibration",), data.bed_energy, {
-            "units": "kN m/m", "long_name": f"{what}, of the bed's run"}),
-        "foundation_energy_error": (d + ("calibration",), data.energy_errors, {
-            "units": "1", "long_name": "signed relative error of the bed's E_F against the "
-                                       "continuum's, (bed - continuum)/max(|continuum|, floor)"}),
-        "floor_foundation_energy": (d[:4], FLOOR_FRACTION * data.energy_scale, {
-            "units": "kN m/m", "long_name": f"error floor of E_F: {FLOOR_FRACTION:g} x "
-                                            "(N B/6)^2/(2 K_r), a uniform bed's strain energy "
-                                            "at its uplift threshold"}),
-    }
+    """The energies of :data:`.energy.ENERGIES` of both models, their errors and the floor."""
+    what = {"foundation_energy": "foundation energy E_F, the energy the structure lost to its "
+                                 "foundation over the run",
+            "motion_energy": "E_M, the foundation energy less the work of the structure's "
+                             "weight (W times its settlement)"}
+    out = {}
+    for k, name in enumerate(ENERGIES):
+        out[f"continuum_{name}"] = (d, data.continuum_energy[..., k], {
+            "units": "kN m/m", "long_name": f"{what[name]}, of the continuum's energy run (NaN: "
+                                           "not stored)"})
+        out[f"bed_{name}"] = (d + ("calibration",), data.bed_energy[..., k], {
+            "units": "kN m/m", "long_name": f"{what[name]}, of the bed's run"})
+        out[f"{name}_error"] = (d + ("calibration",), data.energy_errors[..., k], {
+            "units": "1", "long_name": f"signed relative error of the bed's {name} against the "
+                                       "continuum's, (bed - continuum)/max(|continuum|, floor)"})
+    out["continuum_energy_left"] = (d, data.continuum_energy_left, {
+        "units": "kN m/m", "long_name": "kinetic and story energy the continuum's structure "
+                                        "still holds at the end of its energy run"})
+    out["floor_energy"] = (d[:4], FLOOR_FRACTION * data.energy_scale, {
+        "units": "kN m/m", "long_name": f"error floor of both energies: {FLOOR_FRACTION:g} x "
+                                        "(N B/6)^2/(2 K_r), a uniform bed's strain energy at its "
+                                        "uplift threshold"})
+    return out
 
 
 def statics_dataset(data: MapData, prov: Mapping):
