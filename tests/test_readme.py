@@ -119,6 +119,11 @@ EXERCISED = {
     "benchmarks/winkler_map_store --out results/winkler_map-sand-records-0.2s":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
+    "python -m upliftlab.comparisons.winkler_map --energy --grid h_over_B=1.5 --grid "
+    "periods=0.5 --grid intensities=3 --grid pulse_periods= --grid fema_components=10 --store "
+    "benchmarks/winkler_map_store --out results/winkler_map-energy-records":
+        ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
+         ()),
     "python -m upliftlab.comparisons.winkler_map --store benchmarks/winkler_map_store "
     "--out results/winkler_map":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",

@@ -563,6 +563,14 @@ README_MAP_COMMANDS = [
     _records_slice("sand", "0.5", "1.5", "results/winkler_map-sand-records-1.5"),
     _records_slice("sand", "0.2", "1.5", "results/winkler_map-sand-records-0.2s-1.5"),
     _records_slice("sand", "0.2", "3", "results/winkler_map-sand-records-0.2s"),
+    # E_F under the records: 2 soils × 4 FS_v × 11 records = 88 points, each run twice (its
+    # dynamic run and its energy run) = 176; 2 × 10 static
+    ([*_MAP, "--energy", "--grid", "h_over_B=1.5", "--grid", "periods=0.5", "--grid",
+      "intensities=3", "--grid", "pulse_periods=", "--grid", "fema_components=10", *_KEPT,
+      "--out", "results/winkler_map-energy-records", "--out"],
+     "196 continuum runs to make (20 static, 176 dynamic; 0 already stored)",
+     dict(h_over_B=(1.5,), periods=(0.5,), intensities=(3.0,), pulse_periods=(),
+          fema_components=10)),
     # the whole grid: 2 × 4 × 3 × 2 × 2 × 13 motions = 1248 dynamic; 2 × 10 static
     ([*_MAP, *_KEPT, "--out", "results/winkler_map", "--out"],
      "1268 continuum runs to make (20 static, 1248 dynamic; 0 already stored)", {}),
