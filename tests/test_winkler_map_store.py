@@ -329,3 +329,56 @@ def test_the_whole_grid_is_the_readmes(tmp_path):
     assert int(np.isfinite(d.continuum_wall).sum()) == 1248 - 62
     assert round(float(np.nansum(d.continuum_wall)) / 3600, 1) == 28.5
     assert round(float(np.nanmedian(d.continuum_wall))) == 80
+
+
+def _energy_stats(data, soil: str, k: int, bed: str) -> tuple[float, float, float]:
+    """|error| median, 90th percentile and signed median (%) of energy ``k`` (0: E_F, 1: E_M)
+    of ``bed`` on ``soil``, with numpy over the map's energy errors."""
+    s, c = data.grid.soils.index(soil), data.calibrations.index(bed)
+    v = data.energy_errors[s, ..., c, k].ravel()
+    v = v[np.isfinite(v)]
+    return (_pct(float(np.median(np.abs(v)))), _pct(float(np.percentile(np.abs(v), 90))),
+            round(100.0 * float(np.median(v))))
+
+
+def _signed(data, soil: str, k: int, bed: str) -> float:
+    """The signed median (%, one decimal) of :func:`_energy_stats`."""
+    s, c = data.grid.soils.index(soil), data.calibrations.index(bed)
+    v = data.energy_errors[s, ..., c, k].ravel()
+    return _pct(float(np.median(v[np.isfinite(v)])))
+
+
+def test_the_foundation_energy_of_the_pulse_grids_is_the_readmes(tmp_path):
+    """E_F and E_M over both soils' pulse grids (192 points, each with its kept energy run),
+    as the README states them."""
+    result = _map(tmp_path, **PULSES)
+    d = result.data
+    assert int(np.isfinite(d.continuum_energy[..., 0]).sum()) == 192
+    fitted, gazetas = "end_stiffened_fitted_impedance", "uniform_plastic_gazetas"
+    # the sand: every bed takes too little E_F
+    sand = [_energy_stats(d, "sand", 0, b)[2] for b in d.calibrations]
+    assert (max(sand), min(sand)) == (-69, -99)
+    # the weight's work in the continuum's E_F: median share per soil and at FS_v 2 and 10
+    share = 1.0 - d.continuum_energy[..., 1] / d.continuum_energy[..., 0]
+    assert [round(100 * float(np.median(share[s]))) for s in range(2)] == [35, 85]
+    assert [round(100 * float(np.median(share[0, f]))) for f in (0, 3)] == [68, 0]
+    # the clay's E_F
+    assert _energy_stats(d, "clay", 0, fitted) == (27.8, 93.7, -16)
+    assert _energy_stats(d, "clay", 0, "end_stiffened_bearing") == (50.7, 216.5, -1)
+    assert _energy_stats(d, "clay", 0, "qz")[2] == 39
+    no_dashpots = ["uniform", "end_stiffened", "uniform_plastic", "end_stiffened_plastic"]
+    assert sorted(_energy_stats(d, "clay", 0, b)[2] for b in no_dashpots)[::3] == [-90, -64]
+    # E_M
+    assert _energy_stats(d, "clay", 1, fitted) == (21.1, 81.1, -4)
+    assert _energy_stats(d, "clay", 1, "uniform_plastic_impedance")[::2] == (21.1, 0)
+    assert _energy_stats(d, "sand", 1, gazetas) == (32.0, 61.6, -7)
+    elastic = [_signed(d, soil, 1, b) for soil in ("clay", "sand")
+               for b in ("uniform", "end_stiffened")]
+    assert (max(elastic), min(elastic)) == (-57.8, -84.5)
+    picks = {p.quantity: p for p in result.analysis.energy}
+    assert picks["motion_energy"].soils["clay"][1] == fitted
+    assert picks["motion_energy"].soils["sand"][1] == gazetas
+    # what the continuum's structure still holds at the end, over its E_M
+    held = d.continuum_energy_left / np.abs(d.continuum_energy[..., 1])
+    assert (round(100 * float(np.median(held))), round(100 * float(np.percentile(held, 90)))) \
+        == (9, 126)

@@ -149,7 +149,8 @@ def energy_lines(data, picks: tuple[EnergyPick, ...]) -> list[str]:
                      f"{_pct(f.bias[name])} | {_pct(m.median[name])} | {_pct(m.p90[name])} | "
                      f"{_pct(m.bias[name])} |")
     lines.append("")
-    held = data.continuum_energy_left / np.abs(data.continuum_energy[..., 1])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        held = data.continuum_energy_left / np.abs(data.continuum_energy[..., 1])
     held = held[np.isfinite(held)]
     if held.size:
         lines += [f"Both are taken at the end of the run. There the continuum's structure "
