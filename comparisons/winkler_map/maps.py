@@ -366,8 +366,9 @@ def _assemble(grid, options, calibrations, motions, statics, points, runs, estim
               energy_runs=None) -> MapData:
     """Every bed's run of every point (live, in this process) against the continuum's stored
     run, and its E_F against the continuum's energy run where ``energy_runs`` has one (None
-    items: not stored). ``progress`` as :func:`.sweep.run_sweep`'s (None: a line on stderr every 10 s of a
-    long pass, with the time left; False: silent): the beds of the whole grid take minutes."""
+    items: not stored). ``progress`` as :func:`.sweep.run_sweep`'s (None: a line on stderr
+    every 10 s of a long pass, with the time left; False: silent): the beds of the whole grid
+    take minutes."""
     from ...continuum.run_control import FAILURE_SETTLEMENT
 
     report = StderrProgress() if progress is None else (progress or None)
