@@ -59,6 +59,7 @@ __all__ = ["STUDY", "SOILS", "MEASURES", "Grid", "Options", "FULL_GRID", "FAST_G
            "FULL_OPTIONS", "FAST_OPTIONS", "check_grid", "check_options", "grid_with", "BEDS",
            "BedEntry", "BedReference", "bed_foundation", "bed_names", "Estimate", "estimate_cost",
            "MapData", "compute_map", "estimate_map", "SoilStatics", "evaluate_static",
-           "evaluate_dynamic", "evaluate_energy", "run_bed", "Analysis", "BedRegion", "Pick", "Share", "Speed",
+           "evaluate_dynamic", "evaluate_energy", "run_bed", "Analysis", "BedRegion", "Pick",
+           "Share", "Speed",
            "analyse", "cell_passes", "median_over_motions", "WinklerMap", "DEFINITION", "compute",
            "write", "run", "main"]

@@ -24,7 +24,8 @@ def run_bed(point: Mapping, foundation: Mapping) -> dict:
     """A bed's run of a point's motion (reduced model, live, not stored): the measures of
     :func:`measured`, its ``peak_settlement`` (the base centre's largest settlement, down),
     its wall time ``wall_time_s`` (the run alone, s), its foundation energy E_F and the
-    work of gravity in it (``energy``, :func:`reduced_energy_terms`), or ``refused`` with the integrator's
+    work of gravity in it (``energy``, :func:`reduced_energy_terms`), or ``refused`` with the
+    integrator's
     reason."""
     from ...reduced import IntegrationError, run as run_reduced
 

@@ -21,7 +21,8 @@ import numpy as np
 
 from .beds import BEDS
 
-__all__ = ["ENERGIES", "ENERGY_LABELS", "ENERGY_SYMBOLS", "EnergyPick", "energy_scale", "energies_of",
+__all__ = ["ENERGIES", "ENERGY_LABELS", "ENERGY_SYMBOLS", "EnergyPick", "energy_scale",
+           "energies_of",
            "same_run", "energy_picks", "energy_lines", "energy_numbers", "RUN_TOLERANCE"]
 
 #: The energies compared: E_F, and E_M = E_F less the work of the weight (:func:`energies_of`).

@@ -48,8 +48,9 @@ def structure_energy_terms(time, z, story_velocity, ground_acceleration, M, C, K
                            initial_velocity=None) -> dict:
     """The structure's energy balance over a run and its E_F (module docstring): ``input``
     W_in, ``kinetic`` ΔK, ``story`` ΔU_story, ``gravity`` the work of gravity −ΔU_gravity,
-    ``story_dashpot`` D_story and ``foundation`` E_F, of a run whose rows are at ``time`` (s): ``z`` (nt, 4) the
-    footing's u, v, θ and the story deformation s relative to the ground (length, rad),
+    ``story_dashpot`` D_story and ``foundation`` E_F, of a run whose rows are at ``time``
+    (s): ``z`` (nt, 4) the footing's u, v, θ and the story deformation s relative to the
+    ground (length, rad),
     ``story_velocity`` (nt) ṡ, ``ground_acceleration`` (nt, length/s²), and the structure's
     mass, damping and stiffness (4, 4), ground influence ``r`` (4) and gravity load (4).
     ``initial_velocity`` ż at the first row (default: at rest but for ṡ). The work integrals

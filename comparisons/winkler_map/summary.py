@@ -146,7 +146,8 @@ def summary_markdown(result, fast: bool, elapsed: float) -> str:
              "gap of the two footing edges), residual settlement (the centre's settlement when "
              "the base is flattest in the last quarter of the run), residual rotation (the mean "
              "θ over the last quarter), peak |u| and peak story shear |k u + c u̇|; and the "
-             "foundation energy E_F where the continuum's energy run is stored (below).", "", f"Wall time {elapsed:.1f} s.", "",
+             "foundation energy E_F where the continuum's energy run is stored (below).", "",
+             f"Wall time {elapsed:.1f} s.", "",
              "## The continuum statics", "",
              "K_v and K_r (every contact node tied to the footing, elastic soil) and V_ult (the "
              f"largest load of a vertical pushover to {o.settlement_ratio:g} B) do not depend on "
