@@ -382,3 +382,21 @@ def test_the_foundation_energy_of_the_pulse_grids_is_the_readmes(tmp_path):
     held = d.continuum_energy_left / np.abs(d.continuum_energy[..., 1])
     assert (round(100 * float(np.median(held))), round(100 * float(np.percentile(held, 90)))) \
         == (9, 126)
+
+
+def test_the_foundation_energy_of_the_clay_under_the_records_is_the_readmes(tmp_path):
+    """E_F and E_M of the clay under El Centro and FF-01a..FF-10a at h/B 1.5 (44 points, each
+    with its kept energy run), as the README states them."""
+    result = _map(tmp_path, soils=("clay",), h_over_B=(1.5,), **RECORDS)
+    d = result.data
+    assert int(np.isfinite(d.continuum_energy[..., 0]).sum()) == 44
+    held = d.continuum_energy_left / np.abs(d.continuum_energy[..., 1])
+    assert _pct(float(np.median(held))) == 0.4
+    assert _energy_stats(d, "clay", 0, "qz") == (23.9, 67.4, -14)
+    assert _energy_stats(d, "clay", 0, "uniform_plastic_gazetas")[:2] == (25.8, 48.3)
+    assert _energy_stats(d, "clay", 1, "uniform_plastic_gazetas") == (21.4, 66.4, -6)
+    assert _energy_stats(d, "clay", 1, "end_stiffened_fitted_impedance") == (24.0, 84.3, 3)
+    for bed in ("uniform", "end_stiffened"):
+        assert _signed(d, "clay", 0, bed) == _signed(d, "clay", 1, bed) == -100.0
+    picks = {p.quantity: p.best for p in result.analysis.energy}
+    assert picks == {"foundation_energy": "qz", "motion_energy": "uniform_plastic_gazetas"}
