@@ -400,3 +400,18 @@ def test_the_foundation_energy_of_the_clay_under_the_records_is_the_readmes(tmp_
         assert _signed(d, "clay", 0, bed) == _signed(d, "clay", 1, bed) == -100.0
     picks = {p.quantity: p.best for p in result.analysis.energy}
     assert picks == {"foundation_energy": "qz", "motion_energy": "uniform_plastic_gazetas"}
+
+
+def test_the_foundation_energy_of_the_sand_under_the_records_is_the_readmes(tmp_path):
+    """E_F and E_M of the sand under the same records at h/B 1.5 (44 points, 37 with an energy
+    run: the other seven end in a bearing failure), as the README states them."""
+    result = _map(tmp_path, soils=("sand",), h_over_B=(1.5,), **RECORDS)
+    d = result.data
+    assert int(np.isfinite(d.continuum_energy[..., 0]).sum()) == 37
+    assert int(d.bearing_failure.sum()) == 7
+    signed = [_energy_stats(d, "sand", 0, b)[2] for b in d.calibrations]
+    assert (max(signed), min(signed)) == (-88, -100)
+    fitted = "end_stiffened_fitted_impedance"
+    assert _energy_stats(d, "sand", 1, fitted) == (38.1, 71.5, -31)
+    assert {p.quantity: p.best for p in result.analysis.energy} == {
+        "foundation_energy": fitted, "motion_energy": fitted}
