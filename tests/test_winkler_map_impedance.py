@@ -143,8 +143,9 @@ def test_the_fast_map_runs_with_the_impedance_bed(fast_map):
     assert np.isfinite(d.errors).all()
     (soil, record), = d.impedances
     assert soil == "clay" and tuple(record.a0) == IMPEDANCE_A0
-    # the statics pair, the impedance, a cyclic and a monotonic rotation pushover per FS_v
-    assert (d.estimate.runs, d.estimate.static, d.estimate.dynamic) == (8, 6, 2)
+    # the statics pair, the impedance, a cyclic and a monotonic rotation pushover per FS_v;
+    # each dynamic point twice (its run and, the fast options making E_F, its energy run)
+    assert (d.estimate.runs, d.estimate.static, d.estimate.dynamic) == (10, 6, 4)
     text = (fast_map.study.directory / "summary.md").read_text()
     assert "No bed has a sway spring" in text and "U-p-I" in text
     assert fast_map.study.numbers["impedance"]["clay"]["a0"] == list(IMPEDANCE_A0)

@@ -143,8 +143,9 @@ def energy_lines(data, picks: tuple[EnergyPick, ...]) -> list[str]:
                            "them (one more continuum run per point)."]
     f, m = picks
     lines = [intro, "", f"Points with the continuum's E_F: {f.points} of {total}.", "",
-             "| calibration | E_F: median |error| | 90th pct | signed median | "
-             "E_M: median |error| | 90th pct | signed median |", "|---|---|---|---|---|---|---|"]
+             "| calibration | E_F: median of the error's size (%) | 90th percentile (%) | "
+             "signed median (%) | E_M: median of the error's size (%) | 90th percentile (%) | "
+             "signed median (%) |", "|---|---|---|---|---|---|---|"]
     for name in data.calibrations:
         lines.append(f"| `{name}` | {_pct(f.median[name])} | {_pct(f.p90[name])} | "
                      f"{_pct(f.bias[name])} | {_pct(m.median[name])} | {_pct(m.p90[name])} | "
