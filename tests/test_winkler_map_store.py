@@ -331,21 +331,24 @@ def test_the_whole_grid_is_the_readmes(tmp_path):
     assert round(float(np.nanmedian(d.continuum_wall))) == 80
 
 
-def _energy_stats(data, soil: str, k: int, bed: str) -> tuple[float, float, float]:
-    """|error| median, 90th percentile and signed median (%) of energy ``k`` (0: E_F, 1: E_M)
-    of ``bed`` on ``soil``, with numpy over the map's energy errors."""
+def _energy_errors(data, soil: str, k: int, bed: str) -> np.ndarray:
+    """The finite signed errors of energy ``k`` (0: E_F, 1: E_M) of ``bed`` on ``soil``."""
     s, c = data.grid.soils.index(soil), data.calibrations.index(bed)
     v = data.energy_errors[s, ..., c, k].ravel()
-    v = v[np.isfinite(v)]
+    return v[np.isfinite(v)]
+
+
+def _energy_stats(data, soil: str, k: int, bed: str) -> tuple[float, float, float]:
+    """|error| median, 90th percentile and signed median (%) of energy ``k`` of ``bed`` on
+    ``soil``, with numpy over the map's energy errors."""
+    v = _energy_errors(data, soil, k, bed)
     return (_pct(float(np.median(np.abs(v)))), _pct(float(np.percentile(np.abs(v), 90))),
             round(100.0 * float(np.median(v))))
 
 
 def _signed(data, soil: str, k: int, bed: str) -> float:
     """The signed median (%, one decimal) of :func:`_energy_stats`."""
-    s, c = data.grid.soils.index(soil), data.calibrations.index(bed)
-    v = data.energy_errors[s, ..., c, k].ravel()
-    return _pct(float(np.median(v[np.isfinite(v)])))
+    return _pct(float(np.median(_energy_errors(data, soil, k, bed))))
 
 
 def test_the_foundation_energy_of_the_pulse_grids_is_the_readmes(tmp_path):
