@@ -27,6 +27,7 @@ import numpy as np
 
 from .. import __version__
 from ..checks import InputError
+from ..paths import output_root
 from ..results import atomic_path
 from .fingerprint import code_fingerprint
 
@@ -173,7 +174,7 @@ class Store:
             raise InputError(f"record for key {key[:12]}…: not JSON-serialisable ({exc}); a "
                              "sweep function must return numbers, text, lists or tables") from None
         path = self.path(key)
-        with atomic_path(path) as tmp:
+        with output_root(self.root), atomic_path(path) as tmp:  # the store is the user's choice
             with open(tmp, "w") as fh:
                 fh.write(text)
                 fh.flush()

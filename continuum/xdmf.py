@@ -46,8 +46,6 @@ working directory (meshio 5.3.5 would put the ``.h5`` there).
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
@@ -56,6 +54,7 @@ import numpy as np
 
 from ..checks import InputError
 from ..meshes.frames import linear_submesh, snapshot_rows
+from ..results import move_into_place, staging_folder
 from .field_history import check_history
 from .footing import OPEN
 
@@ -152,9 +151,8 @@ def _write_series(path, points, cells, steps, axis: TimeAxis, information) -> Pa
     path = Path(path)
     if path.suffix.lower() != ".xdmf":
         raise InputError(f"path = {str(path)!r}: expected a .xdmf file")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory(prefix=f".{path.name}.", dir=path.parent) as tmp:
-        inner = Path(tmp) / path.name
+    with staging_folder(path) as tmp:
+        inner = tmp / path.name
         with _writer_class()(inner) as writer:
             for i, (name, value) in enumerate(information):
                 writer.domain.insert(i, ET.Element("Information", Name=name, Value=value))
@@ -164,8 +162,8 @@ def _write_series(path, points, cells, steps, axis: TimeAxis, information) -> Pa
         h5 = inner.with_suffix(".h5")
         if not h5.is_file():
             raise RuntimeError(f"meshio wrote no {h5.name} beside {inner}")
-        os.replace(h5, path.with_suffix(".h5"))
-        os.replace(inner, path)
+        move_into_place(h5, path.with_suffix(".h5"))
+        move_into_place(inner, path)
     return path
 
 

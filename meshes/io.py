@@ -19,7 +19,6 @@ all.
 from __future__ import annotations
 
 import os
-import tempfile
 from pathlib import Path
 
 import meshio
@@ -27,7 +26,7 @@ import numpy as np
 import skfem
 
 from ..checks import InputError
-from ..results import atomic_path
+from ..results import atomic_path, move_into_place, staging_folder
 from .soil import BOUNDARIES
 
 __all__ = ["write_mesh", "read_mesh", "SUFFIXES"]
@@ -142,12 +141,11 @@ def _gmsh_groups(ncells: int, facets: np.ndarray, boundaries: dict) -> tuple:
 def _write_xdmf(path: Path, data: meshio.Mesh) -> None:
     """Write ``path`` and its ``.h5`` (referenced by base name) in a private directory beside
     them, then move each into place; the .xdmf comes last."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory(prefix=f".{path.name}.", dir=path.parent) as tmp:
-        inner = Path(tmp) / path.name
+    with staging_folder(path) as tmp:
+        inner = tmp / path.name
         meshio.write(inner, data, file_format="xdmf")
-        os.replace(inner.with_suffix(".h5"), path.with_suffix(".h5"))
-        os.replace(inner, path)
+        move_into_place(inner.with_suffix(".h5"), path.with_suffix(".h5"))
+        move_into_place(inner, path)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..paths import check_target
 from ..results import write_csv, write_dataset
 from .model import ReducedModel
 from .peak_slots import TrackedPeaks, decode_peaks
@@ -327,6 +328,8 @@ class Response:
         """Write one NetCDF-4 file, the labelled dataset of :meth:`to_xarray` (and a CSV of the
         scalar histories if ``csv``); atomic."""
         path = Path(path)
+        for target in (path, path.with_suffix(".csv")) if csv else (path,):
+            check_target(target)  # both refused before either is written
         u = self.model.scene.units
         written = [write_dataset(path, self.to_xarray())]
         if csv:

@@ -345,7 +345,6 @@ def test_the_default_folder_carries_the_case_and_a_digest_of_the_overrides(tmp_p
 def test_stale_temporary_files_are_cleaned_and_live_locks_refused(tmp_path, capsys):
     out = tmp_path / "o"
     out.mkdir()
-    (out / ".wall_free.nc.abc123.part").write_text("half a file")
     (out / LOCK).write_text(str(os.getpid()))  # a live process (this one) holds it
     args = ["run", "wall_free", "--no-figure", "--set", "analysis.duration=0.1", "--out",
             str(out)]
@@ -354,6 +353,7 @@ def test_stale_temporary_files_are_cleaned_and_live_locks_refused(tmp_path, caps
     dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"],
                           capture_output=True, text=True).stdout.strip()
     (out / LOCK).write_text(dead)  # a process that has ended: a stale lock
+    (out / f".wall_free.nc.upliftlab-{dead}-abc123.part").write_text("half a file")
     assert cli(args) == 0
     assert not list(out.glob("*.part")) and not (out / LOCK).exists()
     assert read_marker(out)["complete"]
@@ -375,7 +375,8 @@ def test_a_killed_run_leaves_no_marker_and_the_next_run_recovers(tmp_path):
     proc.send_signal(signal.SIGKILL)
     proc.wait(timeout=30)
     assert read_marker(out) is None and (out / LOCK).exists()
-    (out / ".short_period_free-C.nc.x.part").write_text("what a killed writer leaves")
+    killed = out / f".short_period_free-C.nc.upliftlab-{proc.pid}-x.part"
+    killed.write_text("what a killed writer leaves")
     assert cli(["run", "short_period_free", "--case", "C", "--no-figure", "--set",
                 "analysis.duration=0.1", "--out", str(out)]) == 0
     assert read_marker(out)["complete"] and not list(out.glob(".*.part"))

@@ -13,6 +13,7 @@
                         [--boundary pml|lysmer] [--scale S] [--threads N] [--out DIR]
                         [--no-render] [--json] [--force]
     upliftlab opensees SCENE [--case A|B] [--set KEY=VALUE ...] [--out DIR] [--run] [--json]
+                       [--force]
 
 Bad input ends with one line naming the field, the value and the valid range (exit code 2),
 before any work and before any file is written: the scene, the options, the overrides (one
@@ -159,6 +160,7 @@ def parser() -> argparse.ArgumentParser:
     o.add_argument("--timeout", default="3600", help="of the OpenSees run (s, default 3600)")
     o.add_argument("--json", action="store_true", help="with --run: print one JSON object "
                    "{\"upliftlab\": {...}, \"opensees\": {...}}")
+    o.add_argument("--force", action="store_true", help="replace a different run in --out")
     for command in sub.choices.values():  # after the subcommand: upliftlab run X --quiet
         add_verbosity(command)
     return p
@@ -170,7 +172,7 @@ def parser() -> argparse.ArgumentParser:
 
 #: The optional dependencies: import name -> (extra, what needs it).
 EXTRAS = {"matplotlib": "plot", "skfem": "continuum", "meshio": "continuum",
-          "h5py": "continuum", "pyvista": "render", "imageio": "render",
+          "pyvista": "render", "imageio": "render",
           "openseespy": "opensees", "distributed": "dask"}
 
 
@@ -312,7 +314,7 @@ def _scenes(_args) -> int:
 
 
 def _report(args) -> int:
-    need_extra("upliftlab report", "matplotlib", "skfem", "meshio", "h5py", "pyvista",
+    need_extra("upliftlab report", "matplotlib", "skfem", "meshio", "pyvista",
                "imageio")
     if args.scheduler is not None:
         need_extra("upliftlab report --scheduler", "distributed")

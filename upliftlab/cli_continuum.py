@@ -180,7 +180,7 @@ def continuum(args) -> int:
     from .scenes import ContinuumOptions, load_scene
 
     options = _options(args)
-    need_extra("upliftlab continuum", "skfem", "meshio", "h5py")
+    need_extra("upliftlab continuum", "skfem", "meshio")
     if args.analysis == "pushover":  # the M-θ figure
         need_extra("upliftlab continuum", "matplotlib")
     if not args.no_render:

@@ -212,7 +212,28 @@ def load_motion(name_or_path: str | os.PathLike, dt: float | None = None) -> Mot
         return read_motion(candidate, dt=dt)
     if looks_like_path:
         raise InputError(f"motion file {text!r} does not exist")
-    return read_motion(find_motion(text), dt=dt)
+    motion = read_motion(find_motion(text), dt=dt)
+    if text == ELCENTRO:
+        _say_if_not_the_expected_elcentro(motion)
+    return motion
+
+
+_CHECKED_ELCENTRO: set[str] = set()
+
+
+def _say_if_not_the_expected_elcentro(motion: Motion) -> None:
+    """Warn (once per file) when the file found for El Centro is another digitization than
+    the one upliftlab's stated numbers use (:mod:`upliftlab.elcentro`)."""
+    from .elcentro import mismatch
+    from .log import logger
+
+    if motion.source in _CHECKED_ELCENTRO:
+        return
+    _CHECKED_ELCENTRO.add(motion.source)
+    different = mismatch(motion)
+    if different:
+        logger("motions").warning(f"upliftlab: warning: {different}; results will differ from "
+                                  "the numbers upliftlab states for El Centro")
 
 
 def read_motion(path: str | os.PathLike, dt: float | None = None) -> Motion:

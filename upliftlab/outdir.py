@@ -10,8 +10,10 @@ A command that writes results first calls :func:`claim`, before any computation:
 * a folder another live process is writing to (its lock file names a running process) is
   refused;
 * the folder is locked (:data:`LOCK`, holding this process's id) until the command ends, and
-  stale temporary files of killed runs (``.*.part``, see
-  :func:`upliftlab.results.atomic_path`) are removed.
+  is the one place the command writes to until then (:func:`upliftlab.paths.check_target`).
+  Nothing in it is removed but upliftlab's own files: the temporary files of a killed writer
+  are removed beside the file that is written again (:mod:`upliftlab.paths`), the user's own
+  files never.
 
 Just before it writes its first file the command calls :meth:`Claim.start_writing`, which
 removes the old completion marker; when every file is written it calls
@@ -31,6 +33,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .checks import InputError
+from .paths import pop_root, push_root
 
 __all__ = ["MARKER", "LOCK", "Claim", "claim", "settings_digest", "read_marker"]
 
@@ -71,6 +74,7 @@ class Claim:
     settings: dict
     created: list[Path] = field(default_factory=list)
     locked: bool = False
+    root: Path | None = None
 
     def __enter__(self) -> Claim:
         return self
@@ -91,9 +95,7 @@ class Claim:
         with os.fdopen(fd, "w") as fh:
             fh.write(str(os.getpid()))
         self.locked = True
-        for stale in self.path.rglob(".*.part"):
-            with contextlib.suppress(OSError):
-                stale.unlink()
+        self.root = push_root(self.path)
 
     def start_writing(self) -> None:
         """The first file is about to be written: the folder no longer holds a complete run."""
@@ -118,6 +120,7 @@ class Claim:
             with contextlib.suppress(FileNotFoundError):
                 (self.path / LOCK).unlink()
             self.locked = False
+            pop_root(self.root)
 
     def abandon(self) -> None:
         """Give the folder up after a failure: unlock it and remove the folders this claim

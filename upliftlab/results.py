@@ -19,13 +19,15 @@ import hashlib
 import json
 import os
 import platform
-import tempfile
+import shutil
 from collections.abc import Iterator, Mapping
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["atomic_path", "write_dataset", "write_netcdf", "read_netcdf", "read_dataset",
+from .paths import check_target, temporary_sibling
+
+__all__ = ["atomic_path", "staging_folder", "move_into_place", "write_dataset", "write_netcdf", "read_netcdf", "read_dataset",
            "cf_attributes", "write_csv", "write_text", "provenance", "Variable"]
 
 Variable = tuple  # (dims: tuple[str, ...], values: array-like, attrs: dict)
@@ -39,21 +41,44 @@ os.umask(_UMASK)
 def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; move it into place only if the block succeeds.
 
-    The file gets the permissions of an ordinary new file (0o666 less the umask), not the
-    owner-only mode of the temporary file it started as.
+    ``path`` must be a regular file or absent, and inside the output folder while a command
+    holds one (:func:`upliftlab.paths.check_target`); the temporary file is named as
+    upliftlab's own, so that a later run removes it only if its writer was killed
+    (:func:`upliftlab.paths.temporary_sibling`). The file gets the permissions of an ordinary
+    new file (0o666 less the umask), not the owner-only mode of the temporary file it started
+    as.
     """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
-    os.close(fd)
-    tmp = Path(tmp)
+    tmp = temporary_sibling(path)
     try:
         yield tmp
         os.chmod(tmp, 0o666 & ~_UMASK)
+        check_target(path)  # again: something may have been put there while writing
         os.replace(tmp, path)
     finally:
         if tmp.exists():
             tmp.unlink()
+
+
+@contextlib.contextmanager
+def staging_folder(path: str | os.PathLike) -> Iterator[Path]:
+    """Yield a private folder beside ``path`` (checked as :func:`atomic_path` checks it) for
+    writers that make several files at once (XDMF and its HDF5); move each into place with
+    :func:`move_into_place`. The folder and whatever is left in it are removed at the end."""
+    folder = temporary_sibling(path, directory=True)
+    try:
+        yield folder
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def move_into_place(written: str | os.PathLike, path: str | os.PathLike) -> Path:
+    """Move the finished file ``written`` to ``path``, a regular file or absent, inside the
+    output folder (:func:`upliftlab.paths.check_target`)."""
+    check_target(path)
+    os.chmod(written, 0o666 & ~_UMASK)
+    os.replace(written, path)
+    return Path(path)
 
 
 def write_text(path: str | os.PathLike, text: str) -> Path:

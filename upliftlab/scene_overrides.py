@@ -8,6 +8,7 @@ import copy
 import tomllib
 
 from .checks import InputError
+from .paths import path_component
 from .units import UNIT_SYSTEMS
 
 __all__ = ["merge_case", "deep_merge", "override_key", "check_case_override", "apply_overrides",
@@ -17,8 +18,12 @@ __all__ = ["merge_case", "deep_merge", "override_key", "check_case_override", "a
 def merge_case(data: dict, case: str | None) -> dict:
     """``data`` without its ``cases`` table, with the table of ``case`` merged in."""
     cases = data.pop("cases", {})
+    if isinstance(cases, dict):
+        for name in cases:  # a case names its output files: one plain path component
+            path_component(name, f"cases.{name}")
     if case is None:
         return data
+    path_component(case, "case")
     if not isinstance(cases, dict) or case not in cases:
         valid = ", ".join(map(repr, cases)) if isinstance(cases, dict) and cases else "none"
         raise InputError(f"case = {case!r}: not defined in this scene (cases: {valid})")

@@ -20,6 +20,7 @@ from __future__ import annotations
 import copy
 import hashlib
 import json
+import os
 import tomllib
 from dataclasses import InitVar, dataclass, field, replace
 from importlib import resources
@@ -28,6 +29,7 @@ from pathlib import Path
 from . import checks
 from .checks import InputError
 from .motions import Motion
+from .paths import path_component
 from .scene_motion import (DEFAULT_ENERGY_TOLERANCE, DEFAULT_MAX_MEMORY,  # noqa: F401
                            DEFAULT_MAX_STEPS, DEFAULT_RTOL, INTEGRATORS, MAX_SCALE, MOTION_TYPES,
                            Analysis, MotionSpec, build_motion, read_analysis, read_motion)
@@ -151,6 +153,8 @@ def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
     applied, in that order.
     """
     data = copy.deepcopy(data)
+    if source:  # the file's name names the results: one plain path component
+        path_component(Path(source).stem, "scene file name")
     if not merged:
         in_cases = [o for o in overrides if override_key(o).split(".")[0] == "cases"]
         for item in in_cases:  # edit the case table itself, before it is merged
@@ -254,15 +258,26 @@ def packaged_scenes() -> dict[str, Path]:
 MAX_SCENE_BYTES = 16 * 2**20
 
 
+def _is_path(text: str) -> bool:
+    """Whether a scene argument is a path (it has a folder part, or ends in ``.toml``) rather
+    than the name of a packaged scene."""
+    return os.sep in text or (os.altsep or os.sep) in text or text.lower().endswith(".toml") \
+        or text.startswith("~")
+
+
 def find_scene(name_or_path: str) -> Path:
-    """A scene file given by a path, or the packaged scene of that name."""
+    """A scene file given by a path, used as given (a path that names no file is refused, never
+    replaced by a packaged scene of the same name), or the packaged scene of that name."""
     path = Path(name_or_path).expanduser()
     if path.is_file():
         return path
+    if _is_path(name_or_path):
+        what = "a folder, not a scene file" if path.is_dir() else "no such file"
+        raise InputError(f"scene {name_or_path!r}: {what}; a path is used as given (a packaged "
+                         "scene is named without folder or .toml, see `upliftlab scenes`)")
     scenes = packaged_scenes()
-    stem = path.stem if path.suffix == ".toml" else name_or_path
-    if stem in scenes:
-        return scenes[stem]
+    if name_or_path in scenes:
+        return scenes[name_or_path]
     raise InputError(f"scene {name_or_path!r}: no such file, and no packaged scene of that name "
                      f"(packaged: {', '.join(sorted(scenes))})")
 

@@ -14,6 +14,7 @@ from pathlib import Path
 
 from ...checks import InputError
 from ...log import logger
+from ...outdir import claim
 from ...scenes import load_scene
 from .compare import comparison_table, compare, write_comparison
 from .script import write_script
@@ -42,17 +43,26 @@ def command(args) -> int:
     dt = _positive("--dt", args.dt)
     timeout = _positive("--timeout", args.timeout)
     scene = load_scene(args.scene, case=args.case, overrides=args.overrides, motion=args.motion)
-    out = Path(args.out) if args.out else Path("results") / f"{scene.name}-opensees"
-    if not args.run:
-        spec = opensees_spec(scene, dt=dt, dashpots=args.dashpots)
-        files = write_script(spec, out)
-        extra = f" and {files.motion}" if files.motion else ""
-        print(f"upliftlab opensees: wrote {files.script}{extra}: {len(spec.springs)} "
-              f"foundation springs, {len(spec.stories)} stories, {spec.steps} Newmark steps of "
-              f"{spec.dt:.4g} s; run it with `python {files.script}` (needs openseespy)")
-        return 0
-    result = compare(scene, out, dt=dt, dashpots=args.dashpots, timeout=timeout)
-    for path in write_comparison(result, out):
+    spec = opensees_spec(scene, dt=dt, dashpots=args.dashpots)  # refuses before any file
+    settings = {"command": "opensees", "scene": scene.name, "scene_digest": scene.digest,
+                "overrides": list(scene.overrides), "motion": args.motion, "dt": dt,
+                "dashpots": args.dashpots, "run": bool(args.run)}
+    default = Path("results") / f"{scene.name}-opensees"
+    with claim(args.out, default, settings=settings, force=args.force) as out:
+        out.start_writing()
+        if not args.run:
+            files = write_script(spec, out.path)
+            out.complete([f for f in (files.script, files.motion) if f is not None])
+            extra = f" and {files.motion}" if files.motion else ""
+            print(f"upliftlab opensees: wrote {files.script}{extra}: {len(spec.springs)} "
+                  f"foundation springs, {len(spec.stories)} stories, {spec.steps} Newmark steps "
+                  f"of {spec.dt:.4g} s; run it with `python {files.script}` (needs openseespy)")
+            return 0
+        result = compare(scene, out.path, dt=dt, dashpots=args.dashpots, timeout=timeout)
+        written = write_comparison(result, out.path)
+        out.complete([result.files.script, *written,
+                      *[f for f in (result.files.motion,) if f is not None]])
+    for path in written:
         logger("opensees").info(f"upliftlab opensees: wrote {path}")
     if args.json:
         print(json.dumps(result.to_json()))

@@ -90,8 +90,8 @@ def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True
     """
     script = Path(script).resolve()
     folder = script.parent
-    for name in ("opensees_summary.json", "opensees_histories.csv"):
-        (folder / name).unlink(missing_ok=True)  # never read a previous run's files
+    outputs = ("opensees_summary.json", "opensees_histories.csv")
+    before = {name: _stamp(folder / name) for name in outputs}  # never read a previous run's
     start = time.perf_counter()
     child = subprocess.Popen([sys.executable, script.name], cwd=folder, env=_environment(),
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -109,15 +109,25 @@ def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True
     child.stdout.close()
     wall = time.perf_counter() - start
     summary_path = folder / "opensees_summary.json"
-    if not summary_path.exists():
+    if any(_stamp(folder / name) in (None, before[name]) for name in outputs):
         last = next((line for line in reversed(tail) if line.strip()), "no message")
         raise OpenSeesError(f"OpenSees run of {script} exited with code {child.returncode} "
-                            f"and wrote no summary: {last[:300]}")
+                            f"and did not write both its outputs: {last[:300]}")
     summary = json.loads(summary_path.read_text())
     if child.returncode != 0 or summary.get("verdict") != "completed":
         raise OpenSeesError(f"OpenSees run of {script}: {summary.get('verdict')} "
                             f"(exit code {child.returncode})")
     return OpenSeesRun(summary, read_histories(folder / "opensees_histories.csv"), wall)
+
+
+def _stamp(path: Path) -> tuple[int, int, int] | None:
+    """(inode, size, modification time in ns) of ``path``, or None if it is absent: a file the
+    run did not write keeps its stamp (files already there are left alone, not removed)."""
+    try:
+        st = path.stat()
+    except FileNotFoundError:
+        return None
+    return st.st_ino, st.st_size, st.st_mtime_ns
 
 
 def read_histories(path: Path) -> dict:

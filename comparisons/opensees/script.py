@@ -8,7 +8,10 @@ written beside it as two columns, time [s] and acceleration [g].
 
 from __future__ import annotations
 
+import ast
+import json
 import math
+import re
 import textwrap
 from dataclasses import dataclass
 from pathlib import Path
@@ -125,10 +128,9 @@ def script_text(spec: OpenSeesSpec, motion_file: str | None) -> str:
     tie = 1e7 * max(t.stiffness * d * d for t, d in zip(s.stories, lever))
     scale = (s.vertical_weight / sum(p.k for p in s.springs) if s.springs
              else s.stories[0].weight / s.stories[0].stiffness)
-    head = f'''#!/usr/bin/env python3
-"""OpenSeesPy model of the upliftlab scene {s.scene_name!r}: {s.title}
+    doc = f'''OpenSeesPy model of an upliftlab scene (SCENE, TITLE and COMMAND below name it).
 
-Written by upliftlab {__version__} ({_command(spec)}).
+Written by upliftlab {__version__}.
 Standalone: it needs Python 3 and openseespy only (pip install openseespy; on Linux the wheel
 also needs libblas.so.3, which this script finds inside the wheel when the system has none).
 Run it with `python {SCRIPT_NAME}`: it writes opensees_histories.csv (time, u, theta, V, the
@@ -139,7 +141,9 @@ A BNWF model of upliftlab's reduced model, 2D, three DOFs per node, units {s.uni
 ({F}, {L}, s; g = {s.g:g} {L}/s²). Its numbers are upliftlab's own (upliftlab.reduced.build_model).
 Modelling choices:
 {notes}
-"""
+'''
+    head = f'''#!/usr/bin/env python3
+"""{_docstring_text(doc)}"""
 
 import json
 import math
@@ -148,9 +152,10 @@ import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SCENE = {s.scene_name!r}
-TITLE = {s.title!r}
-UNITS = {s.units!r}
+SCENE = {_literal(s.scene_name)}
+TITLE = {_literal(s.title)}
+COMMAND = {_literal(_command(spec))}  # the upliftlab command that wrote this script
+UNITS = {_literal(s.units)}
 G = {_num(s.g)}  # {L}/s²
 SUPPORT = {s.support!r}  # uplift: springs carry no tension; bonded: they do; fixed: no springs
 DASHPOTS = {s.dashpots!r}  # foundation dashpots: clipped, detaching or parallel
@@ -177,13 +182,56 @@ TOLERANCE = {_num(1e-6 * scale)}  # {L}: Newton's displacement increment, 1e-6 o
 # (a story drift is then off by 1e-7 of itself)
 TIE_STIFFNESS = {_num(tie)}
 '''
-    return head + CODE
+    text = head + CODE
+    check_script(text, spec, doc)
+    return text
+
+
+#: Text that may stand in the script's docstring: no backslash, double quote or control
+#: character (but the newline) that could close or escape it.
+_SAFE_TEXT = re.compile(r'[^\\"\x00-\x09\x0b-\x1f\x7f]*')
+
+
+def _docstring_text(text: str) -> str:
+    """``text`` checked to be safe inside the script's docstring (it is made of upliftlab's own
+    sentences and numbers only; a scene's strings go into constants through :func:`_literal`)."""
+    if not _SAFE_TEXT.fullmatch(text):
+        raise RuntimeError("the OpenSees script's docstring would hold a quote, a backslash or a "
+                           "control character; nothing was written")
+    return text
+
+
+def _literal(value: str) -> str:
+    """A scene's string as a Python literal (JSON escapes every quote, backslash and control
+    character; a JSON string is a valid Python string literal)."""
+    return json.dumps(str(value))
+
+
+def check_script(text: str, spec: OpenSeesSpec, doc: str) -> None:
+    """Refuse (RuntimeError) a script whose parse is not the one upliftlab meant: its docstring
+    must be ``doc`` and the scene's strings must read back, unchanged, as the constants SCENE,
+    TITLE and COMMAND; no string of a scene can then have become code."""
+    try:
+        tree = ast.parse(text)
+    except SyntaxError:
+        tree = ast.Module(body=[], type_ignores=[])
+    constants = {node.targets[0].id: node.value for node in tree.body
+                 if isinstance(node, ast.Assign) and len(node.targets) == 1
+                 and isinstance(node.targets[0], ast.Name)}
+    expected = {"SCENE": spec.scene_name, "TITLE": spec.title, "COMMAND": _command(spec),
+                "UNITS": spec.units}
+    read = {name: ast.literal_eval(constants[name]) if name in constants else None
+            for name in expected}
+    if ast.get_docstring(tree, clean=False) != doc or read != expected:
+        raise RuntimeError("the OpenSees script did not parse as written (a scene string "
+                           "changed its code); nothing was written")
 
 
 def motion_text(spec: OpenSeesSpec) -> str:
     """The ground acceleration as two columns, time [s] and acceleration [g]."""
     m = spec.motion
-    lines = [f"# {m.name}: ground acceleration for {spec.scene_name} (from {m.source or 'upliftlab'})",
+    lines = [f"# {_literal(m.name)}: ground acceleration for {_literal(spec.scene_name)} "
+             f"(from {_literal(m.source or 'upliftlab')})",
              "# time [s]  acceleration [g]; linear between samples, zero after the last"]
     lines += [f"{k * m.dt:.10g} {a!r}" for k, a in enumerate(m.acceleration.tolist())]
     return "\n".join(lines) + "\n"

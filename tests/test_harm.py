@@ -1,0 +1,316 @@
+"""A scene, a motion file or an option cannot harm the user's machine: each class of harm is
+tried through more than one field or path (the project's rule, ``upliftlab/paths.py``).
+
+* code from a scene: no string of a scene, motion or option becomes code of a generated
+  script (the OpenSees script), whatever field carries it;
+* writes outside ``--out``: a name that becomes a path is one plain component, and a write
+  that resolves outside the output folder (a link inside it) is refused;
+* the user's files deleted: only upliftlab's own temporary files of a killed writer are removed;
+* device nodes and other non-regular files replaced: refused, through the command line and the
+  Python API;
+* a scene path that names no file: refused, never replaced by a packaged scene.
+
+Reference: the rule itself; each test says what a harmful outcome would be and asserts its
+absence (a file outside the folder, a call in the script's syntax tree, a file gone).
+"""
+
+from __future__ import annotations
+
+import ast
+import os
+import shutil
+import stat
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from upliftlab.checks import InputError
+from upliftlab.cli import main as cli
+
+SCENES = Path(__file__).resolve().parents[1] / "scenes"
+PAYLOAD = '"""+__import__("os").system("touch PWNED")+"""'
+SHORT = ["--set", "analysis.duration=0.2"]
+
+
+def _refused(argv, capsys) -> str:
+    """Run the command; assert exit 2 with one error line on stderr, the last (progress lines
+    may come before it); return that line."""
+    code = cli(argv)
+    err = capsys.readouterr().err.strip().splitlines()
+    errors = [line for line in err if line.startswith("upliftlab: error:")]
+    assert code == 2 and len(errors) == 1 and err[-1] == errors[0], (code, err)
+    return errors[0]
+
+
+def _scene_file(folder: Path, name: str = "wall.toml", title: str | None = None,
+                case: str | None = None) -> Path:
+    """A copy of ``wall_free.toml`` named ``name``, its title replaced, or its case ``e10``
+    renamed ``case``."""
+    text = (SCENES / "wall_free.toml").read_text()
+    if title is not None:
+        text = _with_title(text, title)
+    if case is not None:
+        text = text.replace("[cases.e10.", f"[cases.{_toml_key(case)}.")
+    path = folder / name
+    path.write_text(text)
+    return path
+
+
+def _with_title(text: str, title: str) -> str:
+    lines = text.splitlines()
+    at = next(i for i, line in enumerate(lines) if line.startswith("title"))
+    lines[at] = f"title = {_toml_string(title)}"
+    return "\n".join(lines) + "\n"
+
+
+def _toml_string(text: str) -> str:
+    import json
+
+    return json.dumps(text)  # a JSON string is a TOML basic string
+
+
+def _toml_key(text: str) -> str:
+    return _toml_string(text)
+
+
+# ---------------------------------------------------------------------------------------------
+# Code from a scene
+# ---------------------------------------------------------------------------------------------
+
+def _calls(script: Path) -> set[str]:
+    """The names called at the script's top level (outside its functions): a payload that
+    became code would add ``__import__`` or ``system``."""
+    tree = ast.parse(script.read_text())
+    names = set()
+    for node in tree.body:
+        if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+            continue
+        for sub in ast.walk(node):
+            if isinstance(sub, ast.Call):
+                func = sub.func
+                names.add(func.id if isinstance(func, ast.Name) else getattr(func, "attr", ""))
+    return names
+
+
+@pytest.mark.parametrize("field", ["title", "override", "case", "file name", "motion name"])
+def test_no_scene_string_becomes_code_in_the_opensees_script(field, tmp_path, monkeypatch,
+                                                              capsys):
+    """The payload closes a triple-quoted string and calls os.system; through each field it
+    stays data: the script parses, its top level calls nothing of the payload, and its
+    constants read back the strings as given."""
+    monkeypatch.chdir(tmp_path)
+    payload = PAYLOAD.replace("/", "")
+    argv_tail = ["--out", "out"]
+    if field == "title":
+        scene, case = _scene_file(tmp_path, title=payload), "e10"
+    elif field == "override":
+        scene, case = _scene_file(tmp_path), "e10"
+        argv_tail += ["--set", f"title={_toml_string(payload)}"]
+    elif field == "case":
+        case = 'x"""+__import__("os").system("true")+"""'
+        scene = _scene_file(tmp_path, case=case)
+    elif field == "file name":
+        scene, case = _scene_file(tmp_path, name=f"{payload}.toml"), "e10"
+    else:  # a motion file whose name carries the payload
+        scene, case = _scene_file(tmp_path), "e10"
+        record = tmp_path / f'a"""+__import__("os").system("true")+""".txt'
+        record.write_text("0.0 0.0\n0.02 0.1\n0.04 -0.1\n0.06 0.0\n")
+        argv_tail += ["--motion", str(record)]
+    assert cli(["opensees", str(scene), "--case", case, *argv_tail]) == 0, capsys.readouterr()
+    script = tmp_path / "out" / "model.py"
+    assert not {"__import__", "system"} & _calls(script)
+    tree = ast.parse(script.read_text())
+    constants = {n.targets[0].id: ast.literal_eval(n.value) for n in tree.body
+                 if isinstance(n, ast.Assign) and isinstance(n.targets[0], ast.Name)
+                 and n.targets[0].id in ("SCENE", "TITLE", "COMMAND")}
+    if field in ("title", "override"):
+        assert constants["TITLE"] == payload
+    if field == "case":
+        assert constants["SCENE"].endswith(case)
+    assert not (tmp_path / "PWNED").exists()
+
+
+def test_a_script_that_would_not_parse_as_written_is_refused(monkeypatch):
+    """The script's own check (:func:`check_script`) refuses a script whose constants do not
+    read back: with a naive quoting, the payload title is caught (reference: the check's
+    contract; this is what it is for)."""
+    from upliftlab.comparisons.opensees import script as module
+    from upliftlab.comparisons.opensees.spec import opensees_spec
+    from upliftlab.scenes import load_scene
+
+    scene = load_scene("wall_free", case="e10").replace("analysis", duration=0.1)
+    title = 'a" + str(1) + "'
+    spec = opensees_spec(scene.with_overrides("title=" + _toml_string(title)))
+    monkeypatch.setattr(module, "_literal", lambda value: f'"{value}"')
+    with pytest.raises(RuntimeError, match="did not parse as written"):
+        module.script_text(spec, None)
+
+
+# ---------------------------------------------------------------------------------------------
+# Writes outside --out
+# ---------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("how", ["case", "scene file", "case argument"])
+def test_a_name_cannot_lead_outside_the_output_folder(how, tmp_path, monkeypatch, capsys):
+    """A case ``../../escaped``, a scene file named ``...toml`` (its stem is ``..``) or a
+    ``--case`` with a separator is refused before any file is written."""
+    work = tmp_path / "a" / "b"
+    work.mkdir(parents=True)
+    monkeypatch.chdir(work)
+    if how == "case":
+        scene, case = _scene_file(work, case="../../escaped"), "../../escaped"
+    elif how == "scene file":
+        scene, case = _scene_file(work, name="...toml"), "e07"
+    else:
+        scene, case = _scene_file(work), "e07/../../../escaped"
+    line = _refused(["run", str(scene), "--case", case, "--no-figure", *SHORT], capsys)
+    assert "cannot name a file" in line or "not defined" in line
+    assert sorted(p.name for p in tmp_path.rglob("*")) == sorted(["a", "b", scene.name])
+
+
+@pytest.mark.parametrize("command", ["run", "paper"])
+def test_a_link_inside_the_output_folder_cannot_carry_a_write_outside(command, tmp_path,
+                                                                      monkeypatch, capsys):
+    """A folder inside ``--out`` that is a link to elsewhere: the write through it is refused
+    (exit 2), and nothing appears where the link points."""
+    monkeypatch.chdir(tmp_path)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    out = tmp_path / "out"
+    out.mkdir()
+    if command == "run":
+        (out / "wall_free-e07.nc").symlink_to(elsewhere / "stolen.nc")
+        argv = ["run", "wall_free", "--case", "e07", "--no-figure", *SHORT, "--out", "out"]
+    else:
+        (out / "runs").symlink_to(elsewhere)
+        argv = ["paper", "--out", "out"]
+    line = _refused(argv, capsys)
+    assert "symbolic link" in line or "outside the output folder" in line
+    assert list(elsewhere.iterdir()) == []
+
+
+def test_the_api_refuses_a_write_outside_a_claimed_folder(tmp_path):
+    """While an output folder is claimed, a writer asked for a path outside it refuses."""
+    from upliftlab.outdir import claim
+    from upliftlab.results import write_text
+
+    with claim(tmp_path / "out", tmp_path / "out", settings={}) as out:
+        write_text(out.path / "inside.txt", "ok")
+        with pytest.raises(InputError, match="outside the output folder"):
+            write_text(tmp_path / "outside.txt", "no")
+        out.complete([out.path / "inside.txt"])
+    assert not (tmp_path / "outside.txt").exists()
+    write_text(tmp_path / "outside.txt", "the API, no folder claimed: the caller's choice")
+
+
+# ---------------------------------------------------------------------------------------------
+# The user's files deleted
+# ---------------------------------------------------------------------------------------------
+
+def _dead_pid() -> int:
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    child.wait()
+    return child.pid
+
+
+def test_only_upliftlabs_own_temporaries_are_removed(tmp_path, monkeypatch, capsys):
+    """Hidden ``.part`` files of the user's, anywhere under ``--out``, survive a run; the
+    temporary file of a killed upliftlab writer of the same target is removed; one of a
+    writer that still runs is kept."""
+    monkeypatch.chdir(tmp_path)
+    out = tmp_path / "out"
+    (out / "sub").mkdir(parents=True)
+    mine = [out / ".notes.part", out / "sub" / ".draft.nc.part",
+            out / ".wall_free-e07.nc.mine.part"]
+    for path in mine:
+        path.write_text("the user's")
+    stale = out / f".wall_free-e07.nc.upliftlab-{_dead_pid()}-abc123.part"
+    live = out / f".wall_free-e07.nc.upliftlab-{os.getpid()}-def456.part"
+    stale.write_text("killed")
+    live.write_text("writing")
+    argv = ["run", "wall_free", "--case", "e07", "--no-figure", *SHORT, "--out", "out"]
+    assert cli(argv) == 0, capsys.readouterr().err
+    assert all(p.read_text() == "the user's" for p in mine)
+    assert not stale.exists() and live.exists()
+
+
+# ---------------------------------------------------------------------------------------------
+# Device nodes and other non-regular files
+# ---------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("kind", ["fifo", "folder", "device"])
+def test_a_target_that_is_not_a_regular_file_is_refused(kind, tmp_path, monkeypatch, capsys):
+    """Through the command line (the result file of ``run``, the script of ``opensees``) and the
+    API (``Response.save``): a named pipe, a folder or a device node at the target is refused
+    and left as it was."""
+    from upliftlab.reduced import run
+    from upliftlab.scenes import load_scene
+
+    if kind == "device":
+        if not os.path.exists("/dev/null") or not stat.S_ISCHR(os.stat("/dev/null").st_mode):
+            pytest.skip("no /dev/null character device")
+        target = Path("/dev/null")
+    else:
+        target = tmp_path / "target.nc"
+        os.mkfifo(target) if kind == "fifo" else target.mkdir()
+    before = os.lstat(target)
+    response = run(load_scene("wall_free", case="e07").replace("analysis", duration=0.1))
+    with pytest.raises(InputError, match="not a regular file"):
+        response.save(target)
+    monkeypatch.chdir(tmp_path)
+    out = tmp_path / "out"
+    out.mkdir(exist_ok=True)
+    for name, argv in (("wall_free-e07.nc", ["run", "wall_free", "--case", "e07",
+                                             "--no-figure", *SHORT, "--out", "out"]),
+                       ("model.py", ["opensees", "wall_free", "--case", "e10", "--out", "out"])):
+        spot = out / name
+        if kind == "device":
+            spot.symlink_to("/dev/null")
+        elif kind == "fifo":
+            os.mkfifo(spot)
+        else:
+            spot.mkdir()
+        _refused(argv, capsys)
+        if kind == "device":
+            spot.unlink()
+        elif kind == "fifo":
+            assert stat.S_ISFIFO(os.lstat(spot).st_mode)
+            spot.unlink()
+        else:
+            spot.rmdir()
+    after = os.lstat(target)
+    assert (after.st_mode, after.st_ino) == (before.st_mode, before.st_ino)
+
+
+def test_opensees_claims_its_folder(tmp_path, monkeypatch, capsys):
+    """``upliftlab opensees`` marks its folder and refuses one that holds another run."""
+    monkeypatch.chdir(tmp_path)
+    assert cli(["opensees", "wall_free", "--case", "e10", "--out", "out"]) == 0
+    assert (tmp_path / "out" / "upliftlab-run.json").is_file()
+    capsys.readouterr()
+    line = _refused(["opensees", "wall_free", "--case", "e10", "--dashpots", "parallel",
+                     "--out", "out"], capsys)
+    assert "holds a different run" in line
+    assert cli(["opensees", "wall_free", "--case", "e10", "--dashpots", "parallel", "--out",
+                "out", "--force"]) == 0
+
+
+# ---------------------------------------------------------------------------------------------
+# A scene path that names no file
+# ---------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("given", ["wall_free.toml", "./wall_free.toml", "nowhere/wall_free",
+                                   "~/no-such-upliftlab-folder/wall_free.toml"])
+@pytest.mark.parametrize("command", [["run"], ["opensees"], ["continuum"], ["advise"]])
+def test_a_scene_path_that_names_no_file_is_refused(given, command, tmp_path, monkeypatch,
+                                                    capsys):
+    """An explicit path is used as given or refused (exit 2, nothing written); only a bare
+    name finds a packaged scene."""
+    monkeypatch.chdir(tmp_path)
+    line = _refused([*command, given, "--out", "out"] if command != ["advise"]
+                    else [*command, given], capsys)
+    assert "no such file" in line
+    assert list(tmp_path.iterdir()) == []
+    shutil.rmtree(tmp_path / "out", ignore_errors=True)

@@ -1,0 +1,177 @@
+"""Where upliftlab may write, and what it may remove.
+
+A scene, a motion file or an option is untrusted input, and three rules keep it from harming
+the user's files, whatever field or path carries it:
+
+* **A name that becomes a path is one plain component** (:func:`path_component`): a scene's
+  name and case, a study's label. No separator, no ``.`` or ``..``, no leading dot (hidden
+  names are upliftlab's own temporary files), no control character, at most
+  :data:`MAX_COMPONENT` characters.
+* **Every file is written inside the output folder** (:func:`check_target`). While a command
+  holds an output folder (:mod:`upliftlab.outdir` registers it, and a study its store), a
+  target whose resolved path, links followed, lies outside every registered root is refused.
+  A target that exists and is not a regular file (a device node, a folder, a pipe, a link) is
+  refused in any case, also through the Python API.
+* **Only files upliftlab made are removed** (:func:`temporary_sibling`). A temporary file is
+  named ``.<target>.upliftlab-<pid>-<random>.part``, beside its target; before writing a target,
+  the temporary files of that same target whose process is no longer alive are removed, and
+  nothing else.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import re
+import stat
+import tempfile
+import threading
+from collections.abc import Iterator
+from pathlib import Path
+
+from .checks import InputError
+
+__all__ = ["MAX_COMPONENT", "path_component", "check_target", "output_root",
+           "temporary_sibling", "TEMPORARY_TAG"]
+
+#: Longest name upliftlab turns into a path component (a file name may hold 255 bytes; the
+#: name is joined with a case, a suffix and a temporary file's tag).
+MAX_COMPONENT = 100
+
+#: What marks a temporary file as upliftlab's own.
+TEMPORARY_TAG = "upliftlab"
+
+_UNSAFE = re.compile(r"[\x00-\x1f\x7f/\\]")
+_ROOTS: list[Path] = []
+_ROOTS_LOCK = threading.Lock()
+
+
+def path_component(name: str, field: str) -> str:
+    """``name``, checked to be one plain path component (module docstring); else an
+    :class:`~upliftlab.checks.InputError` naming ``field``."""
+    valid = ("valid: 1 to 100 characters, no '/', '\\', control characters or leading '.'")
+    if not isinstance(name, str) or not name:
+        raise InputError(f"{field} = {name!r}: not a name; {valid}")
+    if len(name) > MAX_COMPONENT:
+        raise InputError(f"{field} = {name[:40]!r}...: {len(name)} characters; {valid}")
+    if _UNSAFE.search(name) or name.startswith(".") or name.strip() != name:
+        raise InputError(f"{field} = {name!r}: cannot name a file; {valid}")
+    return name
+
+
+@contextlib.contextmanager
+def output_root(folder: str | os.PathLike) -> Iterator[Path]:
+    """Register ``folder`` as a place this process may write to while the block runs."""
+    root = Path(folder).resolve()
+    with _ROOTS_LOCK:
+        _ROOTS.append(root)
+    try:
+        yield root
+    finally:
+        with _ROOTS_LOCK:
+            _ROOTS.remove(root)
+
+
+def push_root(folder: str | os.PathLike) -> Path:
+    """Register ``folder`` (:func:`output_root` without a block); undo with :func:`pop_root`."""
+    root = Path(folder).resolve()
+    with _ROOTS_LOCK:
+        _ROOTS.append(root)
+    return root
+
+
+def pop_root(root: Path) -> None:
+    """Unregister a root registered by :func:`push_root` (once; a second call does nothing)."""
+    with _ROOTS_LOCK, contextlib.suppress(ValueError):
+        _ROOTS.remove(root)
+
+
+def _resolved(path: Path) -> Path:
+    """``path`` with its folder's links resolved and its own name kept (a link at the target
+    itself is refused by :func:`check_target`, not followed)."""
+    return Path(os.path.realpath(path.parent)) / path.name
+
+
+def check_target(path: str | os.PathLike) -> Path:
+    """``path`` as a file upliftlab may (re)place: an existing target must be a regular file,
+    and while output roots are registered it must lie inside one. Raises
+    :class:`~upliftlab.checks.InputError` before anything is written."""
+    path = Path(path)
+    try:
+        mode = os.lstat(path).st_mode
+    except FileNotFoundError:
+        mode = None
+    except OSError as exc:
+        raise InputError(f"output {str(path)!r}: cannot be examined ({exc.strerror})") from None
+    if mode is not None and not stat.S_ISREG(mode):
+        kind = _kind(mode)
+        raise InputError(f"output {str(path)!r}: is {kind}, not a regular file; upliftlab "
+                         "replaces only regular files")
+    with _ROOTS_LOCK:
+        roots = list(_ROOTS)
+    if roots:
+        where = _resolved(path)
+        if not any(where.is_relative_to(root) for root in roots):
+            raise InputError(f"output {str(path)!r}: resolves to {str(where)!r}, outside the "
+                             f"output folder {str(roots[-1])!r}; nothing is written there")
+    return path
+
+
+def _kind(mode: int) -> str:
+    for test, kind in ((stat.S_ISDIR, "a folder"), (stat.S_ISLNK, "a symbolic link"),
+                       (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+                       (stat.S_ISFIFO, "a named pipe"), (stat.S_ISSOCK, "a socket")):
+        if test(mode):
+            return kind
+    return "not a regular file"
+
+
+def _prefix(target: Path) -> str:
+    return f".{target.name}.{TEMPORARY_TAG}-"
+
+
+_STALE = re.compile(r"(\d+)-[A-Za-z0-9_]+\.part")
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OverflowError):
+        return True
+    return True
+
+
+def remove_stale_temporaries(target: Path) -> list[Path]:
+    """Remove the temporary files of ``target`` left beside it by upliftlab processes that no
+    longer run (a kill during a write); returns what was removed. Nothing else is touched."""
+    prefix, removed = _prefix(target), []
+    try:
+        names = os.listdir(target.parent)
+    except OSError:
+        return removed
+    for name in names:
+        match = _STALE.fullmatch(name[len(prefix):]) if name.startswith(prefix) else None
+        if match and not _alive(int(match.group(1))):
+            candidate = target.parent / name
+            with contextlib.suppress(OSError):
+                if stat.S_ISREG(os.lstat(candidate).st_mode):
+                    candidate.unlink()
+                    removed.append(candidate)
+    return removed
+
+
+def temporary_sibling(target: str | os.PathLike, *, directory: bool = False) -> Path:
+    """Create and return a temporary file (or folder) beside ``target``, named as upliftlab's
+    own (module docstring), after checking the target (:func:`check_target`) and removing its
+    stale temporaries. The caller moves it into place or removes it."""
+    target = check_target(target)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    remove_stale_temporaries(target)
+    prefix = f"{_prefix(target)}{os.getpid()}-"
+    if directory:
+        return Path(tempfile.mkdtemp(prefix=prefix, suffix=".part", dir=target.parent))
+    fd, name = tempfile.mkstemp(prefix=prefix, suffix=".part", dir=target.parent)
+    os.close(fd)
+    return Path(name)
