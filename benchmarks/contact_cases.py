@@ -1,6 +1,6 @@
 """Contact load cases after one factorisation (target: each under 10 ms).
 
-    python benchmarks/contact_cases.py [--cases N] [--across N ...]
+    python benchmarks/contact_cases.py [--cases N] [--across N ...] [--quick] [--out DIR]
 
 Elastic soil (the clay scene's E, ν; frictionless footing) on the default 10B box. The soil is
 factorised and condensed onto the footing's contact DOFs once (K_ii = LU, S = K_cc − K_ci K_ii⁻¹
@@ -15,6 +15,10 @@ checks each case against the exact equilibrium it must satisfy: the contact forc
 equals (−N, M) to round-off, no tensile force, and no negative gap. Also the reference check of
 Muskhelishvili's rigid punch: the full-contact rotation over M gives K_r = π G B²/(8(1 − ν))
 (error printed).
+
+Each mesh level is a section (``bench_output``): the table is printed and written to
+``CONTACT_CASES.md`` in ``--out`` (default ``results/bench/contact_cases``) as each ends; it has
+no committed table. ``--quick``: 4 and 8 across, 7 cases, 3 repeats (a few seconds).
 """
 
 from __future__ import annotations
@@ -27,14 +31,22 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 import argparse  # noqa: E402
 import math  # noqa: E402
 import statistics  # noqa: E402
+import sys  # noqa: E402
 import time  # noqa: E402
 from dataclasses import replace  # noqa: E402
+from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
 from upliftlab.continuum import make_model  # noqa: E402
 from upliftlab.continuum.footing import OPEN, ContactProblem, solve_contact  # noqa: E402
 from upliftlab.scenes import ContinuumOptions, load_scene  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_output import (Section, add_output_arguments, incomplete_note,  # noqa: E402
+                          output_folder, run_sections, write_text)
+
+NAME = "contact_cases"
 
 
 def elastic_soil():
@@ -111,25 +123,55 @@ def level(across: int, cases: int, repeats: int) -> dict:
             "iterations_max": max(iterations), "kr_error": kr / kr_exact - 1.0, **worst}
 
 
+def table(rows: list[dict]) -> str:
+    lines = ["| elements across B | soil DOFs | contact DOFs | factorise + condense [s] | "
+             "per case, contact [ms] (median / max) | per case, + field [ms] | active-set "
+             "iterations (max) | resultant error | max tension / N | max overlap / B | "
+             "K_r error (rigid punch) |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['across']} | {r['dofs']} | {r['contact_dofs']} | "
+                     f"{r['factorise_s']:.2f} | {r['contact_ms']:.2f} / "
+                     f"{r['contact_max_ms']:.2f} | {r['field_ms']:.2f} | "
+                     f"{r['iterations_max']} | {r['resultant']:.1e} | {r['tension']:.1e} | "
+                     f"{r['gap']:.1e} | {100 * r['kr_error']:+.3f} % |")
+    return "\n".join(lines)
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--cases", type=int, default=19, help="load cases per level")
+    parser.add_argument("--cases", type=int, default=None,
+                        help="load cases per level (19; 7 with --quick)")
     parser.add_argument("--repeats", type=int, default=5, help="timed repeats per case")
-    parser.add_argument("--across", type=int, nargs="+", default=[8, 16, 32],
-                        help="elements across the footing, per level")
+    parser.add_argument("--across", type=int, nargs="+", default=None,
+                        help="elements across the footing, per level (8 16 32; 4 8 with "
+                             "--quick)")
+    parser.add_argument("--quick", action="store_true", help="4 and 8 across, 7 cases")
+    add_output_arguments(parser, NAME, committed=False)
     args = parser.parse_args(argv)
-    rows = [level(a, args.cases, args.repeats) for a in args.across]
-    print("| elements across B | soil DOFs | contact DOFs | factorise + condense [s] | "
-          "per case, contact [ms] (median / max) | per case, + field [ms] | active-set "
-          "iterations (max) | resultant error | max tension / N | max overlap / B | K_r error "
-          "(rigid punch) |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
-    for r in rows:
-        print(f"| {r['across']} | {r['dofs']} | {r['contact_dofs']} | {r['factorise_s']:.2f} | "
-              f"{r['contact_ms']:.2f} / {r['contact_max_ms']:.2f} | {r['field_ms']:.2f} | "
-              f"{r['iterations_max']} | {r['resultant']:.1e} | {r['tension']:.1e} | {r['gap']:.1e} | "
-              f"{100 * r['kr_error']:+.3f} % |")
-    return 0
+    out = output_folder(args, NAME)
+    across = args.across or ([4, 8] if args.quick else [8, 16, 32])
+    cases = args.cases or (7 if args.quick else 19)
+    rows: list[dict] = []
+
+    def one(a: int) -> dict:
+        rows.append(level(a, cases, args.repeats))
+        return rows[-1]
+
+    sections = [Section(f"{a} across", lambda a=a: one(a)) for a in across]
+
+    def document(done: dict, missing: dict) -> str:
+        command = " ".join(["python benchmarks/contact_cases.py", *(argv or sys.argv[1:])])
+        return (f"# Contact load cases after one factorisation\n\n`{command}`; what is "
+                "timed and checked: the script's docstring.\n\n" + incomplete_note(missing)
+                + table(list(done.values())) + "\n")
+
+    def publish(folder: Path, done: dict, missing: dict) -> None:
+        write_text(folder / "CONTACT_CASES.md", document(done, missing))
+
+    status = run_sections(NAME, sections, publish, out)
+    if status == 0:
+        print(document(dict(zip(across, rows)), {}))
+    return status
 
 
 if __name__ == "__main__":

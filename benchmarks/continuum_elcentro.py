@@ -1,8 +1,13 @@
 """El Centro on the clay scene: the continuum dynamics' two routes, runtime against error.
 
-Used by ``benchmarks/continuum_speed.py`` (its ``elcentro`` section); runnable alone:
+Used by ``benchmarks/continuum_speed.py`` (its ``elcentro`` sections); runnable alone:
 
-    python benchmarks/continuum_elcentro.py [--quick]
+    python benchmarks/continuum_elcentro.py [--quick] [--out DIR]
+
+Alone it writes ``ELCENTRO.md`` to ``--out`` (default ``results/bench/continuum_elcentro``),
+rewritten as each run ends (``bench_output``); its committed table is the El Centro section of
+``benchmarks/CONTINUUM.md``, which ``continuum_speed.py --write`` rewrites. ``--quick``: the
+runs on 4 across over 2 s (about a minute).
 
 Every run: the clay scene (Tresca c_u = 50 kPa, frictionless unilateral contact, Q2 with 2×2
 reduced integration, 10B × 10B box) under El Centro 1940 N-S, built and run in this process
@@ -20,6 +25,10 @@ compared on its first 10 s): peak |θ|, peak edge uplift (the larger gap at x = 
 settlement (v(0) − v(10 s)), and the largest difference of the θ and v − v(0) histories (on the
 reference's time grid) over their peaks. A coarser mesh's row is compared with the finest
 mesh's reference: its error is the mesh's.
+
+Cost model (the estimate printed before any work): each run costs the wall time recorded for
+the same run (route, mesh, span, threads, rtol, step) in the El Centro table of the committed
+``benchmarks/CONTINUUM.md``; a run that table does not record has no estimate.
 """
 
 from __future__ import annotations
@@ -32,8 +41,15 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 import math  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
+from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_output import (Section, add_output_arguments, committed_tables,  # noqa: E402
+                          incomplete_note, number, output_folder, run_sections, say, write_text)
+
+NAME = "continuum_elcentro"
 
 #: (route, elements across, duration [s] or None for the whole record, rtol or None, threads,
 #: step as a fraction of the default)
@@ -42,9 +58,10 @@ RUNS = (("implicit", 16, 10.0, 1e-6, 1, 1.0), ("implicit", 16, 10.0, None, 1, 1.
         ("explicit", 16, None, None, 1, 1.0), ("explicit", 16, None, None, 2, 1.0),
         ("explicit", 8, 10.0, None, 1, 1.0), ("explicit", 4, 10.0, None, 1, 1.0),
         ("implicit", 16, 10.0, 1e-6, 1, 0.5))
-QUICK = (("implicit", 4, 10.0, 1e-6, 1, 1.0), ("implicit", 4, 10.0, None, 1, 1.0),
-         ("explicit", 4, 10.0, None, 1, 1.0), ("explicit", 4, 10.0, None, 2, 1.0),
-         ("explicit", 4, None, None, 1, 1.0), ("implicit", 4, 10.0, 1e-6, 1, 0.5))
+#: ``--quick``: the same kinds of row on 4 across, over 2 s (the whole-record row: 31.2 s)
+QUICK = (("implicit", 4, 2.0, 1e-6, 1, 1.0), ("implicit", 4, 2.0, None, 1, 1.0),
+         ("explicit", 4, 2.0, None, 1, 1.0), ("explicit", 4, 2.0, None, 2, 1.0),
+         ("explicit", 4, None, None, 1, 1.0), ("implicit", 4, 2.0, 1e-6, 1, 0.5))
 #: Targets: explicit 10 s on 16 across within 60 s and 8 times faster than the
 #: implicit run of the same invocation; the whole record within 180 s; peaks and residual
 #: settlement within 0.5 %, histories within 1 % of their peaks.
@@ -119,6 +136,11 @@ def _window(row: dict, end: float) -> dict:
     return {k: row[k][keep] for k in ("time", "theta", "v", "edge")}
 
 
+#: The errors of :func:`compare`, in its order.
+ERRORS = ("peak theta", "peak edge uplift", "residual settlement", "theta history",
+          "v history")
+
+
 def compare(row: dict, reference: dict) -> dict:
     """Errors of ``row`` against ``reference`` over the reference's span (module docstring)."""
     ref = _window(reference, reference["time"][-1])
@@ -138,28 +160,83 @@ def compare(row: dict, reference: dict) -> dict:
     }
 
 
-def measure(quick: bool = False, say=print) -> list[dict]:
-    """Every run of :data:`RUNS` (or :data:`QUICK`), with errors and speed-ups."""
-    rows = []
-    for spec in (QUICK if quick else RUNS):
-        row = run(*spec)
-        rows.append(row)
-        say(f"elcentro {row['route']:8s} n = {row['n']:2d}, {row['duration']:5.1f} s, "
+def description() -> str:
+    """The module docstring's account of the rows and errors (for the tables' text)."""
+    paragraphs = __doc__.split("\n\n")
+    start = next(i for i, p in enumerate(paragraphs) if p.startswith("Every run:"))
+    end = next(i for i, p in enumerate(paragraphs) if p.startswith("Cost model"))
+    return "\n\n".join(paragraphs[start:end]).strip()
+
+
+def describe(row: dict) -> str:
+    """One progress line of a finished run."""
+    return (f"elcentro {row['route']:8s} n = {row['n']:2d}, {row['duration']:5.1f} s, "
             f"rtol {row['rtol']:g}, threads {row['threads']}, step × {row['step']:g}: "
-            f"{row['wall']:8.1f} s wall, "
-            f"{row['cpu']:8.1f} s CPU, {row['steps']} steps, energy {row['energy']:.2g}")
+            f"{row['wall']:8.1f} s wall, {row['cpu']:8.1f} s CPU, {row['steps']} steps, "
+            f"energy {row['energy']:.2g}")
+
+
+def finish(rows: list[dict]) -> list[dict]:
+    """``rows`` (finished runs) with their errors against the reference of their mesh (else
+    the finest mesh's; NaN without one) and their speed-up over the implicit runtime
+    reference of the same mesh and span."""
     finest = max(r["n"] for r in rows)
     reference = {r["n"]: r for r in rows if r["route"] == "implicit" and r["rtol"] < 1e-5
                  and r["step"] == 1.0}
     runtime = {r["n"]: r for r in rows if r["route"] == "implicit" and r["rtol"] >= 1e-5}
+    out = []
     for r in rows:
-        ref = reference.get(r["n"]) or reference[finest]
-        r["reference"] = f"implicit rtol 1e-6, {ref['n']} across"
-        r["errors"] = compare(r, ref)
+        ref = reference.get(r["n"]) or reference.get(finest)
+        r = dict(r)
+        if ref is None:
+            r["reference"] = "missing: no implicit rtol 1e-6 run"
+            r["errors"] = dict.fromkeys(ERRORS, math.nan)
+        else:
+            r["reference"] = f"implicit rtol 1e-6, {ref['n']} across"
+            r["errors"] = compare(r, ref)
         base = runtime.get(r["n"])  # the implicit run of the same mesh and span
         same = base is not None and abs(base["duration"] - r["duration"]) < 1e-9
         r["speedup"] = base["wall"] / r["wall"] if same else math.nan
-    return rows
+        out.append(r)
+    return out
+
+
+def measure(quick: bool = False, say=print) -> list[dict]:
+    """Every run of :data:`RUNS` (or :data:`QUICK`), with errors and speed-ups."""
+    rows = []
+    for spec in (QUICK if quick else RUNS):
+        rows.append(run(*spec))
+        say(describe(rows[-1]))
+    return finish(rows)
+
+
+def cost(spec: tuple) -> float | None:
+    """The wall time (s) the committed CONTINUUM.md records for the run ``spec`` (a row of
+    :data:`RUNS`), or None."""
+    route, n, duration, rtol, threads, step = spec
+    label = route + (f", step × {step:g}" if step != 1.0 else "")
+    rows = [r for head, rows in committed_tables("CONTINUUM.md").items()
+            if head.startswith("El Centro") for r in rows if "route" in r]
+    for r in rows:
+        span = number(r["simulated [s]"])
+        if (r["route"] == label and r["n across"] == str(n) and r["threads"] == str(threads)
+                and (span <= 10.0 + 1e-9) == (duration is not None)
+                and (route == "explicit" or number(r["rtol"]) == (rtol or 1e-5))):
+            return number(r["wall [s]"])
+    return None
+
+
+def sections(specs, rows: list[dict]) -> list[Section]:
+    """One section per run of ``specs``: it runs, appends to ``rows`` and returns the row."""
+    def one(spec):
+        rows.append(run(*spec))
+        say(describe(rows[-1]))
+        return rows[-1]
+    return [Section(f"elcentro {i + 1}: {spec[0]} {spec[1]} across"
+                    f"{'' if spec[2] is None else f', {spec[2]:g} s'}"
+                    f"{'' if spec[3] is None else f', rtol {spec[3]:g}'}, {spec[4]} thread(s)"
+                    f"{'' if spec[5] == 1.0 else f', step × {spec[5]:g}'}",
+                    lambda spec=spec: one(spec), cost(spec)) for i, spec in enumerate(specs)]
 
 
 def table(rows: list[dict]) -> str:
@@ -195,7 +272,8 @@ def targets(rows: list[dict]) -> str:
 
     if ex10:
         best = min(ex10, key=lambda r: r["wall"])
-        line(f"10 s on {finest} across within {TARGET_10S:g} s", best["wall"] <= TARGET_10S,
+        line(f"{best['duration']:g} s on {finest} across within {TARGET_10S:g} s",
+             best["wall"] <= TARGET_10S,
              f"{best['wall']:.1f} s ({best['threads']} thread(s); CPU {best['cpu']:.1f} s)")
         line(f"at least {TARGET_SPEEDUP:g}× the implicit run of this invocation",
              best["speedup"] >= TARGET_SPEEDUP, f"{best['speedup']:.1f}×")
@@ -214,19 +292,41 @@ def targets(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
+def document(rows: list[dict], missing: dict, quick: bool) -> str:
+    """ELCENTRO.md: the runs so far, their errors and the targets."""
+    text = (f"# El Centro: explicit and implicit dynamics\n\n`python benchmarks/"
+            f"continuum_elcentro.py{' --quick' if quick else ''}`.\n\n"
+            + incomplete_note(missing) + description() + "\n\n")
+    if rows:
+        done = finish(rows)
+        text += table(done) + "\n\n## Targets\n\n" + targets(done) + "\n"
+    return text
+
+
 def main(argv=None) -> int:
     import argparse
 
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--quick", action="store_true", help="4 across instead of 16")
+    add_output_arguments(parser, NAME, committed=False)
     args = parser.parse_args(argv)
+    out = output_folder(args, NAME)
     why = unavailable()
     if why:
-        print(f"elcentro: skipped: {why}", file=sys.stderr)
-        return 1
-    rows = measure(args.quick, say=lambda m: print(m, file=sys.stderr, flush=True))
-    print(table(rows) + "\n\n" + targets(rows))
-    return 0
+        say(f"{NAME}: error: {why}; nothing was run or written")
+        return 2
+    rows: list[dict] = []
+
+    def publish(folder, done, missing):
+        write_text(folder / "ELCENTRO.md", document(rows, missing, args.quick))
+
+    status = run_sections(NAME, sections(QUICK if args.quick else RUNS, rows), publish, out,
+                          model="wall times recorded in benchmarks/CONTINUUM.md")
+    if status == 0:
+        done = finish(rows)
+        print(table(done) + "\n\n" + targets(done))
+        say(f"wrote {out / 'ELCENTRO.md'}")
+    return status
 
 
 if __name__ == "__main__":

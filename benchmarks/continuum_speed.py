@@ -28,10 +28,17 @@ the error against the reference:
 
 Soil: E = 50 MPa, ν = 0.3, ρ = 1.8 t/m³, c_u = 50 kPa, B = 2 m (the clay scene). The timers wrap
 the solver's functions for the duration of a run and change no result. One thread per solve
-(``OMP_NUM_THREADS=1``). Writes ``CONTINUUM.md`` (the tables) and
-``continuum_speed.png`` (runtime against error of the static cases) to ``--out`` (default
-``results/bench/continuum``); ``--write`` rewrites the committed ``benchmarks/CONTINUUM.md``
-and ``benchmarks/continuum_speed.png`` instead.
+(``OMP_NUM_THREADS=1``). Each static row and each El Centro run is a section (``bench_output``):
+``CONTINUUM.md`` (the tables) and ``continuum_speed.png`` (runtime against error of the static
+cases) are rewritten in ``--out`` (default ``results/bench/continuum_speed``) as each ends;
+``--write`` also rewrites the committed ``benchmarks/CONTINUUM.md`` and
+``benchmarks/continuum_speed.png`` once every section has completed (never with ``--quick`` or
+``--only``). ``--quick``: the coarse levels, one repeat, El Centro on 4 across (about a minute).
+
+Cost model (the estimate printed before any work; about 45 min in all, most of it the implicit El
+Centro runs): each static row costs the runtime recorded for the same case and level in the
+committed ``benchmarks/CONTINUUM.md`` times its repeats, each El Centro run the wall time
+recorded there (``continuum_elcentro.cost``); a row not recorded there has no estimate.
 """
 
 from __future__ import annotations
@@ -55,9 +62,13 @@ import numpy as np  # noqa: E402
 
 from upliftlab.continuum import (OPEN, footing_stiffness, make_model,  # noqa: E402
                                  rotation_pushover, uplift_onset, vertical_pushover)
-from upliftlab.results import write_text  # noqa: E402
 from upliftlab.scenes import ContinuumOptions, Soil  # noqa: E402
 from upliftlab.anchors import prandtl_capacity  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_output import (HERE, Section, add_output_arguments, committed_tables,  # noqa: E402
+                          incomplete_note, missing_section, number, output_folder, run_sections,
+                          save_figure, say, write_text)
 
 E, NU, RHO, CU, B, N = 50e3, 0.3, 1.8, 50.0, 2.0, 171.39
 G = E / (2 * (1 + NU))
@@ -75,8 +86,7 @@ LEVELS = {"rocking": ((4, 1.0), (8, 1.0), (16, 1.0), (32, 1.0)),
 QUICK = {"rocking": ((4, 1.0), (8, 1.0)), "prandtl": ((4, 1.0), (8, 1.0), (8, 16.0)),
          "uplift": ((4, 1.0), (8, 1.0))}
 
-#: Default output folder (``--write``: this folder, the committed tables).
-OUT = Path("results") / "bench" / "continuum"
+NAME = "continuum_speed"
 #: The issue's targets: (case, |error| bound, runtime bound [s], smallest DOFs).
 TARGETS = (("rocking", 0.01, 2.0, 0), ("prandtl", 0.01, 15.0, 0), ("prandtl", 0.005, 60.0, 0))
 
@@ -270,8 +280,6 @@ def figure(rows: list[dict], path: Path) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from upliftlab.continuum.output import save_figure
-
     fig, ax = plt.subplots(figsize=(7.5, 6.5))
     markers = {"rocking": "o", "prandtl": "s", "prandtl-richardson": "x", "uplift": "^"}
     for case, grading in sorted({(r["case"], r["grading"]) for r in rows},
@@ -298,9 +306,86 @@ def figure(rows: list[dict], path: Path) -> Path:
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=2)
     fig.tight_layout()
-    save_figure(fig, path)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path, dpi=100)
+
+
+def static_cost(case: str, level: tuple[int, float], repeats: int) -> float | None:
+    """The runtime the committed CONTINUUM.md records for ``case`` on ``level``, times
+    ``repeats`` (None if it records none)."""
+    for rows in committed_tables("CONTINUUM.md").values():
+        for r in rows:
+            if r.get("case") == case and r.get("n across") == str(level[0]) \
+                    and number(r.get("grading", "")) == level[1]:
+                return number(r["runtime [s]"]) * repeats
+    return None
+
+
+def static_sections(levels: dict, repeats: int, rows: list[dict]) -> list[Section]:
+    """One section per static case and level: measures it and appends its row to ``rows``."""
+    def one(case, level, reps):
+        row = measure(case, level, reps)
+        rows.append(row)
+        say(f"{case:8s} n = {level[0]:3d}, grading {level[1]:4g}: {row['dofs']:7d} "
+            f"DOFs, {row['runtime']:8.3f} s, {_fmt_errors(row['errors'])}")
+        return row
+    out = []
+    for case, ns in levels.items():
+        # one run of the plastic cases; the elastic ones are repeated
+        reps = repeats if case in ("rocking", "uplift") else 1
+        for level in ns:
+            out.append(Section(f"{case} {level[0]} across, grading {level[1]:g}",
+                               lambda c=case, lv=level, k=reps: one(c, lv, k),
+                               static_cost(case, level, reps)))
+    return out
+
+
+def header(args, repeats: int) -> str:
+    return (f"# Continuum speed against error\n\n"
+            f"`python benchmarks/continuum_speed.py{' --quick' if args.quick else ''}"
+            f"{f' --only {args.only}' if args.only else ''}`, "
+            f"{datetime.date.today().isoformat()}, {platform.processor() or platform.machine()}"
+            f", Python {platform.python_version()}, one BLAS thread per solve "
+            f"(OMP_NUM_THREADS={os.environ['OMP_NUM_THREADS']}). Static cases: runtime is the "
+            f"median of {repeats} runs for the elastic cases (rocking, uplift) and one run "
+            "otherwise; assembly is the tangent stiffness, residual the return map and "
+            "internal force, solve the factorisation, Schur condensation, contact active set "
+            "and back-substitution; the rest (meshing, basis, bookkeeping) is runtime minus "
+            "these. Newton iterations include those of cut steps. The machine is shared: "
+            "compare ratios measured in one invocation (the dynamic rows also give the "
+            "process's CPU time, which the other processes' load does not inflate).\n\n"
+            "Q2 with 2×2 reduced integration, 10B × 10B box, grading as listed (the ratio of "
+            "the centre element to the edge element across B); B = 2 m, E = 50 MPa, "
+            "ν = 0.3, c_u = 50 kPa. References: rocking π G B²/(8(1 − ν)); prandtl "
+            "(2 + π) c_u B (rough, Tresca, settlement 0.05 B); uplift: onset e = B/4 and "
+            "c/B = θ_on/θ of the elastic half-plane (the 10B box is −0.36 % on e). The "
+            "Richardson rows are named extrapolations of two measured rows, not raw "
+            "meshes.\n\n")
+
+
+def document(args, repeats: int, statics: list[dict], dynamic: list[dict], skipped: str,
+             missing: dict) -> str:
+    """CONTINUUM.md of the rows so far: the statics and their targets, El Centro and its."""
+    import continuum_elcentro as ec
+
+    parts = [header(args, repeats) + incomplete_note(missing).strip()]
+    if args.only != "elcentro":
+        rows = statics + richardson(statics)
+        parts.append("## Statics\n\n" + table(rows, {}) + "\n\n### Targets: the statics' "
+                     "speed against error\n\n" + targets(rows) if rows else
+                     missing_section("## Statics", next(iter(missing)), missing).strip())
+    if args.only != "static":
+        if skipped:
+            parts.append(f"## El Centro\n\nskipped: {skipped}")
+        elif dynamic:
+            done = ec.finish(dynamic)
+            parts.append("## El Centro: explicit and implicit dynamics\n\n" + ec.description()
+                         + "\n\n" + ec.table(done) + "\n\n### Targets: 8x faster at the "
+                         "same accuracy\n\n" + ec.targets(done))
+        else:
+            key = [k for k in missing if k.startswith("elcentro")][0]
+            parts.append(missing_section("## El Centro: explicit and implicit dynamics", key,
+                                         missing).strip())
+    return "\n\n".join(p for p in parts if p) + "\n"
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -308,74 +393,46 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--quick", action="store_true", help="coarse levels, one repeat")
     parser.add_argument("--only", choices=("static", "elcentro"),
                         help="run only the static cases or only El Centro")
-    parser.add_argument("--out", default=str(OUT), help=f"output folder (default {OUT})")
-    parser.add_argument("--write", action="store_true",
-                        help="write CONTINUUM.md and continuum_speed.png into benchmarks/")
+    add_output_arguments(parser, NAME)
     parser.add_argument("--repeats", type=int, default=None,
                         help="repeats of the cheap runs (default 3; 1 with --quick)")
     args = parser.parse_args(argv)
-    if args.write and (args.only or args.quick):
-        parser.error("--write rewrites the committed tables: run every case (no --only, "
-                     "no --quick)")
-    repeats = args.repeats or (1 if args.quick else 3)
-    levels = QUICK if args.quick else LEVELS
-    say = (lambda message: print(message, file=sys.stderr, flush=True))
-    rows, sections = [], []
-    if args.only != "elcentro":
-        for case, ns in levels.items():
-            for level in ns:
-                # one run of the plastic cases; the elastic ones are repeated
-                reps = repeats if case in ("rocking", "uplift") else 1
-                row = measure(case, level, reps)
-                rows.append(row)
-                say(f"{case:8s} n = {level[0]:3d}, grading {level[1]:4g}: {row['dofs']:7d} "
-                    f"DOFs, {row['runtime']:8.3f} s, {_fmt_errors(row['errors'])}")
-        rows += richardson(rows)
-        sections.append("## Statics\n\n" + table(rows, {}) + "\n\n### Targets: the statics' speed "
-                        "against error\n\n" + targets(rows))
-    if args.only != "static":
-        import continuum_elcentro as ec
+    if args.write and args.only:
+        parser.error("--write rewrites the committed tables: run every case (no --only)")
+    out = output_folder(args, NAME)
+    import continuum_elcentro as ec
 
-        why = ec.unavailable()
-        if why:
-            say(f"elcentro: skipped: {why}")
-            sections.append(f"## El Centro\n\nskipped: {why}")
-        else:
-            dynamic = ec.measure(args.quick, say=say)
-            sections.append("## El Centro: explicit and implicit dynamics\n\n"
-                            + (ec.__doc__.split("\n\n", 2)[2].strip()) + "\n\n"
-                            + ec.table(dynamic) + "\n\n### Targets: 8x faster at the same "
-                            "accuracy\n\n"
-                            + ec.targets(dynamic))
-    text = "\n\n".join(sections)
-    print(text)
-    out = Path(__file__).resolve().parent if args.write else Path(args.out)
-    header = (f"# Continuum speed against error\n\n"
-              f"`python benchmarks/continuum_speed.py{' --quick' if args.quick else ''}"
-              f"{f' --only {args.only}' if args.only else ''}`, "
-              f"{datetime.date.today().isoformat()}, {platform.processor() or platform.machine()}"
-              f", Python {platform.python_version()}, one BLAS thread per solve "
-              f"(OMP_NUM_THREADS={os.environ['OMP_NUM_THREADS']}). Static cases: runtime is the "
-              f"median of {repeats} runs for the elastic cases (rocking, uplift) and one run "
-              "otherwise; assembly is the tangent stiffness, residual the return map and "
-              "internal force, solve the factorisation, Schur condensation, contact active set "
-              "and back-substitution; the rest (meshing, basis, bookkeeping) is runtime minus "
-              "these. Newton iterations include those of cut steps. The machine is shared: "
-              "compare ratios measured in one invocation (the dynamic rows also give the "
-              "process's CPU time, which the other processes' load does not inflate).\n\n"
-              "Q2 with 2×2 reduced integration, 10B × 10B box, grading as listed (the ratio of "
-              "the centre element to the edge element across B); B = 2 m, E = 50 MPa, "
-              "ν = 0.3, c_u = 50 kPa. References: rocking π G B²/(8(1 − ν)); prandtl "
-              "(2 + π) c_u B (rough, Tresca, settlement 0.05 B); uplift: onset e = B/4 and "
-              "c/B = θ_on/θ of the elastic half-plane (the 10B box is −0.36 % on e). The "
-              "Richardson rows are named extrapolations of two measured rows, not raw "
-              "meshes.\n\n")
-    write_text(out / "CONTINUUM.md", header + text + "\n")
-    written = [out / "CONTINUUM.md"]
-    if rows:
-        written.append(figure(rows, out / "continuum_speed.png"))
-    say(f"wrote {', '.join(map(str, written))}")
-    return 0
+    repeats = args.repeats or (1 if args.quick else 3)
+    statics: list[dict] = []
+    dynamic: list[dict] = []
+    sections = []
+    if args.only != "elcentro":
+        sections += static_sections(QUICK if args.quick else LEVELS, repeats, statics)
+    skipped = ec.unavailable() if args.only != "static" else None
+    if skipped:
+        if args.write:
+            say(f"{NAME}: error: --write needs the El Centro record: {skipped}; nothing was "
+                "run or written")
+            return 2
+        say(f"elcentro: skipped: {skipped}")
+    elif args.only != "static":
+        sections += ec.sections(ec.QUICK if args.quick else ec.RUNS, dynamic)
+
+    def publish(folder: Path, done: dict, missing: dict) -> None:
+        write_text(folder / "CONTINUUM.md",
+                   document(args, repeats, statics, dynamic, skipped or "", missing))
+        if statics:
+            figure(statics + richardson(statics), folder / "continuum_speed.png")
+
+    def commit(done: dict) -> None:
+        publish(HERE, done, {})
+        say(f"wrote {HERE / 'CONTINUUM.md'} and {HERE / 'continuum_speed.png'}")
+
+    status = run_sections(NAME, sections, publish, out, commit=commit if args.write else None,
+                          model="runtimes recorded in benchmarks/CONTINUUM.md")
+    if status == 0:
+        say(f"wrote {out / 'CONTINUUM.md'}")
+    return status
 
 
 if __name__ == "__main__":

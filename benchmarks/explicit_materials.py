@@ -22,8 +22,11 @@ The error column compares the compiled Mohr–Coulomb run with the fallback of t
 (largest difference of the footing history (u, v, θ) and of the element ε̄p snapshots, over
 their peaks); ``yielded`` is the share of elements whose average ε̄p grew during the motion.
 
-Writes ``EXPLICIT_MATERIALS.md`` to ``--out`` (default ``results/bench/explicit_materials``);
-``--write`` rewrites the committed ``benchmarks/EXPLICIT_MATERIALS.md`` instead.
+Each round of repeats (every case once) is a section (``bench_output``): ``EXPLICIT_MATERIALS.md``
+is rewritten in ``--out`` (default ``results/bench/explicit_materials``) as each ends, with the
+medians of the rounds so far; ``--write`` also rewrites the committed
+``benchmarks/EXPLICIT_MATERIALS.md`` once every round has completed (never with ``--quick``: 4
+and 8 across, 100 steps, one round).
 """
 
 from __future__ import annotations
@@ -43,7 +46,8 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from bench_output import add_output_arguments, output_folder  # noqa: E402
+from bench_output import (HERE, Section, add_output_arguments, incomplete_note,  # noqa: E402
+                          output_folder, run_sections, say, write_text)
 
 NAME = "explicit_materials"
 #: The soils: the clay scene's Tresca clay and the Winkler map's frictional soil.
@@ -143,45 +147,75 @@ def ratios(results: list[dict]) -> list[str]:
     return lines
 
 
-def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="4 and 8 across")
-    parser.add_argument("--steps", type=int, default=300, help="steps per run (default 300)")
-    parser.add_argument("--repeats", type=int, default=3, help="runs per case (default 3)")
-    add_output_arguments(parser, NAME)
-    args = parser.parse_args(argv)
-    if args.steps < 10:
-        parser.error(f"--steps = {args.steps}: valid range is >= 10")
-    if args.repeats < 1:
-        parser.error(f"--repeats = {args.repeats}: valid range is >= 1")
-    folder = output_folder(args, NAME)
-    meshes = QUICK_MESHES if args.quick else MESHES
-    began = time.perf_counter()
-    run("tresca", "compiled", 4, 20)  # warm-up: compiles the explicit loop and kernels
-    runs, todo = {}, [(n, soil, route) for _ in range(args.repeats) for n in meshes
-                      for soil, route in CASES]
-    for i, (n, soil, route) in enumerate(todo):
-        row = run(soil, route, n, args.steps)
-        runs.setdefault((n, soil, route), []).append(row)
-        elapsed = time.perf_counter() - began
-        print(f"[{elapsed:6.0f} s] {i + 1}/{len(todo)} {soil} {route} {n} across: "
-              f"{1e3 * row['per_step']:.3g} ms per step; ETA "
-              f"{elapsed / (i + 1) * (len(todo) - i - 1):.0f} s", file=sys.stderr, flush=True)
+def document(args, rounds: list[list[dict]], missing: dict) -> str:
+    """EXPLICIT_MATERIALS.md: the medians over the rounds done so far."""
+    runs: dict[tuple, list[dict]] = {}
+    for row in (r for done in rounds for r in done):
+        runs.setdefault((row["n"], row["soil"], row["route"]), []).append(row)
     results = [median(rows) for rows in runs.values()]
     text = ["# Explicit route: per-step cost by soil model", "",
             f"Measured {datetime.date.today().isoformat()} on {platform.machine()} "
             f"({os.cpu_count()} cores, shared), Python {platform.python_version()}, one numba "
             f"thread; command `python benchmarks/explicit_materials.py"
             f"{' --quick' if args.quick else ''} --steps {args.steps} --repeats {args.repeats}`"
-            ", medians of the repeats. "
-            "What is timed and compared: the script's docstring.", "",
-            *table(results), "", "Ratios of the time per step (same invocation):", "",
-            *ratios(results), ""]
-    out = folder / "EXPLICIT_MATERIALS.md"
-    out.write_text("\n".join(text), encoding="utf-8")
-    print("\n".join(text))
-    print(f"wrote {out}", file=sys.stderr)
-    return 0
+            f", medians of {len(rounds)} repeat(s). "
+            "What is timed and compared: the script's docstring.", ""]
+    if missing:
+        text += [incomplete_note(missing).strip(), ""]
+    if results:
+        text += [*table(results), "", "Ratios of the time per step (same invocation):", "",
+                 *ratios(results)]
+    return "\n".join(text) + "\n"
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true",
+                        help="4 and 8 across, 100 steps, one round (a smoke check)")
+    parser.add_argument("--steps", type=int, default=None,
+                        help="steps per run (default 300; 100 with --quick)")
+    parser.add_argument("--repeats", type=int, default=None,
+                        help="runs per case (default 3; 1 with --quick)")
+    add_output_arguments(parser, NAME)
+    args = parser.parse_args(argv)
+    args.steps = args.steps or (100 if args.quick else 300)
+    args.repeats = args.repeats or (1 if args.quick else 3)
+    if args.steps < 10:
+        parser.error(f"--steps = {args.steps}: valid range is >= 10")
+    if args.repeats < 1:
+        parser.error(f"--repeats = {args.repeats}: valid range is >= 1")
+    folder = output_folder(args, NAME)
+    meshes = QUICK_MESHES if args.quick else MESHES
+    rounds: list[list[dict]] = []
+
+    def one_round(k: int) -> list[dict]:
+        """Every case once, the cases interleaved (module docstring)."""
+        done = []
+        for n in meshes:
+            for soil, route in CASES:
+                done.append(run(soil, route, n, args.steps))
+                say(f"round {k + 1}/{args.repeats}: {soil} {route} {n} across: "
+                    f"{1e3 * done[-1]['per_step']:.3g} ms per step")
+        rounds.append(done)
+        return done
+
+    sections = [Section("warm-up", lambda: run("tresca", "compiled", 4, 20))]  # compiles
+    sections += [Section(f"round {k + 1}", lambda k=k: one_round(k))
+                 for k in range(args.repeats)]
+
+    def publish(target: Path, done: dict, missing: dict) -> None:
+        write_text(target / "EXPLICIT_MATERIALS.md", document(args, rounds, missing))
+
+    def commit(done: dict) -> None:
+        publish(HERE, done, {})
+        say(f"wrote {HERE / 'EXPLICIT_MATERIALS.md'}")
+
+    status = run_sections(NAME, sections, publish, folder,
+                          commit=commit if args.write else None)
+    if status == 0:
+        print(document(args, rounds, {}))
+        say(f"wrote {folder / 'EXPLICIT_MATERIALS.md'}")
+    return status
 
 
 if __name__ == "__main__":

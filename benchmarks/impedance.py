@@ -4,12 +4,21 @@ rocking decay; the contact length measured where contact ends.
 
     python benchmarks/impedance.py [--out results/bench/impedance] [--write] [--quick]
 
-Writes ``impedance.json`` and ``IMPEDANCE.md`` to ``--out`` (default
-``results/bench/impedance``); ``--write`` also rewrites the committed ``benchmarks/IMPEDANCE.md``
-and ``benchmarks/figures/impedance.png``. ``--quick`` runs a reduced set (for a smoke check).
+Sections, each written to ``--out`` (default ``results/bench/impedance``) as ``impedance.json``,
+``IMPEDANCE.md`` and ``figures/impedance.png`` as soon as it ends (``bench_output``): the
+impedance tables, the box sensitivity, the mesh convergence, the rocking decay, the contact
+length, geofound's cross-check and the figure. ``--write`` also rewrites the committed
+``benchmarks/IMPEDANCE.md`` and ``benchmarks/figures/impedance.png``, once every section has
+completed. ``--quick`` runs a reduced set (for a smoke check: one ν and interface, two boxes and
+one Lysmer box, 8 and 16 across, the decay on 8 across) and cannot be committed.
 Runtimes are single runs on a shared machine (one thread): compare ratios. If geofound is
 installed, its Gazetas strip dashpots are tabulated beside the exact ones (a cross-check of what
 a public code computes); otherwise that table says so.
+
+Cost model (the estimate printed before any work): each planned row costs the runtime recorded
+for the same row in the committed ``benchmarks/IMPEDANCE.md``: the solves alone, so the estimate
+is a lower bound (meshing, the PML and the references add to it: on 2026-11-28, 1.4 min
+estimated, 2.3 min run); a row that table does not record has no estimate.
 """
 
 from __future__ import annotations
@@ -35,7 +44,12 @@ from upliftlab.continuum.impedance_output import (impedance_errors, impedance_fi
 from upliftlab.motions import free_vibration
 from upliftlab.scenes import ContinuumOptions, Soil, load_scene
 
-HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_output import (HERE, Section, add_output_arguments, committed_tables,  # noqa: E402
+                          incomplete_note, missing_section, number, output_folder, run_sections,
+                          save_figure, write_text)
+
+NAME = "impedance"
 E, RHO, B = 50e3, 1.8, 2.0
 TABLE_A0 = (0.1, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0)
 BOX_A0 = (0.1, 0.25, 0.5, 1.0, 1.5, 2.0)
@@ -65,11 +79,18 @@ def worst(imp) -> dict:
 # ---------------------------------------------------------------------------------------------
 
 
-def impedance_tables(quick: bool) -> list[dict]:
-    """k_j, c_j of FE, exact and handbook per a0, ν = 0.25 and 1/3, both interfaces."""
+#: What each section runs: the full benchmark and ``--quick``.
+FULL = {"table": [(nu, i) for nu in (0.25, 1 / 3) for i in ("frictionless", "bonded")],
+        "pml": [(6, 3, 1.5), (8, 4, 2.0), (10, 5, 2.5), (14, 7, 3.5), (20, 10, 5.0)],
+        "lysmer": [(10, 5), (20, 10), (40, 20), (80, 40)], "mesh": (4, 8, 12, 16, 24),
+        "decay": (4, 8, 16), "contact": (8, 16, 32)}
+QUICK = {"table": [(0.25, "bonded")], "pml": FULL["pml"][:2], "lysmer": FULL["lysmer"][:1],
+         "mesh": (8, 16), "decay": (8,), "contact": (8, 16)}
+
+
+def impedance_tables(cases) -> list[dict]:
+    """k_j, c_j of FE, exact and handbook per a0, for each (ν, interface) of ``cases``."""
     rows = []
-    cases = [(0.25, "bonded")] if quick else [(nu, i) for nu in (0.25, 1 / 3)
-                                              for i in ("frictionless", "bonded")]
     for nu, interface in cases:
         say(f"impedance table ν = {nu:.3g}, {interface}")
         imp, seconds = run(nu, interface, a0=TABLE_A0)
@@ -98,13 +119,10 @@ def impedance_tables(quick: bool) -> list[dict]:
     return rows
 
 
-def box_sensitivity(quick: bool) -> list[dict]:
-    """Largest error over a0 per mode against the box, PML and Lysmer, bonded ν = 1/3."""
+def box_sensitivity(pml, lysmer) -> list[dict]:
+    """Largest error over a0 per mode against the box, PML (width, depth, layer in B) and
+    Lysmer (width, depth in B), bonded ν = 1/3."""
     rows = []
-    pml = [(6, 3, 1.5), (8, 4, 2.0), (10, 5, 2.5), (14, 7, 3.5), (20, 10, 5.0)]
-    lysmer = [(10, 5), (20, 10), (40, 20), (80, 40)]
-    if quick:
-        pml, lysmer = pml[:2], lysmer[:1]
     for w, d, layer in pml:
         say(f"box: PML {w}B x {d}B, layer {layer}B")
         imp, seconds = run(1 / 3, "bonded", a0=BOX_A0, domain_width=w, domain_depth=d,
@@ -130,9 +148,10 @@ def _errors_by_band(imp) -> dict:
     return out
 
 
-def mesh_convergence(quick: bool) -> list[dict]:
+def mesh_convergence(levels) -> list[dict]:
+    """Largest error over a0 per mode on ``levels`` elements across B, bonded ν = 1/3."""
     rows = []
-    for n in ((8, 16) if quick else (4, 8, 12, 16, 24)):
+    for n in levels:
         say(f"mesh: {n} across")
         imp, seconds = run(1 / 3, "bonded", n=n, a0=BOX_A0)
         rows.append({"n": n, "dofs": imp.dofs, "runtime_s": seconds, **worst(imp)})
@@ -145,20 +164,23 @@ DECAY = ["soil.model=elastic", "structure.weight=1.0", "structure.vertical_weigh
          "continuum.domain_depth=25"]
 
 
-def rocking_decay(quick: bool) -> list[dict]:
-    """The time-domain free rocking decay against the root predicted from K_r(ω)."""
+def rocking_decay(levels) -> list[dict]:
+    """The time-domain free rocking decay against the root predicted from K_r(ω), on
+    ``levels`` elements across B, on the implicit route with Newmark's average acceleration
+    (α = 0: no numerical damping beside the radiation damping that is measured)."""
     from scipy.optimize import least_squares
 
     rows = []
-    for n in ((8,) if quick else (4, 8, 16)):
+    for n in levels:
         say(f"rocking decay, {n} across")
         scene = load_scene("strip_footing_clay",
                            overrides=DECAY + [f"continuum.elements_across={n}"])
         started = time.perf_counter()
         result = run_dynamic(build_model(scene), scene,
                              free_vibration(0.48, 0.005, velocity=0.01),
-                             DynamicOptions(scheme="newmark", sides="lysmer", base="rigid",
-                                            snapshots=0, energy=False))
+                             DynamicOptions(method="implicit", scheme="newmark",
+                                            sides="lysmer", base="rigid", snapshots=0,
+                                            energy=False))
         seconds = time.perf_counter() - started
         t, theta = result.time, result.theta
         w = t >= 0.1
@@ -195,15 +217,17 @@ def _root(scene, n, exact):
     return w
 
 
-def contact_length(quick: bool) -> list[dict]:
-    """Contact length after onset against 4(B/2 − e), in node spacings B/(2n)."""
+def contact_length(levels) -> list[dict]:
+    """Contact length after onset against 4(B/2 − e), in node spacings B/(2n), on ``levels``
+    elements across B."""
     rows = []
     nu, N = 0.3, 171.39
     G = E / (2 * (1 + nu))
     theta_on = 2 * N * (1 - nu) / (math.pi * G * B)
     ratios = np.concatenate(([0.5], np.linspace(1.05, 10.0, 24)))
-    for n in ((8, 16) if quick else (8, 16, 32)):
+    for n in levels:
         say(f"contact length, {n} across")
+        started = time.perf_counter()
         model = make_model(Soil(youngs_modulus=E, poisson_ratio=nu, density=RHO), B,
                            ContinuumOptions(elements_across=n))
         path = rotation_pushover(model, N, ratios * theta_on)
@@ -213,7 +237,8 @@ def contact_length(quick: bool) -> list[dict]:
         midpoint = np.array([model.footing.contact_length(s != OPEN) for s in path.status])
         new = (path.contact_length - 4 * (B / 2 - e))[after] / spacing
         old = (midpoint - 4 * (B / 2 - e))[after] / spacing
-        rows.append({"n": n, "steps": int(after.sum()), "max": float(np.max(np.abs(new))),
+        rows.append({"n": n, "runtime_s": time.perf_counter() - started,
+                     "steps": int(after.sum()), "max": float(np.max(np.abs(new))),
                      "rms": float(np.sqrt(np.mean(new ** 2))),
                      "max_midpoint": float(np.max(np.abs(old))),
                      "rms_midpoint": float(np.sqrt(np.mean(old ** 2)))})
@@ -255,28 +280,34 @@ def geofound_crosscheck() -> dict:
 # ---------------------------------------------------------------------------------------------
 
 
-def markdown(data: dict) -> str:
-    out = ["# Impedance of the rigid strip\n",
-           f"`python benchmarks/impedance.py`, {data['date']}, {data['machine']}, one thread. "
-           "Soil E = 50 MPa, ρ = 1.8 t/m³, B = 2 m; Q2, 16 elements across B, PML box 6B × 3B "
-           "with a 1.5B layer unless stated. Errors are |K − K_exact|/|K_exact|, the exact "
-           "impedance from `upliftlab.continuum.halfplane` (Chebyshev–Galerkin on the "
-           "half-plane's Green's function, no FE). K_j = K_j,static [k_j + i a0 c_j], "
-           "a0 = ω B/(2V_s); K_static: rocking πGB²/(8(1 − ν)), vertical 0.73G/(1 − ν), "
-           "horizontal 2G/(2 − ν) (Gazetas 1991's strip limits; the 2D static K_v, K_h do not "
-           "exist), coupling √(K_h K_r). Gazetas: the closed forms of Gazetas (1991, Table 1, "
-           "L/B → ∞): static K_j, k_r = 1 − 0.2 a0, k_v = k_h = 1 (charts not reproduced), "
-           "dashpots ρV_La B, ρV_s B, ρV_La I (c̃ = 1).\n"]
-    for (nu, interface) in sorted({(r["nu"], r["interface"]) for r in data["table"]}):
-        rows = [r for r in data["table"] if r["nu"] == nu and r["interface"] == interface]
-        modes = [m for m in ("v", "h", "r", "hr") if f"k_{m}" in rows[0]]
-        out.append(f"\n## ν = {nu:.3g}, {interface} ({rows[0]['dofs']} DOFs, "
-                   f"{len(rows)} frequencies in {rows[0]['runtime_s']:.1f} s)\n")
+def header(data: dict) -> str:
+    return ("# Impedance of the rigid strip\n\n"
+            f"`python benchmarks/impedance.py{' --quick' if data['quick'] else ''}`, "
+            f"{data['date']}, {data['machine']}, one thread. "
+            "Soil E = 50 MPa, ρ = 1.8 t/m³, B = 2 m; Q2, 16 elements across B, PML box 6B × 3B "
+            "with a 1.5B layer unless stated. Errors are |K − K_exact|/|K_exact|, the exact "
+            "impedance from `upliftlab.continuum.halfplane` (Chebyshev–Galerkin on the "
+            "half-plane's Green's function, no FE). K_j = K_j,static [k_j + i a0 c_j], "
+            "a0 = ω B/(2V_s); K_static: rocking πGB²/(8(1 − ν)), vertical 0.73G/(1 − ν), "
+            "horizontal 2G/(2 − ν) (Gazetas 1991's strip limits; the 2D static K_v, K_h do not "
+            "exist), coupling √(K_h K_r). Gazetas: the closed forms of Gazetas (1991, Table 1, "
+            "L/B → ∞): static K_j, k_r = 1 − 0.2 a0, k_v = k_h = 1 (charts not reproduced), "
+            "dashpots ρV_La B, ρV_s B, ρV_La I (c̃ = 1). DOFs: the unknowns of the harmonic "
+            "solve (the soil's DOFs less the PML's fixed back).\n")
+
+
+def table_text(rows: list[dict]) -> str:
+    out = []
+    for (nu, interface) in sorted({(r["nu"], r["interface"]) for r in rows}):
+        mine = [r for r in rows if r["nu"] == nu and r["interface"] == interface]
+        modes = [m for m in ("v", "h", "r", "hr") if f"k_{m}" in mine[0]]
+        out.append(f"\n## ν = {nu:.3g}, {interface} ({mine[0]['dofs']} DOFs, "
+                   f"{len(mine)} frequencies in {mine[0]['runtime_s']:.1f} s)\n")
         head = "| a0 | " + " | ".join(
             f"k_{m} FE / exact{' / Gazetas' if m != 'hr' else ''} | "
             f"c_{m} FE / exact{' / Gazetas' if m != 'hr' else ''} | err {m}" for m in modes)
         out += [head + " |", "|---" * (1 + 3 * len(modes)) + "|"]
-        for r in rows:
+        for r in mine:
             cells = [f"{r['a0']:.2f}"]
             for m in modes:
                 g = m != "hr"
@@ -286,88 +317,189 @@ def markdown(data: dict) -> str:
                              + (f" / {r[f'c_{m}_gazetas']:.3f}" if g else ""))
                 cells.append(f"{100 * r[f'err_{m}']:.2f} %")
             out.append("| " + " | ".join(cells) + " |")
-    out.append("\n## Box-size sensitivity (bonded, ν = 1/3, 16 across)\n")
-    out.append("Largest error over a0 ≤ 0.5 and over a0 = 0.1 … 2 (BOX_A0).\n")
-    out += ["| boundary | box | DOFs | runtime | K_v ≤ 0.5 / all | K_h ≤ 0.5 / all | "
-            "K_r ≤ 0.5 / all | K_hr ≤ 0.5 / all |", "|---|---|---|---|---|---|---|---|"]
-    for r in data["box"]:
+    return "\n".join(out)
+
+
+def box_text(rows: list[dict]) -> str:
+    out = ["Largest error over a0 ≤ 0.5 and over a0 = 0.1 … 2 (BOX_A0).\n",
+           "| boundary | box | DOFs | runtime | K_v ≤ 0.5 / all | K_h ≤ 0.5 / all | "
+           "K_r ≤ 0.5 / all | K_hr ≤ 0.5 / all |", "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
         cells = [r["boundary"], r["box"], str(r["dofs"]), f"{r['runtime_s']:.1f} s"]
         for m in ("v", "h", "r", "hr"):
             cells.append(f"{100 * r[f'{m}_low']:.2f} / {100 * r[f'{m}_all']:.2f} %")
         out.append("| " + " | ".join(cells) + " |")
-    out.append("\n## Mesh convergence (bonded, ν = 1/3, PML 6B × 3B)\n")
-    out += ["| across B | DOFs | runtime (6 frequencies) | K_v | K_h | K_r | K_hr |",
-            "|---|---|---|---|---|---|---|"]
-    for r in data["mesh"]:
+    return "\n".join(out)
+
+
+def mesh_text(rows: list[dict]) -> str:
+    out = ["| across B | DOFs | runtime (6 frequencies) | K_v | K_h | K_r | K_hr |",
+           "|---|---|---|---|---|---|---|"]
+    for r in rows:
         out.append(f"| {r['n']} | {r['dofs']} | {r['runtime_s']:.1f} s | "
                    + " | ".join(f"{100 * r[m]:.2f} %" for m in ("v", "h", "r", "hr")) + " |")
-    out.append("\n## Free rocking decay in the time domain\n")
-    out.append("Footing I₀ = 14 t m²/m, story 1 kN/m at 2 m (T = 0.01 s), frictionless, "
-               "elastic clay; Newmark, Lysmer sides, rigid base 25B down (its P reflection "
-               "returns after the 0.1–0.48 s window). θ(t) = A e^{−σt} cos(ω_d t + φ) fitted, "
-               "against the complex root ω_d + iσ of the footing–story system with K_r(ω) of "
-               "the impedance analysis (same elements across) and of the exact half-plane.\n")
-    out += ["| across B | runtime | ω_d time domain | ω_d from FE K_r | ω_d exact | "
-            "σ time domain | σ from FE K_r | σ exact |", "|---|---|---|---|---|---|---|---|"]
-    for r in data["decay"]:
+    return "\n".join(out)
+
+
+def decay_text(rows: list[dict]) -> str:
+    out = ["Footing I₀ = 14 t m²/m, story 1 kN/m at 2 m (T = 0.01 s), frictionless, "
+           "elastic clay; implicit route, Newmark, Lysmer sides, rigid base 25B down (its P "
+           "reflection returns after the 0.1–0.48 s window). θ(t) = A e^{−σt} cos(ω_d t + φ) "
+           "fitted, against the complex root ω_d + iσ of the footing–story system with K_r(ω) "
+           "of the impedance analysis (same elements across) and of the exact half-plane.\n",
+           "| across B | runtime | ω_d time domain | ω_d from FE K_r | ω_d exact | "
+           "σ time domain | σ from FE K_r | σ exact |", "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
         out.append(f"| {r['n']} | {r['runtime_s']:.1f} s | {r['omega']:.3f} | "
                    f"{r['omega_fe']:.3f} ({100 * (r['omega'] / r['omega_fe'] - 1):+.2f} %) | "
                    f"{r['omega_exact']:.3f} ({100 * (r['omega'] / r['omega_exact'] - 1):+.2f} %)"
                    f" | {r['sigma']:.4f} | {r['sigma_fe']:.4f} "
                    f"({100 * (r['sigma'] / r['sigma_fe'] - 1):+.2f} %) | {r['sigma_exact']:.4f} "
                    f"({100 * (r['sigma'] / r['sigma_exact'] - 1):+.2f} %) |")
-    out.append("\n## Contact length after uplift against 4(B/2 − e), in node spacings B/(2n)\n")
-    out += ["| across B | steps after onset | largest (separation point) | rms | "
-            "largest (midpoint rule) | rms |", "|---|---|---|---|---|---|"]
-    for r in data["contact"]:
-        out.append(f"| {r['n']} | {r['steps']} | {r['max']:.2f} | {r['rms']:.2f} | "
-                   f"{r['max_midpoint']:.2f} | {r['rms_midpoint']:.2f} |")
-    geo = data["geofound"]
-    out.append("\n## A public code: geofound's Gazetas strip dashpots\n")
-    if not geo["available"]:
-        out.append("geofound is not installed: not run.\n")
-    else:
-        out.append(f"geofound {geo['version']} (`geofound/damping/gazetas_1991.py`): "
-                   "`calc_horz_strip_via_gazetas_1991` interpolates between "
-                   "`get_cy_gazetas_v_e_0p3` and `get_cy_gazetas_v_e_0p3` (the ν = 0.3 table "
-                   "at both ends), so its horizontal strip dashpot is the same at every ν. "
-                   "kN s/m² per m, bonded exact.\n")
-        out += ["| ν | a0 | c̃_y = C_h/(ρV_sB) geofound | exact | C_h geofound | C_h exact | "
-                "C_v geofound | C_v exact |", "|---|---|---|---|---|---|---|---|"]
-        for r in geo["rows"]:
-            out.append(f"| {r['nu']:.3g} | {r['a0']:g} | {r['cy_geofound']:.3f} | "
-                       f"{r['cy_exact']:.3f} | {r['C_h_geofound']:.1f} | "
-                       f"{r['C_h_exact']:.1f} | {r['C_v_geofound']:.1f} | "
-                       f"{r['C_v_exact']:.1f} |")
-    out.append(f"\nV_La/V_p: {data['vla_over_vp']}\n")
     return "\n".join(out)
+
+
+def contact_text(rows: list[dict]) -> str:
+    out = ["| across B | runtime | steps after onset | largest (separation point) | rms | "
+           "largest (midpoint rule) | rms |", "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        out.append(f"| {r['n']} | {r['runtime_s']:.1f} s | {r['steps']} | {r['max']:.2f} | "
+                   f"{r['rms']:.2f} | {r['max_midpoint']:.2f} | {r['rms_midpoint']:.2f} |")
+    return "\n".join(out)
+
+
+def geofound_text(geo: dict) -> str:
+    if not geo["available"]:
+        return "geofound is not installed: not run."
+    out = [f"geofound {geo['version']} (`geofound/damping/gazetas_1991.py`): "
+           "`calc_horz_strip_via_gazetas_1991` interpolates between "
+           "`get_cy_gazetas_v_e_0p3` and `get_cy_gazetas_v_e_0p3` (the ν = 0.3 table "
+           "at both ends), so its horizontal strip dashpot is the same at every ν. "
+           "kN s/m² per m, bonded exact.\n",
+           "| ν | a0 | c̃_y = C_h/(ρV_sB) geofound | exact | C_h geofound | C_h exact | "
+           "C_v geofound | C_v exact |", "|---|---|---|---|---|---|---|---|"]
+    for r in geo["rows"]:
+        out.append(f"| {r['nu']:.3g} | {r['a0']:g} | {r['cy_geofound']:.3f} | "
+                   f"{r['cy_exact']:.3f} | {r['C_h_geofound']:.1f} | "
+                   f"{r['C_h_exact']:.1f} | {r['C_v_geofound']:.1f} | "
+                   f"{r['C_v_exact']:.1f} |")
+    return "\n".join(out)
+
+
+#: Section key: (heading of its table in IMPEDANCE.md, renderer); the tables section brings
+#: its own headings (one per ν and interface).
+TEXTS = {"table": ("## Impedance tables", table_text),
+         "box": ("## Box-size sensitivity (bonded, ν = 1/3, 16 across)", box_text),
+         "mesh": ("## Mesh convergence (bonded, ν = 1/3, PML 6B × 3B)", mesh_text),
+         "decay": ("## Free rocking decay in the time domain", decay_text),
+         "contact": ("## Contact length after uplift against 4(B/2 − e), in node spacings "
+                     "B/(2n)", contact_text),
+         "geofound": ("## A public code: geofound's Gazetas strip dashpots", geofound_text)}
+
+
+def markdown(data: dict, done: dict, missing: dict) -> str:
+    """IMPEDANCE.md: the header, a note naming the sections that did not complete, then each
+    section's tables (or its stand-in)."""
+    blocks = [header(data), incomplete_note(missing)]
+    for key, (title, render) in TEXTS.items():
+        if key in done:
+            text = render(done[key]).strip()
+            blocks.append(text if key == "table" else f"{title}\n\n{text}")
+        elif key in missing:
+            blocks.append(missing_section(title, key, missing))
+    blocks.append(f"V_La/V_p: {data['vla_over_vp']}")
+    return "\n\n".join(b.strip() for b in blocks if b.strip()) + "\n"
+
+
+def figure_run():
+    """The impedance of the figure: ν = 0.3, bonded, 16 across, the default frequencies."""
+    imp, _ = run(0.3, "bonded")
+    return imp
+
+
+def publisher(data: dict):
+    """Writes impedance.json, IMPEDANCE.md and figures/impedance.png into a folder."""
+    def publish(folder: Path, done: dict, missing: dict) -> None:
+        record = {**data, **{k: v for k, v in done.items() if k != "figure"},
+                  "missing": missing}
+        write_text(folder / "impedance.json", json.dumps(record, indent=1, default=float))
+        write_text(folder / "IMPEDANCE.md", markdown(data, done, missing))
+        if "figure" in done:
+            figure(done["figure"], folder / "figures" / "impedance.png")
+    return publish
+
+
+def figure(imp, path: Path) -> Path:
+    """The impedance figure of ``imp`` against the exact half-plane, PNG at 150 dpi."""
+    return save_figure(impedance_figure(imp, reference_for(imp)), path, dpi=150)
+
+
+def costs(plan: dict) -> dict:
+    """Each section's estimated wall time (s): the runtimes the committed IMPEDANCE.md records
+    for the planned rows (module docstring); None where a planned row is not recorded."""
+    tables = committed_tables("IMPEDANCE.md")
+
+    def total(found: list[float | None]) -> float | None:
+        return None if not found or None in found else sum(found)
+
+    table = []
+    for nu, interface in plan["table"]:
+        heads = [h for h in tables if h.startswith(f"ν = {nu:.3g}, {interface} (")]
+        table.append(number(heads[0].split("frequencies in")[1]) if heads else None)
+
+    def lookup(heading: str, match) -> float | None:
+        rows = [r for head, rows in tables.items() if head.startswith(heading) for r in rows]
+        hits = [number(r.get("runtime", r.get("runtime (6 frequencies)", "")))
+                for r in rows if match(r)]
+        return hits[0] if hits and math.isfinite(hits[0]) else None
+
+    box = [lookup("Box-size", lambda r, w=w, d=d, layer=layer:
+                  r["boundary"] == "pml" and r["box"] == f"{w}B × {d}B, layer {layer}B")
+           for w, d, layer in plan["pml"]]
+    box += [lookup("Box-size", lambda r, w=w, d=d:
+                   r["boundary"] == "lysmer" and r["box"] == f"{w}B × {d}B")
+            for w, d in plan["lysmer"]]
+    return {"table": total(table), "box": total(box),
+            "mesh": total([lookup("Mesh convergence", lambda r, n=n:
+                                  r["across B"] == str(n)) for n in plan["mesh"]]),
+            "decay": total([lookup("Free rocking", lambda r, n=n:
+                                   r["across B"] == str(n)) for n in plan["decay"]]),
+            "contact": total([lookup("Contact length", lambda r, n=n:
+                                     r["across B"] == str(n)) for n in plan["contact"]])}
 
 
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--out", default="results/bench/impedance")
-    p.add_argument("--write", action="store_true")
-    p.add_argument("--quick", action="store_true")
+    add_output_arguments(p, NAME)
+    p.add_argument("--quick", action="store_true", help="a reduced set, for a smoke check")
     args = p.parse_args(argv)
-    data = {"date": date.today().isoformat(),
+    out = output_folder(args, NAME)
+    plan = QUICK if args.quick else FULL
+    data = {"date": date.today().isoformat(), "quick": args.quick,
             "machine": f"{platform.machine()}, Python {platform.python_version()}",
-            "table": impedance_tables(args.quick), "box": box_sensitivity(args.quick),
-            "mesh": mesh_convergence(args.quick), "decay": rocking_decay(args.quick),
-            "contact": contact_length(args.quick), "geofound": geofound_crosscheck(),
             "vla_over_vp": {f"{nu:.3g}": lysmer_analog_velocity(1.0, nu)
                             / math.sqrt(2 * (1 - nu) / (1 - 2 * nu)) for nu in (0.25, 1 / 3)}}
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "impedance.json").write_text(json.dumps(data, indent=1, default=float))
-    text = markdown(data)
-    (out / "IMPEDANCE.md").write_text(text)
-    if args.write:
-        (HERE / "IMPEDANCE.md").write_text(text)
-        imp, _ = run(0.3, "bonded")
-        from upliftlab.reduced.figures import save
-        save(impedance_figure(imp, reference_for(imp)), HERE / "figures" / "impedance.png")
-    say(f"wrote {out / 'IMPEDANCE.md'}" + (" and benchmarks/IMPEDANCE.md" if args.write else ""))
-    return 0
+    cost = costs(plan)
+    sections = [Section("table", lambda: impedance_tables(plan["table"]), cost["table"]),
+                Section("box", lambda: box_sensitivity(plan["pml"], plan["lysmer"]),
+                        cost["box"]),
+                Section("mesh", lambda: mesh_convergence(plan["mesh"]), cost["mesh"]),
+                Section("decay", lambda: rocking_decay(plan["decay"]), cost["decay"]),
+                Section("contact", lambda: contact_length(plan["contact"]), cost["contact"]),
+                Section("geofound", geofound_crosscheck),
+                Section("figure", figure_run)]
+    publish = publisher(data)
+
+    def commit(done: dict) -> None:
+        write_text(HERE / "IMPEDANCE.md", markdown(data, done, {}))
+        figure(done["figure"], HERE / "figures" / "impedance.png")
+        say("wrote benchmarks/IMPEDANCE.md and benchmarks/figures/impedance.png")
+
+    status = run_sections(NAME, sections, publish, out, commit=commit if args.write else None,
+                          model="runtimes recorded in benchmarks/IMPEDANCE.md")
+    if status == 0:
+        say(f"wrote {out / 'IMPEDANCE.md'}")
+    return status
 
 
 if __name__ == "__main__":

@@ -24,9 +24,14 @@ grading 1): M bilinear elements across B have the node spacing of upliftlab's Q2
 M/2 across (``quad9n`` with M/2 across has the same nodes). Also runs upliftlab's continuum
 model on the same problem in this process (``benchmarks/continuum_speed.py``'s ``prandtl``
 case: Q2 with 2×2 reduced integration, Tresca, the same pushover), so that the runtimes are
-measured in one run: compare ratios. Writes ``OPENSEES_BEARING.md`` to ``--out`` (default
-``results/bench/opensees_bearing``), or over the committed one in ``benchmarks/`` with
-``--write``.
+measured in one run: compare ratios. Each row is a section (``bench_output``):
+``OPENSEES_BEARING.md`` is rewritten in ``--out`` (default ``results/bench/opensees_bearing``)
+as each ends, and ``--write`` also rewrites the committed one in ``benchmarks/`` once every row
+has completed (never with ``--quick``: bbarQuad on 8 and 16 across, upliftlab on 4 and 8).
+
+Cost model (the estimate printed before any work): each row costs the runtime the committed
+``benchmarks/OPENSEES_BEARING.md`` records for the same model and level (OpenSees: the load
+steps, its model build apart); a row it does not record has no estimate.
 """
 
 from __future__ import annotations
@@ -47,13 +52,16 @@ import sys  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-from bench_output import add_output_arguments, output_folder, require  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_output import (HERE, Section, add_output_arguments, committed_tables,  # noqa: E402
+                          incomplete_note, number, output_folder, require, run_sections, say,
+                          write_text)
 from upliftlab.anchors import prandtl_capacity  # noqa: E402
 
 E, NU, CU, B = 50e3, 0.3, 50.0, 2.0  # kPa, -, kPa, m
 Q_U = prandtl_capacity(CU, B)          # kN/m
 SETTLEMENT, STEPS = 0.05 * B, 10
-HERE = Path(__file__).resolve().parent
+NAME = "opensees_bearing"
 
 # ---------------------------------------------------------------------------------------------
 # Child: the OpenSees model (openseespy and the JSON on stdin only)
@@ -263,11 +271,11 @@ flow is isochoric, which shows as a capacity far above Prandtl's that falls slow
 `SSPquad` (one point, stabilised) is stabilised with the full elastic stiffness. `bbarQuad`
 removes volumetric locking. The graded upliftlab rows put smaller elements at the footing
 edges, where the error is O(h) (a singular pressure); OpenSees keeps the uniform grid lines, so
-those rows compare methods as a user would run them, not the same mesh. The limit load does not depend on the elastic constants, so the
-ν = 0.49 rows show what near-incompressibility changes in convergence and cost only. The
-issue's figures (scikit-fem Q2 + CHOLMOD 0.7 % in 13 s; bbarQuad 5.1 % in 5 s; quad9n 5.7 %
-in 114 s) were measured elsewhere, on other meshes and machines; only the ratios within this
-file are comparable."""
+those rows compare methods as a user would run them, not the same mesh. The limit load does not
+depend on the elastic constants, so the ν = 0.49 rows show what near-incompressibility changes
+in convergence and cost only. The issue's figures (scikit-fem Q2 + CHOLMOD 0.7 % in 13 s;
+bbarQuad 5.1 % in 5 s; quad9n 5.7 % in 114 s) were measured elsewhere, on other meshes and
+machines; only the ratios within this file are comparable."""
 
 
 def summary(rows: list[tuple[str, str, dict]]) -> str:
@@ -313,36 +321,67 @@ def main(argv: list[str] | None = None) -> int:
     if args.child:
         print(json.dumps(child(json.loads(sys.stdin.read()))))
         return 0
-    require("openseespy", "opensees", "opensees_bearing")
+    require("openseespy", "opensees", NAME)
+    out = output_folder(args, NAME)
     env = opensees_environment()
     if env is None:
-        print("opensees_bearing: error: openseespy does not run in a subprocess here (pip "
-              "install 'upliftlab[opensees]'); nothing was run or written", file=sys.stderr)
+        say(f"{NAME}: error: openseespy does not run in a subprocess here (pip install "
+            "'upliftlab[opensees]'); nothing was run or written")
         return 2
-    out = output_folder(args, "opensees_bearing")
     if args.quick:
         args.levels, args.elements, args.nu, args.upliftlab = [8, 16], ["bbarQuad"], [NU], [4, 8]
         args.graded = [8]
-    rows = []
+    rows: list[tuple[str, str, dict]] = []
+    recorded = {(r["model"], r["level"]): number(r["runtime [s]"])
+                for table_rows in committed_tables("OPENSEES_BEARING.md").values()
+                for r in table_rows if "model" in r}
+
+    def section(label: str, size: str, compute) -> Section:
+        def one():
+            rows.append((label, size, compute()))
+            say(line(*rows[-1], None))
+            return rows[-1]
+        cost = recorded.get((label, size))
+        return Section(f"{label}, {size}", one, cost if cost == cost else None)
+
+    sections = []
     for label, grading, levels in ((UNIFORM, 1.0, args.upliftlab),
                                    (GRADED, GRADING, args.graded)):
-        for n in levels:
-            rows.append((label, f"{n} across (≈ {2 * n} bilinear)",
-                         upliftlab_prandtl(n, grading)))
-            print(line(*rows[-1], None), file=sys.stderr, flush=True)
+        sections += [section(label, f"{n} across (≈ {2 * n} bilinear)",
+                             lambda n=n, g=grading: upliftlab_prandtl(n, g)) for n in levels]
     for element in args.elements:
         for nu in args.nu if element == "bbarQuad" else args.nu[:1]:
             for level in args.levels:
-                label = f"OpenSees {element}, J2, ν = {nu:g}"
                 size = f"{level // 2} nine-node across" if element == "quad9n" else \
                     f"{level} across"
-                r = run_child(spec_of(element, level, nu, args.system), env, args.timeout)
-                rows.append((label, size, r))
-                print(line(*rows[-1], None), file=sys.stderr, flush=True)
+                sections.append(section(
+                    f"OpenSees {element}, J2, ν = {nu:g}", size,
+                    lambda e=element, lv=level, v=nu: run_child(spec_of(e, lv, v, args.system),
+                                                                env, args.timeout)))
+
+    def publish(folder: Path, done: dict, missing: dict) -> None:
+        write_text(folder / "OPENSEES_BEARING.md", document(args, rows, missing))
+
+    def commit(done: dict) -> None:
+        publish(HERE, done, {})
+        say(f"wrote {HERE / 'OPENSEES_BEARING.md'}")
+
+    status = run_sections(NAME, sections, publish, out, commit=commit if args.write else None,
+                          model="runtimes recorded in benchmarks/OPENSEES_BEARING.md")
+    if status == 0:
+        print(table(rows, _base(rows)))
+        say(f"{NAME}: wrote {out / 'OPENSEES_BEARING.md'}")
+    return status
+
+
+def _base(rows) -> float | None:
+    """The runtime of upliftlab's finest uniform row, the table's unit of time."""
     ours = [r for label, _, r in rows if label == UNIFORM and r.get("status") == "ok"]
-    base = ours[-1]["runtime"] if ours else None
-    text = table(rows, base)
-    print(text)
+    return ours[-1]["runtime"] if ours else None
+
+
+def document(args, rows, missing: dict) -> str:
+    """OPENSEES_BEARING.md of the rows so far."""
     header = (f"# Prandtl bearing capacity: OpenSees quads against upliftlab\n\n"
               f"`python benchmarks/opensees_bearing.py{' --quick' if args.quick else ''}`, "
               f"{datetime.date.today().isoformat()}, {platform.processor() or platform.machine()}"
@@ -353,11 +392,8 @@ def main(argv: list[str] | None = None) -> int:
               "footing reaction; reference (2 + π) c_u B = 514.16 kN/m. OpenSees runtime: the "
               "10 load steps in the child (model build apart); upliftlab's: the whole pushover "
               "including meshing. The machine is shared: compare the ratios.\n\n")
-    from upliftlab.results import write_text
-    path = write_text(out / "OPENSEES_BEARING.md",
-                      header + text + "\n\n" + summary(rows) + "\n\n" + NOTES + "\n")
-    print(f"opensees_bearing: wrote {path}", file=sys.stderr)
-    return 0
+    return (header + incomplete_note(missing) + table(rows, _base(rows)) + "\n\n"
+            + summary(rows) + "\n\n" + NOTES + "\n")
 
 
 if __name__ == "__main__":

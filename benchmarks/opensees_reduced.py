@@ -21,9 +21,17 @@ OpenSees Δt. Times: OpenSees' is the time-step loop in the child (model and gra
 upliftlab's the median of 3 ``run(..., histories=False)`` calls. ``--check`` adds Case A with
 those foundation damping ratios (0: no dashpot, the models are the same).
 
-Writes ``OPENSEES_REDUCED.md`` and the scripts of every run to ``--out`` (default
-``results/bench/opensees_reduced``); ``--write`` also replaces the OpenSees section of the
-committed ``benchmarks/REDUCED.md`` (between markers that ``reduced_speed.py`` keeps).
+Each scene is a section (``bench_output``): ``OPENSEES_REDUCED.md`` (and the scripts of every
+run) are written to ``--out`` (default ``results/bench/opensees_reduced``) as each ends;
+``--write`` also replaces the OpenSees section of the committed ``benchmarks/REDUCED.md``
+(between markers that ``reduced_speed.py`` keeps) once every scene has completed. ``--quick`` (a
+smoke check, never committed): Case A without foundation dashpots (ζ_f = 0, where the two models
+are the same), N = 12, Δt = 0.002 s, one OpenSees run.
+
+Cost model (the estimate printed before any work; about 20 min for the default run): each
+OpenSees run costs (record span / Δt) steps × the median time per step of the OpenSees rows of
+the committed ``benchmarks/REDUCED.md``, and each scene the median runtime of its upliftlab
+reference rows there.
 """
 
 from __future__ import annotations
@@ -40,8 +48,14 @@ import sys  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_output import (HERE, Section, add_output_arguments, committed_tables,  # noqa: E402
+                          incomplete_note, number, output_folder, run_sections, say, write_text)
+
+NAME = "opensees_reduced"
 SCENE = "short_period_elcentro"
-HERE = Path(__file__).resolve().parent
 MARK_BEGIN, MARK_END = "<!-- opensees_reduced: begin -->", "<!-- opensees_reduced: end -->"
 
 
@@ -151,8 +165,6 @@ in the parent, the same run. Command: `{command}`.
 
 def write_section(path: Path, text: str) -> None:
     """Put ``text`` between this script's markers in ``path`` (appended if absent)."""
-    from upliftlab.results import write_text
-
     old = path.read_text() if path.exists() else ""
     block = f"{MARK_BEGIN}\n{text}\n{MARK_END}"
     if MARK_BEGIN in old and MARK_END in old:
@@ -161,6 +173,20 @@ def write_section(path: Path, text: str) -> None:
     else:
         new = old.rstrip("\n") + ("\n\n" if old else "") + block + "\n"
     write_text(path, new)
+
+
+def scene_cost(dts: list[float], kinds: int, span: float) -> float | None:
+    """Estimated wall time (s) of one scene (module docstring); None without the committed
+    OpenSees rows."""
+    rows = [r for head, table in committed_tables("REDUCED.md").items()
+            if head.startswith("Case ") for r in table]
+    per_step = [number(r["runtime [ms]"]) / 1e3 / number(r["note"].split(" steps")[0])
+                for r in rows if r["model"].startswith("OpenSees") and " steps" in r["note"]]
+    reference = [number(r["runtime [ms]"]) / 1e3 for r in rows if "(reference)" in r["model"]]
+    if not per_step or not reference:
+        return None
+    return float(np.median(reference)) + kinds * sum(span / dt for dt in dts) \
+        * float(np.median(per_step))
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -174,44 +200,62 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--dashpots", nargs="+", default=["clipped", "detaching", "parallel"],
                         choices=["clipped", "detaching", "parallel"])
     parser.add_argument("--timeout", type=float, default=900.0, help="per OpenSees run (s)")
-    parser.add_argument("--quick", action="store_true", help="Case A, N = 12, Δt = 0.002 s")
+    parser.add_argument("--quick", action="store_true",
+                        help="Case A with ζ_f = 0, N = 12, Δt = 0.002 s (a smoke check)")
     parser.add_argument("--check", nargs="*", type=float, default=[0.0, 0.1],
                         help="also Case A with these foundation damping ratios ζ_f (default 0 "
                              "and 0.1): 0 checks the mapping of the model free of any dashpot "
                              "definition; the others show how the difference grows with ζ_f")
-    parser.add_argument("--out", default="results/bench/opensees_reduced",
-                        help="folder for OPENSEES_REDUCED.md and the scripts of every run")
-    parser.add_argument("--write", action="store_true",
-                        help="also replace the OpenSees section of benchmarks/REDUCED.md")
+    add_output_arguments(parser, NAME)
     args = parser.parse_args(argv)
+    out = output_folder(args, NAME)
     if args.quick:
-        args.case, args.springs, args.dt, args.check = ["A"], [12], [0.002], [0.0]
+        args.case, args.springs, args.dt, args.check = [], [12], [0.002], [0.0]
     available = opensees_available()
     if not available:
-        print("openseespy is not importable (pip install 'upliftlab[opensees]'): the OpenSees "
-              "runs are skipped", file=sys.stderr)
-    out = Path(args.out)
+        if args.write:
+            say(f"{NAME}: error: --write needs openseespy (pip install "
+                "'upliftlab[opensees]'); nothing was run or written")
+            return 2
+        say("openseespy is not importable (pip install 'upliftlab[opensees]'): the OpenSees "
+            "runs are skipped")
     runs = [("A", (f"foundation.damping_ratio={z:g}",)) for z in args.check]
     runs += [(case, ()) for case in args.case]
-    started = time.perf_counter()
-    parts = []
-    for k, (case, extra) in enumerate(runs):
+    span = _scene("A", args.springs[0]).build_motion().duration
+    parts: dict[str, str] = {}
+
+    def one(case, n, extra) -> str:
+        return compare(case, n, args.dt, args.dashpots, available, args.timeout, out, extra)
+
+    sections = []
+    for case, extra in runs:
         for n in args.springs:
-            parts.append(compare(case, n, args.dt, args.dashpots, available, args.timeout, out,
-                                 extra))
-        elapsed = time.perf_counter() - started
-        print(f"opensees_reduced: {k + 1}/{len(runs)} scenes, {elapsed:.0f} s elapsed, ETA "
-              f"{elapsed / (k + 1) * (len(runs) - k - 1):.0f} s", file=sys.stderr, flush=True)
+            kinds = 1 if extra == ("foundation.damping_ratio=0",) else len(args.dashpots)
+            sections.append(Section(f"Case {case}, N = {n}" + (f", {', '.join(extra)}"
+                                                                if extra else ""),
+                                    lambda c=case, k=n, e=extra: one(c, k, e),
+                                    scene_cost(args.dt, kinds if available else 0, span)))
     command = "python benchmarks/opensees_reduced.py " + " ".join(
         shlex.quote(a) for a in (argv if argv is not None else sys.argv[1:]))
-    text = SECTION_HEAD.format(command=command.strip()) + "\n\n".join(parts)
-    print(text)
-    from upliftlab.results import write_text
 
-    write_text(out / "OPENSEES_REDUCED.md", text + "\n")
-    if args.write:
-        write_section(HERE / "REDUCED.md", text)
-    return 0
+    def document(done: dict, missing: dict) -> str:
+        return (SECTION_HEAD.format(command=command.strip()) + incomplete_note(missing)
+                + "\n\n".join(done.values()))
+
+    def publish(folder: Path, done: dict, missing: dict) -> None:
+        parts.clear()
+        parts.update(done)
+        write_text(folder / "OPENSEES_REDUCED.md", document(done, missing) + "\n")
+
+    def commit(done: dict) -> None:
+        write_section(HERE / "REDUCED.md", document(done, {}))
+        say(f"wrote the OpenSees section of {HERE / 'REDUCED.md'}")
+
+    status = run_sections(NAME, sections, publish, out, commit=commit if args.write else None,
+                          model="per-step times of the OpenSees rows in benchmarks/REDUCED.md")
+    if status == 0:
+        print(document(parts, {}))
+    return status
 
 
 if __name__ == "__main__":

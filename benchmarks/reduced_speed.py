@@ -30,9 +30,24 @@ stability limit is refused up front by ``run`` (``InputError``); the table says 
 limit. Then the batch API: ``run_batch`` on S scenes (default 10,000) of N = 20 springs with
 varied yield multiple, foundation damping and structure period, at the event stepper's default
 step and at Δt = 0.01 s (the stepper locates every switch inside its steps), against a loop of
-single ``run`` calls on a subset, measured in the same process. Writes ``REDUCED.md`` and
-``reduced_speed.png`` to ``--out`` (default ``results/bench/reduced_speed``), or over the
-committed ones in ``benchmarks/`` with ``--write``. The machine is shared: compare ratios.
+single ``run`` calls on a subset, measured in the same process. The machine is shared: compare
+ratios.
+
+Sections (``bench_output``): the N = 640 reference, the runs of each N, the same with the
+tributary impact mass, the bed's convergence and the batch; ``REDUCED.md`` and
+``reduced_speed.png`` are rewritten in ``--out`` (default ``results/bench/reduced_speed``) as
+each ends, and ``--write`` also rewrites the committed ones in ``benchmarks/`` (keeping the
+OpenSees section that ``opensees_reduced.py`` writes there) once every section has completed.
+``--quick`` (a smoke check, never committed): N = 2 and 40, a few steps, the reference on 160
+springs, one timed repeat, 100 batch scenes.
+
+Cost model (the estimate printed before any work; about 11 min for the default run from the
+table committed on 2026-11-24): a point costs (1 + repeats) × the runtime the committed
+``benchmarks/REDUCED.md`` records for the same N, integrator and step; a point it does not
+record costs (record span / Δt) steps × the CPU time per step of that integrator, a + b·N fitted
+by least squares to the table's measured rows (a reference or a bed run likewise, at its step);
+the batch costs the recorded wall time per scene × scenes plus the recorded loop time per scene
+× the loop's scenes.
 """
 
 from __future__ import annotations
@@ -53,12 +68,14 @@ from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from bench_output import add_output_arguments, output_folder  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_output import (HERE, Section, add_output_arguments, committed_tables,  # noqa: E402
+                          incomplete_note, missing_section, number, output_folder, run_sections,
+                          save_figure, say, write_text)
 from upliftlab.checks import InputError  # noqa: E402
 from upliftlab.reduced.batch import run_batch  # noqa: E402
 from upliftlab.reduced.integrators import METHODS  # noqa: E402
 from upliftlab.reduced.run import IntegrationError, ModelWarning, run  # noqa: E402
-from upliftlab.results import atomic_path, write_text  # noqa: E402
 from upliftlab.scenes import load_scene  # noqa: E402
 
 SCENE, CASE = "short_period_elcentro", "C"
@@ -73,7 +90,8 @@ FULL = {"springs": (2, 10, 40, 160), "reference_n": 640, "reference_k": 9,
 QUICK = {"springs": (2, 40), "reference_n": 160, "reference_k": 8,
          "k": {"events": range(0, 6, 2), "rk4": range(7, 10), "abm4": range(8, 10),
                "newmark": range(5, 8, 2), "hht": range(5, 8, 2)},
-         "batch_scenes": 400, "loop_scenes": 40, "bed": (10, 40, 160)}
+         "batch_scenes": 100, "loop_scenes": 20, "bed": (10, 40, 160)}
+NAME = "reduced_speed"
 TARGET_N, TARGET_ERROR, TARGET_TIME = 40, 0.005, 0.020
 BATCH_N, BATCH_TARGET = 20, 60.0
 
@@ -177,27 +195,27 @@ def add_errors(row: dict, own: dict, big: dict) -> dict:
     return row
 
 
-def sweep(config: dict, repeats: int, big: dict, integrators=INTEGRATORS,
-          extra: tuple[str, ...] = ()) -> tuple[list[dict], dict]:
-    """Every integrator at fixed steps 0.02/2^k, then the event stepper at its default
-    settings under each tolerance of :data:`RTOLS` (no step given: the error control's)."""
-    rows, refs = [], {}
-    for n in config["springs"]:
-        refs[n] = reference(n, config["reference_k"], extra)
-        sc = scene(n, *extra)
-        for integrator in integrators:
-            for k in config["k"][integrator]:
-                row = measure(sc, integrator, RECORD_DT / 2 ** k, repeats)
-                row["n"] = n
-                rows.append(add_errors(row, refs[n], big))
-                print(_line(row), file=sys.stderr, flush=True)
-        for rtol in RTOLS:
-            default = scene(n, *extra, f"analysis.rtol={rtol}", fixed=False)
-            row = measure(default, "events", None, repeats)
+def sweep(n: int, config: dict, repeats: int, big: dict, integrators=INTEGRATORS,
+          extra: tuple[str, ...] = ()) -> tuple[dict, list[dict]]:
+    """On n springs: the reference, every integrator at fixed steps 0.02/2^k, then the event
+    stepper at its default settings under each tolerance of :data:`RTOLS` (no step given: the
+    error control's)."""
+    rows = []
+    ref = reference(n, config["reference_k"], extra)
+    sc = scene(n, *extra)
+    for integrator in integrators:
+        for k in config["k"][integrator]:
+            row = measure(sc, integrator, RECORD_DT / 2 ** k, repeats)
             row["n"] = n
-            rows.append(add_errors(row, refs[n], big))
+            rows.append(add_errors(row, ref, big))
             print(_line(row), file=sys.stderr, flush=True)
-    return rows, refs
+    for rtol in RTOLS:
+        default = scene(n, *extra, f"analysis.rtol={rtol}", fixed=False)
+        row = measure(default, "events", None, repeats)
+        row["n"] = n
+        rows.append(add_errors(row, ref, big))
+        print(_line(row), file=sys.stderr, flush=True)
+    return ref, rows
 
 
 def _step(r: dict) -> str:
@@ -340,7 +358,8 @@ def batch_text(items: list[dict]) -> str:
     for b in items:
         per = b["wall"] / b["scenes"]
         full = per * 10_000
-        lines.append(f"| error control, rtol {b['rtol']:g}{' (default)' if b['rtol'] == 1e-5 else ''} | "
+        default = " (default)" if b["rtol"] == 1e-5 else ""
+        lines.append(f"| error control, rtol {b['rtol']:g}{default} | "
                      f"{b['scenes']} | {b['workers']} | {b['wall']:.1f} | {1e3 * per:.2f} | "
                      f"{1e3 * b['loop']:.2f} | {per / b['loop']:.2f} | {b['failed']} | "
                      f"{full:.0f} | {'met' if full < BATCH_TARGET else 'not met'} | "
@@ -385,10 +404,7 @@ def figure(rows: list[dict], rows_t: list[dict], path: Path) -> Path:
     fig.suptitle("upliftlab reduced model, short-period building, Case C (dashed: 0.5 %, 20 ms)",
                  fontsize=10)
     fig.tight_layout()
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=120)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
 
 
 def kept_section(path: Path) -> str:
@@ -418,55 +434,190 @@ def header(args, repeats: int, config: dict) -> str:
             f"within this file.\n\n")
 
 
+def document(args, config: dict, done: dict, missing: dict) -> str:
+    """REDUCED.md of the sections done so far (each missing one says so)."""
+    def part(key: str, title: str, render) -> str:
+        return render() if key in done else missing_section(title, key, missing)
+
+    springs = config["springs"]
+    big, big_t = done.get("reference"), done.get("tributary reference")
+    refs = {n: done[f"runs N = {n}"][0] for n in springs if f"runs N = {n}" in done}
+    rows = [r for n in springs if f"runs N = {n}" in done for r in done[f"runs N = {n}"][1]]
+    refs_t = {n: done[f"tributary N = {n}"][0] for n in springs
+              if f"tributary N = {n}" in done}
+    rows_t = [r for n in springs if f"tributary N = {n}" in done
+              for r in done[f"tributary N = {n}"][1]]
+    ref_n = config["reference_n"]
+    text = [header(args, args.repeats, config) + incomplete_note(missing),
+            "## References\n\n" + (references_text(refs, big) if big else missing_section(
+                "", "reference", missing).strip()),
+            "## Runs\n\n" + table(rows) + "".join(
+                f"\n\nN = {n}: not completed (section `runs N = {n}`: "
+                f"{missing[f'runs N = {n}']})." for n in springs if f"runs N = {n}" in missing),
+            "## Runs, tributary impact mass (event stepper; the bed converges in N)\n\n"
+            + (references_text(refs_t, big_t) if big_t else missing_section(
+                "", "tributary reference", missing).strip()) + "\n\n" + table(rows_t)
+            + "".join(f"\n\nN = {n}: not completed (section `tributary N = {n}`: "
+                      f"{missing[f'tributary N = {n}']})." for n in springs
+                      if f"tributary N = {n}" in missing),
+            "## Targets\n\n" + target_text(rows, "u_own", "N = 40 within 0.5 % of the same-N "
+                                             "reference in peak u, under 20 ms")
+            + "\n" + target_text(rows, "u_big", f"N = 40 within 0.5 % of the N = {ref_n} "
+                                 "reference in peak u, under 20 ms (the paper's point impact "
+                                 "mass)", _floor(refs, big) if big else None)
+            + "\n" + target_text(rows_t, "u_big", f"N = 40 within 0.5 % of the N = {ref_n} "
+                                 "reference in peak u, under 20 ms (tributary impact mass)",
+                                 _floor(refs_t, big_t) if big_t else None),
+            part("bed", "## Convergence of the bed in N (event stepper, Δt = 0.02/64 s)",
+                 lambda: "## Convergence of the bed in N (event stepper, Δt = 0.02/64 s)\n\n"
+                 + bed_text(done["bed"]) + "\n\nCase C with the paper's point impact mass "
+                 "need not converge: each landing spring's damper removes (1 − ε²) of the "
+                 "closing energy of the mass m_eff(x_i) behind it, so a landing of the whole "
+                 "base removes more as N grows (Ewing's damper is defined per spring, not per "
+                 "unit length). With the tributary mass (m_eff · k_i/K_v) the energy removed "
+                 "per landing does not grow with N."),
+            part("batch", "## Batch (`run_batch`, N = 20, Case C, varied yield multiple, ζ_f, "
+                 "period)", lambda: "## Batch (`run_batch`, N = 20, Case C, varied yield "
+                 "multiple, ζ_f, period)\n\n" + batch_text(done["batch"]))]
+    return "\n\n".join(t.strip() for t in text) + "\n"
+
+
+# ---------------------------------------------------------------------------------------------
+# Cost model (module docstring)
+# ---------------------------------------------------------------------------------------------
+
+
+def step_rates(rows: list[dict]) -> dict[str, tuple[float, float]]:
+    """Per integrator, (a, b) of CPU seconds per step = a + b·N, least squares over the
+    measured rows of the committed Runs table."""
+    points: dict[str, list[tuple[int, float]]] = {}
+    for r in rows:
+        steps = number(r.get("steps", ""))
+        if np.isfinite(steps) and steps > 0:
+            points.setdefault(r["integrator"], []).append(
+                (int(r["N"]), number(r["runtime [ms]"]) / 1e3 / steps))
+    rates = {}
+    for name, pts in points.items():
+        n, y = np.array(pts, dtype=float).T
+        b, a = np.polyfit(n, y, 1) if len(set(n)) > 1 else (0.0, float(np.mean(y)))
+        rates[name] = (float(a), float(b))
+    return rates
+
+
+def plan_costs(config: dict, repeats: int, span: float) -> dict[str, float | None]:
+    """The estimated wall time (s) of each section (module docstring); None without the
+    committed table."""
+    tables = committed_tables("REDUCED.md")
+    runs = tables.get("Runs", [])
+    if not runs:
+        return {}
+    rates = step_rates(runs)
+    recorded = {(r["N"], r["integrator"], r["Δt [s] or tolerance"]): number(r["runtime [ms]"])
+                / 1e3 for r in runs if np.isfinite(number(r.get("steps", "")))}
+
+    def run_cost(n: int, integrator: str, dt: float) -> float:
+        a, b = rates.get(integrator, rates["events"])
+        return span / dt * (a + b * n)
+
+    def reference_cost(n: int) -> float:
+        dt = RECORD_DT / 2 ** config["reference_k"]
+        return run_cost(n, "events", dt) + run_cost(n, "events", dt / 2)
+
+    def sweep_cost(n: int, integrators) -> float | None:
+        total = reference_cost(n)
+        for integrator in integrators:
+            for k in config["k"][integrator]:
+                step = _step({"dt": RECORD_DT / 2 ** k, "rtol": 0.0})
+                seconds = recorded.get((str(n), integrator, step))
+                total += (1 + repeats) * (seconds if seconds is not None
+                                          else run_cost(n, integrator, RECORD_DT / 2 ** k))
+        default = recorded.get((str(n), "events", _step({"dt": None, "rtol": 1e-5})))
+        for rtol in RTOLS:  # a failed row records no time: the default's stands for it
+            seconds = recorded.get((str(n), "events", _step({"dt": None, "rtol": rtol})),
+                                   default)
+            if seconds is None:
+                return None
+            total += (1 + repeats) * seconds
+        return total
+
+    out: dict[str, float | None] = {"reference": reference_cost(config["reference_n"]),
+                                    "tributary reference": reference_cost(config["reference_n"])}
+    for n in config["springs"]:
+        out[f"runs N = {n}"] = sweep_cost(n, INTEGRATORS)
+        out[f"tributary N = {n}"] = sweep_cost(n, ("events",))
+    out["bed"] = 4 * sum(run_cost(n, "events", RECORD_DT / 64) for n in config["bed"])
+    batch_rows = tables.get("Batch (`run_batch`, N = 20, Case C, varied yield multiple, ζ_f, "
+                            "period)", [])
+    out["batch"] = sum(number(b["per scene [ms]"]) / 1e3 * config["batch_scenes"]
+                       + number(b["loop of run() per scene [ms]"]) / 1e3
+                       * (config["loop_scenes"] + 5) for b in batch_rows) or None
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     # Case C with the paper's damper on many springs warns that it does not converge in N:
     # this benchmark measures exactly that (its bed-convergence table)
     warnings.simplefilter("ignore", ModelWarning)
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--quick", action="store_true",
-                        help="N = 2 and 40, a few steps, reference on 160 springs, 400 scenes")
-    add_output_arguments(parser, "reduced_speed")
-    parser.add_argument("--repeats", type=int, default=5, help="timed runs per point (5)")
+                        help="N = 2 and 40, a few steps, reference on 160 springs, one repeat, "
+                             "100 scenes")
+    add_output_arguments(parser, NAME)
+    parser.add_argument("--repeats", type=int, default=None,
+                        help="timed runs per point (5; 1 with --quick)")
     parser.add_argument("--workers", type=int, default=2, help="run_batch processes (2)")
     parser.add_argument("--batch-scenes", type=int, default=None,
-                        help="scenes in the batch (10,000; 400 with --quick)")
+                        help="scenes in the batch (10,000; 100 with --quick)")
     args = parser.parse_args(argv)
-    out = output_folder(args, "reduced_speed")
+    out = output_folder(args, NAME)
+    args.repeats = args.repeats or (1 if args.quick else 5)
     config = dict(QUICK if args.quick else FULL)
     if args.batch_scenes:
         config["batch_scenes"] = args.batch_scenes
-    big = reference(config["reference_n"], config["reference_k"])
-    print(f"reference N = {big['n']}: {big['peaks']}, halving {big['halving']}", file=sys.stderr)
-    rows, refs = sweep(config, args.repeats, big)
-    big_t = reference(config["reference_n"], config["reference_k"], TRIBUTARY)
-    rows_t, refs_t = sweep(config, args.repeats, big_t, ("events",), TRIBUTARY)
-    bed = bed_convergence(config["bed"], 6)
-    batches = batch(config, args.workers)
-    text = (header(args, args.repeats, config) + "## References\n\n" +
-            references_text(refs, big) + "\n\n## Runs\n\n" + table(rows) +
-            "\n\n## Runs, tributary impact mass (event stepper; the bed converges in N)\n\n" +
-            references_text(refs_t, big_t) + "\n\n" + table(rows_t) +
-            "\n\n## Targets\n\n" + target_text(rows, "u_own", "N = 40 within 0.5 % of the "
-                                               "same-N reference in peak u, under 20 ms") +
-            "\n" + target_text(rows, "u_big", f"N = 40 within 0.5 % of the "
-                               f"N = {config['reference_n']} reference in peak u, under 20 ms "
-                               "(the paper's point impact mass)", _floor(refs, big)) +
-            "\n" + target_text(rows_t, "u_big", f"N = 40 within 0.5 % of the "
-                               f"N = {config['reference_n']} reference in peak u, under 20 ms "
-                               "(tributary impact mass)", _floor(refs_t, big_t)) +
-            "\n\n## Convergence of the bed in N (event stepper, Δt = 0.02/64 s)\n\n" +
-            bed_text(bed) + "\n\nCase C with the paper's point impact mass need not converge: "
-            "each landing spring's damper removes (1 − ε²) of the closing energy of the mass "
-            "m_eff(x_i) behind it, so a landing of the whole base removes more as N grows "
-            "(Ewing's damper is defined per spring, not per unit length). With the tributary "
-            "mass (m_eff · k_i/K_v) the energy removed per landing does not grow with N." +
-            "\n\n## Batch (`run_batch`, N = 20, Case C, varied yield multiple, ζ_f, period)\n\n"
-            + batch_text(batches) + "\n")
-    print(text)
-    write_text(out / "REDUCED.md", text + kept_section(out / "REDUCED.md"))
-    figure(rows, rows_t, out / "reduced_speed.png")
-    print(f"wrote {out / 'REDUCED.md'} and {out / 'reduced_speed.png'}", file=sys.stderr)
-    return 0
+    done: dict = {}  # the finished sections' results, which publish() keeps (the sweeps read
+    # their reference from it)
+
+    def big_reference(extra=()):
+        ref = reference(config["reference_n"], config["reference_k"], extra)
+        say(f"reference N = {ref['n']}{' (tributary)' if extra else ''}: {ref['peaks']}, "
+            f"halving {ref['halving']}")
+        return ref
+
+    sections = [Section("reference", big_reference)]
+    sections += [Section(f"runs N = {n}", lambda n=n: sweep(n, config, args.repeats,
+                                                              done["reference"]))
+                 for n in config["springs"]]
+    sections.append(Section("tributary reference", lambda: big_reference(TRIBUTARY)))
+    sections += [Section(f"tributary N = {n}", lambda n=n: sweep(
+        n, config, args.repeats, done["tributary reference"], ("events",), TRIBUTARY))
+        for n in config["springs"]]
+    sections += [Section("bed", lambda: bed_convergence(config["bed"], 6)),
+                 Section("batch", lambda: batch(config, args.workers))]
+    span = scene(2).build_motion().duration
+    cost = plan_costs(config, args.repeats, span)
+    sections = [Section(s.key, s.compute, cost.get(s.key)) for s in sections]
+
+    def publish(folder: Path, results: dict, missing: dict) -> None:
+        done.clear()
+        done.update(results)
+        text = document(args, config, results, missing)
+        write_text(folder / "REDUCED.md", text + kept_section(folder / "REDUCED.md"))
+        rows = [r for n in config["springs"] if f"runs N = {n}" in results
+                for r in results[f"runs N = {n}"][1]]
+        rows_t = [r for n in config["springs"] if f"tributary N = {n}" in results
+                  for r in results[f"tributary N = {n}"][1]]
+        if rows:
+            figure(rows, rows_t, folder / "reduced_speed.png")
+
+    def commit(results: dict) -> None:
+        publish(HERE, results, {})
+        say(f"wrote {HERE / 'REDUCED.md'} and {HERE / 'reduced_speed.png'}")
+
+    status = run_sections(NAME, sections, publish, out, commit=commit if args.write else None,
+                          model="runtimes and per-step rates of benchmarks/REDUCED.md")
+    if status == 0:
+        say(f"wrote {out / 'REDUCED.md'} and {out / 'reduced_speed.png'}")
+    return status
 
 
 if __name__ == "__main__":

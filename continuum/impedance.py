@@ -265,6 +265,21 @@ def _fixed(model, options) -> np.ndarray:
     return np.union1d(basis.get_dofs("sides").all(), basis.get_dofs("bottom").all())
 
 
+def _partition(model, options) -> tuple[np.ndarray, np.ndarray]:
+    """(free, contact) degrees of freedom of the harmonic solve: the PML box's sides and base
+    are fixed behind its layers (none with Lysmer dashpots); the footing's are condensed."""
+    contact = model.footing.contact_dofs
+    fixed = np.setdiff1d(_fixed(model, options), contact)
+    return np.setdiff1d(np.arange(model.disc.ndofs), np.union1d(fixed, contact)), contact
+
+
+def harmonic_unknowns(model, options: ImpedanceOptions) -> int:
+    """How many unknowns each frequency's solve has (the ``dofs`` of :class:`Impedance`),
+    fewer than the static model's DOFs wherever the box's sides are held."""
+    free, contact = _partition(model, options)
+    return int(free.size + contact.size)
+
+
 def impedance(model, options: ImpedanceOptions = ImpedanceOptions(), *,
               progress=None) -> Impedance:
     """The :class:`Impedance` of the footing of ``model`` (elastic soil, frictionless or bonded
@@ -280,9 +295,7 @@ def impedance(model, options: ImpedanceOptions = ImpedanceOptions(), *,
     M0 = mass_data(model)
     C0 = dashpot_data(model, ["sides", "bottom"]) if options.boundary == "lysmer" \
         else np.zeros(pattern.nnz)
-    contact = model.footing.contact_dofs
-    fixed = np.setdiff1d(_fixed(model, options), contact)
-    free = np.setdiff1d(np.arange(model.disc.ndofs), np.union1d(fixed, contact))
+    free, contact = _partition(model, options)
     L = model.footing.kinematics
     vs = wave_speeds(model.soil)[1]
     a0 = np.asarray(options.a0, dtype=float)

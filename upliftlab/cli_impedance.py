@@ -40,7 +40,7 @@ def run_impedance(args, scene, overrides) -> int:
     (exit 3 beyond the stated tolerances, before any file is written)."""
     import json
 
-    from .continuum.impedance import impedance, impedance_model
+    from .continuum.impedance import harmonic_unknowns, impedance, impedance_model
 
     options = impedance_options(args)
     model = impedance_model(scene.soil, scene.foundation.width, scene.continuum, options,
@@ -51,9 +51,9 @@ def run_impedance(args, scene, overrides) -> int:
     default = default_out(f"{scene.name}-continuum-impedance",
                            {"overrides": overrides, "a0": args.a0, "boundary": args.boundary})
     say(f"{scene.name}: impedance, {model.disc.element}, {model.mesh.nelements} elements, "
-         f"{model.dofs} DOFs, {options.boundary} box {options.domain_width:g}B x "
-         f"{options.domain_depth:g}B, {scene.soil.interface} interface, "
-         f"{len(options.a0)} frequencies")
+        f"{harmonic_unknowns(model, options)} DOFs in the harmonic solve, {options.boundary} "
+        f"box {options.domain_width:g}B x {options.domain_depth:g}B, {scene.soil.interface} "
+        f"interface, {len(options.a0)} frequencies")
     with claim(args.out, default, settings=settings, force=args.force) as out:
         started = time.perf_counter()
 
