@@ -4,9 +4,12 @@
 stepper on the finest Winkler bed at the finest step, checked against the next-finer levels),
 then a ladder of candidates from cheap to expensive — two springs at ±b and ±b/√3, Winkler
 beds of growing N, each with the event stepper and fixed-step RK4 at the coarsest stable steps —
-and recommends the candidate of least measured runtime whose error, plus the reference's own
-uncertainty (its change from the next-finer level), is within the tolerance. Runtimes are
-measured fresh in this process (median of repeats after a warm-up); nothing is stored.
+and recommends, of the candidates whose error plus the reference's own uncertainty (its change
+from the next-finer level) is within the tolerance, the one of least modelled cost
+(:data:`PICK_RULE`): the work its run counted (evaluations of the equations of motion × springs,
+at a per-integrator rate measured once), not its measured runtime, so that the same scene gets
+the same recommendation on every run of a noisy shared machine. Runtimes are still measured
+fresh in this process (median of repeats after a warm-up) and reported; nothing is stored.
 
 For a scene with ``[soil]`` it also ladders the continuum (:mod:`.advise_continuum`): the
 Winkler map's calibrated beds certified against the continuum's own finest mesh, and the map's
@@ -27,10 +30,11 @@ from .. import checks
 from ..checks import InputError
 from ..scenes import Scene, load_scene
 from . import speed_vs_error as sve
-from .advise_continuum import ContinuumAdvice, format_continuum, plan_continuum, run_continuum
+from .advise_continuum import (COST_MODEL, NOT_TIMED, ContinuumAdvice, Work, format_continuum,
+                               plan_continuum, run_continuum, work_of)
 
 __all__ = ["QUANTITIES", "Candidate", "Measured", "ReferenceCheck", "Advice", "advise",
-           "parse_tolerance", "ladder", "format_advice"]
+           "parse_tolerance", "ladder", "format_advice", "select", "PICK_RULE", "Work"]
 
 QUANTITIES = {"peak_u": "u", "peak_theta": "theta", "peak_uplift": "uplift",
               "residual_settlement": "residual_settlement"}
@@ -39,6 +43,13 @@ FAST = {"reference_springs": 160, "ladder_springs": (10, 20, 40, 80)}
 LADDER_INTEGRATORS = ("events", "rk4")
 RANKS = (0, 1)
 RECHECK_FACTOR = 2.0  # after the first pass, also run candidates estimated this much costlier
+#: The ladder's models in their fixed order (the last tie-break of the pick).
+MODELS = ("edges", "equivalent", "winkler")
+#: How the reduced ladder picks (stated in the advice, text and JSON).
+PICK_RULE = ("of the candidates that meet the tolerance, the least modelled cost (" + COST_MODEL
+             + "); ties go to fewer springs, then the larger step, then the integrator order "
+             + ", ".join(LADDER_INTEGRATORS) + ", then the model order " + ", ".join(MODELS)
+             + "; " + NOT_TIMED)
 
 
 @dataclass(frozen=True)
@@ -67,7 +78,8 @@ class Candidate:
 class Measured:
     """A candidate as run: ``value`` (units of the scene), signed relative ``error``,
     ``dt`` (s), ``runtime`` (s, median of ``repeats``), whether it ``meets`` the tolerance
-    (|error| + reference uncertainty ≤ tol), or ``failure``."""
+    (|error| + reference uncertainty ≤ tol), or ``failure``; ``work`` the counted work and
+    modelled cost of a candidate that meets it (None otherwise), what the pick ranks by."""
 
     candidate: Candidate
     value: float
@@ -77,6 +89,7 @@ class Measured:
     repeats: int
     meets: bool
     failure: str | None = None
+    work: Work | None = None
 
 
 @dataclass(frozen=True)
@@ -103,7 +116,8 @@ class Advice:
     certified: ``reason`` says why). ``certified_against`` says what the errors are measured
     against: the reduced model's own finest bed; for a scene with ``[soil]``,
     ``continuum_advice`` holds the beds certified against the continuum itself. ``units``:
-    the quantity's unit (rad for peak θ, the scene's length otherwise)."""
+    the quantity's unit (rad for peak θ, the scene's length otherwise); ``rule`` how the
+    recommendation is picked (:data:`PICK_RULE`)."""
 
     scene: str
     quantity: str
@@ -118,6 +132,7 @@ class Advice:
     fast: bool
     certified_against: str = ""
     continuum_advice: ContinuumAdvice | None = None
+    rule: str = PICK_RULE
 
     def to_dict(self) -> dict:
         out = asdict(self)
@@ -171,8 +186,9 @@ def ladder(springs: Sequence[int]) -> list[Candidate]:
 
 
 def _estimate(c: Candidate) -> float:
-    """A priori cost for ordering only: (springs + 3) × relative steps (RK4's smaller stable
-    step on large beds is not known before running; the measured runtime decides)."""
+    """A priori cost for ordering the runs only: (springs + 3) × relative steps (RK4's smaller
+    stable step on large beds is not known before running; the pick ranks by the work each
+    run counted, :func:`select`)."""
     return (c.springs + 3) * 2.0 ** c.rank * (1.5 if c.integrator == "events" else 1.0)
 
 
@@ -195,18 +211,51 @@ def _reference(scene, data, q, springs, dt, floor, repeats) -> ReferenceCheck:
 
 
 def _measure(scene, data, c, q, ref: ReferenceCheck, tol, repeats) -> Measured:
+    """Run candidate ``c`` (timed); one that meets the tolerance has its work counted too."""
     r = _run(scene, data, c, repeats)
     if "error" in r:
         return Measured(c, math.nan, math.nan, math.nan, math.nan, 0, False, r["error"])
     error = (r[q] - ref.value) / max(abs(ref.value), ref.floor)
     meets = abs(error) + ref.uncertainty <= tol
-    return Measured(c, r[q], error, r["dt"], r["runtime"], len(r["runtimes"]), meets)
+    work = _work(data, c, r["dt"]) if meets else None
+    return Measured(c, r[q], error, r["dt"], r["runtime"], len(r["runtimes"]), meets,
+                    work=work)
+
+
+def _work(data: Mapping, c: Candidate, dt: float) -> Work:
+    """Candidate ``c``'s work at step ``dt`` (s), counted on one more, untimed run: the timed
+    runs report their time, not the integrator's counters (the counts are the same on every
+    run of the same inputs)."""
+    from ..reduced import run as run_reduced
+
+    point = {"scene": data["scene"], **data["motion"], "model": c.model, "springs": c.springs}
+    response = run_reduced(sve.point_scene(point), integrator=c.integrator, dt=dt,
+                           histories=False)
+    return work_of(response)
+
+
+def _pick_key(m: Measured) -> tuple:
+    """The order of :data:`PICK_RULE`: modelled cost, springs, larger step, integrator,
+    model, ladder level."""
+    c = m.candidate
+    return (m.work.seconds, m.work.springs, -m.dt, LADDER_INTEGRATORS.index(c.integrator),
+            MODELS.index(c.model), c.rank if c.rank is not None else -1)
+
+
+def select(measured: Sequence[Measured]) -> Measured | None:
+    """The recommendation among ``measured`` (:data:`PICK_RULE`): of the candidates that meet
+    the tolerance, the least modelled cost, ties broken by the fixed order of
+    :func:`_pick_key`; None when none meets it. Measured runtimes do not enter, so the same
+    candidates give the same pick whatever their timings."""
+    passing = [m for m in measured if m.meets]
+    return min(passing, key=_pick_key) if passing else None
 
 
 def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str | None = None,
            overrides: Sequence[str] = (), fast: bool = False, repeats: int = 3,
            budget: float | None = None, map_path=None) -> Advice:
-    """Measure the ladder on ``scene`` and recommend the cheapest candidate within ``tol``.
+    """Measure the ladder on ``scene`` and recommend the candidate within ``tol`` of least
+    modelled cost (:func:`select`, :data:`PICK_RULE`).
 
     ``quantity``: one of :data:`QUANTITIES`; ``tol``: ``"5%"`` or a fraction in (0, 1).
     ``fast`` uses a reference bed of 160 springs and a ladder up to N = 80 (seconds) instead of
@@ -277,10 +326,9 @@ def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str 
         measured.append(m)
         if m.meets and cap == math.inf:
             cap = RECHECK_FACTOR * _estimate(c)
-    passing = [m for m in measured if m.meets]
-    best = min(passing, key=lambda m: m.runtime) if passing else None
-    reason = ("the candidate of least measured runtime whose |error| plus the reference's "
-              "uncertainty is within the tolerance" if best else
+    best = select(measured)
+    reason = ("of the candidates whose |error| plus the reference's uncertainty is within the "
+              "tolerance, the one of least modelled cost (the pick's rule, below)" if best else
               f"no candidate up to N = {sizes['ladder_springs'][-1]} is within the tolerance; "
               f"use the reference discretization (Winkler N = {ref.springs}, events, "
               f"Δt = {ref.dt:g} s)")
@@ -329,7 +377,8 @@ def format_advice(a: Advice) -> str:
         if m.failure:
             lines.append(f"  {c.name:34s} refused: {m.failure}")
             continue
-        lines.append(f"  {c.name:34s} dt = {m.dt:<9.4g} error {_pct(m.error):>10s}  "
+        model = f"modelled {m.work.seconds * 1e3:8.3f} ms" if m.work else " " * 20
+        lines.append(f"  {c.name:34s} dt = {m.dt:<9.4g} error {_pct(m.error):>10s}  {model}  "
                      f"runtime {m.runtime * 1e3:8.3f} ms  {'meets' if m.meets else 'fails'}")
     if a.skipped:
         lines.append(f"not run: {len(a.skipped)} candidates estimated more than "
@@ -341,8 +390,10 @@ def format_advice(a: Advice) -> str:
         m = a.recommendation
         lines.append(f"recommendation: {m.candidate.name}, dt = {m.dt:.4g} s: error "
                      f"{_pct(m.error)} (+ reference uncertainty {_pct(r.uncertainty)}) "
-                     f"≤ {_pct(a.tolerance)}, {m.runtime * 1e3:.3g} ms "
-                     f"({r.runtime / m.runtime:.3g}× faster than the reference)")
+                     f"≤ {_pct(a.tolerance)}, modelled {m.work.seconds * 1e3:.3g} ms (measured "
+                     f"{m.runtime * 1e3:.3g} ms, {r.runtime / m.runtime:.3g}× faster than the "
+                     "reference)")
+    lines.append(f"pick: {a.rule}")
     lines.append(f"continuum: {a.continuum}")
     if a.continuum_advice is not None:
         lines += format_continuum(a.continuum_advice)

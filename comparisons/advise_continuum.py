@@ -15,7 +15,9 @@ the bed whose capacity profile is fitted to them, :mod:`.winkler_map.fitted_bed`
 N, B, h and ``[structure]``, and run on the
 scene's own motion (the reduced model, the median of a few timed runs after an untimed one).
 A bed is certified when |error| + the reference's uncertainty ≤ tol; the advisor recommends the
-certified bed of least measured runtime, with its speed ratio against the reference run.
+certified bed of least modelled cost (:data:`PICK_RULE`: the work its run counted, not its
+measured runtime, so the pick is the same on every run), with its speed ratio against the
+reference run.
 Errors are (bed − continuum)/max(|continuum|, floor), the floor the map's: a tenth of the
 measure's value at a uniform bed's uplift threshold (:func:`.winkler_map.points.scales`).
 
@@ -58,11 +60,63 @@ from .winkler_map.workflow import KEPT_STORE
 __all__ = ["FULL_MESHES", "FAST_MESHES", "MeshRun", "ContinuumReference", "SoilNumbers",
            "BedCheck", "ContinuumPlan", "ContinuumAdvice", "plan_continuum", "run_continuum",
            "continuum_run", "bed_run", "soil_numbers", "scene_impedance", "scene_pushovers",
-           "bed_reference", "kept_timings", "format_continuum"]
+           "bed_reference", "kept_timings", "format_continuum", "Work", "work_of", "select_bed",
+           "COST_MODEL", "PICK_RULE"]
 
 FULL_MESHES = (4, 8, 16)
 FAST_MESHES = (2, 4, 8)
 BED_REPEATS = 3
+
+#: The modelled cost of a reduced run (s): RUN_SECONDS + SPRING_CALL_SECONDS[integrator] × rhs
+#: calls × (springs + SPRING_OFFSET). Fitted (least squares of the relative error) to 92 runs
+#: timed on the project's shared 2-core machine on 2026-11-28: short_period_elcentro Cases A
+#: and B under the advisor tests' one-cycle sine pulse (2.9 s), N = 2 to 320 springs, each
+#: integrator at the ladder's first two stable steps, the fastest of 7 runs after a warm-up.
+#: RMS relative error of the fit 24 % (events), 22 % (rk4), 23–24 % (newmark, hht), 50 % (abm4,
+#: whose fixed cost it lacks); the same runs' repeats spread by up to 40 % on the loaded machine.
+RUN_SECONDS = 8.3e-3
+#: Per rhs call and spring (s); an rhs call of the event stepper is cheaper than RK4's.
+SPRING_CALL_SECONDS = {"events": 6.6e-9, "rk4": 1.47e-8, "abm4": 4.9e-8, "newmark": 7.8e-8,
+                       "hht": 8.2e-8}
+#: The part of an rhs call that does not grow with N (the DOFs, the ground motion), in springs.
+SPRING_OFFSET = 25
+#: The cost model in words, as both ladders state it.
+COST_MODEL = (f"modelled cost = {RUN_SECONDS * 1e3:g} ms + s(integrator) × rhs calls × (springs "
+              f"+ {SPRING_OFFSET}), the rhs calls (evaluations of the equations of motion) and "
+              "the springs counted on the candidate's own run, the same on every run of the "
+              "scene; s(integrator) measured once on this machine (events "
+              f"{SPRING_CALL_SECONDS['events'] * 1e9:g} ns, rk4 "
+              f"{SPRING_CALL_SECONDS['rk4'] * 1e9:g} ns)")
+#: Why a measured runtime does not decide, as both ladders state it.
+NOT_TIMED = ("measured runtimes are reported beside it and do not decide: on this shared "
+             "machine a run's repeats spread by tens of percent, enough to swap candidates from "
+             "one run of the advisor to the next")
+#: How the continuum ladder picks a bed (stated in its advice).
+PICK_RULE = ("of the beds that meet the tolerance, the least modelled cost (" + COST_MODEL
+             + "); ties go to fewer springs, then the map's order of the beds; " + NOT_TIMED)
+
+
+@dataclass(frozen=True)
+class Work:
+    """What a reduced run computed, counted (the same on every run with the same inputs): its
+    ``integrator``, ``springs`` (every spring of the model, the stories' included), ``steps``
+    and ``rhs_calls`` (evaluations of the equations of motion, ``info["counters"][2]``);
+    ``seconds`` the modelled cost (s, :data:`RUN_SECONDS` and the rates beside it)."""
+
+    integrator: str
+    springs: int
+    steps: int
+    rhs_calls: int
+    seconds: float
+
+
+def work_of(response) -> Work:
+    """The counted work of a reduced run's ``response``, with its modelled cost (s)."""
+    info = response.info
+    springs, calls = int(response.model.spring_count), int(info["counters"][2])
+    rate = SPRING_CALL_SECONDS[info["integrator"]]
+    return Work(info["integrator"], springs, int(info["steps"]), calls,
+                RUN_SECONDS + rate * calls * (springs + SPRING_OFFSET))
 
 
 @dataclass(frozen=True)
@@ -122,7 +176,9 @@ class SoilNumbers:
 class BedCheck:
     """A bed against the continuum reference: ``value``, signed relative ``error``,
     ``wall_time_s`` (median of the timed runs, s), ``speed_ratio`` (reference run's wall time
-    over the bed's), ``meets`` (|error| + reference uncertainty ≤ tol), or ``failure``."""
+    over the bed's), ``meets`` (|error| + reference uncertainty ≤ tol), or ``failure``;
+    ``work`` its run's counted work and modelled cost (None when refused), what the pick
+    ranks by (:data:`PICK_RULE`)."""
 
     name: str
     label: str
@@ -132,6 +188,7 @@ class BedCheck:
     speed_ratio: float
     meets: bool
     failure: str | None = None
+    work: Work | None = None
 
 
 @dataclass(frozen=True)
@@ -153,7 +210,8 @@ class ContinuumPlan:
 class ContinuumAdvice:
     """The continuum ladder's outcome for ``quantity`` (the map's ``measure``) within
     ``tolerance``: the ``plan``, the ``reference`` and ``statics`` (None when not run), each
-    bed's check, the ``recommendation`` (None: ``reason`` says why) and the map's evidence."""
+    bed's check, the ``recommendation`` (None: ``reason`` says why) and the map's evidence;
+    ``rule`` how the recommendation is picked (:data:`PICK_RULE`)."""
 
     quantity: str
     measure: str
@@ -165,6 +223,7 @@ class ContinuumAdvice:
     recommendation: BedCheck | None
     reason: str
     map: MapEvidence | None
+    rule: str = PICK_RULE
 
     def to_dict(self) -> dict:
         out = asdict(self)
@@ -278,7 +337,8 @@ def bed_scene(scene: Scene, foundation: dict) -> Scene:
 def bed_run(scene: Scene, foundation: dict, repeats: int = BED_REPEATS) -> dict:
     """A bed's run of the scene's motion, measured as :func:`.winkler_map.bed_runs.run_bed`
     measures it: ``measures``, ``wall_time_s`` (median of ``repeats`` timed runs after an
-    untimed one, s), or ``refused`` with the integrator's reason."""
+    untimed one, s) and its counted ``work`` (:class:`Work`), or ``refused`` with the
+    integrator's reason."""
     from ..reduced import IntegrationError, run as run_reduced
 
     reduced_scene = bed_scene(scene, foundation)
@@ -291,7 +351,8 @@ def bed_run(scene: Scene, foundation: dict, repeats: int = BED_REPEATS) -> dict:
                 walls.append(time.perf_counter() - started)
     except IntegrationError as exc:
         return {"refused": str(exc)}
-    return {"measures": reduced_measures(response), "wall_time_s": statistics.median(walls)}
+    return {"measures": reduced_measures(response), "wall_time_s": statistics.median(walls),
+            "work": work_of(response)}
 
 
 def soil_numbers(scene: Scene, elements_across: int, fast: bool) -> SoilNumbers:
@@ -426,16 +487,15 @@ def run_continuum(scene: Scene, quantity: str, measure: str, tol: float, plan: C
         error = relative_error(value, ref.value, floor)
         beds.append(BedCheck(name, entry.label, value, error, r["wall_time_s"],
                              ref.finest.wall_time_s / r["wall_time_s"],
-                             abs(error) + ref.uncertainty <= tol))
+                             abs(error) + ref.uncertainty <= tol, work=r["work"]))
     evidence = plan.map
     if plan.map_path is not None and evidence is not None and evidence.soil and \
             not evidence.coordinates:  # no statics.nc beside the map: FS_v on this capacity
         evidence = map_evidence(plan.map_path, scene, measure, tol, V_ult=statics.V_ult)
-    passing = [b for b in beds if b.meets]
-    best = min(passing, key=lambda b: b.wall_time_s) if passing else None
+    best = select_bed(beds)
     if best is not None:
-        reason = ("the certified bed of least measured runtime: |error| plus the continuum "
-                  "reference's uncertainty within the tolerance")
+        reason = ("the certified bed (|error| plus the continuum reference's uncertainty within "
+                  "the tolerance) of least modelled cost, by the rule below")
     elif ref.uncertainty >= tol:
         reason = (f"the continuum reference is not converged to what {100 * tol:g} % needs: "
                   f"it changes by {100 * ref.uncertainty:.3g} % from {runs[-2].elements_across}"
@@ -449,6 +509,20 @@ def run_continuum(scene: Scene, quantity: str, measure: str, tol: float, plan: C
                   + "; use the continuum")
     return ContinuumAdvice(quantity, measure, tol, plan, ref, statics, tuple(beds), best,
                            reason, evidence)
+
+
+def select_bed(beds) -> BedCheck | None:
+    """The pick among ``beds`` (:data:`PICK_RULE`): of those that meet the tolerance, the least
+    modelled cost, ties to fewer springs, then the order of :data:`.winkler_map.beds.BEDS`.
+    Runtimes do not enter, so the same checks give the same pick on every run."""
+    order = list(BEDS)
+
+    def key(b: BedCheck) -> tuple:
+        rank = order.index(b.name) if b.name in order else len(order)
+        return (b.work.seconds, b.work.springs, rank, b.name)
+
+    passing = [b for b in beds if b.meets]
+    return min(passing, key=key) if passing else None
 
 
 def certified_against_continuum(a: ContinuumAdvice) -> str:
@@ -484,9 +558,9 @@ def format_continuum(a: ContinuumAdvice) -> list[str]:
             if b.failure:
                 lines.append(f"  {b.name:26s} refused: {b.failure}")
                 continue
-            lines.append(f"  {b.name:26s} error {100 * b.error:8.3g} %  runtime "
-                         f"{b.wall_time_s * 1e3:8.3f} ms  {b.speed_ratio:8.4g}× faster  "
-                         f"{'meets' if b.meets else 'fails'}")
+            lines.append(f"  {b.name:26s} error {100 * b.error:8.3g} %  modelled "
+                         f"{b.work.seconds * 1e3:8.3f} ms  runtime {b.wall_time_s * 1e3:8.3f} ms"
+                         f"  {b.speed_ratio:8.4g}× faster  {'meets' if b.meets else 'fails'}")
         lines.append(f"certified against: {certified_against_continuum(a)}")
     if a.recommendation is None:
         lines.append(f"continuum recommendation: none — {a.reason}")
@@ -495,8 +569,11 @@ def format_continuum(a: ContinuumAdvice) -> list[str]:
         lines.append(f"continuum recommendation: {b.name} ({b.label}): error "
                      f"{100 * b.error:.3g} % (+ reference uncertainty "
                      f"{100 * a.reference.uncertainty:.3g} %) ≤ {100 * a.tolerance:g} %, "
+                     f"modelled {b.work.seconds * 1e3:.3g} ms (measured "
                      f"{b.wall_time_s * 1e3:.3g} ms, {b.speed_ratio:.4g}× faster than the "
-                     "continuum reference run")
+                     "continuum reference run)")
+    if a.reference is not None:
+        lines.append(f"continuum pick: {a.rule}")
     if a.map is not None:
         lines += format_evidence(a.map, a.tolerance)
     else:

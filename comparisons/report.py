@@ -31,7 +31,16 @@ calling the study; any edit to those sources makes a new key and the study runs 
 verification table is cached the same way by :mod:`.verification`. ``report.json`` says for
 each section whether it was ``computed`` or read from the ``store``.
 
-**Cost.** A study that estimates its runs before it starts them (the Winkler map) is refused
+**Cost.** Before any section runs the report says, in one line of its progress (stderr on the
+command line), what it expects the whole report to take and each section's share
+(:func:`estimate_report`): a section the report's store holds costs a read
+(:data:`STORE_SECONDS`); the Winkler map costs its own estimate of the continuum runs it still
+has to make (:func:`.winkler_map.estimate_map`, as it makes it before its first run) plus its
+measured beds and figures (:data:`MAP_REST_SECONDS`); every other section its measured wall
+time from empty stores (:data:`SECTION_SECONDS`, a documented rate per section run, fast and
+full). After each section a line gives its time against its estimate, the elapsed time and the
+time left by the estimates of the sections still to run. A study that estimates its runs
+before it starts them (the Winkler map) is refused
 above ``--budget`` (s of one worker, :data:`REPORT_BUDGET` by default): its section fails with
 the estimate and the rest of the report is built. In a full build from a checkout the map
 resumes the continuum runs kept with the repository (:attr:`.protocol.Study.kept_store`), so
@@ -82,7 +91,8 @@ from .uplift_zone import continuum_pushover
 from .verification import single_threaded
 
 __all__ = ["STUDIES", "Section", "Report", "build_report", "markdown_to_html", "study_digest",
-           "continuum_pushover", "EXIT_OK", "EXIT_FAILED", "EXIT_VERIFICATION", "EXIT_INPUT"]
+           "continuum_pushover", "EXIT_OK", "EXIT_FAILED", "EXIT_VERIFICATION", "EXIT_INPUT",
+           "SectionEstimate", "ReportEstimate", "estimate_report"]
 
 EXIT_VERIFICATION = EXIT_FAILED  # the earlier name of the same exit code
 REPORT = "report"
@@ -218,6 +228,23 @@ def _module_of(study: Study) -> str:
     return parts[2] if parts[:2] == ["upliftlab", "comparisons"] and len(parts) > 2 else study.name
 
 
+def _section_key(study: Study, module: str, fast: bool, record_sha: str | None) -> str:
+    """The report's content key of ``study``'s section (module docstring: Nothing is re-run)."""
+    return point_key(REPORT, f"{study.name}:run", {"fast": fast, "source": study_digest(module),
+                                                  "elcentro_sha256": record_sha})
+
+
+def _stored_section(study: Study, key: str, run: _Run) -> dict | None:
+    """The report's record of ``study`` under ``key`` while its files are still on disk, else
+    None (always None for a study that keys its whole result itself, ``own_store``)."""
+    if study.own_store:
+        return None
+    stored = run.store.get(key)
+    if stored is not None and all(Path(p).is_file() for p in stored["files"]):
+        return stored
+    return None
+
+
 def _run_section(item: str | Study, run: _Run, record_sha: str | None, say) -> Section:
     """One section: ``item`` is a study module's name (imported now) or a Study record."""
     start = time.perf_counter()
@@ -235,15 +262,12 @@ def _run_section(item: str | Study, run: _Run, record_sha: str | None, say) -> S
                              "study is not written yet, so this section has no results")
     except Exception as exc:  # an import error of a study under development
         return _failed(name, name, "", start, exc)
-    key = point_key(REPORT, f"{study.name}:run", {"fast": run.fast,
-                                                  "source": study_digest(module),
-                                                  "elcentro_sha256": record_sha})
-    if not study.own_store:
-        stored = run.store.get(key)
-        if stored is not None and all(Path(p).is_file() for p in stored["files"]):
-            say(f"{study.name}: read from the store")
-            return Section(study.name, study.title, study.intro, "ok", "store",
-                           time.perf_counter() - start, _study_from(stored))
+    key = _section_key(study, module, run.fast, record_sha)
+    stored = _stored_section(study, key, run)
+    if stored is not None:
+        say(f"{study.name}: read from the store")
+        return Section(study.name, study.title, study.intro, "ok", "store",
+                       time.perf_counter() - start, _study_from(stored))
     say(f"{study.name}: running")
     context = Context(fast=run.fast, out=run.study_dir(study.name),
                       store=run.study_store(study, say),
@@ -306,7 +330,13 @@ def _build(fast, folder, scheduler, studies, progress, start, budget) -> Report:
     say = progress or (lambda message: None)
     run = _Run(fast, out, Store(out / "store"), scheduler, budget)
     record_sha = _record_sha()
-    sections = tuple(_run_section(item, run, record_sha, say) for item in studies)
+    estimate = estimate_report(run, studies, record_sha)
+    say(estimate.text())
+    sections = []
+    for item in studies:
+        sections.append(_run_section(item, run, record_sha, say))
+        say(estimate.progress(sections, time.perf_counter() - start))
+    sections = tuple(sections)
     verification = next((s for s in sections if s.name == "verification"), None)
     passed = bool(verification and verification.status == "ok"
                   and verification.study.numbers.get("passed"))
@@ -326,6 +356,149 @@ def _build(fast, folder, scheduler, studies, progress, start, budget) -> Report:
     if ok:
         folder.complete([path, summary])
     return Report(path, sections, passed, EXIT_OK if ok else EXIT_FAILED, elapsed)
+
+
+# ---------------------------------------------------------------------------------------------
+# The cost estimate, made before any section runs
+# ---------------------------------------------------------------------------------------------
+
+#: The documented rate of a section whose study estimates nothing itself: its wall time (s) when
+#: computed from empty stores, (fast, full), on the project's shared 2-core machine on 2026-11-28
+#: with the numba kernels cached. Fast: ``upliftlab report --fast`` into an empty folder (140.7 s
+#: in all); full: :func:`build_report` of two or three sections at a time into empty folders,
+#: at the lowest priority (nice 19) beside other jobs, so rather long than short (the
+#: verification and the uplift zone; then fixed base, two-spring and paper; then Winkler against
+#: the continuum and speed against error).
+SECTION_SECONDS = {"verification": (11.9, 49.2), "two_spring_equivalence": (34.7, 425.2),
+                   "winkler_vs_continuum": (25.9, 420.8), "speed_vs_error": (27.5, 1830.0),
+                   "fixed_vs_uplift": (5.5, 11.2), "paper": (0.3, 0.2),
+                   "uplift_zone": (13.5, 134.6)}
+#: The Winkler map beyond the continuum runs its own estimate counts (s; fast, full): the beds'
+#: runs, the analysis, the figures and the explicit loop's compilation. Fast: the fast map again
+#: with every continuum run stored (18.5 s); full: the kept build, 18 minutes (README).
+MAP_REST_SECONDS = (18.5, 1080.0)
+#: A section read back from the report's store (s): 0.004–0.19 s measured per section.
+STORE_SECONDS = 0.2
+
+
+@dataclass(frozen=True)
+class SectionEstimate:
+    """One section's estimated wall time ``seconds`` (s), made before the report starts, and
+    its ``source``: where the number comes from."""
+
+    name: str
+    seconds: float
+    source: str
+
+
+@dataclass(frozen=True)
+class ReportEstimate:
+    """The report's estimate, one :class:`SectionEstimate` per section in the report's order."""
+
+    sections: tuple[SectionEstimate, ...]
+
+    @property
+    def seconds(self) -> float:
+        """The whole report (s): the sum of the sections'."""
+        return sum(s.seconds for s in self.sections)
+
+    def text(self) -> str:
+        """The estimate in one line: the total, then each section with its source."""
+        parts = "; ".join(f"{s.name} {s.seconds:.0f} s ({s.source})" for s in self.sections)
+        return (f"estimated {self.seconds:.0f} s{_longer(self.seconds)} of wall time before any "
+                f"section runs: {parts}")
+
+    def progress(self, done: Sequence[Section], elapsed: float) -> str:
+        """One line once ``done`` (the sections so far, in order) has grown by one: the last
+        section's time against its estimate, the ``elapsed`` wall time (s) and the estimates of
+        the sections still to run as the time left, with the clock time it points to."""
+        last, planned = done[-1], self.sections[len(done) - 1]
+        left = sum(s.seconds for s in self.sections[len(done):])
+        eta = time.strftime("%H:%M:%S", time.localtime(time.time() + left))
+        return (f"{len(done)}/{len(self.sections)} sections done ({last.name}: "
+                f"{last.seconds:.1f} s, estimated {planned.seconds:.0f} s); {elapsed:.0f} s "
+                f"elapsed, about {left:.0f} s left by the estimates (ETA {eta})")
+
+
+def _longer(seconds: float) -> str:
+    """`` (x min)`` or `` (x h)`` beside a number of seconds from two minutes on, else ``""``."""
+    minutes = seconds / 60
+    if minutes < 2:
+        return ""
+    if minutes < 120:
+        return f" ({minutes:.{1 if minutes < 10 else 0}f} min)"
+    return f" ({minutes / 60:.1f} h)"
+
+
+def estimate_report(run: _Run, studies: Sequence[str | Study],
+                    record_sha: str | None) -> ReportEstimate:
+    """Every section's estimate, before any of them runs (nothing is run or written)."""
+    return ReportEstimate(tuple(_estimate_section(item, run, record_sha) for item in studies))
+
+
+def _estimate_section(item: str | Study, run: _Run, record_sha: str | None) -> SectionEstimate:
+    """A section's estimate: a read when the report's store holds it, else the study's own
+    estimate (the Winkler map's), else its documented rate (:data:`SECTION_SECONDS`)."""
+    name = item if isinstance(item, str) else item.name
+    try:
+        study = definition(item) if isinstance(item, str) else item
+    except Exception as exc:  # missing or failing: its section says so, and costs nothing
+        return SectionEstimate(name, 0.0, f"not run: {type(exc).__name__}")
+    module = item if isinstance(item, str) else _module_of(item)
+    key = _section_key(study, module, run.fast, record_sha)
+    if _stored_section(study, key, run) is not None or _verification_stored(study, run,
+                                                                            record_sha):
+        return SectionEstimate(study.name, STORE_SECONDS, "read from the report's store")
+    if study.name == "winkler_map":
+        return _map_estimate(study, run)
+    rate = SECTION_SECONDS.get(study.name, (None, None))[0 if run.fast else 1]
+    if rate is None:
+        return SectionEstimate(study.name, 0.0, f"no estimate: never timed in "
+                                                f"{'fast' if run.fast else 'full'} mode")
+    return SectionEstimate(study.name, rate, "its measured rate")
+
+
+def _verification_stored(study: Study, run: _Run, record_sha: str | None) -> bool:
+    """Whether the report's store holds the verification's own record, under the key its
+    :func:`.verification.workflow.compute_or_read` makes (it keys its whole result itself)."""
+    if study.name != "verification" or not study.own_store:
+        return False
+    from .verification import source_digest
+    from .verification.records import STUDY as VERIFICATION
+
+    params = {"fast": bool(run.fast), "elcentro_sha256": record_sha, "source": source_digest()}
+    return run.store.has(point_key(VERIFICATION, "upliftlab.comparisons.verification:compute",
+                                   params))
+
+
+def _map_estimate(study: Study, run: _Run) -> SectionEstimate:
+    """The Winkler map: its own estimate of the continuum runs not yet in the store the report
+    will give it (:func:`.winkler_map.estimate_map`), plus :data:`MAP_REST_SECONDS`; nothing
+    when it will refuse them (over the report's ``--budget``, or its motions missing)."""
+    import tempfile
+
+    from .winkler_map import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS, bed_names,
+                              estimate_map)
+    from .winkler_map.motions import study_motions
+
+    grid, options = (FAST_GRID, FAST_OPTIONS) if run.fast else (FULL_GRID, FULL_OPTIONS)
+    store = (run.study_store(study, lambda message: None)
+             or Store(run.study_dir(study.name) / "store"))
+    try:
+        with tempfile.TemporaryDirectory() as folder:  # the records it would export
+            motions = study_motions(grid, options, Path(folder))
+            estimate = estimate_map(grid, options, bed_names(options), motions, store)
+    except InputError as exc:
+        return SectionEstimate(study.name, 0.0, f"refused before any run: {exc}")
+    if run.budget is not None and estimate.seconds > run.budget:
+        return SectionEstimate(study.name, 0.0, f"refused before any run: its continuum runs "
+                                                f"are estimated at {estimate.seconds:.0f} s, "
+                                                f"over --budget = {run.budget:g} s")
+    rest = MAP_REST_SECONDS[0 if run.fast else 1]
+    return SectionEstimate(study.name, estimate.seconds + rest,
+                           f"its own estimate of {estimate.runs} continuum runs to make, "
+                           f"{estimate.seconds:.0f} s, and {rest:.0f} s measured for its beds "
+                           "and figures")
 
 
 # ---------------------------------------------------------------------------------------------

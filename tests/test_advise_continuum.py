@@ -79,8 +79,10 @@ def test_ladder_values_equal_the_maps_point_function(advice):
 def test_bed_errors_from_a_direct_reduced_run(advice):
     """Each bed's error equals (bed − continuum)/continuum with the bed run directly from its
     [foundation] table (built from the reported statics, scene N, B, h) and the continuum value
-    of the map's point function (1e-12); the certification rule holds on these numbers and the
-    recommendation is the certified bed of least runtime."""
+    of the map's point function (1e-12); the certification rule holds on these numbers, each
+    bed's counted work (rhs calls, springs) equals the direct run's, and the recommendation is
+    the certified bed of least modelled cost (advise_continuum.PICK_RULE; it was the least
+    measured runtime, which moved from run to run)."""
     c = advice.continuum_advice
     scene = load_scene(SCENE, overrides=ON_MAP)
     soil, s = scene.soil, c.statics
@@ -108,11 +110,38 @@ def test_bed_errors_from_a_direct_reduced_run(advice):
         assert bed.meets == (abs(bed.error) + uncertainty <= TOL)
         assert bed.speed_ratio == pytest.approx(c.reference.finest.wall_time_s
                                                 / bed.wall_time_s, rel=1e-12)
+        assert (bed.work.rhs_calls, bed.work.springs) == (response.info["counters"][2],
+                                                          response.model.spring_count)
     passing = [b for b in c.beds if b.meets]
     if passing:
-        assert c.recommendation == min(passing, key=lambda b: b.wall_time_s)
+        cheapest = min(b.work.seconds for b in passing)
+        assert c.recommendation.work.seconds == cheapest
+        assert c.recommendation.meets
     else:
         assert c.recommendation is None and "closest" in c.reason
+
+
+def test_the_bed_pick_does_not_move_with_timing_noise():
+    """Three certified beds and a failing one, their runtimes multiplied by seeded log-normal
+    noise (σ = 0.5) in 200 draws: the pick stays the bed of least modelled cost (reference:
+    advise_continuum.PICK_RULE by hand, the second bed's 0.010 s), never the failing bed, and a
+    tie in modelled cost goes to the bed with fewer springs."""
+    names = list(wm.BEDS)[:4]
+
+    def bed(name, seconds, springs, runtime, meets=True):
+        work = ac.Work("events", springs, 600, 5000, seconds)
+        return ac.BedCheck(name, name, 0.0, 0.0, runtime, 1.0, meets, work=work)
+
+    beds = [bed(names[0], 0.014, 41, 0.012), bed(names[1], 0.010, 81, 0.016),
+            bed(names[2], 0.013, 21, 0.011), bed(names[3], 0.005, 11, 0.004, meets=False)]
+    rng = np.random.default_rng(7)
+    for _ in range(200):
+        noisy = [replace(b, wall_time_s=b.wall_time_s * float(rng.lognormal(0.0, 0.5)))
+                 for b in beds]
+        assert ac.select_bed(noisy).name == names[1]
+    tied = [bed(names[0], 0.010, 41, 0.02), bed(names[1], 0.010, 81, 0.01)]
+    assert ac.select_bed(tied).name == names[0]
+    assert ac.select_bed([beds[3]]) is None
 
 
 def test_map_evidence_recomputed_from_the_map(advice, fast_map):

@@ -513,3 +513,51 @@ def test_the_readmes_full_build_builds_every_section(tmp_path, elcentro):
     assert {name: s["status"] for name, s in sections.items() if s["status"] != "ok"} == {}
     assert "winkler_map" in sections and (out / "report.html").is_file()
     assert sorted(p.name for p in kept.rglob("*.json")) == before
+
+
+def test_the_estimate_is_printed_before_the_first_section_starts(tmp_path, monkeypatch, capsys):
+    # `upliftlab report --fast` into an empty folder, each section's run replaced by a stub
+    # that only notes on stderr that it started: the estimate is one stderr line printed before
+    # the first section starts, and its total equals the sum of its per-section estimates
+    # within rounding (each printed to the second: 0.5 s per section, and 0.5 s for the
+    # total). References: the report's documented rates (rp.SECTION_SECONDS, fast column) for
+    # the sections without an estimate of their own, and for the Winkler map its own estimate
+    # (winkler_map.estimate_map on the map's empty store, as the map makes it before its first
+    # run) plus rp.MAP_REST_SECONDS. After each section a progress line gives the time left.
+    from upliftlab.comparisons.report_html import Section
+    from upliftlab.comparisons.store import Store
+    from upliftlab.comparisons.winkler_map import FAST_GRID, FAST_OPTIONS, bed_names, estimate_map
+    from upliftlab.comparisons.winkler_map.motions import study_motions
+
+    def stub(item, run, record_sha, say):
+        name = item if isinstance(item, str) else item.name
+        sys.stderr.write(f"<section {name} starts>\n")
+        return Section(name, name, "", "error", "", 0.0, error="not run in this test")
+
+    monkeypatch.setattr(rp, "_run_section", stub)
+    out = tmp_path / "fast"
+    code = cli_main(["report", "--fast", "--out", str(out)])
+    err = capsys.readouterr().err.splitlines()
+    assert code == rp.EXIT_FAILED  # every section stubbed as failed
+    first = next(i for i, line in enumerate(err) if line.startswith("<section "))
+    lines = [i for i, line in enumerate(err) if "before any section runs" in line]
+    assert len(lines) == 1 and lines[0] < first
+    line = err[lines[0]]
+    total = float(re.search(r"estimated (\d+) s \(", line).group(1))
+    parts = dict(re.match(r"(\w+) (\d+) s \(", part).groups()
+                 for part in line.split("before any section runs: ", 1)[1].split("; "))
+    printed = {name: float(value) for name, value in parts.items()}
+    assert list(printed) == list(rp.STUDIES)
+    assert abs(total - sum(printed.values())) <= 0.5 * (len(printed) + 1)
+    for name, (fast, _) in rp.SECTION_SECONDS.items():
+        assert printed[name] == pytest.approx(fast, abs=0.5)
+    motions = study_motions(FAST_GRID, FAST_OPTIONS, tmp_path / "motions")
+    own = estimate_map(FAST_GRID, FAST_OPTIONS, bed_names(FAST_OPTIONS), motions,
+                       Store(tmp_path / "empty"))
+    assert own.runs > 0 and own.stored == 0
+    assert printed["winkler_map"] == pytest.approx(own.seconds + rp.MAP_REST_SECONDS[0],
+                                                   abs=0.5)
+    progress = [line for line in err if "sections done" in line]
+    assert len(progress) == len(rp.STUDIES)
+    assert f"{len(progress)}/{len(progress)} sections done" in progress[-1]
+    assert "about 0 s left" in progress[-1]
