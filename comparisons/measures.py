@@ -22,8 +22,7 @@ settlement" differently, each way has its own function here, and its name says w
 
 Lengths in the scene's unit; rotations in rad. ``response`` is a reduced-model response
 (:func:`upliftlab.reduced.run`); continuum arguments are arrays of a continuum dynamic result.
-The module imports neither model (it reads what their results hold), so the stored continuum
-runs that use it do not depend on the reduced model's code (:mod:`.fingerprint`).
+The module imports neither model (it reads what their results hold).
 """
 
 from __future__ import annotations

@@ -80,8 +80,17 @@ from pathlib import Path
 from .. import __version__, checks
 from ..checks import InputError
 from ..log import logger
-from ..results import provenance, write_text
-from .protocol import CHECKOUT, Context, EXIT_FAILED, EXIT_INPUT, EXIT_OK, Study, run_study
+from ..provenance import provenance
+from ..results import write_text
+from .protocol import (
+    CHECKOUT,
+    EXIT_FAILED,
+    EXIT_INPUT,
+    EXIT_OK,
+    Context,
+    Study,
+    run_study,
+)
 from .registry import STUDIES, definition
 from .report_html import Section, render_html
 from .report_markdown import markdown_to_html
@@ -185,14 +194,16 @@ def _siblings(name: str, seen: set[str] | None = None) -> set[str]:
 
 
 def study_digest(name: str) -> str:
-    """SHA-256 of the sources study module ``name``'s numbers depend on: the library's (see
-    :func:`.verification.source_digest`), the study's module (or package) and the comparison
-    modules it imports. Other studies' modules stay out, so editing one study re-runs only
+    """The code digest of the sources study module ``name``'s numbers depend on: the models'
+    (:data:`upliftlab.provenance.MODEL_SOURCES`), the study's module (or package) and the
+    comparison modules it imports. Other studies' modules stay out, so editing one study re-runs only
     that one."""
-    from .verification import source_digest
+    from ..provenance import MODEL_SOURCES, code_digest
 
     names = (_siblings(name) - {"report", "registry", "verification"}) | set(_SHARED)
-    return source_digest([p for n in sorted(names) for p in _sources(n)])
+    own = tuple(f"upliftlab.comparisons/{p.relative_to(Path(__file__).parent).as_posix()}"
+                for n in sorted(names) for p in _sources(n))
+    return code_digest(MODEL_SOURCES + own)
 
 
 def _record_sha() -> str | None:
@@ -477,8 +488,14 @@ def _map_estimate(study: Study, run: _Run) -> SectionEstimate:
     when it will refuse them (over the report's ``--budget``, or its motions missing)."""
     import tempfile
 
-    from .winkler_map import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS, bed_names,
-                              estimate_map)
+    from .winkler_map import (
+        FAST_GRID,
+        FAST_OPTIONS,
+        FULL_GRID,
+        FULL_OPTIONS,
+        bed_names,
+        estimate_map,
+    )
     from .winkler_map.motions import study_motions
 
     grid, options = (FAST_GRID, FAST_OPTIONS) if run.fast else (FULL_GRID, FULL_OPTIONS)

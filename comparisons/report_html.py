@@ -9,7 +9,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from .. import __version__
-from ..results import provenance
+from ..provenance import provenance
 from .report_animation import SCRIPT
 from .report_figures import figures_html
 from .report_markdown import markdown_to_html

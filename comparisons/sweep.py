@@ -30,9 +30,9 @@ import time
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 
-from .. import __version__
 from ..checks import InputError, integer_at_least
-from .store import Store, function_code, function_name, point_key
+from .freshness import DEFAULT_SAMPLE, check_stale
+from .store import Store, function_name, plain_params, point_key, record_meta
 
 __all__ = ["run_sweep", "sweep_executor", "SweepProgress", "StderrProgress",
            "SINGLE_THREAD_ENVIRONMENT", "DASK_ENV"]
@@ -138,7 +138,7 @@ def _evaluate_chunk(function, items, store_root, meta, batched):
     for i, (key, point) in enumerate(items):
         record = records[i] if batched else function(point)
         if store is not None:
-            store.put(key, record, {**meta, "params": point})
+            store.put(key, record, {**meta, "params": plain_params(point)})
         out.append((key, record))
     return out
 
@@ -191,7 +191,7 @@ def run_sweep(function: Callable, points: Iterable[Mapping], store: Store | str 
               *, study: str | None = None, executor: cf.Executor | None = None,
               scheduler=None, chunk: int | None = None, progress=None,
               batched: bool = False, write_through: bool | None = None,
-              workers: int | None = None) -> list:
+              workers: int | None = None, verify: int = DEFAULT_SAMPLE) -> list:
     """Evaluate ``function`` at every point not yet in ``store``; return all records in order.
 
     ``function(point) -> record`` is a top-level (picklable) function of one point (a dict of
@@ -205,7 +205,10 @@ def run_sweep(function: Callable, points: Iterable[Mapping], store: Store | str 
     a :class:`SweepProgress` (called at the start and after every chunk; an exception it
     raises, such as KeyboardInterrupt, stops the sweep with every finished point stored).
     ``write_through`` (default: True except on Dask): workers store each point as soon as it is
-    done.
+    done. Stored records made by earlier code are checked before they are used: ``verify`` of
+    them (seeded) are made again and must reproduce their records within the function's
+    declared tolerance (:func:`.freshness.check_stale`; a
+    :class:`~.freshness.StaleStoreError` names the points that moved).
 
     Every point is checked (JSON, finite numbers) and keyed before anything runs. Local worker
     processes are spawned: a script that calls this needs the usual
@@ -223,23 +226,40 @@ def run_sweep(function: Callable, points: Iterable[Mapping], store: Store | str 
     address = scheduler if scheduler is not None else os.environ.get(DASK_ENV) or None
     kind = _kind(executor) if executor is not None else ("Dask" if address else "process")
     _check_function(function, kind)
-    todo = {k: p for k, p in zip(keys, points) if not store.has(k)}
+    entries = {k: store.entry(k) for k in dict.fromkeys(keys)}
+    todo = {k: p for k, p in zip(keys, points) if entries[k] is None}
+    stale = {k: p for k, p in zip(keys, points)
+             if entries[k] is not None and not store.is_fresh(entries[k])}
     report = StderrProgress() if progress is None else (progress or None)
-    meta = {"study": study, "function": name, "version": __version__}
-    if (code := function_code(function)) is not None:
-        meta["code"] = code
-    if todo:
+    meta = {k: v for k, v in record_meta(study, function, {}).items() if k != "params"}
+    if todo or stale:
         through = (kind != "Dask") if write_through is None else bool(write_through)
         with contextlib.ExitStack() as stack:
             if executor is None and kind == "process":  # no more processes than chunks
                 n = workers or os.cpu_count() or 1
-                chunk = chunk or _auto_chunk(len(todo), n)
-                workers = min(n, math.ceil(len(todo) / chunk))
+                chunk = chunk or _auto_chunk(max(len(todo), 1), n)
+                workers = min(n, max(math.ceil(len(todo) / chunk), min(verify, len(stale)), 1))
             if executor is None:
                 executor = stack.enter_context(sweep_executor(address, workers=workers))
-            _compute(function, todo, store, meta, report, executor, chunk, batched, through,
-                     total=len(set(keys)))
+            if stale:
+                check_stale(store, function, stale, sample=verify,
+                            evaluate=_on(executor, meta, batched))
+            if todo:
+                _compute(function, todo, store, meta, report, executor, chunk, batched,
+                         through, total=len(set(keys)))
     return [store.get(k) for k in keys]
+
+
+def _on(executor, meta, batched):
+    """An ``evaluate(function, items)`` for :func:`.freshness.check_stale` that makes the
+    items on ``executor``, one task each, storing nothing."""
+
+    def evaluate(function, items):
+        futures = [executor.submit(_evaluate_chunk, function, [item], None, meta, batched)
+                   for item in items]
+        return [pair for future in futures for pair in future.result()]
+
+    return evaluate
 
 
 def _kind(executor) -> str:
@@ -297,7 +317,7 @@ def _collect(futures, todo, store, meta, counts, tick) -> None:
             continue
         for key, record in results:
             if not store.has(key):
-                store.put(key, record, {**meta, "params": todo[key]})
+                store.put(key, record, {**meta, "params": plain_params(todo[key])})
         counts["computed"] += len(results)
         tick()
     if failure is not None:

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..anchors import half_plane_onset_rotation
-from ..results import provenance
+from ..provenance import provenance
 from .protocol import Context, Study, main_for, run_study
 from .study import StudyResult
 from .uplift_figures import write_figures

@@ -43,6 +43,13 @@ Pieces
     :class:`BearingFailure`: the soil cannot carry the footing through the motion).
 """
 
+#: The continuum model's revision: part of the key of every stored record made with it
+#: (:mod:`upliftlab.comparisons.store`). Raise it on purpose, in the commit that changes the
+#: model's numbers, so that stored records of the old numbers are no longer read; an edit that
+#: changes no number leaves it (stored records are then checked by a re-run sample instead).
+REVISION = 1
+
+
 from .dynamics import DynamicOptions, DynamicResult, run_dynamic
 from .footing import (OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK, ContactError, Footing,
                       Interface)
@@ -57,6 +64,7 @@ from .statics import (Envelope, FootingStiffness, StaticPath, UpliftOnset,
                       vm_envelope)
 
 __all__ = [
+    "REVISION",
     "ContinuumModel", "build_model", "make_model", "default_k0",
     "ContinuumState", "Control", "NewtonOptions", "ConvergenceError", "ContactError",
     "BearingFailure",

@@ -16,7 +16,7 @@ from dataclasses import asdict
 import numpy as np
 
 from ..checks import InputError
-from ..results import provenance
+from ..provenance import provenance
 
 __all__ = ["element_average", "max_shear_stress", "snapshot_steps", "field_snapshots",
            "result_metadata"]

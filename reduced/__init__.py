@@ -5,6 +5,13 @@ Build a model from a scene with :func:`build_model`, integrate it with :func:`ru
 the compiled integrators in :mod:`.kernels`.
 """
 
+#: The reduced model's revision: part of the key of every stored record made with it
+#: (:mod:`upliftlab.comparisons.store`). Raise it on purpose, in the commit that changes the
+#: model's numbers, so that stored records of the old numbers are no longer read; an edit that
+#: changes no number leaves it (stored records are then checked by a re-run sample instead).
+REVISION = 1
+
+
 from .compatibility import (SpringLayout, compatibility_matrix, custom_springs, edge_springs,
                             end_stiffened_bed, equivalent_springs, stiffness_matrix, winkler_bed)
 from .integrators import (METHODS, resolution_limit, stability_boundary, stability_limit,
@@ -15,6 +22,7 @@ from .run import EnergyBalanceError, IntegrationError, run, run_model
 from .static import rocking_pushover, uplift_onset_force
 
 __all__ = [
+    "REVISION",
     "SpringLayout", "compatibility_matrix", "custom_springs", "edge_springs",
     "end_stiffened_bed", "equivalent_springs", "stiffness_matrix", "winkler_bed",
     "METHODS", "stability_limit", "stability_boundary", "resolution_limit", "time_step",

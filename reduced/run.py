@@ -10,10 +10,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..checks import InputError
-from ..motions import Motion, motion_checksum
-from ..results import provenance
-from ..scenes import Scene
 from ..log import announce_compilation, logger
+from ..motions import Motion, motion_checksum
+from ..provenance import provenance
+from ..scenes import Scene
 from ..time_schemes import hht
 from . import kernels as kn
 from .cost import check_run_cost

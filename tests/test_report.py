@@ -475,14 +475,17 @@ def test_a_full_build_finds_every_map_run_in_the_kept_store(tmp_path):
         if os.environ.get("CI"):
             pytest.fail(f"no kept map runs at {kept}: CI runs from a checkout")
         pytest.skip("not a checkout: the kept map runs are not installed with the package")
-    before = sorted(p.name for p in kept.rglob("*.json"))
+    before = {p.name: p.read_bytes() for p in kept.rglob("*") if p.is_file()}
     motions = study_motions(FULL_GRID, FULL_OPTIONS, tmp_path)
     estimate = estimate_map(FULL_GRID, FULL_OPTIONS, bed_names(FULL_OPTIONS), motions,
                             Store(kept))
-    assert (estimate.runs, estimate.stored, estimate.seconds) == (0, 1268, 0.0)
+    assert (estimate.runs, estimate.stored) == (0, 1268)
+    # at most a sample of each point function's records made by earlier code is made again
+    # to check them (three of each of the five), at their own recorded wall times
+    assert estimate.checks <= 15 and estimate.seconds == estimate.check_seconds
     readme = " ".join((rp.CHECKOUT / "README.md").read_text().split())
     assert "every one of its 1,268 continuum runs is kept" in readme
-    assert sorted(p.name for p in kept.rglob("*.json")) == before
+    assert {p.name: p.read_bytes() for p in kept.rglob("*") if p.is_file()} == before
 
 
 def test_a_fast_build_keeps_to_its_own_stores():

@@ -45,7 +45,7 @@ def test_store_key_follows_the_sources(tmp_path, monkeypatch):
     # failing row with its message, so the study does not pass.
     calls = []
     monkeypatch.setattr(vf.workflow, "CHECKS", _counting_checks(calls))
-    monkeypatch.setattr(vf.workflow, "source_digest", lambda extra=(): "sources-v1")
+    monkeypatch.setattr(vf.workflow, "source_digest", lambda: "sources-v1")
     first = vf.run(True, out=tmp_path / "out", store=tmp_path / "store")
     again = vf.run(True, out=tmp_path / "out", store=tmp_path / "store")
     assert calls == ["good"]
@@ -54,21 +54,34 @@ def test_store_key_follows_the_sources(tmp_path, monkeypatch):
     assert [r.status for r in again.rows] == [vf.PASS, vf.FAIL]
     assert "ZeroDivisionError: a check that crashes" in again.rows[1].note
     assert not again.passed and "a check that crashes" in again.study.summary
-    monkeypatch.setattr(vf.workflow, "source_digest", lambda extra=(): "sources-v2")
+    monkeypatch.setattr(vf.workflow, "source_digest", lambda: "sources-v2")
     edited = vf.run(True, out=tmp_path / "out", store=tmp_path / "store")
     assert calls == ["good", "good"] and not edited.reused and edited.key != first.key
     full = vf.run(False, out=tmp_path / "out", store=tmp_path / "store")
     assert full.key != edited.key and calls == ["good"] * 3
 
 
-def test_source_digest_covers_the_library_and_not_the_command_line(tmp_path):
-    # The digest changes with any extra file's bytes, and is stable otherwise.
-    extra = tmp_path / "x.py"
-    extra.write_text("a = 1\n")
-    one = vf.source_digest([extra])
-    assert vf.source_digest([extra]) == one
-    extra.write_text("a = 2\n")
-    assert vf.source_digest([extra]) != one
+def test_the_code_digest_follows_the_bytes_of_the_sources_it_covers(tmp_path, monkeypatch):
+    # Reference: SHA-256 over (name, bytes) of the covered files, computed here by hashlib: a
+    # covered file's edit changes the digest, an uncovered one's does not.
+    import hashlib
+
+    from upliftlab import provenance as pv
+
+    a, b = tmp_path / "a.py", tmp_path / "b.py"
+    a.write_text("x = 1\n")
+    b.write_text("y = 1\n")
+    files = {"upliftlab.reduced/a.py": a, "upliftlab.comparisons/b.py": b}
+    monkeypatch.setattr(pv, "package_files", lambda: files)
+    pv._digest.cache_clear()
+    expected = hashlib.sha256(b"upliftlab.reduced/a.py\0x = 1\n\0").hexdigest()
+    assert pv.code_digest(["upliftlab.reduced/"]) == expected
+    b.write_text("y = 2\n")
+    pv._digest.cache_clear()
+    assert pv.code_digest(["upliftlab.reduced/"]) == expected
+    assert pv.code_digest() != expected
+    monkeypatch.undo()
+    pv._digest.cache_clear()  # the real sources again for the tests that follow
     assert len(vf.source_digest()) == 64
 
 

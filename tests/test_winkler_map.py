@@ -732,41 +732,42 @@ def test_the_summary_states_the_workers_the_map_ran_on(study):
     assert "on 2 workers" in _cost_text(replace(d, workers=2))
 
 
-def _copied_store(study, tmp_path, code=None):
-    """A copy of the fast study's store; ``code`` rewrites every dynamic run's code fingerprint
-    (runs stored by other code)."""
+def _copied_store(study, tmp_path, revision=None):
+    """A copy of the fast study's store; ``revision`` rewrites the continuum revision every
+    dynamic run records (runs stored by another revision of the model)."""
     import json
     import shutil
 
     root = tmp_path / "store"
     shutil.copytree(study.study.directory / "store", root)
-    if code is not None:
+    if revision is not None:
         for path in root.glob("??/*.json"):
             entry = json.loads(path.read_text())
             if entry["function"].endswith(":evaluate_dynamic"):
-                path.write_text(json.dumps({**entry, "code": code}))
+                path.write_text(json.dumps({**entry, "models": {"continuum": revision}}))
     return root
 
 
-def test_the_stores_timed_runs_are_its_dynamic_runs_of_the_current_code(study, tmp_path):
+def test_the_stores_timed_runs_are_its_dynamic_runs_of_the_current_model(study, tmp_path):
     """The runs a new slice's rates come from: every dynamic run the fast study stored (their
     wall times are the map's own, read from its result), none of its statics, and none at all
-    once the runs carry another code's fingerprint."""
+    once the runs were made by another revision of the continuum."""
     from upliftlab.comparisons.store import Store
     from upliftlab.comparisons.winkler_map.cost import timed_dynamic_runs
 
     timed = timed_dynamic_runs(Store(_copied_store(study, tmp_path)))
     walls = np.sort(np.ravel(study.data.continuum_wall))
     assert sorted(r["wall_time_s"] for r in timed) == pytest.approx(walls, rel=1e-12)
-    stale = Store(_copied_store(study, tmp_path / "stale", code="0" * 64))
-    assert timed_dynamic_runs(stale) == []
+    other = Store(_copied_store(study, tmp_path / "stale", revision=0))
+    assert timed_dynamic_runs(other) == []
 
 
 def test_a_new_slice_of_a_kept_store_is_estimated_at_its_rates(study, tmp_path, capsys):
     """The fast grid at another intensity (its statics stored, none of its dynamic runs: two
-    points, each run twice as the fast options make E_F): the estimate takes the per-step rate of the store's other runs, not the default; with those
-    runs stored by other code it falls back to the default, and both refuse a budget of 1 ms
-    before any run."""
+    points, each run twice as the fast options make E_F): the estimate takes the per-step rate
+    of the store's other runs, not the default; with those runs made by another revision of
+    the continuum it falls back to the default, and both refuse a budget of 1 ms before any
+    run."""
     def source(root):
         code = wm.main(["--fast", "--out", str(tmp_path / "o"), "--store", str(root),
                         "--grid", "intensities=1.5", "--budget", "0.001", "--no-figures"])
@@ -775,4 +776,4 @@ def test_a_new_slice_of_a_kept_store_is_estimated_at_its_rates(study, tmp_path, 
         return err.split("compiled return map: ")[1].split(",")[0]
 
     assert source(_copied_store(study, tmp_path)) == "the stored runs'"
-    assert source(_copied_store(study, tmp_path / "stale", code="0" * 64)) == "default"
+    assert source(_copied_store(study, tmp_path / "stale", revision=0)) == "default"

@@ -28,31 +28,9 @@ def _checkout_subpackages() -> None:
 _checkout_subpackages()
 
 
-def _kernel_sources_digest() -> str:
-    """The first 16 hex digits of the SHA-256 of the compiled kernels' sources (every
-    ``reduced/kernels/*.py``, by name, then the continuum's ``continuum/kernels*.py``, by
-    ``continuum/`` and name; name and content of each), or ``"unknown"`` if they cannot be read.
-    numba keys a cached function on its own file only (numba issue 1833): an edit to a spring
-    law would leave the integrators compiled from it, in other files, stale, and an edit to the
-    continuum's Mohr–Coulomb point return (``kernels_mc.py``) the element loop of
-    ``kernels.py`` that inlines it."""
-    import hashlib
-    from pathlib import Path
-
-    for root in __path__:
-        base = Path(root)
-        if not (base / "reduced" / "kernels").is_dir():
-            base = base.parent  # a checkout: reduced/ and continuum/ beside
-        folder = base / "reduced" / "kernels"
-        if folder.is_dir():
-            digest = hashlib.sha256()
-            for path in sorted(folder.glob("*.py")):
-                digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
-            for path in sorted((base / "continuum").glob("kernels*.py")):
-                digest.update(b"continuum/" + path.name.encode() + b"\0" + path.read_bytes()
-                              + b"\0")
-            return digest.hexdigest()[:16]
-    return "unknown"
+#: The compiled kernels' sources (as :func:`upliftlab.provenance.package_files` names them): the
+#: numba cache folder is keyed by their digest.
+KERNEL_SOURCES = ("upliftlab.reduced/kernels/", "upliftlab.continuum/kernels")
 
 
 def _numba_cache_outside_the_package() -> None:
@@ -60,17 +38,21 @@ def _numba_cache_outside_the_package() -> None:
     (``~/.cache/...``; ``NUMBA_CACHE_DIR`` if set), not beside the installed sources: a cache
     written inside an installed ``site-packages/upliftlab`` survives ``pip uninstall`` and
     leaves a folder that shadows a later install as an empty namespace package (the README's
-    test command after its first command failed so). ``<digest>`` is that of the kernels'
-    sources (:func:`_kernel_sources_digest`), so that an edit to any of them, a spring law say,
-    compiles every kernel afresh instead of loading integrators cached with the old law.
+    test command after its first command failed so). ``<digest>`` is the code digest of the
+    kernels' sources (:data:`KERNEL_SOURCES`, :func:`upliftlab.provenance.code_digest`): numba
+    keys a cached function on its own file only (numba issue 1833), so an edit to a spring law
+    must compile every kernel afresh instead of loading integrators cached with the old law,
+    and an edit to the continuum's Mohr–Coulomb point return the element loop that inlines it.
     Left alone when the folder cannot be written."""
     import os
     import sys
 
     if os.environ.get("NUMBA_CACHE_DIR"):
         return
+    from .provenance import code_digest
+
     base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    folder = os.path.join(base, "upliftlab", "numba", _kernel_sources_digest())
+    folder = os.path.join(base, "upliftlab", "numba", code_digest(KERNEL_SOURCES)[:16])
     try:
         os.makedirs(folder, exist_ok=True)
     except OSError:

@@ -14,6 +14,7 @@
                         [--no-render] [--json] [--force]
     upliftlab opensees SCENE [--case A|B] [--set KEY=VALUE ...] [--out DIR] [--run] [--json]
                        [--force]
+    upliftlab store verify|migrate|pack DIR [--sample N] [--name NAME]
 
 Bad input ends with one line naming the field, the value and the valid range (exit code 2),
 before any work and before any file is written: the scene, the options, the overrides (one
@@ -80,6 +81,7 @@ def add_verbosity(parser: argparse.ArgumentParser) -> None:
 
 def parser() -> argparse.ArgumentParser:
     from .cli_continuum import add_continuum
+    from .cli_store import add_store
 
     p = _Parser(prog="upliftlab", description=(
         "Verification suite for structures that rock and uplift on flexible foundations."))
@@ -142,6 +144,7 @@ def parser() -> argparse.ArgumentParser:
                          "cost nothing)")
 
     add_continuum(sub)
+    add_store(sub)
 
     o = sub.add_parser("opensees", help="write a standalone OpenSeesPy script of the scene (a "
                                         "BNWF model); with --run, run it beside upliftlab")
@@ -362,10 +365,12 @@ def main(argv: list[str] | None = None) -> int:
     except SystemExit as exc:  # --help, --version, or a one-line usage error
         return exc.code if isinstance(exc.code, int) else 0
     from .cli_continuum import continuum
+    from .cli_store import store
 
     configure(int(args.verbose) - int(args.quiet))
     handler = {"run": _run, "paper": _paper, "scenes": _scenes, "report": _report,
-               "continuum": continuum, "advise": _advise, "opensees": _opensees}[args.command]
+               "continuum": continuum, "advise": _advise, "opensees": _opensees,
+               "store": store}[args.command]
     try:
         return handler(args)
     except InputError as exc:

@@ -13,12 +13,8 @@ goes through :func:`atomic_path`: the file appears complete or not at all.
 from __future__ import annotations
 
 import contextlib
-import datetime as _dt
-import functools
-import hashlib
 import json
 import os
-import platform
 import shutil
 from collections.abc import Iterator, Mapping
 from pathlib import Path
@@ -28,7 +24,7 @@ import numpy as np
 from .paths import check_target, temporary_sibling
 
 __all__ = ["atomic_path", "staging_folder", "move_into_place", "write_dataset", "write_netcdf", "read_netcdf", "read_dataset",
-           "cf_attributes", "write_csv", "write_text", "provenance", "Variable"]
+           "cf_attributes", "write_csv", "write_text", "Variable"]
 
 Variable = tuple  # (dims: tuple[str, ...], values: array-like, attrs: dict)
 
@@ -205,63 +201,3 @@ def write_csv(path: str | os.PathLike, columns: Mapping[str, np.ndarray],
             fh.write(",".join(names) + "\n")
             np.savetxt(fh, data, delimiter=",", fmt="%.10g")
     return Path(path)
-
-
-def provenance(**extra) -> dict[str, object]:
-    """Package version, a digest of its sources, time, platform and the versions of the
-    numerical libraries, plus ``extra`` (scene, model, options)."""
-    from . import __version__
-
-    record = {
-        "upliftlab_version": __version__,
-        "source_sha256": source_digest(),
-        "created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
-        "python": platform.python_version(),
-        "numpy": np.__version__,
-        "scipy": _version("scipy"),
-        "numba": _version("numba"),
-        "platform": platform.platform(terse=True),
-    }
-    record.update(extra)
-    return record
-
-
-def _version(package: str) -> str:
-    from importlib import metadata
-
-    try:
-        return metadata.version(package)
-    except metadata.PackageNotFoundError:
-        return "not installed"
-
-
-@functools.cache
-def source_digest() -> str:
-    """SHA-256 of every Python source of the package and its subpackages (wherever the install
-    put them), by module name and content: which code produced a result, beyond the version."""
-    import importlib.util
-
-    files = {}
-    subpackages = {name.rsplit(".", 1)[1] for name in SOURCE_PACKAGES if "." in name}
-    for package in SOURCE_PACKAGES:
-        spec = importlib.util.find_spec(package)
-        short = package.rsplit(".", 1)[-1]
-        for folder in (spec.submodule_search_locations or []) if spec else []:
-            if Path(folder).name != short:  # the checkout's root, which a source run adds
-                continue
-            for path in Path(folder).rglob("*.py"):
-                relative = path.relative_to(folder)
-                if "__pycache__" in relative.parts or (
-                        package == "upliftlab" and relative.parts[0] in subpackages):
-                    continue  # the installed layout nests the subpackages: read them once
-                files[f"{package}/{relative.as_posix()}"] = path
-    digest = hashlib.sha256()
-    for name, path in sorted(files.items()):
-        digest.update(name.encode())
-        digest.update(path.read_bytes())
-    return digest.hexdigest()
-
-
-#: The packages whose sources :func:`source_digest` covers.
-SOURCE_PACKAGES = ("upliftlab", "upliftlab.reduced", "upliftlab.continuum", "upliftlab.meshes",
-                   "upliftlab.comparisons")

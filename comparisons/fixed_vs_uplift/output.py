@@ -7,13 +7,13 @@ from pathlib import Path
 
 import numpy as np
 
-from ...results import provenance, write_csv
+from ...provenance import provenance
+from ...results import write_csv
 from ..protocol import Context
 from ..study import StudyResult, write_figure, write_summary
 from .analysis import FixedVsUplift
 from .grid import OUTPUT_DT, STUDY, SUPPORT_LABELS
 from .summary import summary_markdown, summary_numbers
-
 
 # ---------------------------------------------------------------------------------------------
 # Output

@@ -10,7 +10,8 @@ from ...motions import ELCENTRO, find_motion
 from ...reduced import run as run_reduced
 from ...reduced.batch import run_batch
 from ...scenes import Scene, load_scene, scene_from_dict
-from ..store import Store, point_key
+from ..freshness import check_stale, stale_keys
+from ..store import POINT_FUNCTIONS, Store, point_function, point_key, record_meta
 from ..study import file_sha256
 from .grid import BUILDINGS, Grid, OUTPUT_DT, STUDY
 
@@ -39,6 +40,7 @@ def point_scene(point: Mapping) -> Scene:
     return scene_from_dict(data, merged=True)
 
 
+@point_function("upliftlab.comparisons.fixed_vs_uplift:figure_run", models=("reduced",))
 def figure_run(point: Mapping) -> dict:
     """One run of Figs. 11–12 with histories: time (s), u (length) and the peaks."""
     response = run_reduced(point_scene(point), output_dt=OUTPUT_DT)
@@ -50,13 +52,17 @@ def figure_run(point: Mapping) -> dict:
 
 
 def cached_run(store: Store, name: str, params: dict):
-    """The record of function ``name`` (of this module) at ``params``: from the store, or
-    computed and stored if missing."""
-    key = point_key(STUDY, name, params)
+    """The record of point function ``name`` (of this module) at ``params``: from the store
+    (checked first if earlier code made it, :func:`.freshness.check_stale`), or computed and
+    stored if missing."""
+    declared = POINT_FUNCTIONS[f"upliftlab.comparisons.fixed_vs_uplift:{name}"]
+    key = point_key(STUDY, declared, params)
+    if stale_keys(store, [key]):
+        check_stale(store, declared, {key: params})
     record = store.get(key)
     if record is None:
         record = globals()[name](params)
-        store.put(key, record, {"study": STUDY, "function": name, "params": params})
+        store.put(key, record, record_meta(STUDY, declared, params))
     return record
 
 
@@ -87,11 +93,23 @@ def run_spectrum_batch(points: Sequence[Mapping], workers: int | None) -> list[d
     return out
 
 
+@point_function("upliftlab.comparisons.fixed_vs_uplift:spectrum_point", models=("reduced",))
+def spectrum_point(point: Mapping) -> dict:
+    """One point of the spectrum, as the batch makes it (:func:`run_spectrum_batch`)."""
+    return run_spectrum_batch([point], 1)[0]
+
+
 def spectrum_records(points, store: Store, workers) -> list[dict]:
-    keys = [point_key(STUDY, "run_batch", p) for p in points]
+    """The spectrum's records: stored ones (checked first if earlier code made them), the
+    others made in one batch on ``workers`` processes and stored."""
+    keys = [point_key(STUDY, spectrum_point, p) for p in points]
+    old = set(stale_keys(store, keys))
+    stale = {k: p for k, p in zip(keys, points) if k in old}
+    if stale:
+        check_stale(store, spectrum_point, stale, evaluate=lambda f, items: list(zip(
+            [k for k, _ in items], run_spectrum_batch([p for _, p in items], workers))))
     todo = [i for i, k in enumerate(keys) if not store.has(k)]
     if todo:
         for i, record in zip(todo, run_spectrum_batch([points[i] for i in todo], workers)):
-            store.put(keys[i], record, {"study": STUDY, "function": "run_batch",
-                                        "params": points[i]})
+            store.put(keys[i], record, record_meta(STUDY, spectrum_point, points[i]))
     return [store.get(k) for k in keys]

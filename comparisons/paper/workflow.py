@@ -7,15 +7,21 @@ from pathlib import Path
 
 from ...checks import InputError
 from ...motions import ELCENTRO, Motion, load_motion
-from ...results import provenance
+from ...provenance import provenance
 from ..protocol import Context, Study, main_for, run_study
 from ..study import StudyResult, write_summary
-from .conclusions import (conclusion_decay, conclusion_long_period_peak, conclusion_more_with_c,
-                          conclusion_peak_u, conclusion_period, conclusion_settlement,
-                          conclusion_two_springs, conclusion_uplift_beneficial)
+from .conclusions import (
+    conclusion_decay,
+    conclusion_long_period_peak,
+    conclusion_more_with_c,
+    conclusion_peak_u,
+    conclusion_period,
+    conclusion_settlement,
+    conclusion_two_springs,
+    conclusion_uplift_beneficial,
+)
+from .records import STUDY, Conclusion, PaperConclusions
 from .responses import paper_responses
-from .records import Conclusion, PaperConclusions, STUDY
-
 
 # ---------------------------------------------------------------------------------------------
 # Study

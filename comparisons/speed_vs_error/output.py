@@ -7,14 +7,14 @@ from pathlib import Path
 
 import numpy as np
 
-from ...results import provenance, write_csv
+from ...provenance import provenance
+from ...results import write_csv
 from ..protocol import Context
 from ..study import StudyResult, write_summary
 from .analysis import Point, SceneResult, SpeedVsError
 from .figures import write_scene_figure
 from .grid import INTEGRATORS, QUANTITIES, STUDY
 from .summary import summary_markdown, summary_numbers
-
 
 # ---------------------------------------------------------------------------------------------
 # Output

@@ -22,7 +22,7 @@ from ...reduced import (IntegrationError, build_model, run as run_reduced,
 from ...scenes import Scene, load_scene, scene_from_dict
 from ..measures import (continuum_peak_edge_gap, continuum_settlement_change,
                         reduced_edge_uplift_from_peaks, reduced_plastic_settlement)
-from ..store import keyed_as
+from ..store import point_function
 from ..study import file_sha256
 from .grid import Grid, MAX_HALVINGS, STABILITY_MARGIN, SceneSpec
 
@@ -175,7 +175,8 @@ def _timed(scene: Scene, name: str, dt: float, repeats: int, budget: float):
     return response, times
 
 
-@keyed_as("upliftlab.comparisons.speed_vs_error:evaluate_point")
+@point_function("upliftlab.comparisons.speed_vs_error:evaluate_point",
+                models=("reduced", "continuum"), tolerance=1e-6)
 def evaluate_point(point: Mapping) -> dict:
     """Run one point (timed); its four quantities, step, runtimes (s) and diagnostics.
 

@@ -8,7 +8,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ...results import cf_attributes, provenance, write_csv, write_dataset
+from ...provenance import provenance
+from ...results import cf_attributes, write_csv, write_dataset
 from ...units import unit_system
 from ..protocol import Context
 from ..study import StudyResult, ascii_text, write_summary
@@ -19,7 +20,6 @@ from .maps import ErrorMap
 from .result import TwoSpringEquivalence
 from .statics import Statics
 from .summary import summary_markdown, summary_numbers
-
 
 # ---------------------------------------------------------------------------------------------
 # Output: data, figures, summary

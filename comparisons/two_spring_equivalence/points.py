@@ -15,7 +15,7 @@ from ...reduced.compatibility import layout_for
 from ...reduced.response import ENERGY_NAMES
 from ...scenes import Scene, load_scene, scene_from_dict
 from ..measures import reduced_peak_edge_gap, reduced_plastic_settlement
-from ..store import keyed_as
+from ..store import point_function
 from .grid import CASES, Options, PULSE_TAIL
 
 
@@ -150,7 +150,8 @@ def _scales(model) -> dict:
             "dissipated_energy": 0.5 * weight * settlement}
 
 
-@keyed_as("upliftlab.comparisons.two_spring_equivalence:evaluate_point")
+@point_function("upliftlab.comparisons.two_spring_equivalence:evaluate_point",
+                models=("reduced",), tolerance=1e-6)
 def evaluate_point(point: Mapping) -> dict:
     """Run one point; its six measures, diagnostics and scales (units of the scene).
 

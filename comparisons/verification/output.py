@@ -8,10 +8,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ...results import provenance, write_csv
+from ...provenance import provenance
+from ...results import write_csv
 from ..protocol import Context
 from ..study import StudyResult, write_summary
-from .records import FAIL, PASS, Row, SKIP, STUDY, Verification
+from .records import FAIL, PASS, SKIP, STUDY, Row, Verification
 
 
 def write(result: Verification, ctx: Context) -> StudyResult:

@@ -4,26 +4,31 @@ read from the store, run, its definition and its command line."""
 from __future__ import annotations
 
 import dataclasses
-import hashlib
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from pathlib import Path
 
 from ... import __version__
 from ...checks import InputError
 from ...motions import ELCENTRO, find_motion, load_motion
-from ...results import provenance
+from ...provenance import MODEL_SOURCES, code_digest, provenance
 from ..protocol import Context, Study, main_for, run_study
 from ..store import Store, point_key
 from ..study import file_sha256
 from .continuum_checks import flamant, prandtl, rocking_stiffness, uplift_eccentricity
 from .output import write
-from .records import C, CheckContext, FAIL, Order, R, Row, STUDY, Verification
+from .records import FAIL, STUDY, C, CheckContext, Order, R, Row, Verification
 from .reduced_dynamics import energy_balance, orders_smooth, orders_uplift, rigid_block
-from .reduced_statics import (bonded_periods, fixed_base, impact_damper, reduced_uplift_onset,
-                              static_reactions, stiffness_entries, ultimate_moment,
-                              winkler_pushover)
-
+from .reduced_statics import (
+    bonded_periods,
+    fixed_base,
+    impact_damper,
+    reduced_uplift_onset,
+    static_reactions,
+    stiffness_entries,
+    ultimate_moment,
+    winkler_pushover,
+)
 
 # ---------------------------------------------------------------------------------------------
 # The study
@@ -59,26 +64,10 @@ def elcentro_record() -> tuple[object | None, str | None, str]:
     return load_motion(ELCENTRO), file_sha256(path), ""
 
 
-def source_digest(extra: Sequence[str | Path] = ()) -> str:
-    """SHA-256 of the source files that decide the verification's numbers: every ``.py`` of
-    ``reduced/``, ``continuum/``, ``meshes/`` and the core package (but the command line), the
-    packaged scenes, this package (the verification's checks) and ``extra`` files. Paths and
-    bytes both enter."""
-    import upliftlab
-    from ... import continuum, meshes, reduced
-    from ... import scene_files
-
-    digest = hashlib.sha256()
-    core = Path(upliftlab.__file__).parent
-    files = [p for p in sorted(core.glob("*.py")) if p.name not in ("cli.py", "__main__.py")]
-    for package in (reduced, continuum, meshes):
-        files += sorted(Path(package.__file__).parent.rglob("*.py"))
-    files += sorted(Path(scene_files.__file__).parent.glob("*.toml"))
-    files += sorted(Path(__file__).parent.glob("*.py")) + [Path(p) for p in extra]
-    for path in files:
-        digest.update(f"{path.parent.name}/{path.name}\n".encode())
-        digest.update(path.read_bytes())
-    return digest.hexdigest()
+def source_digest() -> str:
+    """The code digest of the sources that decide the verification's numbers: the models'
+    (:data:`upliftlab.provenance.MODEL_SOURCES`) and this package's checks."""
+    return code_digest(MODEL_SOURCES + ("upliftlab.comparisons/verification/",))
 
 
 def single_threaded():

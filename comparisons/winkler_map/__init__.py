@@ -17,10 +17,10 @@ the plane-strain continuum (:mod:`upliftlab.continuum`) over a grid of
 Per soil the continuum's statics (K_v, K_r, V_ult; and its dynamic impedance when a bed needs
 it, :mod:`.impedance_points`) and per point one continuum dynamic run are points of
 :func:`.sweep.run_sweep` in a content-addressed store (resumable, local processes or Dask with
-``--scheduler``), each stored with its own wall time and keyed with the fingerprint of the
-code it ran (:mod:`..fingerprint`: the continuum, the scenes and the measures, not the beds or
-the grid), so that a store kept with the repository (``benchmarks/winkler_map_store``) is
-reused exactly while that code is unchanged; each bed's reduced run of the same point is live
+``--scheduler``), each stored with its own wall time and keyed by what was asked (the point
+and the continuum's revision, :mod:`..store`), so that a store kept with the repository
+(``benchmarks/winkler_map_store``) is reused while the continuum's numbers are unchanged (a
+sample made again checks records of earlier code, :mod:`..freshness`); each bed's reduced run of the same point is live
 (milliseconds) and timed in the same run. Measured alike on both models:
 peak θ, peak edge uplift, residual settlement, residual rotation, peak u, peak base shear; and
 the foundation energy E_F, the energy the structure lost to its foundation (:mod:`.energy`), at

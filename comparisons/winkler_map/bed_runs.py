@@ -1,7 +1,7 @@
 """A bed's run of a map point: the reduced model on the point's scene and motion, measured as
 the continuum's run of it is (:func:`.points.measured`). Live, never stored: a bed runs in
-milliseconds, and its module is kept apart from the continuum's point function so that the
-stored continuum runs do not depend on the reduced model's code (:mod:`..fingerprint`)."""
+milliseconds, and its module is kept apart from the continuum's point function, whose stored
+runs are of the continuum alone."""
 
 from __future__ import annotations
 

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -65,7 +65,9 @@ class Estimate:
     """``runs`` continuum runs to make (``static``: a soil's stiffness and vertical pushover
     count as one; ``dynamic``; ``stored`` more are already in the store) and their estimated
     ``seconds`` of one worker, ``by_soil`` the same per soil; ``per_run`` the median estimate
-    of a dynamic run; ``source`` where the rates came from."""
+    of a dynamic run; ``source`` where the rates came from; ``checks`` stored runs made by
+    earlier code that are made again to check them (:mod:`..freshness`), at their own
+    recorded wall times, ``check_seconds`` (included in ``seconds``)."""
 
     runs: int
     static: int
@@ -75,13 +77,18 @@ class Estimate:
     by_soil: dict
     per_run: float
     source: str
+    checks: int = 0
+    check_seconds: float = 0.0
 
     def text(self, workers: int | None = 1) -> str:
         """The estimate in one line; ``workers`` None: a Dask cluster or a caller's executor,
         whose worker count is not known here, so no wall time is divided out."""
+        check = (f"; {self.checks} stored runs made by earlier code are made again first, "
+                 f"{_duration(self.check_seconds)} of one worker, to check them"
+                 if self.checks else "")
         if self.runs == 0:
             return (f"0 continuum runs to make (0 static, 0 dynamic; {self.stored} already "
-                    "stored): every run is read from the store")
+                    f"stored): every run is read from the store{check}")
         soils = ", ".join(f"{k} {_duration(v)}" for k, v in self.by_soil.items())
         if workers is None:
             split = "split over the executor's workers"
@@ -91,7 +98,7 @@ class Estimate:
         return (f"{self.runs} continuum runs to make ({self.static} static, {self.dynamic} "
                 f"dynamic; {self.stored} already stored), estimated {_duration(self.seconds)} "
                 f"of one worker ({soils}; {split}; a "
-                f"dynamic run about {_duration(self.per_run)}; rates {self.source})")
+                f"dynamic run about {_duration(self.per_run)}; rates {self.source}){check}")
 
 
 def _duration(seconds: float) -> str:
@@ -142,17 +149,17 @@ def _stored_rates(stored: Iterable[Mapping]) -> dict:
 
 
 def timed_dynamic_runs(store) -> list[dict]:
-    """The timed dynamic runs of the current code anywhere in ``store``: the rates of a grid
+    """The timed dynamic runs of today's model revision anywhere in ``store``: the rates of a grid
     none of whose own runs are stored yet (a new slice of a kept store, or the advisor's
     ladder) are this machine's rates for the other slices, not the defaults measured once on
     short pulses."""
-    from ..store import function_code, function_name
+    from ..store import function_name, revisions
     from .points import evaluate_dynamic
 
-    name, code = function_name(evaluate_dynamic), function_code(evaluate_dynamic)
+    name, models = function_name(evaluate_dynamic), revisions(evaluate_dynamic)
     entries = (store.entry(key) for key in store.keys())
     return [e["record"] for e in entries
-            if e is not None and e.get("function") == name and e.get("code") == code
+            if e is not None and e.get("function") == name and e.get("models") == models
             and isinstance(e["record"], dict) and "error" not in e["record"]]
 
 
@@ -225,3 +232,23 @@ def refuse_over_budget(estimate: Estimate, budget: float | None) -> None:
                          f"runs not yet stored ({estimate.stored} are) are estimated at "
                          f"{estimate.seconds:.0f} s; valid range is "
                          f"[{estimate.seconds:.0f}, ...) s for this grid, or a smaller grid")
+
+
+def with_checks(estimate: Estimate, store, keyed: Iterable[tuple[str, object]]) -> Estimate:
+    """``estimate`` with the cost of checking the stale ones of the stored records ``keyed``
+    ((key, point function) pairs): per function, :data:`..freshness.DEFAULT_SAMPLE` of them
+    made again, each at the median wall time its stale records took to make."""
+    from ..freshness import DEFAULT_SAMPLE
+    from ..store import function_name
+
+    walls: dict[str, list[float]] = {}
+    for key, function in keyed:
+        entry = store.entry(key)
+        if entry is not None and not store.is_fresh(entry):
+            record = entry["record"]
+            wall = record.get("wall_time_s", 0.0) if isinstance(record, Mapping) else 0.0
+            walls.setdefault(function_name(function), []).append(float(wall))
+    checks = sum(min(DEFAULT_SAMPLE, len(w)) for w in walls.values())
+    seconds = sum(min(DEFAULT_SAMPLE, len(w)) * float(np.median(w)) for w in walls.values())
+    return replace(estimate, checks=checks, check_seconds=seconds,
+                   seconds=estimate.seconds + seconds)

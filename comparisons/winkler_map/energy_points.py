@@ -3,8 +3,7 @@ the point function of the map's energy pass, stored like :func:`.points.evaluate
 
 The run is the same (same scene, same options, same code), so its measures are those of the
 point's dynamic run; it adds E_F, taken from the structure's histories that the dynamic run's
-record does not keep. A separate point function, so that the 1,268 kept dynamic runs stay valid
-(:mod:`..fingerprint`) and E_F is made where a map asks for it.
+record does not keep. A separate point function, so that E_F is made where a map asks for it.
 """
 
 from __future__ import annotations
@@ -14,7 +13,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ..store import keyed_as
+from ..store import point_function
 from .foundation_energy import structure_energy_terms
 from .points import _timed_run, _warm_kernels, continuum_measures, point_scene
 
@@ -35,7 +34,8 @@ def continuum_energy_terms(scene, result) -> dict:
                                  result.ground_acceleration, z.M, z.C, z.K, z.r, z.gravity)
 
 
-@keyed_as("upliftlab.comparisons.winkler_map:evaluate_energy")
+@point_function("upliftlab.comparisons.winkler_map:evaluate_energy",
+                models=("continuum",), tolerance=1e-4)
 def evaluate_energy(point: Mapping) -> dict:
     """One continuum dynamic run of a point as :func:`.points.evaluate_dynamic` makes it, with
     ``foundation_energy`` E_F (scene units, force·length per length) and the structure's

@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..store import keyed_as
+from ..store import point_function
 from .statics import static_scene
 from .soils import SOILS
 
@@ -97,7 +97,8 @@ def _impedance_options(point: Mapping):
     return ImpedanceOptions(**opts)
 
 
-@keyed_as("upliftlab.comparisons.winkler_map:evaluate_impedance")
+@point_function("upliftlab.comparisons.winkler_map:evaluate_impedance",
+                models=("continuum",), tolerance=1e-4)
 def evaluate_impedance(point: Mapping) -> dict:
     """The footing's impedance on the point's elastic soil (module docstring): ``a0``,
     ``omega`` (rad/s), the 3×3 complex impedance per frequency as ``real`` and ``imag`` (n × 3

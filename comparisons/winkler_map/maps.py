@@ -28,7 +28,7 @@ from .bed_runs import run_bed
 from .energy import ENERGIES, energies_of, energy_scale, same_run
 from .energy_points import evaluate_energy
 from .beds import BEDS, BedReference, bed_foundation
-from .cost import (Estimate, estimate_cost, impedance_dofs, refuse_over_budget,
+from .cost import (Estimate, estimate_cost, impedance_dofs, refuse_over_budget, with_checks,
                    timed_dynamic_runs)
 from .grid import FLOOR_FRACTION, MEASURES, STUDY, Grid, Options
 from .fitted_bed import FITTED, fit_capacity_profile
@@ -203,8 +203,14 @@ def _estimate(grid, options, motions, base, g, store, statics_points, loads,
     stored_static = [{"dofs": a["dofs"], "wall_time_s": a["wall_time_s"] + b["wall_time_s"]}
                      for a, b in pairs if a is not None and b is not None]
     timed = [r for r in records if r is not None and "error" not in r] or timed_dynamic_runs(store)
-    return estimate_cost(static_rows, rows, stored_static, timed,
-                         impedance_rows, [r for r in impedance_records if r is not None])
+    estimate = estimate_cost(static_rows, rows, stored_static, timed,
+                             impedance_rows, [r for r in impedance_records if r is not None])
+    keyed = [(_key(p, f), f) for points, f in (
+        (statics_points, evaluate_static), (impedance_points, evaluate_impedance),
+        (rotations if loads else [], evaluate_continuum), (dynamic if loads else [],
+                                                           evaluate_dynamic),
+        (dynamic if loads else [], evaluate_energy)) for p in points]
+    return with_checks(estimate, store, keyed)
 
 
 def estimate_map(grid: Grid, options: Options, calibrations: Sequence[str], motions,
@@ -255,8 +261,8 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
         executor = ctx.executor
         if in_process:
             executor = stack.enter_context(cf.ThreadPoolExecutor(1))  # no pool to start
-        elif executor is None and estimate.runs:
-            n = max(1, min(workers, estimate.runs))
+        elif executor is None and (estimate.runs or estimate.checks):
+            n = max(1, min(workers, estimate.runs + estimate.checks))
             executor = stack.enter_context(sweep_executor(ctx.scheduler, workers=n))
         sweep = {"executor": executor, "chunk": 1, "study": STUDY, "progress": ctx.progress}
         records = run_sweep(evaluate_static, statics_points, store, **sweep)
@@ -277,7 +283,9 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
         if options.energy:
             before += sum(1 for p in points if store.has(_key(p, evaluate_energy)))
             energy_runs = run_sweep(evaluate_energy, points, store, **sweep)
-        else:  # the energy runs the store holds
+        else:  # the energy runs the store holds (checked like every stored record)
+            held = [p for p in points if store.has(_key(p, evaluate_energy))]
+            run_sweep(evaluate_energy, held, store, **sweep)
             energy_runs = [store.get(_key(p, evaluate_energy)) for p in points]
     soils_run = sum(1 for i in range(len(grid.soils))
                     if any(r is None for r in static_records[2 * i:2 * i + 2]))

@@ -7,11 +7,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ...checks import InputError
 from ...motions import ELCENTRO, find_motion, load_motion
 from ..study import export_fema_p695, file_sha256
 from .grid import Grid, Options
 
-__all__ = ["study_motions", "motion_duration"]
+__all__ = ["study_motions", "motion_duration", "locate"]
 
 
 def _record(path: Path, name: str, kind: str) -> dict:
@@ -44,4 +45,26 @@ def motion_duration(motion: dict) -> float:
     """How long a motion's run lasts (s): a pulse's duration, a record's length."""
     if motion["type"] == "ricker":
         return float(motion["duration"])
-    return float(load_motion(motion["_path"]).duration)
+    return float(load_motion(locate(motion)).duration)
+
+
+def locate(motion: dict) -> str:
+    """The file of a record motion: its ``_path`` where the point has one, else found again
+    from its ``kind`` and ``name`` (El Centro on ``UPLIFTLAB_MOTIONS``; a FEMA P695 component
+    written into upliftlab's cache folder) and checked against its ``sha256``: a stored point
+    keeps no machine path, and is made again from what it keeps."""
+    if "_path" in motion:
+        return motion["_path"]
+    if motion["kind"] == "elcentro":
+        path = find_motion(ELCENTRO)
+    else:
+        from ...provenance import cache_folder
+
+        folder = cache_folder("records") / "fema_p695_farfield"
+        path = next((p for p in export_fema_p695(folder) if p.stem == motion["name"]), None)
+        if path is None:
+            raise InputError(f"motion {motion['name']!r}: not a FEMA P695 far-field component")
+    if file_sha256(path) != motion["sha256"]:
+        raise InputError(f"motion {motion['name']!r}: the file found, {path}, is not the record "
+                         f"the point was made with (SHA-256 {motion['sha256'][:12]}…)")
+    return str(path)

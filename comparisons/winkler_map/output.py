@@ -7,12 +7,20 @@ from dataclasses import asdict
 
 import numpy as np
 
-from ...results import cf_attributes, provenance, write_dataset
+from ...provenance import provenance
+from ...results import cf_attributes, write_dataset
 from ..protocol import Context
 from ..study import StudyResult, ascii_text, write_summary
 from .beds import BEDS
 from .energy import ENERGIES
-from .grid import FLOOR_FRACTION, MEASURE_LABELS, MEASURE_UNITS, MEASURES, SOIL_LABELS, STUDY
+from .grid import (
+    FLOOR_FRACTION,
+    MEASURE_LABELS,
+    MEASURE_UNITS,
+    MEASURES,
+    SOIL_LABELS,
+    STUDY,
+)
 from .maps import MapData
 from .points import SIDES
 

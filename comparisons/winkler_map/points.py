@@ -20,7 +20,8 @@ import numpy as np
 from ...scenes import Scene, load_scene, scene_from_dict
 from ..measures import (continuum_peak_edge_gap, peak_story_shear, residual_rotation,
                         settlement_when_flattest)
-from ..store import keyed_as
+from ..store import point_function
+from .motions import locate
 from .soils import SOILS
 
 __all__ = ["BASE_SCENE", "base_table", "point_table", "motion_table", "evaluate_dynamic",
@@ -64,12 +65,12 @@ def point_table(base: Mapping, soil: str, elements_across: int, N: float, h_over
 def motion_table(motion: Mapping, intensity: float, B: float, h: float) -> dict:
     """The scene's ``[motion]`` of a map motion at ``intensity`` × a_up, a_up = g B/(6h):
     a Ricker pulse of that amplitude (g) lasting 3T plus its tail, or a record scaled to that
-    PGA (located by its ``_path``)."""
+    PGA (located by :func:`.motions.locate`)."""
     amplitude = intensity * B / (6.0 * h)
     if motion["type"] == "ricker":
         return {"type": "ricker", "amplitude": amplitude, "period": motion["period"],
                 "duration": motion["duration"]}
-    return {"type": "record", "name": motion["_path"], "pga": amplitude}
+    return {"type": "record", "name": locate(motion), "pga": amplitude}
 
 
 def point_scene(point: Mapping) -> Scene:
@@ -148,7 +149,8 @@ def continuum_measures(scene, result):
     return t, theta, settlement, s, gap, measures
 
 
-@keyed_as("upliftlab.comparisons.winkler_map:evaluate_dynamic")
+@point_function("upliftlab.comparisons.winkler_map:evaluate_dynamic",
+                models=("continuum",), tolerance=1e-4)
 def evaluate_dynamic(point: Mapping) -> dict:
     """One continuum dynamic run of a point (explicit route, no soil snapshots): the measures
     of :func:`measured` from every recorded step, the run's steps, DOFs, step (s),

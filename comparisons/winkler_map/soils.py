@@ -1,8 +1,7 @@
 """The soils of the Winkler map, as the continuum's ``[soil]`` tables.
 
 Apart from the grid (:mod:`.grid`, which re-exports them) because the continuum's point
-functions read them: the stored continuum runs depend on this module's code, not on the
-grid's axes and options (:mod:`..fingerprint`).
+functions read them.
 """
 
 from __future__ import annotations

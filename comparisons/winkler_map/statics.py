@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ...scenes import scene_from_dict
-from ..store import keyed_as
+from ..store import point_function
 from .points import base_table
 from .soils import SOILS
 
@@ -51,7 +51,8 @@ def static_scene(point: Mapping):
     return scene_from_dict(data, merged=True)
 
 
-@keyed_as("upliftlab.comparisons.winkler_map:evaluate_static")
+@point_function("upliftlab.comparisons.winkler_map:evaluate_static",
+                models=("continuum",), tolerance=1e-4)
 def evaluate_static(point: Mapping) -> dict:
     """One continuum static analysis of a soil: ``stiffness`` (K_v, K_r with every contact node
     tied to the footing) or ``vertical`` (the load–settlement path and its maximum,

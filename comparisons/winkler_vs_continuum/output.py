@@ -8,16 +8,16 @@ from pathlib import Path
 
 import numpy as np
 
-from ...results import cf_attributes, provenance, write_csv, write_dataset
+from ...provenance import provenance
+from ...results import cf_attributes, write_csv, write_dataset
 from ..protocol import Context
 from ..study import StudyResult, ascii_text, write_summary
 from .analysis import ErrorTable
-from .dynamics import DYNAMIC_LABELS, DYNAMIC_MEASURES, DynamicRun, HISTORIES
+from .dynamics import DYNAMIC_LABELS, DYNAMIC_MEASURES, HISTORIES, DynamicRun
 from .figures import write_figures
 from .options import STUDY
 from .result import WinklerVsContinuum
 from .summary import quantity_unit, summary_markdown, summary_numbers
-
 
 # ---------------------------------------------------------------------------------------------
 # Output: data, figures, summary

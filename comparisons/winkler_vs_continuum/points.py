@@ -11,7 +11,7 @@ import numpy as np
 from ...checks import InputError
 from ...scenes import Scene, scene_from_dict
 from ..measures import edge_uplift_history, settlement_when_flattest
-from ..store import keyed_as
+from ..store import point_function
 
 
 # ---------------------------------------------------------------------------------------------
@@ -30,7 +30,8 @@ def floats(values) -> list[float]:
     return [float(v) for v in np.asarray(values, dtype=float).ravel()]
 
 
-@keyed_as("upliftlab.comparisons.winkler_vs_continuum:evaluate_continuum")
+@point_function("upliftlab.comparisons.winkler_vs_continuum:evaluate_continuum",
+                models=("continuum",), tolerance=1e-4)
 def evaluate_continuum(point: Mapping) -> dict:
     """One continuum analysis of a point: ``stiffness`` (K_v, K_r in full contact),
     ``rotation`` (a rotation pushover at ``N`` through ``rotations``), ``vertical`` (a vertical

@@ -1,0 +1,159 @@
+"""A store keyed by what was asked, checked against what ran (``comparisons/store.py``,
+``comparisons/freshness.py``, ``upliftlab/provenance.py``).
+
+References: the keys' definition (SHA-256 of the study, the function's declared name, the
+parameters and the models' revisions, recomputed here with hashlib), records written here with
+known values, and a point function whose calls are counted: what it is asked to make again is
+known by construction.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from concurrent.futures import ThreadPoolExecutor
+
+import pytest
+
+import upliftlab.continuum as continuum
+from upliftlab import provenance as pv
+from upliftlab.comparisons import freshness as fr
+from upliftlab.comparisons import store as st
+from upliftlab.comparisons.store import Store, point_function, point_key
+from upliftlab.comparisons.sweep import run_sweep
+
+CALLS: list[float] = []
+FACTOR = {"value": 3.0}
+
+
+@point_function("tests:triple", models=("continuum",), tolerance=1e-9)
+def triple(point):
+    """A point function whose calls are counted: y = FACTOR · x, with a timing to ignore."""
+    CALLS.append(point["x"])
+    return {"y": FACTOR["value"] * point["x"], "wall_time_s": 0.1 * len(CALLS)}
+
+
+@pytest.fixture
+def code(monkeypatch):
+    """Set today's code digest: ``code("a")`` makes every provenance say "a" × 64."""
+    CALLS.clear()
+    FACTOR["value"] = 3.0
+
+    def set_to(letter):
+        monkeypatch.setattr(st, "code_digest", lambda names=None: letter * 64)
+        monkeypatch.setattr(pv, "code_digest", lambda names=None: letter * 64)
+    set_to("a")
+    return set_to
+
+
+def _sweep(store, points, **kw):
+    with ThreadPoolExecutor(1) as pool:
+        return run_sweep(triple, points, store, study="s", executor=pool, progress=False, **kw)
+
+
+def test_a_key_is_what_was_asked_and_not_the_code(code, monkeypatch):
+    """The key is SHA-256 over the study, the name, the canonical parameters and the models'
+    revisions; a locator (``_path``) stays out; today's code digest does not enter; a raised
+    revision gives a new key."""
+    point = {"x": 1.5, "_path": "/somewhere/on/this/machine"}
+    expected = hashlib.sha256("\n".join([
+        '"s"', '"tests:triple"', '{"x":1.5}', '{"continuum":%d}' % continuum.REVISION]).encode())
+    assert point_key("s", triple, point) == expected.hexdigest()
+    code("b")
+    assert point_key("s", triple, point) == expected.hexdigest()
+    monkeypatch.setattr(continuum, "REVISION", continuum.REVISION + 1)
+    assert point_key("s", triple, point) != expected.hexdigest()
+
+
+def test_a_record_carries_its_provenance_and_no_machine_path(code, tmp_path):
+    store = Store(tmp_path / "store")
+    _sweep(store, [{"x": 1.0, "_path": "/home/someone/record.txt"}])
+    entry = store.entry(point_key("s", triple, {"x": 1.0}))
+    assert entry["provenance"]["source_sha256"] == "a" * 64
+    assert entry["models"] == {"continuum": continuum.REVISION}
+    assert {"numpy", "scipy", "numba", "upliftlab_version"} <= set(entry["provenance"])
+    assert "/home/someone" not in json.dumps(entry)
+
+
+def test_stale_records_are_checked_by_a_sample_and_then_accepted(code, tmp_path):
+    """Records of code "a", read under code "b": three of the five (seeded) are made again;
+    they reproduce, the store accepts "a" for "b", and a second read makes nothing again."""
+    store = Store(tmp_path / "store")
+    points = [{"x": float(i)} for i in range(5)]
+    first = _sweep(store, points)
+    assert len(CALLS) == 5
+    code("b")
+    CALLS.clear()
+    again = _sweep(store, points)
+    sample = fr.seeded_sample([point_key("s", triple, p) for p in points], 3)
+    assert len(CALLS) == 3 and again == first
+    assert sorted(CALLS) == sorted(next(p["x"] for p in points
+                                        if point_key("s", triple, p) == k) for k in sample)
+    assert store.accepted() == {"tests:triple": {"b" * 64: ["a" * 64]}}
+    CALLS.clear()
+    _sweep(store, points)
+    assert CALLS == []
+
+
+def test_stale_records_that_moved_stop_the_study_and_say_which(code, tmp_path):
+    """Under code "b" the function gives 4x where "a" gave 3x: the check names the points, the
+    field and the change (1/3), and accepts nothing."""
+    store = Store(tmp_path / "store")
+    points = [{"x": 1.0}, {"x": 2.0}]
+    _sweep(store, points)
+    code("b")
+    FACTOR["value"] = 4.0
+    with pytest.raises(fr.StaleStoreError, match=r"moved beyond the tolerance 1e-09: .* by "
+                                                 r"0\.25 in y"):
+        _sweep(store, points)
+    assert store.accepted() == {}
+
+
+def test_the_sample_is_seeded_by_the_keys():
+    keys = [hashlib.sha256(str(i).encode()).hexdigest() for i in range(20)]
+    one = fr.seeded_sample(keys, 3)
+    assert one == fr.seeded_sample(list(reversed(keys)), 3) and len(set(one)) == 3
+    assert fr.seeded_sample(keys[:2], 3) == sorted(keys[:2])
+
+
+def test_record_change_compares_field_by_field():
+    """Reference: the definition |a - b| / max(|a|, |b|), computed by hand."""
+    old = {"m": {"theta": 0.002, "u": 0.01}, "wall_time_s": 1.0, "kind": "ok", "v": [1.0, 2.0]}
+    new = {"m": {"theta": 0.002002, "u": 0.01}, "wall_time_s": 9.0, "kind": "ok",
+           "v": [1.0, 2.0]}
+    change, where = fr.record_change(old, new, ignore=("wall_time_s",))
+    assert change == pytest.approx(0.002 / 2.002, rel=1e-12) and where == "m.theta"
+    assert fr.record_change(old, {**new, "kind": "failed"}, ("wall_time_s",))[0] == math.inf
+    assert fr.record_change({"v": [1.0]}, {"v": [1.0, 2.0]})[0] == math.inf
+    assert fr.record_change({"x": math.nan}, {"x": math.nan}) == (0.0, "")
+
+
+def test_a_pack_holds_the_records_and_reads_them_back(code, tmp_path):
+    store = Store(tmp_path / "store")
+    points = [{"x": float(i)} for i in range(4)]
+    records = _sweep(store, points)
+    keys = sorted(store.keys())
+    pack = store.pack("kept")
+    assert pack.name == "kept.jsonl.gz" and not list((tmp_path / "store").glob("??/*.json"))
+    again = Store(tmp_path / "store")
+    assert sorted(again.keys()) == keys
+    CALLS.clear()
+    assert _sweep(again, points) == records and CALLS == []
+
+
+def test_store_verify_checks_every_functions_stale_records(code, tmp_path, capsys):
+    """``upliftlab store verify DIR --sample 2``: the stale records of a declared function
+    are checked and accepted (exit 0); a store whose records moved ends with exit 3."""
+    from upliftlab.cli import main
+
+    store = Store(tmp_path / "store")
+    _sweep(store, [{"x": float(i)} for i in range(4)])
+    code("b")
+    CALLS.clear()
+    assert main(["store", "verify", str(tmp_path / "store"), "--sample", "2"]) == 0
+    assert len(CALLS) == 2 and "accepted" in capsys.readouterr().out
+    code("c")
+    FACTOR["value"] = 5.0
+    assert main(["store", "verify", str(tmp_path / "store"), "--sample", "2"]) == 3
+    assert "moved beyond the tolerance" in capsys.readouterr().err
