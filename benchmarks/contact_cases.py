@@ -6,7 +6,8 @@ Elastic soil (the clay scene's E, ν; frictionless footing) on the default 10B b
 factorised and condensed onto the footing's contact DOFs once (K_ii = LU, S = K_cc − K_ci K_ii⁻¹
 K_ic: the "one factorisation"). Each load case is then a pair (N, M) at the footing, from full
 contact to large uplift (e = M/N from 0 to 0.45 B), solved exactly by the primal–dual active set
-on the condensed system (:func:`upliftlab.continuum.footing.solve_contact`), and, separately,
+on the condensed system (:func:`upliftlab.continuum.contact.footing.solve_contact`), and,
+separately,
 with the back-substitution that recovers the whole displacement field from it.
 
 For each mesh level it prints the DOFs, the one-off factorisation + condensation time, and the
@@ -39,7 +40,7 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 
 from upliftlab.continuum import make_model  # noqa: E402
-from upliftlab.continuum.footing import OPEN, ContactProblem, solve_contact  # noqa: E402
+from upliftlab.continuum.contact.footing import OPEN, ContactProblem, solve_contact  # noqa: E402
 from upliftlab.scenes import ContinuumOptions, load_scene  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))

@@ -143,7 +143,7 @@ def run(route: str, n: int, step: float, mass: str | None, rtol: float | None,
     """One run of ``duration`` s: its histories, step, steps and runtime (``scale``: the
     record's factor; ``boundary``: the box's sides, ``continuum.boundary``)."""
     from upliftlab.continuum import build_model
-    from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
+    from upliftlab.continuum.dynamics.run import DynamicOptions, run_dynamic
     from upliftlab.motions import ELCENTRO
     from upliftlab.scenes import load_scene
 

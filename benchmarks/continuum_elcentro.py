@@ -87,7 +87,7 @@ def run(route: str, n: int, duration: float | None, rtol: float | None, threads:
     from dataclasses import replace
 
     from upliftlab.continuum import build_model
-    from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
+    from upliftlab.continuum.dynamics.run import DynamicOptions, run_dynamic
     from upliftlab.motions import ELCENTRO
     from upliftlab.scenes import load_scene
 
@@ -118,8 +118,8 @@ def run(route: str, n: int, duration: float | None, rtol: float | None, threads:
 
 def default_step(model, motion, route: str) -> float:
     """The route's automatic step on this mesh and record (s)."""
-    from upliftlab.continuum import explicit
-    from upliftlab.continuum.dynamics import dynamic_fixed, time_step_limit
+    from upliftlab.continuum.dynamics import explicit
+    from upliftlab.continuum.dynamics.run import dynamic_fixed, time_step_limit
 
     if route == "implicit":
         limit = time_step_limit(model)

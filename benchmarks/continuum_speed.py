@@ -123,7 +123,8 @@ def instrumented():
     (``assembly.stiffness``), residuals (``ContinuumModel.respond``), solves (``condensation``,
     ``Condensation.condense``, ``solve_contact``); Newton iterations count the condensations
     each iteration asks for (``newton._condense``)."""
-    from upliftlab.continuum import assembly, model, newton
+    from upliftlab.continuum import assembly, model
+    from upliftlab.continuum.statics import newton
 
     timers = Timers()
     patches = [(assembly, "stiffness", "assembly", None),

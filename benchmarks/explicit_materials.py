@@ -7,7 +7,8 @@ the Mohr–Coulomb fallback (the Python loop with the vectorised return map), si
 Every run: the clay scene's footing and structure (B = 2 m, N = 171.39 kN/m, frictionless
 unilateral contact, Q2 with 2×2 reduced integration, 10B × 10B box, rigid base, one numba
 thread) on either the clay (Tresca, c_u = 50 kPa) or the Winkler map's frictional soil
-(Mohr–Coulomb, c = 5 kPa, φ = ψ = 30°, comparisons/winkler_map/grid.py ``SOILS["sand"]``), under
+(Mohr–Coulomb, c = 5 kPa, φ = ψ = 30°, comparisons/studies/winkler_map/grid.py ``SOILS["sand"]``),
+under
 a 0.6 g Ricker pulse of 0.4 s centred at t = 0 (so that the soil is loaded from the first
 step), for about ``--steps`` steps (default 300) on 8 and 16 elements across B.
 
@@ -65,8 +66,9 @@ STEP = {4: 0.000952, 8: 0.000465, 16: 0.000235}
 
 def run(soil: str, route: str, n: int, steps: int) -> dict:
     """One run of ``soil`` on ``n`` across through the ``route`` (compiled or fallback)."""
-    from upliftlab.continuum import build_model, kernels
-    from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
+    from upliftlab.continuum import build_model
+    from upliftlab.continuum.dynamics import kernels
+    from upliftlab.continuum.dynamics.run import DynamicOptions, run_dynamic
     from upliftlab.scenes import load_scene
 
     duration = steps * STEP[n]

@@ -35,12 +35,11 @@ from pathlib import Path
 import numpy as np
 
 from upliftlab.continuum import OPEN, build_model, make_model, rotation_pushover, run_dynamic
-from upliftlab.continuum.dynamics import DynamicOptions
-from upliftlab.continuum.gazetas import handbook_strip, lysmer_analog_velocity
-from upliftlab.continuum.halfplane import strip_impedance
-from upliftlab.continuum.impedance import ImpedanceOptions, impedance, impedance_model
-from upliftlab.continuum.impedance_output import (impedance_errors, impedance_figure,
-                                                  reference_for)
+from upliftlab.continuum.dynamics.run import DynamicOptions
+from upliftlab.continuum.impedance.gazetas import handbook_strip, lysmer_analog_velocity
+from upliftlab.continuum.impedance.halfplane import strip_impedance
+from upliftlab.continuum.impedance.analysis import ImpedanceOptions, impedance, impedance_model
+from upliftlab.continuum.impedance.output import impedance_errors, impedance_figure, reference_for
 from upliftlab.motions import free_vibration
 from upliftlab.scenes import ContinuumOptions, Soil, load_scene
 
@@ -286,7 +285,7 @@ def header(data: dict) -> str:
             f"{data['date']}, {data['machine']}, one thread. "
             "Soil E = 50 MPa, ρ = 1.8 t/m³, B = 2 m; Q2, 16 elements across B, PML box 6B × 3B "
             "with a 1.5B layer unless stated. Errors are |K − K_exact|/|K_exact|, the exact "
-            "impedance from `upliftlab.continuum.halfplane` (Chebyshev–Galerkin on the "
+            "impedance from `upliftlab.continuum.impedance.halfplane` (Chebyshev–Galerkin on the "
             "half-plane's Green's function, no FE). K_j = K_j,static [k_j + i a0 c_j], "
             "a0 = ω B/(2V_s); K_static: rocking πGB²/(8(1 − ν)), vertical 0.73G/(1 − ν), "
             "horizontal 2G/(2 − ν) (Gazetas 1991's strip limits; the 2D static K_v, K_h do not "

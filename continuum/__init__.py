@@ -17,51 +17,52 @@ Analyses (results are frozen records with ``save()`` to NetCDF)
     :func:`vm_envelope` -> :class:`Envelope`; :func:`run_dynamic` (gravity, then a ground
     motion; explicit central differences by default, or HHT-α / Newmark with Newton
     (``continuum.dynamics``); Lysmer boundaries, rigid or compliant base, SDOF superstructure)
-    with :class:`DynamicOptions` -> :class:`DynamicResult`; :func:`impedance` (the footing's
-    complex impedance per unit length in the frequency domain, PML or Lysmer box) with
-    :class:`ImpedanceOptions` on :func:`impedance_model` -> :class:`Impedance`.
+    with :class:`DynamicOptions` -> :class:`DynamicResult`;
+    :func:`.impedance.analysis.impedance` (the footing's complex impedance per unit length in
+    the frequency domain, PML or Lysmer box) with :class:`ImpedanceOptions` on
+    :func:`impedance_model` -> :class:`Impedance`.
 Independent references
-    :mod:`.halfplane` (the exact impedance of the rigid strip on the half-plane, no FE code),
-    :mod:`.gazetas` (the handbook formulas of Gazetas 1991).
+    :mod:`.impedance.halfplane` (the exact impedance of the rigid strip on the half-plane, no
+    FE code), :mod:`.impedance.gazetas` (the handbook formulas of Gazetas 1991).
 Solver
     :func:`equilibrium` (one Newton step to a :class:`Control`), :func:`follow` (a load path
     with step cutting), :func:`footing_tangent` (dF/dq), :class:`NewtonOptions`,
     :class:`ConvergenceError`, :class:`ContactError`; :class:`SoilTerm` and
     :class:`FootingTerm` add affine terms (inertia, dashpots, a superstructure) for dynamics.
-Pieces
-    :mod:`.assembly` (B-matrices, einsum Bᵀ D B into a fixed CSR pattern), :mod:`.footing`
-    (kinematics, contact solver), :mod:`.materials` (return maps), :mod:`.model`,
-    :mod:`.newton`, :mod:`.geostatic` (initial state), :mod:`.statics` (analyses),
-    :mod:`.static_results` (their records), :mod:`.fields` (soil fields, provenance),
-    :mod:`.dynamics` (entry point) with :mod:`.dynamic_options`, :mod:`.dynamic_result`,
-    :mod:`.waves` (wave speeds, mass, dashpots), :mod:`.ground` (boundaries, ground motion,
-    gravity state) and :mod:`.superstructure` (the SDOF superstructure and its coupling);
-    :mod:`.implicit` (HHT-α route) with :mod:`.step_rules` and :mod:`.iteration_matrix`;
-    :mod:`.explicit` (central-difference route) with :mod:`.kernels`, :mod:`.soil_force`,
-    :mod:`.contact_step` and :mod:`.explicit_loop` (its compiled pieces);
-    :mod:`.impedance`; :mod:`.run_control` (energy check, interruption, and
-    :class:`BearingFailure`: the soil cannot carry the footing through the motion).
+Pieces, by subpackage
+    the model itself: :mod:`.model`, :mod:`.assembly` (B-matrices, einsum Bᵀ D B into a fixed
+    CSR pattern), :mod:`.condensation` (the DOF blocks, the soil condensed on the footing);
+    :mod:`.materials` (the soil models' return maps, pure functions, and their compiled
+    Mohr–Coulomb point return); :mod:`.contact` (the rigid footing's kinematics and contact
+    solver, and its contact in one explicit step); :mod:`.statics` (Newton, the initial
+    geostatic state, the static analyses and their records); :mod:`.dynamics` (the entry point
+    :mod:`.dynamics.run`, options, result, waves, ground motion, the superstructure, the
+    implicit HHT-α route and the explicit central-difference route with its compiled loop,
+    and :mod:`.dynamics.run_control`: energy check, interruption, and :class:`BearingFailure`);
+    :mod:`.impedance` (the harmonic analysis, the PML, its references and its output);
+    :mod:`.output` (soil fields, XDMF series for ParaView, labelled datasets, summaries).
 """
 
 #: The continuum model's revision: part of the key of every stored record made with it
-#: (:mod:`upliftlab.comparisons.store`). Raise it on purpose, in the commit that changes the
+#: (:mod:`upliftlab.comparisons.framework.store`). Raise it on purpose, in the commit that changes
+# the
 #: model's numbers, so that stored records of the old numbers are no longer read; an edit that
 #: changes no number leaves it (stored records are then checked by a re-run sample instead).
 REVISION = 1
 
 
-from .dynamics import DynamicOptions, DynamicResult, run_dynamic
-from .footing import (OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK, ContactError, Footing,
-                      Interface)
-from .impedance import Impedance, ImpedanceOptions, impedance, impedance_model
+from .dynamics.run import DynamicOptions, DynamicResult, run_dynamic
+from .contact.footing import (OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK, ContactError, Footing,
+                              Interface)
+from .impedance.analysis import Impedance, ImpedanceOptions, impedance_model
 from .model import ContinuumModel, build_model, default_k0, make_model
-from .newton import (ContinuumState, Control, ConvergenceError, FootingTerm, NewtonOptions,
-                     SoilTerm, equilibrium, follow, footing_tangent)
-from .run_control import BearingFailure
-from .statics import (Envelope, FootingStiffness, StaticPath, UpliftOnset,
-                      elastic_gravity_stress, footing_stiffness, geostatic, k0_stress,
-                      moment_pushover, rotation_pushover, uplift_onset, vertical_pushover,
-                      vm_envelope)
+from .statics.newton import (ContinuumState, Control, ConvergenceError, FootingTerm, NewtonOptions,
+                             SoilTerm, equilibrium, follow, footing_tangent)
+from .dynamics.run_control import BearingFailure
+from .statics.analyses import (Envelope, FootingStiffness, StaticPath, UpliftOnset,
+                               elastic_gravity_stress, footing_stiffness, geostatic, k0_stress,
+                               moment_pushover, rotation_pushover, uplift_onset, vertical_pushover,
+                               vm_envelope)
 
 __all__ = [
     "REVISION",
@@ -75,5 +76,5 @@ __all__ = [
     "StaticPath", "vertical_pushover", "rotation_pushover", "moment_pushover",
     "UpliftOnset", "uplift_onset", "Envelope", "vm_envelope",
     "DynamicOptions", "DynamicResult", "run_dynamic",
-    "Impedance", "ImpedanceOptions", "impedance", "impedance_model",
+    "Impedance", "ImpedanceOptions", "impedance_model",
 ]

@@ -3,7 +3,8 @@ blocks of the Newton solver.
 
 Boundary conditions (statics): the bottom is fixed (a rigid base: the box bottom, or the rigid
 base under ``soil.layer_depth``), the sides are rollers (ux = 0). The footing's contact DOFs c
-(see :class:`~upliftlab.continuum.footing.Footing`) are condensed; every other unconstrained DOF
+(see :class:`~upliftlab.continuum.contact.footing.Footing`) are condensed; every other
+unconstrained DOF
 is interior (i).
 
 Every input is checked before any mesh is built: each error is an :class:`InputError` naming the
@@ -25,7 +26,7 @@ from ..scenes import ELEMENTS, ContinuumOptions, Scene, Soil
 from . import assembly
 from .condensation import (Blocks, Condensation, condensation, fill_reducing_order,  # noqa: F401
                            make_blocks, node_groups)
-from .footing import Footing, Interface, footing_on
+from .contact.footing import Footing, Interface, footing_on
 from .materials import (DruckerPrager, Elastic, MohrCoulomb, State, material_from_soil,
                         plane_strain, plane_strain_stress, plane_strain_tangent)
 
@@ -93,7 +94,8 @@ class Response:
     f_int − f_body (ndofs).
 
     ``lazy_tangent`` is the tangent, or a function of no arguments that computes it: a
-    response for an iteration with a frozen matrix (:mod:`~upliftlab.continuum.kernel_response`)
+    response for an iteration with a frozen matrix
+    (:mod:`~upliftlab.continuum.dynamics.kernel_response`)
     computes it only if asked. :attr:`tangent` always gives the array; a solver that may not
     need it passes ``lazy_tangent`` on (:func:`evaluated` turns either into the array)."""
 

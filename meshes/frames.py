@@ -6,7 +6,8 @@ frames of a run (window, magnification, colour and axis limits, units).
 quad is split into 4 quads on its 9 nodes, each P2 triangle into 4 triangles on its 6 nodes,
 so every nodal displacement is drawn exactly; element values repeat on their sub-cells.
 
-**Results** are duck typed (the ``FieldHistory`` of :mod:`upliftlab.continuum.field_history`): a static
+**Results** are duck typed (the ``FieldHistory`` of
+:mod:`upliftlab.continuum.output.field_history`): a static
 path with recorded fields or a dynamic result, offering ``time``, ``footing`` (nt, 3),
 ``x``, ``pressure`` and ``gap`` (nt, nc), ``contact_length``, ``N``, ``M``, ``snapshot_time``,
 ``displacement`` (nk, ndofs), ``plastic_strain`` (nk, nelems) and ``metadata``; a static path

@@ -6,7 +6,8 @@ the compiled integrators in :mod:`.kernels`.
 """
 
 #: The reduced model's revision: part of the key of every stored record made with it
-#: (:mod:`upliftlab.comparisons.store`). Raise it on purpose, in the commit that changes the
+#: (:mod:`upliftlab.comparisons.framework.store`). Raise it on purpose, in the commit that changes
+# the
 #: model's numbers, so that stored records of the old numbers are no longer read; an edit that
 #: changes no number leaves it (stored records are then checked by a re-run sample instead).
 REVISION = 1

@@ -76,7 +76,6 @@ def to_dataset(response):
     """The response as an :class:`xarray.Dataset` (module docstring)."""
     import xarray as xr
 
-    from .response import ENERGY_NAMES
 
     units, model = _units(response), response.model
     units["acceleration"] = f"{units['length']}/s^2"
@@ -93,7 +92,7 @@ def to_dataset(response):
         "kind": ("spring", np.asarray(model.kind, np.int8), {
             "long_name": "spring kind", "flag_values": np.array([0, 1, 2], np.int8),
             "flag_meanings": "story uplift bonded"}),
-        "component": ("component", list(ENERGY_NAMES), {"long_name": "energy account"}),
+        "component": ("component", list(response.energy_names), {"long_name": "energy account"}),
     }
     data = {name: ("time", getattr(response, name),
                    {"units": units[kind], "long_name": long})

@@ -37,7 +37,8 @@ def qz_shape(soil: str, exponent: float | None = None,
              elastic_range: float | None = None) -> QzShape:
     """The backbone shape of ``soil`` (:data:`QZ_SOILS`) with its exponent n and its initial
     elastic half-range ``elast`` replaced where given (e.g. fitted to a continuum pushover,
-    :mod:`upliftlab.comparisons.winkler_vs_continuum.qz_fit`). The largest range width is the
+    :mod:`upliftlab.comparisons.studies.winkler_vs_continuum.qz_fit`). The largest range width is
+    the
     soil's ``emax``, widened to 2·elast when the pristine range is wider, so that the law's cap
     min(·, emax·q_ult) on a reversal never cuts the range below its pristine width."""
     base = QZ_SOILS[soil]

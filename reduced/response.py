@@ -37,6 +37,9 @@ class Response:
     the stored times. ``info`` holds the integrator, step and counters; ``provenance`` the rest.
     """
 
+    #: The names of the energy account's columns (:data:`ENERGY_NAMES`).
+    energy_names = ENERGY_NAMES
+
     model: ReducedModel
     time: np.ndarray
     q: np.ndarray

@@ -14,8 +14,8 @@ import json
 import pytest
 
 from upliftlab import cli
-from upliftlab.comparisons import advise as adv
-from upliftlab.comparisons.measures import reduced_edge_uplift_from_peaks
+from upliftlab.comparisons.advise import ladder as adv
+from upliftlab.comparisons.framework.measures import reduced_edge_uplift_from_peaks
 from upliftlab.reduced import run
 from upliftlab.scenes import load_scene
 
@@ -60,7 +60,7 @@ def test_recommendation_is_the_cheapest_that_passes(advice):
     advise.PICK_RULE recomputed here from each candidate's counted work, its rhs calls and
     springs re-counted on an independent run of the recommendation (exact integers; the
     modelled seconds to 1e-12)."""
-    from upliftlab.comparisons import advise_continuum as ac
+    from upliftlab.comparisons.advise import continuum as ac
 
     rec = advice.recommendation
     beds = [m for m in advice.measured if m.candidate.model == "winkler"]
@@ -86,7 +86,7 @@ def test_recommendation_is_the_cheapest_that_passes(advice):
 def _measured(model, springs, integrator, dt, calls, runtime, meets=True):
     """A measured candidate with the work of ``calls`` rhs calls on ``springs`` + 1 springs
     (the story's), its cost by the rule's model."""
-    from upliftlab.comparisons import advise_continuum as ac
+    from upliftlab.comparisons.advise import continuum as ac
 
     total = springs + 1
     seconds = (ac.RUN_SECONDS
@@ -208,7 +208,7 @@ def test_parse_tolerance():
 def test_the_quantitys_unit_is_radians_for_theta_and_length_otherwise():
     """The advice states a rotation in rad and a displacement in the scene's length (the
     paper's building is in kip-in-s: in)."""
-    from upliftlab.comparisons.advise import _unit
+    from upliftlab.comparisons.advise.ladder import _unit
     from upliftlab.scenes import load_scene
 
     scene = load_scene("short_period_elcentro", case="B")

@@ -20,11 +20,11 @@ import pytest
 import xarray as xr
 
 from upliftlab import cli
-from upliftlab.comparisons import advise as adv
-from upliftlab.comparisons import advise_continuum as ac
-from upliftlab.comparisons import advise_map as am
-from upliftlab.comparisons import winkler_map as wm
-from upliftlab.comparisons.winkler_map.grid import FAST_OPTIONS
+from upliftlab.comparisons.advise import ladder as adv
+from upliftlab.comparisons.advise import continuum as ac
+from upliftlab.comparisons.advise import map_evidence as am
+from upliftlab.comparisons.studies import winkler_map as wm
+from upliftlab.comparisons.studies.winkler_map.grid import FAST_OPTIONS
 from upliftlab.reduced import run as reduced_run
 from upliftlab.results import read_dataset
 from upliftlab.scenes import load_scene, scene_from_dict
@@ -247,38 +247,40 @@ def test_budget_below_the_estimate_is_refused_before_any_run(monkeypatch, tmp_pa
     assert plan.estimate.seconds > 1.0
 
 
-def _kept(checkout, rate: float, code: str | None = None) -> None:
+def _kept(checkout, rate: float, revision: int | None = None) -> None:
     """A kept map store under ``checkout`` with one timed dynamic run whose per-step rate
     (the wall time less the fixed cost, per DOF and step) is ``rate`` s, on a mesh (one DOF)
-    that no ladder mesh has, so only its rate can change an estimate."""
-    from upliftlab.comparisons.store import Store, function_code, function_name
-    from upliftlab.comparisons.winkler_map.cost import FIXED_SECONDS_PER_DOF
-    from upliftlab.comparisons.winkler_map.points import evaluate_dynamic
-    from upliftlab.comparisons.winkler_map.workflow import KEPT_STORE
+    that no ladder mesh has, so only its rate can change an estimate; ``revision``: the
+    continuum revision it was made with (default today's)."""
+    from upliftlab.comparisons.framework.store import Store, function_name, revisions
+    from upliftlab.comparisons.studies.winkler_map.cost import FIXED_SECONDS_PER_DOF
+    from upliftlab.comparisons.studies.winkler_map.points import evaluate_dynamic
+    from upliftlab.comparisons.studies.winkler_map.workflow import KEPT_STORE
 
     dofs, steps = 1, 1000
     record = {"dofs": dofs, "steps": steps, "duration": 1.0, "compiled": True,
               "soil_model": "tresca",
               "wall_time_s": FIXED_SECONDS_PER_DOF[False] * dofs + rate * dofs * steps}
-    meta = {"function": function_name(evaluate_dynamic),
-            "code": code or function_code(evaluate_dynamic)}
+    models = revisions(evaluate_dynamic) if revision is None else {"continuum": revision}
+    meta = {"function": function_name(evaluate_dynamic), "models": models}
     Store(checkout / KEPT_STORE).put("0" * 63 + "1", record, meta)
 
 
 def test_the_ladders_estimate_is_at_the_kept_runs_rates(monkeypatch, tmp_path):
     """The estimate is linear in the per-step rate of the dynamic runs (the cost model:
     fixed + rate × DOFs × steps per run), so with kept runs at rates r1 and r2 and the default
-    r0 (no kept store, or kept runs of another code), (E0 − E1)/(E0 − E2) = (r0 − r1)/(r0 − r2):
+    r0 (no kept store, or kept runs of another revision of the continuum), (E0 − E1)/(E0 − E2)
+    = (r0 − r1)/(r0 − r2):
     a hand relation that holds only if the ladder is estimated at the kept runs' rate."""
-    from upliftlab.comparisons.winkler_map.cost import SECONDS_PER_DOF_STEP
+    from upliftlab.comparisons.studies.winkler_map.cost import SECONDS_PER_DOF_STEP
 
     scene = load_scene(SCENE, overrides=ON_MAP)
 
-    def estimate(rate=None, code=None):
-        checkout = tmp_path / f"checkout-{rate}-{code}"
+    def estimate(rate=None, revision=None):
+        checkout = tmp_path / f"checkout-{rate}-{revision}"
         checkout.mkdir()
         if rate is not None:
-            _kept(checkout, rate, code)
+            _kept(checkout, rate, revision)
         monkeypatch.setattr(ac, "CHECKOUT", checkout)
         return ac.plan_continuum(scene, "theta", TOL, fast=False).estimate.seconds
 
@@ -286,7 +288,7 @@ def test_the_ladders_estimate_is_at_the_kept_runs_rates(monkeypatch, tmp_path):
     e0, e1, e2 = estimate(), estimate(r1), estimate(r2)
     assert e1 < e2 < e0
     assert (e0 - e1) / (e0 - e2) == pytest.approx((r0 - r1) / (r0 - r2), rel=1e-9)
-    assert estimate(r1, code="0" * 64) == pytest.approx(e0, rel=1e-12)  # another code's runs
+    assert estimate(r1, revision=0) == pytest.approx(e0, rel=1e-12)  # another revision's runs
 
 
 def test_over_budget_inside_the_map_gives_the_maps_verdict_without_running(
@@ -303,7 +305,7 @@ def test_over_budget_inside_the_map_gives_the_maps_verdict_without_running(
             "--map", str(fast_map)]
     code = cli.main(args + [x for s in ON_MAP for x in ("--set", s)])
     out = capsys.readouterr().out
-    assert code == cli.EXIT_NUMERICS
+    assert code == 3
     assert "the continuum was not run" in out and "map's evidence" in out
     assert "certifies nothing" in out and "beds against the continuum (measured" not in out
     err = read_dataset(fast_map)["error"].sel(soil="clay", measure="theta")
@@ -322,7 +324,7 @@ def test_cli_json_fast(advice, fast_map, capsys):
     code = cli.main(args + [x for s in ON_MAP for x in ("--set", s)])
     out = json.loads(capsys.readouterr().out)
     c, mine = out["continuum_advice"], advice.continuum_advice
-    assert code == (0 if mine.recommendation is not None else cli.EXIT_NUMERICS)
+    assert code == (0 if mine.recommendation is not None else 3)
     assert c["reference"]["value"] == pytest.approx(mine.reference.value, rel=1e-12)
     assert c["reference"]["uncertainty"] == pytest.approx(mine.reference.uncertainty,
                                                           rel=1e-12)

@@ -1,5 +1,14 @@
-"""Dependencies point one way: core, then the models (reduced, continuum, meshes), then the
-comparisons, with the CLI at the edge. The reduced model never imports scikit-fem."""
+"""Dependencies point one way, with no exemption, and no module imports itself back.
+
+The layers, each importing only those below it (``design.md``):
+
+    core (upliftlab, but its command line) → models (reduced; meshes; continuum, which may use
+    meshes) → the studies' framework → beds → studies → report, advise, opensees (none of which
+    imports another) → the command line (upliftlab.cli and ``python -m upliftlab``).
+
+Every import statement counts, those inside functions too: an import deferred to call time is
+still a dependency. Reference: the source files' syntax trees; the layers as listed here.
+"""
 
 import ast
 import subprocess
@@ -9,21 +18,123 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = {"upliftlab": "upliftlab", "reduced": "upliftlab.reduced",
-            "continuum": "upliftlab.continuum", "meshes": "upliftlab.meshes",
-            "comparisons": "upliftlab.comparisons"}
-# what each layer may import from the project (besides itself)
-ALLOWED = {
-    "upliftlab": {"upliftlab"},
-    "upliftlab.reduced": {"upliftlab"},
-    "upliftlab.meshes": {"upliftlab"},
-    "upliftlab.continuum": {"upliftlab", "upliftlab.meshes"},
-    "upliftlab.comparisons": {"upliftlab", "upliftlab.reduced", "upliftlab.continuum",
-                              "upliftlab.meshes"},
-}
+FOLDERS = {"upliftlab": "upliftlab", "upliftlab.reduced": "reduced",
+           "upliftlab.continuum": "continuum", "upliftlab.meshes": "meshes",
+           "upliftlab.comparisons": "comparisons"}
+
+#: Layer of a module: the first prefix it matches (longest first), and the layers' ranks.
+LAYERS = (
+    ("upliftlab.cli", "cli", 6), ("upliftlab.__main__", "cli", 6),
+    ("upliftlab.comparisons.report", "report", 5), ("upliftlab.comparisons.advise", "advise", 5),
+    ("upliftlab.comparisons.opensees", "opensees", 5),
+    ("upliftlab.comparisons.studies", "studies", 4), ("upliftlab.comparisons.beds", "beds", 3),
+    ("upliftlab.comparisons.framework", "framework", 2),
+    ("upliftlab.comparisons", "framework", 2),  # the package's face hands the framework on
+    ("upliftlab.continuum", "continuum", 1), ("upliftlab.reduced", "reduced", 1),
+    ("upliftlab.meshes", "meshes", 1), ("upliftlab", "core", 0),
+)
+#: Imports between layers of the same rank that are allowed.
+SIDEWAYS = {("continuum", "meshes")}
 
 
-def test_reduced_model_runs_without_scikit_fem():
+def _layer(module: str) -> tuple[str, int]:
+    for prefix, name, rank in LAYERS:
+        if module == prefix or module.startswith(prefix + "."):
+            return name, rank
+    raise AssertionError(module)
+
+
+def _modules() -> dict[str, Path]:
+    """Every module of the package by name (packages by their own name)."""
+    out = {}
+    for package, folder in FOLDERS.items():
+        for path in (ROOT / folder).rglob("*.py"):
+            if "__pycache__" in path.parts:
+                continue
+            parts = list(path.relative_to(ROOT / folder).with_suffix("").parts)
+            if package == "upliftlab" and parts[0] in ("reduced", "continuum", "meshes",
+                                                        "comparisons"):
+                continue
+            if parts[-1] == "__init__":
+                parts = parts[:-1]
+            out[".".join([package, *parts])] = path
+    return out
+
+
+MODULES = _modules()
+
+
+def _imports(name: str, path: Path) -> set[str]:
+    """The package's modules that module ``name`` imports, anywhere in its body."""
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.Import):
+            found |= {a.name for a in node.names if a.name.startswith("upliftlab")}
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                parts = package.split(".")
+                base = ".".join(parts[:len(parts) - node.level + 1]
+                                + ([node.module] if node.module else []))
+            else:
+                base = node.module or ""
+            if not base.startswith("upliftlab"):
+                continue
+            for alias in node.names:
+                sub = f"{base}.{alias.name}"
+                found.add(sub if sub in MODULES else base)
+    return {m for m in found if m in MODULES and m != name}
+
+
+GRAPH = {name: _imports(name, path) for name, path in MODULES.items()}
+
+
+@pytest.mark.parametrize("layer", sorted({name for _, name, _ in LAYERS}))
+def test_imports_point_one_way(layer):
+    for module, targets in sorted(GRAPH.items()):
+        here, rank = _layer(module)
+        if here != layer:
+            continue
+        for target in targets:
+            there, other = _layer(target)
+            ok = other < rank or there == here or (here, there) in SIDEWAYS
+            assert ok, f"{module} ({here}) imports {target} ({there})"
+
+
+def test_no_module_imports_itself_back():
+    """No import circle: the strongly connected components of the import graph are single
+    modules (Tarjan's algorithm)."""
+    index, low, stack, on, circles = {}, {}, [], set(), []
+
+    def visit(v):
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on.add(v)
+        for w in GRAPH[v]:
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                circles.append(sorted(component))
+
+    sys.setrecursionlimit(10000)
+    for v in sorted(GRAPH):
+        if v not in index:
+            visit(v)
+    assert not circles, circles
+
+
+def test_the_reduced_model_runs_without_scikit_fem():
     """Import and run the reduced model in a fresh interpreter: no skfem, meshio or pyvista."""
     code = ("import sys\n"
             "from upliftlab.scenes import load_scene\n"
@@ -35,68 +146,19 @@ def test_reduced_model_runs_without_scikit_fem():
     assert result.returncode == 0, result.stderr
 
 
-def _imports(path: Path, package: str) -> set[str]:
-    """Project packages that module ``path`` of ``package`` imports (relative imports resolved
-    from the module's own package: ``..x`` from a subpackage of the core is ``upliftlab.x``,
-    ``...x`` from ``comparisons/opensees/`` also)."""
-    tree = ast.parse(path.read_text())
-    here = package.split(".") + list(path.relative_to(ROOT).parts[1:-1])
-    found = set()
-    for node in ast.walk(tree):
-        if isinstance(node, ast.ImportFrom):
-            if node.level == 0 and node.module:
-                name = node.module
-            elif node.level <= len(here):
-                base = here[:len(here) - node.level + 1]
-                name = ".".join(base + ([node.module] if node.module else []))
-            else:
-                continue
-        elif isinstance(node, ast.Import):
-            for alias in node.names:
-                if alias.name.startswith("upliftlab"):
-                    found.add(_layer(alias.name))
-            continue
-        else:
-            continue
-        if name.startswith("upliftlab"):
-            found.add(_layer(name))
-    return found
-
-
-def _layer(module: str) -> str:
-    parts = module.split(".")
-    if len(parts) > 1 and f"upliftlab.{parts[1]}" in ALLOWED:
-        return f"upliftlab.{parts[1]}"
-    return "upliftlab"
-
-
-@pytest.mark.parametrize("folder", list(PACKAGES))
-def test_imports_point_one_way(folder):
-    package = PACKAGES[folder]
-    for path in sorted((ROOT / folder).rglob("*.py")):
-        if folder == "upliftlab" and (path.name.startswith("cli") or path.name == "__main__.py"):
-            continue  # the CLI (cli.py, cli_*.py) is the edge: it may call every model
-        wrong = _imports(path, package) - ALLOWED[package] - {package}
-        assert not wrong, f"{path.relative_to(ROOT)} imports {sorted(wrong)}"
-
-
 def test_every_subpackage_is_installed():
     # Reference: the folders of the checkout. A non-editable install (the README's first
     # command) copies only the packages pyproject.toml lists: a new subpackage left out of the
-    # list imports in the editable test install and fails in the installed one (found by
-    # .ci/run: reduced/kernels/ was missing).
+    # list imports in the editable test install and fails in the installed one.
     import tomllib
 
-    root = Path(__file__).resolve().parents[1]
-    config = tomllib.loads((root / "pyproject.toml").read_text())["tool"]["setuptools"]
+    config = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
     listed = set(config["packages"])
-    found = set()
-    for name, folder in config["package-dir"].items():
-        for init in (root / folder).rglob("__init__.py"):
-            if "__pycache__" in init.parts:
-                continue
-            rel = init.parent.relative_to(root / folder).parts
-            if name == "upliftlab" and rel and f"upliftlab.{rel[0]}" in config["package-dir"]:
-                continue  # a folder mapped on its own
-            found.add(".".join((name, *rel)))
+    found = {name for name, path in MODULES.items() if path.name == "__init__.py"}
     assert found <= listed, f"not installed: {sorted(found - listed)}"
+
+
+def test_the_package_has_no_path_hack():
+    """``upliftlab/__init__.py`` does not add the checkout to its path: the package works as
+    installed (editable or not), and nothing else."""
+    assert "__path__" not in (ROOT / "upliftlab" / "__init__.py").read_text()

@@ -17,9 +17,9 @@ import numpy as np
 import pytest
 
 from upliftlab.checks import InputError
-from upliftlab.comparisons import two_spring_equivalence as tse
-from upliftlab.comparisons.store import Store, point_key
-from upliftlab.comparisons.sweep import StderrProgress, run_sweep
+from upliftlab.comparisons.studies import two_spring_equivalence as tse
+from upliftlab.comparisons.framework.store import Store, point_key
+from upliftlab.comparisons.framework.sweep import StderrProgress, run_sweep
 
 # A test function of one point with a closed form, and a switch that makes it fail.
 FAIL_AFTER = {"calls": None}
@@ -205,7 +205,7 @@ def test_interrupted_process_sweep_resumes_to_the_uninterrupted_result(tmp_path)
 def test_progress_is_printed_on_stderr_for_long_sweeps(capsys):
     """StderrProgress prints once the sweep has run ``after`` seconds, and the last line:
     3 of 3 points (100 %)."""
-    from upliftlab.comparisons.sweep import SweepProgress
+    from upliftlab.comparisons.framework.sweep import SweepProgress
 
     show = StderrProgress(every=0.0, after=0.0)
     show(SweepProgress("demo", 1, 3, 1, 2.0))

@@ -1,7 +1,8 @@
 """The command line around a continuum dynamic run: part of a record, interruption, the energy
 check, the time-integration key and the thread settings.
 
-References: the requested duration and the command line's documented exit codes (upliftlab/cli.py:
+References: the requested duration and the command line's documented exit codes
+(upliftlab/cli/__init__.py:
 2 bad input, 3 a failed computation, 130 interrupted); an interrupted run's rows are those of an
 uninterrupted run of the same scene (a prefix, to round-off).
 """
@@ -55,14 +56,14 @@ def test_dynamics_key_selects_the_implicit_route(tmp_path, capsys):
 def test_a_bearing_failure_writes_what_it_computed_and_exits_3(route, tmp_path, capsys,
                                                                monkeypatch):
     # A stand-in bearing failure after t = 0.2 s of a 0.5 s run (the route's divergence check,
-    # or its step, made to raise it): exit 3 (upliftlab/cli.py: a failed run) with one line
+    # or its step, made to raise it): exit 3 (upliftlab/cli/__init__.py: a failed run) with one line
     # that says so; result.nc holds the rows until the failure, marked incomplete with the
     # failure's kind, time and settlement; the snapshots' fields are written for a look at
     # the mechanism; the folder has no completion marker (it holds a failed run).
     import contextlib
 
-    from upliftlab.continuum import explicit, implicit
-    from upliftlab.continuum.run_control import BearingFailure
+    from upliftlab.continuum.dynamics import explicit, implicit
+    from upliftlab.continuum.dynamics.run_control import BearingFailure
     from upliftlab.outdir import read_marker
 
     def failure(k, dt):
@@ -195,7 +196,7 @@ def test_threads_option_is_checked(tmp_path, capsys):
 
 
 def test_package_imports_lazily():
-    assert Path(cli.__file__).name == "cli.py"
+    assert Path(cli.__file__).parent.name == "cli"
     code = "import sys, upliftlab; print('numpy' in sys.modules); print(upliftlab.load_scene)"
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                             env=_env())

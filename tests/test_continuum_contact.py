@@ -21,9 +21,10 @@ import numpy as np
 import pytest
 
 from upliftlab.checks import InputError
-from upliftlab.continuum import (OPEN, STICK, Control, follow, geostatic, make_model,
-                                 moment_pushover, rotation_pushover, uplift_onset)
-from upliftlab.continuum.footing import SLIP_NEGATIVE, SLIP_POSITIVE, separation_fraction
+from upliftlab.continuum import (OPEN, STICK, Control, follow, make_model, moment_pushover,
+                                 rotation_pushover, uplift_onset)
+from upliftlab.continuum import geostatic
+from upliftlab.continuum.contact.footing import SLIP_NEGATIVE, SLIP_POSITIVE, separation_fraction
 from upliftlab.scenes import ContinuumOptions, Soil
 
 E, NU, B, N = 50e3, 0.3, 2.0, 171.39  # kPa, -, m, kN/m (the scene's FS_v = 3)

@@ -1,4 +1,4 @@
-"""Dynamics of the continuum model (upliftlab.continuum.dynamics).
+"""Dynamics of the continuum model (upliftlab.continuum.dynamics.run).
 
 References, one per test:
 - Lysmer–Kuhlemeyer boundary (Lysmer & Kuhlemeyer 1969): in a 1-D soil column on a
@@ -33,15 +33,15 @@ from scipy.sparse.linalg import splu
 
 from upliftlab.checks import InputError
 from upliftlab.continuum import OPEN, assembly, build_model, make_model
-from upliftlab.continuum import ground
-from upliftlab.continuum import iteration_matrix
-from upliftlab.continuum.iteration_matrix import elastic_plane_tangent
-from upliftlab.continuum.dynamics import (COURANT_LIMIT, DynamicOptions, DynamicResult,
-                                          dashpot_data, incident_load, mass_data,
-                                          newmark_parameters, run_dynamic, time_step_limit,
-                                          wave_speeds)
+from upliftlab.continuum.dynamics import ground
+from upliftlab.continuum.dynamics import iteration_matrix
+from upliftlab.continuum.dynamics.iteration_matrix import elastic_plane_tangent
+from upliftlab.continuum.dynamics.run import (COURANT_LIMIT, DynamicOptions, DynamicResult,
+                                              dashpot_data, incident_load, mass_data,
+                                              newmark_parameters, run_dynamic, time_step_limit,
+                                              wave_speeds)
 from upliftlab.continuum.materials import Elastic, plane_strain_tangent
-from upliftlab.continuum.output import check_history
+from upliftlab.continuum.output.series import check_history
 from upliftlab.motions import free_vibration
 from upliftlab.reduced.exact import nigam_jennings
 from upliftlab.results import read_netcdf
@@ -326,7 +326,7 @@ def test_recontact_without_chattering(rocking, method):
 
 @pytest.mark.parametrize("method", ["explicit", "implicit"])
 def test_dynamic_result_is_a_field_history(rocking, tmp_path, method):
-    # Reference: the FieldHistory protocol of continuum/output.py; save() round-trips.
+    # Reference: the FieldHistory protocol of continuum/output/series.py; save() round-trips.
     model, runs, _ = rocking
     hht = runs[method]
     assert isinstance(hht, DynamicResult)
@@ -522,9 +522,10 @@ def test_refactorised_and_full_newton_steps_converge_to_the_same_history(monkeyp
     # attempt is made to fail (so full Newton starts from a state whose tangent the compiled
     # residuals left to be computed). Both converge to the same tolerance, so the histories
     # agree to well within 0.1 % of their peaks.
-    from upliftlab.continuum import NewtonOptions, implicit
-    from upliftlab.continuum.iteration_matrix import FrozenTangent
-    from upliftlab.continuum.newton import ConvergenceError
+    from upliftlab.continuum import NewtonOptions
+    from upliftlab.continuum.dynamics import implicit
+    from upliftlab.continuum.dynamics.iteration_matrix import FrozenTangent
+    from upliftlab.continuum.statics.newton import ConvergenceError
 
     scene = load_scene(SCENE, overrides=COARSE + ["motion.duration=1.0"])
     model, motion = build_model(scene), scene.build_motion()
@@ -589,9 +590,9 @@ def test_an_implicit_step_newton_cannot_follow_is_a_bearing_failure_past_a_tenth
     # (0.075 B) it stays a ConvergenceError naming the time and both attempts.
     import types
 
-    from upliftlab.continuum import implicit
-    from upliftlab.continuum.newton import ConvergenceError
-    from upliftlab.continuum.run_control import BearingFailure
+    from upliftlab.continuum.dynamics import implicit
+    from upliftlab.continuum.statics.newton import ConvergenceError
+    from upliftlab.continuum.dynamics.run_control import BearingFailure
 
     model = build_model(load_scene(SCENE, overrides=COARSE))
     assert model.width == 2.0

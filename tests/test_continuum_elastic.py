@@ -18,8 +18,8 @@ import math
 import numpy as np
 import pytest
 
-from upliftlab.continuum import (elastic_gravity_stress, footing_stiffness, geostatic,
-                                 k0_stress, make_model)
+from upliftlab.continuum import elastic_gravity_stress, footing_stiffness, k0_stress, make_model
+from upliftlab.continuum import geostatic
 from upliftlab.scenes import ContinuumOptions, Soil
 
 E, NU, B = 50e3, 0.3, 2.0  # kPa, -, m

@@ -1,8 +1,9 @@
-"""The explicit route of the continuum dynamics (upliftlab.continuum.explicit and its kernels).
+"""The explicit route of the continuum dynamics (upliftlab.continuum.dynamics.explicit and its
+kernels).
 
 References, one per test:
 - the compiled return maps and internal force: the vectorised return maps of
-  continuum/materials.py and the sparse Bᵀσ assembly of continuum/assembly.py (independent
+  continuum/materials/__init__.py and the sparse Bᵀσ assembly of continuum/assembly.py (independent
   implementations of the same formulas);
 - the lumped mass: the soil's mass ρ × area per component (closed form);
 - the stable step: the largest eigenvalue of M^{-1/2} K M^{-1/2} by dense LAPACK (an
@@ -10,7 +11,7 @@ References, one per test:
   central differences, dt ω_max ≤ 2 (Belytschko, Liu, Moran & Elkhodary, *Nonlinear Finite
   Elements for Continua and Structures*, 2014, §6.3);
 - the contact step: enumeration of every active set of a small complementarity problem, and
-  the implicit route's solver (continuum/footing.py ``solve_contact``) for friction;
+  the implicit route's solver (continuum/contact/footing.py ``solve_contact``) for friction;
 - the time history: the implicit route (HHT-α, Newton) at a quarter of its default step on
   the same mesh; energy conservation of an undamped elastic system;
 - the compiled time loop: the Python loop of the same steps.
@@ -26,19 +27,21 @@ import numpy as np
 import pytest
 
 from upliftlab.checks import InputError
-from upliftlab.continuum import OPEN, build_model, geostatic, kernels
-from upliftlab.continuum import dynamics as dyn
-from upliftlab.continuum import ground
-from upliftlab.continuum.iteration_matrix import elastic_plane_tangent
-from upliftlab.continuum import explicit as ex
-from upliftlab.continuum import explicit_step
-from upliftlab.continuum.contact_step import normal_forces, tangential_step
-from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
-from upliftlab.continuum.footing import (ContactError, ContactProblem, Footing, Interface,
-                                         solve_contact)
+from upliftlab.continuum import OPEN, build_model
+from upliftlab.continuum import geostatic
+from upliftlab.continuum.dynamics import kernels
+from upliftlab.continuum.dynamics import run as dyn
+from upliftlab.continuum.dynamics import ground
+from upliftlab.continuum.dynamics.iteration_matrix import elastic_plane_tangent
+from upliftlab.continuum.dynamics import explicit as ex
+from upliftlab.continuum.dynamics import explicit_step
+from upliftlab.continuum.contact.step import normal_forces, tangential_step
+from upliftlab.continuum.dynamics.run import DynamicOptions, run_dynamic
+from upliftlab.continuum.contact.footing import (ContactError, ContactProblem, Footing, Interface,
+                                                 solve_contact)
 from upliftlab.continuum.materials import Elastic, Tresca, VonMises
-from upliftlab.continuum.newton import ConvergenceError
-from upliftlab.continuum.run_control import BearingFailure
+from upliftlab.continuum.statics.newton import ConvergenceError
+from upliftlab.continuum.dynamics.run_control import BearingFailure
 from upliftlab.motions import free_vibration
 from upliftlab.scenes import load_scene
 
@@ -56,7 +59,7 @@ COARSE = ["continuum.elements_across=4"]  # Q2, 10B x 10B, 1296 DOFs
     (VonMises(50e3, 0.3, 50.0, 2000.0), kernels.VON_MISES),
     (Elastic(50e3, 0.3), kernels.ELASTIC)])
 def test_compiled_return_maps_match_the_vectorised_ones(material, kind):
-    # Reference: continuum/materials.py at 3000 random plane-strain points, from a plastic
+    # Reference: continuum/materials/__init__.py at 3000 random plane-strain points, from a plastic
     # history (a first update at 70 % of the strain), so that every return region is hit.
     rng = np.random.default_rng(7)
     n = 3000
@@ -418,7 +421,7 @@ def test_implicit_scheme_options_are_refused_on_the_explicit_route():
 
 def test_a_footing_without_rotary_inertia_is_refused_by_the_explicit_route():
     # Reference: the footing-and-story mass matrix M = diag(m_b, m_v, I0, 0) + m a aᵀ with
-    # a = (1, 0, h, 1) (continuum/dynamics.py) has its θ row equal to h times the story's when
+    # a = (1, 0, h, 1) (continuum/dynamics/run.py) has its θ row equal to h times the story's when
     # I0 = 0: singular, which central differences cannot advance (found by the fuzzer:
     # rotary_inertia = 1e-300 failed with a singular matrix at the first step). Refused with
     # the field and its range; the implicit route, which adds the soil's stiffness, runs it.

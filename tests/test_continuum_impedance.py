@@ -1,8 +1,9 @@
-"""Dynamic impedance of the rigid strip on elastic soil (upliftlab.continuum.impedance).
+"""Dynamic impedance of the rigid strip on elastic soil (upliftlab.continuum.impedance.analysis).
 
 References, one per test:
 - the exact impedance of the rigid strip on the half-plane, computed by
-  :mod:`upliftlab.continuum.halfplane`: a Chebyshev–Galerkin solution of the mixed problem on
+  :mod:`upliftlab.continuum.impedance.halfplane`: a Chebyshev–Galerkin solution of the mixed
+  problem on
   Lamb's wavenumber-domain Green's function, written without the FE code (no mesh, no basis);
   it is itself checked here against closed forms: the static rocking stiffness of the
   frictionless strip πGB²/(8(1 − ν)) (Muskhelishvili's punch), the high-frequency
@@ -28,12 +29,13 @@ from scipy.optimize import least_squares
 from upliftlab import cli
 from upliftlab.checks import InputError
 from upliftlab.continuum import OPEN, build_model, run_dynamic
-from upliftlab.continuum.dynamics import DynamicOptions
-from upliftlab.continuum.gazetas import ROCKING_FIT, handbook_strip, lysmer_analog_velocity
-from upliftlab.continuum.halfplane import green, strip_impedance
-from upliftlab.continuum.impedance import (DEFAULT_A0, ImpedanceOptions, impedance,
-                                           impedance_model, static_normalisers)
-from upliftlab.continuum.impedance_output import (ImpedanceAccuracyError, impedance_errors,
+from upliftlab.continuum.dynamics.run import DynamicOptions
+from upliftlab.continuum.impedance.gazetas import (ROCKING_FIT, handbook_strip,
+                                                   lysmer_analog_velocity)
+from upliftlab.continuum.impedance.halfplane import green, strip_impedance
+from upliftlab.continuum.impedance.analysis import (DEFAULT_A0, ImpedanceOptions, impedance,
+                                                    impedance_model, static_normalisers)
+from upliftlab.continuum.impedance.output import (ImpedanceAccuracyError, impedance_errors,
                                                   reference_for, verify)
 from upliftlab.motions import free_vibration
 from upliftlab.results import read_netcdf

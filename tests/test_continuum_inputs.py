@@ -16,8 +16,9 @@ import pytest
 import skfem
 
 from upliftlab.checks import InputError
-from upliftlab.continuum import (Envelope, build_model, geostatic, make_model,
-                                 model as model_module, rotation_pushover)
+from upliftlab.continuum import (Envelope, build_model, make_model, model as model_module,
+                                 rotation_pushover)
+from upliftlab.continuum import geostatic
 from upliftlab.meshes import soil_mesh
 from upliftlab.results import read_netcdf
 from upliftlab.scenes import ContinuumOptions, Soil, load_scene, scene_from_dict

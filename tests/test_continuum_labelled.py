@@ -1,4 +1,4 @@
-"""The continuum dynamic result as labelled data (upliftlab.continuum.labelled).
+"""The continuum dynamic result as labelled data (upliftlab.continuum.output.labelled).
 
 Reference: the DynamicResult's own arrays, held unchanged (exactly) under labels; the CF
 conventions' attributes (units and long_name, or flag_values with flag_meanings).
@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from upliftlab.continuum import build_model
-from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
+from upliftlab.continuum.dynamics.run import DynamicOptions, run_dynamic
 from upliftlab.scenes import load_scene
 
 

@@ -20,10 +20,10 @@ import pytest
 from upliftlab import cli
 from upliftlab.checks import InputError
 from upliftlab.continuum import build_model, footing_stiffness, make_model
-from upliftlab.continuum import dynamics as dyn
-from upliftlab.continuum import ground
-from upliftlab.continuum.step_rules import implicit_settings
-from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
+from upliftlab.continuum.dynamics import run as dyn
+from upliftlab.continuum.dynamics import ground
+from upliftlab.continuum.dynamics.step_rules import implicit_settings
+from upliftlab.continuum.dynamics.run import DynamicOptions, run_dynamic
 from upliftlab.scenes import ContinuumOptions, Soil, load_scene
 
 SCENE = "strip_footing_clay"

@@ -20,10 +20,11 @@ import numpy as np
 import pytest
 
 from upliftlab.checks import InputError
-from upliftlab.continuum import (Control, ConvergenceError, NewtonOptions, assembly,
-                                 equilibrium, follow, footing_tangent, geostatic, make_model,
-                                 vertical_pushover, vm_envelope)
-from upliftlab.continuum.iteration_matrix import FrozenTangent
+from upliftlab.continuum import (Control, ConvergenceError, NewtonOptions, assembly, equilibrium,
+                                 follow, footing_tangent, make_model, vertical_pushover,
+                                 vm_envelope)
+from upliftlab.continuum import geostatic
+from upliftlab.continuum.dynamics.iteration_matrix import FrozenTangent
 from upliftlab.scenes import ContinuumOptions, Soil
 
 B, CU = 2.0, 50.0

@@ -1,5 +1,5 @@
 """Outputs of the continuum model: recorded soil fields, XDMF time series, renders, the M–θ
-figure and the ``upliftlab continuum`` command (upliftlab.continuum.output,
+figure and the ``upliftlab continuum`` command (upliftlab.continuum.output.series,
 upliftlab.meshes.render, upliftlab.cli).
 
 References:
@@ -26,10 +26,10 @@ import pytest
 from upliftlab import cli
 from upliftlab.checks import InputError
 from upliftlab.continuum import OPEN, build_model, make_model, rotation_pushover
-from upliftlab.continuum.output import (figure_title, half_plane_rocking,
-                                        moment_rotation_figure, pushover_summary, read_xdmf,
-                                        rotation_schedule, save_figure, winkler_rocking,
-                                        write_xdmf)
+from upliftlab.continuum.output.series import (figure_title, half_plane_rocking,
+                                               moment_rotation_figure, pushover_summary, read_xdmf,
+                                               rotation_schedule, save_figure, winkler_rocking,
+                                               write_xdmf)
 from upliftlab.meshes import soil_mesh
 from upliftlab.meshes.render import (animate_uplift, linear_submesh, render_uplift,
                                      snapshot_rows)

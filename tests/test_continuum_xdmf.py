@@ -1,4 +1,4 @@
-"""The XDMF time series of a continuum run (upliftlab.continuum.xdmf): what their time means,
+"""The XDMF time series of a continuum run (upliftlab.continuum.output.xdmf): what their time means,
 and the contact along the footing's base on its own line mesh (footing.xdmf).
 
 References:
@@ -17,7 +17,7 @@ References:
   differently from the element's Simpson weights, an O(h) discretisation difference measured at
   3.2 / 1.6 / 0.8 % (full contact) and 6.4 / 2.2 / 0.8 % (at 10 θ_on) with 4 / 8 / 16 elements
   across B: asserted within 7 % on the coarse mesh;
-- the contact conditions solved exactly (continuum/footing.py): gap zero (to 1e-12 B) and
+- the contact conditions solved exactly (continuum/contact/footing.py): gap zero (to 1e-12 B) and
   pressure ≥ 0 where closed, gap > 0 and pressure zero where open (both to the active-set
   solve's round-off, 1e-12 of the largest pressure; about 5e-19 kN/m² is seen);
 - ParaView's own XDMF reader (VTK's vtkXdmfReader) reports the same time steps.
@@ -34,8 +34,8 @@ import pytest
 from upliftlab.checks import InputError
 from upliftlab.continuum import (OPEN, DynamicOptions, build_model, rotation_pushover,
                                  run_dynamic, vertical_pushover)
-from upliftlab.continuum.output import (read_xdmf, rotation_schedule, time_axis,
-                                        write_footing_xdmf, write_xdmf)
+from upliftlab.continuum.output.series import (read_xdmf, rotation_schedule, time_axis,
+                                               write_footing_xdmf, write_xdmf)
 from upliftlab.scenes import load_scene
 
 SCENE = "strip_footing_clay"

@@ -1,4 +1,5 @@
-"""The compiled Mohr–Coulomb return map of the explicit route (continuum/kernels_mc.py, kind
+"""The compiled Mohr–Coulomb return map of the explicit route (continuum/materials/compiled_mc.py,
+kind
 ``kernels.MOHR_COULOMB``) and the explicit runs it serves.
 
 References, one per test:
@@ -16,12 +17,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from upliftlab.continuum import build_model, kernels
-from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
+from upliftlab.continuum import build_model
+from upliftlab.continuum.dynamics import kernels
+from upliftlab.continuum.dynamics.run import DynamicOptions, run_dynamic
 from upliftlab.continuum.materials import MohrCoulomb, Region
 from upliftlab.scenes import load_scene
 
-#: The Winkler map's frictional soil (comparisons/winkler_map/grid.py SOILS["sand"]) on the
+#: The Winkler map's frictional soil (comparisons/studies/winkler_map/grid.py SOILS["sand"]) on the
 #: clay scene's footing and structure, 4 elements across, 0.4 s of its 0.6 g Ricker pulse.
 SAND = ["soil.model=mohr_coulomb", "soil.cohesion=5", "soil.friction_angle=30",
         "soil.dilation_angle=30", "continuum.elements_across=4", "motion.duration=0.4",
@@ -109,7 +111,7 @@ def test_compiled_mohr_coulomb_run_repeats_the_vectorised_fallback(monkeypatch):
 
 
 def test_the_winkler_map_estimates_mohr_coulomb_at_the_compiled_rate():
-    # Reference: the cost model of comparisons/winkler_map/cost.py written out by hand,
+    # Reference: the cost model of comparisons/studies/winkler_map/cost.py written out by hand,
     # seconds = F·dofs + R·dofs·steps: the frictional soil's fixed part F (its gravity state)
     # with the compiled per-step rate R; steps = ⌈duration V_p / (0.3 h_min)⌉ (the Courant
     # estimate), V_p = √((λ + 2G)/ρ) = 193.37 m/s of E = 50 MPa, ν = 0.3, ρ = 1.8 t/m³, and the
@@ -120,7 +122,7 @@ def test_the_winkler_map_estimates_mohr_coulomb_at_the_compiled_rate():
     # counts as frictional when its map was not compiled.
     import math
 
-    from upliftlab.comparisons.winkler_map import cost
+    from upliftlab.comparisons.studies.winkler_map import cost
 
     sand = load_scene("strip_footing_clay", overrides=SAND)
     drucker = load_scene("strip_footing_clay", overrides=SAND + ["soil.model=drucker_prager"])

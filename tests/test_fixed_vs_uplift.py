@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 from upliftlab.checks import InputError
-from upliftlab.comparisons import fixed_vs_uplift as fvu
-from upliftlab.comparisons.store import Store
+from upliftlab.comparisons.studies import fixed_vs_uplift as fvu
+from upliftlab.comparisons.framework.store import Store
 from upliftlab.reduced.exact import hermite_peak, nigam_jennings
 
 

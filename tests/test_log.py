@@ -78,7 +78,7 @@ def test_provenance_names_the_code_the_libraries_and_the_motion(elcentro):
     from pathlib import Path
 
     from upliftlab.reduced import run
-    from upliftlab.results import source_digest
+    from upliftlab.provenance import code_digest
     from upliftlab.scenes import load_scene
 
     record = Path(elcentro.source)
@@ -87,15 +87,15 @@ def test_provenance_names_the_code_the_libraries_and_the_motion(elcentro):
     assert response.info["motion_sha256"] == hashlib.sha256(record.read_bytes()).hexdigest()
     assert response.provenance["scipy"] == metadata.version("scipy")
     assert response.provenance["numba"] == metadata.version("numba")
-    assert response.provenance["source_sha256"] == source_digest()
-    assert len(source_digest()) == 64
+    assert response.provenance["source_sha256"] == code_digest()
+    assert len(code_digest()) == 64
 
 
 def test_an_uncached_kernel_is_announced_as_compiled_in_every_process(monkeypatch, tmp_path,
                                                                       capsys):
     # Reference: numba's own cache object of the continuum's explicit time loop, which is
     # jitted with cache=False (numba gives it a NullCache): "once" would be untrue there.
-    from upliftlab.continuum.explicit_loop import run_steps
+    from upliftlab.continuum.dynamics.explicit_loop import run_steps
 
     assert type(run_steps._cache).__name__ == "NullCache"
     log.configure(0)

@@ -14,8 +14,8 @@ import math
 import numpy as np
 import pytest
 
-from upliftlab.comparisons import paper
-from upliftlab.comparisons.paper import Conclusion, Evidence, apparent_period
+from upliftlab.comparisons.studies import paper
+from upliftlab.comparisons.studies.paper import Conclusion, Evidence, apparent_period
 from upliftlab.reduced.paper import claims
 
 

@@ -1,4 +1,4 @@
-"""The study protocol (upliftlab.comparisons.protocol) and the registry the report walks.
+"""The study protocol (upliftlab.comparisons.framework.protocol) and the registry the report walks.
 
 References: the names under which earlier versions stored results (a study's name is its
 module's name and its output folder ``results/<name>[-fast]``; a sweep's point function is keyed
@@ -14,9 +14,9 @@ from pathlib import Path
 import pytest
 
 from upliftlab.checks import InputError
-from upliftlab.comparisons import protocol
-from upliftlab.comparisons.registry import STUDIES, definition
-from upliftlab.comparisons.store import function_name
+from upliftlab.comparisons.framework import protocol
+from upliftlab.comparisons.studies.registry import STUDIES, definition
+from upliftlab.comparisons.framework.store import function_name
 
 #: Point functions and the key names their stores were written under (before the move).
 KEY_NAMES = {
@@ -45,15 +45,15 @@ def test_point_functions_keep_their_store_key_names():
     import importlib
 
     for module, (function, key) in KEY_NAMES.items():
-        fn = getattr(importlib.import_module(f"upliftlab.comparisons.{module}"), function)
+        fn = getattr(importlib.import_module(f"upliftlab.comparisons.studies.{module}"), function)
         assert function_name(fn) == key
         assert fn.__module__ != key.split(":")[0]  # it did move: the declared name is what keys
 
 
 def test_run_study_computes_then_writes_into_the_resolved_folder(tmp_path):
     # compute sees the resolved folder and a store under it; write's record becomes .study.
-    from upliftlab.comparisons.paper import PaperConclusions
-    from upliftlab.comparisons.study import StudyResult
+    from upliftlab.comparisons.studies.paper import PaperConclusions
+    from upliftlab.comparisons.framework.study import StudyResult
 
     seen = {}
 
@@ -72,32 +72,42 @@ def test_run_study_computes_then_writes_into_the_resolved_folder(tmp_path):
         protocol.run_study(study, None, protocol.Context(fast="yes"))
 
 
-def test_main_for_refuses_bad_input_in_one_line(tmp_path, capsys):
+def _as_the_study(monkeypatch, study):
+    """``upliftlab study fixed_vs_uplift`` runs ``study`` instead of the registered one."""
+    from upliftlab.comparisons.studies import registry
+
+    monkeypatch.setattr(registry, "definition", lambda name: study)
+
+
+def test_a_study_command_refuses_bad_input_in_one_line(tmp_path, capsys, monkeypatch):
     # --workers 0: exit 2, one line on stderr naming the option, nothing computed or written.
-    from upliftlab.comparisons.fixed_vs_uplift import DEFINITION
+    from upliftlab.cli import main
+    from upliftlab.comparisons.studies.fixed_vs_uplift import DEFINITION
 
     def never(scene, context):
         raise AssertionError("computed despite bad input")
 
-    main = protocol.main_for(replace(DEFINITION, compute=never))
+    _as_the_study(monkeypatch, replace(DEFINITION, compute=never))
     out = tmp_path / "out"
-    assert main(["--fast", "--workers", "0", "--out", str(out)]) == protocol.EXIT_INPUT
+    assert main(["study", "fixed_vs_uplift", "--fast", "--workers", "0", "--out",
+                 str(out)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--workers" in err
     assert not out.exists()
 
 
-def test_main_for_reports_a_solver_failure_in_one_line(tmp_path, capsys):
+def test_a_study_command_reports_a_solver_failure_in_one_line(tmp_path, capsys, monkeypatch):
     # A solver that gave up (here a stand-in ConvergenceError with a two-line message): exit 3,
     # one line on stderr naming the study, the error's kind and its message; no traceback.
-    from upliftlab.comparisons.fixed_vs_uplift import DEFINITION
+    from upliftlab.cli import main
+    from upliftlab.comparisons.studies.fixed_vs_uplift import DEFINITION
     from upliftlab.continuum import ConvergenceError
 
     def gives_up(scene, context):
         raise ConvergenceError("load step 3: gave up\nafter bisecting it")
 
-    main = protocol.main_for(replace(DEFINITION, compute=gives_up))
-    assert main(["--fast", "--out", str(tmp_path / "out")]) == protocol.EXIT_NUMERICS == 3
+    _as_the_study(monkeypatch, replace(DEFINITION, compute=gives_up))
+    assert main(["study", "fixed_vs_uplift", "--fast", "--out", str(tmp_path / "out")]) == 3
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "Traceback" not in err
     assert f"{DEFINITION.name} failed (ConvergenceError): load step 3: gave up after " in err

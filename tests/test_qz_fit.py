@@ -19,11 +19,11 @@ import numpy as np
 import pytest
 
 from upliftlab.checks import InputError
-from upliftlab.comparisons.winkler_map import FAST_OPTIONS
-from upliftlab.comparisons.winkler_map.statics import evaluate_static, static_points
-from upliftlab.comparisons.winkler_vs_continuum.qz_calibration import (qz_stiffnesses,
-                                                                        spring_capacities)
-from upliftlab.comparisons.winkler_vs_continuum.qz_fit import fit_backbone, one_point_misfit
+from upliftlab.comparisons.studies.winkler_map import FAST_OPTIONS
+from upliftlab.comparisons.studies.winkler_map.statics import evaluate_static, static_points
+from upliftlab.comparisons.studies.winkler_vs_continuum.qz_calibration import (
+    qz_stiffnesses, spring_capacities)
+from upliftlab.comparisons.studies.winkler_vs_continuum.qz_fit import fit_backbone, one_point_misfit
 from upliftlab.reduced import build_model
 from upliftlab.reduced.compatibility import winkler_bed
 from upliftlab.reduced.kernels import QZ
@@ -46,7 +46,8 @@ def test_the_fit_recovers_a_known_backbone(zref, elast, n):
     assert fit.zref == pytest.approx(zref, rel=1e-4)
     assert fit.elastic_range == pytest.approx(elast, abs=1e-4)
     assert fit.exponent == pytest.approx(n, rel=1e-4)
-    # z50 from the closed form at Q = 5 (beyond q_r for both): 5/500 + z_ref((10 − 10 elast)/5)^(1/n) − z_ref
+    # z50 from the closed form at Q = 5 (beyond q_r for both): 5/500 + z_ref((10 − 10
+    # elast)/5)^(1/n) − z_ref
     z50 = 0.01 + zref * ((2.0 * (1.0 - elast)) ** (1.0 / n) - 1.0)
     assert fit.z50 == pytest.approx(z50, rel=1e-4)
     assert fit.misfit_max < 1e-6

@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 
 from upliftlab.checks import InputError
-from upliftlab.comparisons.winkler_vs_continuum.radiation import (
+from upliftlab.comparisons.studies.winkler_vs_continuum.radiation import (
     distribute, gazetas_dashpots, impedance_dashpots, radiation_dashpots, rocking_frequency,
     with_radiation)
-from upliftlab.continuum.impedance import Impedance, ImpedanceOptions
+from upliftlab.continuum.impedance.analysis import Impedance, ImpedanceOptions
 from upliftlab.reduced import build_model, run
 from upliftlab.reduced.compatibility import winkler_bed
 from upliftlab.scenes import Soil, load_scene
@@ -230,7 +230,7 @@ def test_dashpots_from_a_continuum_impedance_go_to_the_centre_at_low_frequency()
     neighbouring a0 (by hand below), to 1e-12, with the concentration at the centre (this 2D
     strip radiates far more vertically than in rocking here: C_r/C_v < b²/3); C_h = Im K_h/ω
     interpolated the same way."""
-    from upliftlab.continuum.impedance import impedance, impedance_model
+    from upliftlab.continuum.impedance.analysis import impedance, impedance_model
 
     scene = _footing(**{"soil.model": "elastic", "soil.undrained_strength": "",
                         "soil.interface": "bonded", "continuum.elements_across": 4})
@@ -256,7 +256,7 @@ def test_a_custom_layout_keeps_each_dashpot_with_its_position():
     dashpots follow its list, and the model's springs (sorted from −b to +b) carry the four
     springs' hand values of the centre case above, 1.375 at the ends and 3.625 in the middle,
     scaled here to C_v = 10 and C_r = 2 (to 1e-12)."""
-    from upliftlab.comparisons.winkler_vs_continuum.radiation import RadiationDashpots
+    from upliftlab.comparisons.studies.winkler_vs_continuum.radiation import RadiationDashpots
 
     scene = _footing(**{"foundation.layout": "custom", "foundation.springs": "",
                         "foundation.stiffness": "",

@@ -67,65 +67,65 @@ EXERCISED = {
     "upliftlab advise short_period_elcentro --case B --quantity peak_u --tol 1%": ("slow", ()),
     "upliftlab advise strip_footing_clay --quantity peak_theta --tol 10% --fast "
     "--set motion.period=0.2 --set motion.duration=0.6": ("slow", ()),
-    "python -m upliftlab.comparisons.two_spring_equivalence --fast --out "
+    "upliftlab study two_spring_equivalence --fast --out "
     "results/two_spring_equivalence-fast":
         ("slow", ("results/two_spring_equivalence-fast/summary.md",)),
-    "python -m upliftlab.comparisons.winkler_map --fast --out results/winkler_map-fast":
+    "upliftlab study winkler_map --fast --out results/winkler_map-fast":
         ("slow", ("results/winkler_map-fast/summary.md", "results/winkler_map-fast/map.nc")),
-    "python -m upliftlab.comparisons.winkler_map --grid elcentro=false --grid "
+    "upliftlab study winkler_map --grid elcentro=false --grid "
     "fema_components=0 --store benchmarks/winkler_map_store --out results/winkler_map-pulses":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
-    "python -m upliftlab.comparisons.winkler_map --grid soils=clay --grid periods=0.5 --grid "
+    "upliftlab study winkler_map --grid soils=clay --grid periods=0.5 --grid "
     "intensities=3 --grid pulse_periods= --grid fema_components=10 --store "
     "benchmarks/winkler_map_store --out results/winkler_map-clay-records":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
-    "python -m upliftlab.comparisons.winkler_map --grid soils=clay --grid periods=0.5 --grid "
+    "upliftlab study winkler_map --grid soils=clay --grid periods=0.5 --grid "
     "intensities=1.5 --grid pulse_periods= --grid fema_components=10 --store "
     "benchmarks/winkler_map_store --out results/winkler_map-clay-records-1.5":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
-    "python -m upliftlab.comparisons.winkler_map --grid soils=clay --grid periods=0.2 --grid "
+    "upliftlab study winkler_map --grid soils=clay --grid periods=0.2 --grid "
     "intensities=3 --grid pulse_periods= --grid fema_components=10 --store "
     "benchmarks/winkler_map_store --out results/winkler_map-clay-records-0.2s":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
-    "python -m upliftlab.comparisons.winkler_map --grid soils=clay --grid periods=0.2 --grid "
+    "upliftlab study winkler_map --grid soils=clay --grid periods=0.2 --grid "
     "intensities=1.5 --grid pulse_periods= --grid fema_components=10 --store "
     "benchmarks/winkler_map_store --out results/winkler_map-clay-records-0.2s-1.5":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
-    "python -m upliftlab.comparisons.winkler_map --grid soils=clay --store "
+    "upliftlab study winkler_map --grid soils=clay --store "
     "benchmarks/winkler_map_store --out results/winkler_map-clay":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
-    "python -m upliftlab.comparisons.winkler_map --grid soils=sand --grid periods=0.5 --grid "
+    "upliftlab study winkler_map --grid soils=sand --grid periods=0.5 --grid "
     "intensities=3 --grid pulse_periods= --grid fema_components=10 --store "
     "benchmarks/winkler_map_store --out results/winkler_map-sand-records":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
-    "python -m upliftlab.comparisons.winkler_map --grid soils=sand --grid periods=0.5 --grid "
+    "upliftlab study winkler_map --grid soils=sand --grid periods=0.5 --grid "
     "intensities=1.5 --grid pulse_periods= --grid fema_components=10 --store "
     "benchmarks/winkler_map_store --out results/winkler_map-sand-records-1.5":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
-    "python -m upliftlab.comparisons.winkler_map --grid soils=sand --grid periods=0.2 --grid "
+    "upliftlab study winkler_map --grid soils=sand --grid periods=0.2 --grid "
     "intensities=1.5 --grid pulse_periods= --grid fema_components=10 --store "
     "benchmarks/winkler_map_store --out results/winkler_map-sand-records-0.2s-1.5":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
-    "python -m upliftlab.comparisons.winkler_map --grid soils=sand --grid periods=0.2 --grid "
+    "upliftlab study winkler_map --grid soils=sand --grid periods=0.2 --grid "
     "intensities=3 --grid pulse_periods= --grid fema_components=10 --store "
     "benchmarks/winkler_map_store --out results/winkler_map-sand-records-0.2s":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
-    "python -m upliftlab.comparisons.winkler_map --energy --grid h_over_B=1.5 --grid "
+    "upliftlab study winkler_map --energy --grid h_over_B=1.5 --grid "
     "periods=0.5 --grid intensities=3 --grid pulse_periods= --grid fema_components=10 --store "
     "benchmarks/winkler_map_store --out results/winkler_map-energy-records":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
-    "python -m upliftlab.comparisons.winkler_map --store benchmarks/winkler_map_store "
+    "upliftlab study winkler_map --store benchmarks/winkler_map_store "
     "--out results/winkler_map":
         ("tests/test_winkler_map.py::test_the_readme_map_commands_are_estimated_before_they_run",
          ()),
@@ -250,23 +250,22 @@ def test_readme_command_slow(command, tmp_path, monkeypatch, elcentro):
     _check_files(command, EXERCISED[command][1], tmp_path)
 
 
-def test_python_m_upliftlab_from_the_repository_root_uses_the_checkout(tmp_path):
-    """``python -m upliftlab`` from the root imports the source folder ``upliftlab/`` first; it
-    failed there with a non-editable install (``upliftlab.scene_files`` and the subpackages
-    are elsewhere in a checkout). Simulated without any installed copy: the editable finder is
-    removed, the root put first on the path."""
-    code = ("import sys\n"
-            "sys.meta_path[:] = [f for f in sys.meta_path if 'editable' not in repr(f).lower()]\n"
-            "sys.modules.pop('upliftlab', None)\n"
-            f"sys.path.insert(0, {str(ROOT)!r})\n"
-            "import upliftlab.reduced, upliftlab.continuum, upliftlab.comparisons\n"
+def test_python_m_upliftlab_from_the_repository_root_uses_the_checkout():
+    """``python -m upliftlab`` from the root of a checkout with the editable install (the
+    README's test command): the core comes from the root's ``upliftlab/`` folder and the
+    subpackages through the editable install's mapping, so every module is the checkout's own,
+    with no path added by the package itself. Reference: the checkout's files."""
+    code = ("import upliftlab.reduced, upliftlab.continuum, upliftlab.comparisons\n"
             "from upliftlab.scenes import packaged_scenes\n"
-            "print(upliftlab.reduced.__file__, len(packaged_scenes()))\n")
-    result = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True,
+            "print(upliftlab.__file__, upliftlab.reduced.__file__, "
+            "upliftlab.comparisons.__file__, len(packaged_scenes()))\n")
+    result = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True,
                             text=True)
     assert result.returncode == 0, result.stderr[-2000:]
-    where, count = result.stdout.split()
-    assert where == str(ROOT / "reduced" / "__init__.py")
+    core, reduced, comparisons, count = result.stdout.split()
+    assert core == str(ROOT / "upliftlab" / "__init__.py")
+    assert reduced == str(ROOT / "reduced" / "__init__.py")
+    assert comparisons == str(ROOT / "comparisons" / "__init__.py")
     assert int(count) == len(list((ROOT / "scenes").glob("*.toml")))
 
 
@@ -275,8 +274,9 @@ def test_compiled_kernels_are_cached_outside_the_installed_package(tmp_path):
     in site-packages/upliftlab, ``pip uninstall`` left that folder, and the README's test
     command then imported it as an empty namespace package. The cache now goes to
     $XDG_CACHE_HOME/upliftlab/numba/<digest of the kernels' sources>, also when numba was
-    imported first. The digest also covers the continuum's ``continuum/kernels*.py``, whose
-    Mohr–Coulomb point return (kernels_mc.py) is compiled into kernels.py's element loop."""
+    imported first. The digest also covers the continuum's compiled kernels, whose
+    Mohr–Coulomb point return (materials/compiled_mc.py) is compiled into the element loop of
+    dynamics/kernels.py. Reference: hashlib over (name, bytes) of those files."""
     code = ("import numba, os, upliftlab\n"
             "print(os.environ['NUMBA_CACHE_DIR'], numba.config.CACHE_DIR)\n")
     env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
@@ -284,12 +284,14 @@ def test_compiled_kernels_are_cached_outside_the_installed_package(tmp_path):
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
                          check=True).stdout.split()
     root = Path(__file__).resolve().parents[1]
-    kernels = [(p.name, p) for p in sorted((root / "reduced" / "kernels").glob("*.py"))]
-    kernels += [("continuum/" + p.name, p)
-                for p in sorted((root / "continuum").glob("kernels*.py"))]
-    assert len(kernels) > 2 and kernels[-1][0] == "continuum/kernels_mc.py"
+    kernels = [(f"upliftlab.reduced/kernels/{p.name}", p)
+               for p in sorted((root / "reduced" / "kernels").glob("*.py"))]
+    kernels += [("upliftlab.continuum/dynamics/kernels.py",
+                 root / "continuum" / "dynamics" / "kernels.py"),
+                ("upliftlab.continuum/materials/compiled_mc.py",
+                 root / "continuum" / "materials" / "compiled_mc.py")]
     digest = hashlib.sha256(b"".join(name.encode() + b"\0" + p.read_bytes() + b"\0"
-                                     for name, p in kernels)).hexdigest()[:16]
+                                     for name, p in sorted(kernels))).hexdigest()[:16]
     assert out == [str(tmp_path / "upliftlab" / "numba" / digest)] * 2
     env["NUMBA_CACHE_DIR"] = str(tmp_path / "mine")  # a user's own choice is kept
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,

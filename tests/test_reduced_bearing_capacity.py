@@ -20,7 +20,7 @@ from upliftlab.checks import InputError
 from upliftlab.reduced import build_model, rocking_pushover, run
 from upliftlab.reduced.compatibility import end_stiffened_bed
 from upliftlab.reduced.model import bearing_yield_forces, plastic_static_forces
-from upliftlab.scene_edit import scene_table
+from upliftlab.scenes.edit import scene_table
 from upliftlab.scenes import scene_from_dict
 
 W, B = 100.0, 2.0  # kN/m and m: the hand cases' weight and base width

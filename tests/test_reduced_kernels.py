@@ -84,9 +84,9 @@ def test_an_edited_law_is_compiled_afresh(tmp_path):
     copy = tmp_path / "checkout"
     root = Path(__file__).resolve().parents[1]
     ignore = shutil.ignore_patterns("__pycache__", "*.pyc")
-    for name in ("upliftlab", "reduced"):
-        shutil.copytree(root / name, copy / name, ignore=ignore)
-    shutil.copy(root / "pyproject.toml", copy / "pyproject.toml")
+    # the installed layout: the core with the reduced model nested in it
+    shutil.copytree(root / "upliftlab", copy / "upliftlab", ignore=ignore)
+    shutil.copytree(root / "reduced", copy / "upliftlab" / "reduced", ignore=ignore)
     env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR",
                                                             "NUMBA_DISABLE_JIT")}
     env["XDG_CACHE_HOME"] = str(tmp_path / "cache")
@@ -95,7 +95,7 @@ def test_an_edited_law_is_compiled_afresh(tmp_path):
     assert before == pytest.approx(-1000.0 * 0.002, rel=1e-12)
     assert any(Path(folder_before).rglob("*.nbi"))  # the compiled kernels were cached
 
-    laws = copy / "reduced" / "kernels" / "laws.py"
+    laws = copy / "upliftlab" / "reduced" / "kernels" / "laws.py"
     text = laws.read_text()
     old = "        fs = p.k * (p.d0 + e - ep)\n"
     assert text.count(old) == 1
@@ -109,10 +109,10 @@ def test_an_edited_law_is_compiled_afresh(tmp_path):
 
 
 def test_the_registry_holds_every_integrator_the_scene_accepts():
-    # Reference: the names a scene and the command line accept (upliftlab.scene_motion); the
+    # Reference: the names a scene and the command line accept (upliftlab.scenes.motion); the
     # registry must describe each of them, in the same order, and nothing else.
     from upliftlab.reduced.integrators import METHODS
-    from upliftlab.scene_motion import INTEGRATORS
+    from upliftlab.scenes.motion import INTEGRATORS
 
     assert tuple(METHODS) == INTEGRATORS
     assert {m.order for m in METHODS.values()} == {2, 4}

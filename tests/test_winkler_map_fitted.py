@@ -1,4 +1,5 @@
-"""The Winkler map's fitted bed (comparisons/winkler_map/fitted_bed.py): its capacity profile
+"""The Winkler map's fitted bed (comparisons/studies/winkler_map/fitted_bed.py): its capacity
+profile
 and the fit of its exponent β to rotation pushovers.
 
 References:
@@ -17,12 +18,12 @@ import math
 import numpy as np
 import pytest
 
-from upliftlab.comparisons import winkler_map as wm
-from upliftlab.comparisons.winkler_map.fitted_bed import (BETAS, _bed_table, capacity_profile,
-                                                          fit_capacity_profile)
-from upliftlab.comparisons.winkler_map.points import base_table
-from upliftlab.comparisons.winkler_map.rocking import bed_rocking, theta_onset
-from upliftlab.comparisons.winkler_vs_continuum.reference import cyclic_path, rotation_path
+from upliftlab.comparisons.studies import winkler_map as wm
+from upliftlab.comparisons.studies.winkler_map.fitted_bed import (
+    BETAS, _bed_table, capacity_profile, fit_capacity_profile)
+from upliftlab.comparisons.studies.winkler_map.points import base_table
+from upliftlab.comparisons.studies.winkler_map.rocking import bed_rocking, theta_onset
+from upliftlab.comparisons.studies.winkler_vs_continuum.reference import cyclic_path, rotation_path
 from upliftlab.reduced import build_model
 from upliftlab.reduced.compatibility import end_stiffened_bed
 from upliftlab.scenes import scene_from_dict

@@ -3,7 +3,8 @@
 
 References:
 - the bed's dashpots: Σ c_i must be the FE impedance's C_v and Σ c_i x_i² its C_r at the chosen
-  frequency, both read here from an :class:`~upliftlab.continuum.impedance.Impedance` computed in
+  frequency, both read here from an :class:`~upliftlab.continuum.impedance.analysis.Impedance`
+  computed in
   the test (4 across) by its own accessor ``dashpot`` at a frequency of its grid (no
   interpolation), the sums taken over the reduced model's own spring layout (1e-12);
 - the chosen frequency: the lower root of the two-degree-of-freedom (story, rocking) frequency
@@ -25,15 +26,15 @@ import pytest
 
 from upliftlab.anchors import prandtl_capacity
 from upliftlab.checks import InputError
-from upliftlab.comparisons import winkler_map as wm
-from upliftlab.comparisons.winkler_map.cost import (IMPEDANCE_SECONDS_PER_DOF_FREQUENCY,
-                                                    estimate_cost)
-from upliftlab.comparisons.winkler_map.impedance_bed import (bed_rocking_frequency,
-                                                             impedance_dashpots_of)
-from upliftlab.comparisons.winkler_map.impedance_points import IMPEDANCE_A0, elastic_soil
-from upliftlab.comparisons.winkler_map.points import base_table, point_table
-from upliftlab.continuum.impedance import ImpedanceOptions, impedance, impedance_model
-from upliftlab.continuum.waves import wave_speeds
+from upliftlab.comparisons.studies import winkler_map as wm
+from upliftlab.comparisons.studies.winkler_map.cost import (IMPEDANCE_SECONDS_PER_DOF_FREQUENCY,
+                                                            estimate_cost)
+from upliftlab.comparisons.studies.winkler_map.impedance_bed import (
+    bed_rocking_frequency, impedance_dashpots_of)
+from upliftlab.comparisons.studies.winkler_map.impedance_points import IMPEDANCE_A0, elastic_soil
+from upliftlab.comparisons.studies.winkler_map.points import base_table, point_table
+from upliftlab.continuum.impedance.analysis import ImpedanceOptions, impedance, impedance_model
+from upliftlab.continuum.dynamics.waves import wave_speeds
 from upliftlab.reduced import build_model as build_reduced
 from upliftlab.scenes import ContinuumOptions, Soil, load_scene, scene_from_dict
 
@@ -156,8 +157,8 @@ def test_the_continuum_footing_does_not_sway_on_the_maps_frictionless_soil(fast_
     prescribes the footing's u to follow the rigid base (``ExplicitSettings.prescribe_u``), so
     its u relative to the base is zero at every recorded step (exactly) while it rocks."""
     from upliftlab.continuum import build_model
-    from upliftlab.continuum.dynamics import DynamicOptions, run_dynamic
-    from upliftlab.comparisons.winkler_map.points import point_scene
+    from upliftlab.continuum.dynamics.run import DynamicOptions, run_dynamic
+    from upliftlab.comparisons.studies.winkler_map.points import point_scene
 
     table = point_table(base_table(), "clay", 4, fast_map.data.N[0, 0], 1.5, 0.2, G_ACC)
     point = {"scene": table, "motion": {"type": "ricker", "period": 0.2, "duration": 0.4,

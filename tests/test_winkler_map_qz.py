@@ -1,4 +1,5 @@
-"""The Winkler map's q–z bed (comparisons/winkler_map/qz_bed.py): what its [foundation] table
+"""The Winkler map's q–z bed (comparisons/studies/winkler_map/qz_bed.py): what its [foundation]
+table
 builds in the reduced model.
 
 References:
@@ -22,8 +23,8 @@ import numpy as np
 import pytest
 
 from upliftlab.checks import InputError
-from upliftlab.comparisons import winkler_map as wm
-from upliftlab.comparisons.winkler_map.qz_bed import qz_bed_fit
+from upliftlab.comparisons.studies import winkler_map as wm
+from upliftlab.comparisons.studies.winkler_map.qz_bed import qz_bed_fit
 from upliftlab.reduced import build_model
 from upliftlab.reduced.kernels import QZ
 from upliftlab.scenes import scene_from_dict

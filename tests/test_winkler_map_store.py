@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from upliftlab.comparisons import winkler_map as wm
+from upliftlab.comparisons.studies import winkler_map as wm
 
 STORE = Path(__file__).resolve().parents[1] / "benchmarks" / "winkler_map_store"
 PULSES = {"elcentro": False, "fema_components": 0}

@@ -30,8 +30,8 @@ from upliftlab.anchors import (HALF_PLANE_ONSET_ECCENTRICITY, TOLERANCES,
                                WINKLER_ONSET_ECCENTRICITY, half_plane_rocking_stiffness,
                                prandtl_capacity, ultimate_moment_ratio, winkler_rocking)
 from upliftlab.checks import InputError
-from upliftlab.comparisons import winkler_vs_continuum as wvc
-from upliftlab.comparisons.store import Store
+from upliftlab.comparisons.studies import winkler_vs_continuum as wvc
+from upliftlab.comparisons.framework.store import Store
 from upliftlab.continuum import build_model, footing_stiffness
 from upliftlab.reduced import build_model as build_reduced, end_stiffened_bed
 from upliftlab.results import read_netcdf
@@ -229,7 +229,7 @@ def test_recommendation_in_the_study_matches_its_table(study):
 
 
 def test_dynamic_pulse_compared_when_the_continuum_dynamics_exists(study):
-    """With upliftlab.continuum.dynamics, the fast study runs the scene's Ricker pulse (2 s, a
+    """With upliftlab.continuum.dynamics.run, the fast study runs the scene's Ricker pulse (2 s, a
     4-across mesh) in both models and puts the four peaks in the error table, each equal to
     (bed − continuum)/max(|continuum|, floor) of the stored peaks. Physics checks: in the
     bonded first swing (t < 0.5 s) the beds, calibrated to K_r, follow the continuum's peak θ
@@ -270,7 +270,7 @@ def test_dynamic_pulse_compared_when_the_continuum_dynamics_exists(study):
 
 
 def test_missing_continuum_dynamics_is_reported_not_faked(study, monkeypatch):
-    """When upliftlab.continuum.dynamics cannot be used, no dynamic point is made and the
+    """When upliftlab.continuum.dynamics.run cannot be used, no dynamic point is made and the
     comparison carries the statement 'dynamic comparison not run: continuum dynamics
     unavailable' with the reason."""
     monkeypatch.setattr(wvc.dynamics, "dynamics_available",

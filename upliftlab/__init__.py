@@ -8,29 +8,13 @@ The names below are imported on first use, so that ``import upliftlab.cli`` load
 before the command line has set its thread counts (:mod:`upliftlab.cli`).
 """
 
-__version__ = "0.1.0"
-
-
-def _checkout_subpackages() -> None:
-    """In a source checkout the subpackages are folders beside this one (``reduced/`` is
-    ``upliftlab.reduced``; ``pyproject.toml`` maps them). When this folder is imported as it is
-    — ``python -m upliftlab`` from the repository root finds it before any installed copy — the
-    checkout joins the package path, so that the subpackages import from the same checkout."""
-    from pathlib import Path
-
-    here = Path(__file__).resolve().parent
-    root = here.parent
-    if ((root / "pyproject.toml").is_file() and (root / "reduced" / "__init__.py").is_file()
-            and str(root) not in __path__):
-        __path__.append(str(root))
-
-
-_checkout_subpackages()
+from .version import __version__
 
 
 #: The compiled kernels' sources (as :func:`upliftlab.provenance.package_files` names them): the
 #: numba cache folder is keyed by their digest.
-KERNEL_SOURCES = ("upliftlab.reduced/kernels/", "upliftlab.continuum/kernels")
+KERNEL_SOURCES = ("upliftlab.reduced/kernels/", "upliftlab.continuum/dynamics/kernels.py",
+                  "upliftlab.continuum/materials/compiled_mc.py")
 
 
 def _numba_cache_outside_the_package() -> None:

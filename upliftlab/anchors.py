@@ -2,7 +2,7 @@
 
 The prose and derivations are in ``upliftlab/docs/anchors.md`` (sections §1–§5, shipped with
 the package and printed as the report's appendix); this module is their code. The tests and
-the report's verification table (:mod:`upliftlab.comparisons.verification`) both take a
+the report's verification table (:mod:`upliftlab.comparisons.studies.verification`) both take a
 reference from here, and the tolerance it is checked to from :data:`TOLERANCES`, so that a
 reference and its tolerance exist in one place.
 

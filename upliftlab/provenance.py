@@ -8,7 +8,8 @@ wherever the install put them. Three things use it:
 * the numba cache folder, over the compiled kernels' sources only (``upliftlab/__init__.py``):
   numba keys a cached function on its own file, so an edit to a law inlined elsewhere must
   start a new cache;
-* each record of a store (:mod:`upliftlab.comparisons.store`), as provenance, never as its key.
+* each record of a store (:mod:`upliftlab.comparisons.framework.store`), as provenance, never as
+its key.
   A store whose records came from another digest is stale, not lost: it is checked by
   re-running a sample.
 
@@ -27,8 +28,8 @@ from collections.abc import Iterable
 from importlib import metadata
 from pathlib import Path
 
-__all__ = ["PACKAGES", "LIBRARIES", "MODEL_SOURCES", "code_digest", "package_files", "library_versions",
-           "provenance", "cache_folder"]
+__all__ = ["PACKAGES", "LIBRARIES", "MODEL_SOURCES", "code_digest", "package_files",
+           "library_versions", "provenance", "cache_folder"]
 
 #: upliftlab's packages, whose sources the digest covers (the subpackages may be installed
 #: nested in ``upliftlab/`` or, in a checkout, stand beside it).
@@ -106,7 +107,7 @@ def provenance(**extra) -> dict[str, object]:
     """Which code made a result, when and where: the package version, :func:`code_digest`, the
     time (UTC), Python, the libraries' versions and the platform, plus ``extra`` (the scene,
     the model, the options)."""
-    from . import __version__
+    from .version import __version__
 
     record = {
         "upliftlab_version": __version__,

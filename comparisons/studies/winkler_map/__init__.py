@@ -1,0 +1,66 @@
+"""Winkler beds against the continuum, mapped: where a calibrated bed of springs is enough.
+
+Every calibration of :data:`.beds.BEDS` (a registry: a new calibration plugs in as one entry,
+``name -> build(continuum reference numbers, options) -> [foundation] table``) is run against
+the plane-strain continuum (:mod:`upliftlab.continuum`) over a grid of
+
+* soil: the clay of ``strip_footing_clay`` (Tresca, c_u) and a frictional soil (Mohr–Coulomb,
+  c and φ; the continuum's stiffness does not grow with confinement);
+* FS_v: N = V_ult/FS_v with V_ult the continuum's own vertical capacity of that soil (a stored
+  vertical pushover), so the map's FS_v is the continuum's;
+* h/B and the structure's fixed-base period;
+* intensity: the PGA over a_up = g B/(6h), the rigid block's quasi-static uplift acceleration on
+  a uniform tensionless Winkler bed (e = B/6);
+* motions: Ricker pulses, El Centro (on ``UPLIFTLAB_MOTIONS``) and FEMA P695 far-field components
+  (the ``records`` extra), each run in full.
+
+Per soil the continuum's statics (K_v, K_r, V_ult; and its dynamic impedance when a bed needs
+it, :mod:`.impedance_points`) and per point one continuum dynamic run are points of
+:func:`.sweep.run_sweep` in a content-addressed store (resumable, local processes or Dask with
+``--scheduler``), each stored with its own wall time and keyed by what was asked (the point
+and the continuum's revision, :mod:`..store`), so that a store kept with the repository
+(``benchmarks/winkler_map_store``) is reused while the continuum's numbers are unchanged (a
+sample made again checks records of earlier code, :mod:`..freshness`); each bed's reduced run of
+the same point is live
+(milliseconds) and timed in the same run. Measured alike on both models:
+peak θ, peak edge uplift, residual settlement, residual rotation, peak u, peak base shear; and
+the foundation energy E_F, the energy the structure lost to its foundation (:mod:`.energy`), at
+the points whose continuum energy run is stored (``--energy`` makes them: one more continuum run
+per point, :mod:`.energy_points`).
+Before any run the study logs how many continuum runs it will make and what they should cost
+(:mod:`.cost`), and refuses above ``--budget``.
+
+Written: ``map.nc`` and ``statics.nc`` (NetCDF-4, CF), figures (one question each),
+``summary.md``/``summary.json``: each bed's region within 10 % in peak θ and edge uplift and
+20 % in residual settlement, the calibration to pick per quantity with the median and 90th
+percentile of its error, the share of the map the best bed covers, the speed of each bed.
+
+Run it with ``upliftlab study winkler_map [--fast] [--out DIR] [--scheduler
+ADDR] [--budget SECONDS] [--energy]``.
+"""
+
+from __future__ import annotations
+
+from .analysis import (Analysis, BedRegion, Pick, Share, Speed, analyse, cell_passes,
+                       median_over_motions)
+from .beds import BEDS, BedEntry, BedReference, bed_foundation, bed_names
+from .cost import Estimate, estimate_cost
+from .grid import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS, Grid, MEASURES, Options,
+                   SOILS, STUDY, check_grid, check_options, grid_with)
+from .maps import MapData, compute_map, estimate_map
+from .output import write
+from .bed_runs import run_bed
+from .energy_points import evaluate_energy
+from .points import evaluate_dynamic
+from .result import WinklerMap
+from .statics import SoilStatics, evaluate_static
+from .workflow import DEFINITION, compute, run
+
+__all__ = ["STUDY", "SOILS", "MEASURES", "Grid", "Options", "FULL_GRID", "FAST_GRID",
+           "FULL_OPTIONS", "FAST_OPTIONS", "check_grid", "check_options", "grid_with", "BEDS",
+           "BedEntry", "BedReference", "bed_foundation", "bed_names", "Estimate", "estimate_cost",
+           "MapData", "compute_map", "estimate_map", "SoilStatics", "evaluate_static",
+           "evaluate_dynamic", "evaluate_energy", "run_bed", "Analysis", "BedRegion", "Pick",
+           "Share", "Speed",
+           "analyse", "cell_passes", "median_over_motions", "WinklerMap", "DEFINITION", "compute",
+           "write", "run", "main"]

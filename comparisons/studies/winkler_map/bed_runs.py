@@ -1,0 +1,89 @@
+"""A bed's run of a map point: the reduced model on the point's scene and motion, measured as
+the continuum's run of it is (:func:`.points.measured`). Live, never stored: a bed runs in
+milliseconds, and its module is kept apart from the continuum's point function, whose stored
+runs are of the continuum alone."""
+
+from __future__ import annotations
+
+import copy
+import math
+import time
+from collections.abc import Mapping
+
+import numpy as np
+
+from ....scenes import scene_from_dict
+from ...framework.measures import edge_uplift_history, reduced_edge_gap_history
+from .grid import MEASURES
+from .points import measured, motion_table
+
+__all__ = ["run_bed", "reduced_measures", "reduced_energy_terms"]
+
+
+def run_bed(point: Mapping, foundation: Mapping) -> dict:
+    """A bed's run of a point's motion (reduced model, live, not stored): the measures of
+    :func:`measured`, its ``peak_settlement`` (the base centre's largest settlement, down),
+    its wall time ``wall_time_s`` (the run alone, s), its foundation energy E_F and the
+    work of gravity in it (``energy``, :func:`reduced_energy_terms`), or ``refused`` with the
+    integrator's
+    reason."""
+    from ....reduced import IntegrationError, run as run_reduced
+
+    data = copy.deepcopy(point["scene"])
+    data["foundation"] = dict(foundation)
+    B = 2.0 * data["foundation"]["half_width"]
+    data["motion"] = motion_table(point["motion"], point["intensity"], B,
+                                  data["structure"]["height"])
+    for table in ("soil", "continuum"):
+        data.pop(table, None)
+    scene = scene_from_dict(data, merged=True)
+    started = time.perf_counter()
+    try:
+        response = run_reduced(scene)
+    except IntegrationError as exc:
+        return {"refused": str(exc), "measures": dict.fromkeys(MEASURES, math.nan),
+                "wall_time_s": time.perf_counter() - started}
+    wall = time.perf_counter() - started
+    return {"measures": reduced_measures(response), "wall_time_s": wall,
+            "energy": reduced_energy_terms(response),
+            "peak_settlement": float(np.max(response.settlement)),
+            "energy_balance_error": float(response.peaks["energy_balance_error"])}
+
+
+def reduced_measures(response) -> dict:
+    """The measures of :func:`measured` of a reduced model's ``response`` (its peaks where the
+    event stepper caught a peak between recorded steps)."""
+    t = np.asarray(response.time, dtype=float)
+    uplift = float(np.max(edge_uplift_history(reduced_edge_gap_history(response))))
+    u_peak = max(float(np.max(np.abs(response.u))), float(response.peaks["u"]))
+    theta = np.asarray(response.theta, dtype=float)
+    out = measured(t - t[0], theta, uplift, np.asarray(response.settlement, dtype=float), u_peak,
+                   np.max(np.abs(response.base_shear)))
+    out["theta"] = max(out["theta"], float(response.peaks["theta"]))
+    return out
+
+
+def reduced_energy_terms(response) -> dict:
+    """``foundation``: E_F of a reduced model's run (:mod:`.foundation_energy`: the energy its
+    structure lost to the foundation, force·length per length) from the integrator's own
+    energy account: the foundation's books, its springs' change of strain energy and its
+    dashpot, impact and plastic work. The account books the story with them, so the story's
+    strain energy ½ k u² and its dashpot's work ∫ c u̇² dt (trapezoidal over the stored rows)
+    are taken out. ``gravity``: the work of the structure's weight over the run (its loss of
+    gravity energy: W times the settlement)."""
+    from ....reduced.response import ENERGY_NAMES
+
+    e = np.asarray(response.energy, dtype=float)
+    change = {name: e[-1, i] - e[0, i] for i, name in enumerate(ENERGY_NAMES)}
+    model = response.model
+    n = model.story_count
+    k, c = model.params["k"][:n], model.params["c"][:n]
+    s = np.asarray(response.deformation, dtype=float)[:, :n]
+    story_strain = float(np.sum(0.5 * k * (s[-1] ** 2 - s[0] ** 2)))
+    rate = np.asarray(response.qd, dtype=float) @ model.A[:, :n]
+    power = (rate * rate) @ c
+    t = np.asarray(response.time, dtype=float)
+    story_dashpot = float(np.sum(0.5 * (power[1:] + power[:-1]) * np.diff(t)))
+    foundation = (change["strain"] - story_strain + change["viscous"] - story_dashpot
+                  + change["impact"] + change["plastic"])
+    return {"foundation": float(foundation), "gravity": float(-change["gravity"])}

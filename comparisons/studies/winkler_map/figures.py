@@ -1,0 +1,170 @@
+"""The map's figures, one question each: where is each bed within 10 % in peak θ, in edge
+uplift, in residual settlement (error maps over FS_v × h/B, one row per soil, one panel per
+bed); which calibration to pick for which quantity (the error distributions); how much faster
+each bed is than the continuum."""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from ...framework.study import Axis, write_figure
+from .analysis import median_over_motions
+from .beds import BEDS
+from .energy import ENERGY_LABELS, ENERGY_SYMBOLS
+from .grid import MEASURE_LABELS, MEASURES, SOIL_LABELS
+
+__all__ = ["write_figures"]
+
+
+def write_figures(result, directory: Path) -> list[Path]:
+    data, analysis = result.data, result.analysis
+    files = [_error_map(data, directory / f"{m}_error.png", m)
+             for m in ("theta", "uplift", "residual_settlement")]
+    files.append(_distributions(data, analysis, directory / "error_distribution.png"))
+    files.append(_speed(data, analysis, directory / "speed.png"))
+    return files
+
+
+def _error_map(data, path: Path, measure: str) -> Path:
+    """|error| over FS_v × h/B: the median over the motions, the worst over the periods and
+    intensities; one row per soil, one panel per calibration; contours at 10 and 20 %."""
+    g = data.grid
+    med = median_over_motions(data)[..., MEASURES.index(measure)]
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # a cell whose every run failed: NaN
+        worst = np.nanmax(med, axis=(3, 4)) if np.isfinite(med).any() else med[:, :, :, 0, 0]
+    x = Axis("fs_v", "FS_v", tuple(g.fs_v))
+    y = Axis("h_over_B", "h/B", tuple(g.h_over_B))
+    rows = [[(f"{soil}: {name}", worst[s, :, :, c].T)
+             for c, name in enumerate(data.calibrations)] for s, soil in enumerate(g.soils)]
+    soils = "; ".join(SOIL_LABELS[s] for s in g.soils)
+    title = (f"|bed − continuum| / continuum in {MEASURE_LABELS[measure]}: median over "
+             f"{len(data.motions)} motions, worst over T and intensity\n({soils})")
+    return _heat_maps(path, title, x, y, rows)
+
+
+def _heat_maps(path: Path, title: str, x: Axis, y: Axis, rows) -> Path:
+    """Panels of |error| (%) on an index grid (log colour scale 1–100 %, viridis), each cell
+    annotated, contours at 10 % (white) and 20 % (red) where the grid allows them."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import LogNorm
+
+    nrows, ncols = len(rows), max(len(r) for r in rows)
+    fig, axes = plt.subplots(nrows, ncols, figsize=(2.4 * ncols + 1.0, 1.0 + 1.6 * nrows),
+                             squeeze=False, constrained_layout=True)
+    norm, image = LogNorm(vmin=1.0, vmax=100.0), None
+    for r, row in enumerate(rows):
+        for c, (name, errors) in enumerate(row):
+            ax = axes[r][c]
+            percent = np.clip(100.0 * np.abs(np.asarray(errors, dtype=float)), 1.0, 100.0)
+            image = ax.imshow(percent, norm=norm, cmap="viridis", origin="lower",
+                              aspect="auto", interpolation="nearest")
+            if min(percent.shape) >= 2 and np.isfinite(percent).any():
+                ax.contour(np.arange(percent.shape[1]), np.arange(percent.shape[0]), percent,
+                           levels=[10.0, 20.0], colors=["white", "red"], linewidths=1.2)
+            for j, i in zip(*np.nonzero(np.isfinite(percent))):
+                ax.text(i, j, f"{percent[j, i]:.2g}" if percent[j, i] < 99.5 else "≥100",
+                        ha="center", va="center", fontsize=8,
+                        color="white" if percent[j, i] < 10 else "black")
+            ax.set_title(name, fontsize=9)
+            ax.set_xticks(range(len(x.values)), [f"{v:g}" for v in x.values], fontsize=8)
+            ax.set_yticks(range(len(y.values)), [f"{v:g}" for v in y.values], fontsize=8)
+            ax.set_xlabel(x.label, fontsize=8)
+            if c == 0:
+                ax.set_ylabel(y.label, fontsize=8)
+        for c in range(len(row), ncols):
+            axes[r][c].set_visible(False)
+    if image is not None:
+        fig.colorbar(image, ax=axes, label="|relative error| (%)", shrink=0.9)
+    fig.suptitle(title, fontsize=9)
+    return write_figure(path, fig)
+
+
+def _short(name: str) -> str:
+    """A calibration's abbreviation (its registry entry's), or its name."""
+    entry = BEDS.get(name)
+    return entry.short if entry is not None and entry.short else name
+
+
+def _legend_label(name: str) -> str:
+    entry = BEDS.get(name)
+    return f"{_short(name)}: {entry.label}" if entry is not None else name
+
+
+def _colours(count: int):
+    import matplotlib
+
+    cmap = matplotlib.colormaps["tab10" if count <= 10 else "tab20"]
+    return [cmap(i) for i in range(count)]
+
+
+def _distributions(data, analysis, path: Path) -> Path:
+    """Per measure and calibration: the median and 90th percentile of |error| over the map, and
+    of the foundation energy E_F over the points whose continuum energy run is stored."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    names = data.calibrations
+    groups = [(MEASURE_LABELS[m], analysis.pick(m).median, analysis.pick(m).p90)
+              for m in MEASURES]
+    groups += [(f"{ENERGY_LABELS[e.quantity]}\n({e.points} points)", e.median, e.p90)
+               for e in analysis.energy]
+    fig, ax = plt.subplots(figsize=(9.5 + 1.2 * len(analysis.energy),
+                                    4.2 + 0.16 * ((len(names) + 1) // 2)),
+                           constrained_layout=True)
+    width = 0.8 / len(names)
+    x = np.arange(len(groups))
+    for c, (name, colour) in enumerate(zip(names, _colours(len(names)))):
+        med = [100 * g[1][name] for g in groups]
+        p90 = [100 * g[2][name] for g in groups]
+        ax.bar(x + (c - (len(names) - 1) / 2) * width, med, width, color=colour,
+               label=_legend_label(name))
+        ax.plot(x + (c - (len(names) - 1) / 2) * width, p90, "v", color=colour,
+                markeredgecolor="k", markersize=6)
+    for level in (10, 20):
+        ax.axhline(level, color="k", ls=":", lw=0.8)
+    ax.set_yscale("log")
+    ax.set_xticks(x, [g[0] for g in groups], fontsize=8)
+    ax.set_ylabel("|bed − continuum| / continuum (%)")
+    best = ", ".join(f"{MEASURE_LABELS[m]}: {_short(analysis.pick(m).best)}" for m in MEASURES)
+    best += "".join(f", {ENERGY_SYMBOLS[e.quantity]}: {_short(e.best)}"
+                    for e in analysis.energy if e.best is not None)
+    ax.set_title(f"Which calibration for which quantity? Bars: median, ▼: 90th percentile over "
+                 f"{analysis.pick(MEASURES[0]).points} points\nbest: {best}", fontsize=8)
+    ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.1),
+              frameon=False)
+    ax.grid(True, which="both", axis="y", alpha=0.3)
+    return write_figure(path, fig)
+
+
+def _speed(data, analysis, path: Path) -> Path:
+    """Per calibration: the continuum's wall time over the bed's, point by point."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    names = data.calibrations
+    fig, ax = plt.subplots(figsize=(7, 3.6), constrained_layout=True)
+    for c, name in enumerate(names):
+        ratio = (data.continuum_wall / data.bed_wall[..., c]).ravel()
+        ratio = ratio[np.isfinite(ratio)]
+        ax.plot(np.full(ratio.size, c), ratio, "o", alpha=0.5)
+        ax.plot([c - 0.3, c + 0.3], [analysis.speed.median[name]] * 2, "k-")
+    ax.axhline(1000, color="r", ls=":", label="1000 ×")
+    ax.set_yscale("log")
+    ax.set_xticks(range(len(names)), [_short(n) for n in names], fontsize=7)
+    ax.set_ylabel("continuum wall time / bed wall time")
+    ax.set_title(f"How much faster is each bed? (median: line; continuum runs: median "
+                 f"{analysis.speed.continuum_median:.3g} s)", fontsize=8)
+    ax.legend(fontsize=7)
+    ax.grid(True, which="both", axis="y", alpha=0.3)
+    return write_figure(path, fig)

@@ -1,0 +1,128 @@
+"""The study's protocol: compute, run, its definition and its command line."""
+
+from __future__ import annotations
+
+import shutil
+from dataclasses import replace
+from pathlib import Path
+
+from ....checks import InputError
+from ...framework.protocol import Context, Study, run_study
+from ...framework.store import Store
+from ...framework.study import require_matplotlib
+from .analysis import analyse
+from .beds import BEDS, bed_names
+from .grid import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS, Grid, Options, STUDY,
+                   check_grid, check_options, grid_with)
+from .maps import compute_map
+from .motions import study_motions
+from .output import write
+from .result import WinklerMap
+
+#: Where the full grid's continuum runs are kept with the repository (relative to the checkout):
+#: the report's full build and the README's map commands resume from it.
+KEPT_STORE = "benchmarks/winkler_map_store"
+
+
+def compute(scene, ctx: Context) -> WinklerMap:
+    """The map of ``ctx.grid`` (default :data:`FAST_GRID` or :data:`FULL_GRID`) under
+    ``ctx.options`` (default :data:`FAST_OPTIONS` or :data:`FULL_OPTIONS`): every parameter
+    checked, the motions found and the cost estimated (and refused above ``options.budget``)
+    before any run; ``ctx.budget`` (the report's) applies when the options set none.
+    ``scene`` is not used: the map builds its own scenes."""
+    grid = check_grid(ctx.grid or (FAST_GRID if ctx.fast else FULL_GRID))
+    options = ctx.options or (FAST_OPTIONS if ctx.fast else FULL_OPTIONS)
+    if isinstance(options, Options) and options.budget is None and ctx.budget is not None:
+        options = replace(options, budget=ctx.budget)
+    options = check_options(options, tuple(BEDS))
+    if options.figures:
+        require_matplotlib(STUDY)
+    out = Path(ctx.out)
+    fresh = [p for p in (out, out / "motions") if not p.exists()]
+    motions = study_motions(grid, options, out)
+    try:
+        data = compute_map(grid, options, bed_names(options), motions, ctx)
+    except InputError:  # refused: leave no copied records behind, and no empty folders
+        if out / "motions" in fresh:
+            shutil.rmtree(out / "motions", ignore_errors=True)
+        if out in fresh:
+            _remove_empty_folders(out)
+        raise
+    return WinklerMap(None, data, analyse(data))
+
+
+def _remove_empty_folders(root: Path) -> None:
+    """Remove ``root`` and the folders below it that hold no file (a store with records
+    stays)."""
+    for folder in sorted((p for p in root.rglob("*") if p.is_dir()), reverse=True) + [root]:
+        try:
+            folder.rmdir()
+        except OSError:
+            pass
+
+
+def run(fast: bool = False, *, out: str | Path | None = None,
+        store: Store | str | Path | None = None, grid: Grid | None = None,
+        options: Options | None = None, executor=None, scheduler=None, workers=None,
+        progress=None) -> WinklerMap:
+    """Run the map. ``fast``: :data:`FAST_GRID` and :data:`FAST_OPTIONS` (one soil, two FS_v,
+    one short pulse on 4 elements across) instead of the full grid on the reference mesh.
+    ``out``: output directory (default ``results/winkler_map[-fast]``); ``store`` the results
+    store (default ``<out>/store``); ``executor``/``scheduler``/``workers``/``progress`` go to
+    :func:`.sweep.run_sweep`. Every parameter is checked before anything runs."""
+    return run_study(DEFINITION, None, Context(
+        fast=fast, out=out, store=store, grid=grid, options=options, executor=executor,
+        scheduler=scheduler, workers=workers, progress=progress))
+
+
+# ---------------------------------------------------------------------------------------------
+# Command line
+# ---------------------------------------------------------------------------------------------
+
+
+def _arguments(parser) -> None:
+    parser.add_argument("--budget", type=float, default=None,
+                        help="refuse (exit 2) a run whose estimated continuum cost exceeds "
+                             "this many seconds of one worker")
+    parser.add_argument("--grid", action="append", default=[], metavar="FIELD=VALUES",
+                        help="replace one axis of the grid (repeatable), e.g. soils=clay, "
+                             "fs_v=2,3,5,10, h_over_B=1.5, periods=0.5, intensities=1.5,3, "
+                             "pulse_periods=0.25,0.6, elcentro=true, fema_components=2")
+    parser.add_argument("--energy", action="store_true", default=None,
+                        help="also make the continuum's foundation-energy run of every point "
+                             "(one more continuum run each, stored), so that the map compares "
+                             "E_F everywhere; without it, E_F is compared where the store "
+                             "holds those runs (the fast map always makes them)")
+    parser.add_argument("--beds", default=None, metavar="NAME,NAME",
+                        help="compare only these calibrations (names of the bed registry, "
+                             "e.g. end_stiffened_plastic,qz; default: every one)")
+
+
+def _context_from(args, ctx: Context, say) -> Context:
+    base = FAST_OPTIONS if args.fast else FULL_OPTIONS
+    options = replace(base, budget=args.budget, figures=not args.no_figures,
+                      energy=bool(args.energy) or base.energy)
+    if args.beds is not None:
+        options = replace(options, beds=tuple(b.strip() for b in args.beds.split(",")
+                                              if b.strip()))
+    if options.figures:
+        from ....extras import need_extra
+        need_extra(f"upliftlab study {STUDY}", "matplotlib",
+                   why="or add --no-figures")
+    grid = check_grid(grid_with(FAST_GRID if args.fast else FULL_GRID, args.grid))
+    return replace(ctx, options=options, grid=grid)
+
+
+def _describe(result: WinklerMap) -> list[str]:
+    s = result.analysis.share
+    return [f"{STUDY}: {result.data.continuum_wall.size} points; the best calibration "
+            f"({s.best}) is within {100 * s.threshold:g} % in peak θ and edge uplift at "
+            f"{100 * s.best_share:.0f} % of them"]
+
+
+DEFINITION = Study(STUDY, "Winkler beds against the continuum: the map",
+                   "Where is a calibrated bed of springs enough? Every calibration against the "
+                   "continuum over soil, FS_v, h/B, period, intensity and motion.", Options,
+                   compute, write, describe=_describe, arguments=_arguments,
+                   context_from=_context_from, kept_store=KEPT_STORE,
+                   help_fast="one soil, two FS_v, one short pulse, 4 elements across")

@@ -1,0 +1,167 @@
+"""The compiled time loop of the explicit route, for a material with a compiled return map:
+the steps between two recorded rows in one call, with no Python in between.
+
+:func:`run_steps` performs exactly the steps of
+:meth:`upliftlab.continuum.dynamics.explicit._Explicit`'s
+Python loop (which serves the materials without a compiled return map; a test runs both on one
+scene and compares them): the internal force (:mod:`~upliftlab.continuum.dynamics.kernels`), the
+diagonal
+soil update (:func:`~upliftlab.continuum.dynamics.kernels.soil_predict`), the footing and story
+form, the
+contact forces (:func:`~upliftlab.continuum.contact.step.frictionless_step`, or
+:func:`~upliftlab.continuum.contact.step.tangential_step` for a bonded or Coulomb interface) and
+the energy increments.
+
+The state lives in rings indexed by the step k, so that nothing is copied from step to step:
+``U[k % 3]`` is u_k (``U[(k ± 1) % 3]`` its neighbours), ``V[k % 2]`` is v_{k−½} and
+``V[(k + 1) % 2]`` v_{k+½}; the same for the footing and story z (``Z``, ``VZ``); ``FC[k % 2]``
+holds the contact forces of step k − 1 (at u_y, then u_x for a tangential interface) and
+``ST[k % 2]`` its node status, which the recorded row k pairs with the gaps of u_k. ``R_prev``,
+``F_prev`` and ``Fz_prev`` carry the last step's internal and external forces; ``energy``
+(kinetic, strain, damping, input, contact) and ``counters`` (active-set iterations) accumulate
+in place.
+"""
+
+from __future__ import annotations
+
+import numba as nb
+import numpy as np
+
+from ..contact.step import frictionless_step, tangential_step
+from ..contact.footing import OPEN, STICK
+from .kernels import soil_predict
+
+__all__ = ["run_steps"]
+
+
+@nb.njit(cache=True)
+def _structure_form(M, C, K, z, vz, Fz, dt, first):
+    """(A, b) of the footing and story (A z_{n+1} + b + [Lᵀ f_c; 0] = 0)."""
+    if first:
+        h = 0.5 * dt * dt
+        A = M / h
+        b = -(A @ z) - (M @ vz) / (0.5 * dt) - Fz + K @ z + C @ vz
+    else:
+        h = dt * dt
+        A = (M + 0.5 * dt * C) / h
+        b = -(A @ z) - ((M - 0.5 * dt * C) @ vz) / dt - Fz + K @ z
+    return A, b
+
+
+@nb.njit(cache=True)
+def _tangential(A, b, prescribed, z, u, u_next, v_next, m_eff, h, dt, uy, ux, x, mu, width,
+                status):
+    """The bonded or Coulomb contact of one step, applied in place like
+    :func:`~upliftlab.continuum.contact.step.frictionless_step`; returns (forces on the soil
+    at u_y then u_x, q, s, iterations)."""
+    a_ss = A[3, 3]
+    K = A[:3, :3] - np.outer(A[:3, 3], A[3, :3]) / a_ss
+    o = b[:3] - A[:3, 3] * b[3] / a_ss
+    q = z[:3].copy()
+    target = np.zeros(3)
+    for i in range(3):
+        if prescribed[i]:
+            target[i] = q[i]
+            o[i] = 0.0
+            for j in range(3):
+                K[i, j] = K[j, i] = 0.0
+    rq = K @ q + o
+    n = x.size
+    s = np.empty(2 * n)
+    uc = np.empty(2 * n)
+    slip0 = np.empty(n)
+    for i in range(n):
+        s[i], s[n + i] = m_eff[uy[i]] / h, m_eff[ux[i]] / h
+        uc[i], uc[n + i] = u_next[uy[i]], u_next[ux[i]]
+        slip0[i] = u[ux[i]] - q[0]
+    duc, dq, force, its = tangential_step(s, uc, q, slip0, x, prescribed, target, K, rq, mu,
+                                          width, status)
+    for i in range(n):
+        for j, d in ((uy[i], duc[i]), (ux[i], duc[n + i])):
+            u_next[j] += d
+            v_next[j] = (u_next[j] - u[j]) / dt
+    q = q + dq
+    story = -(A[3, 0] * q[0] + A[3, 1] * q[1] + A[3, 2] * q[2] + b[3]) / a_ss
+    return force, q, story, its
+
+
+@nb.njit(cache=False)  # takes kernels as arguments: numba cannot reuse a cached copy (it
+# compiled it again in every process) and writing it failed now and then (ReferenceError:
+# underlying object has vanished, pickling a kernel's type), which failed the run
+def run_steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure, contact):
+    """Steps k0…k1 (module docstring); returns nothing, the rings hold the state. The arrays
+    travel in tuples: ``rings`` (U, V, Z, VZ, FC, ST) and ``carry`` (R_prev, F_prev, Fz_prev,
+    energy, counters), both updated in place; ``soil`` the compiled soil force's layout, state
+    and workspace (:class:`~upliftlab.continuum.dynamics.soil_force.SoilForce`); ``loads`` (datum,
+    keep,
+    ground, incident, ag_all, vinc_all, mass, damping, m_step); ``structure`` (M, C, K,
+    gravity, ground influence of the footing and story); ``contact`` (free, Lf, uy, ux, x, μ,
+    width, tangential). ``elements`` and ``gather``: the serial or parallel kernels
+    (:func:`~upliftlab.continuum.dynamics.kernels.compiled_pair`), passed in so that the serial loop
+    never compiles the parallel ones."""
+    U, V, Z, VZ, FC, ST = rings
+    R_prev, F_prev, Fz_prev, energy, counters = carry
+    (nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, constants, stress, work, fint, ptr,
+     entries) = soil
+    datum, keep, ground, incident, ag_all, vinc_all, mass, damping, m_step = loads
+    Mz, Cz, Kz, gravity_z, ground_z = structure
+    free, Lf, uy, ux, x, mu, width, tangential = contact
+    nc = uy.size
+    prescribed = np.ones(3, dtype=np.bool_)
+    for i in free:
+        prescribed[i] = False
+    for k in range(k0, k1 + 1):
+        first = k == 0
+        u, u_prev, u_next = U[k % 3], U[(k + 2) % 3], U[(k + 1) % 3]
+        v, v_next = V[k % 2], V[(k + 1) % 2]
+        z, z_prev = Z[k % 3], Z[(k + 2) % 3]
+        vz = VZ[k % 2]
+        elements(u.reshape(-1, 2), nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, constants,
+                 stress, work)
+        gather(work, nodes, ptr, entries, fint)
+        ag = ag_all[k]
+        strain, work_in, dissipated = soil_predict(
+            u, u_prev, v, fint, datum, keep, ground, incident, ag, vinc_all[k], mass, damping,
+            dt, first, R_prev, F_prev, u_next, v_next)
+        Fz = ground_z * ag + gravity_z
+        A, b = _structure_form(Mz, Cz, Kz, z, vz, Fz, dt, first)
+        h = dt * (0.5 * dt if first else dt)
+        m_eff = mass if first else m_step
+        status = ST[(k + 1) % 2]
+        status[:] = ST[k % 2]
+        force, force_prev = FC[(k + 1) % 2], FC[k % 2]
+        if tangential:
+            f, q, s, its = _tangential(A, b, prescribed, z, u, u_next, v_next, m_eff, h, dt, uy,
+                                       ux, x, mu, width, status)
+            force[:] = f
+        else:
+            closed = status != OPEN
+            P, q, s, its = frictionless_step(A, b, free, Lf, uy, u, u_next, v_next, m_eff, h,
+                                             dt, closed)
+            for i in range(nc):
+                force[i] = -P[i]
+                status[i] = STICK if closed[i] else OPEN
+        z_next = Z[(k + 1) % 3]
+        z_next[0], z_next[1], z_next[2], z_next[3] = q[0], q[1], q[2], s
+        vz_next = VZ[(k + 1) % 2]
+        for i in range(4):
+            vz_next[i] = (z_next[i] - z[i]) / dt
+        counters[0] += its
+        if not first:
+            dz = z - z_prev
+            zs = z + z_prev
+            energy[1] += strain + 0.5 * ((Kz @ zs) @ dz) - gravity_z @ dz
+            energy[2] += dissipated + (Cz @ vz) @ dz
+            energy[3] += work_in + 0.5 * ((Fz_prev + Fz - 2.0 * gravity_z) @ dz)
+            on_soil = horizontal = vertical = moment = 0.0
+            for i in range(nc):
+                mean = 0.5 * (force_prev[i] + force[i])
+                on_soil += mean * (u[uy[i]] - u_prev[uy[i]])
+                vertical += mean
+                moment -= x[i] * mean
+                if tangential:
+                    mean = 0.5 * (force_prev[nc + i] + force[nc + i])
+                    on_soil += mean * (u[ux[i]] - u_prev[ux[i]])
+                    horizontal += mean
+            energy[4] -= on_soil - (horizontal * dz[0] + vertical * dz[1] + moment * dz[2])
+        Fz_prev[:] = Fz

@@ -1,0 +1,106 @@
+"""How a ground motion enters the soil domain of a dynamic run: the boundary conditions of
+either route, the start from the gravity state, the rigid-body load and the ground velocity.
+
+**Boundaries.** ``base = "rigid"`` (the scene's ``continuum.base``): the bottom moves with the
+ground; the relative formulation loads every DOF with −M r a_g (r the unit horizontal rigid
+motion, :func:`x_dofs`). ``base = "compliant"``: an absolute formulation on an elastic
+half-space, the bottom carrying dashpots and the incident wave
+(:mod:`~upliftlab.continuum.dynamics.waves`),
+with u̇_inc = v_g/2 (:func:`ground_velocity`): the record is taken as the *outcrop* motion of the
+underlying rock, twice the incident wave. ``sides``: ``rollers`` (u_x = 0, statics' condition),
+``shear`` (u_y = 0, u_x free: exact for a vertically incident S wave in a layered column) or
+``lysmer`` (free, with dashpots). DOFs released for dynamics (held in statics,
+:func:`static_fixed`) carry their static reaction as a constant load, so the gravity state stays
+in equilibrium at t = 0.
+
+**Gravity first.** :func:`gravity_state`: the geostatic state, then the weight
+``vertical_weight`` ramped on the footing in ``load_steps`` statics steps (θ held, then
+released), under the static boundary conditions; the motion starts from that state at rest.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...checks import InputError
+from ..statics.newton import ContinuumState, Control, follow
+from ..statics.analyses import geostatic
+
+__all__ = ["boundaries", "dynamic_fixed", "static_fixed", "x_dofs", "ground_velocity",
+           "gravity_state"]
+
+
+def boundaries(model, options) -> tuple[str, str]:
+    """(base, sides) of a dynamic run (``options``, a
+    :class:`~upliftlab.continuum.dynamics.options.DynamicOptions`, else the scene's
+    ``continuum.base`` and ``continuum.boundary``), checked against the interface."""
+    cont = model.options
+    base = options.base or cont.base
+    sides = options.sides or ("lysmer" if cont.boundary == "lysmer" else
+                              "rollers" if base == "rigid" and cont.boundary == "fixed" else
+                              "shear")
+    tangential = model.footing.interface.tangential
+    if base == "compliant" and not tangential:
+        raise InputError("soil.interface = 'frictionless' with base = 'compliant': a frictionless "
+                         "footing cannot follow the horizontal ground; valid: bonded or coulomb, "
+                         "or base = 'rigid'")
+    if base == "compliant" and model.soil.density <= 0.0:
+        raise InputError(f"soil.density = {model.soil.density:g}: a compliant base radiates "
+                         "through ρV; valid range is > 0")
+    return base, sides
+
+
+def dynamic_fixed(model, base: str, sides: str) -> np.ndarray:
+    """The DOFs held in a dynamic run: the bottom on a rigid ``base``; u_x of the sides for
+    ``rollers``, u_y for ``shear`` (none for ``lysmer``); never a contact DOF."""
+    basis = model.disc.basis
+    fixed = [basis.get_dofs("bottom").all()] if base == "rigid" else []
+    if sides == "rollers":
+        fixed.append(basis.get_dofs("sides").all("u^1"))
+    elif sides == "shear":
+        fixed.append(basis.get_dofs("sides").all("u^2"))
+    fixed = np.unique(np.concatenate(fixed)) if fixed else np.zeros(0, dtype=np.int64)
+    return np.setdiff1d(fixed, model.footing.contact_dofs)
+
+
+def static_fixed(model) -> np.ndarray:
+    """The statics model's fixed DOFs (bottom, sides u_x)."""
+    basis = model.disc.basis
+    return np.union1d(basis.get_dofs("bottom").all(), basis.get_dofs("sides").all("u^1"))
+
+
+def x_dofs(model) -> np.ndarray:
+    """Every u_x DOF of the vector basis (the first row of each DOF table)."""
+    b = model.disc.basis
+    tables = (b.nodal_dofs, b.facet_dofs, b.edge_dofs, b.interior_dofs)
+    return np.concatenate([np.asarray(t[0]).ravel() for t in tables if np.size(t)])
+
+
+def ground_velocity(motion, dt: float, steps: int) -> np.ndarray:
+    """Ground velocity (in g·s) at t = k dt, k = 0…steps: the exact integral of the
+    piecewise-linear record."""
+    n = motion.acceleration.size
+    times = np.arange(n + 1) * motion.dt
+    acc = np.append(motion.acceleration, 0.0)
+    vel = np.concatenate(([0.0], np.cumsum(0.5 * (acc[1:] + acc[:-1]) * motion.dt)))
+    t = np.arange(steps + 1) * dt
+    k = np.clip(np.searchsorted(times, t, side="right") - 1, 0, n)
+    tau = t - times[k]
+    a0 = acc[k]
+    a1 = np.where(k < n, acc[np.minimum(k + 1, n)], 0.0)
+    slope = (a1 - a0) / motion.dt
+    inside = k < n
+    return np.where(inside, vel[k] + a0 * tau + 0.5 * slope * tau ** 2, vel[n])
+
+
+def gravity_state(model, scene, options, prescribe_u: bool) -> ContinuumState:
+    """Geostatic state, then the footing's weight ramped with θ held in ``options.load_steps``
+    steps (:class:`~upliftlab.continuum.dynamics.options.DynamicOptions`), then θ released;
+    ``prescribe_u``: the footing's u is held (a frictionless interface)."""
+    state = geostatic(model)
+    N = scene.structure.vertical_weight
+    loads = N * np.arange(1, options.load_steps + 1) / options.load_steps
+    controls = [Control((prescribe_u, False, True), (0.0, -n, 0.0)) for n in loads]
+    controls.append(Control((prescribe_u, False, False), (0.0, -N, 0.0)))
+    return follow(model, state, controls, options.newton)[-1]
+

@@ -1,0 +1,341 @@
+"""Compiled kernels of the explicit dynamics: the soil's internal force with the return map,
+evaluated element by element in parallel (numba ``prange``).
+
+An explicit step needs the stress at every quadrature point for the current displacement and
+the nodal forces ∫ Bᵀ σ; no tangent, no assembly, no solve. These kernels do that in one pass
+over the elements (strain from the element's DOFs, return map, Bᵀ σ dx into an element force
+array) and a second pass over the DOFs that sums the element forces (a gather through a
+precomputed DOF → element-entry map, so that no two threads write one entry).
+
+**Layout** (:func:`layout`). The vector basis of scikit-fem interleaves the components: local
+function 2a is u_x of node a, 2a + 1 its u_y, with the same scalar shape function N_a. The
+kernels take the scalar gradients ``dNdx``, ``dNdy`` (nel, nqp, nnode), the quadrature weights
+``dx`` (nel, nqp) and the global DOFs (nel, nnode, 2), which are (2k, 2k + 1) for the node k.
+:func:`layout` checks all this against the discretisation and refuses a basis without it.
+
+**Materials** (:data:`ELASTIC`, :data:`TRESCA`, :data:`VON_MISES`, :data:`MOHR_COULOMB`): the
+same return maps as :mod:`~upliftlab.continuum.materials` (plane strain: the strain's zz
+component is the geostatic eigenstrain's, xz = yz = 0), written for one point and without the
+tangent:
+
+- elastic: σ = λ tr(ε − εp) 𝟏 + 2G (ε − εp);
+- Tresca σ1 − σ3 ≤ 2 c_u: principal-space return to the main plane, else to the
+  triaxial-compression or -extension edge (the closed forms of
+  :func:`~upliftlab.continuum.materials.tresca` with φ = ψ = 0); in plane strain the principal
+  directions are the in-plane pair and z, so the return rotates back in the xy plane;
+- von Mises q ≤ √3 c_u + H ε̄p: radial return;
+- Mohr–Coulomb (c, φ, ψ ≤ φ): main plane, either edge or the apex
+  (:mod:`~upliftlab.continuum.materials.compiled_mc`).
+
+A material's constants travel as one tuple (:func:`kernel_constants`): (λ, G, strength, H,
+sin φ, cos φ, sin ψ), strength c_u or c, H the hardening modulus (kPa).
+
+Plastic strain is stored as (xx, yy, zz, xy) (tensorial shear), stress as (xx, yy, zz, xy).
+A point yields when f > 1e-12 × (strength + stress scale), as in the vectorised maps.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba as nb
+import numpy as np
+
+from ...checks import InputError
+from ..materials.compiled_mc import mohr_coulomb_point, rotate_back, sorted_principal
+
+__all__ = ["ELASTIC", "TRESCA", "VON_MISES", "MOHR_COULOMB", "MATERIAL_KINDS", "Layout",
+           "layout", "material_kind", "kernel_constants", "internal_force", "point_update"]
+
+ELASTIC, TRESCA, VON_MISES, MOHR_COULOMB = 0, 1, 2, 3
+#: The material record class names with a compiled return map.
+MATERIAL_KINDS = {"Elastic": ELASTIC, "Tresca": TRESCA, "VonMises": VON_MISES,
+                  "MohrCoulomb": MOHR_COULOMB}
+_RTOL = 1e-12
+_SQRT23 = math.sqrt(2.0 / 3.0)
+_SQRT32 = math.sqrt(1.5)
+#: Element blocks of the parallel loop (each thread takes whole blocks; a scratch array each).
+_BLOCKS = 64
+#: Floating-point licences of the element loop: fused multiply-add and reassociation of its sums
+#: (so that they vectorise), but NaN and infinity keep their meaning.
+_FAST = {"contract", "reassoc", "nsz", "arcp"}
+
+
+class Layout:
+    """The arrays the kernels read (module docstring): ``dNdx``, ``dNdy`` (nel, nqp, nnode),
+    ``dx`` (nel, nqp), ``dofs`` (nel, nnode, 2), ``nodes`` (nel, nnode) = dofs // 2, and the
+    gather map ``ptr``/``entries`` (for DOF d, the flat element-force entries
+    ptr[d]:ptr[d+1])."""
+
+    def __init__(self, dNdx, dNdy, dx, dofs, ptr, entries, ndofs):
+        self.dNdx, self.dNdy, self.dx, self.dofs = dNdx, dNdy, dx, dofs
+        self.nodes = np.ascontiguousarray(dofs[:, :, 0] // 2)
+        self.ptr, self.entries, self.ndofs = ptr, entries, ndofs
+
+    @property
+    def shape(self) -> tuple[int, int, int]:
+        """(nel, nqp, nnode)."""
+        return self.dNdx.shape
+
+
+def layout(disc) -> Layout:
+    """The kernel :class:`Layout` of a :class:`~upliftlab.continuum.assembly.Discretisation`."""
+    B, dofs = disc.B, disc.dofs
+    nloc = B.shape[1]
+    x, y = slice(0, nloc, 2), slice(1, nloc, 2)
+    pairs = dofs[y] == dofs[x] + 1
+    ok = (nloc % 2 == 0 and disc.ndofs % 2 == 0 and pairs.all() and not np.any(dofs[x] % 2)
+          and not np.any(B[1, x]) and not np.any(B[0, y])
+          and np.array_equal(B[0, x], B[2, y]) and np.array_equal(B[1, y], B[2, x]))
+    if not ok:
+        raise InputError(f"continuum.element = {disc.element!r}: its vector basis does not "
+                         "interleave (u_x, u_y) per node as DOFs (2k, 2k + 1); the explicit "
+                         "kernels need it")
+    dNdx = np.ascontiguousarray(B[0, x].transpose(1, 2, 0))
+    dNdy = np.ascontiguousarray(B[1, y].transpose(1, 2, 0))
+    local = np.ascontiguousarray(dofs.T.reshape(dofs.shape[1], nloc // 2, 2))
+    flat = local.ravel()
+    order = np.argsort(flat, kind="stable")
+    ptr = np.concatenate(([0], np.cumsum(np.bincount(flat, minlength=disc.ndofs))))
+    return Layout(dNdx, dNdy, np.ascontiguousarray(disc.dx), local.astype(np.int64),
+                  ptr.astype(np.int64), order.astype(np.int64), disc.ndofs)
+
+
+def material_kind(material) -> int | None:
+    """The kernel code of a material record, or None if it has no compiled return map."""
+    return MATERIAL_KINDS.get(type(material).__name__)
+
+
+def kernel_constants(material) -> tuple[float, ...]:
+    """The constants the kernels read of a material record: (λ, G, strength, H, sin φ, cos φ,
+    sin ψ) in kPa and plain numbers; strength is c_u (Tresca, von Mises) or c (Mohr–Coulomb),
+    H von Mises' hardening modulus; a material without a term has 0 there (cos φ = 1)."""
+    frictional = material_kind(material) == MOHR_COULOMB
+    strength = material.cohesion if frictional else getattr(material, "undrained_strength", 0.0)
+    return (float(material.lame), float(material.shear_modulus), float(strength or 0.0),
+            float(getattr(material, "hardening_modulus", 0.0) or 0.0),
+            float(material.sin_phi) if frictional else 0.0,
+            float(material.cos_phi) if frictional else 1.0,
+            float(material.sin_psi) if frictional else 0.0)
+
+
+# ---------------------------------------------------------------------------------------------
+# One point
+# ---------------------------------------------------------------------------------------------
+
+
+@nb.njit(cache=True, inline="always")
+def _tresca(sxx, syy, szz, sxy, G, k):
+    """Tresca return of the trial stress; returns the stress (xx, yy, zz, xy)."""
+    case, s1, s2, s3, cos2, sin2 = sorted_principal(sxx, syy, szz, sxy)
+    f = (s1 - s3) - k
+    if not f > _RTOL * (k + max(abs(s1), abs(s3))):
+        return sxx, syy, szz, sxy
+    n1, n2, n3 = s1 - 0.5 * f, s2, s3 + 0.5 * f
+    if not (n1 >= n2 and n2 >= n3):
+        if s1 - 2.0 * s2 + s3 > 0.0:  # extension edge: s2 = s3
+            f1, f2 = s1 - s3 - k, s1 - s2 - k
+            n1 = s1 - (f1 + f2) / 3.0
+            n2 = s2 + (2.0 * f2 - f1) / 3.0
+            n3 = s3 + (2.0 * f1 - f2) / 3.0
+            n2 = n3 = 0.5 * (n2 + n3)
+        else:  # compression edge: s1 = s2
+            f1, f2 = s1 - s3 - k, s2 - s3 - k
+            n1 = s1 - (2.0 * f1 - f2) / 3.0
+            n2 = s2 - (2.0 * f2 - f1) / 3.0
+            n3 = s3 + (f1 + f2) / 3.0
+            n1 = n2 = 0.5 * (n1 + n2)
+    return rotate_back(case, n1, n2, n3, cos2, sin2)
+
+
+@nb.njit(cache=True, inline="always")
+def point_update(kind, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar, constants):
+    """The return map at one point: total strain (xx, yy, zz, xy tensorial), plastic strain
+    and ε̄p of the converged state, the material's :func:`kernel_constants` -> (stress xx, yy,
+    zz, xy, plastic strain increment xx, yy, zz, xy, Δε̄p)."""
+    lam, G, strength, H, sin_phi, cos_phi, sin_psi = constants
+    exx, eyy, ezz, exy = exx - pxx, eyy - pyy, ezz - pzz, exy - pxy
+    tr = exx + eyy + ezz
+    sxx = lam * tr + 2.0 * G * exx
+    syy = lam * tr + 2.0 * G * eyy
+    szz = lam * tr + 2.0 * G * ezz
+    sxy = 2.0 * G * exy
+    if kind == ELASTIC:
+        return sxx, syy, szz, sxy, 0.0, 0.0, 0.0, 0.0, 0.0
+    if kind == TRESCA:
+        nxx, nyy, nzz, nxy = _tresca(sxx, syy, szz, sxy, G, 2.0 * strength)
+        a, b, c, d = (sxx - nxx) / (2.0 * G), (syy - nyy) / (2.0 * G), \
+            (szz - nzz) / (2.0 * G), (sxy - nxy) / (2.0 * G)
+        dbar = _SQRT23 * math.sqrt(a * a + b * b + c * c + 2.0 * d * d)
+        return nxx, nyy, nzz, nxy, a, b, c, d, dbar
+    if kind == MOHR_COULOMB:
+        return mohr_coulomb_point(sxx, syy, szz, sxy, lam, G, strength, sin_phi, cos_phi,
+                                  sin_psi)
+    # von Mises with linear hardening: radial return
+    mean = tr / 3.0
+    dxx, dyy, dzz = 2.0 * G * (exx - mean), 2.0 * G * (eyy - mean), 2.0 * G * (ezz - mean)
+    norm = math.sqrt(dxx * dxx + dyy * dyy + dzz * dzz + 2.0 * sxy * sxy)
+    q = _SQRT32 * norm
+    sy = math.sqrt(3.0) * strength + H * ebar
+    f = q - sy
+    if not f > _RTOL * sy:
+        return sxx, syy, szz, sxy, 0.0, 0.0, 0.0, 0.0, 0.0
+    dgamma = f / (3.0 * G + H)
+    keep = 1.0 - 3.0 * G * dgamma / q
+    K = lam + 2.0 * G / 3.0
+    p = K * tr
+    scale = _SQRT32 * dgamma / norm
+    return (dxx * keep + p, dyy * keep + p, dzz * keep + p, sxy * keep,
+            scale * dxx, scale * dyy, scale * dzz, scale * sxy, dgamma)
+
+
+# ---------------------------------------------------------------------------------------------
+# The internal force
+# ---------------------------------------------------------------------------------------------
+
+
+@nb.njit(cache=True, fastmath=_FAST)
+def _elements(lo, hi, u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, constants, stress,
+              fe):
+    """Elements lo:hi of :func:`internal_force`."""
+    nel, nqp, nn = dNdx.shape
+    ue = np.empty((nn, 2))
+    for e in range(lo, hi):
+        for a in range(nn):
+            ue[a, 0], ue[a, 1] = u2[nodes[e, a], 0], u2[nodes[e, a], 1]
+            fe[e, a, 0] = 0.0
+            fe[e, a, 1] = 0.0
+        for p in range(nqp):
+            exx = eyy = gxy = 0.0
+            for a in range(nn):
+                bx, by = dNdx[e, p, a], dNdy[e, p, a]
+                exx += bx * ue[a, 0]
+                eyy += by * ue[a, 1]
+                gxy += by * ue[a, 0] + bx * ue[a, 1]
+            sxx, syy, szz, sxy, d0, d1, d2, d3, db = point_update(
+                kind, exx + eig[e, p, 0], eyy + eig[e, p, 1], eig[e, p, 2],
+                0.5 * gxy + eig[e, p, 3], plastic[e, p, 0], plastic[e, p, 1],
+                plastic[e, p, 2], plastic[e, p, 3], ebar[e, p], constants)
+            if db != 0.0:
+                plastic[e, p, 0] += d0
+                plastic[e, p, 1] += d1
+                plastic[e, p, 2] += d2
+                plastic[e, p, 3] += d3
+                ebar[e, p] += db
+            stress[e, p, 0], stress[e, p, 1] = sxx, syy
+            stress[e, p, 2], stress[e, p, 3] = szz, sxy
+            w = dx[e, p]
+            sxx, syy, sxy = sxx * w, syy * w, sxy * w
+            for a in range(nn):
+                bx, by = dNdx[e, p, a], dNdy[e, p, a]
+                fe[e, a, 0] += bx * sxx + by * sxy
+                fe[e, a, 1] += by * syy + bx * sxy
+
+
+@nb.njit(cache=True, parallel=True)
+def _elements_parallel(u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, constants, stress,
+                       fe):
+    nel = dNdx.shape[0]
+    blocks = min(nel, _BLOCKS)
+    for b in nb.prange(blocks):
+        _elements(b * nel // blocks, (b + 1) * nel // blocks, u2, nodes, dNdx, dNdy, dx, eig,
+                  plastic, ebar, kind, constants, stress, fe)
+
+
+@nb.njit(cache=True)
+def _elements_serial(u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, constants, stress,
+                     fe):
+    _elements(0, dNdx.shape[0], u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, constants,
+              stress, fe)
+
+
+@nb.njit(cache=True)
+def _gather_nodes(fe, nodes, ptr, entries, out):
+    """The serial sum of element forces (the node-wise scatter; ``ptr``, ``entries`` unused:
+    the signature of :func:`_gather_parallel`)."""
+    _gather_serial(fe, nodes, out.reshape(-1, 2))
+
+
+@nb.njit(cache=True, parallel=True)
+def _gather_parallel(fe, nodes, ptr, entries, out):
+    """The sum of element forces split among the threads by DOF (``nodes`` unused)."""
+    flat = fe.ravel()
+    for d in nb.prange(out.size):
+        total = 0.0
+        for j in range(ptr[d], ptr[d + 1]):
+            total += flat[entries[j]]
+        out[d] = total
+
+
+@nb.njit(cache=True)
+def _gather_serial(fe, nodes, out2):
+    out2[:] = 0.0
+    nel, nn, _ = fe.shape
+    for e in range(nel):
+        for a in range(nn):
+            k = nodes[e, a]
+            out2[k, 0] += fe[e, a, 0]
+            out2[k, 1] += fe[e, a, 1]
+
+
+def internal_force(lay: Layout, u, eigenstrain, plastic, ebar, kind: int,
+                   constants: tuple[float, ...], stress, work, out,
+                   parallel: bool | None = None) -> np.ndarray:
+    """∫ Bᵀ σ (ndofs) into ``out`` for the displacement ``u``: the return map of ``kind`` with
+    the material's :func:`kernel_constants` at every quadrature point from the state
+    (``plastic`` (nel, nqp, 4), ``ebar`` (nel, nqp)), which is **updated in place** (an
+    explicit step commits every evaluation), the stress written to ``stress`` (nel, nqp, 4).
+    ``eigenstrain`` (nel, nqp, 4) is added to the strain of u (the geostatic stress); ``work``
+    (nel, nnode, 2) is scratch. With more than one numba thread (``numba.get_num_threads()``)
+    the elements and the DOFs are split among the threads, unless ``parallel`` is False."""
+    if parallel is None:
+        parallel = nb.get_num_threads() > 1
+    elements, gather = compiled_pair(parallel)
+    elements(u.reshape(-1, 2), lay.nodes, lay.dNdx, lay.dNdy, lay.dx, eigenstrain, plastic, ebar,
+             kind, constants, stress, work)
+    gather(work, lay.nodes, lay.ptr, lay.entries, out)
+    return out
+
+
+def compiled_pair(parallel: bool):
+    """(element forces, gather) kernels, serial or parallel; both pairs share a signature, so
+    that a caller compiled for one never compiles the other."""
+    return (_elements_parallel, _gather_parallel) if parallel else \
+        (_elements_serial, _gather_nodes)
+
+
+# ---------------------------------------------------------------------------------------------
+# The diagonal update of one central-difference step
+# ---------------------------------------------------------------------------------------------
+
+
+@nb.njit(cache=True)
+def soil_predict(u, u_prev, v, fint, datum, keep, ground, incident, ag, incident_velocity,
+                 mass, damping, dt, first, R_prev, F_prev, u_out, v_out):
+    """One step of the soil without contact forces (:mod:`~upliftlab.continuum.dynamics.explicit`):
+    R = f_int − datum, F = ground a_g + incident v_inc, v_out = v_{n+½}, u_out = u_{n+1};
+    a held DOF (``keep`` 0) stays put. Returns the increments of the strain work
+    ½(R_{n−1} + R_n)·Δu, the input ½(F_{n−1} + F_n)·Δu and the dashpot work c v_{n−½}·Δu over
+    the last step (Δu = u_n − u_{n−1}; zero on the ``first`` step), and stores R and F in
+    ``R_prev`` and ``F_prev`` for the next step."""
+    strain = work = dissipated = 0.0
+    half = 0.5 * dt
+    for i in range(u.size):
+        if keep[i] == 0.0:
+            u_out[i], v_out[i], R_prev[i], F_prev[i] = u[i], 0.0, 0.0, 0.0
+            continue
+        R = fint[i] - datum[i]
+        F = ground[i] * ag + incident[i] * incident_velocity
+        if first:
+            vs = v[i] + half * (F - R - damping[i] * v[i]) / mass[i]
+        else:
+            du = u[i] - u_prev[i]
+            strain += 0.5 * (R_prev[i] + R) * du
+            work += 0.5 * (F_prev[i] + F) * du
+            dissipated += damping[i] * v[i] * du
+            vs = ((mass[i] - half * damping[i]) * v[i] + dt * (F - R)) \
+                / (mass[i] + half * damping[i])
+        v_out[i] = vs
+        u_out[i] = u[i] + dt * vs
+        R_prev[i], F_prev[i] = R, F
+    return strain, work, dissipated

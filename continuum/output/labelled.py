@@ -1,0 +1,143 @@
+"""A continuum result as labelled data: an :class:`xarray.Dataset` of the footing's histories
+and its contact along the base (a dynamic run against time, a static path against its load
+step), so that a notebook selects by label.
+
+CF conventions where they apply: coordinate variables ``time`` (s), ``node`` (the footing's
+contact nodes, with their ``x``) and ``component`` (of the energy account); ``units`` and
+``long_name`` on every variable; the contact state as ``flag_values``/``flag_meanings``. The soil
+fields of the snapshots are here too, as the model's DOF vector and element averages along
+``snapshot`` (the XDMF output draws them on the mesh); the run's metadata and provenance are
+attributes, one per key (:func:`~upliftlab.results.cf_attributes`). This dataset is what the
+results' ``save`` writes. Nothing here computes: every value is one the result holds.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...results import cf_attributes
+from ..contact.footing import OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK
+
+__all__ = ["to_dataset", "path_to_dataset", "to_frame"]
+
+
+def _footing_and_contact(result, dim: str) -> tuple[dict, dict]:
+    """The variables and coordinates a dynamic result and a static path share, along ``dim``
+    (time or load step): the footing's u, v, loads and contact length, and per base node the
+    pressure, gap and contact state."""
+    units = result.metadata["units"]  # every run's provenance has them
+    length, force, moment = units["length"], units["force/length"], units["moment/length"]
+    node = (dim, "node")
+    data = {
+        "u": (dim, result.footing[:, 0], {"units": length, "long_name": "footing sliding"}),
+        "v": (dim, result.footing[:, 1], {"units": length, "positive": "up",
+                                           "long_name": "footing settlement (up positive)"}),
+        "H": (dim, result.H, {"units": force, "long_name": "horizontal load on the footing"}),
+        "N": (dim, result.N, {"units": force, "positive": "compression",
+                              "long_name": "vertical load on the footing"}),
+        "M": (dim, result.M, {"units": moment, "long_name": "moment about the base centre"}),
+        "contact_length": (dim, result.contact_length,
+                           {"units": length, "long_name": "length of the base in contact"}),
+        "pressure": (node, result.pressure, {"units": units["stress"], "positive": "compression",
+                                             "long_name": "contact pressure"}),
+        "gap": (node, result.gap, {"units": length, "long_name": "gap under the base"}),
+        "status": (node, result.status.astype(np.int8), {
+            "long_name": "contact state of a base node",
+            "flag_values": np.array([OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE], np.int8),
+            "flag_meanings": "open stick slip_positive slip_negative"}),
+    }
+    coords = {"node": ("node", np.arange(result.x.size), {"long_name": "base node index"}),
+              "x": ("node", result.x, {"units": length,
+                                       "long_name": "position along the base from its centre"})}
+    return data, coords
+
+
+def _snapshots(result, data: dict, coords: dict, time_units: str, time_meaning: str) -> None:
+    """Add the soil fields at the snapshots: the DOF vector and the element averages."""
+    units = result.metadata["units"]
+    snap, step = "snapshot", "time" if "time" in coords else "step"
+    coords["snapshot"] = ("snapshot", np.arange(result.snapshot_step.size),
+                          {"long_name": "snapshot index"})
+    data.update({
+        "snapshot_step": (snap, result.snapshot_step, {
+            "units": "1", "long_name": f"index along {step} of the snapshot"}),
+        "snapshot_time": (snap, result.snapshot_time, {"units": time_units,
+                                                       "long_name": time_meaning}),
+        "displacement": ((snap, "dof"), result.displacement, {
+            "units": units["length"],
+            "long_name": "soil displacement DOF vector in the model basis's ordering"}),
+        "plastic_strain": ((snap, "element"), result.plastic_strain, {
+            "units": "1", "long_name": "element-averaged equivalent plastic strain"}),
+        "max_shear_stress": ((snap, "element"), result.max_shear_stress, {
+            "units": units["stress"], "long_name": "element-averaged (s1 - s3)/2"}),
+    })
+
+
+def _dataset(result, data: dict, coords: dict):
+    import xarray as xr
+
+    attrs = cf_attributes({
+        "Conventions": "CF-1.10", "source": "upliftlab continuum model (plane strain)",
+        "kind": result.kind, "width": result.width, **result.metadata})
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def to_dataset(result):
+    """The histories of ``result`` (a DynamicResult) as an :class:`xarray.Dataset`."""
+    data, coords = _footing_and_contact(result, "time")
+    units = result.metadata["units"]
+    length, force = units["length"], units["force/length"]
+    data.update({
+        "theta": ("time", result.footing[:, 2], {"units": "rad", "long_name": "footing rotation"}),
+        "structure_u": ("time", result.structure_u, {"units": length,
+                                                     "long_name": "story deformation"}),
+        "structure_velocity": ("time", result.structure_velocity, {
+            "units": f"{length}/s", "long_name": "rate of the story deformation"}),
+        "iterations": ("time", result.iterations, {"units": "1",
+                                                   "long_name": "iterations of the step"}),
+        "refactored": ("time", result.refactored.astype(np.int8), {
+            "long_name": "iteration matrix refactored at the step",
+            "flag_values": np.array([0, 1], np.int8), "flag_meanings": "kept refactored"}),
+        "ground_acceleration": ("time", result.ground_acceleration,
+                                {"units": f"{length}/s^2", "long_name": "ground acceleration"}),
+        "energy": (("time", "component"), result.energy,
+                   {"units": f"{force}*{length}", "long_name": "cumulative energy account"}),
+    })
+    coords.update({"time": ("time", result.time, {"units": "s", "long_name": "time",
+                                                  "axis": "T"}),
+                   "component": ("component", list(result.energy_names),
+                                 {"long_name": "energy account"})})
+    _snapshots(result, data, coords, "s", "time of the snapshot")
+    return _dataset(result, data, coords)
+
+
+def path_to_dataset(path):
+    """A static path (a StaticPath: a pushover) as an :class:`xarray.Dataset` over its load
+    ``step``, with the footing's rotation, settlement and loads as variables and the contact per
+    base node; ``ds.swap_dims(step="theta")`` makes a rotation pushover selectable by θ."""
+    data, coords = _footing_and_contact(path, "step")
+    data.update({
+        "shear": (("step", "node"), path.shear, {"units": path.metadata["units"]["stress"],
+                                                 "long_name": "shear traction on the soil"}),
+        "iterations": ("step", path.iterations, {"units": "1", "long_name": "Newton iterations"}),
+        "cuts": ("step", path.cuts, {"units": "1", "long_name": "step cuts"}),
+    })
+    coords.update({"step": ("step", np.arange(1, path.theta.size + 1),
+                            {"long_name": "load step"}),
+                   "theta": ("step", path.theta, {"units": "rad",
+                                                  "long_name": "footing rotation"})})
+    if path.has_fields:
+        _snapshots(path, data, coords, "1", "load-step number of the snapshot")
+    return _dataset(path, data, coords)
+
+
+def to_frame(dataset, index: str):
+    """The one-dimensional variables along ``index`` (``time`` or ``step``) of a result's
+    dataset as a :class:`pandas.DataFrame`; their units are in ``frame.attrs["units"]``."""
+    names = [name for name, var in dataset.data_vars.items() if var.dims == (index,)]
+    names += [name for name, var in dataset.coords.items()
+              if var.dims == (index,) and name != index]
+    frame = dataset[names].to_dataframe()[names]
+    frame.attrs["units"] = {name: dataset[name].attrs.get("units", "") for name in names}
+    frame.attrs["units"][index] = dataset[index].attrs.get("units", "1")
+    return frame

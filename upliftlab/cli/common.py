@@ -1,0 +1,125 @@
+"""What every upliftlab command shares: its parser, the checks of its options, its folders.
+
+A command checks everything before it starts: an option is a number in its range
+(:func:`number`), an override the command would ignore is refused
+(:func:`refuse_without_effect`), and a run's default output folder names what makes it
+differ from the scene's defaults (:func:`default_out`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import fnmatch
+import math
+import time
+from pathlib import Path
+
+from ..checks import InputError
+from ..log import logger
+from ..outdir import settings_digest
+from .exits import EXIT_INPUT
+
+__all__ = ["Parser", "add_verbosity", "refuse_without_effect", "number", "say_if_rounded",
+           "default_out", "mesh_overrides", "say", "eta", "MESH_KEYS"]
+
+#: ``--mesh`` keys: the [continuum] fields that shape the mesh and its quadrature.
+MESH_KEYS = ("elements_across", "grading", "element", "domain_width", "domain_depth",
+             "intorder")
+
+
+class Parser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line (``upliftlab: error: ...``), exit 2."""
+
+    def error(self, message):
+        self.exit(EXIT_INPUT, f"upliftlab: error: {self.prog}: {message} (see {self.prog} "
+                              "--help)\n")
+
+
+def add_verbosity(parser: argparse.ArgumentParser) -> None:
+    """``--quiet`` (warnings and errors only) and ``--verbose`` (details of each run's set-up)
+    (:mod:`upliftlab.log`)."""
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument("-q", "--quiet", action="store_true",
+                       help="only warnings and errors on stderr")
+    group.add_argument("-v", "--verbose", action="store_true",
+                       help="also the details of each run (steps, compilation)")
+
+
+def _key(item: str) -> str:
+    return item.split("=", 1)[0].strip()
+
+
+def refuse_without_effect(overrides, command: str, used: tuple[str, ...]) -> None:
+    """Refuse an override whose key the command does not read (``used``: glob patterns of
+    dotted keys): it would be applied to the scene and then ignored."""
+    for item in overrides:
+        key = _key(item)
+        if "=" in item and key and not key.startswith("cases.") and \
+                not any(fnmatch.fnmatchcase(key, pattern) for pattern in used):
+            raise InputError(f"--set {item!r}: has no effect: {command} does not use {key}")
+
+
+def number(name: str, text: str | None, *, integer: bool = False, low: float = 0.0,
+           high: float = math.inf):
+    """A number in (``low``, ``high``] (an integer in [``low``, ``high``]) given on the
+    command line, or None."""
+    if text is None:
+        return None
+    try:
+        value = int(text) if integer else float(text)
+    except ValueError:
+        kind = "an integer" if integer else "a number"
+        raise InputError(f"{name} = {text!r}: expected {kind}") from None
+    if integer and not low <= value <= high:
+        raise InputError(f"{name} = {value}: valid range is [{low:g}, {high:g}]")
+    if not integer and not (low < value <= high and math.isfinite(value)):
+        raise InputError(f"{name} = {text}: valid range is ({low:g}, {high:g}]")
+    return value
+
+
+def say_if_rounded(command: str, duration: float, steps: int, dt: float) -> None:
+    """Say on stderr when a run's length differs from the duration asked for (it is a whole
+    number of steps)."""
+    if abs(steps * dt - duration) > 1e-9 * max(duration, 1.0):
+        logger("cli").warning(f"{command}: note: the duration {duration:g} s runs as {steps} "
+                              f"steps of {dt:.6g} s = {steps * dt:.6g} s")
+
+
+def _short(settings: dict) -> str:
+    return settings_digest(settings)[:8]
+
+
+def default_out(stem: str, variant: dict) -> Path:
+    """``results/<stem>``, with a digest of ``variant`` when it changes the scene's defaults
+    (overrides, motion, step), so that different runs do not share a folder."""
+    extra = {k: v for k, v in variant.items() if v}
+    return Path("results") / (f"{stem}-{_short(extra)}" if extra else stem)
+
+
+def mesh_overrides(items: list[str]) -> list[str]:
+    """``--mesh a=1,b=2`` -> ``continuum.a=1``, ``continuum.b=2``; unknown keys refused."""
+    overrides = []
+    for item in items:
+        for pair in filter(None, (p.strip() for p in item.split(","))):
+            key, sep, value = pair.partition("=")
+            if not sep or not value.strip():
+                raise InputError(f"--mesh {pair!r}: expected KEY=VALUE with KEY one of "
+                                 f"{', '.join(MESH_KEYS)}")
+            if key.strip() not in MESH_KEYS:
+                raise InputError(f"--mesh {key.strip()!r}: unknown mesh key (valid: "
+                                 f"{', '.join(MESH_KEYS)})")
+            overrides.append(f"continuum.{key.strip()}={value.strip()}")
+    return overrides
+
+
+def say(message: str) -> None:
+    """One progress line on stderr."""
+    logger("continuum").info(f"upliftlab continuum: {message}")
+
+
+def eta(started: float, done: int, total: int) -> str:
+    """"; elapsed, about … left" after ``done`` of ``total`` (s since ``started``)."""
+    elapsed = time.perf_counter() - started
+    left = elapsed / max(done, 1) * (total - done)
+    return f"; {elapsed:.0f} s, about {left:.0f} s left" if done < total else \
+        f"; {elapsed:.0f} s"

@@ -1,0 +1,93 @@
+"""``upliftlab opensees SCENE [--case X] [--set ...] [--out DIR] [--run [--json]]``.
+
+Without ``--run``: write the standalone script (and the motion beside it) and say where. With
+``--run``: also run upliftlab and OpenSees and write the comparison; ``--json`` prints
+``{"upliftlab": {...}, "opensees": {...}}``. Bad input (Case C, exact kinematics, a missing
+openseespy) ends with one line before any file is written.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+from ..checks import InputError
+from ..log import logger
+from ..outdir import claim
+from ..scenes import load_scene
+from ..comparisons.opensees.compare import comparison_table, compare, write_comparison
+from ..comparisons.opensees.script import write_script
+from ..comparisons.opensees.spec import opensees_spec
+
+__all__ = ["add_opensees", "opensees_command"]
+
+
+def add_opensees(sub) -> None:
+    """The parser of ``upliftlab opensees``."""
+    o = sub.add_parser("opensees", help="write a standalone OpenSeesPy script of the scene (a "
+                                        "BNWF model); with --run, run it beside upliftlab")
+    o.add_argument("scene", help="a packaged scene name or a TOML path")
+    o.add_argument("--case", help="a case of the scene: A or B (C has no OpenSees equivalent)")
+    o.add_argument("--motion", help="a record name on UPLIFTLAB_MOTIONS or a file path")
+    o.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                   help="override a scene field by its dotted TOML key (repeatable)")
+    o.add_argument("--out", help="output directory (default results/<scene>-opensees)")
+    o.add_argument("--dt", help="OpenSees Newmark step (s; default analysis.dt, else the record "
+                                "step / n, 60 steps per shortest bonded period)")
+    o.add_argument("--dashpots", default="clipped", help="foundation dashpots in OpenSees: "
+                   "clipped (default, as upliftlab's), detaching or parallel")
+    o.add_argument("--run", action="store_true", help="run it (the 'opensees' extra) and "
+                   "upliftlab; write both models' peaks and histories side by side")
+    o.add_argument("--timeout", default="3600", help="of the OpenSees run (s, default 3600)")
+    o.add_argument("--json", action="store_true", help="with --run: print one JSON object "
+                   "{\"upliftlab\": {...}, \"opensees\": {...}}")
+    o.add_argument("--force", action="store_true", help="replace a different run in --out")
+
+
+def _positive(name: str, text: str | None) -> float | None:
+    if text is None:
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputError(f"{name} = {text!r}: expected a number > 0 (s)") from None
+    if not (math.isfinite(value) and value > 0.0):
+        raise InputError(f"{name} = {text}: must be a finite number > 0 (s)")
+    return value
+
+
+def opensees_command(args) -> int:
+    """Run the subcommand; 0 when the script was written (and, with --run, both runs
+    finished)."""
+    if args.json and not args.run:
+        raise InputError("--json: only with --run (it prints both models' summaries)")
+    dt = _positive("--dt", args.dt)
+    timeout = _positive("--timeout", args.timeout)
+    scene = load_scene(args.scene, case=args.case, overrides=args.overrides, motion=args.motion)
+    spec = opensees_spec(scene, dt=dt, dashpots=args.dashpots)  # refuses before any file
+    settings = {"command": "opensees", "scene": scene.name, "scene_digest": scene.digest,
+                "overrides": list(scene.overrides), "motion": args.motion, "dt": dt,
+                "dashpots": args.dashpots, "run": bool(args.run)}
+    default = Path("results") / f"{scene.name}-opensees"
+    with claim(args.out, default, settings=settings, force=args.force) as out:
+        out.start_writing()
+        if not args.run:
+            files = write_script(spec, out.path)
+            out.complete([f for f in (files.script, files.motion) if f is not None])
+            extra = f" and {files.motion}" if files.motion else ""
+            print(f"upliftlab opensees: wrote {files.script}{extra}: {len(spec.springs)} "
+                  f"foundation springs, {len(spec.stories)} stories, {spec.steps} Newmark steps "
+                  f"of {spec.dt:.4g} s; run it with `python {files.script}` (needs openseespy)")
+            return 0
+        result = compare(scene, out.path, dt=dt, dashpots=args.dashpots, timeout=timeout)
+        written = write_comparison(result, out.path)
+        out.complete([result.files.script, *written,
+                      *[f for f in (result.files.motion,) if f is not None]])
+    for path in written:
+        logger("opensees").info(f"upliftlab opensees: wrote {path}")
+    if args.json:
+        print(json.dumps(result.to_json()))
+    else:
+        print(comparison_table(result))
+    return 0

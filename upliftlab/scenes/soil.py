@@ -1,0 +1,138 @@
+"""The continuum sections of a scene, ``[soil]`` and ``[continuum]`` (used by
+:mod:`upliftlab.continuum`; the reduced model ignores them): their records and readers."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .. import bounds, checks
+from ..checks import InputError
+from .table import MISSING, Table, bounded_integer, choice, in_range
+from ..units import UnitSystem
+
+__all__ = ["SOIL_MODELS", "INTERFACES", "ELEMENTS", "DYNAMICS", "MAX_ELEMENTS_ACROSS", "Soil",
+           "ContinuumOptions", "read_soil", "read_continuum"]
+
+SOIL_MODELS = ("elastic", "tresca", "von_mises", "drucker_prager", "mohr_coulomb")
+INTERFACES = ("frictionless", "bonded", "coulomb")
+ELEMENTS = ("P1", "P2", "Q1", "Q2")
+DYNAMICS = ("explicit", "implicit")
+
+
+@dataclass(frozen=True)
+class Soil:
+    """Plane-strain soil under the footing.
+
+    ``youngs_modulus`` E (force/length²), ``poisson_ratio`` ν, ``density`` ρ (mass/length³).
+    ``model``: elastic, tresca / von_mises (``undrained_strength`` c_u, force/length²), or
+    drucker_prager / mohr_coulomb (``cohesion`` c, ``friction_angle`` φ and ``dilation_angle`` ψ
+    in degrees). ``layer_depth`` (length) puts a rigid base at that depth (None: the box bottom).
+    ``interface`` under the footing: frictionless, bonded, or coulomb with ``interface_friction``.
+    ``k0`` the geostatic ratio σh/σv (None: the continuum model's default for ``model``).
+    """
+
+    youngs_modulus: float
+    poisson_ratio: float
+    density: float = 0.0
+    model: str = "elastic"
+    undrained_strength: float | None = None
+    cohesion: float = 0.0
+    friction_angle: float = 0.0
+    dilation_angle: float = 0.0
+    hardening_modulus: float = 0.0
+    layer_depth: float | None = None
+    interface: str = "frictionless"
+    interface_friction: float = 0.0
+    k0: float | None = None
+
+    @property
+    def shear_modulus(self) -> float:
+        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+
+def _positive_strength(units: UnitSystem):
+    def check(name, value):
+        return bounds.check(name, checks.positive(name, value), "strength", units)
+    return check
+
+
+def read_soil(data, units: UnitSystem) -> Soil:
+    """The :class:`Soil` of a ``[soil]`` table."""
+    table = Table(data, "soil")
+    model = table.get("model", choice(SOIL_MODELS), "elastic")
+    strength = bounds.checker("strength", units)
+    soil = Soil(
+        youngs_modulus=table.get("youngs_modulus", bounds.checker("modulus", units)),
+        poisson_ratio=table.get("poisson_ratio",
+                                in_range(-1.0, 0.5, low_open=True, high_open=True)),
+        density=table.get("density", bounds.checker("density", units), 0.0),
+        model=model,
+        undrained_strength=table.get("undrained_strength", _positive_strength(units),
+                                     MISSING if model in ("tresca", "von_mises") else None),
+        cohesion=table.get("cohesion", strength, 0.0),
+        friction_angle=table.get("friction_angle", in_range(0.0, 60.0, high_open=True), 0.0),
+        dilation_angle=table.get("dilation_angle", in_range(0.0, 60.0, high_open=True), 0.0),
+        hardening_modulus=table.get("hardening_modulus", bounds.checker("hardening", units),
+                                    0.0),
+        layer_depth=table.get("layer_depth", bounds.checker("length", units), None),
+        interface=table.get("interface", choice(INTERFACES), "frictionless"),
+        interface_friction=table.get("interface_friction", in_range(0.0, 10.0), 0.0),
+        k0=table.get("k0", in_range(0.0, 10.0, low_open=True), None),
+    )
+    if soil.dilation_angle > soil.friction_angle:
+        raise InputError(f"soil.dilation_angle = {soil.dilation_angle:g}: valid range is "
+                         f"[0, friction_angle = {soil.friction_angle:g}]")
+    table.done()
+    return soil
+
+
+@dataclass(frozen=True)
+class ContinuumOptions:
+    """Continuum domain and mesh: a box ``domain_width`` × ``domain_depth`` (multiples of the
+    footing width B), ``element`` type, ``elements_across`` the footing, ``grading`` towards the
+    footing edges, ``base`` (rigid or compliant) and side/bottom ``boundary`` of a dynamic run:
+    ``fixed`` (the sides' u_x held, moving with a rigid base: a rigid container; on a compliant
+    base the sides are ``shear``), ``shear`` (the sides' u_y held and u_x free: a free-field
+    column, exact for a vertically incident S wave in a layered soil) or ``lysmer`` (dashpots).
+    Statics hold the sides' u_x whatever ``boundary`` says.
+    ``intorder`` is the quadrature order (None: the element's default, Q2 2×2 reduced).
+    ``dynamics``: the time integration of a dynamic run, ``explicit`` (central differences,
+    lumped mass; the default) or ``implicit`` (HHT-α with Newton). ``energy_tolerance``: the
+    largest energy balance error (fraction of the input energy) a dynamic run may have before
+    it counts as failed, in (0, 1].
+    """
+
+    domain_width: float = 10.0
+    domain_depth: float = 10.0
+    element: str = "Q2"
+    elements_across: int = 16
+    grading: float = 1.0
+    base: str = "rigid"
+    boundary: str = "fixed"
+    intorder: int | None = None
+    dynamics: str = "explicit"
+    energy_tolerance: float = 0.05
+
+
+#: Most elements across the footing: 1024 gives about 10⁸ DOFs (the run's memory is estimated
+#: and refused above its budget well before that; this bound keeps the estimate itself cheap).
+MAX_ELEMENTS_ACROSS = 1024
+
+
+def read_continuum(data) -> ContinuumOptions:
+    """The :class:`ContinuumOptions` of a ``[continuum]`` table."""
+    table = Table(data, "continuum")
+    options = ContinuumOptions(
+        domain_width=table.get("domain_width", in_range(1.0, 1e4, low_open=True), 10.0),
+        domain_depth=table.get("domain_depth", in_range(0.25, 1e4), 10.0),
+        element=table.get("element", choice(ELEMENTS), "Q2"),
+        elements_across=table.get("elements_across", bounded_integer(2, MAX_ELEMENTS_ACROSS), 16),
+        grading=table.get("grading", in_range(1.0, 100.0), 1.0),
+        base=table.get("base", choice(("rigid", "compliant")), "rigid"),
+        boundary=table.get("boundary", choice(("fixed", "shear", "lysmer")), "fixed"),
+        intorder=table.get("intorder", bounded_integer(1, 10), None),
+        dynamics=table.get("dynamics", choice(DYNAMICS), "explicit"),
+        energy_tolerance=table.get("energy_tolerance", in_range(0.0, 1.0, low_open=True), 0.05),
+    )
+    table.done()
+    return options
