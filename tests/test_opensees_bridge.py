@@ -22,7 +22,7 @@ from upliftlab.cli import main
 from upliftlab.comparisons.opensees import (OpenSeesError, compare, opensees_available,
                                             opensees_spec, run_script, write_script)
 from upliftlab.comparisons.opensees import runner
-from upliftlab.comparisons.opensees.script import script_text
+from upliftlab.comparisons.opensees.script import script_numbers, script_text
 from upliftlab.reduced import build_model
 from upliftlab.scenes import load_scene
 
@@ -70,25 +70,18 @@ def _scene(key, request, extra=()):
     return load_scene(name, case=case, overrides=[*overrides, *extra])
 
 
-def _constants(text: str) -> dict:
-    """The data part of a script (everything above its code), executed."""
-    head = text.split("# ====", 1)[0]
-    namespace: dict = {"__file__": "model.py"}
-    exec(compile(head, "model.py", "exec"), namespace)  # noqa: S102 - our own generated file
-    return namespace
-
-
 @pytest.mark.parametrize("key", list(SCENES))
 def test_script_holds_the_reduced_model_and_compiles(key, request, tmp_path):
-    """Every spring and story of upliftlab's model is in the script exactly (reference:
-    ``build_model`` of the same scene), the script compiles, and the motion file reads back
-    to the scene's samples exactly."""
+    """Every spring and story of upliftlab's model is in the script's numbers exactly
+    (reference: ``build_model`` of the same scene), the script compiles and is the package's
+    own file, and the motion file reads back to the scene's samples exactly."""
     scene = _scene(key, request)
     spec = opensees_spec(scene, dt=0.001)
     files = write_script(spec, tmp_path)
     text = files.script.read_text()
     compile(text, str(files.script), "exec")
-    data = _constants(text)
+    assert text == script_text()
+    data = json.loads(files.numbers.read_text())
     model = build_model(scene)
     found = model.params[model.foundation_slice]
     table = np.array(data["FOUNDATION"], dtype=float).reshape(-1, 5)
@@ -117,13 +110,15 @@ def test_script_holds_the_reduced_model_and_compiles(key, request, tmp_path):
 
 
 def test_script_names_its_modelling_choices(request):
-    """The docstring says how each part compares with upliftlab (what a reviewer reads)."""
+    """The notes say how each part compares with upliftlab (what a reviewer reads; the script
+    prints them), and the script needs no upliftlab."""
     spec = opensees_spec(_scene("A", request), dt=0.001)
-    text = script_text(spec, "motion.txt")
-    doc = text.split('"""')[1]
+    notes = " ".join(script_numbers(spec, "motion.txt")["NOTES"])
     for phrase in ("zeroLength", "TensionOnly", "β = c_i/k_i", "Newmark average acceleration",
-                   "upliftlab's clip", "kip-in-s"):
-        assert phrase in doc, phrase
+                   "upliftlab's clip"):
+        assert phrase in notes, phrase
+    assert script_numbers(spec, "motion.txt")["UNITS"] == "kip-in-s"
+    text = script_text()
     assert "import upliftlab" not in text and "from upliftlab" not in text
 
 

@@ -2,9 +2,12 @@
 side by side.
 
 * :mod:`.spec` — the reduced model's numbers for OpenSees, and what OpenSees cannot represent;
-* :mod:`.script` (with :mod:`.template`) — writes ``model.py`` and ``motion.txt``, readable and
-  runnable without upliftlab: a BNWF model (zeroLength springs under a rigid footing, the
-  scene's superstructure, gravity then the motion, Newmark with Newton);
+* :mod:`.model_script` — the standalone script itself, a real module written unchanged as
+  ``model.py``: readable and runnable without upliftlab, a BNWF model (zeroLength springs
+  under a rigid footing, the scene's superstructure, gravity then the motion, Newmark with
+  Newton);
+* :mod:`.script` — writes it beside the scene's numbers (``model.json``) and its motion
+  (``motion.txt``);
 * :mod:`.runner` — runs the script in a subprocess with a timeout and reads its output;
 * :mod:`.compare` — peaks, histories and a note per difference (``upliftlab opensees --run``).
 """

@@ -100,7 +100,8 @@ def compare(scene: Scene, out: str | Path, *, dt: float | None = None,
     spec = opensees_spec(scene, dt=dt, dashpots=dashpots)
     require_opensees()
     files = write_script(spec, out)
-    _say(f"wrote {files.script}" + (f" and {files.motion}" if files.motion else ""))
+    _say(f"wrote {files.script}, {files.numbers}"
+         + (f" and {files.motion}" if files.motion else ""))
     started = time.perf_counter()
     response, runtime = _timed_run(scene, None, None)
     same, same_runtime = _timed_run(scene, "newmark", spec.dt)

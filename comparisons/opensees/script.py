@@ -1,42 +1,39 @@
-"""Write the standalone OpenSeesPy script of a scene: ``model.py`` and ``motion.txt``.
+"""Write a scene's standalone OpenSeesPy model: ``model.py``, ``model.json`` and
+``motion.txt``.
 
-The script is meant to be opened and run by a reviewer without upliftlab: a docstring that
-names each modelling choice and how it compares with upliftlab's reduced model, the scene's
-numbers as commented constants, then the code (:data:`.template.CODE`). The ground motion is
-written beside it as two columns, time [s] and acceleration [g].
+``model.py`` is the same file for every scene: the real module :mod:`.model_script` of this
+package, read as package data and written unchanged, so a reviewer opens exactly what runs and
+no text of a scene can become code. The scene goes into ``model.json`` beside it: its numbers
+(the springs, the stories, the step, …), its names, the upliftlab command that wrote it and
+one note per modelling choice saying how it compares with upliftlab's reduced model. The
+ground motion, if any, goes into ``motion.txt`` as two columns, time [s] and acceleration [g].
 """
 
 from __future__ import annotations
 
-import ast
 import json
-import math
-import re
-import textwrap
 from dataclasses import dataclass
+from importlib import resources
 from pathlib import Path
 
 from ... import __version__
 from ...results import write_text
 from .spec import OpenSeesSpec
-from .template import CODE
 
-__all__ = ["ScriptFiles", "script_text", "motion_text", "write_script", "modelling_notes"]
+__all__ = ["ScriptFiles", "script_text", "script_numbers", "motion_text", "write_script",
+           "modelling_notes"]
 
-SCRIPT_NAME, MOTION_NAME = "model.py", "motion.txt"
+SCRIPT_NAME, NUMBERS_NAME, MOTION_NAME = "model.py", "model.json", "motion.txt"
 
 
 @dataclass(frozen=True)
 class ScriptFiles:
-    """The files written: the ``script`` and the ``motion`` beside it (None: free vibration)."""
+    """The files written: the ``script``, its ``numbers`` and the ``motion`` beside them
+    (None: free vibration)."""
 
     script: Path
+    numbers: Path
     motion: Path | None
-
-
-def _num(value: float) -> str:
-    """A float as a Python literal that reads back exactly (inf as math.inf)."""
-    return "math.inf" if math.isinf(value) else repr(float(value))
 
 
 def _command(spec: OpenSeesSpec) -> str:
@@ -114,136 +111,58 @@ def modelling_notes(spec: OpenSeesSpec) -> list[str]:
     return notes
 
 
-def script_text(spec: OpenSeesSpec, motion_file: str | None) -> str:
-    """The whole script."""
-    L, F, s = spec.length, spec.force, spec
-    notes = "\n".join(textwrap.fill(n, 92, initial_indent="- ", subsequent_indent="  ")
-                      for n in modelling_notes(spec))
-    found = "\n".join(f"    ({_num(p.x)}, {_num(p.k)}, {_num(p.c)}, {_num(p.f0)}, {_num(p.fy)}),"
-                      for p in s.springs)
-    stories = "\n".join(f"    ({_num(t.height)}, {_num(t.weight)}, {_num(t.stiffness)}, "
-                        f"{_num(t.damping)}, {_num(t.yield_force)}, {_num(t.post_yield_ratio)}),"
-                        for t in s.stories)
+def script_text() -> str:
+    """The script, as this package holds it (:mod:`.model_script`)."""
+    return resources.files(__package__).joinpath("model_script.py").read_text(encoding="utf-8")
+
+
+def script_numbers(spec: OpenSeesSpec, motion_file: str | None) -> dict:
+    """What ``model.json`` holds for the script (:mod:`.model_script`'s constants): numbers
+    in the scene's units, the scene's names and the modelling notes; JSON text only."""
+    s = spec
     lever = [t.height - b for t, b in zip(s.stories, [0.0] + [t.height for t in s.stories])]
-    tie = 1e7 * max(t.stiffness * d * d for t, d in zip(s.stories, lever))
     scale = (s.vertical_weight / sum(p.k for p in s.springs) if s.springs
              else s.stories[0].weight / s.stories[0].stiffness)
-    doc = f'''OpenSeesPy model of an upliftlab scene (SCENE, TITLE and COMMAND below name it).
-
-Written by upliftlab {__version__}.
-Standalone: it needs Python 3 and openseespy only (pip install openseespy; on Linux the wheel
-also needs libblas.so.3, which this script finds inside the wheel when the system has none).
-Run it with `python {SCRIPT_NAME}`: it writes opensees_histories.csv (time, u, theta, V, the
-leftmost spring's compression from rest, base shear) and opensees_summary.json (the peaks)
-beside itself, and prints the summary.
-
-A BNWF model of upliftlab's reduced model, 2D, three DOFs per node, units {s.units}
-({F}, {L}, s; g = {s.g:g} {L}/s²). Its numbers are upliftlab's own (upliftlab.reduced.build_model).
-Modelling choices:
-{notes}
-'''
-    head = f'''#!/usr/bin/env python3
-"""{_docstring_text(doc)}"""
-
-import json
-import math
-import os
-import sys
-import time
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-SCENE = {_literal(s.scene_name)}
-TITLE = {_literal(s.title)}
-COMMAND = {_literal(_command(spec))}  # the upliftlab command that wrote this script
-UNITS = {_literal(s.units)}
-G = {_num(s.g)}  # {L}/s²
-SUPPORT = {s.support!r}  # uplift: springs carry no tension; bonded: they do; fixed: no springs
-DASHPOTS = {s.dashpots!r}  # foundation dashpots: clipped, detaching or parallel
-RIGID = {s.rigid!r}  # True: the stories are tied to the footing
-P_DELTA = {s.p_delta!r}
-VERTICAL_WEIGHT = {_num(s.vertical_weight)}  # {F}: W_v, carried by the footing (mass W_v/G)
-ROTARY_INERTIA = {_num(s.rotary_inertia)}  # {F}·{L}·s²: I0 of the footing body about O
-# Foundation springs, left to right: x [{L}] from O, k [{F}/{L}], c [{F}·s/{L}],
-# F0 [{F}] (static compression, for reference: gravity produces it), Fy [{F}] (inf: elastic)
-FOUNDATION = [
-{found}
-]
-# Stories, bottom to top: height above O [{L}], weight [{F}], k [{F}/{L}], c [{F}·s/{L}],
-# Fy [{F}] (inf: elastic), post-yield stiffness ratio α
-STORIES = [
-{stories}
-]
-DT = {_num(s.dt)}  # s, Newmark step
-DURATION = {_num(s.duration)}  # s
-MOTION_FILE = {(motion_file or '')!r}  # ground acceleration beside this script ('' for none)
-INITIAL_VELOCITY = {_num(s.initial_velocity)}  # {L}/s, of the top mass relative to the ground
-TOLERANCE = {_num(1e-6 * scale)}  # {L}: Newton's displacement increment, 1e-6 of W/K
-# {F}·{L}/rad: ties a floor's rotation to the footing's, 1e7 times the stiffest k_j Δh_j²
-# (a story drift is then off by 1e-7 of itself)
-TIE_STIFFNESS = {_num(tie)}
-'''
-    text = head + CODE
-    check_script(text, spec, doc)
-    return text
-
-
-#: Text that may stand in the script's docstring: no backslash, double quote or control
-#: character (but the newline) that could close or escape it.
-_SAFE_TEXT = re.compile(r'[^\\"\x00-\x09\x0b-\x1f\x7f]*')
-
-
-def _docstring_text(text: str) -> str:
-    """``text`` checked to be safe inside the script's docstring (it is made of upliftlab's own
-    sentences and numbers only; a scene's strings go into constants through :func:`_literal`)."""
-    if not _SAFE_TEXT.fullmatch(text):
-        raise RuntimeError("the OpenSees script's docstring would hold a quote, a backslash or a "
-                           "control character; nothing was written")
-    return text
-
-
-def _literal(value: str) -> str:
-    """A scene's string as a Python literal (JSON escapes every quote, backslash and control
-    character; a JSON string is a valid Python string literal)."""
-    return json.dumps(str(value))
-
-
-def check_script(text: str, spec: OpenSeesSpec, doc: str) -> None:
-    """Refuse (RuntimeError) a script whose parse is not the one upliftlab meant: its docstring
-    must be ``doc`` and the scene's strings must read back, unchanged, as the constants SCENE,
-    TITLE and COMMAND; no string of a scene can then have become code."""
-    try:
-        tree = ast.parse(text)
-    except SyntaxError:
-        tree = ast.Module(body=[], type_ignores=[])
-    constants = {node.targets[0].id: node.value for node in tree.body
-                 if isinstance(node, ast.Assign) and len(node.targets) == 1
-                 and isinstance(node.targets[0], ast.Name)}
-    expected = {"SCENE": spec.scene_name, "TITLE": spec.title, "COMMAND": _command(spec),
-                "UNITS": spec.units}
-    read = {name: ast.literal_eval(constants[name]) if name in constants else None
-            for name in expected}
-    if ast.get_docstring(tree, clean=False) != doc or read != expected:
-        raise RuntimeError("the OpenSees script did not parse as written (a scene string "
-                           "changed its code); nothing was written")
+    return {
+        "WRITTEN_BY": f"upliftlab {__version__}", "SCENE": s.scene_name, "TITLE": s.title,
+        "COMMAND": _command(spec), "UNITS": s.units,
+        "G": float(s.g), "SUPPORT": s.support, "DASHPOTS": s.dashpots, "RIGID": bool(s.rigid),
+        "P_DELTA": bool(s.p_delta), "VERTICAL_WEIGHT": float(s.vertical_weight),
+        "ROTARY_INERTIA": float(s.rotary_inertia),
+        "FOUNDATION": [[float(p.x), float(p.k), float(p.c), float(p.f0), float(p.fy)]
+                       for p in s.springs],
+        "STORIES": [[float(t.height), float(t.weight), float(t.stiffness), float(t.damping),
+                     float(t.yield_force), float(t.post_yield_ratio)] for t in s.stories],
+        "DT": float(s.dt), "DURATION": float(s.duration), "MOTION_FILE": motion_file or "",
+        "INITIAL_VELOCITY": float(s.initial_velocity),
+        # Newton's displacement increment, 1e-6 of W/K (length)
+        "TOLERANCE": 1e-6 * scale,
+        # ties a floor's rotation to the footing's, 1e7 times the stiffest k_j Δh_j² (a story
+        # drift is then off by 1e-7 of itself)
+        "TIE_STIFFNESS": 1e7 * max(t.stiffness * d * d for t, d in zip(s.stories, lever)),
+        "NOTES": modelling_notes(spec),
+    }
 
 
 def motion_text(spec: OpenSeesSpec) -> str:
-    """The ground acceleration as two columns, time [s] and acceleration [g]."""
+    """The ground acceleration as two columns, time [s] and acceleration [g], after a comment
+    line naming it (its names as JSON strings: no line break of theirs can end the comment)."""
     m = spec.motion
-    lines = [f"# {_literal(m.name)}: ground acceleration for {_literal(spec.scene_name)} "
-             f"(from {_literal(m.source or 'upliftlab')})",
+    lines = [f"# {json.dumps(m.name)}: ground acceleration for {json.dumps(spec.scene_name)} "
+             f"(from {json.dumps(m.source or 'upliftlab')})",
              "# time [s]  acceleration [g]; linear between samples, zero after the last"]
     lines += [f"{k * m.dt:.10g} {a!r}" for k, a in enumerate(m.acceleration.tolist())]
     return "\n".join(lines) + "\n"
 
 
 def write_script(spec: OpenSeesSpec, out: str | Path) -> ScriptFiles:
-    """Write ``model.py`` (and ``motion.txt`` unless the motion is free vibration) into
-    ``out``; each file atomically."""
+    """Write ``model.py``, ``model.json`` (and ``motion.txt`` unless the motion is free
+    vibration) into ``out``; each file atomically, the script last."""
     out = Path(out)
     motion = None
     if not spec.motion.is_free_vibration:
         motion = write_text(out / MOTION_NAME, motion_text(spec))
-    script = write_text(out / SCRIPT_NAME,
-                        script_text(spec, MOTION_NAME if motion is not None else None))
-    return ScriptFiles(script, motion)
+    numbers = script_numbers(spec, MOTION_NAME if motion is not None else None)
+    json_file = write_text(out / NUMBERS_NAME, json.dumps(numbers, indent=1) + "\n")
+    script = write_text(out / SCRIPT_NAME, script_text())
+    return ScriptFiles(script, json_file, motion)

@@ -74,15 +74,17 @@ def opensees_command(args) -> int:
         out.start_writing()
         if not args.run:
             files = write_script(spec, out.path)
-            out.complete([f for f in (files.script, files.motion) if f is not None])
+            out.complete([f for f in (files.script, files.numbers, files.motion)
+                          if f is not None])
             extra = f" and {files.motion}" if files.motion else ""
-            print(f"upliftlab opensees: wrote {files.script}{extra}: {len(spec.springs)} "
-                  f"foundation springs, {len(spec.stories)} stories, {spec.steps} Newmark steps "
-                  f"of {spec.dt:.4g} s; run it with `python {files.script}` (needs openseespy)")
+            print(f"upliftlab opensees: wrote {files.script}, {files.numbers}{extra}: "
+                  f"{len(spec.springs)} foundation springs, {len(spec.stories)} stories, "
+                  f"{spec.steps} Newmark steps of {spec.dt:.4g} s; run it with "
+                  f"`python {files.script}` (needs openseespy)")
             return 0
         result = compare(scene, out.path, dt=dt, dashpots=args.dashpots, timeout=timeout)
         written = write_comparison(result, out.path)
-        out.complete([result.files.script, *written,
+        out.complete([result.files.script, result.files.numbers, *written,
                       *[f for f in (result.files.motion,) if f is not None]])
     for path in written:
         logger("opensees").info(f"upliftlab opensees: wrote {path}")

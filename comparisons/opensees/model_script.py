@@ -1,17 +1,57 @@
-"""The code part of the standalone OpenSeesPy script (the data part comes from the scene).
+#!/usr/bin/env python3
+"""An OpenSeesPy model of an upliftlab scene: a BNWF model of upliftlab's reduced model.
 
-:data:`CODE` is plain Python that needs only the standard library and openseespy. It reads
-the constants that :mod:`.script` writes above it (``FOUNDATION``, ``STORIES``, ``DT``, …),
-builds the BNWF model, applies gravity, runs the motion and writes
-``opensees_histories.csv`` and ``opensees_summary.json`` beside the script. Kept as a string so
-that the script a reviewer opens is exactly what runs.
+Standalone: it needs Python 3 and openseespy only (pip install openseespy; on Linux the wheel
+also needs libblas.so.3, which this script finds inside the wheel when the system has none).
+upliftlab writes it unchanged (``upliftlab opensees SCENE``), with the scene's numbers in
+``model.json`` beside it, and the ground motion, if any, in ``motion.txt``: this script holds
+no number and no text of the scene, only the model's code. Run it with ``python model.py``: it
+prints the scene's modelling notes (how each part compares with upliftlab's reduced model),
+runs gravity and the motion, writes ``opensees_histories.csv`` (time, u, theta, V, the
+leftmost spring's compression from rest, base shear) and ``opensees_summary.json`` (the peaks)
+beside itself, and prints the summary.
+
+2D, three DOFs per node, in the scene's consistent units (``model.json``: ``units``, ``g``).
 """
 
-from __future__ import annotations
+import json
+import math
+import os
+import sys
+import time
 
-__all__ = ["CODE"]
+HERE = os.path.dirname(os.path.abspath(__file__))
 
-CODE = r'''
+# The scene's numbers, read from model.json by load_scene_numbers() before anything runs:
+WRITTEN_BY = SCENE = TITLE = COMMAND = UNITS = None  # who wrote this model, and from what
+G = None  # length/s²
+SUPPORT = None  # uplift: springs carry no tension; bonded: they do; fixed: no springs
+DASHPOTS = None  # foundation dashpots: clipped, detaching or parallel
+RIGID = P_DELTA = None  # the stories tied to the footing; the story weights' P-Δ
+VERTICAL_WEIGHT = None  # force: W_v, carried by the footing (mass W_v/G)
+ROTARY_INERTIA = None  # force·length·s²: I0 of the footing body about O
+FOUNDATION = None  # springs, left to right: (x, k, c, F0, Fy); Fy inf: elastic
+STORIES = None  # bottom to top: (height above O, weight, k, c, Fy, post-yield ratio α)
+DT = DURATION = None  # s: the Newmark step and the run's length
+MOTION_FILE = None  # the ground acceleration beside this script ("" for none)
+INITIAL_VELOCITY = None  # length/s, of the top mass relative to the ground
+TOLERANCE = None  # length: Newton's displacement increment
+TIE_STIFFNESS = None  # force·length/rad: ties a floor's rotation to the footing's
+NOTES = ()  # one sentence per modelling choice
+
+
+def load_scene_numbers(path=None):
+    """Set the constants above from ``model.json`` (written by upliftlab beside this script):
+    numbers and the scene's names, never code."""
+    with open(path or os.path.join(HERE, "model.json"), encoding="utf-8") as f:
+        numbers = json.load(f)
+    for name in ("FOUNDATION", "STORIES"):
+        numbers[name] = [tuple(row) for row in numbers[name]]
+    numbers["NOTES"] = tuple(numbers["NOTES"])
+    unknown = set(numbers) - {n for n in globals() if n.isupper()}
+    if unknown:
+        sys.exit(f"model.json names what this script does not have: {sorted(unknown)}")
+    globals().update(numbers)
 # =============================================================================================
 # The model. Node and element numbers:
 #   1            the footing's centre O: vertical displacement V and rotation (x is held)
@@ -404,6 +444,10 @@ def write_outputs(observer, status, runtime, setup, steps):
 
 
 def main():
+    load_scene_numbers()
+    print(f"OpenSees model of {SCENE}: {TITLE} ({UNITS})", file=sys.stderr)
+    for note in NOTES:
+        print(f"- {note}", file=sys.stderr)
     ops = import_opensees()
     start = time.perf_counter()
     build_model(ops)
@@ -443,4 +487,3 @@ def main():
 
 if __name__ == "__main__":
     sys.exit(main())
-'''
