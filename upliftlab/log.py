@@ -80,10 +80,11 @@ def kernels_cached(cache: str | os.PathLike | None, function) -> bool:
     return where.is_dir() and any(where.glob(pattern))
 
 
-def announce_compilation(what: str, function) -> None:
+def announce_compilation(what: str, function, expected: str = "") -> None:
     """Say, once per process, that ``what`` is being compiled when numba's cache does not hold
-    the compiled ``function`` yet (:func:`kernels_cached`); a function numba does not cache
-    (``cache=False``) is compiled in every new process, and the notice says that instead."""
+    the compiled ``function`` yet (:func:`kernels_cached`), and how long it is ``expected`` to
+    take (text, e.g. "about 1–2 minutes"); a function numba does not cache (``cache=False``) is
+    compiled in every new process, and the notice says that instead."""
     if what in _announced:
         return
     _announced.add(what)
@@ -96,5 +97,6 @@ def announce_compilation(what: str, function) -> None:
         return
     if kernels_cached(cache, function):
         return
-    logger("compile").info(f"upliftlab: compiling {what} (once: the next runs read them from "
-                           f"the cache in {cache or 'the package folder'})")
+    took = f"{expected}, " if expected else ""
+    logger("compile").info(f"upliftlab: compiling {what} ({took}once: the next runs read them "
+                           f"from the cache in {cache or 'the package folder'})")
