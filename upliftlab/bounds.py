@@ -25,7 +25,9 @@ __all__ = ["Kind", "KINDS", "check", "checker"]
 class Kind:
     """A physical quantity: its dimension as exponents of (force, length), its unit in a scene
     (``template`` with {F} and {L}), its SI unit ``si`` and its valid range in SI, ``low`` to
-    ``high`` (``low_open``: > low)."""
+    ``high`` (``low_open``: > low). A kind whose range starts at zero may set ``tiny``: a value
+    between zero and it is no quantity but a zero written otherwise (a subnormal number, say),
+    which would make a matrix singular instead of leaving the term out: it is refused."""
 
     force: int
     length: int
@@ -34,6 +36,7 @@ class Kind:
     low: float
     high: float
     low_open: bool = False
+    tiny: float = 0.0
 
     def factor(self, units: UnitSystem) -> float:
         """SI value of one scene unit of this kind."""
@@ -48,8 +51,9 @@ KINDS: dict[str, Kind] = {
     "length": Kind(0, 1, "{L}", "m", 1e-4, 1e5),
     "force": Kind(1, 0, "{F}", "N", 1e-6, 1e13),
     "stiffness": Kind(1, -1, "{F}/{L}", "N/m", 1e-6, 1e16),
-    "dashpot": Kind(1, -1, "{F}*s/{L}", "N*s/m", 0.0, 1e16),
-    "rotary_inertia": Kind(1, 1, "{F}*{L}*s^2", "kg*m^2", 0.0, 1e18),
+    "dashpot": Kind(1, -1, "{F}*s/{L}", "N*s/m", 0.0, 1e16, tiny=1e-9),
+    # a rotary inertia 0 < I0 < 1e-9 kg m² (a 1 g body 1 mm across) is a zero written otherwise
+    "rotary_inertia": Kind(1, 1, "{F}*{L}*s^2", "kg*m^2", 0.0, 1e18, tiny=1e-9),
     "modulus": Kind(1, -2, "{F}/{L}^2", "Pa", 1e3, 1e13),
     "strength": Kind(1, -2, "{F}/{L}^2", "Pa", 0.0, 1e10),
     "hardening": Kind(1, -2, "{F}/{L}^2", "Pa", 0.0, 1e13),
@@ -72,6 +76,11 @@ def check(field: str, value, kind: str, units: UnitSystem) -> float:
     factor = k.factor(units)
     si = value * factor
     below = si <= k.low if k.low_open else si < k.low
+    if si != 0.0 and abs(si) < k.tiny:
+        what = kind.replace("_", " ")
+        raise InputError(f"{field} = {value:g}: not zero, yet below {k.tiny / factor:.3g} "
+                         f"{k.unit(units)} ({k.tiny:g} {k.si}), no physical {what}; give 0 or "
+                         "a value in the physical range")
     if below or si > k.high:
         unit = k.unit(units)
         left = "(" if k.low_open else "["

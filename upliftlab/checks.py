@@ -32,10 +32,22 @@ def _number(field: str, value) -> float:
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer,
                                                                     np.floating)):
         raise InputError(f"{field} = {value!r}: expected a number")
-    value = float(value)
+    value = _as_float(field, value)
     if math.isnan(value):
         raise InputError(f"{field} = nan: expected a finite number")
     return value
+
+
+def _as_float(field: str, value) -> float:
+    """``value`` as a float; an integer beyond the float range (about 1.8e308) is refused, not
+    an OverflowError."""
+    try:
+        return float(value)
+    except OverflowError:
+        text = str(value)
+        shown = text if len(text) <= 24 else f"{text[:12]}…({len(text)} digits)"
+        raise InputError(f"{field} = {shown}: beyond the range of a number here "
+                         "(|value| < 1.8e308)") from None
 
 
 def finite(field: str, value) -> float:
@@ -103,7 +115,10 @@ def integer_at_least(field: str, value, minimum: int) -> int:
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer,
                                                                     np.floating)):
         raise InputError(f"{field} = {value!r}: expected an integer >= {minimum}")
-    if not math.isfinite(value) or value != int(value):
+    if isinstance(value, (int, np.integer)):
+        _as_float(field, value)  # an integer beyond every range is refused here
+        value = int(value)
+    elif not math.isfinite(value) or value != int(value):
         raise InputError(f"{field} = {value!r}: expected an integer >= {minimum}")
     if int(value) < minimum:
         raise InputError(f"{field} = {int(value)}: must be an integer >= {minimum}")

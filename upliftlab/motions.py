@@ -25,7 +25,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .checks import InputError, finite, nonnegative, positive
+from .bounds import KINDS
+from .checks import InputError, finite, in_range, nonnegative, positive
 
 __all__ = [
     "Motion",
@@ -91,7 +92,8 @@ class Motion:
         acc = np.array(self.acceleration, dtype=float).ravel()
         acc.setflags(write=False)
         object.__setattr__(self, "acceleration", acc)
-        positive("motion.dt", self.dt)
+        step = KINDS["step"]  # a record's step is a time step like any other (s)
+        in_range("motion.dt", self.dt, step.low, step.high)
         if acc.size == 0:
             raise InputError(f"motion {self.name!r}: no samples")
         bad = np.flatnonzero(~np.isfinite(acc))

@@ -28,6 +28,7 @@ import contextlib
 import hashlib
 import json
 import os
+import re
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -38,6 +39,7 @@ from .paths import pop_root, push_root
 __all__ = ["MARKER", "LOCK", "Claim", "claim", "settings_digest", "read_marker"]
 
 MARKER = "upliftlab-run.json"
+_CONTROL = re.compile(r"[\x00-\x1f\x7f]")
 LOCK = ".upliftlab.lock"
 
 
@@ -157,6 +159,18 @@ def claim(out: str | os.PathLike | None, default: str | os.PathLike, *, settings
     if out is not None and (not isinstance(out, (str, os.PathLike)) or not str(out).strip()):
         raise InputError(f"{option} = {out!r}: expected a folder path")
     path = Path(out if out is not None else default).expanduser()
+    try:
+        return _claim(path, settings, force, option)
+    except OSError as exc:  # a name too long, a folder not reachable: one line, not a trace
+        raise InputError(f"{option} = {str(path)[:80]!r}: cannot be used as a folder "
+                         f"({exc.strerror or exc})") from None
+
+
+def _claim(path: Path, settings: dict, force: bool, option: str) -> Claim:
+    """:func:`claim` of the folder ``path`` (its checks, in order)."""
+    if _CONTROL.search(str(path)):
+        raise InputError(f"{option} = {str(path)!r}: a folder name with a control character "
+                         "(a line break, a tab, …) is refused")
     for parent in [path, *path.parents]:
         if parent.exists():
             if not parent.is_dir():

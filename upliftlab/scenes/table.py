@@ -8,7 +8,7 @@ from typing import Any
 from .. import checks
 from ..checks import InputError
 
-__all__ = ["SCHEMA_VERSION", "MISSING", "Table", "string", "choice", "in_range", "numbers",
+__all__ = ["SCHEMA_VERSION", "MAX_DEPTH", "check_values", "MISSING", "Table", "string", "choice", "in_range", "numbers",
            "bounded_integer"]
 
 #: The scene files' schema this upliftlab reads (``schema = 1``).
@@ -80,3 +80,30 @@ def bounded_integer(low: int, high: int):
             raise InputError(f"{name} = {value}: valid range is [{low}, {high}]")
         return value
     return check
+
+
+#: Deepest nesting of tables and lists a scene may have (a scene file nests three deep:
+#: ``[cases.A.structure]`` holding a list of stories; anything far deeper is not a scene).
+MAX_DEPTH = 12
+
+
+def check_values(data, where: str = "scene", depth: int = 0) -> None:
+    """Refuse, naming the key, what no field of a scene can hold and that would otherwise fail
+    deep inside the reading: tables and lists nested beyond :data:`MAX_DEPTH`, and integers
+    beyond the range of a float."""
+    if depth > MAX_DEPTH:
+        raise InputError(f"{where}: tables or lists nested more than {MAX_DEPTH} deep; a scene "
+                         "file nests at most a few levels")
+    if isinstance(data, dict):
+        for key, value in data.items():
+            check_values(value, f"{where}.{key}" if where != "scene" else str(key), depth + 1)
+    elif isinstance(data, list):
+        for i, value in enumerate(data):
+            check_values(value, f"{where}[{i}]", depth + 1)
+    elif isinstance(data, int) and not isinstance(data, bool):
+        try:
+            float(data)
+        except OverflowError:
+            text = str(data)
+            raise InputError(f"{where} = {text[:12]}…({len(text)} digits): beyond the range "
+                             "of a number here (|value| < 1.8e308)") from None
