@@ -477,6 +477,7 @@ def _map_estimate(study: Study, run: _Run) -> SectionEstimate:
     when it will refuse them (over the report's ``--budget``, or its motions missing)."""
     import tempfile
 
+    from ...paths import output_root
     from ..studies.winkler_map import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS, bed_names,
                                        estimate_map)
     from ..studies.winkler_map.motions import study_motions
@@ -485,8 +486,8 @@ def _map_estimate(study: Study, run: _Run) -> SectionEstimate:
     store = (run.study_store(study, lambda message: None)
              or Store(run.study_dir(study.name) / "store"))
     try:
-        with tempfile.TemporaryDirectory() as folder:  # the records it would export
-            motions = study_motions(grid, options, Path(folder))
+        with tempfile.TemporaryDirectory() as folder, output_root(folder):  # upliftlab's own
+            motions = study_motions(grid, options, Path(folder))  # the records it would export
             estimate = estimate_map(grid, options, bed_names(options), motions, store)
     except InputError as exc:
         return SectionEstimate(study.name, 0.0, f"refused before any run: {exc}")
