@@ -1,13 +1,14 @@
-"""Every shell command in the README's code blocks works as written, and is exercised.
+"""Every shell command of the README and the docs pages works as written, and is exercised.
 
-:data:`EXERCISED` says, for each command of the README's ``bash`` blocks, what runs it: ``ci``
-(``.ci/run`` reads the first two and runs them as written), ``here`` (:func:`test_readme_command`
-runs it as written, in a scratch working directory so that its ``results/`` land there),
-``slow`` (the same, marked slow: minutes), or the test that runs it with only ``--out`` added.
-A command added to the README without an entry here fails
-:func:`test_every_readme_command_is_exercised`, and so does an entry whose command left the
-README. Reference: the README itself and the files the
-commands are documented to write.
+The commands are the lines of the ``bash`` code blocks of ``README.md`` and of every page of
+``docs/`` (the pages the docs build generates are not read). :data:`EXERCISED` says, for each,
+what runs it: ``ci`` (``.ci/run`` runs the README's first two, as written), ``ci-docs``
+(``.ci/run`` builds the docs with it, as written), ``here`` (:func:`test_docs_command` runs it
+as written, in a scratch working directory so that its ``results/`` land there), ``slow`` (the
+same, marked slow: minutes), or the test that runs it with only ``--out`` added. A command added to a page
+without an entry here fails :func:`test_every_docs_command_is_exercised`, and so does an entry
+whose command left every page. No test here reads the README's prose. Reference: the pages
+themselves, ``.ci/run`` and the files the commands are documented to write.
 """
 
 from __future__ import annotations
@@ -28,12 +29,18 @@ from upliftlab.cli import main as cli
 from upliftlab.outdir import read_marker
 
 ROOT = Path(__file__).resolve().parents[1]
+DOCS = ROOT / "docs"
+#: Folders of docs/ that the docs build writes (autosummary, sphinx-gallery), not pages.
+GENERATED = {"api", "auto_gallery", "_build", "_templates"}
 
 AT2 = ("PEER NGA STRONG MOTION DATABASE RECORD\nan example record\nACCELERATION TIME SERIES IN "
        "UNITS OF G\nNPTS=   6, DT=   .0200 SEC\n0.0 0.05 0.1 -0.1 -0.05 0.0\n")
 
-#: README command -> how it is exercised, and the files it must leave (relative to its cwd).
+#: Command of a README or docs ``bash`` block -> how it is exercised, and the files it must leave
+#: (relative to its cwd).
 EXERCISED = {
+    '.venv/bin/python -m pip install -e ".[docs]" && .venv/bin/python -m sphinx -W --keep-going '
+    '-b html docs docs/_build/html': ("ci-docs", ()),
     'python3 -m venv .venv && .venv/bin/python -m pip install ".[plot]" && '
     '.venv/bin/upliftlab paper --out results/paper': ("ci", ()),
     'python3 -m venv .venv && .venv/bin/python -m pip install -e ".[test]" && '
@@ -141,9 +148,15 @@ EXERCISED = {
 }
 
 
-def readme_commands(text: str | None = None) -> list[str]:
-    """The commands of the README's ``bash`` code blocks, one per line, comments removed."""
-    text = (ROOT / "README.md").read_text() if text is None else text
+def pages() -> list[Path]:
+    """The README and every Markdown page of the docs (not what the docs build generates)."""
+    found = [p for p in sorted(DOCS.rglob("*.md"))
+             if not GENERATED & set(p.relative_to(DOCS).parts)]
+    return [ROOT / "README.md", *found]
+
+
+def block_commands(text: str) -> list[str]:
+    """The commands of a page's ``bash`` code blocks, one per line, comments removed."""
     commands = []
     for block in re.findall(r"```bash\n(.*?)```", text, flags=re.S):
         for line in block.splitlines():
@@ -153,18 +166,26 @@ def readme_commands(text: str | None = None) -> list[str]:
     return commands
 
 
-def test_every_readme_command_is_exercised():
-    commands = readme_commands()
-    assert len(commands) >= 10
-    missing = [c for c in commands if c not in EXERCISED]
-    assert not missing, f"README commands that no test or CI runs: {missing}"
-    stale = [c for c in EXERCISED if c not in commands]
-    assert not stale, f"entries for commands no longer in the README: {stale}"
+def docs_commands() -> dict[str, list[str]]:
+    """Command -> the pages (relative to the repository) that show it."""
+    shown: dict[str, list[str]] = {}
+    for page in pages():
+        for command in block_commands(page.read_text(encoding="utf-8")):
+            shown.setdefault(command, []).append(str(page.relative_to(ROOT)))
+    return shown
+
+
+def test_every_docs_command_is_exercised():
+    shown = docs_commands()
+    assert len(shown) >= 10
+    missing = {c: where for c, where in shown.items() if c not in EXERCISED}
+    assert not missing, f"commands of the docs that no test or CI runs: {missing}"
+    stale = [c for c in EXERCISED if c not in shown]
+    assert not stale, f"entries for commands no page shows any more: {stale}"
     ci = (ROOT / ".ci" / "run").read_text()
-    assert "readme_commands.py README.md 2" in ci  # CI runs the README's first two commands
     for command, (how, _) in EXERCISED.items():
-        if how == "ci":
-            assert command in commands[:2], command
+        if how == "ci-docs":
+            assert command in ci, command  # .ci/run builds the docs with it, as written
         elif "::" in how:
             path, name = how.split("::")
             tree = ast.parse((ROOT / path).read_text())
@@ -175,15 +196,38 @@ def test_every_readme_command_is_exercised():
                 function = next(n for n in ast.walk(tree)
                                 if isinstance(n, ast.FunctionDef) and n.name == name)
                 assert "README_MAP_COMMANDS" in ast.unparse(function), (how, fragment)
-                assert argv in _built_readme_argvs(ROOT / path), (how, fragment)
+                assert argv in _built_argvs(ROOT / path), (how, fragment)
 
 
-def _built_readme_argvs(path: Path) -> list[list[str]]:
-    """The argv of the README commands a test module builds rather than writes out (its
+def test_ci_runs_the_readmes_first_two_commands():
+    """``.ci/run`` runs the README's first two commands (``.ci/readme_commands.py README.md 2``),
+    the main job first, and they are the two the table marks ``ci``."""
+    ci = (ROOT / ".ci" / "run").read_text()
+    assert "readme_commands.py README.md 2" in ci
+    first_two = subprocess.run([sys.executable, str(ROOT / ".ci" / "readme_commands.py"),
+                                str(ROOT / "README.md"), "2"], capture_output=True, text=True,
+                               check=True).stdout.splitlines()
+    marked = [c for c, (how, _) in EXERCISED.items() if how == "ci"]
+    assert first_two == marked
+    assert "upliftlab paper" in first_two[0] and "pytest" in first_two[1]
+
+
+def test_the_readme_is_the_front_door():
+    """At most 200 lines (the design's limit), and neither it nor a docs page sends a reader to
+    a folder of the machine that built it (the El Centro record is the user's to supply)."""
+    assert len((ROOT / "README.md").read_text().splitlines()) <= 200
+    for page in pages():
+        text = page.read_text(encoding="utf-8")
+        for pattern in ("/work/shared", "../shared", "shared/data"):
+            assert pattern not in text, f"{page}: {pattern}"
+
+
+def _built_argvs(path: Path) -> list[list[str]]:
+    """The argv of the docs' commands a test module builds rather than writes out (its
     ``README_MAP_COMMANDS`` table: argv, the count, the grid)."""
     import importlib.util
 
-    spec = importlib.util.spec_from_file_location(f"_readme_{path.stem}", path)
+    spec = importlib.util.spec_from_file_location(f"_docs_{path.stem}", path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return [list(row[0]) for row in getattr(module, "README_MAP_COMMANDS", ())]
@@ -202,7 +246,7 @@ def test_ci_reads_the_record_from_the_environment_when_set():
 
 
 def _prepare(cwd: Path) -> None:
-    """The files the README's examples name: ``my_scene.toml`` (a scene of the user's: here a
+    """The files the docs' examples name: ``my_scene.toml`` (a scene of the user's: here a
     copy of a packaged one) and ``path/to/record.AT2``."""
     shutil.copy(ROOT / "scenes" / "short_period_free.toml", cwd / "my_scene.toml")
     (cwd / "path" / "to").mkdir(parents=True)
@@ -210,7 +254,7 @@ def _prepare(cwd: Path) -> None:
 
 
 def _run(command: str, cwd: Path, monkeypatch) -> None:
-    """Run a README command as written: ``upliftlab ...`` in this process, ``python ...`` in a
+    """Run a docs command as written: ``upliftlab ...`` in this process, ``python ...`` in a
     child, commands joined by ``&&`` one after the other."""
     monkeypatch.chdir(cwd)
     monkeypatch.setenv("MPLBACKEND", "Agg")
@@ -236,7 +280,7 @@ def _check_files(command: str, files, cwd: Path) -> None:
 
 
 @pytest.mark.parametrize("command", [c for c, (how, _) in EXERCISED.items() if how == "here"])
-def test_readme_command(command, tmp_path, monkeypatch, elcentro):
+def test_docs_command(command, tmp_path, monkeypatch, elcentro):
     _prepare(tmp_path)
     _run(command, tmp_path, monkeypatch)
     _check_files(command, EXERCISED[command][1], tmp_path)
@@ -244,7 +288,7 @@ def test_readme_command(command, tmp_path, monkeypatch, elcentro):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("command", [c for c, (how, _) in EXERCISED.items() if how == "slow"])
-def test_readme_command_slow(command, tmp_path, monkeypatch, elcentro):
+def test_docs_command_slow(command, tmp_path, monkeypatch, elcentro):
     _prepare(tmp_path)
     _run(command, tmp_path, monkeypatch)
     _check_files(command, EXERCISED[command][1], tmp_path)
@@ -297,18 +341,3 @@ def test_compiled_kernels_are_cached_outside_the_installed_package(tmp_path):
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
                          check=True).stdout.split()
     assert out == [str(tmp_path / "mine")] * 2
-
-
-def test_layout_lists_every_module_once():
-    # Reference: the repository's own files. The README's module list (the Layout section's
-    # details block) names every Python module of the packages once, and nothing that is gone.
-    text = (ROOT / "README.md").read_text()
-    block = text.split("<summary>Every module, one line each", 1)[1].split("</details>", 1)[0]
-    listed = [line.split()[0] for line in block.splitlines()
-              if line.split() and line.split()[0].endswith(".py")]
-    on_disk = sorted(str(p.relative_to(ROOT)) for root in
-                     ("upliftlab", "reduced", "continuum", "meshes", "comparisons")
-                     for p in (ROOT / root).rglob("*.py") if "__pycache__" not in p.parts)
-    assert len(listed) == len(set(listed)), "a module is listed twice"
-    assert sorted(listed) == on_disk, (f"missing: {sorted(set(on_disk) - set(listed))}; "
-                                       f"gone: {sorted(set(listed) - set(on_disk))}")

@@ -95,8 +95,8 @@ def test_stiff_foundation_with_the_implicit_scheme():
 
 
 # ---------------------------------------------------------------------------------------------
-# The hard cases of the reliability table (README): each works, checked against its reference,
-# or is refused with the reason; none returns NaN.
+# The hard cases of the reliability table (docs/reduced.md, "Reliability"): each works,
+# checked against its reference, or is refused with the reason; none returns NaN.
 # ---------------------------------------------------------------------------------------------
 
 

@@ -3,11 +3,11 @@
 Reference: the converged run — the same scene with N = 640 springs (N = 160 → 640 must change the
 peaks by less than the stated tolerance for a case to count as converged).
 
-Finding (reported in the README and the issue note): Ewing's impact damper, as the paper defines
-it (eq. 17: c* from the structure's effective mass at the landing spring's position), removes
-(1 − ε²) of that mass's closing energy at *every* landing spring, so a finer bed dissipates more
-and Case C does not converge in N: the residual settlement of the short-period building under El
-Centro falls from 0.50 in (N = 12) to 0.04 in (N = 640). With ``impact_mass = "tributary"`` (the
+Finding (reported in docs/reduced.md, "Impact damper", and the issue note): Ewing's impact
+damper, as the paper defines it (eq. 17: c* from the structure's effective mass at the landing
+spring's position), removes (1 − ε²) of that mass's closing energy at *every* landing spring,
+so a finer bed dissipates more and Case C does not converge in N: the residual settlement of
+the short-period building under El Centro falls from 0.50 in (N = 12) to 0.04 in (N = 640). With ``impact_mass = "tributary"`` (the
 effective mass times the spring's share of the bed) Case C converges like Case B.
 """
 

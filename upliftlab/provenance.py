@@ -8,10 +8,9 @@ wherever the install put them. Three things use it:
 * the numba cache folder, over the compiled kernels' sources only (``upliftlab/__init__.py``):
   numba keys a cached function on its own file, so an edit to a law inlined elsewhere must
   start a new cache;
-* each record of a store (:mod:`upliftlab.comparisons.framework.store`), as provenance, never as
-its key.
-  A store whose records came from another digest is stale, not lost: it is checked by
-  re-running a sample.
+* each record of a store (:mod:`upliftlab.comparisons.framework.store`), as provenance, never
+  as its key. A store whose records came from another digest is stale, not lost: it is
+  checked by re-running a sample.
 
 It is computed once per process (the code of a running process does not change). It imports
 nothing heavy, so that ``import upliftlab`` stays light.

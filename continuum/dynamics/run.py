@@ -3,11 +3,10 @@
 :func:`run_dynamic` starts from the gravity state and runs one of two routes, chosen by the
 scene's ``continuum.dynamics`` or :attr:`DynamicOptions.method`:
 
-- explicit (the default, :mod:`~upliftlab.continuum.dynamics.explicit`): central differences with a
-  lumped mass, the footing's contact solved exactly at every step;
-- implicit (:mod:`~upliftlab.continuum.dynamics.implicit`): HHT-α with Newton, the contact solved
-exactly
-  at the end of every step by the statics' contact solver.
+- explicit (the default, :mod:`~upliftlab.continuum.dynamics.explicit`): central differences
+  with a lumped mass, the footing's contact solved exactly at every step;
+- implicit (:mod:`~upliftlab.continuum.dynamics.implicit`): HHT-α with Newton, the contact
+  solved exactly at the end of every step by the statics' contact solver.
 
 Both share the unknowns (the soil DOF vector u from the geostatic state, the footing
 q = (u, v, θ) and the story deformation s of an SDOF superstructure,

@@ -1,4 +1,4 @@
-"""The ``upliftlab`` command (also ``python -m upliftlab``).
+"""The ``upliftlab`` command (also ``python -m upliftlab``)::
 
     upliftlab run SCENE [--case C] [--motion NAME|PATH] [--set KEY=VALUE ...] [--out DIR] [--json]
                   [--force]

@@ -1,5 +1,5 @@
 """``upliftlab store``: look after a folder of kept results
-(:mod:`upliftlab.comparisons.framework.store`).
+(:mod:`upliftlab.comparisons.framework.store`)::
 
     upliftlab store verify DIR [--sample N]   check the records made by earlier code: N of
                                               each point function's made again (seeded), the
