@@ -335,7 +335,7 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
                out["plastic"], out["energy"])
     log = np.zeros((0, 5))
     m = method(name)
-    announce_compilation("the reduced model's kernels", m.kernel)
+    announce_compilation("the reduced model's kernels", m.kernel, COMPILE_TIME)
     logger("reduced").debug(f"upliftlab: {name}: dt = {plan.dt:.6g} s, {plan.steps} steps, "
                             f"{ns} springs, {q0.size} DOFs")
     if m.kind == "events":
@@ -361,6 +361,12 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
     out["raw_peaks"] = peaks
     out["impacts"] = log[:min(int(counters[3]), log.shape[0])].copy()
     return status, out, counters
+
+
+#: How long compiling an integrator takes the first time (what the notice says): 60–100 s for
+#: the event stepper on a loaded two-core machine (the main job's first run, measured with
+#: ``compile_time_s``, benchmarks/REDUCED.md).
+COMPILE_TIME = "about 1–2 minutes on a two-core machine"
 
 
 #: The implicit integrators' Newton: tolerance on the residual (relative to the forces in play),

@@ -465,7 +465,7 @@ def test_a_full_build_finds_every_map_run_in_the_kept_store(tmp_path):
     # estimates it before its first run, no continuum run is left to make, so the report's
     # budget refuses nothing. The whole grid is 1268 runs by hand (2 soils × 4 FS_v × 3 h/B ×
     # 2 periods × 2 intensities × 13 motions = 1248 dynamic, and 20 static), all of them
-    # stored; the README says so. Reading the store writes nothing to it.
+    # stored; the docs say so (docs/comparisons.md). Reading the store writes nothing to it.
     from upliftlab.comparisons.framework.store import Store
     from upliftlab.comparisons.studies.winkler_map import (DEFINITION, FULL_GRID, FULL_OPTIONS,
                                                            bed_names, estimate_map)
@@ -484,8 +484,8 @@ def test_a_full_build_finds_every_map_run_in_the_kept_store(tmp_path):
     # at most a sample of each point function's records made by earlier code is made again
     # to check them (three of each of the five), at their own recorded wall times
     assert estimate.checks <= 15 and estimate.seconds == estimate.check_seconds
-    readme = " ".join((rp.CHECKOUT / "README.md").read_text().split())
-    assert "every one of its 1,268 continuum runs is kept" in readme
+    page = " ".join((rp.CHECKOUT / "docs" / "comparisons.md").read_text().split())
+    assert "every one of its 1,268 continuum runs is kept" in page
     assert {p.name: p.read_bytes() for p in kept.rglob("*") if p.is_file()} == before
 
 

@@ -583,7 +583,7 @@ README_MAP_COMMANDS = [
 
 @pytest.mark.parametrize("argv, counted, grid", README_MAP_COMMANDS)
 def test_the_readme_map_commands_are_estimated_before_they_run(tmp_path, argv, counted, grid):
-    """The README's map commands, run as written from an empty folder (so their store is empty)
+    """The docs' map commands (docs/comparisons.md), run as written from an empty folder (so their store is empty)
     with --budget 1 added: the grid is the one the README describes (hand count above) and its
     cost is estimated and refused before any run (exit 2), leaving nothing behind."""
     import shlex
@@ -591,8 +591,8 @@ def test_the_readme_map_commands_are_estimated_before_they_run(tmp_path, argv, c
     import sys
     from pathlib import Path
 
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
-    assert shlex.join(["upliftlab", *argv[:-1]]) in readme  # the command as the README has it
+    page = (Path(__file__).resolve().parents[1] / "docs" / "comparisons.md").read_text()
+    assert shlex.join(["upliftlab", *argv[:-1]]) in page  # the command as the docs have it
     result = subprocess.run([sys.executable, "-m", "upliftlab", *argv, str(tmp_path / "out"),
                              "--budget", "1"],
                             capture_output=True, text=True, timeout=600, cwd=tmp_path)

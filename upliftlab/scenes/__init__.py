@@ -40,7 +40,7 @@ from .soil import (DYNAMICS, ELEMENTS, INTERFACES, MAX_ELEMENTS_ACROSS,  # noqa:
 from .structure import (IMPACT_MASSES, KINEMATICS, LAWS, LAYOUTS,  # noqa: F401
                         MAX_SPRINGS, SUPPORTS, Foundation, Story, Structure, read_foundation,
                         read_structure)
-from .table import SCHEMA_VERSION, Table, string
+from .table import SCHEMA_VERSION, Table, check_values, string
 from ..units import UnitSystem, unit_system  # noqa: F401
 
 __all__ = [
@@ -151,6 +151,7 @@ def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
     record ``motion`` (a name on UPLIFTLAB_MOTIONS or a path) if given, and ``overrides``
     applied, in that order.
     """
+    check_values(data)  # before the deep copy: a file nested thousands deep is refused here
     data = copy.deepcopy(data)
     if source:  # the file's name names the results: one plain path component
         path_component(Path(source).stem, "scene file name")
@@ -164,6 +165,7 @@ def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
         if motion is not None:
             data["motion"] = {"type": "record", "name": str(motion)}
         apply_overrides(data, [o for o in overrides if o not in in_cases])
+        check_values(data)  # what the overrides brought in
     cases_table = data.get("cases", {}) if merged else cases_table
     table = Table(data, "")
     schema = table.get("schema", lambda n, v: checks.integer_at_least(n, v, 1))
@@ -298,5 +300,8 @@ def load_scene(name_or_path: str, case: str | None = None,
         raise InputError(f"scene {str(path)!r}: cannot read it ({exc.strerror})") from None
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"scene {str(path)!r}: not valid TOML ({exc})") from None
+    except RecursionError:
+        raise InputError(f"scene {str(path)!r}: tables or lists nested too deeply to read; a "
+                         "scene file nests at most a few levels") from None
     return scene_from_dict(data, source=str(path), case=case, overrides=tuple(overrides),
                            motion=motion)

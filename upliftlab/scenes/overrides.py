@@ -82,6 +82,9 @@ def parse_value(text: str):
         return tomllib.loads(f"v = {text}")["v"]
     except tomllib.TOMLDecodeError:
         return text
+    except RecursionError:
+        raise InputError(f"--set value {text[:20]!r}…: tables or lists nested too deeply to "
+                         "read; a scene's field nests at most a few levels") from None
 
 
 def apply_override(data: dict, item: str) -> None:
