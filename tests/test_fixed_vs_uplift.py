@@ -137,8 +137,7 @@ def test_scene_argument_is_refused(tmp_path):
 def test_the_folder_opens_again_as_the_same_labelled_data(study):
     """:func:`upliftlab.open_study` of the study's folder: the dataset it wrote, selected by
     label, holds the numbers of ``summary.json`` (bit for bit) and of the CSV tables (to their
-    ten digits), with
-    units; the summary computed from it is the ``summary.md`` written."""
+    ten digits), with units; the summary computed from it is the ``summary.md`` written."""
     import json
 
     from upliftlab import open_study
