@@ -2,9 +2,9 @@
 spectrum.
 
 The study's result is one labelled dataset (``study.data``), selected by building, support,
-family and period. References: Fig. 11 as read from the paper (peak u 0.164 in fixed, 0.055 in uplift allowed in
-Case C); the exact Nigam–Jennings recurrence for the fixed-base spectral displacement (the
-fixed base is a linear SDOF with 5 % damping); the single-run path (:func:`reduced.run`)
+family and period. References: Fig. 11 as read from the paper (peak u 0.164 in fixed, 0.055 in
+uplift allowed in Case C); the exact Nigam–Jennings recurrence for the fixed-base spectral
+displacement (the fixed base is a linear SDOF with 5 % damping); the single-run path (:func:`reduced.run`)
 against the batch path (:func:`reduced.run_batch`) at the paper's periods; ratios computed by
 hand for the range statements.
 """

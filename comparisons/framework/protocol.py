@@ -10,9 +10,12 @@ gives a study its command line (:mod:`upliftlab.cli.study`). The report walks
 
 A result is either labelled data, an :class:`xarray.Dataset` (or an :class:`xarray.DataTree`
 of datasets, one per file, for a study whose parts have different axes), which ``write``
-writes and summarises, and which :func:`run_study` returns with what ``write`` returned as a
-:class:`StudyRun`; or a frozen dataclass with a ``study`` field (None until written):
-``compute`` leaves it None, :func:`run_study` replaces it with what ``write`` returned.
+writes and summarises (:func:`.study.write_study`: the NetCDF files, and the Markdown of the
+study's ``summarise(data)`` with its key numbers, both read from the data alone, so that
+:func:`upliftlab.open_study` of the folder gives the same back), and which
+:func:`run_study` returns with what ``write`` returned as a :class:`StudyRun`; or a frozen
+dataclass with a ``study`` field (None until written): ``compute`` leaves it None,
+:func:`run_study` replaces it with what ``write`` returned.
 """
 
 from __future__ import annotations

@@ -38,6 +38,7 @@ from .workflow import DEFINITION, compute, run, write
 
 __all__ = ["STUDY", "BUILDINGS", "SUPPORTS", "Grid", "FULL_GRID", "FAST_GRID", "Ranges",
            "Options", "DEFINITION", "compute", "write", "run", "study_dataset", "summarise",
-           "key_numbers", "figure_ratio", "ratio", "at", "spectrum_ranges", "figure_run", "spectrum_points", "reduction_ranges", "check_grid",
+           "key_numbers", "figure_ratio", "ratio", "at", "spectrum_ranges", "figure_run",
+           "spectrum_points", "reduction_ranges", "check_grid",
            "PAPER_FIG11_PEAK_U", "NO_CHANGE", "SUPPORT_LABELS", "PAPER_PERIODS", "OUTPUT_DT",
            "FIGURES", "run_spectrum_batch"]

@@ -52,8 +52,9 @@ def write(ds, ctx: Context) -> StudyResult:
     """The tables, the figures (when the ``figures`` attribute is set), the dataset
     (``fixed_vs_uplift.nc``) and the summary into ``ctx.out``."""
     out = Path(ctx.out)
-    grid = Grid(periods=tuple(ds.period.values.tolist()), families=tuple(ds.family.values.tolist()),
-                supports=tuple(spectrum_supports(ds)), figures=tuple(ds.building.values.tolist()))
+    grid = Grid(periods=tuple(ds.period.values.tolist()),
+                families=tuple(ds.family.values.tolist()), supports=tuple(spectrum_supports(ds)),
+                figures=tuple(ds.building.values.tolist()))
     prov = provenance(study=STUDY, fast=ctx.fast, grid=asdict(grid), store=str(ctx.store.root))
     files = write_tables(ds, out)
     if ds.attrs["figures"]:
