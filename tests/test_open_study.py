@@ -52,9 +52,16 @@ def test_a_single_dataset_is_one_file_named_by_the_study(tmp_path):
     assert opened.attrs == {}  # no summary.json: no numbers
 
 
+def test_a_study_without_netcdf_files_opens_as_its_numbers(tmp_path):
+    # the verification and the paper's conclusions write summary.json alone
+    (tmp_path / "summary.json").write_text(json.dumps({"numbers": {"passed": True}}))
+    opened = upliftlab.open_study(tmp_path)
+    assert not opened.children and opened.attrs == {"passed": True}
+
+
 @pytest.mark.parametrize("make, message", [
     (lambda p: p / "missing", "is not a folder"),
-    (lambda p: p, "holds no NetCDF file"),
+    (lambda p: p, "holds neither a NetCDF file nor summary.json"),
 ])
 def test_what_is_not_a_study_folder_is_refused(tmp_path, make, message):
     with pytest.raises(InputError, match=message):

@@ -59,8 +59,10 @@ def open_study(path: str | os.PathLike):
     memory (the files are closed): one node per NetCDF file, named by its relative path without
     ``.nc`` (:func:`study_files`), holding the dataset as written (coordinates, units,
     attributes); the root's attributes are the summary's numbers, one per key, and their
-    ``provenance``. Raises :class:`~upliftlab.checks.InputError` when ``path`` is not a folder
-    or holds no NetCDF file."""
+    ``provenance``. A study that writes no NetCDF file (the verification, the paper's
+    conclusions) opens as a root with its numbers alone. Raises
+    :class:`~upliftlab.checks.InputError` when ``path`` is not a folder, or holds neither a
+    NetCDF file nor ``summary.json``."""
     import xarray as xr
 
     folder = Path(path)
@@ -68,9 +70,9 @@ def open_study(path: str | os.PathLike):
         raise InputError(f"open_study: {str(folder)!r} is not a folder; expected a study's "
                          "output folder (results/<study>[-fast])")
     files = study_files(folder)
-    if not files:
-        raise InputError(f"open_study: {str(folder)!r} holds no NetCDF file; is it a study's "
-                         "output folder, written completely?")
+    if not files and not (folder / "summary.json").is_file():
+        raise InputError(f"open_study: {str(folder)!r} holds neither a NetCDF file nor "
+                         "summary.json; is it a study's output folder, written completely?")
     tree = xr.DataTree.from_dict({name: read_dataset(p) for name, p in files.items()},
                                  name=folder.name)
     tree.attrs = _summary_attributes(folder)
