@@ -1,9 +1,10 @@
 """Fixed base against uplift allowed (fast grid): Ewing's Figs. 11–12 and the base-shear
 spectrum.
 
-References: Fig. 11 as read from the paper (peak u 0.164 in fixed, 0.055 in uplift allowed in
-Case C); the exact Nigam–Jennings recurrence for the fixed-base spectral displacement (the
-fixed base is a linear SDOF with 5 % damping); the single-run path (:func:`reduced.run`)
+The study's result is one labelled dataset (``study.data``), selected by building, support,
+family and period. References: Fig. 11 as read from the paper (peak u 0.164 in fixed, 0.055 in
+uplift allowed in Case C); the exact Nigam–Jennings recurrence for the fixed-base spectral
+displacement (the fixed base is a linear SDOF with 5 % damping); the single-run path (:func:`reduced.run`)
 against the batch path (:func:`reduced.run_batch`) at the paper's periods; ratios computed by
 hand for the range statements.
 """
@@ -30,30 +31,31 @@ def study(elcentro, tmp_path_factory):
 def test_fig11_matches_the_paper(study):
     """Fig. 11: peak u 0.164 in fixed (±2 %) and 0.055 in with uplift (±3 %); the uplift-allowed
     peak base shear is at most the fixed base's (here about a third)."""
-    f = study.figure("short")
-    assert f.peak_u["fixed"] == pytest.approx(0.164, rel=0.02)
-    assert f.peak_u["C"] == pytest.approx(0.055, rel=0.03)
-    assert f.base_shear["C"] <= f.base_shear["fixed"]
-    assert f.ratio_shear == pytest.approx(0.055 / 0.164, rel=0.05)
-    assert f.uplift["C"] > 0.0
+    f = study.data.sel(building="short")
+    assert float(f.peak_u.sel(support="fixed")) == pytest.approx(0.164, rel=0.02)
+    assert float(f.peak_u.sel(support="C")) == pytest.approx(0.055, rel=0.03)
+    assert f.peak_base_shear.sel(support="C") <= f.peak_base_shear.sel(support="fixed")
+    assert fvu.figure_ratio(study.data, "short", "shear") == pytest.approx(0.055 / 0.164,
+                                                                          rel=0.05)
+    assert float(f.peak_uplift.sel(support="C")) > 0.0
 
 
 def test_fig12_uplift_reduces_deformation(study):
     """Fig. 12 ('significant reduction'): uplift allowed at most 60 % of the fixed-base peak u
     and base shear of the long-period building."""
-    f = study.figure("long")
-    assert f.ratio_u < 0.6 and f.ratio_shear < 0.6
+    ds = study.data
+    assert fvu.figure_ratio(ds, "long", "u") < 0.6 and fvu.figure_ratio(ds, "long", "shear") < 0.6
 
 
 def test_fixed_base_spectrum_is_the_exact_sdof_spectrum(study, elcentro):
     """Fixed base = linear SDOF (5 %): its peak u at every period equals the Nigam–Jennings
     spectral displacement of El Centro (Hermite peak between 2 ms samples) to 0.5 %."""
-    s = study.spectrum("short")
+    s = study.data.sel(family="short")
     acc = np.append(elcentro.acceleration * 386.09, np.zeros(200))
     fine = 10  # the same piecewise-linear record sampled 10 times finer: NJ stays exact
     t_rec = np.arange(acc.size) * elcentro.dt
     acc = np.interp(np.arange((acc.size - 1) * fine + 1) * elcentro.dt / fine, t_rec, acc)
-    for t, u in zip(s.periods, s.u["fixed"]):
+    for t, u in zip(s.period.values, s.spectrum_peak_u.sel(support="fixed").values):
         disp, vel = nigam_jennings(acc, elcentro.dt / fine, 2 * math.pi / t, 0.05)
         assert u == pytest.approx(hermite_peak(disp, vel, elcentro.dt / fine), rel=0.005), t
 
@@ -61,27 +63,30 @@ def test_fixed_base_spectrum_is_the_exact_sdof_spectrum(study, elcentro):
 def test_batch_agrees_with_single_runs(study):
     """The spectrum's run_batch point at T = 0.15 s is the Fig. 11 run (single-run path), for
     the fixed base and Case C, to 1e-9."""
-    s, f = study.spectrum("short"), study.figure("short")
-    i = int(np.argmin(np.abs(s.periods - 0.15)))
-    assert s.periods[i] == 0.15
+    s = study.data.sel(family="short", period=0.15)
+    f = study.data.sel(building="short")
+    assert float(s.period) == 0.15
     for support in ("fixed", "C"):
-        assert s.u[support][i] == pytest.approx(f.peak_u[support], rel=1e-9)
-        assert s.shear[support][i] * 202.0 == pytest.approx(f.base_shear[support], rel=1e-9)
+        assert float(s.spectrum_peak_u.sel(support=support)) == pytest.approx(
+            float(f.peak_u.sel(support=support)), rel=1e-9)
+        assert float(s.spectrum_shear_coefficient.sel(support=support)) * 202.0 == \
+            pytest.approx(float(f.peak_base_shear.sel(support=support)), rel=1e-9)
 
 
 def test_uplift_reduces_base_shear_where_the_summary_says(study):
     """The summary's ranges are the periods where the ratio uplift/fixed is below 0.98; at the
     paper's short period the Case C ratio is the Fig. 11 ratio."""
-    s = study.spectrum("short")
-    r = s.ranges[("C", "shear")]
-    ratio = s.shear["C"] / s.shear["fixed"]
-    reduced = s.periods[ratio < 1 - fvu.NO_CHANGE]
+    s = study.data.sel(family="short")
+    r = fvu.spectrum_ranges(study.data, "short")[("C", "shear")]
+    shear = s.spectrum_shear_coefficient
+    ratio = shear.sel(support="C").values / shear.sel(support="fixed").values
+    reduced = s.period.values[ratio < 1 - fvu.NO_CHANGE]
     assert fvu.NO_CHANGE == 0.02
     assert r.count_reduced == reduced.size
     assert r.min_ratio == pytest.approx(ratio.min())
     assert r.reduced[0][0] == reduced[0]
-    assert s.at("C", "shear", 0.15) == pytest.approx(study.figure("short").ratio_shear,
-                                                       rel=1e-9)
+    assert fvu.at(study.data, "short", "C", "shear", 0.15) == pytest.approx(
+        fvu.figure_ratio(study.data, "short", "shear"), rel=1e-9)
     numbers = study.study.numbers["spectra"]["short"]["C_shear"]
     assert numbers["min_ratio"] == pytest.approx(r.min_ratio)
     assert "reduced over" in study.study.summary
@@ -107,7 +112,9 @@ def test_rerun_recomputes_nothing(study, tmp_path, monkeypatch):
     monkeypatch.setattr(fvu.runs, "figure_run", refuse)
     again = fvu.run(fast=True, out=tmp_path, store=store, figures=False)
     assert len(store) == before
-    assert again.spectrum("short").u["C"].tolist() == study.spectrum("short").u["C"].tolist()
+    peak = {"family": "short", "support": "C"}
+    assert (again.data.spectrum_peak_u.sel(peak).values.tolist()
+            == study.data.spectrum_peak_u.sel(peak).values.tolist())
 
 
 @pytest.mark.parametrize("grid, message", [
@@ -125,3 +132,34 @@ def test_bad_grid_is_refused(grid, message, tmp_path):
 def test_scene_argument_is_refused(tmp_path):
     with pytest.raises(InputError, match="scene = 'wall_elcentro'"):
         fvu.run("wall_elcentro", out=tmp_path)
+
+
+def test_the_folder_opens_again_as_the_same_labelled_data(study):
+    """:func:`upliftlab.open_study` of the study's folder: the dataset it wrote, selected by
+    label, holds the numbers of ``summary.json`` (bit for bit) and of the CSV tables (to their
+    ten digits), with units; the summary computed from it is the ``summary.md`` written."""
+    import json
+
+    from upliftlab import open_study
+
+    folder = study.study.directory
+    tree = open_study(folder)
+    ds = tree["fixed_vs_uplift"].to_dataset()
+    numbers = json.loads((folder / "summary.json").read_text())["numbers"]
+    assert tree.attrs["figures"] == numbers["figures"]
+    for key, fig in numbers["figures"].items():
+        for support in ("fixed", "C"):
+            at = ds.sel(building=fig["building"], support=support)
+            assert float(at.peak_u) == fig["peak_u"][support]
+            assert float(at.peak_base_shear) == fig["peak_base_shear"][support]
+    assert ds.peak_u.attrs["units"] == "in" and ds.period.attrs["units"] == "s"
+    lines = [x for x in (folder / "spectrum_short.csv").read_text().splitlines()
+             if not x.startswith("#")]
+    table = np.genfromtxt(lines, delimiter=",", names=True)
+    one = ds.sel(family="short", support="C")
+    assert table["period_s"].tolist() == ds.period.values.tolist()
+    assert table["shear_coefficient_C"].tolist() == pytest.approx(
+        one.spectrum_shear_coefficient.values.tolist(), rel=1e-9)
+    r = numbers["spectra"]["short"]["C_shear"]
+    assert fvu.spectrum_ranges(ds, "short")[("C", "shear")].min_ratio == r["min_ratio"]
+    assert fvu.summarise(ds) == (folder / "summary.md").read_text()

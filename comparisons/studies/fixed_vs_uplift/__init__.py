@@ -18,20 +18,27 @@ compared as ratios uplift/fixed at each period. The reduced runs go through
 summary's statements (the period ranges over which uplift reduces each peak, and by how much)
 are computed from the data.
 
+The result is one :class:`xarray.Dataset` (:func:`.dataset.study_dataset`: Figs. 11–12 by
+``building`` and ``support``, the spectrum by ``family``, ``support`` and ``period``), written
+as ``fixed_vs_uplift.nc`` beside its CSV tables; the summary is computed from it alone
+(:func:`.summary.summarise`), so :func:`upliftlab.open_study` of the output folder gives it back.
+
 Run it with ``upliftlab study fixed_vs_uplift [--fast] [--out DIR]``.
 """
 
 from __future__ import annotations
 
-from .analysis import Figure, FixedVsUplift, Ranges, Spectrum, reduction_ranges
+from .analysis import Ranges, at, figure_ratio, ratio, reduction_ranges, spectrum_ranges
+from .dataset import study_dataset
 from .grid import (BUILDINGS, FAST_GRID, FIGURES, FULL_GRID, Grid, NO_CHANGE, OUTPUT_DT, Options,
                    PAPER_FIG11_PEAK_U, PAPER_PERIODS, STUDY, SUPPORTS, SUPPORT_LABELS, check_grid)
-from .output import write
 from .runs import figure_run, run_spectrum_batch, spectrum_points
-from .workflow import DEFINITION, compute, run
+from .summary import key_numbers, summarise
+from .workflow import DEFINITION, compute, run, write
 
-__all__ = ["STUDY", "BUILDINGS", "SUPPORTS", "Grid", "FULL_GRID", "FAST_GRID", "Figure",
-           "Spectrum", "Ranges", "FixedVsUplift", "Options", "DEFINITION", "compute", "write",
-           "run", "figure_run", "spectrum_points", "reduction_ranges", "check_grid",
+__all__ = ["STUDY", "BUILDINGS", "SUPPORTS", "Grid", "FULL_GRID", "FAST_GRID", "Ranges",
+           "Options", "DEFINITION", "compute", "write", "run", "study_dataset", "summarise",
+           "key_numbers", "figure_ratio", "ratio", "at", "spectrum_ranges", "figure_run",
+           "spectrum_points", "reduction_ranges", "check_grid",
            "PAPER_FIG11_PEAK_U", "NO_CHANGE", "SUPPORT_LABELS", "PAPER_PERIODS", "OUTPUT_DT",
            "FIGURES", "run_spectrum_batch"]

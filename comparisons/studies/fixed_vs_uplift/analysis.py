@@ -1,45 +1,23 @@
-"""What the runs say: Figs. 11–12's peaks and ratios, and the period ranges over which uplift
-reduces each peak."""
+"""What the runs say, read from the study's dataset: Figs. 11–12's ratios, and the period
+ranges over which uplift reduces each peak."""
 
 from __future__ import annotations
 
-import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from ....checks import InputError
-from ...framework.store import Store
-from ...framework.study import StudyResult
-from .grid import FIGURES, Grid, NO_CHANGE, Options
-from .runs import building_scene, cached_run
+from .grid import NO_CHANGE
 
 
-# ---------------------------------------------------------------------------------------------
-# Results
-# ---------------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True, eq=False)
-class Figure:
-    """Fig. 11 or 12: ``time`` (s) and ``u`` (length) per support, and the peaks."""
-
-    building: str
-    number: int
-    time: dict
-    u: dict
-    peak_u: dict
-    base_shear: dict
-    uplift: dict
-
-    @property
-    def ratio_u(self) -> float:
-        return self.peak_u["C"] / self.peak_u["fixed"]
-
-    @property
-    def ratio_shear(self) -> float:
-        return self.base_shear["C"] / self.base_shear["fixed"]
+def figure_ratio(ds, building: str, what: str) -> float:
+    """Peak ``what`` (``u`` or ``shear``) of Case C over the fixed base's in the figure of
+    ``building``."""
+    peak = ds.peak_u if what == "u" else ds.peak_base_shear
+    one = peak.sel(building=building)
+    return float(one.sel(support="C") / one.sel(support="fixed"))
 
 
 @dataclass(frozen=True)
@@ -58,27 +36,6 @@ class Ranges:
     median: float
     count_reduced: int
     total: int
-
-
-@dataclass(frozen=True, eq=False)
-class Spectrum:
-    """Peak values against period for one building family: ``u`` (length), ``shear`` (V/W)
-    and ``uplifted`` per support (arrays over ``periods``), and the ratio statements."""
-
-    family: str
-    periods: np.ndarray
-    u: dict
-    shear: dict
-    uplifted: dict
-    ranges: dict  # (support, "shear" | "u") -> Ranges
-
-    def ratio(self, support: str, what: str) -> np.ndarray:
-        values = self.shear if what == "shear" else self.u
-        return values[support] / values["fixed"]
-
-    def at(self, support: str, what: str, period: float) -> float:
-        i = int(np.argmin(np.abs(self.periods - period)))
-        return float(self.ratio(support, what)[i])
 
 
 def period_runs(mask: np.ndarray, periods: np.ndarray) -> tuple[tuple[float, float], ...]:
@@ -107,49 +64,32 @@ def reduction_ranges(periods: Sequence[float], ratio: Sequence[float]) -> Ranges
                   float(np.nanmedian(r)), int(np.sum(ok & (r < 1 - NO_CHANGE))), int(ok.sum()))
 
 
-def spectrum_of(family: str, grid: Grid, records: Sequence[Mapping]) -> Spectrum:
-    n = len(grid.periods)
-    u, shear, up = {}, {}, {}
-    for k, support in enumerate(grid.supports):
-        rows = records[k * n:(k + 1) * n]
-        u[support] = np.array([r.get("u", math.nan) for r in rows])
-        shear[support] = np.array([r.get("base_shear", math.nan) / r["weight"]
-                                   if "error" not in r else math.nan for r in rows])
-        up[support] = np.array([r.get("uplift", 0.0) > 0.0 for r in rows])
-    periods = np.array(grid.periods)
-    ranges = {}
-    for support in grid.supports:
+def spectrum_supports(ds) -> list[str]:
+    """The supports the spectrum ran, the fixed base first."""
+    value = ds.attrs["spectrum_supports"]
+    return [value] if isinstance(value, str) else [str(v) for v in value]
+
+
+def ratio(ds, family: str, support: str, what: str) -> np.ndarray:
+    """Spectrum of ``family``: peak ``what`` (``u`` or ``shear``) of ``support`` over the
+    fixed base's, against the period."""
+    values = ds.spectrum_peak_u if what == "u" else ds.spectrum_shear_coefficient
+    one = values.sel(family=family)
+    return one.sel(support=support).values / one.sel(support="fixed").values
+
+
+def at(ds, family: str, support: str, what: str, period: float) -> float:
+    """:func:`ratio` at the grid period nearest ``period`` (s)."""
+    i = int(np.argmin(np.abs(ds.period.values - period)))
+    return float(ratio(ds, family, support, what)[i])
+
+
+def spectrum_ranges(ds, family: str) -> dict:
+    """{(support, "shear" | "u"): :class:`Ranges`} of each uplift case of ``family``."""
+    out = {}
+    for support in spectrum_supports(ds):
         if support != "fixed":
-            for what, values in (("shear", shear), ("u", u)):
-                ranges[(support, what)] = reduction_ranges(periods,
-                                                           values[support] / values["fixed"])
-    return Spectrum(family, periods, u, shear, up, ranges)
-
-
-@dataclass(frozen=True, eq=False)
-class FixedVsUplift:
-    """The study's result: files and summary (``study``), Figs. 11–12, the spectra."""
-
-    study: StudyResult
-    figures: tuple[Figure, ...]
-    spectra: tuple[Spectrum, ...]
-    grid: Grid
-    continuum: str
-    options: Options = None
-
-    def figure(self, building: str) -> Figure:
-        return next(f for f in self.figures if f.building == building)
-
-    def spectrum(self, family: str) -> Spectrum:
-        return next(s for s in self.spectra if s.family == family)
-
-
-def figure_of(building: str, store: Store, record: dict) -> Figure:
-    runs = {s: cached_run(store, "figure_run",
-                          {"scene": building_scene(building, s).data, **record})
-            for s in ("fixed", "C")}
-    return Figure(building, FIGURES[building], {s: np.array(r["time"]) for s, r in runs.items()},
-                  {s: np.array(r["u"]) for s, r in runs.items()},
-                  {s: r["peak_u"] for s, r in runs.items()},
-                  {s: r["base_shear"] for s, r in runs.items()},
-                  {s: r["uplift"] for s, r in runs.items()})
+            for what in ("shear", "u"):
+                out[(support, what)] = reduction_ranges(ds.period.values,
+                                                        ratio(ds, family, support, what))
+    return out

@@ -66,6 +66,14 @@ def cached_run(store: Store, name: str, params: dict):
     return record
 
 
+def figure_records(building: str, store: Store, record: dict) -> dict:
+    """The runs of the figure of ``building`` (Fig. 11 or 12), fixed base and Case C:
+    {support: the record of :func:`figure_run`}."""
+    return {s: cached_run(store, "figure_run", {"scene": building_scene(building, s).data,
+                                                **record})
+            for s in ("fixed", "C")}
+
+
 def spectrum_points(grid: Grid, record: dict) -> list[dict]:
     """One point per family, support and period: the scene table (period replaced)."""
     points = []

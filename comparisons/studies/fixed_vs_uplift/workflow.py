@@ -1,28 +1,32 @@
-"""The study's protocol: compute, run, its definition and its command line."""
+"""The study's protocol: compute (the labelled dataset), write, run, its definition and its
+command line."""
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import asdict, replace
 from pathlib import Path
 
 from .... import checks
 from ....checks import InputError
-from ...framework.protocol import Context, Study, run_study
+from ....provenance import provenance
+from ...framework.protocol import Context, Study, StudyRun, run_study
 from ..speed_vs_error import continuum_status
 from ...framework.store import Store
-from ...framework.study import require_matplotlib
-from .analysis import FixedVsUplift, figure_of, spectrum_of
+from ...framework.study import StudyResult, require_matplotlib, write_study
+from .analysis import figure_ratio, spectrum_ranges, spectrum_supports
+from .dataset import study_dataset
 from .figures import write_figures
 from .grid import BUILDINGS, FAST_GRID, FULL_GRID, Grid, Options, STUDY, check_grid
-from .output import write
-from .runs import elcentro_entry, spectrum_points, spectrum_records
-from .summary import span_text
+from .runs import elcentro_entry, figure_records, spectrum_points, spectrum_records
+from .summary import key_numbers, span_text, summarise
+from .tables import write_tables
 
 
-def compute(scene, ctx: Context) -> FixedVsUplift:
-    """The figures' runs and the spectra (``scene`` must be None: the study's scenes are the
-    paper's buildings); ``ctx.grid`` (default :data:`FAST_GRID` or :data:`FULL_GRID`),
-    ``ctx.options`` (:class:`Options`), ``ctx.workers`` processes of
+def compute(scene, ctx: Context):
+    """The study's :class:`xarray.Dataset` (:func:`.dataset.study_dataset`): the figures' runs
+    and the spectra (``scene`` must be None: the study's scenes are the paper's buildings);
+    ``ctx.grid`` (default :data:`FAST_GRID` or :data:`FULL_GRID`), ``ctx.options``
+    (:class:`Options`, kept as the ``figures`` attribute), ``ctx.workers`` processes of
     :func:`~upliftlab.reduced.run_batch`."""
     if scene is not None:
         raise InputError(f"scene = {scene!r}: this study runs the paper's buildings "
@@ -35,27 +39,40 @@ def compute(scene, ctx: Context) -> FixedVsUplift:
     if ctx.workers is not None:
         checks.integer_at_least("workers", ctx.workers, 1)
     record = elcentro_entry()
-    figs = tuple(figure_of(b, ctx.store, record) for b in grid.figures)
-    points = spectrum_points(grid, record)
-    records = spectrum_records(points, ctx.store, ctx.workers)
-    per = len(grid.supports) * len(grid.periods)
-    spectra = tuple(spectrum_of(f, grid, records[k * per:(k + 1) * per])
-                    for k, f in enumerate(grid.families))
+    figs = {b: figure_records(b, ctx.store, record) for b in grid.figures}
+    records = spectrum_records(spectrum_points(grid, record), ctx.store, ctx.workers)
     _, note = continuum_status()
     note = note.replace("continuum points were not run", "the continuum comparison (stiff "
                         "bonded against unilateral-contact footing) was not run")
-    return FixedVsUplift(None, figs, spectra, grid, note, options)
+    return study_dataset(grid, figs, records, {"fast": ctx.fast, "continuum": note,
+                                               "figures": options.figures})
+
+
+def write(ds, ctx: Context) -> StudyResult:
+    """The tables, the figures (when the ``figures`` attribute is set), the dataset
+    (``fixed_vs_uplift.nc``) and the summary into ``ctx.out``."""
+    out = Path(ctx.out)
+    grid = Grid(periods=tuple(ds.period.values.tolist()),
+                families=tuple(ds.family.values.tolist()), supports=tuple(spectrum_supports(ds)),
+                figures=tuple(ds.building.values.tolist()))
+    prov = provenance(study=STUDY, fast=ctx.fast, grid=asdict(grid), store=str(ctx.store.root))
+    files = write_tables(ds, out)
+    if ds.attrs["figures"]:
+        files += write_figures(ds, out / "figures")
+    return write_study(STUDY, ds, ctx, summarise=summarise, numbers=key_numbers,
+                       provenance=prov, files=files)
 
 
 def run(scene: None = None, fast: bool = False, *, out: str | Path | None = None,
         store: Store | str | Path | None = None, grid: Grid | None = None,
-        figures: bool = True, workers: int | None = None) -> FixedVsUplift:
+        figures: bool = True, workers: int | None = None) -> StudyRun:
     """Run the study (``scene`` must be None: the study's scenes are the paper's buildings).
 
     ``fast`` uses :data:`FAST_GRID` (10 periods, the short-period family) instead of
     :data:`FULL_GRID` (32 periods, both families). ``out``: output directory (default
     ``results/fixed_vs_uplift[-fast]``); ``store``: the results store (default
     ``<out>/store``); ``workers``: processes of :func:`~upliftlab.reduced.run_batch`.
+    Returns the dataset (``.data``) and what was written (``.study``).
     """
     return run_study(DEFINITION, scene, Context(fast=fast, out=out, store=store, grid=grid,
                                                 options=Options(figures=figures),
@@ -67,25 +84,20 @@ def run(scene: None = None, fast: bool = False, *, out: str | Path | None = None
 # ---------------------------------------------------------------------------------------------
 
 
-def _describe(result: FixedVsUplift) -> list[str]:
-    lines = [f"Fig. {f.number}: peak u fixed {f.peak_u['fixed']:.4g} in, uplift (C) "
-             f"{f.peak_u['C']:.4g} in (ratio {f.ratio_u:.3f}); base shear ratio "
-             f"{f.ratio_shear:.3f}" for f in result.figures]
-    for s in result.spectra:
-        r = s.ranges[("C", "shear")]
-        lines.append(f"{s.family}: Case C reduces peak base shear over {span_text(r.reduced)} "
+def _describe(run: StudyRun) -> list[str]:
+    ds = run.data
+    lines = []
+    for building, number in zip(ds.building.values.tolist(), ds.figure.values.tolist()):
+        peak = ds.peak_u.sel(building=building)
+        lines.append(f"Fig. {number}: peak u fixed {float(peak.sel(support='fixed')):.4g} in, "
+                     f"uplift (C) {float(peak.sel(support='C')):.4g} in (ratio "
+                     f"{figure_ratio(ds, building, 'u'):.3f}); base shear ratio "
+                     f"{figure_ratio(ds, building, 'shear'):.3f}")
+    for family in ds.family.values.tolist():
+        r = spectrum_ranges(ds, family)[("C", "shear")]
+        lines.append(f"{family}: Case C reduces peak base shear over {span_text(r.reduced)} "
                      f"(min ratio {r.min_ratio:.3f} at {r.min_period:g} s)")
     return lines
-
-
-def _write(result: FixedVsUplift, ctx: Context):
-    """:func:`.output.write`, then the page-width figures with their captions
-    (:func:`.figures.write_figures`) added to the files."""
-    study = write(result, ctx)
-    if not result.options.figures:
-        return study
-    extra = write_figures(result, Path(ctx.out) / "figures")
-    return replace(study, files=tuple(study.files) + tuple(extra))
 
 
 def _context_from(args, ctx: Context, say) -> Context:
@@ -93,6 +105,6 @@ def _context_from(args, ctx: Context, say) -> Context:
 
 
 DEFINITION = Study(STUDY, "Fixed base against uplift",
-                   "What allowing uplift changes against a fixed base.", Options, compute, _write,
+                   "What allowing uplift changes against a fixed base.", Options, compute, write,
                    describe=_describe, context_from=_context_from,
                    help_fast="10 periods, short-period family")
