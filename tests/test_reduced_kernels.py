@@ -80,8 +80,8 @@ def test_an_edited_law_is_compiled_afresh(tmp_path):
     package: a foundation spring (k = 1000, F0 = 10, so δ0 = 0.01; e = −V) compressed by
     e = 0.002 puts on V the internal force −(k e) = −2 before the edit (the force increment
     over F0), and −(2 k (δ0 + e) − F0) = −14 after the law's spring force is doubled (closed
-    forms, to 1e-12). A control process on the first process's cache folder, as numba alone would use
-    it, still gives the stale −2."""
+    forms, to 1e-12). A control process on the first process's cache folder, as numba alone
+    would use it, still gives the stale −2."""
     copy = tmp_path / "checkout"
     root = Path(__file__).resolve().parents[1]
     ignore = shutil.ignore_patterns("__pycache__", "*.pyc")

@@ -155,3 +155,10 @@ def test_a_law_key_asked_of_the_foundation_says_where_it_is():
     assert not hasattr(foundation, "capacity_multiple")
     with pytest.raises(AttributeError, match=r"has no attribute 'colour'"):
         foundation.colour  # noqa: B018
+
+
+def test_the_qz_records_soil_names_are_the_backbones():
+    # Reference: the reduced law's backbone shapes (reduced/laws/qz/backbone.py), which the
+    # scene's record names without importing the model.
+    from upliftlab.reduced.laws.qz import QZ_SOILS
+    assert scene_laws.QZ_SOIL_NAMES == tuple(QZ_SOILS)

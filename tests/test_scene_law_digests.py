@@ -7,9 +7,9 @@ it had when the foundation held every law's fields.
 
 Reference: digests recorded with the code before the law records, run in a separate process
 from main's checkout at commit c9b5a8b (a flat ``Foundation`` of 27 fields whose table writer
-skipped the fields of the other laws): an independent implementation of the same table. A digest is the SHA-256 of the scene's whole
-table (:attr:`upliftlab.scenes.Scene.digest`): equal digests mean equal tables, key by key and
-value by value.
+skipped the fields of the other laws): an independent implementation of the same table. A
+digest is the SHA-256 of the scene's whole table (:attr:`upliftlab.scenes.Scene.digest`):
+equal digests mean equal tables, key by key and value by value.
 """
 
 import pytest
