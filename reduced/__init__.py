@@ -1,8 +1,9 @@
 """Ewing's compatibility-matrix model of a superstructure on compression-only foundation springs.
 
 Build a model from a scene with :func:`build_model`, integrate it with :func:`run`, and read the
-:class:`Response`. Static analyses live in :mod:`.static`; the spring laws in :mod:`.springs`;
-the compiled integrators in :mod:`.kernels`.
+:class:`Response`. Static analyses live in :mod:`.static`; the foundation laws in :mod:`.laws`
+(one module each, found by name); the spring table in :mod:`.springs`; the compiled integrators
+in :mod:`.kernels`.
 """
 
 #: The reduced model's revision: part of the key of every stored record made with it

@@ -28,10 +28,9 @@ from ..checks import InputError
 from ..scenes import Scene
 from . import springs as sp
 from .compatibility import DofMap, SpringLayout, compatibility_matrix, layout_for, stiffness_matrix
-from .qz import bed_z50, check_z50, common_zref, qz_shape, qz_springs, static_forces
+from .laws import Bed, law_of
 
-__all__ = ["ReducedModel", "build_model", "impact_effective_mass", "impact_step",
-           "bearing_yield_forces", "plastic_static_forces"]
+__all__ = ["ReducedModel", "build_model", "impact_effective_mass", "impact_step"]
 
 
 @dataclass(frozen=True)
@@ -301,83 +300,21 @@ def _story_params(s, masses) -> np.ndarray:
     return table
 
 
-def _static_forces(layout: SpringLayout, weight: float) -> tuple[np.ndarray, float]:
-    """Spring compressions F0 at rest under W (bonded equilibrium), and the static rotation."""
-    return plastic_static_forces(layout, weight, np.full(layout.stiffnesses.size, np.inf))
-
-
-def bearing_yield_forces(layout: SpringLayout, capacity: float) -> np.ndarray:
-    """Yield forces of a bed with a uniform bearing capacity: ``capacity`` (force) shared over
-    the springs' tributary widths, whatever their stiffness (the soil's bearing pressure does
-    not grow where a bed is stiffened)."""
-    return capacity * layout.widths / layout.widths.sum()
-
-
-def plastic_static_forces(layout: SpringLayout, weight: float,
-                          yield_forces: np.ndarray) -> tuple[np.ndarray, float]:
-    """Spring compressions F0 at rest under W with each capped at its yield force, and the static
-    rotation: the springs stiffer than the load's share reach their cap while the weight is
-    applied and carry it there, the others share the rest elastically. Piecewise linear in
-    (θ, V), solved by adding the springs beyond their cap to the capped set (and taking back
-    any that would unload) until the set holds."""
-    k, x, fy = layout.stiffnesses, layout.positions, np.asarray(yield_forces, dtype=float)
-    capped = np.zeros(k.size, dtype=bool)
-    for _ in range(k.size + 1):
-        ke, fc = np.where(capped, 0.0, k), np.where(capped, fy, 0.0)
-        Kb = np.array([[np.sum(ke * x * x), -np.sum(ke * x)], [-np.sum(ke * x), np.sum(ke)]])
-        if abs(np.linalg.det(Kb)) <= 1e-12 * max(np.sum(k * x * x) * np.sum(k), 1e-300):
-            break
-        # generalised forces on (θ, V) from compression F_i = k_i (x_i θ − V): −A F; gravity −W
-        # on V; a capped spring's F_i = Fy_i moves to the right-hand side
-        theta, v = np.linalg.solve(Kb, [-np.sum(fc * x), -(weight - np.sum(fc))])
-        trial = k * (x * theta - v)
-        now = np.where(capped, trial >= fy * (1.0 - 1e-12), trial > fy)
-        if (now == capped).all():
-            forces = np.where(capped, fy, trial)
-            bad = np.flatnonzero(forces <= 0.0)
-            if bad.size:
-                i = bad[0]
-                raise InputError(f"foundation spring {i} at x = {x[i]:g} would be in tension at "
-                                 f"rest (F0 = {forces[i]:g}): the layout cannot carry the weight "
-                                 "in compression")
-            return forces, float(theta)
-        capped = now
-    raise InputError(f"foundation: the springs' yield forces (sum {fy.sum():g}) cannot carry the "
-                     f"weight {weight:g} at rest with the springs below them sharing the rest; "
-                     "valid: a bed whose springs below their cap can balance the load")
-
-
 def _foundation_params(f, layout: SpringLayout, weight, rotary_mass, vertical_mass):
-    """Foundation springs: k_i, F0_i from static equilibrium, dashpots, yield, impact damper."""
+    """Foundation springs: k_i, dashpots and positions; F0_i, yield and the rest from the
+    foundation's law (:mod:`.laws`); the impact damper. Returns (table, static rotation)."""
     k, x = layout.stiffnesses, layout.positions
-    bearing = f.law == "elastoplastic" and (math.isfinite(f.capacity_multiple)
-                                            or f.yield_forces is not None)
-    if bearing:
-        if f.yield_forces is not None:  # one per spring; a custom layout's follow its positions
-            fy = np.asarray(f.yield_forces, dtype=float)
-            fy = fy[np.argsort(f.positions, kind="stable")] if f.layout == "custom" else fy
-        else:
-            fy = bearing_yield_forces(layout, f.capacity_multiple * weight)
-        F0, theta_s = plastic_static_forces(layout, weight, fy)
-    else:
-        F0, theta_s = _static_forces(layout, weight)
+    order = np.argsort(f.positions, kind="stable") if f.layout == "custom" else None
+    bed = Bed(layout=layout, weight=weight, support=f.support, order=order)
     table = sp.spring_table(layout.count)
-    table["kind"] = sp.UPLIFT if f.support == "uplift" else sp.BONDED
     table["k"] = k
     if f.dashpots is not None:  # one per spring; a custom layout's follow its positions
-        c = np.asarray(f.dashpots, dtype=float)
-        table["c"] = c[np.argsort(f.positions, kind="stable")] if f.layout == "custom" else c
+        table["c"] = bed.in_layout_order(f.dashpots)
     else:
         table["c"] = (f.damping_ratio * 2.0 * math.sqrt(f.stiffness * vertical_mass) * k
                       / layout.vertical_stiffness)
-    table["f0"] = F0
-    if bearing:
-        table["fy"] = fy
-    else:
-        table["fy"] = f.yield_multiple * F0 if f.law == "elastoplastic" else np.inf
     table["x"] = x
-    if f.law == "qz":
-        table = _qz_params(f, layout, table, weight)
+    table, theta_s = law_of(f.law).springs(f.law, bed, table)
     if f.restitution < 1.0 and f.support == "uplift":
         meff = impact_effective_mass(x, rotary_mass, vertical_mass)
         if f.impact_mass == "tributary":
@@ -387,23 +324,6 @@ def _foundation_params(f, layout: SpringLayout, weight, rotary_mass, vertical_ma
         table["dzf"] = meff * (1.0 - f.restitution) / cstar
         table["imph"] = impact_step(meff, table["c"] + cstar, k)
     return table, theta_s
-
-
-def _qz_params(f, layout: SpringLayout, table: np.ndarray, weight: float) -> np.ndarray:
-    """The q–z bed: capacity ``capacity_multiple``·W shared over the tributary widths, one
-    near-field z_ref that puts the bed's backbone through (z50, capacity/2) (or ``qz_zref``
-    given, and the bed's z50 from it for the drag), static forces on
-    the nonlinear backbones (:func:`.qz.static_forces`) and the drag."""
-    shape = qz_shape(f.qz_soil, f.qz_exponent, f.qz_elastic_range)
-    k, w = layout.stiffnesses, layout.widths
-    qult = f.capacity_multiple * weight * w / w.sum()
-    if f.qz_zref is not None:
-        zref, z50 = f.qz_zref, bed_z50(k, qult, f.qz_zref, shape)
-    else:
-        check_z50(k, qult, f.z50, shape.elast)
-        zref, z50 = common_zref(k, qult, f.z50, shape), f.z50
-    table["f0"] = static_forces(k, layout.positions, qult, zref, weight, shape)
-    return qz_springs(table, qult, zref, f.suction, 0.5 * z50, shape)
 
 
 RK4_REAL_LIMIT = 2.785293563405282  # |R(z)| = 1 on the negative real axis

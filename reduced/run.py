@@ -18,9 +18,9 @@ from ..time_schemes import hht
 from . import kernels as kn
 from .cost import check_run_cost
 from .integrators import METHODS, StepPlan, method, time_step
+from .laws import curved_kinds, initial_history
 from .model import ReducedModel, build_model
 from .peak_slots import decode_peaks, start_peaks
-from .qz import initial_history
 from .response import Response, ground_displacement
 from .static import initial_state
 
@@ -148,9 +148,10 @@ def plan_run(model: ReducedModel, motion: Motion, name: str, *, dt: float | None
                          "exact kinematics has a mass matrix that changes with θ, integrated by "
                          "the explicit integrators; valid: "
                          + ", ".join(repr(k) for k, v in METHODS.items() if v.explicit))
-    if m.kind == "events" and np.any(model.params["kind"] == kn.QZ):
-        raise InputError(f"analysis.integrator = {name!r} with foundation.law = 'qz': the event "
-                         "stepper tabulates piecewise-affine laws and the q–z spring is curved; "
+    if m.kind == "events" and np.any(np.isin(model.params["kind"], curved_kinds())):
+        law = model.scene.foundation.law
+        raise InputError(f"analysis.integrator = {name!r} with foundation.law = {law.name!r}: "
+                         f"the event stepper tabulates piecewise-affine laws and {law.curved}; "
                          "valid: " + ", ".join(repr(k) for k in METHODS if k != "events"))
     duration = a.duration or motion.duration
     motion = motion.extended(duration)

@@ -21,8 +21,8 @@ from scipy.optimize import brentq
 from ..checks import InputError
 from . import kernels as kn
 from . import springs as sp
+from .laws import initial_history
 from .model import ReducedModel
-from .qz import initial_history
 
 __all__ = ["Pushover", "rocking_pushover", "uplift_onset_force", "initial_state",
            "contact_length", "contact_lengths", "foundation_moment"]
@@ -37,7 +37,7 @@ def _forces(model: ReducedModel, q: np.ndarray, hist: np.ndarray):
     kn.internal_force(q, np.zeros(n), model.params, model.geometric, hist, e, ed, fint, kt, ct,
                       modes, np.zeros(ns), np.zeros(ns))
     P = model.params
-    law = [kn.qz_force(P[j], hist[j], e[j], 0.0)[0] if P["kind"][j] == kn.QZ else
+    law = [kn.trial_force(P[j], hist[j], e[j], 0.0)[0] if kn.from_history(P[j]) else
            kn.force_in_mode(m, P[j], e[j], 0.0, hist[j]["ep"], 0.0)[0]
            for j, m in enumerate(modes)]
     total = np.array(law) + np.where(P["kind"] == sp.STORY, 0.0, P["f0"])

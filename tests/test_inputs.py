@@ -32,6 +32,10 @@ BAD_FIELDS = [
     ("foundation.springs=1", "foundation.springs = 1: must be an integer >= 2"),
     ("foundation.springs=2.5", "foundation.springs = 2.5: expected an integer >= 2"),
     ("foundation.law='plastic'", "foundation.law = 'plastic': must be one of"),
+    ("foundation.z50=0.5", "foundation.z50 is read only with foundation.law = 'qz' (law is "
+                           "'elastoplastic'); remove it or set the law"),
+    ("foundation.yield_forces=[1.0, 2.0]", "foundation.yield_multiple with "
+                                           "foundation.yield_forces: each sets the"),
     ("foundation.colour='red'", "foundation.colour: unknown key"),
     ("units='furlong-stone-fortnight'", "units = 'furlong-stone-fortnight': must be one of"),
     ("analysis.integrator='euler'", "analysis.integrator = 'euler': must be one of"),

@@ -12,7 +12,7 @@ from upliftlab.checks import InputError
 from upliftlab.comparisons.studies.winkler_vs_continuum.qz_calibration import (
     calibrate_qz, elastic_range_from_unloading, qz_stiffnesses, spring_capacities,
     suction_from_cyclic, z50_from_pushover)
-from upliftlab.reduced.qz import QZ_SOILS, common_zref, z50_lower_bound, zref_from_z50
+from upliftlab.reduced.laws.qz import QZ_SOILS, common_zref, z50_lower_bound, zref_from_z50
 
 
 def test_capacities_follow_the_tributary_widths():

@@ -317,7 +317,8 @@ def test_compiled_kernels_are_cached_outside_the_installed_package(tmp_path):
     """The README's first command (a non-editable install) ran the kernels, numba cached them
     in site-packages/upliftlab, ``pip uninstall`` left that folder, and the README's test
     command then imported it as an empty namespace package. The cache now goes to
-    $XDG_CACHE_HOME/upliftlab/numba/<digest of the kernels' sources>, also when numba was
+    $XDG_CACHE_HOME/upliftlab/numba/<digest of the kernels' sources: reduced/kernels/ and the
+    reduced laws' compiled forms in reduced/laws/, which the kernels inline>, also when numba was
     imported first. The digest also covers the continuum's compiled kernels, whose
     Mohr–Coulomb point return (materials/compiled_mc.py) is compiled into the element loop of
     dynamics/kernels.py. Reference: hashlib over (name, bytes) of those files."""
@@ -330,6 +331,8 @@ def test_compiled_kernels_are_cached_outside_the_installed_package(tmp_path):
     root = Path(__file__).resolve().parents[1]
     kernels = [(f"upliftlab.reduced/kernels/{p.name}", p)
                for p in sorted((root / "reduced" / "kernels").glob("*.py"))]
+    kernels += [(f"upliftlab.reduced/laws/{p.relative_to(root / 'reduced' / 'laws').as_posix()}",
+                 p) for p in sorted((root / "reduced" / "laws").rglob("*.py"))]
     kernels += [("upliftlab.continuum/dynamics/kernels.py",
                  root / "continuum" / "dynamics" / "kernels.py"),
                 ("upliftlab.continuum/materials/compiled_mc.py",

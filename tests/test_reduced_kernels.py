@@ -73,14 +73,15 @@ def _force_in(copy: Path, env: dict) -> tuple[float, str, str]:
 
 def test_an_edited_law_is_compiled_afresh(tmp_path):
     """numba caches a compiled function keyed on its own file only, so the implicit
-    integrators' ``internal_force`` (in ``implicit.py``) cached with a spring law (in
-    ``laws.py``) would outlive an edit to the law. The cache folder is keyed on a digest of the
-    kernels' sources, so the edit is seen. Two processes on a copy of the package: a foundation
-    spring (k = 1000, F0 = 10, so δ0 = 0.01; e = −V) compressed by e = 0.002 puts on V the
-    internal force −(k e) = −2 before the edit (the force increment over F0), and
-    −(2 k (δ0 + e) − F0) = −14 after the law's spring force is doubled (closed forms, to
-    1e-12). A control process on the first process's cache folder, as numba alone would use
-    it, still gives the stale −2."""
+    integrators' ``internal_force`` (in ``kernels/implicit.py``) cached with a foundation law
+    (in its module, ``laws/elastoplastic.py``) would outlive an edit to the law. The cache
+    folder is keyed on a digest of the kernels' and the laws' sources
+    (``upliftlab.KERNEL_SOURCES``), so the edit is seen. Two processes on a copy of the
+    package: a foundation spring (k = 1000, F0 = 10, so δ0 = 0.01; e = −V) compressed by
+    e = 0.002 puts on V the internal force −(k e) = −2 before the edit (the force increment
+    over F0), and −(2 k (δ0 + e) − F0) = −14 after the law's spring force is doubled (closed
+    forms, to 1e-12). A control process on the first process's cache folder, as numba alone
+    would use it, still gives the stale −2."""
     copy = tmp_path / "checkout"
     root = Path(__file__).resolve().parents[1]
     ignore = shutil.ignore_patterns("__pycache__", "*.pyc")
@@ -95,7 +96,7 @@ def test_an_edited_law_is_compiled_afresh(tmp_path):
     assert before == pytest.approx(-1000.0 * 0.002, rel=1e-12)
     assert any(Path(folder_before).rglob("*.nbi"))  # the compiled kernels were cached
 
-    laws = copy / "upliftlab" / "reduced" / "kernels" / "laws.py"
+    laws = copy / "upliftlab" / "reduced" / "laws" / "elastoplastic.py"
     text = laws.read_text()
     old = "        fs = p.k * (p.d0 + e - ep)\n"
     assert text.count(old) == 1

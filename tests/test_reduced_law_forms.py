@@ -1,4 +1,5 @@
-"""Every form of each spring law agrees with the others (reduced/kernels/laws.py).
+"""Every form of each spring law agrees with the others (reduced/kernels/laws.py, which
+dispatches a foundation spring to its law's forms: reduced/laws/elastoplastic.py).
 
 A spring law is written in several forms, each for one integrator: the direct force in a mode
 (``force_in_mode``), the affine coefficients the event stepper tabulates (``law``), the tangent
@@ -9,8 +10,8 @@ foundation; elastic and elasto-plastic; with and without the impact dashpot) in 
 histories and states are driven through all of them, compiled.
 
 Reference: the direct form, ``force_in_mode``, a line-by-line statement of Ewing's laws
-(documented in :mod:`upliftlab.reduced.springs`); the other forms must reproduce it to 1e-12 of
-the size of the terms they sum (they sum the same terms in another order).
+(documented in :mod:`upliftlab.reduced.laws.elastoplastic`); the other forms must reproduce it
+to 1e-12 of the size of the terms they sum (they sum the same terms in another order).
 """
 
 import numpy as np

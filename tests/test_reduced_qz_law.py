@@ -1,4 +1,4 @@
-"""The hysteretic q–z spring at one point (reduced/kernels/qz_law.py), before any assembly:
+"""The hysteretic q–z spring at one point (reduced/laws/qz/compiled.py), before any assembly:
 monotonic loading against the closed-form backbone, unloading, uplift, recontact, cycles, the
 dissipation against the loop area and the tangent against a finite difference.
 

@@ -8,15 +8,13 @@ stepper (exact switch location); the run's own energy balance, checked against t
 tolerance (analysis.energy_tolerance, default 1e-3 of the input).
 """
 
-import math
-
 import numpy as np
 import pytest
 
 from upliftlab.checks import InputError
 from upliftlab.reduced import build_model, run
 from upliftlab.reduced.kernels import QZ
-from upliftlab.scenes import scene_from_dict
+from upliftlab.scenes import ElasticLaw, QzLaw, scene_from_dict
 
 ENERGY_TOL = 1e-3  # the project's default analysis.energy_tolerance
 
@@ -165,13 +163,21 @@ def test_an_end_stiffened_bed_carries_half_its_capacity_at_z50():
 
 
 def test_a_qz_scene_replaced_keeps_its_qz_fields_and_checks():
+    # Reference: the fields given, and the scene read from the table the change writes.
     scene = _scene(0.6).replace("foundation", z50=0.3)
-    assert (scene.foundation.law, scene.foundation.z50) == ("qz", 0.3)
-    assert scene.foundation.capacity_multiple == 3.0
+    assert (scene.foundation.law.name, scene.foundation.law.z50) == ("qz", 0.3)
+    assert scene.foundation.law.capacity_multiple == 3.0
+    assert scene.overrides[-1] == "foundation.z50=0.3"
     with pytest.raises(InputError, match="foundation.z50 = 0.01"):
         build_model(scene.replace("foundation", z50=0.01))
-    # back to an elastic bed: the q–z fields return to their defaults (they apply to qz only)
-    elastic = scene.replace("foundation", law="elastic", capacity_multiple=math.inf, z50=0.0)
-    assert elastic.foundation.law == "elastic"
-    with pytest.raises(InputError, match="does not apply to this scene"):
-        scene.replace("foundation", law="elastic")
+    # another law by name: a record of that law, none of the q–z fields left behind
+    elastic = scene.replace("foundation", law="elastic")
+    assert elastic.foundation.law == ElasticLaw()
+    assert not set(QzLaw.keys()) - {"yield_multiple"} & set(elastic.table["foundation"])
+    with pytest.raises(InputError, match=r"foundation.z50: not a field of Foundation or of its "
+                                         r"law ElasticLaw"):
+        scene.replace("foundation", law="elastic", z50=0.2)
+    again = elastic.replace("foundation", law="qz", capacity_multiple=3.0, z50=0.3)
+    assert again.digest == scene.digest
+    with pytest.raises(InputError, match="capacity_multiple"):
+        elastic.replace("foundation", law="qz", z50=0.3)

@@ -442,10 +442,10 @@ def test_default_continuum_folder_without_options_is_the_plain_name(tmp_path, mo
                                                             "foundation.capacity_multiple=3",
                                                             "foundation.z50=0.2"))])
 def test_a_yield_multiple_override_without_an_elastoplastic_law_is_refused(case, extra):
-    # Reference: the spring laws (reduced/kernels/laws.py, qz_law.py): only the elasto-plastic
-    # spring reads the yield multiple; an override elsewhere would change nothing.
+    # Reference: the spring laws (reduced/laws/elastoplastic.py, reduced/laws/qz/): only the
+    # elasto-plastic spring reads the yield multiple; an override elsewhere would change nothing.
     with pytest.raises(InputError, match=r"has no effect: the yield multiple acts only with "):
         load_scene("short_period_free", case=case,
                    overrides=[*extra, "foundation.yield_multiple=5"])
     assert load_scene("short_period_free", case="C",
-                      overrides=["foundation.yield_multiple=5"]).foundation.yield_multiple == 5
+                      overrides=["foundation.yield_multiple=5"]).foundation.law.yield_multiple == 5

@@ -11,9 +11,10 @@ before the command line has set its thread counts (:mod:`upliftlab.cli`).
 from .version import __version__
 
 
-#: The compiled kernels' sources (as :func:`upliftlab.provenance.package_files` names them): the
-#: numba cache folder is keyed by their digest.
-KERNEL_SOURCES = ("upliftlab.reduced/kernels/", "upliftlab.continuum/dynamics/kernels.py",
+#: The compiled kernels' sources (as :func:`upliftlab.provenance.package_files` names them), the
+#: reduced laws' compiled forms among them: the numba cache folder is keyed by their digest.
+KERNEL_SOURCES = ("upliftlab.reduced/kernels/", "upliftlab.reduced/laws/",
+                  "upliftlab.continuum/dynamics/kernels.py",
                   "upliftlab.continuum/materials/compiled_mc.py")
 
 

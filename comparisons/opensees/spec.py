@@ -131,15 +131,14 @@ def check_representable(scene: Scene) -> None:
         raise InputError(
             "foundation.dashpots: the OpenSees script sizes every dashpot from "
             "foundation.damping_ratio (c_i proportional to k_i); remove foundation.dashpots")
-    if f.law == "qz":
+    if f.law.name == "qz":
         raise InputError(
             "foundation.law = 'qz': the bridge writes the elastic and elasto-plastic springs; "
             "upliftlab's q–z spring differs from OpenSees QzSimple2 (rigid closure and near "
             "field, calibrated far field), so it is not written; valid: 'elastic', "
             "'elastoplastic'")
-    if f.law == "elastoplastic" and (math.isfinite(f.capacity_multiple)
-                                     or f.yield_forces is not None):
-        key = "yield_forces" if f.yield_forces is not None else "capacity_multiple"
+    if f.law.name == "elastoplastic" and f.law.yield_multiple is None:
+        key = "yield_forces" if f.law.yield_forces is not None else "capacity_multiple"
         raise InputError(
             f"foundation.{key}: the OpenSees script yields each spring at yield_multiple x F0, "
             "its elastic static force; a bed whose springs yield at other forces (some at rest) "
@@ -201,7 +200,8 @@ def opensees_spec(scene: Scene, *, dt: float | None = None,
     return OpenSeesSpec(
         scene_name=scene.name, title=scene.title, case=scene.case,
         overrides=tuple(scene.overrides), units=u.name, length=u.length, force=u.force,
-        g=scene.g, support=scene.foundation.support, law=scene.foundation.law, rigid=s.rigid,
+        g=scene.g, support=scene.foundation.support, law=scene.foundation.law.name,
+        rigid=s.rigid,
         p_delta=s.p_delta, vertical_weight=s.vertical_weight, rotary_inertia=s.rotary_inertia,
         springs=springs, stories=stories, dashpots=dashpots,
         damping_ratio=scene.foundation.damping_ratio, dt=step, duration=duration,

@@ -4,10 +4,11 @@ Every parameter is passed as an argument; nothing is global. Each integrator is 
 function compiled by numba, and its ``.py_func`` is the interpreted reference implementation.
 The package is split by what a reader looks for:
 
-- :mod:`.codes` the spring record and history, modes, status codes, slots of the frame, peaks,
-  counters and law tables;
-- :mod:`.laws` every form of each spring law, side by side; :mod:`.qz_law` the hysteretic
-  q–z spring;
+- :mod:`.codes` status codes, slots of the frame, peaks, counters and law tables (and, from
+  :mod:`upliftlab.reduced.laws`, the spring record and history, kinds and modes);
+- :mod:`.laws` every compiled form of the spring laws, dispatched on a spring's kind to the
+  story spring's forms here or to the foundation law's, each beside its law in
+  :mod:`upliftlab.reduced.laws`;
 - :mod:`.motion` the equation of motion, :mod:`.rocking` exact rocking kinematics and toppling;
 - :mod:`.tables` the laws tabulated by mode (event stepper), :mod:`.stages` Runge–Kutta stages;
 - :mod:`.interpolants`, :mod:`.crossing`, :mod:`.switches` switch location;
@@ -17,7 +18,8 @@ The package is split by what a reader looks for:
 
 numba keys a cached function on its own source file only, so an edit to a law would leave the
 integrators compiled from it stale in the cache; :mod:`upliftlab` keys the cache folder on a
-digest of this package's sources instead (:func:`upliftlab._numba_cache_outside_the_package`).
+digest of this package's and the laws' sources instead
+(:func:`upliftlab._numba_cache_outside_the_package`).
 """
 
 from .codes import (BONDED, CHATTER, CLIPPED, CONTACT, ELASTIC, E_IMPACT, E_INPUT, E_PLASTIC,
@@ -31,10 +33,10 @@ from .codes import (BONDED, CHATTER, CLIPPED, CONTACT, ELASTIC, E_IMPACT, E_INPU
                     T_COND, T_F, T_FY, T_GAP, T_I, T_K, T_KC, T_P, T_V, UPLIFT, YIELDING,
                     YIELD_NEG, YIELD_POS)
 from .laws import (commit_all, commit_step, condition, current_plastic, force_in_mode,
-                   initial_modes, law, natural_mode, past_limit, spring_state, switch_mode,
-                   tangent, trial_mode, validity)
-from .qz_law import (qz_backbone, qz_commit, qz_force, qz_mode, qz_spring_state, qz_start,
-                     qz_trial)
+                   from_history, initial_modes, law, natural_mode, past_limit, spring_state,
+                   switch_mode, tangent, trial_force, trial_mode, validity)
+from ..laws.qz.compiled import (qz_backbone, qz_commit, qz_force, qz_mode, qz_spring_state,
+                                qz_start, qz_trial)
 from .motion import (accelerations, deformation, deformations, geometric_or_nothing,
                      ground_acceleration, rates)
 from .rocking import (exact_dynamics, exact_energy, finish_accelerations, overturn_ratio, pivot,
@@ -72,8 +74,9 @@ __all__ = ["BONDED", "CHATTER", "CLIPPED", "CONTACT", "ELASTIC", "E_IMPACT", "E_
            "STEP_UNDERFLOW", "STORY", "SWITCH_TOL", "T_A0", "T_A1", "T_C", "T_COND", "T_F", "T_FY",
            "T_GAP", "T_I", "T_K", "T_KC", "T_P", "T_V", "UPLIFT", "YIELDING", "YIELD_NEG",
            "YIELD_POS", "commit_all", "commit_step", "condition", "current_plastic",
-           "force_in_mode", "initial_modes", "law", "natural_mode", "past_limit", "spring_state",
-           "switch_mode", "tangent", "trial_mode", "validity", "qz_backbone", "qz_commit", "qz_force",
+           "force_in_mode", "from_history", "initial_modes", "law", "natural_mode", "past_limit",
+           "spring_state", "switch_mode", "tangent", "trial_force", "trial_mode", "validity",
+           "qz_backbone", "qz_commit", "qz_force",
            "qz_mode", "qz_spring_state", "qz_start", "qz_trial", "accelerations", "deformation",
            "deformations",
            "geometric_or_nothing", "ground_acceleration", "rates", "exact_dynamics",

@@ -1,11 +1,10 @@
-"""Records and codes of the compiled kernels: the spring record and its history, the modes,
-status codes, and the slots of the frame, the peaks, the counters and the law tables.
+"""Codes of the compiled kernels: the slots of the frame, the peaks, the counters and the law
+tables, status codes; and, from :mod:`upliftlab.reduced.laws`, the spring record and its
+history, the spring kinds and the modes.
 
 Spring parameters are a structured array (:data:`SPRING_DTYPE`), one record per spring, and the
-spring history another (:data:`HISTORY_DTYPE`). Records keep the laws readable (``p.k``,
-``h.ep``) and fast: unlike array rows they carry no reference count. Each spring carries its
-column of A in its record (``nnz`` entries ``a0…a2`` at DOFs ``i0…i2``): every spring touches
-two or three DOFs, so e = Aᵀq and the nodal forces A s are gathered and scattered per spring.
+spring history another (:data:`HISTORY_DTYPE`); their fields are described in
+:mod:`upliftlab.reduced.laws.spring` (and each law's own in its module).
 
 Status codes: ``OK``; ``CHATTER`` too many switches in one step; ``NONFINITE`` a non-finite
 state; ``NO_CONVERGENCE`` Newton did not converge; ``OVERTURNED`` past the toppling angle (the
@@ -14,69 +13,11 @@ run ends there, a result); ``STEP_UNDERFLOW`` the error control cut the step to 
 
 from __future__ import annotations
 
-import numpy as np
-
-
-try:  # numba's own switch for helpers that never allocate (numba.core.options.DefaultOptions)
-    from numba.core.options import DefaultOptions as _DefaultOptions
-    HOT = {"_nrt": False} if hasattr(_DefaultOptions, "_nrt") else {}
-except ImportError:  # pragma: no cover
-    HOT = {}
-
-
-SPRING_DTYPE = np.dtype([
-    ("kind", np.int64),   # STORY, UPLIFT or BONDED
-    ("nnz", np.int64),    # how many DOFs the spring connects (its column of A): 2 or 3
-    ("i0", np.int64), ("i1", np.int64), ("i2", np.int64),          # their indices in q
-    ("a0", np.float64), ("a1", np.float64), ("a2", np.float64),    # and the entries of A
-    ("k", np.float64),    # stiffness (story: its elastic-plastic part) (force/length)
-    ("c", np.float64),    # parallel dashpot (force·s/length)
-    ("cimp", np.float64),  # impact dashpot c* (force·s/length)
-    ("f0", np.float64),   # static compression F0 (force)
-    ("fy", np.float64),   # yield force (force; inf = elastic)
-    ("kh", np.float64),   # parallel hardening stiffness of a story (force/length)
-    ("dzf", np.float64),  # impact stroke per unit closing velocity, m_eff (1 − ε)/c* (s)
-    ("x", np.float64),    # position under the base (length)
-    ("imph", np.float64),  # largest stable RK4 step while the impact dashpot acts (s)
-    ("d0", np.float64),   # derived: δ0 = F0/k (length)
-    ("dy", np.float64),   # derived: Fy/k (length)
-    ("gs", np.float64),   # derived: 1/F0 (story: 1/Fy; 0 if elastic) (1/force)
-    ("gd", np.float64),   # derived: 1/δ0 (1/length)
-    ("share", np.float64),  # derived: c*/(c + c*), the impact dashpot's share
-    ("arm", np.float64),  # story: its height above the story below, the lever of its shear
-    # q–z springs (kind QZ, :mod:`.qz_law`); zero for the other kinds
-    ("qult", np.float64),  # bearing capacity of the spring q_ult (force)
-    ("zref", np.float64),  # near-field reference displacement of the hyperbola (length)
-    ("npow", np.float64),  # exponent n of the near-field hyperbola (> 1)
-    ("elast", np.float64),  # initial half-width of the near-field elastic range / q_ult
-    ("emax", np.float64),  # largest width of the near-field elastic range / q_ult
-    ("qd", np.float64),    # drag (suction) capacity of the gap, suction · q_ult (force)
-    ("zd", np.float64),    # drag reference displacement z50/2 (length)
-    ("zs", np.float64),    # total compression of the spring at static equilibrium (length)
-], align=True)
-
-HISTORY_DTYPE = np.dtype([
-    ("ep", np.float64),   # plastic deformation: settlement, or plastic story drift (length)
-    ("imp", np.float64),  # 1 while the impact dashpot acts, else 0
-    ("e0", np.float64),   # deformation at the last recontact (length)
-    ("dz", np.float64),   # impact stroke Δz of the last recontact (length)
-    # q–z springs (:mod:`.qz_law`): the committed state of the series chain
-    ("zc", np.float64),   # total compression z (length)
-    ("qc", np.float64),   # force Q (force)
-    ("zp", np.float64),   # near-field plastic displacement (length)
-    ("qr", np.float64),   # near-field elastic range: upper end (force)
-    ("ql", np.float64),   # near-field elastic range: lower end (force)
-    ("zin", np.float64),  # near-field plastic displacement at the range's ends (length)
-    ("wel", np.float64),  # near-field elastic range width (force)
-    ("zg", np.float64),   # gap displacement, 0 closed, < 0 open (length)
-    ("qg", np.float64),   # drag force (force)
-    ("qa", np.float64),   # drag branch anchor: force (force)
-    ("za", np.float64),   # drag branch anchor: gap displacement (length)
-], align=True)
-
-STORY, UPLIFT, BONDED, QZ = 0, 1, 2, 3  # QZ: hysteretic q–z spring (:mod:`.qz_law`)
-SEPARATED, CONTACT, YIELDING, CLIPPED = 0, 1, 2, 3  # foundation modes
-ELASTIC, YIELD_POS, YIELD_NEG = 0, 1, 2  # story modes
+from ..laws import HISTORY_DTYPE, SPRING_DTYPE  # noqa: F401
+from ..laws.elastoplastic import BONDED, UPLIFT  # noqa: F401
+from ..laws.qz.compiled import QZ  # noqa: F401
+from ..laws.spring import (CLIPPED, CONTACT, ELASTIC, HOT, SEPARATED, STORY,  # noqa: F401
+                           YIELD_NEG, YIELD_POS, YIELDING)
 
 # energy accumulators and output columns
 E_INPUT, E_VISCOUS, E_IMPACT, E_PLASTIC = range(4)

@@ -9,15 +9,14 @@ import numpy as np
 from numba import njit
 
 from .codes import (E_IMPACT, E_INPUT, E_PLASTIC, E_VISCOUS, NONFINITE, NO_CONVERGENCE, N_ACC, OK,
-                    OVERTURNED, QZ)
+                    OVERTURNED)
 from .energy import check_energy, start_energy, static_strain_energy
 from .fixed_step import end_fixed_step
 from .interpolants import finite
-from .laws import commit_all, force_in_mode, natural_mode, tangent
+from .laws import commit_all, force_in_mode, from_history, natural_mode, tangent, trial_force
 from .motion import deformations, ground_acceleration
 from .outputs import record
 from .peaks import after_fixed_step, track_peaks
-from .qz_law import qz_force
 
 
 @njit(cache=True)
@@ -38,8 +37,8 @@ def internal_force(q, qd, P, KG, H, e, ed, fint, kt, ct, modes, fd, fimp):
     for j in range(e.size):
         p = P[j]
         h = H[j]
-        if p.kind == QZ:
-            f, v, fd[j], kt[j], ct[j], modes[j] = qz_force(p, h, e[j], ed[j])
+        if from_history(p):
+            f, v, fd[j], kt[j], ct[j], modes[j] = trial_force(p, h, e[j], ed[j])
             fimp[j] = 0.0
             pv += v
         else:

@@ -1,30 +1,32 @@
-"""The spring laws, every form of each side by side: the direct force in a mode
-(:func:`force_in_mode`), the trial mode of a state (:func:`natural_mode`), the conditions that
-bound a mode (:func:`condition`, least of them :func:`validity`, crossed :func:`past_limit`),
-the switch at a located crossing (:func:`switch_mode`), the end-of-step return map of the
-fixed-step integrators (:func:`commit_step`), the tangent of the implicit integrators
-(:func:`tangent`), the affine coefficients the event stepper tabulates (:func:`law`), and the
-state read back for output (:func:`current_plastic`, :func:`spring_state`).
+"""Every compiled form of the spring laws, dispatched on a spring's kind: the direct force in a
+mode (:func:`force_in_mode`), the trial mode of a state (:func:`natural_mode`), the conditions
+that bound a mode (:func:`condition`, least of them :func:`validity`, crossed
+:func:`past_limit`), the switch at a located crossing (:func:`switch_mode`), the end-of-step
+return map of the fixed-step integrators (:func:`commit_step`), the tangent of the implicit
+integrators (:func:`tangent`), the affine coefficients the event stepper tabulates (:func:`law`),
+the state read back for output (:func:`current_plastic`, :func:`spring_state`), and the trial
+force of a law whose state is its history (:func:`from_history`, :func:`trial_force`).
 
-Two families, chosen by ``p.kind``: a story spring (elastic–perfectly plastic with parallel
-hardening ``kh`` and a dashpot; modes ELASTIC, YIELD_POS, YIELD_NEG) and a foundation spring
-(compression-only UPLIFT or BONDED, static compression F0, yield force Fy, viscous dashpot and
-Ewing's impact dashpot; modes SEPARATED, CONTACT, YIELDING, CLIPPED). A third, the hysteretic
-q–z spring (``QZ``, :mod:`.qz_law`), keeps its whole state in its history: the forms that take
-the history (:func:`commit_step`, :func:`spring_state`, :func:`trial_mode`) dispatch to it, and
-the integrators that accept it call its force and tangent directly; the event stepper refuses
-it. :mod:`..springs` documents
-the laws and exports them; ``tests/test_reduced_law_forms.py`` drives random states through every
-form and checks that they agree.
+The story spring (and the sway spring) is the kernels' own: elastic–perfectly plastic
+``k(e − ep)`` capped at ±Fy, plus a parallel elastic ``kh·e`` (bilinear kinematic hardening)
+and a dashpot ``c``; modes ELASTIC, YIELD_POS, YIELD_NEG. A foundation spring takes the forms
+of its law, each written beside the law (:mod:`upliftlab.reduced.laws`): the elasto-plastic
+springs (kinds UPLIFT and BONDED, also the elastic law's) in
+:mod:`~upliftlab.reduced.laws.elastoplastic`, the hysteretic q–z spring (kind QZ), which keeps
+its whole state in its history, in :mod:`~upliftlab.reduced.laws.qz.compiled`: the forms that
+take the history dispatch to it, the fixed-step and implicit integrators take its
+:func:`trial_force`, and the event stepper refuses it. A law with compiled forms of its own
+adds its kind here. ``tests/test_reduced_law_forms.py`` drives random states through every form
+and checks that they agree.
 """
 
 from __future__ import annotations
 
 from numba import njit
 
-from .codes import (BONDED, CLIPPED, CONTACT, ELASTIC, HOT, N_CONDITIONS, QZ, ROUNDING, SEPARATED,
-                    STORY, SWITCH_TOL, UPLIFT, YIELDING, YIELD_NEG, YIELD_POS)
-from .qz_law import qz_commit, qz_mode, qz_spring_state
+from ..laws import elastoplastic
+from ..laws.qz.compiled import QZ, qz_commit, qz_force, qz_mode, qz_spring_state
+from .codes import ELASTIC, HOT, N_CONDITIONS, ROUNDING, STORY, SWITCH_TOL, YIELD_NEG, YIELD_POS
 
 
 @njit(cache=True)
@@ -40,21 +42,7 @@ def force_in_mode(mode, p, e, ed, ep, imp):
             return p.kh * e + p.k * (e - ep) + fd, fd * ed, 0.0, 0.0, fd, 0.0
         fep = p.fy if mode == YIELD_POS else -p.fy
         return p.kh * e + fep + fd, fd * ed, 0.0, fep * ed, fd, 0.0
-    if mode == SEPARATED:
-        return -p.f0, 0.0, 0.0, 0.0, 0.0, 0.0
-    plastic = 0.0
-    if mode == YIELDING:
-        fs = p.fy
-        plastic = fs * ed
-    else:
-        fs = p.k * (p.d0 + e - ep)
-    if mode == CLIPPED:
-        fd = -fs
-    else:
-        fd = (p.c + p.cimp * imp) * ed
-    power = fd * ed
-    share = p.share * imp
-    return fs + fd - p.f0, power * (1.0 - share), power * share, plastic, fd, share
+    return elastoplastic.force_in_mode(mode, p, e, ed, ep, imp)
 
 
 @njit(cache=True)
@@ -67,16 +55,7 @@ def natural_mode(p, e, ed, ep, imp):
         if fep < -p.fy:
             return YIELD_NEG
         return ELASTIC
-    d = p.d0 + e - ep
-    if p.kind == UPLIFT and d <= 0.0:
-        return SEPARATED
-    fs = p.k * d
-    yielding = fs > p.fy
-    if yielding:
-        fs = p.fy
-    if p.kind == UPLIFT and fs + (p.c + p.cimp * imp) * ed < 0.0:
-        return CLIPPED
-    return YIELDING if yielding else CONTACT
+    return elastoplastic.natural_mode(p, e, ed, ep, imp)
 
 
 @njit(cache=True)
@@ -91,18 +70,7 @@ def validity(mode, p, e, ed, h):
         if mode == ELASTIC:
             return 1.0 - abs(p.k * (e - h.ep)) * p.gs
         return ed if mode == YIELD_POS else -ed
-    d = e + p.d0 - h.ep
-    g = (h.dz - (e - h.e0)) * p.gd if h.imp > 0.0 else 1.0
-    if mode == SEPARATED:
-        return min(g, -d * p.gd)
-    if mode == YIELDING:
-        return min(g, ed)
-    if p.kind == BONDED:
-        return min(g, (p.fy - p.k * d) * p.gs)
-    force = (p.k * d + (p.c + p.cimp * h.imp) * ed) * p.gs
-    if mode == CLIPPED:
-        return min(g, d * p.gd, -force)
-    return min(g, d * p.gd, (p.fy - p.k * d) * p.gs, force)
+    return elastoplastic.validity(mode, p, e, ed, h)
 
 
 @njit(cache=True)
@@ -137,28 +105,7 @@ def switch_mode(mode, p, e, ed, h):
             return YIELD_NEG
         h.ep = e - p.dy if mode == YIELD_POS else e + p.dy
         return ELASTIC
-    if h.imp > 0.0 and e - h.e0 >= h.dz:
-        h.imp = 0.0  # the impact damper has run its stroke: lock
-    if mode == YIELDING:
-        if ed >= 0.0:
-            return YIELDING  # still loading: only the impact damper changed
-        h.ep = e + p.d0 - p.dy  # unloading: commit the plastic settlement
-    d = e + p.d0 - h.ep
-    if p.kind == UPLIFT and d <= 0.0:
-        h.imp = 0.0
-        return SEPARATED
-    if mode == SEPARATED and p.dzf > 0.0:
-        h.imp = 1.0  # recontact: the impact damper acts for Δz = v₀·m_eff(1 − ε)/c*
-        h.e0 = e
-        h.dz = p.dzf * max(ed, 0.0)
-    if p.k * d >= p.fy:
-        h.ep = e + p.d0 - p.dy
-        d = p.dy
-        if ed > 0.0:
-            return YIELDING
-    if p.kind == UPLIFT and p.k * d + (p.c + p.cimp * h.imp) * ed < 0.0:
-        return CLIPPED
-    return CONTACT
+    return elastoplastic.switch_mode(mode, p, e, ed, h)
 
 
 @njit(cache=True)
@@ -170,29 +117,15 @@ def commit_step(p, e, ed, h, was_contact):
     if p.kind == QZ:
         work = qz_commit(p, h, p.zs + e)
         return work, (0 if h.zg < 0.0 else 1)
-    ep = h.ep
     if p.kind == STORY:
+        ep = h.ep
         fep = p.k * (e - ep)
         if fep > p.fy:
             h.ep = e - p.dy
         elif fep < -p.fy:
             h.ep = e + p.dy
         return (p.fy * abs(h.ep - ep) if h.ep != ep else 0.0), 1
-    d = e + p.d0 - ep
-    if p.kind == UPLIFT and d <= 0.0:
-        h.imp = 0.0
-        return 0.0, 0
-    work = 0.0
-    if p.k * d > p.fy:
-        h.ep = e + p.d0 - p.dy
-        work = p.fy * (h.ep - ep)
-    if was_contact == 0 and p.dzf > 0.0:
-        h.imp = 1.0
-        h.e0 = ep - p.d0  # the deformation at which the spring touched the surface
-        h.dz = p.dzf * max(ed, 0.0)
-    elif h.imp > 0.0 and e - h.e0 >= h.dz:
-        h.imp = 0.0
-    return work, 1
+    return elastoplastic.commit_step(p, e, ed, h, was_contact)
 
 
 @njit(cache=True)
@@ -200,20 +133,17 @@ def tangent(mode, p, imp):
     """Tangent stiffness and damping (dF/de, dF/dė) in a mode, for implicit integration."""
     if p.kind == STORY:
         return p.kh + (p.k if mode == ELASTIC else 0.0), p.c
-    if mode == SEPARATED or mode == CLIPPED:
-        return 0.0, 0.0
-    return (0.0 if mode == YIELDING else p.k), p.c + p.cimp * imp
+    return elastoplastic.tangent(mode, p, imp)
 
 
 @njit(cache=True)
 def condition(k, mode, p, hist):
     """Condition k of a spring's mode as (α, β, γ): the spring stays in its mode while
     α + β e + γ ė ≥ 0. :func:`validity` is the least of them; a k the mode does not use gives
-    the constant 1. Foundation condition 0 is the impact stroke; the others, by mode: gap
-    (separated); loading rate (yielding); contact, yield, compression (contact); contact,
-    tension of the clipped force (clipped). Story: the two yield limits, or the rate."""
-    one = (1.0, 0.0, 0.0)
+    the constant 1. Story: the two yield limits, or the rate; a foundation spring: its law's
+    (:func:`upliftlab.reduced.laws.elastoplastic.condition`)."""
     if p.kind == STORY:
+        one = (1.0, 0.0, 0.0)
         if mode == ELASTIC:
             s = p.k * p.gs
             if k == 0:
@@ -222,23 +152,7 @@ def condition(k, mode, p, hist):
         if k == 0:
             return 0.0, 0.0, (1.0 if mode == YIELD_POS else -1.0)
         return one
-    if k == 0:
-        return ((hist.dz + hist.e0) * p.gd, -p.gd, 0.0) if hist.imp > 0.0 else one
-    r = p.d0 - hist.ep  # d = e + r
-    cd = (p.c + p.cimp * hist.imp) * p.gs
-    if mode == SEPARATED:
-        return (-r * p.gd, -p.gd, 0.0) if k == 1 else one
-    if mode == YIELDING:
-        return (0.0, 0.0, 1.0) if k == 1 else one
-    if p.kind == BONDED:
-        return ((p.fy - p.k * r) * p.gs, -p.k * p.gs, 0.0) if k == 1 else one
-    if k == 1:
-        return r * p.gd, p.gd, 0.0
-    if mode == CLIPPED:
-        return (-p.k * r * p.gs, -p.k * p.gs, -cd) if k == 2 else one
-    if k == 2:
-        return (p.fy - p.k * r) * p.gs, -p.k * p.gs, 0.0
-    return (p.k * r * p.gs, p.k * p.gs, cd) if k == 3 else one
+    return elastoplastic.condition(k, mode, p, hist)
 
 
 @njit(cache=True)
@@ -251,18 +165,7 @@ def law(mode, p, hist):
             return p.kh + p.k, p.c, -p.k * hist.ep, 0.0, 0.0, p.c, 0.0, 0.0, 0.0, 0.0
         fep = p.fy if mode == YIELD_POS else -p.fy
         return p.kh, p.c, fep, 0.0, 0.0, p.c, 0.0, 0.0, 0.0, fep
-    if mode == SEPARATED:
-        return 0.0, 0.0, -p.f0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    share = p.share * hist.imp
-    cd = p.c + p.cimp * hist.imp
-    if mode == CLIPPED:  # the dashpot cancels the spring: its power is −k d ė
-        kr = -p.k * (p.d0 - hist.ep)
-        return (0.0, 0.0, -p.f0, kr * (1.0 - share), -p.k * (1.0 - share), 0.0, kr * share,
-                -p.k * share, 0.0, 0.0)
-    if mode == YIELDING:
-        return 0.0, cd, p.fy - p.f0, 0.0, 0.0, cd * (1.0 - share), 0.0, 0.0, cd * share, p.fy
-    return (p.k, cd, p.k * (p.d0 - hist.ep) - p.f0, 0.0, 0.0, cd * (1.0 - share), 0.0, 0.0,
-            cd * share, 0.0)
+    return elastoplastic.law(mode, p, hist)
 
 
 @njit(cache=True)
@@ -274,9 +177,7 @@ def current_plastic(mode, p, e, ep):
         if mode == YIELD_NEG:
             return e + p.dy
         return ep
-    if mode == YIELDING:
-        return e + p.d0 - p.dy
-    return ep
+    return elastoplastic.current_plastic(mode, p, e, ep)
 
 
 @njit(cache=True, **HOT)
@@ -285,23 +186,34 @@ def spring_state(j, p, mode, h, e):
     (foundation: total compression k d and ½ k d² while in contact)."""
     if p.kind == QZ:
         return qz_spring_state(p, h, e)
-    ep = current_plastic(mode, p, e, h.ep)
     if p.kind == STORY:
+        ep = current_plastic(mode, p, e, h.ep)
         fep = p.k * (e - ep)
         return ep, p.kh * e + fep, 0.5 * p.kh * e * e + 0.5 * fep * (e - ep)
-    d = p.d0 + e - ep
-    if mode == SEPARATED or (p.kind == UPLIFT and d <= 0.0):
-        return ep, 0.0, 0.0
-    return ep, p.k * d, 0.5 * p.k * d * d
+    return elastoplastic.spring_state(p, mode, h, e)
 
 
 @njit(cache=True)
 def trial_mode(p, h, e, ed):
     """The mode of a trial state from the committed history (:func:`natural_mode`, or the
-    q–z spring's :func:`.qz_law.qz_mode`)."""
+    q–z spring's :func:`~upliftlab.reduced.laws.qz.compiled.qz_mode`)."""
     if p.kind == QZ:
         return qz_mode(p, h, e)
     return natural_mode(p, e, ed, h.ep, h.imp)
+
+
+@njit(cache=True)
+def from_history(p):
+    """True for a spring whose trial force comes from its history alone (q–z), through
+    :func:`trial_force`, rather than from its mode (fixed-step and implicit integrators)."""
+    return p.kind == QZ
+
+
+@njit(cache=True)
+def trial_force(p, h, e, ed):
+    """The trial force of a spring :func:`from_history`: (force increment, viscous power,
+    dashpot force, dF/de, dF/dė, mode)."""
+    return qz_force(p, h, e, ed)
 
 
 @njit(cache=True, **HOT)

@@ -15,9 +15,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .codes import F_EXACT, F_ITH, F_SIDE, QZ
-from .laws import force_in_mode, natural_mode
-from .qz_law import qz_force
+from .codes import F_EXACT, F_ITH, F_SIDE
+from .laws import force_in_mode, from_history, natural_mode, trial_force
 from .rocking import finish_accelerations
 
 
@@ -101,8 +100,8 @@ def accelerations(t, q, qd, natural, system, modes, H, Mw, qdd):
             if p.nnz == 3:
                 e += p.a2 * q[p.i2]
                 ed += p.a2 * qd[p.i2]
-        if p.kind == QZ:  # its trial from its history (fixed-step and implicit methods only)
-            f, v, _, _, _, _ = qz_force(p, h, e, ed)
+        if from_history(p):  # q–z: its trial from its history (fixed-step and implicit only)
+            f, v, _, _, _, _ = trial_force(p, h, e, ed)
             im, pl = 0.0, 0.0
         else:
             mode = natural_mode(p, e, ed, h.ep, h.imp) if natural else modes[j]

@@ -37,6 +37,8 @@ from .overrides import (apply_override, apply_overrides, check_case_override, me
                         override_key)
 from .soil import (DYNAMICS, ELEMENTS, INTERFACES, MAX_ELEMENTS_ACROSS,  # noqa: F401
                    SOIL_MODELS, ContinuumOptions, Soil, read_continuum, read_soil)
+from .laws import (ElasticLaw, ElastoplasticLaw, LawRecord, QzLaw,  # noqa: F401
+                   check_overrides, curved_law)
 from .structure import (IMPACT_MASSES, KINEMATICS, LAWS, LAYOUTS,  # noqa: F401
                         MAX_SPRINGS, SUPPORTS, Foundation, Story, Structure, read_foundation,
                         read_structure)
@@ -200,35 +202,32 @@ def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
     return scene
 
 
-#: The integrator a scene with q–z springs takes when it names none (the default, the event
-#: stepper, tabulates piecewise-affine laws and refuses the curved q–z law).
+#: The integrator a scene with curved springs (q–z) takes when it names none (the default, the
+#: event stepper, tabulates piecewise-affine laws and refuses a curved law).
 QZ_INTEGRATOR = "rk4"
 
 
 def _analysis_for(analysis: Analysis, analysis_data, foundation_data) -> Analysis:
-    """The analysis of a scene with its foundation in view: a q–z bed that names no integrator
-    gets :data:`QZ_INTEGRATOR`; one that names the event stepper is refused."""
-    law = foundation_data.get("law") if isinstance(foundation_data, dict) else None
-    if law != "qz":
+    """The analysis of a scene with its foundation in view: a bed of a curved law
+    (:attr:`~.laws.LawRecord.curved`, q–z) that names no integrator gets
+    :data:`QZ_INTEGRATOR`; one that names the event stepper is refused."""
+    name = foundation_data.get("law") if isinstance(foundation_data, dict) else None
+    law = curved_law(name)
+    if law is None:
         return analysis
     given = analysis_data.get("integrator") if isinstance(analysis_data, dict) else None
     if given is None:
         return replace(analysis, integrator=QZ_INTEGRATOR)
     if given == "events":
-        raise InputError("analysis.integrator = 'events' with foundation.law = 'qz': the event "
-                         "stepper tabulates piecewise-affine laws and the q–z spring is curved; "
+        raise InputError(f"analysis.integrator = 'events' with foundation.law = {name!r}: the "
+                         f"event stepper tabulates piecewise-affine laws and {law.curved}; "
                          "valid: 'rk4', 'abm4', 'newmark', 'hht'")
     return analysis
 
 
 def _check_consistency(scene: Scene) -> None:
     s, f = scene.structure, scene.foundation
-    for item in scene.overrides:
-        if override_key(item) == "foundation.yield_multiple" and f.law != "elastoplastic":
-            raise InputError(f"--set {item!r}: has no effect: the yield multiple acts only with "
-                             f"foundation.law = 'elastoplastic' (this scene's law is {f.law!r}"
-                             + (", whose capacity is foundation.capacity_multiple"
-                                if f.law == "qz" else "") + ")")
+    check_overrides(f.law, scene.overrides)
     if s.rigid and f.support == "fixed" and not f.sways:
         raise InputError("structure.rigid = true with foundation.support = 'fixed': "
                          "a rigid structure on a fixed base has no motion")

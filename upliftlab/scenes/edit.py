@@ -22,7 +22,7 @@ import json
 import math
 
 from ..checks import InputError
-from .structure import QZ_KEYS
+from .laws import LAWS, LawRecord
 from .table import SCHEMA_VERSION
 
 __all__ = ["scene_table", "revalidate", "replace_fields", "flatten"]
@@ -63,6 +63,7 @@ def _structure_table(structure) -> dict:
 
 
 def _foundation_table(foundation) -> dict:
+    """The foundation's keys, its law's own keys right after ``law`` (the law's name)."""
     skip = set()
     if foundation.layout != "custom":
         skip |= {"positions", "stiffnesses"}
@@ -70,14 +71,18 @@ def _foundation_table(foundation) -> dict:
         skip.add("stiffness")
     if foundation.layout != "end_stiffened":
         skip |= {"end_stiffness_ratio", "end_length"}
-    if foundation.law != "qz":
-        skip |= set(QZ_KEYS)
-    if foundation.law == "elastoplastic" and math.isfinite(foundation.capacity_multiple):
-        skip = (skip - {"capacity_multiple"}) | {"yield_multiple"}  # a uniform bearing capacity
-    if foundation.yield_forces is not None:
-        skip.add("yield_multiple")  # the springs' own yield forces
-    return _plain(foundation, [f.name for f in dataclasses.fields(foundation)
-                               if f.name not in skip])
+    table = {}
+    for name in (f.name for f in dataclasses.fields(foundation) if f.name not in skip):
+        if name == "law":
+            if not isinstance(foundation.law, LawRecord):
+                raise InputError(f"foundation.law = {foundation.law!r}: a law's record is "
+                                 "expected (upliftlab.scenes.laws; Scene.replace also takes "
+                                 "its name)")
+            table["law"] = foundation.law.name
+            table.update(foundation.law.table())
+        elif getattr(foundation, name) is not None:
+            table[name] = _value(getattr(foundation, name))
+    return table
 
 
 def _motion_table(motion) -> dict:
@@ -133,6 +138,8 @@ def _toml(value) -> str:
 
 def _normal(value):
     """For comparing a field with its validated value: tuples as lists, ints as floats."""
+    if isinstance(value, LawRecord):  # a law is its name and its fields
+        return {"name": value.name, **{k: _normal(getattr(value, k)) for k in value.keys()}}
     if dataclasses.is_dataclass(value):
         return {f.name: _normal(getattr(value, f.name)) for f in dataclasses.fields(value)}
     if isinstance(value, (tuple, list)):
@@ -227,8 +234,39 @@ def replace_fields(scene, table: str, fields: dict):
 
 def _replaced(record, fields: dict, path: str):
     names = [f.name for f in dataclasses.fields(record)]
+    if path == "foundation":
+        return _replaced_foundation(record, fields, names)
     for key in fields:
         if key not in names:
             raise InputError(f"{path}.{key}: not a field of {type(record).__name__} (fields: "
                              f"{', '.join(names)})")
     return dataclasses.replace(record, **fields)
+
+
+def _replaced_foundation(foundation, fields: dict, names: list[str]):
+    """The foundation with ``fields`` changed, its law's keys gathered into its law's record
+    as a scene file writes them: ``z50=0.2`` changes the current law's; ``law="qz",
+    capacity_multiple=3, z50=0.1`` makes a record of another law (``law`` may be a record)."""
+    law = fields.get("law", foundation.law)
+    if isinstance(law, str):
+        if law not in LAWS:
+            raise InputError(f"foundation.law = {law!r}: must be one of {', '.join(LAWS)}")
+        law_class = LAWS[law]
+        law = foundation.law if law == foundation.law.name else None
+    elif isinstance(law, LawRecord):
+        law_class = type(law)
+    else:
+        raise InputError(f"foundation.law = {law!r}: give a law's name or its record "
+                         "(upliftlab.scenes.laws)")
+    keys = law_class.keys()
+    for key in fields:
+        if key not in names and key not in keys:
+            raise InputError(f"foundation.{key}: not a field of Foundation or of its law "
+                             f"{law_class.__name__} (fields: {', '.join(names + list(keys))})")
+    own = {k: v for k, v in fields.items() if k in keys}
+    try:
+        law = law_class(**own) if law is None else dataclasses.replace(law, **own)
+    except TypeError as exc:
+        raise InputError(f"foundation.law = {law_class.name!r}: {exc}") from None
+    rest = {k: v for k, v in fields.items() if k not in keys}
+    return dataclasses.replace(foundation, **{**rest, "law": law})

@@ -1,5 +1,5 @@
 """The structure and the foundation of a scene: their records and how they are read from the
-scene's ``[structure]`` and ``[foundation]`` tables."""
+scene's ``[structure]`` and ``[foundation]`` tables (the foundation's law: :mod:`.laws`)."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 from .. import bounds, checks
 from ..checks import InputError
+from .laws import LAWS, ElasticLaw, LawContext, LawRecord, read_law
 from .table import MISSING, Table, choice, in_range, numbers
 from ..units import UnitSystem
 
@@ -16,15 +17,6 @@ __all__ = ["KINEMATICS", "SUPPORTS", "LAYOUTS", "LAWS", "IMPACT_MASSES", "MAX_SP
 
 SUPPORTS = ("uplift", "bonded", "fixed")
 LAYOUTS = ("winkler", "edges", "equivalent", "end_stiffened", "custom")
-LAWS = ("elastic", "elastoplastic", "qz")
-QZ_SOIL_NAMES = ("clay", "sand")  # the q–z backbone shapes (upliftlab.reduced.qz.QZ_SOILS)
-QZ_KEYS = ("capacity_multiple", "z50", "suction", "qz_soil", "qz_exponent", "qz_elastic_range",
-           "qz_zref")
-#: The laws that read ``capacity_multiple``: the q–z bed's capacity (required) and, optionally,
-#: the elasto-plastic bed's uniform bearing capacity in place of ``yield_multiple``.
-CAPACITY_LAWS = ("elastoplastic", "qz")
-QZ_EXPONENT_MAX = 50.0  # n of a q–z backbone: > 1 (the hyperbola's work integral), ≤ 50
-QZ_ELASTIC_RANGE_MAX = 0.95  # elast of a q–z backbone: its pristine half-range, below q_ult
 IMPACT_MASSES = ("point", "tributary")
 KINEMATICS = ("small", "exact")
 
@@ -151,21 +143,10 @@ class Foundation:
 
     ``support``: ``uplift`` (compression-only springs), ``bonded`` (springs also carry tension)
     or ``fixed`` (θ and V locked). ``half_width`` b (length). ``layout`` and ``springs`` (N) place
-    the springs; ``stiffness`` is their total K_v (force/length). ``law`` is ``elastic`` or
-    ``elastoplastic`` (yield at ``yield_multiple`` times the static compression; or, with
-    ``capacity_multiple``, at a uniform bearing pressure: the bed's capacity, that multiple of
-    the weight, shared over the springs' tributary widths, whatever their stiffness; or at the
-    given ``yield_forces``, one per spring in the order of ``dashpots``; the springs that reach
-    their yield force under the weight start at it) or ``qz``
-    (hysteretic q–z springs, :mod:`upliftlab.reduced.kernels.qz_law`: the bed's bearing
-    capacity is ``capacity_multiple`` times the weight, shared over the springs' tributary
-    widths; ``z50`` (length) the base's settlement at half capacity under a centred load;
-    ``suction`` the gap's drag as a fraction of capacity; ``qz_soil`` the backbone's shape,
-    ``clay`` or ``sand``, whose hyperbola exponent n and initial elastic half-range (fraction of
-    q_ult) ``qz_exponent`` and ``qz_elastic_range`` replace where given, e.g. fitted to a
-    continuum's vertical pushover; ``qz_zref`` (length) gives the springs' near-field reference
-    instead of ``z50``, which cannot fix it when the elastic ranges alone carry half the
-    capacity). Dashpots in
+    the springs; ``stiffness`` is their total K_v (force/length). ``law`` is the springs' law:
+    its record (:mod:`.laws`: :class:`~.laws.ElasticLaw`, :class:`~.laws.ElastoplasticLaw`,
+    :class:`~.laws.QzLaw`), named by ``law.name`` and holding that law's own keys of the table
+    (a yield multiple, a capacity, z50, …). Dashpots in
     parallel carry ``damping_ratio`` of critical for the bonded vertical mode. ``restitution`` ε
     < 1 adds Ewing's impact damper with c* = ``impact_multiple`` · c_cr. ``impact_mass``: the
     mass behind a landing spring in c_cr and Δz — ``point`` (the paper's eq. 17: the structure's
@@ -190,8 +171,7 @@ class Foundation:
     layout: str
     springs: int
     stiffness: float
-    law: str = "elastic"
-    yield_multiple: float = 3.0
+    law: LawRecord = ElasticLaw()
     damping_ratio: float = 0.0
     restitution: float = 1.0
     impact_multiple: float = 10.0
@@ -201,17 +181,9 @@ class Foundation:
     positions: tuple[float, ...] = ()
     stiffnesses: tuple[float, ...] = ()
     dashpots: tuple[float, ...] | None = None
-    yield_forces: tuple[float, ...] | None = None
     sway_stiffness: float | None = None
     sway_damping: float | None = None
     sliding_friction: float | None = None
-    capacity_multiple: float = math.inf
-    z50: float | None = 0.0
-    suction: float = 0.0
-    qz_soil: str = "clay"
-    qz_exponent: float | None = None
-    qz_elastic_range: float | None = None
-    qz_zref: float | None = None
 
     @property
     def width(self) -> float:
@@ -222,6 +194,19 @@ class Foundation:
     def sways(self) -> bool:
         """True when the base has a horizontal spring (its sway DOF)."""
         return self.sway_stiffness is not None
+
+    def __getattr__(self, name: str):
+        """A law's key asked of the foundation (``foundation.z50``) is an error that says where
+        it is: in ``foundation.law`` if the law has it, else in another law only."""
+        readers = [law.name for law in LAWS.values() if name in law.keys()]
+        if not readers or name.startswith("_"):
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        law = self.law.name
+        where = (f"its law's record holds it: foundation.law.{name}" if law in readers else
+                 f"it belongs to law {' or '.join(map(repr, readers))}, and this "
+                 f"foundation's law is {law!r}")
+        raise AttributeError(f"foundation.{name}: a key of the foundation's law, not a field of "
+                             f"Foundation; {where}")
 
 
 #: Most springs a foundation may have: a bed finer than b/50000 resolves nothing more, and its
@@ -285,9 +270,7 @@ def read_foundation(data, vertical_mass: float, units: UnitSystem) -> Foundation
     damping_ratio = table.get("damping_ratio", in_range(0.0, 2.0), 0.0)
     dashpots = _dashpots(table, springs, damping_ratio, units)
     sway_stiffness, sway_damping, friction = _sway(table, units)
-    law = table.get("law", choice(LAWS), "elastic")
-    yield_forces = _yield_forces(table, law, springs, units)
-    qz = _qz_keys(table, law, support, units)
+    law = read_law(table, LawContext(support, springs, units))
     foundation = Foundation(
         support=support,
         half_width=half_width,
@@ -295,7 +278,6 @@ def read_foundation(data, vertical_mass: float, units: UnitSystem) -> Foundation
         springs=springs,
         stiffness=stiffness,
         law=law,
-        yield_multiple=table.get("yield_multiple", in_range(1.0, 1e6, low_open=True), 3.0),
         damping_ratio=damping_ratio,
         restitution=table.get("restitution", in_range(0.0, 1.0), 1.0),
         impact_multiple=table.get("impact_multiple", in_range(0.1, 1e4), 10.0),
@@ -305,51 +287,17 @@ def read_foundation(data, vertical_mass: float, units: UnitSystem) -> Foundation
         positions=positions,
         stiffnesses=stiffnesses,
         dashpots=dashpots,
-        yield_forces=yield_forces,
         sway_stiffness=sway_stiffness,
         sway_damping=sway_damping,
         sliding_friction=friction,
-        **qz,
     )
     table.done()
-    if law == "qz" and foundation.restitution < 1.0:
-        raise InputError(f"foundation.restitution = {foundation.restitution:g} with "
-                         "foundation.law = 'qz': the q–z spring has no impact damper (its "
-                         "hysteresis dissipates the landing); valid: 1")
+    law.check(foundation)
     return foundation
 
 
 #: Largest sliding friction coefficient μ: beyond it the base never slides in any record.
 MAX_FRICTION = 10.0
-
-
-#: The keys that set the elasto-plastic springs' yield forces; at most one is given.
-YIELD_KEYS = ("yield_multiple", "capacity_multiple", "yield_forces")
-
-
-def _yield_forces(table: Table, law: str, springs: int,
-                  units: UnitSystem) -> tuple[float, ...] | None:
-    """``foundation.yield_forces`` (force, one per spring), or None; refused with a law other
-    than ``elastoplastic`` and beside another of :data:`YIELD_KEYS`."""
-    if law == "elastoplastic":
-        given = [key for key in YIELD_KEYS if table.has(key)]
-        if len(given) > 1:
-            raise InputError(f"foundation.{given[0]} with foundation.{given[1]}: each sets the "
-                             "elasto-plastic springs' yield forces (a multiple of each static "
-                             "compression, a uniform bearing capacity, or one force per "
-                             "spring); give one of them")
-    if not table.has("yield_forces"):
-        return None
-    if law != "elastoplastic":
-        raise InputError(f"foundation.yield_forces is read only with foundation.law = "
-                         f"'elastoplastic' (law is {law!r}); remove it or set the law")
-    forces = table.get("yield_forces", numbers)
-    if len(forces) != springs:
-        raise InputError(f"foundation.yield_forces has {len(forces)} entries: give one per "
-                         f"spring ({springs})")
-    for i, f in enumerate(forces):
-        bounds.check(f"foundation.yield_forces[{i}]", f, "force", units)
-    return forces
 
 
 def _dashpots(table: Table, springs: int, damping_ratio: float,
@@ -382,35 +330,3 @@ def _sway(table: Table, units: UnitSystem):
     damping = table.get("sway_damping", bounds.checker("dashpot", units), None)
     friction = table.get("sliding_friction", in_range(0.0, MAX_FRICTION, low_open=True), None)
     return stiffness, damping, friction
-
-
-def _qz_keys(table: Table, law: str, support: str, units: UnitSystem) -> dict:
-    """The q–z keys of a ``[foundation]`` table: read with law ``qz``, refused without it
-    (``capacity_multiple`` is read with ``elastoplastic`` too)."""
-    if law != "qz":
-        for key in QZ_KEYS:
-            if table.has(key) and not (key == "capacity_multiple" and law in CAPACITY_LAWS):
-                laws = "'qz'" if key != "capacity_multiple" else "'qz' or 'elastoplastic'"
-                raise InputError(f"foundation.{key} is read only with foundation.law = {laws} "
-                                 f"(law is {law!r}); remove it or set the law")
-        if table.has("capacity_multiple"):  # the elasto-plastic bed's uniform capacity
-            return {"capacity_multiple": table.get("capacity_multiple",
-                                                   in_range(1.0, 1e6, low_open=True))}
-        return {}
-    if support != "uplift":
-        raise InputError(f"foundation.support = {support!r} with foundation.law = 'qz': the "
-                         "q–z spring opens a gap on uplift; valid: 'uplift'")
-    zref = table.get("qz_zref", bounds.checker("length", units), None)
-    if zref is not None and table.has("z50"):
-        raise InputError("foundation.z50 with foundation.qz_zref: each fixes the springs' "
-                         "near-field reference; give one of them")
-    return {"capacity_multiple": table.get("capacity_multiple",
-                                           in_range(1.0, 1e6, low_open=True)),
-            "z50": table.get("z50", bounds.checker("length", units)) if zref is None else None,
-            "qz_zref": zref,
-            "suction": table.get("suction", in_range(0.0, 0.1), 0.0),
-            "qz_soil": table.get("qz_soil", choice(QZ_SOIL_NAMES), "clay"),
-            "qz_exponent": table.get("qz_exponent",
-                                     in_range(1.0, QZ_EXPONENT_MAX, low_open=True), None),
-            "qz_elastic_range": table.get("qz_elastic_range",
-                                          in_range(0.0, QZ_ELASTIC_RANGE_MAX), None)}

@@ -50,7 +50,7 @@ def load_base(scene: str | Scene) -> Base:
              if k in scene.data}
     story = s.stories[0]
     period = 2.0 * math.pi * math.sqrt(story.weight / scene.g / story.stiffness)
-    return Base(table, story.height / f.half_width, period, f.yield_multiple, scene.name)
+    return Base(table, story.height / f.half_width, period, f.law.yield_multiple, scene.name)
 
 
 def _foundation_point(bed: str, layout: str, springs: int, options: Options) -> dict:

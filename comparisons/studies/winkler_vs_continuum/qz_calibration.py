@@ -29,7 +29,8 @@ import numpy as np
 from ....checks import InputError
 from ....reduced.compatibility import end_stiffened_bed
 from ....reduced.kernels import HISTORY_DTYPE, QZ, qz_commit, qz_start
-from ....reduced.qz import QZ_SOILS, SUCTION_MAX, QzShape, common_zref, qz_springs, z50_lower_bound
+from ....reduced.laws.qz import (QZ_SOILS, SUCTION_MAX, QzShape, common_zref, qz_springs,
+                                z50_lower_bound)
 from ....reduced.springs import derive_columns, spring_table
 from .calibration import end_stiffening
 

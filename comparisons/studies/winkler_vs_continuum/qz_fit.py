@@ -25,8 +25,8 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ....checks import InputError
-from ....reduced.qz import QzShape, bed_z50, qz_shape, z50_lower_bound
-from ....scenes.structure import QZ_ELASTIC_RANGE_MAX, QZ_EXPONENT_MAX
+from ....reduced.laws.qz import QzShape, bed_z50, qz_shape, z50_lower_bound
+from ....scenes.laws.qz import QZ_ELASTIC_RANGE_MAX, QZ_EXPONENT_MAX
 from .qz_calibration import bed_path_at_zref, bed_vertical_path, z50_from_pushover
 
 __all__ = ["QzFit", "fit_backbone", "path_misfit", "one_point_misfit"]

@@ -1,7 +1,6 @@
-"""Parameters of the hysteretic q–z foundation springs (the law: :mod:`.kernels.qz_law`): the
-soil types' backbone shapes, z_ref from the bed's z50 (the settlement at which a centred load
-reaches half the capacity), the spring records of a bed, its static forces on the nonlinear
-backbones and the springs' histories at rest.
+"""The backbones of the hysteretic q–z springs (the compiled law: :mod:`.compiled`): the soil
+types' shapes, z_ref from the bed's z50 (the settlement at which a centred load reaches half
+the capacity) and back, and the bed's static forces on the nonlinear backbones.
 """
 
 from __future__ import annotations
@@ -11,9 +10,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from ..checks import InputError
-from . import springs as sp
-from .kernels import QZ, qz_backbone, qz_start
+from ....checks import InputError
+from ....scenes.laws.qz import SUCTION_MAX  # noqa: F401  (the drag capacity QzSimple allows)
+
+__all__ = ["QzShape", "QZ_SOILS", "SUCTION_MAX", "qz_shape", "zref_from_z50", "backbone_force",
+           "z50_lower_bound", "common_zref", "static_forces", "bed_z50", "check_z50"]
 
 
 @dataclass(frozen=True)
@@ -30,16 +31,14 @@ class QzShape:
 
 QZ_SOILS = {"clay": QzShape(n=1.2, elast=0.2, emax=0.7),
             "sand": QzShape(n=5.5, elast=0.3, emax=0.7)}
-SUCTION_MAX = 0.1  # the drag capacity QzSimple allows, as a fraction of q_ult
 
 
 def qz_shape(soil: str, exponent: float | None = None,
              elastic_range: float | None = None) -> QzShape:
     """The backbone shape of ``soil`` (:data:`QZ_SOILS`) with its exponent n and its initial
     elastic half-range ``elast`` replaced where given (e.g. fitted to a continuum pushover,
-    :mod:`upliftlab.comparisons.studies.winkler_vs_continuum.qz_fit`). The largest range width is
-    the
-    soil's ``emax``, widened to 2·elast when the pristine range is wider, so that the law's cap
+    :mod:`upliftlab.comparisons.beds.qz_fit`). The largest range width is the soil's
+    ``emax``, widened to 2·elast when the pristine range is wider, so that the law's cap
     min(·, emax·q_ult) on a reversal never cuts the range below its pristine width."""
     base = QZ_SOILS[soil]
     n = base.n if exponent is None else float(exponent)
@@ -53,8 +52,6 @@ def zref_from_z50(qult, k, z50, shape: QzShape):
     exceed the elastic q_ult/(2k) (callers check it and name the field)."""
     qult, k, z50 = (np.asarray(a, dtype=float) for a in (qult, k, z50))
     return (z50 - 0.5 * qult / k) / ((2.0 * (1.0 - shape.elast)) ** (1.0 / shape.n) - 1.0)
-
-
 
 
 def backbone_force(z, k, qult, zref, shape: QzShape, iterations: int = 200) -> np.ndarray:
@@ -102,40 +99,6 @@ def common_zref(k, qult, z50: float, shape: QzShape) -> float:
 
     lo, hi = np.log(z50) - 60.0, np.log(z50) + 60.0
     return float(np.exp(brentq(excess, lo, hi, xtol=1e-14, rtol=1e-15, maxiter=500)))
-
-
-def qz_springs(table: np.ndarray, qult, zref, suction: float, zd: float,
-               shape: QzShape) -> np.ndarray:
-    """The foundation rows of a spring ``table`` (``k`` and ``f0`` set) as q–z springs of
-    capacity ``qult`` (force) and near-field reference ``zref`` (length; arrays or scalars),
-    with a drag of ``suction``·q_ult and reference ``zd`` (length, z50/2); ``zs`` is each
-    spring's virgin compression at its F0. Returns a new table (derived columns not filled:
-    :func:`~.springs.derive_columns` does that)."""
-    rows = table["kind"] != sp.STORY
-    table = np.array(table, dtype=sp.SPRING_DTYPE)
-    count = int(rows.sum())
-    qult = np.broadcast_to(np.asarray(qult, dtype=float), count)
-    table["kind"][rows] = QZ
-    table["fy"][rows] = np.inf
-    table["qult"][rows] = qult
-    table["zref"][rows] = np.broadcast_to(np.asarray(zref, dtype=float), count)
-    table["npow"][rows] = shape.n
-    table["elast"][rows] = shape.elast
-    table["emax"][rows] = shape.emax
-    table["qd"][rows] = suction * qult
-    table["zd"][rows] = zd
-    for j in np.flatnonzero(rows):
-        table["zs"][j] = qz_backbone(table[j], table["f0"][j])
-    return table
-
-
-def initial_history(params: np.ndarray) -> np.ndarray:
-    """The springs' history at the start of a run: zeros, and every q–z spring on its virgin
-    backbone at its static force F0."""
-    H = np.zeros(params.size, dtype=sp.HISTORY_DTYPE)
-    for j in np.flatnonzero(params["kind"] == QZ):
-        qz_start(params[j], H[j], params["f0"][j])
-    return H
 
 
 def static_forces(stiffnesses, positions, qult, zref: float, weight: float,

@@ -1,6 +1,7 @@
 """The hysteretic q–z spring (kind ``QZ``): a foundation spring of the QzSimple class, as pure
-compiled functions of its parameters (a record of :data:`.codes.SPRING_DTYPE`), its committed
-history (a record of :data:`.codes.HISTORY_DTYPE`) and a trial compression.
+compiled functions of its parameters (a record of :data:`upliftlab.reduced.laws.SPRING_DTYPE`,
+its own fields :data:`upliftlab.reduced.laws.qz.COLUMNS`), its committed history (a record of
+``HISTORY_DTYPE``, its own fields ``HISTORY``) and a trial compression.
 
 The law (after Boulanger et al. 1999, "Seismic soil–pile–structure interaction experiments and
 analyses", J. Geotech. Geoenviron. Eng. 125(9), and the q–z material QzSimple1/QzSimple2 of
@@ -37,9 +38,9 @@ parts in series, each carrying Q:
 
 Virgin backbone (q_r = ``elast``·q_ult, z_in = 0): z(Q) = Q/k for Q ≤ q_r, and
 z(Q) = Q/k + z_ref · (((q_ult − q_r)/(q_ult − Q))^(1/n) − 1) beyond, so Q → q_ult as z → ∞;
-for one spring, z50 = z(q_ult/2) fixes z_ref (:func:`upliftlab.reduced.qz.zref_from_z50`), for
-a bed the settlement at which its springs together carry half their capacity does
-(:func:`upliftlab.reduced.qz.common_zref`).
+for one spring, z50 = z(q_ult/2) fixes z_ref (:func:`.backbone.zref_from_z50`), for a bed the
+settlement at which its springs together carry half their capacity does
+(:func:`.backbone.common_zref`).
 
 Dissipation: the work Q dz_p on the near field and Q_g dz_g on the drag, integrated in closed
 form along the branch of a step (no quadrature): with u the distance travelled from the anchor,
@@ -73,7 +74,12 @@ import math
 
 from numba import njit
 
-from .codes import CONTACT, SEPARATED, YIELDING
+from ..spring import CONTACT, SEPARATED, YIELDING
+
+__all__ = ["QZ", "qz_backbone", "qz_start", "qz_trial", "qz_commit",
+           "qz_force", "qz_spring_state", "qz_mode"]
+
+QZ = 3  # the spring kind of a q–z spring
 
 MAX_ITER = 200
 
