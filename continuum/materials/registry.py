@@ -2,11 +2,11 @@
 record by its ``[soil] model`` name, and :func:`material_from_soil`, which builds a scene's.
 
 A model is one module of this package (its record, its vectorised return map, its compiled point
-return side by side; :mod:`.base`). Adding one touches its module, its line here, its line in
-the scene's list of names (:data:`upliftlab.scenes.soil.SOIL_MODELS`, which the core reads
-without the continuum installed, with the strength the model reads from ``[soil]``) and its
-tests; a test holds this list and the scene's to the same names, in the same order, and each
-record to its strength.
+return side by side; :mod:`.base`). Adding one touches its module, its lines here (its import
+and its place in :data:`SOIL_MODELS`), its line in the scene's list of names
+(:data:`upliftlab.scenes.soil.SOIL_MODELS`, which the core reads without the continuum
+installed, with the strength the model reads from ``[soil]``) and its tests; a test holds this
+list and the scene's to the same names, in the same order, and each record to its strength.
 """
 
 from __future__ import annotations
