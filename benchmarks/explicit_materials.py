@@ -67,15 +67,17 @@ STEP = {4: 0.000952, 8: 0.000465, 16: 0.000235}
 def run(soil: str, route: str, n: int, steps: int) -> dict:
     """One run of ``soil`` on ``n`` across through the ``route`` (compiled or fallback)."""
     from upliftlab.continuum import build_model
-    from upliftlab.continuum.dynamics import kernels
     from upliftlab.continuum.dynamics.run import DynamicOptions, run_dynamic
+    from upliftlab.continuum.materials import MohrCoulomb
     from upliftlab.scenes import load_scene
 
     duration = steps * STEP[n]
     overrides = SOILS[soil] + MOTION + [f"continuum.elements_across={n}",
                                         f"motion.duration={duration:.6g}"]
     rows = []
-    removed = kernels.MATERIAL_KINDS.pop("MohrCoulomb") if route == "fallback" else None
+    compiled = MohrCoulomb.Constants
+    if route == "fallback":  # no compiled point return: the vectorised fallback
+        MohrCoulomb.Constants = None
     try:
         start = time.perf_counter()
         scene = load_scene("strip_footing_clay", overrides=overrides)
@@ -85,8 +87,7 @@ def run(soil: str, route: str, n: int, steps: int) -> dict:
                              progress=lambda k, total, state: rows.append(
                                  (k, time.perf_counter(), time.process_time())))
     finally:
-        if removed is not None:
-            kernels.MATERIAL_KINDS["MohrCoulomb"] = removed
+        MohrCoulomb.Constants = compiled
     assert result.metadata["compiled"] == (route == "compiled")
     (k0, t0, c0), (k1, t1, c1) = rows[0], rows[-1]
     return {"soil": soil, "route": route, "n": n, "dofs": model.dofs, "steps": k1 - k0,

@@ -27,8 +27,8 @@ from . import assembly
 from .condensation import (Blocks, Condensation, condensation, fill_reducing_order,  # noqa: F401
                            make_blocks, node_groups)
 from .contact.footing import Footing, Interface, footing_on
-from .materials import (DruckerPrager, Elastic, MohrCoulomb, State, material_from_soil,
-                        plane_strain, plane_strain_stress, plane_strain_tangent)
+from .materials import (State, material_from_soil, plane_strain, plane_strain_stress,
+                        plane_strain_tangent)
 
 __all__ = ["ContinuumModel", "Blocks", "Condensation", "Response", "build_model", "make_model",
            "default_k0", "validate", "make_blocks", "node_groups", "evaluated"]
@@ -51,7 +51,7 @@ def validate(soil: Soil, options: ContinuumOptions, footing_width: float) -> Non
                          f"displacement element {options.element} (ν = 0.5 is incompressible "
                          "and locks every displacement element)")
     checks.nonnegative("soil.density", soil.density)
-    if soil.model in ("tresca", "von_mises") and soil.undrained_strength is not None:
+    if soil.undrained and soil.undrained_strength is not None:
         checks.positive("soil.undrained_strength", soil.undrained_strength)
     checks.in_range("soil.friction_angle", soil.friction_angle, 0.0, 60.0, high_open=True)
     if soil.k0 is not None:
@@ -74,9 +74,9 @@ def default_k0(soil: Soil) -> float:
     1 − sin φ (Jaky) for Mohr–Coulomb/Drucker–Prager."""
     if soil.k0 is not None:
         return float(soil.k0)
-    if soil.model == "elastic":
+    if soil.strength is None:
         return soil.poisson_ratio / (1.0 - soil.poisson_ratio)
-    if soil.model in ("tresca", "von_mises"):
+    if soil.undrained:
         return 1.0
     return 1.0 - math.sin(math.radians(soil.friction_angle))
 
@@ -151,14 +151,12 @@ class ContinuumModel:
     @property
     def linear(self) -> bool:
         """True for elastic soil: one tangent, factorised once."""
-        return isinstance(self.material, Elastic)
+        return self.material.linear
 
     @property
     def symmetric(self) -> bool:
         """True unless the flow rule is non-associated (ψ < φ)."""
-        m = self.material
-        return not (isinstance(m, (MohrCoulomb, DruckerPrager))
-                    and m.dilation_angle < m.friction_angle)
+        return self.material.symmetric
 
     @property
     def dofs(self) -> int:

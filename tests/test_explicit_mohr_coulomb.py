@@ -1,9 +1,8 @@
-"""The compiled Mohr–Coulomb return map of the explicit route (continuum/materials/compiled_mc.py,
-kind
-``kernels.MOHR_COULOMB``) and the explicit runs it serves.
+"""The compiled Mohr–Coulomb return map of the explicit route
+(continuum/materials/mohr_coulomb.py, ``mohr_coulomb_point``) and the explicit runs it serves.
 
 References, one per test:
-- the one-point return: the vectorised map ``principal_returns.mohr_coulomb`` (an independent
+- the one-point return: the vectorised map ``mohr_coulomb.mohr_coulomb`` (an independent
   implementation: LAPACK eigh of the 3×3 trial stress, batched matrix returns onto the planes
   with a 2×2 inverse, tensor rotation by einsum), whose region codes show that every branch
   (elastic, main plane, both edges, apex) is hit;
@@ -18,9 +17,8 @@ import numpy as np
 import pytest
 
 from upliftlab.continuum import build_model
-from upliftlab.continuum.dynamics import kernels
 from upliftlab.continuum.dynamics.run import DynamicOptions, run_dynamic
-from upliftlab.continuum.materials import MohrCoulomb, Region
+from upliftlab.continuum.materials import MohrCoulomb, Region, point_return
 from upliftlab.scenes import load_scene
 
 #: The Winkler map's frictional soil (comparisons/studies/winkler_map/grid.py SOILS["sand"]) on the
@@ -37,7 +35,7 @@ def _components(tensor):
 
 @pytest.mark.parametrize("dilation", [30.0, 10.0])
 def test_compiled_mohr_coulomb_matches_the_vectorised_return(dilation):
-    # Reference: principal_returns.mohr_coulomb at 600 random plane-strain strains from a
+    # Reference: the vectorised mohr_coulomb at 600 random plane-strain strains from a
     # plastic history (a first update at 70 % of the strain, so the kernel starts from a
     # nonzero plastic strain); a shared random volumetric part spreads the trial stresses
     # from compression (main plane, edges) to tension (apex). Stress and plastic strain to
@@ -53,13 +51,13 @@ def test_compiled_mohr_coulomb_matches_the_vectorised_return(dilation):
     strain[0, 1] = strain[1, 0] = e[3]
     _, _, old = material(0.7 * strain, material.initial_state(n))
     stress, _, new = material(strain, old)
-    constants = kernels.kernel_constants(material)
-    assert constants[4:] == (material.sin_phi, material.cos_phi, material.sin_psi)
+    constants = material.kernel_constants()
+    assert constants[3:] == (material.sin_phi, material.cos_phi, material.sin_psi)
     p = old.plastic_strain
-    got = np.array([kernels.point_update(
-        kernels.MOHR_COULOMB, strain[0, 0, i], strain[1, 1, i], strain[2, 2, i],
-        strain[0, 1, i], p[0, 0, i], p[1, 1, i], p[2, 2, i], p[0, 1, i],
-        old.equivalent_plastic_strain[i], constants) for i in range(n)])
+    got = np.array([point_return(
+        constants, strain[0, 0, i], strain[1, 1, i], strain[2, 2, i], strain[0, 1, i],
+        p[0, 0, i], p[1, 1, i], p[2, 2, i], p[0, 1, i], old.equivalent_plastic_strain[i])
+        for i in range(n)])
     ref_stress = _components(stress)
     ref_plastic = _components(new.plastic_strain - p)
     ref_bar = new.equivalent_plastic_strain - old.equivalent_plastic_strain
@@ -77,8 +75,8 @@ def test_compiled_mohr_coulomb_matches_the_vectorised_return(dilation):
 
 def test_compiled_mohr_coulomb_run_repeats_the_vectorised_fallback(monkeypatch):
     # Reference: the same explicit run through the Python loop with the vectorised return map
-    # and the sparse assembly (MohrCoulomb taken out of kernels.MATERIAL_KINDS: the fallback
-    # of every material without a compiled map). The two evaluate the same formulas in another
+    # and the sparse assembly (MohrCoulomb's compiled constants taken away: the fallback of
+    # every material without a compiled map). The two evaluate the same formulas in another
     # order (closed-form principal values against LAPACK, element sums against a sparse
     # product), ~1e-16 per evaluation; 480 steps of a dissipative plastic run do not amplify
     # that much (measured 2.3e-13 of each history's peak): the histories agree to 1e-10 of
@@ -87,7 +85,7 @@ def test_compiled_mohr_coulomb_run_repeats_the_vectorised_fallback(monkeypatch):
     scene = load_scene("strip_footing_clay", overrides=SAND)
     model, motion = build_model(scene), scene.build_motion()
     compiled = run_dynamic(model, scene, motion, DynamicOptions(method="explicit", snapshots=2))
-    monkeypatch.delitem(kernels.MATERIAL_KINDS, "MohrCoulomb")
+    monkeypatch.setattr(MohrCoulomb, "Constants", None)
     fallback = run_dynamic(model, scene, motion, DynamicOptions(method="explicit", snapshots=2))
     assert compiled.metadata["compiled"] and not fallback.metadata["compiled"]
     for name in ("footing", "pressure", "structure_u", "displacement", "plastic_strain",

@@ -319,9 +319,9 @@ def test_compiled_kernels_are_cached_outside_the_installed_package(tmp_path):
     command then imported it as an empty namespace package. The cache now goes to
     $XDG_CACHE_HOME/upliftlab/numba/<digest of the kernels' sources: reduced/kernels/ and the
     reduced laws' compiled forms in reduced/laws/, which the kernels inline>, also when numba was
-    imported first. The digest also covers the continuum's compiled kernels, whose
-    Mohr–Coulomb point return (materials/compiled_mc.py) is compiled into the element loop of
-    dynamics/kernels.py. Reference: hashlib over (name, bytes) of those files."""
+    imported first. The digest also covers the continuum's compiled kernels, whose soil
+    models' point returns (one module each in continuum/materials/) are compiled into the element
+    loops of dynamics/kernels.py. Reference: hashlib over (name, bytes) of those files."""
     code = ("import numba, os, upliftlab\n"
             "print(os.environ['NUMBA_CACHE_DIR'], numba.config.CACHE_DIR)\n")
     env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
@@ -334,9 +334,9 @@ def test_compiled_kernels_are_cached_outside_the_installed_package(tmp_path):
     kernels += [(f"upliftlab.reduced/laws/{p.relative_to(root / 'reduced' / 'laws').as_posix()}",
                  p) for p in sorted((root / "reduced" / "laws").rglob("*.py"))]
     kernels += [("upliftlab.continuum/dynamics/kernels.py",
-                 root / "continuum" / "dynamics" / "kernels.py"),
-                ("upliftlab.continuum/materials/compiled_mc.py",
-                 root / "continuum" / "materials" / "compiled_mc.py")]
+                 root / "continuum" / "dynamics" / "kernels.py")]
+    kernels += [(f"upliftlab.continuum/materials/{p.name}", p)
+                for p in sorted((root / "continuum" / "materials").glob("*.py"))]
     digest = hashlib.sha256(b"".join(name.encode() + b"\0" + p.read_bytes() + b"\0"
                                      for name, p in sorted(kernels))).hexdigest()[:16]
     assert out == [str(tmp_path / "upliftlab" / "numba" / digest)] * 2

@@ -12,10 +12,11 @@ from .version import __version__
 
 
 #: The compiled kernels' sources (as :func:`upliftlab.provenance.package_files` names them), the
-#: reduced laws' compiled forms among them: the numba cache folder is keyed by their digest.
+#: reduced laws' and the soil models' compiled forms among them: the numba cache folder is keyed
+#: by their digest.
 KERNEL_SOURCES = ("upliftlab.reduced/kernels/", "upliftlab.reduced/laws/",
                   "upliftlab.continuum/dynamics/kernels.py",
-                  "upliftlab.continuum/materials/compiled_mc.py")
+                  "upliftlab.continuum/materials/")
 
 
 def _numba_cache_outside_the_package() -> None:
@@ -27,7 +28,8 @@ def _numba_cache_outside_the_package() -> None:
     kernels' sources (:data:`KERNEL_SOURCES`, :func:`upliftlab.provenance.code_digest`): numba
     keys a cached function on its own file only (numba issue 1833), so an edit to a spring law
     must compile every kernel afresh instead of loading integrators cached with the old law,
-    and an edit to the continuum's Mohr–Coulomb point return the element loop that inlines it.
+    and an edit to a continuum soil model's point return (each model's module in
+    ``materials/``) the element loops that inline it.
     Left alone when the folder cannot be written."""
     import os
     import sys

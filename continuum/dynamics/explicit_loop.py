@@ -101,7 +101,7 @@ def run_steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure
     never compiles the parallel ones."""
     U, V, Z, VZ, FC, ST = rings
     R_prev, F_prev, Fz_prev, energy, counters = carry
-    (nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, constants, stress, work, fint, ptr,
+    (nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, stress, work, fint, ptr,
      entries) = soil
     datum, keep, ground, incident, ag_all, vinc_all, mass, damping, m_step = loads
     Mz, Cz, Kz, gravity_z, ground_z = structure
@@ -116,8 +116,8 @@ def run_steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure
         v, v_next = V[k % 2], V[(k + 1) % 2]
         z, z_prev = Z[k % 3], Z[(k + 2) % 3]
         vz = VZ[k % 2]
-        elements(u.reshape(-1, 2), nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, constants,
-                 stress, work)
+        elements(u.reshape(-1, 2), nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, stress,
+                 work)
         gather(work, nodes, ptr, entries, fint)
         ag = ag_all[k]
         strain, work_in, dissipated = soil_predict(

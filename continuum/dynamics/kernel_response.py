@@ -7,8 +7,8 @@ The vectorised route (:meth:`~upliftlab.continuum.model.ContinuumModel.respond`)
 four, the strain and ∫ Bᵀ σ as sparse products, and it was the largest cost of an implicit step
 after the back-substitution. :class:`KernelResponse` computes the first three in one compiled
 pass over the elements (:func:`~upliftlab.continuum.dynamics.kernels.internal_force`: strain,
-return map
-and Bᵀ σ dx together, the same return maps as :mod:`~upliftlab.continuum.materials`), and
+the soil model's compiled point return and Bᵀ σ dx together, the same return maps as
+:mod:`~upliftlab.continuum.materials`), and
 leaves the tangent to the vectorised route, computed only if a step asks for it (one that
 refactorises after :attr:`~upliftlab.continuum.dynamics.iteration_matrix.FrozenTangent.SWITCH`
 iterations). The kernel runs on one thread: one evaluation is too short for a second thread to
@@ -33,12 +33,12 @@ __all__ = ["KernelResponse"]
 
 class KernelResponse:
     """The soil response of ``model`` by the compiled kernels (module docstring). Build it
-    with :meth:`of`, which returns None for a material without a compiled return map."""
+    with :meth:`of`, which returns None for a material without a compiled return map;
+    ``constants`` are what its point return reads (the record's ``kernel_constants()``)."""
 
-    def __init__(self, model, kind: int):
-        self.model, self.kind = model, kind
+    def __init__(self, model, constants):
+        self.model, self.constants = model, constants
         self.layout = kernels.layout(model.disc)
-        self.constants = kernels.kernel_constants(model.material)
         self.work = np.zeros(self.layout.shape[::2] + (2,))
         self.force = np.zeros(model.disc.ndofs)
         self._eigen = (None, None)
@@ -47,8 +47,8 @@ class KernelResponse:
     @classmethod
     def of(cls, model) -> KernelResponse | None:
         """The kernel response of ``model``, or None if its material has no compiled map."""
-        kind = kernels.material_kind(model.material)
-        return None if kind is None else cls(model, kind)
+        constants = model.material.kernel_constants()
+        return None if constants is None else cls(model, constants)
 
     def respond(self, u: np.ndarray, state: State, eigenstrain: np.ndarray | None) -> tuple:
         """(stress (3, 3, nelems, nqp), material state, residual f_int − f_body) for the
@@ -57,8 +57,7 @@ class KernelResponse:
         nel, nqp = self.model.disc.qp_shape
         stress = np.empty((nel, nqp, 4))
         kernels.internal_force(self.layout, u, self._eigenstrain(eigenstrain), plastic, ebar,
-                               self.kind, self.constants, stress, self.work, self.force,
-                               parallel=False)
+                               self.constants, stress, self.work, self.force, parallel=False)
         material = State(tensor_of(plastic), ebar, np.zeros((nel, nqp), dtype=np.int8))
         return tensor_of(stress), material, self.force - self.model.body_force
 

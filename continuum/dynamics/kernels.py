@@ -13,22 +13,13 @@ kernels take the scalar gradients ``dNdx``, ``dNdy`` (nel, nqp, nnode), the quad
 ``dx`` (nel, nqp) and the global DOFs (nel, nnode, 2), which are (2k, 2k + 1) for the node k.
 :func:`layout` checks all this against the discretisation and refuses a basis without it.
 
-**Materials** (:data:`ELASTIC`, :data:`TRESCA`, :data:`VON_MISES`, :data:`MOHR_COULOMB`): the
-same return maps as :mod:`~upliftlab.continuum.materials` (plane strain: the strain's zz
+**Soil models.** The return map at a quadrature point is the soil model's compiled point
+return (:mod:`~upliftlab.continuum.materials.compiled`), found by the type of the constants the
+kernels are given (the record's ``kernel_constants()``, a named tuple whose class names the
+return): numba compiles and caches one element loop per soil model, with the model's return
+inlined. Each is the same return map as the model's vectorised one (plane strain: the strain's zz
 component is the geostatic eigenstrain's, xz = yz = 0), written for one point and without the
-tangent:
-
-- elastic: σ = λ tr(ε − εp) 𝟏 + 2G (ε − εp);
-- Tresca σ1 − σ3 ≤ 2 c_u: principal-space return to the main plane, else to the
-  triaxial-compression or -extension edge (the closed forms of
-  :func:`~upliftlab.continuum.materials.tresca` with φ = ψ = 0); in plane strain the principal
-  directions are the in-plane pair and z, so the return rotates back in the xy plane;
-- von Mises q ≤ √3 c_u + H ε̄p: radial return;
-- Mohr–Coulomb (c, φ, ψ ≤ φ): main plane, either edge or the apex
-  (:mod:`~upliftlab.continuum.materials.compiled_mc`).
-
-A material's constants travel as one tuple (:func:`kernel_constants`): (λ, G, strength, H,
-sin φ, cos φ, sin ψ), strength c_u or c, H the hardening modulus (kPa).
+tangent; a model without one (its record's ``Constants`` None) does not run here.
 
 Plastic strain is stored as (xx, yy, zz, xy) (tensorial shear), stress as (xx, yy, zz, xy).
 A point yields when f > 1e-12 × (strength + stress scale), as in the vectorised maps.
@@ -36,24 +27,14 @@ A point yields when f > 1e-12 × (strength + stress scale), as in the vectorised
 
 from __future__ import annotations
 
-import math
-
 import numba as nb
 import numpy as np
 
 from ...checks import InputError
-from ..materials.compiled_mc import mohr_coulomb_point, rotate_back, sorted_principal
+from ..materials.compiled import point_return
 
-__all__ = ["ELASTIC", "TRESCA", "VON_MISES", "MOHR_COULOMB", "MATERIAL_KINDS", "Layout",
-           "layout", "material_kind", "kernel_constants", "internal_force", "point_update"]
+__all__ = ["Layout", "layout", "internal_force", "compiled_pair", "soil_predict"]
 
-ELASTIC, TRESCA, VON_MISES, MOHR_COULOMB = 0, 1, 2, 3
-#: The material record class names with a compiled return map.
-MATERIAL_KINDS = {"Elastic": ELASTIC, "Tresca": TRESCA, "VonMises": VON_MISES,
-                  "MohrCoulomb": MOHR_COULOMB}
-_RTOL = 1e-12
-_SQRT23 = math.sqrt(2.0 / 3.0)
-_SQRT32 = math.sqrt(1.5)
 #: Element blocks of the parallel loop (each thread takes whole blocks; a scratch array each).
 _BLOCKS = 64
 #: Floating-point licences of the element loop: fused multiply-add and reassociation of its sums
@@ -101,102 +82,13 @@ def layout(disc) -> Layout:
                   ptr.astype(np.int64), order.astype(np.int64), disc.ndofs)
 
 
-def material_kind(material) -> int | None:
-    """The kernel code of a material record, or None if it has no compiled return map."""
-    return MATERIAL_KINDS.get(type(material).__name__)
-
-
-def kernel_constants(material) -> tuple[float, ...]:
-    """The constants the kernels read of a material record: (λ, G, strength, H, sin φ, cos φ,
-    sin ψ) in kPa and plain numbers; strength is c_u (Tresca, von Mises) or c (Mohr–Coulomb),
-    H von Mises' hardening modulus; a material without a term has 0 there (cos φ = 1)."""
-    frictional = material_kind(material) == MOHR_COULOMB
-    strength = material.cohesion if frictional else getattr(material, "undrained_strength", 0.0)
-    return (float(material.lame), float(material.shear_modulus), float(strength or 0.0),
-            float(getattr(material, "hardening_modulus", 0.0) or 0.0),
-            float(material.sin_phi) if frictional else 0.0,
-            float(material.cos_phi) if frictional else 1.0,
-            float(material.sin_psi) if frictional else 0.0)
-
-
-# ---------------------------------------------------------------------------------------------
-# One point
-# ---------------------------------------------------------------------------------------------
-
-
-@nb.njit(cache=True, inline="always")
-def _tresca(sxx, syy, szz, sxy, G, k):
-    """Tresca return of the trial stress; returns the stress (xx, yy, zz, xy)."""
-    case, s1, s2, s3, cos2, sin2 = sorted_principal(sxx, syy, szz, sxy)
-    f = (s1 - s3) - k
-    if not f > _RTOL * (k + max(abs(s1), abs(s3))):
-        return sxx, syy, szz, sxy
-    n1, n2, n3 = s1 - 0.5 * f, s2, s3 + 0.5 * f
-    if not (n1 >= n2 and n2 >= n3):
-        if s1 - 2.0 * s2 + s3 > 0.0:  # extension edge: s2 = s3
-            f1, f2 = s1 - s3 - k, s1 - s2 - k
-            n1 = s1 - (f1 + f2) / 3.0
-            n2 = s2 + (2.0 * f2 - f1) / 3.0
-            n3 = s3 + (2.0 * f1 - f2) / 3.0
-            n2 = n3 = 0.5 * (n2 + n3)
-        else:  # compression edge: s1 = s2
-            f1, f2 = s1 - s3 - k, s2 - s3 - k
-            n1 = s1 - (2.0 * f1 - f2) / 3.0
-            n2 = s2 - (2.0 * f2 - f1) / 3.0
-            n3 = s3 + (f1 + f2) / 3.0
-            n1 = n2 = 0.5 * (n1 + n2)
-    return rotate_back(case, n1, n2, n3, cos2, sin2)
-
-
-@nb.njit(cache=True, inline="always")
-def point_update(kind, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar, constants):
-    """The return map at one point: total strain (xx, yy, zz, xy tensorial), plastic strain
-    and ε̄p of the converged state, the material's :func:`kernel_constants` -> (stress xx, yy,
-    zz, xy, plastic strain increment xx, yy, zz, xy, Δε̄p)."""
-    lam, G, strength, H, sin_phi, cos_phi, sin_psi = constants
-    exx, eyy, ezz, exy = exx - pxx, eyy - pyy, ezz - pzz, exy - pxy
-    tr = exx + eyy + ezz
-    sxx = lam * tr + 2.0 * G * exx
-    syy = lam * tr + 2.0 * G * eyy
-    szz = lam * tr + 2.0 * G * ezz
-    sxy = 2.0 * G * exy
-    if kind == ELASTIC:
-        return sxx, syy, szz, sxy, 0.0, 0.0, 0.0, 0.0, 0.0
-    if kind == TRESCA:
-        nxx, nyy, nzz, nxy = _tresca(sxx, syy, szz, sxy, G, 2.0 * strength)
-        a, b, c, d = (sxx - nxx) / (2.0 * G), (syy - nyy) / (2.0 * G), \
-            (szz - nzz) / (2.0 * G), (sxy - nxy) / (2.0 * G)
-        dbar = _SQRT23 * math.sqrt(a * a + b * b + c * c + 2.0 * d * d)
-        return nxx, nyy, nzz, nxy, a, b, c, d, dbar
-    if kind == MOHR_COULOMB:
-        return mohr_coulomb_point(sxx, syy, szz, sxy, lam, G, strength, sin_phi, cos_phi,
-                                  sin_psi)
-    # von Mises with linear hardening: radial return
-    mean = tr / 3.0
-    dxx, dyy, dzz = 2.0 * G * (exx - mean), 2.0 * G * (eyy - mean), 2.0 * G * (ezz - mean)
-    norm = math.sqrt(dxx * dxx + dyy * dyy + dzz * dzz + 2.0 * sxy * sxy)
-    q = _SQRT32 * norm
-    sy = math.sqrt(3.0) * strength + H * ebar
-    f = q - sy
-    if not f > _RTOL * sy:
-        return sxx, syy, szz, sxy, 0.0, 0.0, 0.0, 0.0, 0.0
-    dgamma = f / (3.0 * G + H)
-    keep = 1.0 - 3.0 * G * dgamma / q
-    K = lam + 2.0 * G / 3.0
-    p = K * tr
-    scale = _SQRT32 * dgamma / norm
-    return (dxx * keep + p, dyy * keep + p, dzz * keep + p, sxy * keep,
-            scale * dxx, scale * dyy, scale * dzz, scale * sxy, dgamma)
-
-
 # ---------------------------------------------------------------------------------------------
 # The internal force
 # ---------------------------------------------------------------------------------------------
 
 
 @nb.njit(cache=True, fastmath=_FAST)
-def _elements(lo, hi, u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, constants, stress,
-              fe):
+def _elements(lo, hi, u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, stress, fe):
     """Elements lo:hi of :func:`internal_force`."""
     nel, nqp, nn = dNdx.shape
     ue = np.empty((nn, 2))
@@ -212,10 +104,10 @@ def _elements(lo, hi, u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, const
                 exx += bx * ue[a, 0]
                 eyy += by * ue[a, 1]
                 gxy += by * ue[a, 0] + bx * ue[a, 1]
-            sxx, syy, szz, sxy, d0, d1, d2, d3, db = point_update(
-                kind, exx + eig[e, p, 0], eyy + eig[e, p, 1], eig[e, p, 2],
+            sxx, syy, szz, sxy, d0, d1, d2, d3, db = point_return(
+                constants, exx + eig[e, p, 0], eyy + eig[e, p, 1], eig[e, p, 2],
                 0.5 * gxy + eig[e, p, 3], plastic[e, p, 0], plastic[e, p, 1],
-                plastic[e, p, 2], plastic[e, p, 3], ebar[e, p], constants)
+                plastic[e, p, 2], plastic[e, p, 3], ebar[e, p])
             if db != 0.0:
                 plastic[e, p, 0] += d0
                 plastic[e, p, 1] += d1
@@ -233,20 +125,18 @@ def _elements(lo, hi, u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, const
 
 
 @nb.njit(cache=True, parallel=True)
-def _elements_parallel(u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, constants, stress,
-                       fe):
+def _elements_parallel(u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, stress, fe):
     nel = dNdx.shape[0]
     blocks = min(nel, _BLOCKS)
     for b in nb.prange(blocks):
         _elements(b * nel // blocks, (b + 1) * nel // blocks, u2, nodes, dNdx, dNdy, dx, eig,
-                  plastic, ebar, kind, constants, stress, fe)
+                  plastic, ebar, constants, stress, fe)
 
 
 @nb.njit(cache=True)
-def _elements_serial(u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, constants, stress,
-                     fe):
-    _elements(0, dNdx.shape[0], u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, kind, constants,
-              stress, fe)
+def _elements_serial(u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, stress, fe):
+    _elements(0, dNdx.shape[0], u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, stress,
+              fe)
 
 
 @nb.njit(cache=True)
@@ -278,13 +168,13 @@ def _gather_serial(fe, nodes, out2):
             out2[k, 1] += fe[e, a, 1]
 
 
-def internal_force(lay: Layout, u, eigenstrain, plastic, ebar, kind: int,
-                   constants: tuple[float, ...], stress, work, out,
+def internal_force(lay: Layout, u, eigenstrain, plastic, ebar, constants, stress, work, out,
                    parallel: bool | None = None) -> np.ndarray:
-    """∫ Bᵀ σ (ndofs) into ``out`` for the displacement ``u``: the return map of ``kind`` with
-    the material's :func:`kernel_constants` at every quadrature point from the state
-    (``plastic`` (nel, nqp, 4), ``ebar`` (nel, nqp)), which is **updated in place** (an
-    explicit step commits every evaluation), the stress written to ``stress`` (nel, nqp, 4).
+    """∫ Bᵀ σ (ndofs) into ``out`` for the displacement ``u``: the return map of the soil model
+    whose ``constants`` these are (its record's ``kernel_constants()``) at every quadrature
+    point from the state (``plastic`` (nel, nqp, 4), ``ebar`` (nel, nqp)), which is **updated
+    in place** (an explicit step commits every evaluation), the stress written to ``stress``
+    (nel, nqp, 4).
     ``eigenstrain`` (nel, nqp, 4) is added to the strain of u (the geostatic stress); ``work``
     (nel, nnode, 2) is scratch. With more than one numba thread (``numba.get_num_threads()``)
     the elements and the DOFs are split among the threads, unless ``parallel`` is False."""
@@ -292,7 +182,7 @@ def internal_force(lay: Layout, u, eigenstrain, plastic, ebar, kind: int,
         parallel = nb.get_num_threads() > 1
     elements, gather = compiled_pair(parallel)
     elements(u.reshape(-1, 2), lay.nodes, lay.dNdx, lay.dNdy, lay.dx, eigenstrain, plastic, ebar,
-             kind, constants, stress, work)
+             constants, stress, work)
     gather(work, lay.nodes, lay.ptr, lay.entries, out)
     return out
 

@@ -2,11 +2,10 @@
 
 :class:`SoilForce` evaluates ∫ Bᵀ σ(u) at every step and keeps the quadrature-point state
 (plastic strain, ε̄p) between steps: an explicit step commits every evaluation, there are no
-iterations to roll back. Elastic, Tresca, von Mises and Mohr–Coulomb soil run in the compiled
-kernels of :mod:`~upliftlab.continuum.dynamics.kernels`; any other material (Drucker–Prager) falls
-back
-to the vectorised return map of :mod:`~upliftlab.continuum.materials` through
-:meth:`~upliftlab.continuum.model.ContinuumModel.respond` (the same numbers, slower).
+iterations to roll back. A soil model with a compiled point return (its record's
+``Constants``, :mod:`~upliftlab.continuum.materials.compiled`) runs in the compiled kernels of
+:mod:`~upliftlab.continuum.dynamics.kernels`; any other falls back to its vectorised return map
+through :meth:`~upliftlab.continuum.model.ContinuumModel.respond` (the same numbers, slower).
 """
 
 from __future__ import annotations
@@ -37,15 +36,16 @@ class SoilForce:
     """∫ Bᵀ σ(u) of ``model`` from the converged ``state`` (a
     :class:`~upliftlab.continuum.statics.newton.ContinuumState`: its material history and geostatic
     eigenstrain), committing the material state at every call (module docstring).
-    ``compiled`` says whether the compiled kernel serves this material."""
+    ``compiled`` says whether the compiled kernel serves this material; ``constants`` are what
+    its point return reads (None: the vectorised fallback)."""
 
     def __init__(self, model, state):
         self.model = model
         nel, nqp = model.disc.qp_shape
         eig = state.eigenstrain
         self.eigenstrain = np.zeros((nel, nqp, 4)) if eig is None else four_components(eig)
-        self.kind = kernels.material_kind(model.material)
-        self.compiled = self.kind is not None
+        self.constants = model.material.kernel_constants()
+        self.compiled = self.constants is not None
         self.out = np.zeros(model.disc.ndofs)
         if self.compiled:
             self.layout = kernels.layout(model.disc)
@@ -53,7 +53,6 @@ class SoilForce:
             self.ebar = np.ascontiguousarray(state.material.equivalent_plastic_strain, float)
             self.stress = four_components(state.stress)
             self.work = np.zeros(self.layout.shape[::2] + (2,))
-            self.constants = kernels.kernel_constants(model.material)
         else:
             self._material, self._stress = state.material, state.stress
             self._eigen = eig
@@ -62,8 +61,8 @@ class SoilForce:
         """∫ Bᵀ σ(u) (ndofs; a buffer reused by the next call) and commit the state."""
         if self.compiled:
             return kernels.internal_force(self.layout, u, self.eigenstrain, self.plastic,
-                                          self.ebar, self.kind, self.constants, self.stress,
-                                          self.work, self.out)
+                                          self.ebar, self.constants, self.stress, self.work,
+                                          self.out)
         response = self.model.respond(u, self._material, self._eigen)
         self._material, self._stress = response.material, response.stress
         np.add(response.residual, self.model.body_force, out=self.out)

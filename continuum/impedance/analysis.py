@@ -55,7 +55,7 @@ from ...results import write_netcdf
 from ...scenes import ContinuumOptions
 from .. import assembly
 from ..dynamics.waves import dashpot_data, mass_data, wave_speeds
-from ..materials import plane_strain_tangent
+from ..materials import SOIL_MODELS, plane_strain_tangent
 from ..output.fields import result_metadata
 from ..statics.geostatic import elastic_tangent
 from .pml import check_layer, pml_corrections
@@ -227,9 +227,10 @@ class Impedance:
 
 def _check(model) -> None:
     soil = model.soil
-    if soil.model != "elastic":
+    if not model.material.linear:
+        valid = " or ".join(repr(name) for name, record in SOIL_MODELS.items() if record.linear)
         raise InputError(f"soil.model = {soil.model!r}: the impedance analysis is for linear "
-                         "elastic soil; valid: 'elastic'")
+                         f"elastic soil; valid: {valid}")
     if not soil.density > 0.0:
         raise InputError(f"soil.density = {soil.density:g}: the impedance needs the soil's "
                          "mass; valid range is > 0")

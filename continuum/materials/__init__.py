@@ -1,4 +1,5 @@
-"""Soil constitutive models for the plane-strain continuum model, as pure functions.
+"""Soil constitutive models for the plane-strain continuum model, as pure functions, one module
+per model, found through one registry (:data:`SOIL_MODELS`).
 
 Each model is one pure function ``update(strain, state, params) -> (stress, tangent, new_state)``
 in the style of FElupe, evaluated at every quadrature point at once:
@@ -19,21 +20,21 @@ in the style of FElupe, evaluated at every quadrature point at once:
   B-matrix assembly Bᵀ D B with B rows (∂u/∂x, ∂v/∂y, ∂u/∂y + ∂v/∂x). The tangent is not
   symmetric for non-associated flow (ψ < φ).
 
-The models, with the return regions each handles (:class:`Region`):
+The models, one module each, with the return regions each handles (:class:`Region`):
 
-- :func:`linear_elastic`: isotropic Hooke's law.
-- :func:`von_mises` (undrained clay): q ≤ σ_y = √3 c_u + H ε̄p (plane-strain match: in plane
+- :mod:`.elastic` (:func:`linear_elastic`): isotropic Hooke's law.
+- :mod:`.von_mises` (undrained clay): q ≤ σ_y = √3 c_u + H ε̄p (plane-strain match: in plane
   strain the limit shear stress is c_u), radial return (SMOOTH).
-- :func:`tresca`: σ1 − σ3 ≤ 2 c_u, multi-surface return in principal space: main plane (SMOOTH),
+- :mod:`.tresca`: σ1 − σ3 ≤ 2 c_u, multi-surface return in principal space: main plane (SMOOTH),
   triaxial-compression edge σ1 = σ2 (EDGE_COMPRESSION), triaxial-extension edge σ2 = σ3
   (EDGE_EXTENSION); spectral consistent tangent.
-- :func:`mohr_coulomb`: (σ1 − σ3) + (σ1 + σ3) sin φ ≤ 2c cos φ with plastic potential
+- :mod:`.mohr_coulomb`: (σ1 − σ3) + (σ1 + σ3) sin φ ≤ 2c cos φ with plastic potential
   (σ1 − σ3) + (σ1 + σ3) sin ψ (ψ ≤ φ): main plane, both edges and the apex σ = c cot φ 𝟏 (APEX).
   The return mapping follows de Souza Neto, Perić & Owen, *Computational Methods for
   Plasticity* (2008), ch. 8 (perfect plasticity: every region is closed form).
-- :func:`drucker_prager`: √J2 + η p ≤ ξ c, potential √J2 + η̄ p (p = tr σ / 3): return to the cone
-  (SMOOTH) and to the apex p = c cot φ (APEX). **Plane-strain match** to Mohr–Coulomb (the natural
-  one for strip footings), see :class:`DruckerPrager`: for ψ = φ it is the textbook
+- :mod:`.drucker_prager`: √J2 + η p ≤ ξ c, potential √J2 + η̄ p (p = tr σ / 3): return to the
+  cone (SMOOTH) and to the apex p = c cot φ (APEX). **Plane-strain match** to Mohr–Coulomb (the
+  natural one for strip footings), see :class:`DruckerPrager`: for ψ = φ it is the textbook
   η = 3 tan φ / √(9 + 12 tan²φ), ξ = 3 / √(9 + 12 tan²φ).
 
 σ1 ≥ σ2 ≥ σ3 are the principal stresses (tension positive, so σ3 is the most compressive).
@@ -41,36 +42,42 @@ Hardening (``hardening_modulus`` H) is implemented for von Mises only; the other
 are perfectly plastic. ``State.equivalent_plastic_strain`` is ε̄p = ∫ √(2/3) ‖dεp‖ for every model
 (von Mises' hardening variable; a diagnostic for the others).
 
-Use :func:`material_from_soil` to turn a :class:`upliftlab.scenes.Soil` into a callable,
-validated parameter record: ``material(strain, state) -> (stress, tangent, new_state)``.
+Each model's module holds, side by side, its frozen parameter record (validated on construction
+and callable: ``material(strain, state) -> (stress, tangent, new_state)``), its vectorised
+return map and, for the explicit route, its compiled point return with the constants it reads
+(:mod:`.compiled`; Drucker–Prager has none and runs through its vectorised map). Use
+:func:`material_from_soil` to turn a :class:`upliftlab.scenes.Soil` into its record.
 
-The pieces: :mod:`~upliftlab.continuum.materials.returns` (state, regions, tensor layouts),
-:mod:`~upliftlab.continuum.materials.params` (the parameter records),
-:mod:`~upliftlab.continuum.materials.smooth` (elastic, von Mises, Drucker–Prager) and
-:mod:`~upliftlab.continuum.materials.principal` (Tresca, Mohr–Coulomb). Every name is importable
-from here.
+Shared pieces: :mod:`.base` (the records' base and input checks), :mod:`.returns` (state,
+regions, tensor layouts), :mod:`.principal` (the principal-space return of Tresca and
+Mohr–Coulomb), :mod:`.compiled` (the point returns' shared helpers and dispatch) and
+:mod:`.registry` (:data:`SOIL_MODELS`). Every name is importable from here.
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
-from ... import checks
-from ...checks import InputError
-from .params import (DruckerPrager, Elastic, MohrCoulomb, Tresca, VonMises, check_elastic,
-                     check_frictional, check_undrained)
-from .principal import mohr_coulomb, tresca
+from .base import Elasticity, Frictional, check_elastic, check_frictional, check_undrained
+from .compiled import point_return
+from .drucker_prager import DruckerPrager, drucker_prager
+from .elastic import Elastic, linear_elastic
+from .mohr_coulomb import MohrCoulomb, mohr_coulomb
+from .registry import SOIL_MODELS, compiled_models, hardening_models, material_from_soil
 from .returns import (VOIGT, Region, State, initial_state, plane_strain, plane_strain_stress,
                       plane_strain_tangent)
-from .smooth import drucker_prager, linear_elastic, von_mises
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ...scenes import Soil
+from .tresca import Tresca, tresca
+from .von_mises import VonMises, von_mises
 
 __all__ = [
+    "SOIL_MODELS",
+    "compiled_models",
+    "hardening_models",
+    "material_from_soil",
+    "point_return",
     "Region",
     "State",
     "initial_state",
+    "Elasticity",
+    "Frictional",
     "Elastic",
     "VonMises",
     "Tresca",
@@ -81,46 +88,11 @@ __all__ = [
     "tresca",
     "drucker_prager",
     "mohr_coulomb",
-    "material_from_soil",
+    "check_elastic",
+    "check_undrained",
+    "check_frictional",
     "plane_strain",
     "plane_strain_tangent",
     "plane_strain_stress",
     "VOIGT",
 ]
-
-Elastic.update = staticmethod(linear_elastic)
-VonMises.update = staticmethod(von_mises)
-Tresca.update = staticmethod(tresca)
-DruckerPrager.update = staticmethod(drucker_prager)
-MohrCoulomb.update = staticmethod(mohr_coulomb)
-
-
-def material_from_soil(soil: Soil):
-    """The validated, callable parameter record for ``soil.model``.
-
-    ``material(strain, state) -> (stress, tangent, new_state)``. Raises :class:`InputError`
-    naming the ``soil.*`` field, its value and the valid range.
-    """
-    model = checks.one_of("soil.model", soil.model,
-                          ("elastic", "tresca", "von_mises", "drucker_prager", "mohr_coulomb"))
-    check_elastic("soil.", soil.youngs_modulus, soil.poisson_ratio)
-    hardening = checks.nonnegative("soil.hardening_modulus", soil.hardening_modulus)
-    if hardening > 0.0 and model != "von_mises":
-        raise InputError(f"soil.hardening_modulus = {hardening:g}: model {model!r} is perfectly "
-                         "plastic here, valid range is [0, 0] (hardening is implemented for "
-                         "von_mises only)")
-    elastic = dict(youngs_modulus=float(soil.youngs_modulus),
-                   poisson_ratio=float(soil.poisson_ratio))
-    if model == "elastic":
-        return Elastic(**elastic)
-    if model in ("tresca", "von_mises"):
-        check_undrained("soil.", model, soil.undrained_strength)
-        if model == "tresca":
-            return Tresca(**elastic, undrained_strength=float(soil.undrained_strength))
-        return VonMises(**elastic, undrained_strength=float(soil.undrained_strength),
-                        hardening_modulus=hardening)
-    check_frictional("soil.", soil.cohesion, soil.friction_angle, soil.dilation_angle)
-    cls = MohrCoulomb if model == "mohr_coulomb" else DruckerPrager
-    return cls(**elastic, cohesion=float(soil.cohesion), friction_angle=float(soil.friction_angle),
-               dilation_angle=float(soil.dilation_angle))
-

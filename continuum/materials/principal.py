@@ -1,6 +1,11 @@
-"""Return maps in principal stress space: Tresca and Mohr–Coulomb, perfectly plastic, with a
-closed-form return to the main plane, either edge or the apex (de Souza Neto, Perić & Owen,
-*Computational Methods for Plasticity*, 2008, ch. 8) and the spectral consistent tangent."""
+"""The return in principal stress space shared by Tresca and Mohr–Coulomb (perfectly plastic):
+a closed-form return to the main plane, either edge or the apex (de Souza Neto, Perić & Owen,
+*Computational Methods for Plasticity*, 2008, ch. 8) and the spectral consistent tangent.
+
+:func:`principal_return` is the vectorised map of the yield function
+(σ1 − σ3) + (σ1 + σ3) sin φ ≤ 2c cos φ with the plastic potential (σ1 − σ3) + (σ1 + σ3) sin ψ;
+Tresca is the case φ = ψ = 0, c = c_u.
+"""
 
 from __future__ import annotations
 
@@ -8,28 +13,16 @@ import math
 
 import numpy as np
 
-from .params import MohrCoulomb, Tresca
-from .returns import (EYE3, PAIRS, RTOL, SQ2, Piecewise, Region, State, elastic_mandel,
+from .returns import (EYE3, PAIRS, RTOL, SQ2, Piecewise, Region, elastic_mandel,
                       elastic_stress, finish, mandel, prepare)
 
-__all__ = ["tresca", "mohr_coulomb"]
+__all__ = ["principal_return"]
 
 
-def tresca(strain, state: State | None, params: Tresca):
-    """Tresca (perfectly plastic): principal-space return to the main plane or an edge, spectral
-    consistent tangent. Mohr–Coulomb with φ = ψ = 0 and c = c_u."""
-    return _principal_return(strain, state, params, 0.0, 1.0, 0.0, params.undrained_strength)
-
-
-def mohr_coulomb(strain, state: State | None, params: MohrCoulomb):
-    """Mohr–Coulomb (perfectly plastic, non-associated): principal-space return to the main
-    plane, either edge or the apex (de Souza Neto et al. 2008, ch. 8), spectral consistent
-    tangent."""
-    return _principal_return(strain, state, params, params.sin_phi, params.cos_phi,
-                             params.sin_psi, params.cohesion)
-
-
-def _principal_return(strain, state, params, sin_phi, cos_phi, sin_psi, cohesion):
+def principal_return(strain, state, params, sin_phi, cos_phi, sin_psi, cohesion):
+    """(stress, tangent, new state) of the principal-space return (module docstring) of
+    ``strain`` from ``state`` with the elastic constants of ``params`` and the strength
+    ``cohesion`` (kPa), sin φ, cos φ and sin ψ."""
     eps, eps_p, ebar, batch = prepare(strain, state)
     n = len(eps)
     sig_trial = elastic_stress(eps - eps_p, params)

@@ -22,6 +22,7 @@ from ...anchors import half_plane_rocking, prandtl_capacity, winkler_rocking  # 
 from ...checks import InputError
 from ...meshes.render import snapshot_rows
 from ...results import atomic_path
+from ...scenes.soil import SOIL_MODELS, UNDRAINED
 from .field_history import FieldHistory, check_history
 from .summaries import dynamic_summary, pushover_summary, rotation_schedule, summary_line
 from .xdmf import TimeAxis, read_xdmf, time_axis, write_footing_xdmf, write_xdmf
@@ -85,7 +86,7 @@ def moment_rotation_figure(path, scene=None):
         ax_c.plot(fine, ref["c"] / B, "--", color="tab:red", lw=1.5, label=label)
         ax_s.plot(fine, ref["settlement"], "--", color="tab:red", lw=1.5, label=label)
     cu = soil.get("undrained_strength")
-    if soil.get("model") in ("tresca", "von_mises") and cu:
+    if SOIL_MODELS.get(soil.get("model")) == UNDRAINED and cu:
         V_ult = prandtl_capacity(float(cu), B)
         v = N / V_ult
         if 0.0 < v < 1.0:

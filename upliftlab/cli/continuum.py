@@ -122,7 +122,7 @@ def _options(args) -> dict:
 def _physics(scene, analysis: str) -> None:
     """What the continuum can carry, checked on the scene before meshing."""
     soil, N, B = scene.soil, scene.structure.vertical_weight, scene.foundation.width
-    if soil.model in ("tresca", "von_mises"):
+    if soil.undrained:
         capacity = prandtl_capacity(soil.undrained_strength, B)
         if N >= capacity:
             raise InputError(f"structure.vertical_weight = {N:g}: at or above the strip's "

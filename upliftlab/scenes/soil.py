@@ -10,10 +10,19 @@ from ..checks import InputError
 from .table import MISSING, Table, bounded_integer, choice, in_range
 from ..units import UnitSystem
 
-__all__ = ["SOIL_MODELS", "INTERFACES", "ELEMENTS", "DYNAMICS", "MAX_ELEMENTS_ACROSS", "Soil",
-           "ContinuumOptions", "read_soil", "read_continuum"]
+__all__ = ["SOIL_MODELS", "UNDRAINED", "FRICTIONAL", "INTERFACES", "ELEMENTS", "DYNAMICS",
+           "MAX_ELEMENTS_ACROSS", "Soil", "ContinuumOptions", "read_soil", "read_continuum"]
 
-SOIL_MODELS = ("elastic", "tresca", "von_mises", "drucker_prager", "mohr_coulomb")
+#: The strengths a soil model reads from ``[soil]``: ``undrained_strength`` c_u (UNDRAINED) or
+#: ``cohesion``, ``friction_angle`` and ``dilation_angle`` (FRICTIONAL); None: no strength.
+UNDRAINED, FRICTIONAL = "undrained", "frictional"
+#: The soil models a ``[soil]`` table may name, each with the strength it reads: the names the
+#: scene format knows, read here without the continuum (its optional dependencies) installed.
+#: The continuum implements each in one module, found through its registry
+#: (``upliftlab.continuum.materials.SOIL_MODELS``, held to these names and strengths by
+#: tests/test_soil_models.py); a model added there is added here, one line.
+SOIL_MODELS = {"elastic": None, "tresca": UNDRAINED, "von_mises": UNDRAINED,
+               "drucker_prager": FRICTIONAL, "mohr_coulomb": FRICTIONAL}
 INTERFACES = ("frictionless", "bonded", "coulomb")
 ELEMENTS = ("P1", "P2", "Q1", "Q2")
 DYNAMICS = ("explicit", "implicit")
@@ -24,9 +33,10 @@ class Soil:
     """Plane-strain soil under the footing.
 
     ``youngs_modulus`` E (force/length²), ``poisson_ratio`` ν, ``density`` ρ (mass/length³).
-    ``model``: elastic, tresca / von_mises (``undrained_strength`` c_u, force/length²), or
-    drucker_prager / mohr_coulomb (``cohesion`` c, ``friction_angle`` φ and ``dilation_angle`` ψ
-    in degrees). ``layer_depth`` (length) puts a rigid base at that depth (None: the box bottom).
+    ``model``: one of :data:`SOIL_MODELS`, with the strength it reads (:attr:`strength`):
+    none, undrained (``undrained_strength`` c_u, force/length²) or frictional (``cohesion`` c,
+    ``friction_angle`` φ and ``dilation_angle`` ψ in degrees). ``layer_depth`` (length) puts a
+    rigid base at that depth (None: the box bottom).
     ``interface`` under the footing: frictionless, bonded, or coulomb with ``interface_friction``.
     ``k0`` the geostatic ratio σh/σv (None: the continuum model's default for ``model``).
     """
@@ -49,6 +59,22 @@ class Soil:
     def shear_modulus(self) -> float:
         return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
 
+    @property
+    def strength(self) -> str | None:
+        """The strength ``model`` reads (:data:`SOIL_MODELS`): UNDRAINED, FRICTIONAL or None."""
+        return SOIL_MODELS.get(self.model)
+
+    @property
+    def undrained(self) -> bool:
+        """True for a model of undrained strength c_u (Tresca, von Mises): its footing's
+        bearing capacity is Prandtl's (2 + π) c_u B."""
+        return self.strength == UNDRAINED
+
+    @property
+    def frictional(self) -> bool:
+        """True for a model of frictional strength (c, φ, ψ: Mohr–Coulomb, Drucker–Prager)."""
+        return self.strength == FRICTIONAL
+
 
 def _positive_strength(units: UnitSystem):
     def check(name, value):
@@ -68,7 +94,7 @@ def read_soil(data, units: UnitSystem) -> Soil:
         density=table.get("density", bounds.checker("density", units), 0.0),
         model=model,
         undrained_strength=table.get("undrained_strength", _positive_strength(units),
-                                     MISSING if model in ("tresca", "von_mises") else None),
+                                     MISSING if SOIL_MODELS[model] == UNDRAINED else None),
         cohesion=table.get("cohesion", strength, 0.0),
         friction_angle=table.get("friction_angle", in_range(0.0, 60.0, high_open=True), 0.0),
         dilation_angle=table.get("dilation_angle", in_range(0.0, 60.0, high_open=True), 0.0),

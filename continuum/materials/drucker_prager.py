@@ -1,52 +1,27 @@
-"""Return maps whose yield surface is smooth (away from an apex): linear elasticity, von Mises
-(radial return) and Drucker–Prager (return to the cone or its apex), all in closed form."""
+"""Drucker–Prager plasticity (perfectly plastic, non-associated), matched to Mohr–Coulomb in plane
+strain: the record :class:`DruckerPrager` and its vectorised map :func:`drucker_prager`.
+
+√J2 + η p ≤ ξ c, potential √J2 + η̄ p (p = tr σ / 3, tension positive): a closed-form return
+to the cone (SMOOTH) or to the apex p = c cot φ (APEX). The plane-strain match to Mohr–Coulomb
+(c, φ, ψ) is the record's (:class:`DruckerPrager`); for ψ = φ it is the textbook
+η = 3 tan φ / √(9 + 12 tan²φ), ξ = 3 / √(9 + 12 tan²φ).
+
+No compiled point return: the explicit route runs it through :func:`drucker_prager` and the
+sparse assembly (the same numbers, slower; ``Constants`` is None).
+"""
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
-from .params import DruckerPrager, Elastic, VonMises
+from .base import Frictional
 from .returns import (EYE3, IDEV6, ONE6, ONE_ONE6, RTOL, SQ2, Region, State, deviator,
-                      elastic_mandel, elastic_stress, finish, frobenius_norm, mandel, prepare)
+                      finish, frobenius_norm, mandel, prepare)
 
-__all__ = ["linear_elastic", "von_mises", "drucker_prager"]
-
-
-def linear_elastic(strain, state: State | None, params: Elastic):
-    """Hooke's law σ = λ tr(εe) 𝟏 + 2G εe with εe = ε − εp (εp of ``state``, normally zero)."""
-    eps, eps_p, ebar, batch = prepare(strain, state)
-    stress = elastic_stress(eps - eps_p, params)
-    tangent = np.broadcast_to(elastic_mandel(params), (len(eps), 6, 6))
-    return finish(batch, stress, tangent, eps_p.copy(), ebar.copy(),
-                   np.zeros(len(eps), dtype=np.int8))
-
-
-def von_mises(strain, state: State | None, params: VonMises):
-    """von Mises with linear isotropic hardening: radial return (exact for linear hardening) and
-    its consistent tangent (de Souza Neto et al. 2008, ch. 7)."""
-    eps, eps_p, ebar, batch = prepare(strain, state)
-    K, G, H = params.bulk_modulus, params.shear_modulus, params.hardening_modulus
-    dev, vol = deviator(eps - eps_p)
-    s_trial = 2.0 * G * dev
-    norm = frobenius_norm(s_trial)
-    q_trial = math.sqrt(1.5) * norm
-    yield_stress = math.sqrt(3.0) * params.undrained_strength + H * ebar
-    f_trial = q_trial - yield_stress
-    plastic = f_trial > RTOL * yield_stress
-    q_safe = np.where(plastic, q_trial, 1.0)
-    dgamma = np.where(plastic, f_trial / (3.0 * G + H), 0.0)
-    unit = s_trial / np.where(norm > 0.0, norm, 1.0)[:, None, None]
-    shrink = 3.0 * G * dgamma / q_safe  # 0 where elastic
-    stress = s_trial * (1.0 - shrink)[:, None, None] + (K * vol)[:, None, None] * EYE3
-    d_eps_p = (math.sqrt(1.5) * dgamma)[:, None, None] * unit
-    n6 = mandel(unit)
-    b = np.where(plastic, 6.0 * G * G * (dgamma / q_safe - 1.0 / (3.0 * G + H)), 0.0)
-    tangent = (K * ONE_ONE6 + (2.0 * G * (1.0 - shrink))[:, None, None] * IDEV6
-               + b[:, None, None] * n6[:, :, None] * n6[:, None, :])
-    region = np.where(plastic, Region.SMOOTH, Region.ELASTIC)
-    return finish(batch, stress, tangent, eps_p + d_eps_p, ebar + dgamma, region)
+__all__ = ["DruckerPrager", "drucker_prager"]
 
 
 def drucker_prager(strain, state: State | None, params: DruckerPrager):
@@ -90,3 +65,43 @@ def drucker_prager(strain, state: State | None, params: DruckerPrager):
     region = np.select([apex, cone], [Region.APEX, Region.SMOOTH], Region.ELASTIC)
     d_ebar = math.sqrt(2.0 / 3.0) * frobenius_norm(d_eps_p)
     return finish(batch, stress, tangent, eps_p + d_eps_p, ebar + d_ebar, region)
+
+
+@dataclass(frozen=True)
+class DruckerPrager(Frictional):
+    """Drucker–Prager, perfectly plastic, matched to Mohr–Coulomb (c, φ, ψ) in plane strain.
+
+    Yield √J2 + η p − ξ c ≤ 0, potential √J2 + η̄ p, p = tr σ / 3 (tension positive).
+
+    Plane-strain match: at the plane-strain limit (ε̇p_zz = 0) the DP cone gives exactly the
+    Mohr–Coulomb limit (σ1 − σ3)/2 = c cos φ − (σ1 + σ3)/2 sin φ, and the plastic dilatancy ratio
+    ε̇p_v / (ε̇p_1 − ε̇p_3) equals Mohr–Coulomb's sin ψ:
+
+        η̄ = 3 tan ψ / √(9 + 12 tan²ψ),  r = √(1 − η̄²/3),
+        η = sin φ / (r + η̄ sin φ / 3),  ξ = cos φ / (r + η̄ sin φ / 3).
+
+    For ψ = φ this is the textbook associated match η = 3 tan φ / √(9 + 12 tan²φ),
+    ξ = 3 / √(9 + 12 tan²φ); for ψ = 0 it is η = sin φ, ξ = cos φ. The apex is
+    p = ξ c / η = c cot φ.
+    """
+
+    name = "drucker_prager"
+    update = staticmethod(drucker_prager)
+
+    @property
+    def eta_bar(self) -> float:
+        t = math.tan(math.radians(self.dilation_angle))
+        return 3.0 * t / math.sqrt(9.0 + 12.0 * t * t)
+
+    @property
+    def _denominator(self) -> float:
+        eb = self.eta_bar
+        return math.sqrt(1.0 - eb * eb / 3.0) + eb * self.sin_phi / 3.0
+
+    @property
+    def eta(self) -> float:
+        return self.sin_phi / self._denominator
+
+    @property
+    def xi(self) -> float:
+        return self.cos_phi / self._denominator

@@ -1,17 +1,17 @@
-"""The compiled Mohr–Coulomb return map at one plane-strain point, for the explicit route's
-kernels (:mod:`~upliftlab.continuum.dynamics.kernels`, kind ``MOHR_COULOMB``).
+"""Mohr–Coulomb plasticity (perfectly plastic, non-associated): the record
+:class:`MohrCoulomb`, its vectorised map :func:`mohr_coulomb` and its compiled point return
+:func:`mohr_coulomb_point`.
 
-The same closed-form principal-space return as the vectorised
-:func:`~upliftlab.continuum.materials.principal.mohr_coulomb` (de Souza Neto, Perić & Owen,
-*Computational Methods for Plasticity*, 2008, ch. 8), written for one point, without the
-tangent (an explicit step needs none), so that a frictional soil runs in the compiled time loop
-instead of the Python fallback.
+Yield f = (σ1 − σ3) + (σ1 + σ3) sin φ − 2c cos φ ≤ 0 (tension positive, σ1 ≥ σ2 ≥ σ3), plastic
+potential with sin ψ in place of sin φ (ψ ≤ φ). The vectorised map is the principal-space return
+of :mod:`.principal` (de Souza Neto, Perić & Owen, *Computational Methods for Plasticity*, 2008,
+ch. 8: main plane, either edge or the apex σ = c cot φ 𝟏, all closed form, spectral consistent
+tangent).
 
-Perfectly plastic and non-associated: yield f = (σ1 − σ3) + (σ1 + σ3) sin φ − 2c cos φ ≤ 0
-(tension positive, σ1 ≥ σ2 ≥ σ3), plastic potential with sin ψ in place of sin φ. A planar
-face (i, j) has the gradient a_ij = (1 + sin φ) e_i − (1 − sin φ) e_j and the flow vector
-b_ij, the same with sin ψ; with the principal elasticity Ce = λ 𝟏𝟏ᵀ + 2G I the products are
-a_pq·Ce·b_rs = 4λ sin φ sin ψ + 2G a_pq·b_rs. The trial stress returns
+The point return is the same closed form written for one plane-strain point, without the
+tangent. A planar face (i, j) has the gradient a_ij = (1 + sin φ) e_i − (1 − sin φ) e_j and the
+flow vector b_ij, the same with sin ψ; with the principal elasticity Ce = λ 𝟏𝟏ᵀ + 2G I the
+products are a_pq·Ce·b_rs = 4λ sin φ sin ψ + 2G a_pq·b_rs. The trial stress returns
 
 - to the main plane (0, 2), if the result keeps σ1 ≥ σ2 ≥ σ3: Δγ = f / (a·Ce·b);
 - else to the edge of the main plane with (0, 1) (extension, σ2 = σ3) when
@@ -29,60 +29,36 @@ f > 1e-12 × (2c cos φ + max(|σ1|, |σ3|)), as in the vectorised map.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
+from typing import NamedTuple
 
 import numba as nb
 
-__all__ = ["mohr_coulomb_point"]
+from .base import Frictional
+from .compiled import RTOL, SQRT23, elastic_trial, rotate_back, sorted_principal
+from .principal import principal_return
+from .returns import State
 
-_RTOL = 1e-12
-_SQRT23 = math.sqrt(2.0 / 3.0)
+__all__ = ["MohrCoulomb", "MohrCoulombConstants", "mohr_coulomb", "mohr_coulomb_point"]
 
 
-@nb.njit(cache=True, inline="always")
-def sorted_principal(sxx, syy, szz, sxy):
-    """The plane-strain stress (xx, yy, zz, xy) in principal values, sorted: (``case``, s1 ≥
-    s2 ≥ s3, cos 2α, sin 2α) with z at position ``case`` (0 first, 1 middle, 2 last) and α
-    the in-plane principal axis; :func:`rotate_back` undoes it. Shared by the Tresca and
-    Mohr–Coulomb returns."""
-    centre = 0.5 * (sxx + syy)
-    half = 0.5 * (sxx - syy)
-    r = math.sqrt(half * half + sxy * sxy)
-    if r > 0.0:
-        cos2, sin2 = half / r, sxy / r
-    else:
-        cos2, sin2 = 1.0, 0.0
-    pa, pb = centre + r, centre - r  # in-plane principal values, pa >= pb
-    if szz >= pa:
-        return 0, szz, pa, pb, cos2, sin2
-    if szz >= pb:
-        return 1, pa, szz, pb, cos2, sin2
-    return 2, pa, pb, szz, cos2, sin2
+def mohr_coulomb(strain, state: State | None, params: MohrCoulomb):
+    """Mohr–Coulomb (perfectly plastic, non-associated): principal-space return to the main
+    plane, either edge or the apex (de Souza Neto et al. 2008, ch. 8), spectral consistent
+    tangent."""
+    return principal_return(strain, state, params, params.sin_phi, params.cos_phi,
+                            params.sin_psi, params.cohesion)
 
 
 @nb.njit(cache=True, inline="always")
-def rotate_back(case, v1, v2, v3, cos2, sin2):
-    """(xx, yy, zz, xy) of the principal values v1 ≥ v2 ≥ v3 (of the trial's order) with z at
-    position ``case`` (0 first, 1 middle, 2 last) and the in-plane pair at the others, the
-    in-plane principal axis at the angle whose (cos 2α, sin 2α) = (``cos2``, ``sin2``)."""
-    if case == 0:
-        vz, va, vb = v1, v2, v3
-    elif case == 1:
-        va, vz, vb = v1, v2, v3
-    else:
-        va, vb, vz = v1, v2, v3
-    centre, radius = 0.5 * (va + vb), 0.5 * (va - vb)
-    return centre + radius * cos2, centre - radius * cos2, vz, radius * sin2
-
-
-@nb.njit(cache=True, inline="always")
-def mohr_coulomb_point(sxx, syy, szz, sxy, lam, G, cohesion, sin_phi, cos_phi, sin_psi):
+def _principal_mohr_coulomb(sxx, syy, szz, sxy, lam, G, cohesion, sin_phi, cos_phi, sin_psi):
     """Mohr–Coulomb return of the plane-strain trial stress (xx, yy, zz, xy) (module
-    docstring; λ, G in kPa, c in kPa) -> (stress xx, yy, zz, xy, plastic strain increment xx,
+    docstring; λ, G and c in kPa) -> (stress xx, yy, zz, xy, plastic strain increment xx,
     yy, zz, xy (tensorial shear), Δε̄p)."""
     case, s1, s2, s3, cos2, sin2 = sorted_principal(sxx, syy, szz, sxy)
     k = 2.0 * cohesion * cos_phi
     f = (s1 - s3) + (s1 + s3) * sin_phi - k
-    if not f > _RTOL * (k + max(abs(s1), abs(s3))):
+    if not f > RTOL * (k + max(abs(s1), abs(s3))):
         return sxx, syy, szz, sxy, 0.0, 0.0, 0.0, 0.0, 0.0
     # Ce·b of a face: 2λ sin ψ on every component, plus 2G (1 + sin ψ) at its i and
     # −2G (1 − sin ψ) at its j
@@ -124,4 +100,38 @@ def mohr_coulomb_point(sxx, syy, szz, sxy, lam, G, cohesion, sin_phi, cos_phi, s
     nxx, nyy, nzz, nxy = rotate_back(case, n1, n2, n3, cos2, sin2)
     pxx, pyy, pzz, pxy = rotate_back(case, e1, e2, e3, cos2, sin2)
     return (nxx, nyy, nzz, nxy, pxx, pyy, pzz, pxy,
-            _SQRT23 * math.sqrt(e1 * e1 + e2 * e2 + e3 * e3))
+            SQRT23 * math.sqrt(e1 * e1 + e2 * e2 + e3 * e3))
+
+
+@nb.njit(cache=True, inline="always")
+def mohr_coulomb_point(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar):
+    """The Mohr–Coulomb return at one point (:mod:`.compiled`; module docstring)."""
+    lam, G = constants.lame, constants.shear_modulus
+    _, _, _, _, _, sxx, syy, szz, sxy = elastic_trial(
+        lam, G, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy)
+    return _principal_mohr_coulomb(sxx, syy, szz, sxy, lam, G, constants.cohesion,
+                                   constants.sin_phi, constants.cos_phi, constants.sin_psi)
+
+
+class MohrCoulombConstants(NamedTuple):
+    """What :func:`mohr_coulomb_point` reads: λ, G, c (kPa), sin φ, cos φ and sin ψ."""
+
+    lame: float
+    shear_modulus: float
+    cohesion: float
+    sin_phi: float
+    cos_phi: float
+    sin_psi: float
+    point = mohr_coulomb_point
+
+
+@dataclass(frozen=True)
+class MohrCoulomb(Frictional):
+    """Mohr–Coulomb, perfectly plastic, non-associated (dilation angle ψ ≤ φ), angles in degrees.
+
+    Yield (σ1 − σ3) + (σ1 + σ3) sin φ − 2 c cos φ ≤ 0, potential (σ1 − σ3) + (σ1 + σ3) sin ψ.
+    """
+
+    name = "mohr_coulomb"
+    update = staticmethod(mohr_coulomb)
+    Constants = MohrCoulombConstants
