@@ -235,7 +235,8 @@ def test_study_data_select_by_label_in_memory_and_from_its_files(study):
         np.testing.assert_array_equal(
             ds.error.sel(case=case, layout=layout, measure="theta").values, by_position)
         assert ds.value_theta.attrs["units"] == "rad" and ds.error.attrs["units"] == "1"
-        assert list(ds.x.values) == [float(v) for v in emap.x.values]
+        assert list(ds[emap.x.key].values) == [float(v) for v in emap.x.values]
+        assert "x" not in ds.dims and "y" not in ds.dims
     conv = study.study.to_xarray()["convergence"]
     assert list(conv.springs.values) == list(study.convergence.candidates)
     first_case = next(iter(study.convergence.dynamic))
@@ -244,3 +245,30 @@ def test_study_data_select_by_label_in_memory_and_from_its_files(study):
     rows = frame[(frame["map"] == emap.name) & (frame["case"] == case)
                  & (frame["layout"] == layout) & (frame["measure"] == "theta")]
     np.testing.assert_array_equal(np.sort(rows["error"].values), np.sort(by_position.ravel()))
+
+
+def test_open_study_selects_a_map_point_by_its_parameters(study):
+    """The study's folder opened with :func:`upliftlab.open_study`: the aspect map's dimensions
+    are named after its parameters (h/b, intensity) with units, a point selected by label is the
+    study's own error there, and the count of points within the threshold, counted from the
+    file by label, is the one summary.json states."""
+    import json
+
+    import upliftlab
+
+    tree = upliftlab.open_study(study.study.directory)
+    ds = tree["map_aspect"]
+    assert set(ds.error.dims) == {"case", "layout", "measure", "h_over_b", "intensity"}
+    assert ds.intensity.attrs["units"] == "a_up" and ds.h_over_b.attrs["units"] == "1"
+    emap = study.map("aspect")
+    case, layout = emap.cases[-1], "edges"
+    ix, iy = len(emap.x.values) - 1, 0
+    point = ds.error.sel(case=case, layout=layout, measure="u", h_over_b=emap.x.values[ix],
+                         intensity=emap.y.values[iy]).item()
+    assert point == emap.errors[emap.cases.index(case), emap.layouts.index(layout), 0, iy, ix]
+    summary = json.loads((study.study.directory / "summary.json").read_text())
+    stated = next(r for r in summary["numbers"]["regions"] if (r["map"], r["case"], r["layout"],
+                  r["measure"]) == ("aspect", case, layout, "u"))
+    within = abs(ds.error.sel(case=case, layout=layout, measure="u")).fillna(np.inf)
+    assert int((within <= study.options.threshold).sum()) == stated["passing"]
+    assert int(within.size) == stated["total"]

@@ -44,8 +44,10 @@ class TwoSpringEquivalence:
         return f"<TwoSpringEquivalence N = {self.springs} springs, maps: {names}; {self.study!r}>"
 
     def to_dataframe(self):
-        """Every map's errors in long form, one row per (map, case, layout, measure, y, x), as a
-        :class:`pandas.DataFrame` (column ``error``, relative)."""
+        """Every map's errors in long form, one row per (map, case, layout, measure and the
+        map's two parameters), as a :class:`pandas.DataFrame` (column ``error``, relative; one
+        column per parameter, ``h_over_b``, ``intensity``, …, empty where a map has no such
+        axis)."""
         import pandas as pd
 
         tree = self.to_xarray()
@@ -56,7 +58,9 @@ class TwoSpringEquivalence:
     def to_xarray(self):
         """The study's data as an :class:`xarray.DataTree`: ``convergence`` and one node per
         error map (``map_aspect``, …), the datasets its files hold, so that
-        ``tree["map_aspect"].error.sel(case="C", layout="edge", measure="u")`` is one map."""
+        ``tree["map_aspect"].error.sel(case="C", layout="edges", measure="u")`` is one map, and
+        ``…sel(h_over_b=4.0)`` one column of it: each map's dimensions are named after its
+        parameters."""
         import xarray as xr
 
         from .datasets import convergence_dataset, map_dataset
