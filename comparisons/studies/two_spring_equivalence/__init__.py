@@ -30,14 +30,13 @@ from __future__ import annotations
 
 from .analysis import EwingConclusion, RegionStatement, equivalence_regions, ewing_conclusion
 from .convergence import Convergence, check_convergence
+from .dataset import TwoSpringEquivalence
 from .grid import (BEDS, CASES, FAST_GRID, FULL_GRID, Grid, LAYOUTS, MAPS, METRICS, METRIC_LABELS,
                    Options, RECORD_SETS, STUDY, check_grid, check_options)
 from .maps import ErrorMap, MapContext, compute_maps, refusal
-from .output import write
 from .points import Base, evaluate_point, load_base, make_point, point_scene
-from .result import TwoSpringEquivalence
 from .statics import StaticLayout, Statics, compute_statics
-from .workflow import DEFINITION, compute, run
+from .workflow import DEFINITION, compute, run, write
 
 __all__ = ["STUDY", "LAYOUTS", "CASES", "METRICS", "Grid", "Options", "FULL_GRID", "FAST_GRID",
            "StaticLayout", "Statics", "Convergence", "ErrorMap", "RegionStatement",

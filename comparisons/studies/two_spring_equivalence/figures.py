@@ -16,7 +16,7 @@ from ...framework.map_figures import (dense_maps, layout_maps, rows_per_figure, 
                                       worst_cell)
 from .convergence import Convergence
 from .grid import METRICS, METRIC_LABELS
-from .result import TwoSpringEquivalence
+from .dataset import TwoSpringEquivalence
 from .statics import Statics
 
 

@@ -8,7 +8,7 @@ from .convergence import Convergence
 from .grid import ENERGY_TOLERANCE, FLOOR_FRACTION, LAYOUTS, METRICS, METRIC_LABELS
 from .maps import ErrorMap
 from .points import Base
-from .result import TwoSpringEquivalence
+from .dataset import TwoSpringEquivalence
 from .statics import Statics
 
 

@@ -1,25 +1,29 @@
-"""The study's protocol: compute, run, its definition and its command line."""
+"""The study's protocol: compute, write, run, its definition and its command line."""
 
 from __future__ import annotations
 
 import contextlib
-from dataclasses import replace
+from dataclasses import asdict, replace
 from pathlib import Path
 
+from ....provenance import provenance
+from ....results import write_dataset
 from ....scenes import Scene
 from ...framework.protocol import Context, Study, run_study
 from ...framework.store import Store
-from ...framework.study import require_matplotlib
+from ...framework.study import StudyResult, require_matplotlib, write_summary
 from ...framework.sweep import sweep_executor
 from .analysis import equivalence_regions, ewing_conclusion
 from .convergence import check_convergence
+from .dataset import TwoSpringEquivalence, convergence_dataset, map_dataset
+from .figures import write_figures
 from .grid import FAST_GRID, FULL_GRID, Grid, Options, RECORD_SETS, STUDY, check_grid, check_options
 from .maps import MapContext, compute_maps
 from .motions import study_motions
-from .output import write
 from .points import load_base
-from .result import TwoSpringEquivalence
 from .statics import compute_statics
+from .summary import summary_markdown, summary_numbers
+from .tables import write_statics
 
 
 def compute(scene: str | Scene, ctx: Context) -> TwoSpringEquivalence:
@@ -46,6 +50,28 @@ def compute(scene: str | Scene, ctx: Context) -> TwoSpringEquivalence:
     ewing = ewing_conclusion(maps, options.threshold)
     return TwoSpringEquivalence(None, convergence.springs, convergence, statics, maps, regions,
                                 ewing, grid, options, record_note, base)
+
+
+def write(result: TwoSpringEquivalence, ctx: Context) -> StudyResult:
+    """Statics (CSV), convergence and maps (NetCDF, :mod:`.dataset`), figures and the summary
+    into ``ctx.out``."""
+    base, fast, out, store = result.base, ctx.fast, ctx.out, ctx.store
+    prov = provenance(study=STUDY, scene=base.name, fast=fast, grid=asdict(result.grid),
+                      options=asdict(result.options), springs=result.springs,
+                      store=str(store.root))
+    units = base.table["units"]
+    files = [write_statics(result.statics, out / "statics.csv"),
+             write_dataset(out / "convergence.nc",
+                           convergence_dataset(result.convergence, prov, units))]
+    files += [write_dataset(out / f"map_{m.name}.nc", map_dataset(m, prov, units))
+              for m in result.maps]
+    if result.options.figures:
+        files += write_figures(result, out / "figures")
+    elapsed = ctx.elapsed()
+    numbers = summary_numbers(result, elapsed)
+    text = summary_markdown(result, base, fast, elapsed)
+    files += list(write_summary(out, text, {"numbers": numbers, "provenance": prov}))
+    return StudyResult(STUDY, fast, out, tuple(files), text, numbers, prov, elapsed)
 
 
 def run(scene: str | Scene = "short_period_elcentro", fast: bool = False, *,
