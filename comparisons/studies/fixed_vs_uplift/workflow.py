@@ -8,7 +8,7 @@ from pathlib import Path
 from .... import checks
 from ....checks import InputError
 from ...framework.protocol import Context, Study, run_study
-from ..speed_vs_error import continuum_status
+from ...framework.availability import continuum_status
 from ...framework.store import Store
 from ...framework.study import require_matplotlib
 from .analysis import FixedVsUplift, figure_of, spectrum_of

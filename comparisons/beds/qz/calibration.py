@@ -4,7 +4,7 @@
   q_ult,i = N_ult · w_i / B (:func:`spring_capacities`), so that the bed's capacity under a
   centred load is the continuum's.
 - *Stiffness and its distribution*: the end-stiffened bed whose K_v and K_r are the continuum's
-  (closed-form R_k of :func:`.calibration.end_stiffening`), :func:`qz_stiffnesses`.
+  (closed-form R_k of :func:`..stiffness.end_stiffening`), :func:`qz_stiffnesses`.
 - *z50*: the settlement of the continuum's vertical pushover at half its capacity
   (:func:`z50_from_pushover`); under a centred load every spring of a rigid base settles as
   much, and the reduced model gives every spring one near-field z_ref that puts the bed's
@@ -17,7 +17,8 @@
   range is the force span over which the first unloading stays on the initial stiffness
   (:func:`elastic_range_from_unloading`), as a fraction of N_ult.
 
-:func:`calibrate_qz` puts them together from a :class:`.reference.ContinuumReference`.
+:func:`calibrate_qz` puts them together from a continuum reference (its stiffnesses, capacity
+and vertical pushover).
 """
 
 from __future__ import annotations
@@ -31,7 +32,7 @@ from ....reduced.compatibility import end_stiffened_bed
 from ....reduced.kernels import HISTORY_DTYPE, QZ, qz_commit, qz_start
 from ....reduced.qz import QZ_SOILS, SUCTION_MAX, QzShape, common_zref, qz_springs, z50_lower_bound
 from ....reduced.springs import derive_columns, spring_table
-from .calibration import end_stiffening
+from ..stiffness import end_stiffening
 
 
 def spring_capacities(capacity: float, widths) -> np.ndarray:
@@ -46,7 +47,7 @@ def qz_stiffnesses(K_v: float, K_r: float, half_width: float, springs: int, end_
     """Initial stiffnesses k_i (force/length) of the end-stiffened bed with the continuum's
     K_v and K_r, its end-stiffness ratio R_k, and whether K_r/K_v was reachable. If it was not
     (no bed under the footing has K_r/K_v above b²), R_k is the nearest bound and K_r is kept,
-    K_v missed, as the study's elastic end-stiffened bed does (:func:`.calibration.calibrate`):
+    K_v missed, as the elastic end-stiffened bed does (:func:`..stiffness.calibrate`):
     rocking is the response the beds are compared in."""
     stiff = end_stiffening(K_r / K_v, half_width, springs, end_length, max_ratio)
     unit = end_stiffened_bed(half_width, 1.0, springs, stiff.ratio, end_length)
@@ -133,8 +134,9 @@ class QzCalibration:
 
 def calibrate_qz(ref, springs: int, end_length: float, max_ratio: float, soil: str = "clay",
                  cyclic_force=None) -> QzCalibration:
-    """The q–z bed of a :class:`~.reference.ContinuumReference` ``ref``: stiffnesses to its
-    K_v and K_r, capacities from its N_ult, z50 from its vertical pushover, and the drag from
+    """The q–z bed of a continuum reference ``ref`` (its width ``B``, stiffnesses ``K_v`` and
+    ``K_r``, capacity ``N_ult`` and ``vertical`` pushover): stiffnesses to its K_v and K_r,
+    capacities from its N_ult, z50 from its vertical pushover, and the drag from
     ``cyclic_force`` (the interface force along a cyclic pushover; None: 0, the unilateral
     contact's)."""
     b = 0.5 * ref.B
