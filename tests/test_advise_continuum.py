@@ -23,6 +23,7 @@ from upliftlab import cli
 from upliftlab.comparisons.advise import ladder as adv
 from upliftlab.comparisons.advise import continuum as ac
 from upliftlab.comparisons.advise import map_evidence as am
+from upliftlab.comparisons.beds import bed_foundation, BedReference, BEDS
 from upliftlab.comparisons.studies import winkler_map as wm
 from upliftlab.comparisons.studies.winkler_map.grid import FAST_OPTIONS
 from upliftlab.reduced import run as reduced_run
@@ -89,7 +90,7 @@ def test_bed_errors_from_a_direct_reduced_run(advice):
     # the impedance and the rotation pushovers are inputs of the beds (computed by the map's
     # impedance point and rotation pushovers), not reference values; the vertical pushover is
     # the reported one
-    reference = wm.BedReference("tresca", scene.structure.weight, 2.0, 3.0, s.K_v, s.K_r,
+    reference = BedReference("tresca", scene.structure.weight, 2.0, 3.0, s.K_v, s.K_r,
                                 s.V_ult, soil.shear_modulus, soil.poisson_ratio,
                                 extra={"density": soil.density,
                                        "structure": dict(scene.data["structure"]),
@@ -98,10 +99,10 @@ def test_bed_errors_from_a_direct_reduced_run(advice):
                                        "rocking": ac.scene_pushovers(scene, 8, fast=True)})
     continuum = _direct_continuum(8)
     uncertainty = abs(_direct_continuum(4) - continuum) / abs(continuum)
-    assert len(c.beds) == len(wm.BEDS)
+    assert len(c.beds) == len(BEDS)
     for bed in c.beds:
         data = copy.deepcopy(scene.data)
-        data["foundation"] = wm.bed_foundation(bed.name, reference, FAST_OPTIONS)
+        data["foundation"] = bed_foundation(bed.name, reference, FAST_OPTIONS)
         del data["soil"], data["continuum"]
         response = reduced_run(scene_from_dict(data, merged=True))
         value = max(float(np.max(np.abs(response.theta))), float(response.peaks["theta"]))
@@ -126,7 +127,7 @@ def test_the_bed_pick_does_not_move_with_timing_noise():
     noise (σ = 0.5) in 200 draws: the pick stays the bed of least modelled cost (reference:
     advise_continuum.PICK_RULE by hand, the second bed's 0.010 s), never the failing bed, and a
     tie in modelled cost goes to the bed with fewer springs."""
-    names = list(wm.BEDS)[:4]
+    names = list(BEDS)[:4]
 
     def bed(name, seconds, springs, runtime, meets=True):
         work = ac.Work("events", springs, 600, 5000, seconds)

@@ -6,6 +6,10 @@ The layers, each importing only those below it (``design.md``):
     meshes) → the studies' framework → beds → studies → report, advise, opensees (none of which
     imports another) → the command line (upliftlab.cli and ``python -m upliftlab``).
 
+Within the studies, one study imports no other study's modules (what two studies share is a bed
+or the framework, below them both), and report, advise and opensees import a study only through
+its public package (``upliftlab.comparisons.studies.<study>``), never its modules.
+
 Every import statement counts, those inside functions too: an import deferred to call time is
 still a dependency. Reference: the source files' syntax trees; the layers as listed here.
 """
@@ -99,6 +103,52 @@ def test_imports_point_one_way(layer):
             there, other = _layer(target)
             ok = other < rank or there == here or (here, there) in SIDEWAYS
             assert ok, f"{module} ({here}) imports {target} ({there})"
+
+
+STUDY_PREFIX = "upliftlab.comparisons.studies."
+
+
+def _registered_studies() -> tuple[str, ...]:
+    """The studies by module name, as the registry lists them (its ``STUDIES`` literal)."""
+    tree = ast.parse((ROOT / "comparisons" / "studies" / "registry.py").read_text())
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.Assign, ast.AnnAssign)):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            if any(isinstance(t, ast.Name) and t.id == "STUDIES" for t in targets):
+                return tuple(ast.literal_eval(node.value))
+    raise AssertionError("no STUDIES in comparisons/studies/registry.py")
+
+
+STUDIES = _registered_studies()
+
+
+def _study(module: str) -> str | None:
+    """The registered study a module belongs to (its package or module), else None."""
+    if not module.startswith(STUDY_PREFIX):
+        return None
+    head = module[len(STUDY_PREFIX):].split(".")[0]
+    return head if head in STUDIES else None
+
+
+@pytest.mark.parametrize("study", STUDIES)
+def test_a_study_imports_no_other_study(study):
+    for module, targets in sorted(GRAPH.items()):
+        if _study(module) != study:
+            continue
+        for target in targets:
+            other = _study(target)
+            assert other in (None, study), f"{module} (study {study}) imports {target} ({other})"
+
+
+@pytest.mark.parametrize("layer", ["report", "advise", "opensees", "cli"])
+def test_the_layers_above_import_a_study_only_through_its_package(layer):
+    for module, targets in sorted(GRAPH.items()):
+        if _layer(module)[0] != layer:
+            continue
+        for target in targets:
+            study = _study(target)
+            assert study is None or target == STUDY_PREFIX + study, (
+                f"{module} ({layer}) imports {target}, not the package of study {study}")
 
 
 def test_no_module_imports_itself_back():

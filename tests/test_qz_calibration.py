@@ -1,5 +1,5 @@
 """The q–z bed's calibration functions against hand values
-(comparisons/studies/winkler_vs_continuum/qz_calibration.py, reduced/qz.py).
+(comparisons/beds/qz/calibration.py, reduced/qz.py).
 
 Every reference below is worked out by hand in the comment above its assertion."""
 
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from upliftlab.checks import InputError
-from upliftlab.comparisons.studies.winkler_vs_continuum.qz_calibration import (
+from upliftlab.comparisons.beds.qz.calibration import (
     calibrate_qz, elastic_range_from_unloading, qz_stiffnesses, spring_capacities,
     suction_from_cyclic, z50_from_pushover)
 from upliftlab.reduced.laws.qz import QZ_SOILS, common_zref, z50_lower_bound, zref_from_z50
@@ -118,7 +118,7 @@ def test_common_zref_of_a_proportional_bed_is_the_closed_form():
 def test_bed_vertical_path_is_the_spring_backbone_times_the_count():
     # n identical springs settling alike carry n times one spring's force: the backbone's
     # closed form at z50 gives q_ult/2 each, so the bed carries half its capacity there
-    from upliftlab.comparisons.studies.winkler_vs_continuum.qz_calibration import bed_vertical_path
+    from upliftlab.comparisons.beds.qz.calibration import bed_vertical_path
     forces = bed_vertical_path(np.full(4, 100.0), np.full(4, 10.0), 0.5, [0.25, 0.5])
     assert forces[1] == pytest.approx(20.0, rel=1e-10)
     assert forces[0] < 20.0
@@ -132,7 +132,7 @@ def test_calibration_from_a_continuum_cyclic_pushover():
     independently by footing_stiffness (1e-6); the calibrated uniform bed carries N_ult/2 at
     the continuum's z50 (1e-9, by construction through another solver)."""
     from upliftlab import continuum
-    from upliftlab.comparisons.studies.winkler_vs_continuum.qz_calibration import bed_vertical_path
+    from upliftlab.comparisons.beds.qz.calibration import bed_vertical_path
     from upliftlab.scenes import load_scene
     model = continuum.build_model(load_scene("strip_footing_clay",
                                              overrides=["continuum.elements_across=8"]))

@@ -1,6 +1,5 @@
-"""The q–z backbone fitted to a whole vertical pushover (comparisons/winkler_vs_continuum/
-qz_fit.py) and the scene keys that carry a fitted shape (foundation.qz_exponent,
-foundation.qz_elastic_range).
+"""The q–z backbone fitted to a whole vertical pushover (comparisons/beds/qz/fit.py) and the
+scene keys that carry a fitted shape (foundation.qz_exponent, foundation.qz_elastic_range).
 
 References:
 - a synthetic pushover of a uniform bed generated here from the virgin backbone's closed form
@@ -21,9 +20,9 @@ import pytest
 from upliftlab.checks import InputError
 from upliftlab.comparisons.studies.winkler_map import FAST_OPTIONS
 from upliftlab.comparisons.studies.winkler_map.statics import evaluate_static, static_points
-from upliftlab.comparisons.studies.winkler_vs_continuum.qz_calibration import (
+from upliftlab.comparisons.beds.qz.calibration import (
     qz_stiffnesses, spring_capacities)
-from upliftlab.comparisons.studies.winkler_vs_continuum.qz_fit import fit_backbone, one_point_misfit
+from upliftlab.comparisons.beds.qz.fit import fit_backbone, one_point_misfit
 from upliftlab.reduced import build_model
 from upliftlab.reduced.compatibility import winkler_bed
 from upliftlab.reduced.kernels import QZ

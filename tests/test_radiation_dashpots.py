@@ -1,4 +1,4 @@
-"""Radiation dashpots distributed over a Winkler bed (comparisons/winkler_vs_continuum/radiation).
+"""Radiation dashpots distributed over a Winkler bed (comparisons/beds/radiation).
 
 References: hand solutions of the two conditions Σc = C_v, Σc x² = C_r (worked out below);
 linear interpolation by hand between an Impedance record's frequencies; Gazetas' (1991) strip
@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from upliftlab.checks import InputError
-from upliftlab.comparisons.studies.winkler_vs_continuum.radiation import (
+from upliftlab.comparisons.beds.radiation import (
     distribute, gazetas_dashpots, impedance_dashpots, radiation_dashpots, rocking_frequency,
     with_radiation)
 from upliftlab.continuum.impedance.analysis import Impedance, ImpedanceOptions
@@ -256,7 +256,7 @@ def test_a_custom_layout_keeps_each_dashpot_with_its_position():
     dashpots follow its list, and the model's springs (sorted from −b to +b) carry the four
     springs' hand values of the centre case above, 1.375 at the ends and 3.625 in the middle,
     scaled here to C_v = 10 and C_r = 2 (to 1e-12)."""
-    from upliftlab.comparisons.studies.winkler_vs_continuum.radiation import RadiationDashpots
+    from upliftlab.comparisons.beds.radiation import RadiationDashpots
 
     scene = _footing(**{"foundation.layout": "custom", "foundation.springs": "",
                         "foundation.stiffness": "",

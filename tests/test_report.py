@@ -467,8 +467,9 @@ def test_a_full_build_finds_every_map_run_in_the_kept_store(tmp_path):
     # 2 periods × 2 intensities × 13 motions = 1248 dynamic, and 20 static), all of them
     # stored; the docs say so (docs/comparisons.md). Reading the store writes nothing to it.
     from upliftlab.comparisons.framework.store import Store
+    from upliftlab.comparisons.beds import bed_names
     from upliftlab.comparisons.studies.winkler_map import (DEFINITION, FULL_GRID, FULL_OPTIONS,
-                                                           bed_names, estimate_map)
+                                                           estimate_map)
     from upliftlab.comparisons.studies.winkler_map.motions import study_motions
 
     kept = rp.CHECKOUT / DEFINITION.kept_store
@@ -530,8 +531,8 @@ def test_the_estimate_is_printed_before_the_first_section_starts(tmp_path, monke
     # run) plus rp.MAP_REST_SECONDS. After each section a progress line gives the time left.
     from upliftlab.comparisons.report.html import Section
     from upliftlab.comparisons.framework.store import Store
-    from upliftlab.comparisons.studies.winkler_map import (FAST_GRID, FAST_OPTIONS, bed_names,
-                                                           estimate_map)
+    from upliftlab.comparisons.beds import bed_names
+    from upliftlab.comparisons.studies.winkler_map import FAST_GRID, FAST_OPTIONS, estimate_map
     from upliftlab.comparisons.studies.winkler_map.motions import study_motions
 
     def stub(item, run, record_sha, say):

@@ -30,6 +30,7 @@ from upliftlab.cli import main as cli_main
 
 from upliftlab.anchors import prandtl_capacity, winkler_rocking
 from upliftlab.checks import InputError
+from upliftlab.comparisons.beds import bed_foundation, BedReference, BEDS
 from upliftlab.comparisons.studies import winkler_map as wm
 from upliftlab.comparisons.studies.winkler_map.analysis import regions
 from upliftlab.comparisons.studies.registry import STUDIES, definition
@@ -74,7 +75,7 @@ def test_the_fast_map_runs_end_to_end_and_writes_its_files(study):
         assert (out / name).is_file(), name
     d = study.data
     assert d.continuum_wall.shape == (1, 2, 1, 1, 1, 1)
-    assert d.calibrations == tuple(wm.BEDS)
+    assert d.calibrations == tuple(BEDS)
     assert np.isfinite(d.continuum).all() and np.isfinite(d.beds).all()
     # one soil's statics pair, its impedance, and a cyclic and a monotonic rotation pushover
     # per FS_v; each dynamic point twice (its run and its energy run)
@@ -103,14 +104,14 @@ def test_every_bed_has_the_continuums_rocking_stiffness(study, written):
                  "rotary_inertia": 10.0}
     pushover = {"settlement": [float(v) for v in statics["settlement"].sel(soil="clay").values],
                 "load": [float(v) for v in statics["load"].sel(soil="clay").values]}
-    ref = wm.BedReference("clay", 100.0, 2.0, 3.0, k.vertical, k.rocking, 500.0,
+    ref = BedReference("clay", 100.0, 2.0, 3.0, k.vertical, k.rocking, 500.0,
                           soil.shear_modulus, soil.poisson_ratio,
                           extra={"density": soil.density, "structure": structure,
                                  "impedance": dict(study.data.impedances)["clay"], **pushover})
     pushovers = dict(study.data.pushovers)
-    for name in wm.BEDS:
+    for name in BEDS:
         rocking = pushovers["clay", 2.0]  # the fitted bed's statics (any FS_v: K_r is kept)
-        table = wm.bed_foundation(name, replace(ref, extra={**ref.extra, "rocking": rocking}),
+        table = bed_foundation(name, replace(ref, extra={**ref.extra, "rocking": rocking}),
                                   wm.FAST_OPTIONS)
         data = {"schema": 1, "units": "kN-m-s", "structure": dict(structure),
                 "foundation": table, "motion": {"type": "free", "velocity": 1.0,
@@ -187,7 +188,7 @@ def test_a_region_stated_in_the_maps_own_parameters(study):
     90 % off in peak θ everywhere (the median over the motions ignores it). By hand: the cells
     FS_v = 5 with h/B ≤ 1.5 pass, a corner region of 2 cells."""
     grid = replace(wm.FAST_GRID, fs_v=(2.0, 5.0), h_over_B=(1.0, 1.5, 2.5))
-    shape = (1, 2, 3, 1, 1, 3, len(wm.BEDS), len(wm.MEASURES))
+    shape = (1, 2, 3, 1, 1, 3, len(BEDS), len(wm.MEASURES))
     errors = np.full(shape, 0.05)
     theta, settle = wm.MEASURES.index("theta"), wm.MEASURES.index("residual_settlement")
     errors[:, 0, ..., theta] = 0.30
@@ -416,9 +417,9 @@ def test_the_gazetas_bed_carries_the_handbook_strips_dashpots():
     # analog velocity), C_v = ρ V_La B and C_r = ρ V_La B³/12; the bed's springs sit at the
     # centres of 20 equal strips of the 2 m base. Both sums to 1e-12.
     G, nu, rho, B = 17_857.0, 0.4, 1.8, 2.0
-    ref = wm.BedReference("clay", 100.0, B, 3.0, 27_000.0, 43_000.0, 500.0, G, nu,
+    ref = BedReference("clay", 100.0, B, 3.0, 27_000.0, 43_000.0, 500.0, G, nu,
                           extra={"density": rho})
-    table = wm.bed_foundation("uniform_plastic_gazetas", ref, wm.FAST_OPTIONS)
+    table = bed_foundation("uniform_plastic_gazetas", ref, wm.FAST_OPTIONS)
     n = table["springs"]
     x = -1.0 + (2.0 / n) * (np.arange(n) + 0.5)
     c = np.asarray(table["dashpots"])
@@ -427,7 +428,7 @@ def test_the_gazetas_bed_carries_the_handbook_strips_dashpots():
     assert (c * x**2).sum() == pytest.approx(rho * v_la * B**3 / 12.0, rel=1e-12)
     assert (c >= 0.0).all() and table["law"] == "elastoplastic"
     with pytest.raises(InputError, match=r"^soil.density = 0.0: .* valid range is > 0$"):
-        wm.bed_foundation("uniform_plastic_gazetas", replace(ref, extra={"density": 0.0}),
+        bed_foundation("uniform_plastic_gazetas", replace(ref, extra={"density": 0.0}),
                           wm.FAST_OPTIONS)
 
 
@@ -439,10 +440,10 @@ def test_the_bearing_bed_yields_at_one_pressure_where_the_plastic_bed_yields_at_
     G, nu, B, V_ult, N = 19_230.8, 0.3, 2.0, 500.0, 200.0
     structure = {"weight": N, "height": 3.0, "period": 0.2, "damping_ratio": 0.05,
                  "rotary_inertia": 10.0}
-    ref = wm.BedReference("clay", N, B, 3.0, 27_000.0, 43_000.0, V_ult, G, nu,
+    ref = BedReference("clay", N, B, 3.0, 27_000.0, 43_000.0, V_ult, G, nu,
                           extra={"density": 1.8, "structure": structure,
                                  "impedance": dict(study.data.impedances)["clay"]})
-    tables = {name: wm.bed_foundation(name, ref, wm.FAST_OPTIONS)
+    tables = {name: bed_foundation(name, ref, wm.FAST_OPTIONS)
               for name in ("end_stiffened_plastic", "end_stiffened_bearing",
                            "end_stiffened_plastic_impedance", "uniform_plastic_impedance")}
     models = {}
@@ -678,7 +679,7 @@ def test_a_continuum_run_that_fails_is_reported_and_left_out_or_held_to(tmp_path
     settlements from their own runs of the point (``run_bed``), against 0.2 m. The failures
     are stored: a second run does not retry them."""
     from upliftlab.comparisons.studies.winkler_map import points as wmp
-    from upliftlab.comparisons.studies.winkler_map.beds import bed_foundation
+    from upliftlab.comparisons.beds import BASE_SCENE, base_table, bed_foundation
     from upliftlab.comparisons.studies.winkler_map.maps import _dynamic_points, _reference, _scene
     from upliftlab.continuum import BearingFailure, ConvergenceError
     from upliftlab.scenes import load_scene
@@ -707,8 +708,8 @@ def test_a_continuum_run_that_fails_is_reported_and_left_out_or_held_to(tmp_path
     assert np.isfinite(d.beds[0, 0, ..., :2]).all() and np.isnan(d.beds[0, 1]).all()
     # each bed's flag against its own peak settlement at the failed point
     st = d.statics_of("clay")
-    point = _dynamic_points(d.grid, d.options, list(d.motions), wmp.base_table(),
-                            load_scene(wmp.BASE_SCENE).g, {"clay": st.V_ult})[0]
+    point = _dynamic_points(d.grid, d.options, list(d.motions), base_table(),
+                            load_scene(BASE_SCENE).g, {"clay": st.V_ult})[0]
     ref = _reference(st, _scene(point["scene"]), point["scene"]["structure"],
                      dict(d.impedances).get("clay"), dict(d.pushovers)["clay", 2.0])
     called = {name: wm.run_bed(point, bed_foundation(name, ref, d.options))["peak_settlement"]

@@ -26,9 +26,10 @@ import math
 import numpy as np
 import pytest
 
+from upliftlab.comparisons.beds import BASE_SCENE, base_table
 from upliftlab.comparisons.studies.winkler_map import points as P
 from upliftlab.comparisons.studies.winkler_map.bed_runs import reduced_energy_terms
-from upliftlab.comparisons.studies.winkler_map.beds import BedReference, bed_foundation
+from upliftlab.comparisons.beds import BedReference, bed_foundation
 from upliftlab.comparisons.studies.winkler_map.energy import energy_scale, same_run
 from upliftlab.comparisons.studies.winkler_map.energy_points import continuum_energy_terms
 from upliftlab.comparisons.studies.winkler_map.foundation_energy import (
@@ -67,9 +68,9 @@ def test_a_free_oscillator_without_foundation_loses_nothing_to_it():
 
 
 def _point(soil_elements: int, fs_v: float, damping: float) -> dict:
-    base = P.base_table()
+    base = base_table()
     table = P.point_table(base, "clay", soil_elements, PRANDTL / fs_v, 1.5, 0.2,
-                          load_scene(P.BASE_SCENE).g)
+                          load_scene(BASE_SCENE).g)
     table["structure"]["damping_ratio"] = damping
     return {"scene": table, "motion": PULSE, "intensity": 3.0}
 

@@ -18,12 +18,14 @@ import math
 import numpy as np
 import pytest
 
+from upliftlab.comparisons.beds import bed_foundation, BedReference
 from upliftlab.comparisons.studies import winkler_map as wm
-from upliftlab.comparisons.studies.winkler_map.fitted_bed import (
+from upliftlab.comparisons.beds.fitted import (
     BETAS, _bed_table, capacity_profile, fit_capacity_profile)
-from upliftlab.comparisons.studies.winkler_map.points import base_table
-from upliftlab.comparisons.studies.winkler_map.rocking import bed_rocking, theta_onset
-from upliftlab.comparisons.studies.winkler_vs_continuum.reference import cyclic_path, rotation_path
+from upliftlab.comparisons.beds.base import base_table
+from upliftlab.comparisons.beds.pushover import bed_rocking
+from upliftlab.comparisons.studies.winkler_map.rocking import theta_onset
+from upliftlab.comparisons.beds.pushover import cyclic_path, rotation_path
 from upliftlab.reduced import build_model
 from upliftlab.reduced.compatibility import end_stiffened_bed
 from upliftlab.scenes import scene_from_dict
@@ -38,7 +40,7 @@ def reference(N, rocking=None):
     extra = {"density": 1.8, "structure": {**STRUCTURE, "weight": N}}
     if rocking is not None:
         extra["rocking"] = rocking
-    return wm.BedReference("clay", N, B, 3.0, 27_513.1, 43_146.1, V_ULT, G, NU, extra=extra)
+    return BedReference("clay", N, B, 3.0, 27_513.1, 43_146.1, V_ULT, G, NU, extra=extra)
 
 
 def built(table, N):
@@ -53,7 +55,7 @@ def test_the_profiles_ends_are_one_pressure_and_the_stiffness_weighted_yield():
     uniform = capacity_profile(bed.stiffnesses, bed.widths, V_ULT, 0.0)
     np.testing.assert_allclose(uniform / bed.widths, V_ULT / B, rtol=1e-12)
     N = V_ULT / 2.5
-    weighted = built(wm.bed_foundation("end_stiffened_plastic", reference(N), wm.FULL_OPTIONS), N)
+    weighted = built(bed_foundation("end_stiffened_plastic", reference(N), wm.FULL_OPTIONS), N)
     table = _bed_table(reference(N), wm.FULL_OPTIONS, 1.0)
     f = weighted.foundation_slice
     np.testing.assert_allclose(table["yield_forces"], weighted.params["fy"][f], rtol=1e-12)
@@ -97,9 +99,9 @@ def test_the_fitted_bed_needs_the_continuums_pushovers():
     from upliftlab.checks import InputError
 
     with pytest.raises(InputError, match=r"extra\['rocking'\] is missing"):
-        wm.bed_foundation("end_stiffened_fitted_impedance", reference(100.0), wm.FULL_OPTIONS)
+        bed_foundation("end_stiffened_fitted_impedance", reference(100.0), wm.FULL_OPTIONS)
     stopped = reference(100.0, {"error": "monotonic: the rotation pushover stopped: step 9"})
     with pytest.raises(InputError, match=r"^the fitted bed at N = 100 \(clay\): the continuum's "
                                          r"rotation pushover stopped \(monotonic: the rotation "
                                          r"pushover stopped: step 9\)"):
-        wm.bed_foundation("end_stiffened_fitted_impedance", stopped, wm.FULL_OPTIONS)
+        bed_foundation("end_stiffened_fitted_impedance", stopped, wm.FULL_OPTIONS)

@@ -26,13 +26,15 @@ import pytest
 
 from upliftlab.anchors import prandtl_capacity
 from upliftlab.checks import InputError
+from upliftlab.comparisons.beds import bed_foundation, BedReference
 from upliftlab.comparisons.studies import winkler_map as wm
 from upliftlab.comparisons.studies.winkler_map.cost import (IMPEDANCE_SECONDS_PER_DOF_FREQUENCY,
                                                             estimate_cost)
-from upliftlab.comparisons.studies.winkler_map.impedance_bed import (
+from upliftlab.comparisons.beds.dashpots import (
     bed_rocking_frequency, impedance_dashpots_of)
 from upliftlab.comparisons.studies.winkler_map.impedance_points import IMPEDANCE_A0, elastic_soil
-from upliftlab.comparisons.studies.winkler_map.points import base_table, point_table
+from upliftlab.comparisons.beds.base import base_table
+from upliftlab.comparisons.studies.winkler_map.points import point_table
 from upliftlab.continuum.impedance.analysis import ImpedanceOptions, impedance, impedance_model
 from upliftlab.continuum.dynamics.waves import wave_speeds
 from upliftlab.reduced import build_model as build_reduced
@@ -52,7 +54,7 @@ def reference(h_over_B=1.5, period=0.5, fs_v=3.0, impedance_record=None):
     extra = {"density": SOIL.density, "structure": structure}
     if impedance_record is not None:
         extra["impedance"] = impedance_record
-    return wm.BedReference("clay", N, B, h_over_B * B, 3.0 * K_R, K_R, V_ULT,
+    return BedReference("clay", N, B, h_over_B * B, 3.0 * K_R, K_R, V_ULT,
                            SOIL.shear_modulus, SOIL.poisson_ratio, extra=extra)
 
 
@@ -92,7 +94,7 @@ def test_the_beds_dashpots_reproduce_the_fe_impedance_at_the_rocking_frequency()
     assert record.omega[1] == pytest.approx(omega, rel=1e-14)
     C_v, C_r = record.dashpot("v")[1], record.dashpot("r")[1]
     ref = reference(impedance_record=record)
-    table = wm.bed_foundation("uniform_plastic_impedance", ref, options)
+    table = bed_foundation("uniform_plastic_impedance", ref, options)
     data = {k: v for k, v in base_table().items() if k not in ("soil", "continuum")}
     data.update(structure=ref.extra["structure"], foundation=table,
                 motion={"type": "free", "velocity": 1.0, "duration": 1.0})
@@ -110,9 +112,9 @@ def test_the_beds_dashpots_reproduce_the_fe_impedance_at_the_rocking_frequency()
 def test_a_rocking_frequency_outside_the_impedance_is_refused():
     ref = reference(impedance_record=fe_impedance([1.0, 1.5]))
     with pytest.raises(InputError, match="outside the impedance's frequencies"):
-        wm.bed_foundation("uniform_plastic_impedance", ref, wm.FAST_OPTIONS)
+        bed_foundation("uniform_plastic_impedance", ref, wm.FAST_OPTIONS)
     with pytest.raises(InputError, match=r"extra\['impedance'\] is missing"):
-        wm.bed_foundation("uniform_plastic_impedance", reference(), wm.FAST_OPTIONS)
+        bed_foundation("uniform_plastic_impedance", reference(), wm.FAST_OPTIONS)
 
 
 def test_a_soils_impedance_is_one_static_run_costed_per_dof_and_frequency():

@@ -23,8 +23,9 @@ import numpy as np
 import pytest
 
 from upliftlab.checks import InputError
+from upliftlab.comparisons.beds import bed_foundation, BedReference
 from upliftlab.comparisons.studies import winkler_map as wm
-from upliftlab.comparisons.studies.winkler_map.qz_bed import qz_bed_fit
+from upliftlab.comparisons.beds.qz.bed import qz_bed_fit
 from upliftlab.reduced import build_model
 from upliftlab.reduced.kernels import QZ
 from upliftlab.scenes import scene_from_dict
@@ -41,7 +42,7 @@ N = V_ULT / 3.0
 
 
 def _reference(**extra):
-    return wm.BedReference("clay", N, 2.0, 3.0, K_V, K_R, V_ULT, 19_230.8, 0.3,
+    return BedReference("clay", N, 2.0, 3.0, K_V, K_R, V_ULT, 19_230.8, 0.3,
                            extra={"density": 1.8, "settlement": SETTLEMENT, "load": LOAD,
                                   **extra})
 
@@ -55,7 +56,7 @@ def _built(table):
 
 
 def test_the_qz_bed_has_the_continuums_capacity_and_stiffness():
-    table = wm.bed_foundation("qz", _reference(), wm.FAST_OPTIONS)
+    table = bed_foundation("qz", _reference(), wm.FAST_OPTIONS)
     model = _built(table)
     qz = model.params[model.params["kind"] == QZ]
     assert qz.size == wm.FAST_OPTIONS.springs
@@ -73,4 +74,4 @@ def test_the_qz_bed_has_the_continuums_capacity_and_stiffness():
 def test_the_qz_bed_needs_the_pushover():
     ref = replace(_reference(), extra={"density": 1.8})
     with pytest.raises(InputError, match="vertical pushover"):
-        wm.bed_foundation("qz", ref, wm.FAST_OPTIONS)
+        bed_foundation("qz", ref, wm.FAST_OPTIONS)

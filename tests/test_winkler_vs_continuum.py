@@ -30,6 +30,7 @@ from upliftlab.anchors import (HALF_PLANE_ONSET_ECCENTRICITY, TOLERANCES,
                                WINKLER_ONSET_ECCENTRICITY, half_plane_rocking_stiffness,
                                prandtl_capacity, ultimate_moment_ratio, winkler_rocking)
 from upliftlab.checks import InputError
+from upliftlab.comparisons import beds
 from upliftlab.comparisons.studies import winkler_vs_continuum as wvc
 from upliftlab.comparisons.framework.store import Store
 from upliftlab.continuum import build_model, footing_stiffness
@@ -58,7 +59,7 @@ def test_uniform_bed_has_the_continuum_rocking_stiffness(study):
         bed = study.bed(name)
         assert bed.K_r == pytest.approx(ref.K_r, rel=1e-6)
         assert abs(study.table.error(name, "K_r")) <= 1e-6
-        model = build_reduced(wvc.bed_scene(study.scene, bed.calibration))
+        model = build_reduced(beds.bed_scene(study.scene, bed.calibration))
         assert model.layout.rocking_stiffness == pytest.approx(ref.K_r, rel=1e-6)
     closed = half_plane_rocking_stiffness(ref.G, ref.B, ref.nu)
     assert ref.K_r_closed_form == pytest.approx(closed, rel=1e-12)
@@ -92,10 +93,10 @@ def test_end_stiffened_bed_matches_both_K_r_and_K_v_of_a_shallow_layer(study):
         "continuum.elements_across=8", "soil.layer_depth=2.0"])
     k = footing_stiffness(build_model(scene))
     ref = replace(study.reference, K_r=k.rocking, K_v=k.vertical)
-    cal = next(c for c in wvc.calibrate(ref, study.options) if c.name == "end_stiffened")
+    cal = next(c for c in beds.calibrate(ref, study.options) if c.name == "end_stiffened")
     assert cal.stiffening.feasible and 1.0 < cal.end_stiffness_ratio < 10.0
     assert cal.matches == ("K_r", "K_v")
-    model = build_reduced(wvc.bed_scene(study.scene, cal))
+    model = build_reduced(beds.bed_scene(study.scene, cal))
     assert model.layout.rocking_stiffness == pytest.approx(k.rocking, rel=1e-6)
     assert model.layout.vertical_stiffness == pytest.approx(k.vertical, rel=1e-6)
 
@@ -106,10 +107,10 @@ def test_end_stiffening_solver_recovers_a_known_ratio():
     b, n, re = 1.0, 48, 1.0 / 3.0
     bed = end_stiffened_bed(b, 1.0, n, 4.5, re)
     target = bed.rocking_stiffness / bed.vertical_stiffness
-    sol = wvc.end_stiffening(target, b, n, re, 10.0)
+    sol = beds.end_stiffening(target, b, n, re, 10.0)
     assert sol.feasible and sol.ratio == pytest.approx(4.5, rel=1e-9)
-    assert not wvc.end_stiffening(0.9 * b * b, b, n, re, 10.0).feasible
-    low = wvc.end_stiffening(0.2, b, n, re, 10.0)
+    assert not beds.end_stiffening(0.9 * b * b, b, n, re, 10.0).feasible
+    low = beds.end_stiffening(0.2, b, n, re, 10.0)
     assert not low.feasible and low.ratio == 1.0 and low.exact < 1.0
 
 
@@ -185,7 +186,7 @@ def test_error_table_entries_come_from_the_paths(study):
     r = study.options.theta_ratios[-2]
     k = int(np.argmin(np.abs(np.asarray(ref.monotonic["theta"]) - r * ref.theta_on)))
     s0 = ref.monotonic["settlement"][0]
-    for name in wvc.CALIBRATIONS:
+    for name in beds.CALIBRATIONS:
         bed = study.bed(name).monotonic
         for key, q, floor in (("M", f"M_{r:g}", 0.01 * ref.N * ref.B),
                               ("contact", f"contact_{r:g}", 0.05 * ref.B),
@@ -220,7 +221,7 @@ def test_recommendation_in_the_study_matches_its_table(study):
         cols = [j for j, g in enumerate(t.groups) if g == group]
         assert worst == pytest.approx(e[:, cols].max(axis=1).min())
         assert e[t.calibrations.index(pick), cols].max() == pytest.approx(worst)
-    assert study.study.numbers["best_per_question"]["capacity"]["pick"] in wvc.CALIBRATIONS
+    assert study.study.numbers["best_per_question"]["capacity"]["pick"] in beds.CALIBRATIONS
 
 
 # ---------------------------------------------------------------------------------------------
@@ -249,14 +250,14 @@ def test_dynamic_pulse_compared_when_the_continuum_dynamics_exists(study):
         q = f"pulse_{m}"
         floor = study.table.floors[study.table.quantities.index(q)]
         ref = run.continuum["peaks"][m]
-        for name in wvc.CALIBRATIONS:
+        for name in beds.CALIBRATIONS:
             peak = run.beds[name]["peaks"][m]
             assert study.table.error(name, q) == pytest.approx(
                 (peak - ref) / max(abs(ref), floor), rel=1e-12)
     early = run.time < 0.5
     bonded = np.max(np.abs(np.asarray(run.continuum["theta"])[early]))
     assert bonded > 0.0
-    for name in wvc.CALIBRATIONS:
+    for name in beds.CALIBRATIONS:
         bed = np.max(np.abs(np.asarray(run.beds[name]["theta"])[early]))
         assert bed == pytest.approx(bonded, rel=0.15)
 
@@ -290,7 +291,7 @@ def test_outputs_written(study):
         assert (d / name).is_file() and (d / name).stat().st_size > 0, name
     numbers = json.loads((d / "summary.json").read_text())["numbers"]
     assert numbers["continuum"]["K_r"] == pytest.approx(study.reference.K_r, rel=1e-12)
-    assert set(numbers["errors"]) == set(wvc.CALIBRATIONS)
+    assert set(numbers["errors"]) == set(beds.CALIBRATIONS)
     variables, attrs = read_netcdf(d / "errors.nc")
     np.testing.assert_array_equal(variables["error"], study.table.errors)
     # by label, in memory and from the file (reference: the table's arrays by position)

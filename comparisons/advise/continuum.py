@@ -6,12 +6,12 @@ kernels compiled before the clock starts, as :func:`.winkler_map.points.evaluate
 a map point) on a mesh ladder — 4, 8, 16 elements across (``fast``: 2, 4, 8) — measured as the
 map measures both models (:func:`.winkler_map.points.measured`). The finest mesh is the
 reference; its uncertainty is its relative change from the next-coarser mesh. Each bed of
-:data:`.winkler_map.beds.BEDS` is built from the continuum statics of the scene's soil on the
+:data:`..beds.BEDS` is built from the continuum statics of the scene's soil on the
 finest mesh (K_v, K_r with every contact node tied; V_ult and the load–settlement path from a
 vertical pushover, :func:`.winkler_map.statics.evaluate_static`; the elastic soil's dynamic
 impedance for the beds with the continuum's dashpots, :mod:`.winkler_map.impedance_points`;
 the two rotation pushovers at the scene's N, a cycle per amplitude and a monotonic path, for
-the bed whose capacity profile is fitted to them, :mod:`.winkler_map.fitted_bed`), the scene's
+the bed whose capacity profile is fitted to them, :mod:`..beds.fitted`), the scene's
 N, B, h and ``[structure]``, and run on the
 scene's own motion (the reduced model, the median of a few timed runs after an untimed one).
 A bed is certified when |error| + the reference's uncertainty ≤ tol; the advisor recommends the
@@ -47,16 +47,13 @@ from .map_evidence import MapEvidence, find_map, format_evidence, map_evidence
 from ..framework.protocol import CHECKOUT
 from ..framework.store import Store
 from ..framework.study import relative_error
-from ..studies.winkler_map.bed_runs import reduced_measures
-from ..studies.winkler_map.beds import BEDS, BedReference, bed_foundation
-from ..studies.winkler_map.cost import Estimate, estimate_cost, impedance_dofs, timed_dynamic_runs
-from ..studies.winkler_map.grid import FAST_OPTIONS, FLOOR_FRACTION, FULL_OPTIONS
-from ..studies.winkler_map.impedance_points import (evaluate_impedance, impedance_point_of,
-                                                    soil_impedance)
-from ..studies.winkler_map.points import base_table, continuum_measures, scales, story_constants
-from ..studies.winkler_map.rocking import evaluate_continuum, pushover_points
-from ..studies.winkler_map.statics import evaluate_static
-from ..studies.winkler_map.workflow import KEPT_STORE
+from ..beds import BEDS, BedReference, base_table, bed_foundation
+from ..beds.continuum_points import evaluate_continuum
+from ..studies.winkler_map import (FAST_OPTIONS, FLOOR_FRACTION, FULL_OPTIONS, KEPT_STORE, Estimate,
+                                   continuum_measures, estimate_cost, evaluate_impedance,
+                                   evaluate_static, impedance_dofs, impedance_point_of,
+                                   pushover_points, reduced_measures, scales, soil_impedance,
+                                   story_constants, timed_dynamic_runs)
 
 __all__ = ["FULL_MESHES", "FAST_MESHES", "MeshRun", "ContinuumReference", "SoilNumbers",
            "BedCheck", "ContinuumPlan", "ContinuumAdvice", "plan_continuum", "run_continuum",
@@ -515,7 +512,7 @@ def run_continuum(scene: Scene, quantity: str, measure: str, tol: float, plan: C
 
 def select_bed(beds) -> BedCheck | None:
     """The pick among ``beds`` (:data:`PICK_RULE`): of those that meet the tolerance, the least
-    modelled cost, ties to fewer springs, then the order of :data:`.winkler_map.beds.BEDS`.
+    modelled cost, ties to fewer springs, then the order of :data:`..beds.BEDS`.
     Runtimes do not enter, so the same checks give the same pick on every run."""
     order = list(BEDS)
 

@@ -24,7 +24,7 @@ import numpy as np
 
 from ...checks import InputError
 from ...scenes import Scene, scene_from_dict
-from ..studies.winkler_map.grid import SOILS
+from ..studies.winkler_map import SOILS
 
 __all__ = ["DEFAULT_MAP", "BedEvidence", "MapEvidence", "scene_coordinates", "map_evidence",
            "find_map", "format_evidence"]

@@ -463,8 +463,7 @@ def _verification_stored(study: Study, run: _Run, record_sha: str | None) -> boo
     :func:`.verification.workflow.compute_or_read` makes (it keys its whole result itself)."""
     if study.name != "verification" or not study.own_store:
         return False
-    from ..studies.verification import source_digest
-    from ..studies.verification.records import STUDY as VERIFICATION
+    from ..studies.verification import STUDY as VERIFICATION, source_digest
 
     params = {"fast": bool(run.fast), "elcentro_sha256": record_sha, "source": source_digest()}
     return run.store.has(point_key(VERIFICATION, "upliftlab.comparisons.verification:compute",
@@ -478,9 +477,9 @@ def _map_estimate(study: Study, run: _Run) -> SectionEstimate:
     import tempfile
 
     from ...paths import output_root
-    from ..studies.winkler_map import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS, bed_names,
-                                       estimate_map)
-    from ..studies.winkler_map.motions import study_motions
+    from ..beds import bed_names
+    from ..studies.winkler_map import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS,
+                                       estimate_map, study_motions)
 
     grid, options = (FAST_GRID, FAST_OPTIONS) if run.fast else (FULL_GRID, FULL_OPTIONS)
     store = (run.study_store(study, lambda message: None)

@@ -9,8 +9,8 @@ from pathlib import Path
 from .... import checks
 from ....checks import InputError
 from ....provenance import provenance
+from ...framework.availability import continuum_status
 from ...framework.protocol import Context, Study, StudyRun, run_study
-from ..speed_vs_error import continuum_status
 from ...framework.store import Store
 from ...framework.study import StudyResult, require_matplotlib, write_study
 from .analysis import figure_ratio, spectrum_ranges, spectrum_supports

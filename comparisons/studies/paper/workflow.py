@@ -32,7 +32,9 @@ class Options:
 def compute(scene: None, ctx: Context) -> PaperConclusions:
     """Decide every conclusion (``scene`` must be None: the paper's buildings). The two-spring
     conclusion reuses ``ctx.results["two_spring_equivalence"]`` when the report computed it,
-    else runs that study (from its store) beside ``ctx.out``."""
+    else runs that study (from its store) beside ``ctx.out``: by its registered name
+    (:func:`..registry.definition`), since a study imports no other study's code, only reads
+    its result."""
     if scene is not None:
         raise InputError(f"scene = {scene!r}: this study runs the paper's buildings; pass "
                          "scene=None")
@@ -44,10 +46,11 @@ def compute(scene: None, ctx: Context) -> PaperConclusions:
     responses = paper_responses(record, output_dt=0.01 if fast else 0.005)
     equivalence = ctx.results.get("two_spring_equivalence")
     if equivalence is None:
-        from .. import two_spring_equivalence
+        from ..registry import definition
         say("two-spring equivalence maps")
-        equivalence = two_spring_equivalence.run(
-            fast=fast, out=out.parent / ("two_spring_equivalence" + ("-fast" if fast else "")))
+        name = "two_spring_equivalence"
+        equivalence = run_study(definition(name), None, Context(
+            fast=fast, out=out.parent / (name + ("-fast" if fast else ""))))
     conclusions = (
         conclusion_peak_u(responses, record), conclusion_long_period_peak(responses, record),
         conclusion_decay(responses, record),

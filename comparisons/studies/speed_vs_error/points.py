@@ -19,6 +19,7 @@ from ....checks import InputError
 from ....motions import find_motion
 from ....reduced import IntegrationError, build_model, run as run_reduced, stability_limit
 from ....scenes import Scene, load_scene, scene_from_dict
+from ...framework.availability import continuum_status
 from ...framework.measures import (continuum_peak_edge_gap, continuum_settlement_change,
                                    reduced_edge_uplift_from_peaks, reduced_plastic_settlement)
 from ...framework.store import point_function
@@ -251,18 +252,3 @@ def scales(scene: Scene) -> dict:
     settlement = w / kv
     return {"u": w * b / (3.0 * h) / k, "theta": w / (kv * b), "uplift": settlement,
             "residual_settlement": settlement}
-
-
-# ---------------------------------------------------------------------------------------------
-# The study
-# ---------------------------------------------------------------------------------------------
-
-
-def continuum_status() -> tuple[bool, str]:
-    """(available, why): whether the continuum dynamics module can be imported."""
-    try:
-        from ....continuum.dynamics import run as dynamics  # noqa: F401
-    except Exception as exc:  # noqa: BLE001 — any failure to import means "not available"
-        return False, (f"continuum points were not run: upliftlab.continuum.dynamics is not "
-                       f"available ({type(exc).__name__}: {exc})")
-    return True, "upliftlab.continuum.dynamics is available"

@@ -1,6 +1,6 @@
 """Winkler beds against the continuum, mapped: where a calibrated bed of springs is enough.
 
-Every calibration of :data:`.beds.BEDS` (a registry: a new calibration plugs in as one entry,
+Every calibration of :data:`...beds.BEDS` (a registry: a new calibration plugs in as one entry,
 ``name -> build(continuum reference numbers, options) -> [foundation] table``) is run against
 the plane-strain continuum (:mod:`upliftlab.continuum`) over a grid of
 
@@ -43,24 +43,29 @@ from __future__ import annotations
 
 from .analysis import (Analysis, BedRegion, Pick, Share, Speed, analyse, cell_passes,
                        median_over_motions)
-from .beds import BEDS, BedEntry, BedReference, bed_foundation, bed_names
-from .cost import Estimate, estimate_cost
-from .grid import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS, Grid, MEASURES, Options,
-                   SOILS, STUDY, check_grid, check_options, grid_with)
+from .cost import Estimate, estimate_cost, impedance_dofs, timed_dynamic_runs
+from .grid import (FAST_GRID, FAST_OPTIONS, FLOOR_FRACTION, FULL_GRID, FULL_OPTIONS, Grid,
+                   MEASURES, Options, SOILS, STUDY, check_grid, check_options, grid_with)
+from .impedance_points import evaluate_impedance, impedance_point_of, soil_impedance
 from .maps import MapData, compute_map, estimate_map
 from .output import write
-from .bed_runs import run_bed
+from .bed_runs import reduced_measures, run_bed
 from .energy_points import evaluate_energy
-from .points import evaluate_dynamic
+from .motions import study_motions
+from .points import continuum_measures, evaluate_dynamic, scales, story_constants
 from .result import WinklerMap
+from .rocking import pushover_points
 from .statics import SoilStatics, evaluate_static
-from .workflow import DEFINITION, compute, run
+from .workflow import DEFINITION, KEPT_STORE, compute, run
 
 __all__ = ["STUDY", "SOILS", "MEASURES", "Grid", "Options", "FULL_GRID", "FAST_GRID",
-           "FULL_OPTIONS", "FAST_OPTIONS", "check_grid", "check_options", "grid_with", "BEDS",
-           "BedEntry", "BedReference", "bed_foundation", "bed_names", "Estimate", "estimate_cost",
+           "FULL_OPTIONS", "FAST_OPTIONS", "check_grid", "check_options", "grid_with", "Estimate",
+           "estimate_cost",
            "MapData", "compute_map", "estimate_map", "SoilStatics", "evaluate_static",
            "evaluate_dynamic", "evaluate_energy", "run_bed", "Analysis", "BedRegion", "Pick",
            "Share", "Speed",
            "analyse", "cell_passes", "median_over_motions", "WinklerMap", "DEFINITION", "compute",
-           "write", "run", "main"]
+           "write", "run", "main", "KEPT_STORE", "FLOOR_FRACTION", "impedance_dofs",
+           "timed_dynamic_runs", "evaluate_impedance", "impedance_point_of", "soil_impedance",
+           "reduced_measures", "continuum_measures", "scales", "story_constants",
+           "pushover_points", "study_motions"]

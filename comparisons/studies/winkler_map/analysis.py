@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...framework.study import Axis, Region, corner_region
-from .beds import BEDS
+from ...beds import BEDS
 from .energy import EnergyPick, energy_picks
 from .goal import Goal, goal, hits
 from .grid import MEASURE_LABELS, MEASURES, SOIL_LABELS

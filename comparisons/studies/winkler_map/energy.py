@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .beds import BEDS
+from ...beds import BEDS
 
 __all__ = ["ENERGIES", "ENERGY_LABELS", "ENERGY_SYMBOLS", "EnergyPick", "energy_scale",
            "energies_of",

@@ -12,7 +12,7 @@ import numpy as np
 
 from ...framework.study import Axis, write_figure
 from .analysis import median_over_motions
-from .beds import BEDS
+from ...beds import BEDS
 from .energy import ENERGY_LABELS, ENERGY_SYMBOLS
 from .grid import MEASURE_LABELS, MEASURES, SOIL_LABELS
 

@@ -59,7 +59,7 @@ class Options:
 
     ``elements_across`` the continuum mesh (elements across B; the reference mesh is 16);
     ``springs`` of every bed; ``end_length`` R_e (fraction of b) and ``max_end_stiffness_ratio``
-    of the end-stiffened beds; ``beds`` the calibrations compared (names of :data:`.beds.BEDS`;
+    of the end-stiffened beds; ``beds`` the calibrations compared (names of :data:`...beds.BEDS`;
     empty: all); ``pulse_tail`` (s) of free vibration after a pulse (a pulse run lasts 3 T plus
     this); ``settlement_ratio`` the depth of the vertical pushover (× B) in ``vertical_steps``;
     ``theta_ratios`` the rotations θ/θ_on at which the statics rows compare M, contact length

@@ -1,6 +1,6 @@
 """The continuum's dynamic impedance of a soil, one stored static-like point of the map.
 
-A bed with radiation dashpots from the continuum (:mod:`.impedance_bed`) needs the footing's
+A bed with radiation dashpots from the continuum (:mod:`...beds.dashpots`) needs the footing's
 impedance K_j(ω) = K_j + iω C_j of the map's soil. It depends neither on the vertical load nor
 on the structure, so, like the statics (:mod:`.statics`), one point per soil and mesh serves
 every point of the map: :func:`impedance_point` describes it, :func:`evaluate_impedance` (the
@@ -23,7 +23,7 @@ frequencies of the map's grid with room on both sides (the clay's full grid on i
 statics: a0 = 0.064 to 0.25; a soil of larger V_ult carries heavier structures, whose a0 is
 lower); a point outside them is refused before any dynamic run. They are geometrically spaced,
 19 of them (a ratio of 1.196), because C_j is taken linear in ω between them
-(:func:`..winkler_vs_continuum.radiation.impedance_dashpots`) and the 2D C_v grows steeply as
+(:func:`...beds.radiation.impedance_dashpots`) and the 2D C_v grows steeply as
 a0 falls: at the geometric midpoints (16 across) the interpolated C_v is within 0.41 % and C_r
 within 0.58 % of their values computed there (a ratio of 1.5 put C_v up to 2 % off).
 """

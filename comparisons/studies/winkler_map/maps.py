@@ -26,15 +26,16 @@ from ...framework.sweep import DASK_ENV, StderrProgress, SweepProgress, run_swee
 from .bed_runs import run_bed
 from .energy import ENERGIES, energies_of, energy_scale, same_run
 from .energy_points import evaluate_energy
-from .beds import BEDS, BedReference, bed_foundation
+from ...beds import BASE_SCENE, BEDS, BedReference, base_table, bed_foundation, bed_rocking
+from ...beds.continuum_points import evaluate_continuum
+from ...beds.fitted import FITTED, fit_capacity_profile
 from .cost import (Estimate, estimate_cost, impedance_dofs, refuse_over_budget, with_checks,
                    timed_dynamic_runs)
 from .grid import FLOOR_FRACTION, MEASURES, STUDY, Grid, Options
-from .fitted_bed import FITTED, fit_capacity_profile
 from .impedance_points import evaluate_impedance, impedance_point, soil_impedance
 from .motions import motion_duration
-from .points import BASE_SCENE, base_table, evaluate_dynamic, point_table, scales, story_constants
-from .rocking import (RockingData, bed_rocking, evaluate_continuum, rocking_data, rocking_points,
+from .points import evaluate_dynamic, point_table, scales, story_constants
+from .rocking import (RockingData, rocking_data, rocking_points,
                       theta_onset)
 from .statics import SoilStatics, evaluate_static, soil_statics, static_points
 
@@ -68,7 +69,7 @@ class MapData:
     such
     a point (it fails in bearing too); ``workers`` the local worker processes the estimate
     divided the work by (1 in this process; None: a Dask cluster or the caller's executor,
-    whose count is not known); ``capacity_fits`` ((soil, fs_v), :class:`~.fitted_bed.
+    whose count is not known); ``capacity_fits`` ((soil, fs_v), :class:`~...beds.fitted.
     CapacityFit`) pairs of the fitted bed's capacity profile (when it is compared);
     ``pushovers`` ((soil, fs_v), the continuum's rotation pushovers a bed is calibrated to, or
     why a path stopped) pairs. The energies of :data:`.energy.ENERGIES` (the foundation energy

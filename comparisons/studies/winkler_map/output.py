@@ -11,7 +11,7 @@ from ....provenance import provenance
 from ....results import cf_attributes, write_dataset
 from ...framework.protocol import Context
 from ...framework.study import StudyResult, ascii_text, write_summary
-from .beds import BEDS
+from ...beds import BEDS
 from .energy import ENERGIES
 from .grid import FLOOR_FRACTION, MEASURE_LABELS, MEASURE_UNITS, MEASURES, SOIL_LABELS, STUDY
 from .maps import MapData

@@ -1,8 +1,9 @@
 """One point of the map: its scene and the continuum's dynamic run (the sweep's point function,
 stored), measured as a bed's run of the same motion is (:mod:`.bed_runs`).
 
-The scene of a point is ``strip_footing_clay`` (B = 2 m) with the map's soil, mesh, box sides
-(:data:`SIDES`) and structure: a story of weight N = V_ult/FS_v at height h = (h/B) B with
+The scene of a point is the beds' base scene, ``strip_footing_clay`` (B = 2 m,
+:func:`...beds.base.base_table`), with the map's soil, mesh, box sides (:data:`SIDES`) and
+structure: a story of weight N = V_ult/FS_v at height h = (h/B) B with
 the fixed-base period T and 5 % damping, and the rotary inertia of a rigid B × h block about
 its centroid, m (B² + h²)/12 with m = N/g (as in the scene). The motion's PGA is the
 intensity times a_up = g B/(6h).
@@ -17,17 +18,16 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ....scenes import Scene, load_scene, scene_from_dict
+from ....scenes import Scene, scene_from_dict
 from ...framework.measures import (continuum_peak_edge_gap, peak_story_shear, residual_rotation,
                                    settlement_when_flattest)
 from ...framework.store import point_function
 from .motions import locate
 from .soils import SOILS
 
-__all__ = ["BASE_SCENE", "base_table", "point_table", "motion_table", "evaluate_dynamic",
+__all__ = ["point_table", "motion_table", "evaluate_dynamic",
            "scales", "story_constants"]
 
-BASE_SCENE = "strip_footing_clay"
 STORY_DAMPING = 0.05
 #: The box's sides in the map's dynamic runs (``continuum.boundary``): a free-field column
 #: (u_x free, u_y held). With the sides' u_x held instead (``fixed``: a rigid container moving
@@ -37,13 +37,6 @@ STORY_DAMPING = 0.05
 #: the top 10 m and the peak θ was 3.0 times the free-field column's; with these sides none
 #: yielded.
 SIDES = "shear"
-
-
-def base_table() -> dict:
-    """The base scene's table without its motion."""
-    data = copy.deepcopy(load_scene(BASE_SCENE).data)
-    data.pop("motion", None)
-    return data
 
 
 def point_table(base: Mapping, soil: str, elements_across: int, N: float, h_over_B: float,

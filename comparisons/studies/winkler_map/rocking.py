@@ -3,14 +3,14 @@ FS_v — the M–θ backbone, the uplift-onset moment, the contact length and th
 θ, and one cycle per amplitude (its dissipated work ∮ M dθ and the settlement it leaves).
 
 The continuum's pushovers are two stored points per (soil, FS_v) (:func:`rocking_points`,
-evaluated by the Winkler-against-continuum study's point function, so that both studies push
-over the footing alike): a monotonic rotation path through θ_on to max(``theta_ratios``) θ_on,
-and one full cycle at each of ``cycle_ratios`` θ_on, at N = V_ult/FS_v; θ_on = 2N(1 − ν)/(π G B)
-is the elastic half-plane's uplift rotation, the scale of every path. Each bed is pushed over on
-the same rotations by the reduced model (:func:`bed_rocking`, live: milliseconds). The
-quantities, their floors and the error measure are those of the Winkler-against-continuum
-study (:data:`QUANTITY_GROUPS`): a quantity smaller than its floor is compared against the
-floor.
+evaluated by the beds' continuum point function, :mod:`...beds.continuum_points`, so that both
+Winkler studies push over the footing alike): a monotonic rotation path through θ_on to
+max(``theta_ratios``) θ_on, and one full cycle at each of ``cycle_ratios`` θ_on, at N =
+V_ult/FS_v; θ_on = 2N(1 − ν)/(π G B) is the elastic half-plane's uplift rotation, the scale of
+every path. Each bed is pushed over on the same rotations by the reduced model
+(:func:`...beds.pushover.bed_rocking`, live: milliseconds). The quantities, their floors and the
+error measure are those of the Winkler-against-continuum study (:data:`QUANTITY_GROUPS`): a
+quantity smaller than its floor is compared against the floor.
 """
 
 from __future__ import annotations
@@ -23,18 +23,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ....anchors import half_plane_onset_rotation
-from ....scenes import scene_from_dict
 from ...framework.study import relative_error
-from ..winkler_vs_continuum.analysis import path_values
-from ..winkler_vs_continuum.calibration import pushover_record
-from ..winkler_vs_continuum.options import FLOORS
-from ..winkler_vs_continuum.points import evaluate_continuum, floats
-from ..winkler_vs_continuum.reference import cyclic_path, rotation_path
+from ...beds.continuum_points import floats
+from ...beds.pushover import FLOORS, cyclic_path, path_values, rotation_path
 from .grid import SOILS, Options
 
 __all__ = ["QUANTITY_GROUPS", "RockingData", "rocking_points", "pushover_points",
-           "rocking_quantities",
-           "bed_rocking", "rocking_data", "evaluate_continuum"]
+           "rocking_quantities", "rocking_data"]
 
 #: The groups of statics quantities the issue names, and the quantity keys in each (``{r}``:
 #: one per θ ratio).
@@ -103,23 +98,6 @@ def _floors(N: float, B: float, settlement_0: float, theta_on: float) -> dict:
             "cyclic settlement": FLOORS["settlement"] * s0}
 
 
-def bed_rocking(base: Mapping, N: float, foundation: Mapping, cyclic_theta, monotonic_theta
-                ) -> dict:
-    """A bed's pushovers on the continuum's rotations: ``cyclic`` and ``monotonic`` records
-    (θ, M, settlement, contact) and its uplift-onset moment ``onset_moment`` (the quasi-static
-    lateral force at the first spring's separation times the height), units of the scene."""
-    from ....reduced import build_model, uplift_onset_force
-
-    data = {k: copy.deepcopy(v) for k, v in base.items() if k not in ("soil", "continuum")}
-    data["structure"] = {**data["structure"], "weight": float(N)}
-    data["foundation"] = dict(foundation)
-    data["motion"] = dict(_FREE)
-    model = build_model(scene_from_dict(data, merged=True))
-    return {"cyclic": pushover_record(model, cyclic_theta),
-            "monotonic": pushover_record(model, monotonic_theta),
-            "onset_moment": float(uplift_onset_force(model) * model.heights[-1])}
-
-
 def _values(onset_moment: float, cyclic: Mapping, monotonic: Mapping, theta_on: float,
             options: Options) -> dict:
     values = path_values(dict(monotonic, _theta_on=theta_on), cyclic, options.theta_ratios)
@@ -164,9 +142,9 @@ def rocking_data(soils: Sequence[str], fs_v: Sequence[float], loads: np.ndarray,
                  records: Sequence[Mapping], bed_records: Sequence[Sequence[Mapping]],
                  B: float, options: Options, calibrations: int | None = None) -> RockingData:
     """The :class:`RockingData` from the continuum's ``records`` (two per (soil, fs_v), in
-    :func:`rocking_points` order) and ``bed_records[i][c]`` (:func:`bed_rocking` of bed c at the
-    i-th (soil, fs_v); empty where the continuum's path stopped); ``loads`` (soil, fs_v) the
-    vertical loads N; ``calibrations`` how many beds (default: the longest row)."""
+    :func:`rocking_points` order) and ``bed_records[i][c]``
+    (:func:`...beds.pushover.bed_rocking` of bed c at the i-th (soil, fs_v); empty where the
+    continuum's path stopped); ``loads`` (soil, fs_v) the vertical loads N; ``calibrations`` how many beds (default: the longest row)."""
     spec = rocking_quantities(options)
     keys, groups = tuple(k for k, _ in spec), tuple(g for _, g in spec)
     ns, nf = len(soils), len(fs_v)

@@ -16,8 +16,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ....scenes import scene_from_dict
+from ...beds.base import base_table
 from ...framework.store import point_function
-from .points import base_table
 from .soils import SOILS
 
 if TYPE_CHECKING:  # annotations only: the stored runs do not depend on the grid

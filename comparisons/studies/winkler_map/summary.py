@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from .analysis import RECORD_KINDS, pick_text
-from .beds import BEDS
+from ...beds import BEDS
 from .cost import COMPILED_MODELS, SECONDS_PER_DOF_STEP
 from .energy import energy_lines, energy_numbers
 from .goal import goal_text
@@ -190,7 +190,7 @@ def _mesh_text(d, fast: bool) -> str:
 def _input_text(d) -> str:
     """Where the motion enters each model, with the soil column's first period."""
     from .grid import SOILS
-    from .points import base_table
+    from ...beds.base import base_table
 
     base = base_table()
     B = 2.0 * base["foundation"]["half_width"]

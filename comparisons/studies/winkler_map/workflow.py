@@ -11,7 +11,7 @@ from ...framework.protocol import Context, Study, run_study
 from ...framework.store import Store
 from ...framework.study import require_matplotlib
 from .analysis import analyse
-from .beds import BEDS, bed_names
+from ...beds import BEDS, bed_names
 from .grid import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS, Grid, Options, STUDY,
                    check_grid, check_options, grid_with)
 from .maps import compute_map

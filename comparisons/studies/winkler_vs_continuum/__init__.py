@@ -40,28 +40,19 @@ Run it with ``upliftlab study winkler_vs_continuum [--fast] [--out DIR]``.
 from __future__ import annotations
 
 from .analysis import ErrorTable, Recommendation, error_table, recommend
-from .calibration import (BedResponse, Calibration, EndStiffening, bed_response, bed_scene,
-                          calibrate, end_stiffening, end_zone)
 from .closed_forms import closed_form_checks
 from .dynamics import (DYNAMIC_LABELS, DYNAMIC_MEASURES, DynamicComparison, compare_dynamics,
                        dynamic_points, dynamics_available)
-from .options import (CALIBRATIONS, DYNAMIC_MISSING, FAST_OPTIONS, FLOORS, FULL_OPTIONS, LABELS,
-                      ONSET_ANCHOR, Options, STUDY, WINKLER_ONSET, check_options)
+from .options import (DYNAMIC_MISSING, FAST_OPTIONS, FULL_OPTIONS, ONSET_ANCHOR, Options, STUDY,
+                      WINKLER_ONSET, check_options)
 from .output import write
-from .points import evaluate_continuum, evaluate_dynamic
-from .radiation import (RadiationDashpots, distribute, gazetas_dashpots, impedance_dashpots,
-                        radiation_dashpots, rocking_frequency, with_radiation)
-from .reference import ContinuumReference, continuum_reference, cyclic_path, rotation_path
+from .reference import ContinuumReference, continuum_reference
 from .result import WinklerVsContinuum
 from .workflow import DEFINITION, compute, run
 
-__all__ = ["STUDY", "CALIBRATIONS", "Options", "FULL_OPTIONS", "FAST_OPTIONS", "check_options",
-           "Calibration", "EndStiffening", "end_stiffening", "calibrate", "ContinuumReference",
-           "BedResponse", "ErrorTable", "Recommendation", "DynamicComparison",
-           "WinklerVsContinuum", "evaluate_continuum", "rotation_path", "cyclic_path",
-           "error_table", "recommend", "DEFINITION", "compute", "write", "run",
-           "DYNAMIC_MISSING", "DYNAMIC_MEASURES", "DYNAMIC_LABELS", "bed_scene", "bed_response",
-           "continuum_reference", "compare_dynamics", "dynamic_points", "dynamics_available",
-           "evaluate_dynamic", "closed_form_checks", "end_zone", "WINKLER_ONSET", "ONSET_ANCHOR",
-           "LABELS", "FLOORS", "RadiationDashpots", "distribute", "gazetas_dashpots",
-           "impedance_dashpots", "radiation_dashpots", "rocking_frequency", "with_radiation"]
+__all__ = ["STUDY", "Options", "FULL_OPTIONS", "FAST_OPTIONS", "check_options",
+           "ContinuumReference", "ErrorTable", "Recommendation", "DynamicComparison",
+           "WinklerVsContinuum", "error_table", "recommend", "DEFINITION", "compute", "write",
+           "run", "DYNAMIC_MISSING", "DYNAMIC_MEASURES", "DYNAMIC_LABELS", "continuum_reference",
+           "compare_dynamics", "dynamic_points", "dynamics_available", "closed_form_checks",
+           "WINKLER_ONSET", "ONSET_ANCHOR"]

@@ -3,44 +3,22 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from ....scenes import Scene
 from ...framework.study import relative_error
-from .calibration import BedResponse
+from ...beds.pushover import FLOORS, BedResponse, path_values
 from .dynamics import DYNAMIC_LABELS, DYNAMIC_MEASURES
-from .options import FLOORS, Options
+from .options import Options
 from .reference import ContinuumReference
 
 
 # ---------------------------------------------------------------------------------------------
 # Error table and recommendation
 # ---------------------------------------------------------------------------------------------
-
-
-def _at(record: Mapping, key: str, theta: float) -> float:
-    thetas = np.asarray(record["theta"])
-    k = int(np.argmin(np.abs(thetas - theta)))
-    if abs(thetas[k] - theta) > 1e-9 * max(abs(theta), 1e-300):
-        raise RuntimeError(f"θ = {theta:g} is not on the path")
-    return float(np.asarray(record[key])[k])
-
-
-def _energy(record: Mapping) -> float:
-    """Dissipated work ∮ M dθ along a path (trapezoids)."""
-    theta, M = np.asarray(record["theta"]), np.asarray(record["M"])
-    return float(np.sum(0.5 * (M[1:] + M[:-1]) * np.diff(theta)))
-
-
-def _peaks(record: Mapping) -> np.ndarray:
-    """M at the turning points of a cyclic path (each ±amplitude)."""
-    theta, M = np.asarray(record["theta"]), np.asarray(record["M"])
-    d = np.diff(theta)
-    turns = [k + 1 for k in range(d.size - 1) if d[k] * d[k + 1] < 0]
-    return M[turns]
 
 
 def _quantities(ref: ContinuumReference, options: Options) -> list[tuple[str, str, str, float]]:
@@ -67,27 +45,10 @@ def _quantities(ref: ContinuumReference, options: Options) -> list[tuple[str, st
     return q
 
 
-def path_values(mono: Mapping, cyc: Mapping, theta_ratios) -> dict:
-    """M, contact length and settlement at each of ``theta_ratios`` × θ_on (``mono['_theta_on']``)
-    on the monotonic path, the settlement under N, the largest M, and the cyclic path's
-    dissipated work ∮ M dθ, settlement over the cycles and moments at its turning points."""
-    out, scale = {}, mono["_theta_on"]
-    for r in theta_ratios:
-        out[f"M_{r:g}"] = _at(mono, "M", r * scale)
-        out[f"contact_{r:g}"] = _at(mono, "contact", r * scale)
-        out[f"settlement_{r:g}"] = _at(mono, "settlement", r * scale)
-    out["settlement_0"] = _at(mono, "settlement", 0.0)
-    out["M_max"] = float(np.max(mono["M"]))
-    out["cyclic_energy"] = _energy(cyc)
-    out["cyclic_settlement"] = float(cyc["settlement"][-1] - cyc["settlement"][0])
-    out["_cyclic_peaks"] = _peaks(cyc)
-    return out
-
-
 @dataclass(frozen=True, eq=False)
 class ErrorTable:
     """Signed relative errors (bed − continuum)/max(|continuum|, floor) of each calibration
-    (rows, :data:`CALIBRATIONS` order) in each quantity (columns): ``errors`` (ncal, nq),
+    (rows, :data:`...beds.CALIBRATIONS` order) in each quantity (columns): ``errors`` (ncal, nq),
     ``values`` (ncal, nq) the beds' values and ``reference`` (nq) the continuum's (units of the
     scene; N_ult of elastic springs is inf, its error NaN: no capacity)."""
 

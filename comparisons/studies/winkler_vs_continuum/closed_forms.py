@@ -10,7 +10,7 @@ import numpy as np
 
 from ....anchors import (half_plane_rocking, prandtl_capacity, vm_envelope_moment_ratio,
                          winkler_rocking)
-from .calibration import BedResponse
+from ...beds.pushover import BedResponse
 from .options import WINKLER_ONSET
 from .reference import ContinuumReference
 

@@ -13,9 +13,10 @@ import numpy as np
 
 from ....scenes import Scene
 from ...framework.measures import edge_uplift_history, reduced_edge_gap_history
-from .calibration import Calibration, bed_scene
+from ...beds.continuum_points import history_grid, motion_scene, sampled_histories
+from ...beds.pushover import bed_scene
+from ...beds.stiffness import Calibration
 from .options import DYNAMIC_MISSING, Options, finite_or_none
-from .points import history_grid, motion_scene, sampled_histories
 
 
 # ---------------------------------------------------------------------------------------------

@@ -9,11 +9,11 @@ from pathlib import Path
 import numpy as np
 
 from ....anchors import half_plane_rocking, winkler_rocking
+from ...beds.stiffness import LABELS
 from ...framework.figure_record import Caption, page_figure, print_style, save
 from ...framework.map_figures import MAX_HEIGHT_IN
 from .analysis import ErrorTable
 from .dynamics import DynamicRun
-from .options import LABELS
 from .result import WinklerVsContinuum
 
 

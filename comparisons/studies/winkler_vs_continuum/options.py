@@ -12,15 +12,9 @@ from ....scenes import Scene
 
 
 STUDY = "winkler_vs_continuum"
-CALIBRATIONS = ("uniform", "end_stiffened", "uniform_plastic", "end_stiffened_plastic")
-LABELS = {"uniform": "uniform bed (K_r)", "end_stiffened": "end-stiffened bed (K_r, K_v)",
-          "uniform_plastic": "uniform bed, elasto-plastic (K_r, q_ult)",
-          "end_stiffened_plastic": "end-stiffened bed, elasto-plastic (K_r, K_v, q_ult)"}
 DYNAMIC_MISSING = "dynamic comparison not run: continuum dynamics unavailable"
 ONSET_ANCHOR = HALF_PLANE_ONSET_ECCENTRICITY  # e/B, rigid strip on an elastic half-plane
 WINKLER_ONSET = WINKLER_ONSET_ECCENTRICITY  # e/B of a uniform tensionless Winkler bed
-# Error floors: a reference smaller than this is measured against the floor instead.
-FLOORS = {"moment": 0.01, "contact": 0.05, "settlement": 0.1, "energy": 0.01}
 STATIC_MOTION = {"type": "free", "velocity": 1.0, "duration": 1.0}  # unused by the statics
 
 

@@ -11,31 +11,9 @@ import numpy as np
 
 from ....anchors import half_plane_onset_rotation, half_plane_rocking_stiffness
 from ....scenes import Scene
+from ...beds.continuum_points import floats
+from ...beds.pushover import cyclic_path, rotation_path
 from .options import Options, STATIC_MOTION
-from .points import floats
-
-
-def rotation_path(theta_on: float, options: Options) -> np.ndarray:
-    """Monotonic rotations (rad): 0, fine steps through the half-plane onset θ_on (so that the
-    onset has full-contact steps to extrapolate from, elastic or plastic), then
-    ``monotonic_steps`` geometric steps to the largest of ``theta_ratios`` × θ_on, which are all
-    on the path."""
-    top = max(options.theta_ratios)
-    ratios = [0.0, 0.3, 0.6, 0.8, 0.9, 1.0, 1.1, 1.25]
-    ratios += list(np.geomspace(1.5, top, options.monotonic_steps)) + list(options.theta_ratios)
-    ratios = np.unique(np.round(ratios, 10))
-    return theta_on * ratios
-
-
-def cyclic_path(theta_on: float, options: Options) -> np.ndarray:
-    """One full cycle 0 → +a → −a → 0 per amplitude a ∈ ``cycle_ratios`` × θ_on, with
-    ``cycle_steps`` steps per quarter cycle (rad); starts at 0."""
-    n = options.cycle_steps
-    path = [0.0]
-    for a in options.cycle_ratios:
-        quarter = np.arange(1, n + 1) / n
-        path += list(a * quarter) + list(a * (1 - 2 * quarter)) + list(-a * (1 - quarter))
-    return theta_on * np.array(path)
 
 
 # ---------------------------------------------------------------------------------------------

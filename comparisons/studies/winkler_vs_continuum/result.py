@@ -7,7 +7,8 @@ from dataclasses import dataclass
 from ....scenes import Scene
 from ...framework.study import StudyResult
 from .analysis import ErrorTable, Recommendation
-from .calibration import BedResponse, Calibration
+from ...beds.pushover import BedResponse
+from ...beds.stiffness import Calibration
 from .dynamics import DynamicComparison
 from .options import Options
 from .reference import ContinuumReference

@@ -6,9 +6,10 @@ import math
 from collections.abc import Mapping
 from dataclasses import asdict
 
+from ...beds.pushover import FLOORS
 from .analysis import ErrorTable, pct, signed_pct
 from .dynamics import DYNAMIC_LABELS, DYNAMIC_MEASURES, DynamicComparison, run_overrides
-from .options import FLOORS, ONSET_ANCHOR, Options, finite_or_none
+from .options import ONSET_ANCHOR, Options, finite_or_none
 from .result import WinklerVsContinuum
 from .units import quantity_unit
 

@@ -8,17 +8,18 @@ from dataclasses import replace
 from pathlib import Path
 
 from ....scenes import Scene, load_scene
+from ...beds.continuum_points import evaluate_continuum
+from ...beds.pushover import bed_response
+from ...beds.stiffness import calibrate, end_zone
 from ...framework.protocol import Context, Study, run_study
 from ...framework.store import Store
 from ...framework.study import require_matplotlib
 from ...framework.sweep import run_sweep, sweep_executor
 from .analysis import dynamic_quantities, error_table, recommend
-from .calibration import bed_response, calibrate, end_zone
 from .closed_forms import closed_form_checks
 from .dynamics import compare_dynamics, dynamic_points
 from .options import FAST_OPTIONS, FULL_OPTIONS, Options, STUDY, check_options, check_scene
 from .output import write
-from .points import evaluate_continuum
 from .reference import continuum_points, continuum_reference
 from .result import WinklerVsContinuum
 

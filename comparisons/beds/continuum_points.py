@@ -1,5 +1,8 @@
-"""The study's continuum runs (the sweep's point functions): rotation pushovers and dynamic
-runs of the scene, stored as plain histories."""
+"""The continuum runs the beds are calibrated from and compared against, one point function
+(:func:`evaluate_continuum`) that both Winkler studies sweep: the footing's stiffness, vertical
+and rotation pushovers, and dynamic runs of a scene (:func:`evaluate_dynamic`), stored as plain
+JSON values and histories. Its key name is the one its records were first stored under (the
+Winkler-against-continuum study's), so the kept stores find them."""
 
 from __future__ import annotations
 
@@ -8,10 +11,13 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ....checks import InputError
-from ....scenes import Scene, scene_from_dict
-from ...framework.measures import edge_uplift_history, settlement_when_flattest
-from ...framework.store import point_function
+from ...checks import InputError
+from ...scenes import Scene, scene_from_dict
+from ..framework.measures import edge_uplift_history, settlement_when_flattest
+from ..framework.store import point_function
+
+__all__ = ["evaluate_continuum", "evaluate_dynamic", "motion_scene", "sampled_histories",
+           "history_grid", "floats"]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -39,9 +45,9 @@ def evaluate_continuum(point: Mapping) -> dict:
     ``elastic`` swaps the scene's soil for an elastic one of the same E and ν. Returns JSON
     values (units of the scene). A rotation pushover the soil cannot follow (Newton gives up
     after bisecting a step: a mechanism at this N) gives ``{"error": message, "dofs": ...}``."""
-    from ....continuum import (ConvergenceError, build_model, footing_stiffness, rotation_pushover,
+    from ...continuum import (ConvergenceError, build_model, footing_stiffness, rotation_pushover,
                                uplift_onset, vertical_pushover)
-    from ....continuum.contact.footing import OPEN
+    from ...continuum.contact.footing import OPEN
 
     kind = point["analysis"]
     if kind == "dynamic":
@@ -109,8 +115,8 @@ def evaluate_dynamic(point: Mapping) -> dict:
     deformation u, the edge uplift, the settlement of the centre from rest and the contact
     length. Peaks are taken from them by the study, so that the stored run does not depend on
     how they are measured."""
-    from ....continuum import build_model
-    from ....continuum.dynamics.run import DynamicOptions, run_dynamic
+    from ...continuum import build_model
+    from ...continuum.dynamics.run import DynamicOptions, run_dynamic
 
     scene = motion_scene(point)
     motion = scene.build_motion()

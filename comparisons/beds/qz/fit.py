@@ -1,17 +1,17 @@
 """The q–z backbone's shape fitted to the continuum's whole vertical pushover.
 
-The one-point calibration (:func:`.qz_calibration.calibrate_qz`) puts the bed's backbone
+The one-point calibration (:func:`.calibration.calibrate_qz`) puts the bed's backbone
 through (z50, N_ult/2) with a soil's textbook shape; the continuum's pushover on clay is nearly
 linear to about half its capacity and then bends sharply, which that hyperbola is not (it
 overshoots the continuum by up to 15 % of N_ult between z50 and 2·z50). Here the law's three
 free shape parameters — the near field's reference z_ref (equivalently the bed's z50), the
 initial elastic half-range ``elast`` (the part of q_ult carried by the far field alone) and
 the hyperbola's exponent n — are chosen by :func:`scipy.optimize.least_squares` (bounded) to
-minimise the misfit between the bed's centred path (:func:`.qz_calibration.bed_path_at_zref`,
+minimise the misfit between the bed's centred path (:func:`.calibration.bed_path_at_zref`,
 the compiled law) and the continuum's path at every point of the pushover, for a given bed
 (stiffnesses k_i and capacities q_ult,i; the caller states which distribution: K_v kept or
 K_r kept). The range's largest width ``emax`` does not show in a monotonic path: it is the
-soil's, widened to 2·elast (:func:`upliftlab.reduced.qz.qz_shape`).
+soil's, widened to 2·elast (:func:`upliftlab.reduced.laws.qz.qz_shape`).
 
 Misfits are fractions of the bed's capacity Σ q_ult (= N_ult): the largest and the rms of
 (bed − continuum)/N_ult over the pushover's points.
@@ -27,7 +27,7 @@ from scipy.optimize import least_squares
 from ....checks import InputError
 from ....reduced.laws.qz import QzShape, bed_z50, qz_shape, z50_lower_bound
 from ....scenes.laws.qz import QZ_ELASTIC_RANGE_MAX, QZ_EXPONENT_MAX
-from .qz_calibration import bed_path_at_zref, bed_vertical_path, z50_from_pushover
+from .calibration import bed_path_at_zref, bed_vertical_path, z50_from_pushover
 
 __all__ = ["QzFit", "fit_backbone", "path_misfit", "one_point_misfit"]
 
@@ -60,7 +60,7 @@ class QzFit:
 
     @property
     def shape(self) -> QzShape:
-        """The fitted :class:`~upliftlab.reduced.qz.QzShape`."""
+        """The fitted :class:`~upliftlab.reduced.laws.qz.QzShape`."""
         return QzShape(n=self.exponent, elast=self.elastic_range, emax=self.emax)
 
 
@@ -103,8 +103,8 @@ def fit_backbone(settlement, load, stiffnesses, capacities, soil: str = "clay") 
     """The shape (z_ref, elast, n) whose bed path fits the pushover (settlement, length;
     load, force: its points from the first step on, monotonic) best in least squares, for the
     bed of ``stiffnesses`` k_i (force/length) and ``capacities`` q_ult,i (force); emax from the
-    ``soil`` (:func:`upliftlab.reduced.qz.qz_shape`). Several starts (:data:`STARTS`), the
-    best kept. z50 of the result is the fitted bed's (:func:`upliftlab.reduced.qz.bed_z50`);
+    ``soil`` (:func:`upliftlab.reduced.laws.qz.qz_shape`). Several starts (:data:`STARTS`), the
+    best kept. z50 of the result is the fitted bed's (:func:`upliftlab.reduced.laws.qz.bed_z50`);
     with an elastic range above half the capacity it does not fix z_ref, which a scene then
     takes as ``foundation.qz_zref``."""
     s, n = _pushover(settlement, load)

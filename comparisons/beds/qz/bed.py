@@ -6,12 +6,12 @@ Masing range, so the settlement accumulates cycle by cycle, as it does in the co
 elasto-plastic spring yields only beyond its largest previous force.
 
 - *capacities*: the continuum's V_ult shared over the springs' equal tributary widths,
-  q_ult,i = V_ult · w_i/B (:func:`..winkler_vs_continuum.qz_calibration.spring_capacities`);
+  q_ult,i = V_ult · w_i/B (:func:`.calibration.spring_capacities`);
 - *stiffnesses*: the end-stiffened bed with the continuum's K_v and K_r, K_r kept where no
-  R_k reaches K_r/K_v (:func:`..winkler_vs_continuum.qz_calibration.qz_stiffnesses`), as the
+  R_k reaches K_r/K_v (:func:`.calibration.qz_stiffnesses`), as the
   elastic and elasto-plastic beds keep it: rocking is what the beds are compared in;
 - *shape*: z50, the elastic range and the exponent fitted to the continuum's pushover for
-  that bed (:func:`..winkler_vs_continuum.qz_fit.fit_backbone`).
+  that bed (:func:`.fit.fit_backbone`).
 
 The table lists the springs' positions and stiffnesses (a ``custom`` layout), so what it
 builds can be read off it. The pushover comes in ``reference.extra`` as ``settlement``
@@ -26,8 +26,8 @@ import numpy as np
 
 from ....checks import InputError
 from ....reduced.compatibility import winkler_bed
-from ..winkler_vs_continuum.qz_calibration import qz_stiffnesses, spring_capacities
-from ..winkler_vs_continuum.qz_fit import QzFit, fit_backbone
+from .calibration import qz_stiffnesses, spring_capacities
+from .fit import QzFit, fit_backbone
 
 __all__ = ["build_qz", "qz_bed_fit"]
 

@@ -46,10 +46,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg
 
-from ....checks import InputError
-from ....continuum.impedance.gazetas import handbook_strip
-from ....reduced import build_model
-from ....scenes import Scene
+from ...checks import InputError
+from ...continuum.impedance.gazetas import handbook_strip
+from ...reduced import build_model
+from ...scenes import Scene
 
 __all__ = ["RadiationDashpots", "distribute", "impedance_dashpots", "gazetas_dashpots",
            "rocking_frequency", "radiation_dashpots", "with_radiation"]

@@ -1,4 +1,5 @@
-"""The calibrations the map compares: a registry of bed builders.
+"""The beds calibrated from the continuum, one registry of bed builders (the Winkler map
+compares them all, the advisor checks them on a scene).
 
 A bed builder is ``build(reference, options) -> foundation table``: from the continuum's
 reference numbers of one point of the map (:class:`BedReference`: N, B, h, the continuum's K_v,
@@ -6,16 +7,18 @@ K_r and vertical capacity of the soil) and the study's options, the reduced mode
 ``[foundation]`` table of that bed. :data:`BEDS` maps a calibration's name to its
 :class:`BedEntry`; a new calibration (a sway spring, impedance dashpots, hysteretic q–z springs)
 plugs into the map by adding one entry here (and, if it needs a continuum quantity that is not
-yet in :class:`BedReference`, one static analysis in :mod:`.statics`).
+yet in :class:`BedReference`, one static analysis in the map's
+:mod:`~upliftlab.comparisons.studies.winkler_map.statics`).
 
-Nine entries today. Four are the calibrations of :mod:`..winkler_vs_continuum` (built by its
-:func:`~..winkler_vs_continuum.calibrate`, so that both studies build the same beds):
+Nine entries today. Four are the base beds of :mod:`.stiffness`, which the Winkler-against-
+continuum study compares too (built by :func:`.stiffness.calibrate`, so that both studies build
+the same beds):
 ``uniform`` to K_r, ``end_stiffened`` to K_r and K_v (when some R_k reaches it), and both with
 elasto-plastic springs that yield at FS_v times their static force, FS_v = V_ult/N
 (``uniform_plastic``, ``end_stiffened_plastic``). Three add what those lack: radiation
 dashpots from Gazetas' strip formulas (``uniform_plastic_gazetas``) or from the continuum's own
-impedance (``uniform_plastic_impedance``, :mod:`.impedance_bed`), and hysteretic q–z springs
-fitted to the continuum's whole vertical pushover (``qz``, :mod:`.qz_bed`).
+impedance (``uniform_plastic_impedance``, :mod:`.dashpots`), and hysteretic q–z springs
+fitted to the continuum's whole vertical pushover (``qz``, :mod:`.qz.bed`).
 ``end_stiffened_plastic_impedance`` gives the end-stiffened elasto-plastic bed the impedance
 dashpots too. ``end_stiffened_bearing``
 keeps its springs but lets each yield at the soil's one bearing pressure V_ult/B over its
@@ -29,13 +32,13 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ....checks import InputError
-from ....reduced.compatibility import winkler_bed
-from ..winkler_vs_continuum.radiation import distribute, gazetas_dashpots
-from .base_beds import BedReference, base_builder, calibration
-from .fitted_bed import build_end_stiffened_fitted_impedance
-from .impedance_bed import build_uniform_plastic_impedance, impedance_dashpots_of
-from .qz_bed import build_qz
+from ...checks import InputError
+from ...reduced.compatibility import winkler_bed
+from .base import BedReference, base_builder, calibration
+from .dashpots import build_uniform_plastic_impedance, impedance_dashpots_of
+from .fitted import build_end_stiffened_fitted_impedance
+from .qz.bed import build_qz
+from .radiation import distribute, gazetas_dashpots
 
 __all__ = ["BedReference", "BedEntry", "BEDS", "bed_names", "bed_foundation"]
 
@@ -46,7 +49,8 @@ class BedEntry:
     ``build(reference, options) -> [foundation] table``, ``matches`` the continuum
     quantities it is calibrated to (text), and ``needs`` the stored continuum quantities beyond
     the statics that the map must compute for it (``impedance``: the soil's dynamic impedance,
-    :mod:`.impedance_points`); ``short`` its abbreviation in tables and figures."""
+    the map's :mod:`~upliftlab.comparisons.studies.winkler_map.impedance_points`); ``short`` its
+    abbreviation in tables and figures."""
 
     name: str
     label: str
@@ -59,8 +63,8 @@ class BedEntry:
 def build_uniform_plastic_gazetas(reference: BedReference, options) -> dict:
     """The ``uniform_plastic`` bed with the handbook's radiation dashpots: the strip's C_v and
     C_r of Gazetas (ρ V_La B and ρ V_La B³/12, frequency-independent) distributed over its
-    springs so that Σ c_i = C_v and Σ c_i x_i² = C_r (:func:`..winkler_vs_continuum.radiation.
-    distribute`); the soil's density comes in ``reference.extra["density"]`` (mass/length³)."""
+    springs so that Σ c_i = C_v and Σ c_i x_i² = C_r (:func:`.radiation.distribute`); the soil's
+    density comes in ``reference.extra["density"]`` (mass/length³)."""
     table = calibration(reference, options, "uniform_plastic").foundation_table()
     density = reference.extra.get("density", 0.0)
     if not density > 0.0:
@@ -91,7 +95,7 @@ def build_end_stiffened_bearing(reference: BedReference, options) -> dict:
 
 def build_end_stiffened_plastic_impedance(reference: BedReference, options) -> dict:
     """The ``end_stiffened_plastic`` bed with the dashpots of the continuum's impedance at the
-    point's rocking frequency (:mod:`.impedance_bed`: Σ c_i = C_v, Σ c_i x_i² = C_r)."""
+    point's rocking frequency (:mod:`.dashpots`: Σ c_i = C_v, Σ c_i x_i² = C_r)."""
     table = calibration(reference, options, "end_stiffened_plastic").foundation_table()
     table["dashpots"] = list(impedance_dashpots_of(reference, options).dashpots)
     return table

@@ -20,7 +20,7 @@ the map then measures the bed on the dynamics like every other.
 
 Needs in ``BedReference.extra``: ``rocking`` (the continuum's ``cyclic`` and ``monotonic``
 pushover records at the point's N, with ``theta_on``), ``structure`` and ``impedance`` (for
-the dashpots, :mod:`.impedance_bed`).
+the dashpots, :mod:`.dashpots`).
 """
 
 from __future__ import annotations
@@ -30,13 +30,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ....checks import InputError
-from ....reduced.compatibility import end_stiffened_bed
-from ..winkler_vs_continuum.options import FLOORS
-from .impedance_bed import impedance_dashpots_of
-from .base_beds import base_builder
-from .points import base_table
-from .rocking import bed_rocking
+from ...checks import InputError
+from ...reduced.compatibility import end_stiffened_bed
+from .base import base_builder, base_table
+from .dashpots import impedance_dashpots_of
+from .pushover import FLOORS, bed_rocking
 
 __all__ = ["FITTED", "BETAS", "CapacityFit", "capacity_profile", "fit_capacity_profile",
            "build_end_stiffened_fitted_impedance"]

@@ -4,11 +4,11 @@
   q_ult,i = N_ult · w_i / B (:func:`spring_capacities`), so that the bed's capacity under a
   centred load is the continuum's.
 - *Stiffness and its distribution*: the end-stiffened bed whose K_v and K_r are the continuum's
-  (closed-form R_k of :func:`.calibration.end_stiffening`), :func:`qz_stiffnesses`.
+  (closed-form R_k of :func:`..stiffness.end_stiffening`), :func:`qz_stiffnesses`.
 - *z50*: the settlement of the continuum's vertical pushover at half its capacity
   (:func:`z50_from_pushover`); under a centred load every spring of a rigid base settles as
   much, and the reduced model gives every spring one near-field z_ref that puts the bed's
-  backbone through (z50, N_ult/2) (:func:`upliftlab.reduced.qz.common_zref`). A bed too soft
+  backbone through (z50, N_ult/2) (:func:`upliftlab.reduced.laws.qz.common_zref`). A bed too soft
   to carry N_ult/2 at z50 even with rigid–plastic near fields cannot be calibrated (an
   :class:`InputError` with the least z50 it can take).
 - *Gap*: from a cyclic vertical pushover (down, back up past lift-off): the drag (suction)
@@ -17,7 +17,8 @@
   range is the force span over which the first unloading stays on the initial stiffness
   (:func:`elastic_range_from_unloading`), as a fraction of N_ult.
 
-:func:`calibrate_qz` puts them together from a :class:`.reference.ContinuumReference`.
+:func:`calibrate_qz` puts them together from a continuum reference (its stiffnesses, capacity
+and vertical pushover).
 """
 
 from __future__ import annotations
@@ -32,7 +33,7 @@ from ....reduced.kernels import HISTORY_DTYPE, QZ, qz_commit, qz_start
 from ....reduced.laws.qz import (QZ_SOILS, SUCTION_MAX, QzShape, common_zref, qz_springs,
                                 z50_lower_bound)
 from ....reduced.springs import derive_columns, spring_table
-from .calibration import end_stiffening
+from ..stiffness import end_stiffening
 
 
 def spring_capacities(capacity: float, widths) -> np.ndarray:
@@ -47,7 +48,7 @@ def qz_stiffnesses(K_v: float, K_r: float, half_width: float, springs: int, end_
     """Initial stiffnesses k_i (force/length) of the end-stiffened bed with the continuum's
     K_v and K_r, its end-stiffness ratio R_k, and whether K_r/K_v was reachable. If it was not
     (no bed under the footing has K_r/K_v above b²), R_k is the nearest bound and K_r is kept,
-    K_v missed, as the study's elastic end-stiffened bed does (:func:`.calibration.calibrate`):
+    K_v missed, as the elastic end-stiffened bed does (:func:`..stiffness.calibrate`):
     rocking is the response the beds are compared in."""
     stiff = end_stiffening(K_r / K_v, half_width, springs, end_length, max_ratio)
     unit = end_stiffened_bed(half_width, 1.0, springs, stiff.ratio, end_length)
@@ -71,7 +72,7 @@ def z50_from_pushover(settlement, force, capacity: float) -> float:
 def suction_from_cyclic(force, capacity: float) -> float:
     """Drag ratio of the gap: the largest tension (−force, force positive in compression) a
     cyclic pushover carried, over ``capacity``; 0 if it never pulled. Above QzSimple's
-    largest, :data:`~upliftlab.reduced.qz.SUCTION_MAX`, it is an error."""
+    largest, :data:`~upliftlab.reduced.laws.qz.SUCTION_MAX`, it is an error."""
     tension = max(0.0, -float(np.min(force)))
     ratio = tension / capacity
     if ratio > SUCTION_MAX:
@@ -134,8 +135,9 @@ class QzCalibration:
 
 def calibrate_qz(ref, springs: int, end_length: float, max_ratio: float, soil: str = "clay",
                  cyclic_force=None) -> QzCalibration:
-    """The q–z bed of a :class:`~.reference.ContinuumReference` ``ref``: stiffnesses to its
-    K_v and K_r, capacities from its N_ult, z50 from its vertical pushover, and the drag from
+    """The q–z bed of a continuum reference ``ref`` (its width ``B``, stiffnesses ``K_v`` and
+    ``K_r``, capacity ``N_ult`` and ``vertical`` pushover): stiffnesses to its K_v and K_r,
+    capacities from its N_ult, z50 from its vertical pushover, and the drag from
     ``cyclic_force`` (the interface force along a cyclic pushover; None: 0, the unilateral
     contact's)."""
     b = 0.5 * ref.B
@@ -158,7 +160,7 @@ def bed_vertical_path(stiffnesses, capacities, z50: float, settlements, soil: st
     """The force (force) a q–z bed carries along a centred settlement path (length, positive
     down, from the unloaded state; any sequence, cyclic too): every spring settles as much,
     each through the compiled law and its history, z_ref from
-    :func:`~upliftlab.reduced.qz.common_zref` — what the continuum's vertical pushover is
+    :func:`~upliftlab.reduced.laws.qz.common_zref` — what the continuum's vertical pushover is
     compared with. ``shape`` (None: the ``soil``'s) is the backbone's shape."""
     k, q = np.asarray(stiffnesses, dtype=float), np.asarray(capacities, dtype=float)
     shape = QZ_SOILS[soil] if shape is None else shape

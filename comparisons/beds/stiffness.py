@@ -1,21 +1,26 @@
-"""The calibrated Winkler beds (uniform and end-stiffened, elastic and plastic) and their
-responses on the reference's paths."""
+"""The four base beds calibrated from the continuum's stiffness: uniform and end-stiffened,
+elastic and elasto-plastic (:func:`calibrate`), and the end-stiffness ratio R_k that matches
+both of the continuum footing's stiffnesses K_v and K_r (:func:`end_stiffening`)."""
 
 from __future__ import annotations
 
-import copy
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
-from .... import checks
-from ....checks import InputError
-from ....reduced import build_model as build_reduced, rocking_pushover, uplift_onset_force
-from ....reduced.compatibility import end_stiffened_bed, winkler_bed
-from ....scenes import Scene, scene_from_dict
-from .options import CALIBRATIONS, LABELS, Options
-from .reference import ContinuumReference
+from ... import checks
+from ...checks import InputError
+from ...reduced.compatibility import end_stiffened_bed, winkler_bed
+
+__all__ = ["CALIBRATIONS", "LABELS", "EndStiffening", "end_zone", "end_stiffening",
+           "Calibration", "calibrate"]
+
+#: The base beds, in the order both Winkler studies list them, and their labels.
+CALIBRATIONS = ("uniform", "end_stiffened", "uniform_plastic", "end_stiffened_plastic")
+LABELS = {"uniform": "uniform bed (K_r)", "end_stiffened": "end-stiffened bed (K_r, K_v)",
+          "uniform_plastic": "uniform bed, elasto-plastic (K_r, q_ult)",
+          "end_stiffened_plastic": "end-stiffened bed, elasto-plastic (K_r, K_v, q_ult)"}
 
 
 # ---------------------------------------------------------------------------------------------
@@ -132,8 +137,14 @@ def _bed_stiffnesses(layout: str, b: float, springs: int, K_v: float, R_k: float
     return bed.vertical_stiffness, bed.rocking_stiffness
 
 
-def calibrate(ref: ContinuumReference, options: Options) -> tuple[Calibration, ...]:
-    """The four calibrations of the package docstring, from the continuum reference."""
+def calibrate(ref, options) -> tuple[Calibration, ...]:
+    """The four base beds, calibrated from the continuum: ``ref`` has the footing width ``B``
+    (length), the vertical load ``N`` and capacity ``N_ult`` (force/length) and the footing's
+    stiffnesses in full contact ``K_v`` (force/length²) and ``K_r`` (force·length/rad per
+    length); ``options`` the beds' ``springs``, ``end_length`` R_e (a fraction of b) and
+    ``max_end_stiffness_ratio`` R_k,max. The uniform beds match K_r, the end-stiffened ones
+    K_r and K_v where an R_k reaches both; the elasto-plastic ones yield at FS_v = N_ult/N
+    times their static force."""
     b, n = 0.5 * ref.B, options.springs
     uniform = winkler_bed(b, 1.0, n)
     Kv_uniform = ref.K_r / uniform.rocking_stiffness
@@ -164,63 +175,3 @@ def calibrate(ref: ContinuumReference, options: Options) -> tuple[Calibration, .
                 note if layout == "end_stiffened" else "",
                 stiff if layout == "end_stiffened" else None))
     return tuple(sorted(rows, key=lambda c: CALIBRATIONS.index(c.name)))
-
-
-# ---------------------------------------------------------------------------------------------
-# Bed responses
-# ---------------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True, eq=False)
-class BedResponse:
-    """A calibrated bed's static response: the bed's ``K_v``, ``K_r``, uplift-onset moment
-    ``onset_moment``, ``N_ult`` (inf for elastic springs), and the ``monotonic`` and ``cyclic``
-    pushovers (θ, M, settlement = −V, contact) on the continuum's rotation paths."""
-
-    calibration: Calibration
-    K_v: float
-    K_r: float
-    onset_moment: float
-    N_ult: float
-    monotonic: dict = field(repr=False)
-    cyclic: dict = field(repr=False)
-
-
-def bed_scene(scene: Scene, cal: Calibration) -> Scene:
-    """The scene with its foundation replaced by the calibrated bed."""
-    data = copy.deepcopy(scene.data)
-    old = data.get("foundation", {})
-    table = cal.foundation_table()
-    for key in ("damping_ratio", "restitution", "impact_multiple"):
-        if key in old:
-            table[key] = old[key]
-    data["foundation"] = table
-    return scene_from_dict(data, source=scene.source, merged=True)
-
-
-def pushover_record(model, thetas) -> dict:
-    """A rocking pushover of the bed. The reduced model measures V from static equilibrium, so
-    the settlement of the base centre is its static settlement minus V: Σ k_i δ0_i / Σ k_i
-    (= N/K_v for a symmetric bed); where springs reached their yield force under the weight
-    (and settled plastically beyond their elastic compression δ0), the compression at rest of
-    a spring below it less x_i θ_s (θ_s the static rotation), the same for each such spring."""
-    p = rocking_pushover(model, thetas)
-    found = model.foundation_slice
-    P = model.params[found]
-    capped = P["f0"] >= P["fy"] * (1.0 - 1e-12)
-    if capped.any():
-        static = float(np.mean((P["d0"] - P["x"] * model.static_rotation)[~capped]))
-    else:
-        static = float(np.sum(P["k"] * P["d0"]) / np.sum(P["k"]))
-    return {"theta": np.asarray(thetas, dtype=float), "M": p.moment,
-            "settlement": static - p.vertical, "contact": p.contact}
-
-
-def bed_response(scene: Scene, cal: Calibration, ref: ContinuumReference) -> BedResponse:
-    model = build_reduced(bed_scene(scene, cal))
-    layout = model.layout
-    onset = uplift_onset_force(model) * float(model.heights[-1])
-    N_ult = cal.yield_multiple * model.weight if cal.law == "elastoplastic" else math.inf
-    return BedResponse(cal, layout.vertical_stiffness, layout.rocking_stiffness, onset, N_ult,
-                       pushover_record(model, ref.monotonic["theta"]),
-                       pushover_record(model, ref.cyclic["theta"]))

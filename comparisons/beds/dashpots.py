@@ -1,18 +1,19 @@
 """The ``uniform_plastic`` bed with radiation dashpots from the continuum's own impedance.
 
 What it is: the uniform elasto-plastic bed (K_r and V_ult of the continuum) plus one vertical
-dashpot per spring, distributed (:func:`..winkler_vs_continuum.radiation.distribute`: a uniform
-part plus a concentration at the centre or the ends) so that Σ c_i = C_v and Σ c_i x_i² = C_r,
-the dashpots of the continuum's FE impedance of the soil (:mod:`.impedance_points`,
-C_j = Im K_j(ω)/ω, linear in ω between its frequencies) at the point's rocking frequency ω.
+dashpot per spring, distributed (:func:`.radiation.distribute`: a uniform part plus a
+concentration at the centre or the ends) so that Σ c_i = C_v and Σ c_i x_i² = C_r, the dashpots
+of the continuum's FE impedance of the soil (the map's
+:mod:`~upliftlab.comparisons.studies.winkler_map.impedance_points`, C_j = Im K_j(ω)/ω, linear in
+ω between its frequencies) at the point's rocking frequency ω.
 Why: the handbook's dashpots (``uniform_plastic_gazetas``) are those of high frequency; at the
 low a0 of rocking structures the 2D strip radiates several times more vertically and several
 times less in rocking than they say, and this bed takes the continuum's own numbers instead.
 
 The frequency ω (rad/s) is the structure's flexible-base fundamental frequency on this bed:
 the lowest bonded mode of the reduced model other than the vertical one
-(:func:`..winkler_vs_continuum.radiation.rocking_frequency`). For the map's one-story
-structure on a symmetric bed the vertical mode is uncoupled and ω² is the lower root of
+(:func:`.radiation.rocking_frequency`). For the map's one-story structure on a symmetric bed the
+vertical mode is uncoupled and ω² is the lower root of
 
     m I ω⁴ − [k I + m (k h² + K_r)] ω² + k K_r = 0,
 
@@ -31,20 +32,20 @@ Needs in ``BedReference.extra``: ``impedance`` (the soil's
 :class:`~upliftlab.continuum.impedance.analysis.Impedance`) and ``structure`` (the point's
 ``[structure]`` table: weight kN/m, height m, period s, damping ratio, rotary inertia t m²/m).
 A rocking frequency outside the impedance's frequencies is refused (InputError), before any
-dynamic run of the map (:func:`.maps.compute_map` builds every bed first).
+dynamic run of the map (its :func:`~upliftlab.comparisons.studies.winkler_map.maps.compute_map`
+builds every bed first).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ....checks import InputError
-from ....reduced import build_model
-from ....reduced.compatibility import winkler_bed
-from ....scenes import scene_from_dict
-from ..winkler_vs_continuum.radiation import distribute, impedance_dashpots, rocking_frequency
-from .base_beds import base_builder
-from .points import base_table
+from ...checks import InputError
+from ...reduced import build_model
+from ...reduced.compatibility import winkler_bed
+from ...scenes import scene_from_dict
+from .radiation import distribute, impedance_dashpots, rocking_frequency
+from .base import base_builder, base_table
 
 __all__ = ["ImpedanceDashpots", "bed_rocking_frequency", "impedance_dashpots_of",
            "build_uniform_plastic_impedance"]
