@@ -26,10 +26,13 @@ def model_label(point: Mapping) -> str:
 
 
 def _level(point: Mapping) -> int:
+    """The point's rung of the step ladder (0 for a continuum mesh's automatic step)."""
     return int(point["step"].get("rank", 0))
 
 
 def relative_to_reference(value: float, reference: float, floor: float) -> float:
+    """Signed relative error (value − reference)/max(|reference|, floor) (dimensionless;
+    ``floor`` in the quantity's units keeps a near-zero reference from inflating it)."""
     return (value - reference) / max(abs(reference), floor)
 
 

@@ -1,5 +1,7 @@
 """The study's summary, computed from its dataset alone (:func:`.workflow.compute`, or the
-same read back by :func:`upliftlab.open_study`): the key numbers and the Markdown text."""
+same read back by :func:`upliftlab.open_study`): the Markdown text (:func:`summarise`) and the
+key numbers (:func:`key_numbers`, ``summary.json``). The wall time is the dataset's
+``elapsed_s`` attribute (s), set when the study is written."""
 
 from __future__ import annotations
 
@@ -7,9 +9,9 @@ import math
 
 import numpy as np
 
-from .analysis import (Run, cheapest, converged, front, percent as _pct, runs, table_note)
-from .grid import FLOOR_FRACTION, INTEGRATORS, LABELS, QUANTITIES
+from .analysis import Run, cheapest, converged, front, percent as _pct, runs, table_note
 from .dataset import relative_to_reference
+from .grid import FLOOR_FRACTION, INTEGRATORS, LABELS, QUANTITIES
 
 
 def _point_dict(p: Run | None, reference_runtime: float) -> dict | None:
