@@ -28,24 +28,44 @@ def study(tmp_path_factory):
     return sve.run(fast=True, out=out, progress=False)
 
 
-def _winkler(scene, integrator, rank_dt=None):
-    """Winkler points of ``integrator`` by N at the finest step it ran (dict N -> Point)."""
-    pts = [p for p in scene.points if p.model == "winkler" and p.integrator == integrator]
-    dt = min(p.dt for p in pts) if rank_dt is None else rank_dt
-    return {p.springs: p for p in pts if math.isclose(p.dt, dt)}
+def _scenes(ds) -> list[str]:
+    return ds.scene.values.tolist()
+
+
+def _winkler(ds, label, integrator):
+    """The runs of Winkler beds of ``integrator`` in scene ``label`` at the finest step it ran
+    on any bed, by N: {N: (dt in s, the run's cells over quantity)}."""
+    beds = [m for m, layout in zip(ds.model.values.tolist(), ds.layout.values.tolist())
+            if layout == "winkler"]
+    one = ds.sel(scene=label, integrator=integrator, model=beds)
+    finest = float(one.dt.where(one.ran == 1).min())
+    out = {}
+    for model in beds:
+        at = one.sel(model=model)
+        for level in at.level.values.tolist():
+            cell = at.sel(level=level)
+            if int(cell.ran) and math.isclose(float(cell.dt), finest):
+                out[int(ds.springs.sel(model=model))] = cell
+    return out
+
+
+def _abs_error(cells, quantity: str) -> float:
+    return abs(float(cells.error.sel(quantity=quantity)))
 
 
 def test_references_converge_to_one_percent(study):
     """Each fast scene's reference changes by ≤ 1 % (the stated tolerance) from half the
     springs and from twice the step, in all four quantities."""
-    for s in study.scenes:
-        ref = s.reference
-        assert ref.tolerance == 0.01
+    ds = study.data
+    assert ds.attrs["options_convergence_tolerance"] == 0.01
+    for label in _scenes(ds):
+        one = ds.sel(scene=label)
+        converged = sve.converged(ds, label)
         for q in sve.QUANTITIES:
-            assert ref.change_springs[q] <= 0.01, (s.label, q)
-            assert ref.change_dt[q] <= 1e-3, (s.label, q)
-            assert ref.converged[q]
-        assert ref.values["uplift"] > 0.0  # both pulses uplift the base
+            assert float(one.change_half_springs.sel(quantity=q)) <= 0.01, (label, q)
+            assert float(one.change_double_dt.sel(quantity=q)) <= 1e-3, (label, q)
+            assert converged[q]
+        assert float(one.reference.sel(quantity="uplift")) > 0.0  # both pulses uplift the base
     assert study.study.numbers["scenes"]["sine-2a_up-B"]["reference"]["springs"] == 160
 
 
@@ -53,44 +73,53 @@ def test_errors_decrease_with_springs(study):
     """Event stepper at its finest ladder step: the error in peak edge uplift falls
     monotonically with N, at least as N^-0.5 between 10 and 40 springs (measured ≈ N^-0.8),
     and the 10-spring bed beats the equivalent two springs."""
-    for s in study.scenes:
-        by_n = _winkler(s, "events")
-        errors = [by_n[n].abs_error("uplift") for n in (10, 40, 160)]
-        assert errors[0] > errors[1] > errors[2], (s.label, errors)
+    ds = study.data
+    for label in _scenes(ds):
+        by_n = _winkler(ds, label, "events")
+        errors = [_abs_error(by_n[n], "uplift") for n in (10, 40, 160)]
+        assert errors[0] > errors[1] > errors[2], (label, errors)
         rate = math.log(errors[0] / errors[1]) / math.log(4.0)
-        assert rate > 0.5, (s.label, rate)
-        two = [p for p in s.points if p.model == "equivalent" and p.integrator == "events"]
-        assert min(p.abs_error("uplift") for p in two) > errors[0]
+        assert rate > 0.5, (label, rate)
+        two = ds.sel(scene=label, model="equivalent", integrator="events")
+        ran = two.error.sel(quantity="uplift").where(two.ran == 1)
+        assert int((two.ran == 1).sum()) > 0
+        assert float(abs(ran).min()) > errors[0]
 
 
 def test_errors_decrease_with_step(study):
     """On the reference bed (N = 160), halving the event stepper's step reduces the error in
     peak u and peak θ at every level; the finest ladder level is within 0.01 %."""
-    for s in study.scenes:
-        pts = sorted((p for p in s.points if p.model == "winkler" and p.springs == 160
-                      and p.integrator == "events"), key=lambda p: -p.dt)
-        assert len(pts) == 3
-        assert [p.dt / pts[0].dt for p in pts] == pytest.approx([1.0, 0.5, 0.25])
+    ds = study.data
+    for label in _scenes(ds):
+        bed = ds.sel(scene=label, model="N=160", integrator="events")
+        levels = sorted((lv for lv in bed.level.values.tolist()
+                         if int(bed.ran.sel(level=lv))),
+                        key=lambda lv: -float(bed.dt.sel(level=lv)))
+        assert len(levels) == 3
+        dts = [float(bed.dt.sel(level=lv)) for lv in levels]
+        assert [dt / dts[0] for dt in dts] == pytest.approx([1.0, 0.5, 0.25])
         for q in ("u", "theta"):
-            e = [p.abs_error(q) for p in pts]
-            assert e[0] > e[1] > e[2], (s.label, q, e)
+            e = [abs(float(bed.error.sel(level=lv, quantity=q))) for lv in levels]
+            assert e[0] > e[1] > e[2], (label, q, e)
             assert e[2] < 1e-4
 
 
 def test_pareto_front_of_the_study(study):
     """Every front is sorted by runtime with strictly falling |error|, and no evaluated point is
     both faster and more accurate than any point on it."""
-    for s in study.scenes:
+    ds = study.data
+    for label in _scenes(ds):
+        points = sve.runs(ds, label)
         for q in sve.QUANTITIES:
-            front = s.front(q)
-            assert front, (s.label, q)
+            front = sve.front(points, q)
+            assert front, (label, q)
             times = [p.runtime for p in front]
             errs = [p.abs_error(q) for p in front]
             assert times == sorted(times)
             assert all(b < a for a, b in zip(errs, errs[1:]))
             for f in front:
                 assert not any(p.runtime < f.runtime and p.abs_error(q) < f.abs_error(q)
-                               for p in s.points)
+                               for p in points)
 
 
 def test_pareto_front_by_hand():
@@ -125,10 +154,16 @@ def test_rerun_recomputes_nothing(study, tmp_path):
     again = sve.run(fast=True, out=tmp_path / "again", store=store, progress=False,
                     options=sve.Options(figures=False))
     assert len(store) == before
-    for s1, s2 in zip(study.scenes, again.scenes):
-        assert [p.runtime for p in s1.points] == [p.runtime for p in s2.points]
-    assert again.sessions == 1
-    assert again.context == study.context
+    for label in _scenes(study.data):  # a refused run's runtime is NaN on both
+        np.testing.assert_array_equal([p.runtime for p in sve.runs(study.data, label)],
+                                      [p.runtime for p in sve.runs(again.data, label)])
+    np.testing.assert_array_equal(again.data.runtime, study.data.runtime)
+    assert again.data.attrs["sessions"] == 1
+
+    def context(ds):
+        return {k: v for k, v in ds.attrs.items() if k.startswith("context_")}
+
+    assert context(again.data) == context(study.data)
 
 
 def test_summary_is_computed_and_states_continuum(study):
@@ -139,7 +174,29 @@ def test_summary_is_computed_and_states_continuum(study):
     cheapest = numbers["scenes"]["sine-2a_up-B"]["cheapest"]["uplift"]["0.01"]
     assert cheapest is not None and abs(cheapest["errors"]["uplift"]) <= 0.01
     names = {p.name for p in study.study.files}
-    assert {"points.csv", "pareto.csv", "summary.md", "summary.json"} <= names
+    assert {"points.csv", "pareto.csv", "speed_vs_error.nc", "summary.md",
+            "summary.json"} <= names
+
+
+def test_the_folder_opens_again_as_the_same_labelled_data(study):
+    """:func:`upliftlab.open_study` of the study's folder: the dataset it wrote, selected by
+    label, holds the references of ``summary.json`` (bit for bit), with units; the summary and
+    the key numbers computed from it are the ones written."""
+    import json
+
+    from upliftlab import open_study
+
+    folder = study.study.directory
+    ds = open_study(folder)["speed_vs_error"].to_dataset()
+    written = json.loads((folder / "summary.json").read_text())["numbers"]
+    assert ds.dt.attrs["units"] == "s" and ds.runtime.attrs["units"] == "s"
+    for label, scene in written["scenes"].items():
+        for q in sve.QUANTITIES:
+            at = ds.sel(scene=label, quantity=q)
+            assert float(at.reference) == scene["reference"]["values"][q]
+            assert float(at.change_half_springs) == scene["reference"]["change_half_springs"][q]
+    assert sve.summarise(ds) == (folder / "summary.md").read_text()
+    assert json.loads(json.dumps(sve.key_numbers(ds), default=float)) == written
 
 
 @pytest.mark.parametrize("change, message", [

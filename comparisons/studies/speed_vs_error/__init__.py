@@ -25,25 +25,37 @@ the number of concurrent workers and the time of measurement): the context is pa
 point's key, so re-running on the same machine recomputes nothing, and another machine measures
 everything afresh. The summary states the context and how many measurement sessions contributed.
 
+**Its data** (:func:`compute`) is one :class:`xarray.Dataset`, ``speed_vs_error.nc``: every run
+over ``scene``, ``model`` (``edges``, ``equivalent``, ``N=<springs>``, ``continuum-<n>``, with
+its ``layout`` and ``springs``), ``integrator``, ``level`` (the step ladder's rung) and
+``quantity``: step (s), runtime (s), value and error; per scene the reference and its
+convergence. The summary (:func:`summarise`, :func:`key_numbers`), the tables ``points.csv`` and
+``pareto.csv`` (:func:`write_tables`), the Pareto fronts and the figures are computed from it
+alone, so :func:`upliftlab.open_study` of the output folder gives the same summary back.
+
 Run it with ``upliftlab study speed_vs_error [--fast] [--out DIR]``.
 """
 
 from __future__ import annotations
 
-from .analysis import Point, Reference, SceneResult, SpeedVsError, pareto_front
+from .analysis import (Run, cheapest, continuum_note, converged, front, pareto_front, runs,
+                       table_note)
+from .dataset import model_label, runs_dataset
 from .grid import (FAST_GRID, FLOOR_FRACTION, FULL_GRID, Grid, IMPLICIT, INTEGRATORS, LABELS,
                    MAX_HALVINGS, MODELS, Options, QUANTITIES, STABILITY_MARGIN, STUDY, SceneSpec,
                    check_grid, check_options)
-from .output import write
 from .points import (continuum_status, evaluate_continuum, evaluate_point, load_spec,
                      measurement_context, motion_entry, point_scene, pulse_overrides, scales,
                      scene_points)
-from .workflow import DEFINITION, compute, run
+from .summary import key_numbers, summarise
+from .tables import write_tables
+from .workflow import DEFINITION, compute, run, write
 
 __all__ = ["STUDY", "QUANTITIES", "INTEGRATORS", "MODELS", "SceneSpec", "Grid", "Options",
-           "FULL_GRID", "FAST_GRID", "Point", "Reference", "SceneResult", "SpeedVsError",
-           "DEFINITION", "compute", "write", "run", "evaluate_point", "point_scene",
-           "pareto_front", "motion_entry", "scales",
-           "load_spec", "scene_points", "check_grid", "check_options", "measurement_context",
-           "continuum_status", "pulse_overrides", "LABELS", "IMPLICIT", "FLOOR_FRACTION",
-           "STABILITY_MARGIN", "MAX_HALVINGS", "evaluate_continuum"]
+           "FULL_GRID", "FAST_GRID", "Run", "DEFINITION", "compute", "write", "run",
+           "summarise", "key_numbers", "write_tables", "runs_dataset", "model_label", "runs",
+           "front", "cheapest", "converged", "table_note", "continuum_note", "evaluate_point",
+           "point_scene", "pareto_front", "motion_entry", "scales", "load_spec", "scene_points",
+           "check_grid", "check_options", "measurement_context", "continuum_status",
+           "pulse_overrides", "LABELS", "IMPLICIT", "FLOOR_FRACTION", "STABILITY_MARGIN",
+           "MAX_HALVINGS", "evaluate_continuum"]

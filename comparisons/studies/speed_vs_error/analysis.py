@@ -1,29 +1,24 @@
-"""What the points say: errors against each scene's converged reference, Pareto fronts and
-the cheapest point within a tolerance."""
+"""What the runs say, read from the study's dataset: each scene's runs, whether its reference
+converged, the Pareto fronts of runtime against error and the cheapest run within a
+tolerance."""
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 
-from ....checks import InputError
-from ....scenes import Scene
-from ...framework.study import StudyResult
-from .grid import FLOOR_FRACTION, Grid, Options, QUANTITIES, SceneSpec
-from .points import continuum_status, scales
+import numpy as np
 
-
-# ---------------------------------------------------------------------------------------------
-# Results
-# ---------------------------------------------------------------------------------------------
+from .grid import QUANTITIES
 
 
 @dataclass(frozen=True)
-class Point:
-    """One evaluated discretization of a scene: ``model`` and ``springs``, ``integrator`` and
-    ``dt`` (s), ``runtime`` (s, median of ``repeats``), ``values`` and signed relative
-    ``errors`` per quantity (NaN if the run was refused: ``failure``)."""
+class Run:
+    """One run of a scene, as the dataset holds it: ``model`` (``edges``, ``equivalent``,
+    ``winkler``, ``continuum``) and ``springs``, ``integrator`` and ``dt`` (s), ``runtime`` (s,
+    median of ``repeats``), ``values`` and signed relative ``errors`` per quantity (NaN if the
+    run was refused: ``failure``)."""
 
     model: str
     springs: int
@@ -34,68 +29,36 @@ class Point:
     values: dict
     errors: dict
     failure: str | None = None
-    measured_utc: str = ""
-
-    @property
-    def label(self) -> str:
-        model = self.model if self.model != "winkler" else f"N={self.springs}"
-        return f"{model} {self.integrator} dt={self.dt:.3g}"
 
     def abs_error(self, quantity: str) -> float:
         return abs(self.errors.get(quantity, math.nan))
 
 
-@dataclass(frozen=True)
-class Reference:
-    """The scene's reference (event stepper, ``springs``, ``dt``): its ``values``, its
-    ``runtime`` and its convergence: ``change_springs`` and ``change_dt`` per quantity, the
-    relative changes from the bed of half the springs and from twice the step; ``converged``
-    per quantity when both are within ``tolerance``."""
-
-    springs: int
-    dt: float
-    values: dict
-    runtime: float
-    change_springs: dict
-    change_dt: dict
-    converged: dict
-    tolerance: float
-    floors: dict
-
-
-@dataclass(frozen=True)
-class SceneResult:
-    """The points of one scene, its reference and each quantity's Pareto front."""
-
-    label: str
-    name: str
-    reference: Reference
-    points: tuple[Point, ...]
-    fronts: dict  # quantity -> tuple of indices into points, by ascending runtime
-
-    def front(self, quantity: str) -> list[Point]:
-        return [self.points[i] for i in self.fronts[quantity]]
-
-    def cheapest(self, quantity: str, tolerance: float) -> Point | None:
-        """The fastest point within ``tolerance`` (fraction) in ``quantity``, or None."""
-        ok = [p for p in self.points if p.abs_error(quantity) <= tolerance]
-        return min(ok, key=lambda p: p.runtime) if ok else None
+def runs(ds, scene: str) -> list[Run]:
+    """The runs of ``scene`` in the order they were made: by model, integrator and level."""
+    one = ds.sel(scene=scene)
+    ran, failure = one.ran.values, one.failure.values
+    dt, runtime, repeats = one.dt.values, one.runtime.values, one.repeats.values
+    value, error = one.value.values, one.error.values
+    layouts, springs = ds.layout.values.tolist(), ds.springs.values.tolist()
+    integrators = ds.integrator.values.tolist()
+    out = []
+    for m, i, k in zip(*np.nonzero(ran)):  # C order: model, integrator, level
+        why = str(failure[m, i, k]) or None
+        out.append(Run(layouts[m], int(springs[m]), integrators[i], float(dt[m, i, k]),
+                       float(runtime[m, i, k]), 0 if why else int(repeats[m, i, k]),
+                       dict(zip(QUANTITIES, value[m, i, k].tolist())),
+                       dict(zip(QUANTITIES, error[m, i, k].tolist())), why))
+    return out
 
 
-@dataclass(frozen=True, eq=False)
-class SpeedVsError:
-    """The study's result: files and summary (``study``), the scenes, and what was not run."""
-
-    study: StudyResult
-    scenes: tuple[SceneResult, ...]
-    grid: Grid
-    options: Options
-    context: dict
-    continuum: str
-    sessions: int
-
-    def scene(self, label: str) -> SceneResult:
-        return next(s for s in self.scenes if s.label == label)
+def converged(ds, scene: str) -> dict[str, bool]:
+    """Per quantity: the reference of ``scene`` changes by at most the convergence tolerance
+    from half the springs and from twice the step."""
+    one = ds.sel(scene=scene)
+    change = np.maximum(one.change_half_springs.values, one.change_double_dt.values)
+    tolerance = float(ds.attrs["options_convergence_tolerance"])
+    return {q: bool(c <= tolerance) for q, c in zip(QUANTITIES, change)}
 
 
 def pareto_front(runtimes: Sequence[float], errors: Sequence[float]) -> list[int]:
@@ -111,64 +74,50 @@ def pareto_front(runtimes: Sequence[float], errors: Sequence[float]) -> list[int
     return front
 
 
-def relative_to_reference(value: float, reference: float, floor: float) -> float:
-    return (value - reference) / max(abs(reference), floor)
+def front(points: Sequence[Run], quantity: str) -> list[Run]:
+    """The Pareto front of ``points`` in ``quantity``, by ascending runtime."""
+    indices = pareto_front([p.runtime for p in points], [p.errors[quantity] for p in points])
+    return [points[i] for i in indices]
 
 
-def _reference(records: Sequence[Mapping], springs: int, dt: float, floors: dict,
-               tolerance: float) -> Reference:
-    ref, half, coarse = records
-    for r, what in ((ref, "reference"), (half, "half-springs check"), (coarse, "2·dt check")):
-        if "error" in r:
-            raise InputError(f"the {what} run (event stepper, dt ≤ {2 * dt:g} s) failed: "
-                             f"{r['error']}")
-    values = {q: ref[q] for q in QUANTITIES}
-    cs = {q: abs(relative_to_reference(half[q], ref[q], floors[q])) for q in QUANTITIES}
-    cd = {q: abs(relative_to_reference(coarse[q], ref[q], floors[q])) for q in QUANTITIES}
-    conv = {q: max(cs[q], cd[q]) <= tolerance for q in QUANTITIES}
-    return Reference(springs, dt, values, ref["runtime"], cs, cd, conv, tolerance, floors)
+def cheapest(points: Sequence[Run], quantity: str, tolerance: float) -> Run | None:
+    """The fastest of ``points`` within ``tolerance`` (fraction) in ``quantity``, or None."""
+    ok = [p for p in points if p.abs_error(quantity) <= tolerance]
+    return min(ok, key=lambda p: p.runtime) if ok else None
 
 
-def _points(points: Sequence[Mapping], records: Sequence[Mapping], ref: Reference):
-    out = []
-    for p, r in zip(points, records):
-        if "error" in r:
-            nan = {q: math.nan for q in QUANTITIES}
-            out.append(Point(p["model"], p["springs"], p["integrator"], math.nan, math.nan, 0,
-                             nan, nan, r["error"]))
-            continue
-        values = {q: r[q] for q in QUANTITIES}
-        errors = {q: relative_to_reference(r[q], ref.values[q], ref.floors[q]) for q in QUANTITIES}
-        out.append(Point(p["model"], p["springs"], p["integrator"], r["dt"], r["runtime"],
-                         len(r["runtimes"]), values, errors, None, r["measured_utc"]))
-    return tuple(out)
+def table_note(ds, scene: str, points: Sequence[Run], q: str) -> str:
+    """Why the cheapest-within-tolerance cells of (scene, quantity) say nothing, or ''."""
+    one = ds.sel(scene=scene, quantity=q)
+    if not converged(ds, scene)[q]:
+        change = max(float(one.change_half_springs), float(one.change_double_dt))
+        return f"n/a: reference not converged (changes {percent(change)})"
+    if float(one.reference) == 0.0 and all(p.values[q] == 0.0 for p in points if not p.failure):
+        return "0 for every model (elastic springs)"
+    return ""
 
 
-def scene_result(spec: SceneSpec, scene: Scene, points, records, refs, ref_records,
-                 grid: Grid, options: Options) -> SceneResult:
-    floors = {q: FLOOR_FRACTION * v for q, v in scales(scene).items()}
-    ref = _reference(ref_records, grid.springs[-1], grid.reference_dt, floors,
-                     options.convergence_tolerance)
-    pts = _points(points, records, ref)
-    times = [p.runtime for p in pts]
-    fronts = {q: tuple(pareto_front(times, [p.errors[q] for p in pts])) for q in QUANTITIES}
-    return SceneResult(spec.label, scene.name, ref, pts, fronts)
+def percent(v: float) -> str:
+    if not math.isfinite(v):
+        return "n/a"
+    return f"{100 * v:.2g} %" if v < 0.01 else f"{100 * v:.1f} %"
 
 
-def continuum_note(grid: Grid, results: Sequence[SceneResult]) -> str:
-    available, why = continuum_status()
-    if not available:
+def continuum_note(available: tuple[bool, str], labels: Sequence[str],
+                   continuum: Sequence[Sequence]) -> str:
+    """What the summary says of the continuum: why it was not run, or per scene its meshes
+    (``continuum``: per scene, the (elements across, runtime in s, failure) of its meshes)."""
+    ok, why = available
+    if not ok:
         return why
-    ran = [(s.label, [p for p in s.points if p.model == "continuum"]) for s in results]
-    ran = [(label, pts) for label, pts in ran if pts]
+    ran = [(label, pts) for label, pts in zip(labels, continuum) if pts]
     if not ran:
         return ("continuum points were not run: no scene of this panel has continuum mesh "
                 "levels (they need a [soil] table; the full panel's strip-clay-ricker has them)")
     parts = []
     for label, pts in ran:
-        levels = ", ".join(f"{p.springs} elements across ({p.runtime:.3g} s)"
-                           if p.failure is None else f"{p.springs} across: refused"
-                           for p in pts)
+        levels = ", ".join(f"{n} elements across ({runtime:.3g} s)" if failure is None
+                           else f"{n} across: refused" for n, runtime, failure in pts)
         parts.append(f"{label}: {levels}")
     return ("continuum meshes run (the scene's continuum.dynamics, explicit by default; "
             "automatic step): " + "; ".join(parts))
