@@ -37,25 +37,37 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ....checks import InputError
+from ....scenes.soil import FRICTIONAL, SOIL_MODELS
 
 __all__ = ["Estimate", "estimate_cost", "mesh_size", "impedance_dofs", "refuse_over_budget",
            "timed_dynamic_runs",
            "FIXED_SECONDS_PER_DOF", "SECONDS_PER_DOF_STEP", "STATIC_SECONDS_PER_DOF",
-           "COMPILED_MODELS", "FRICTIONAL_MODELS", "IMPEDANCE_SECONDS_PER_DOF_FREQUENCY"]
+           "compiled_soil_model", "IMPEDANCE_SECONDS_PER_DOF_FREQUENCY"]
 
 #: Fixed cost of a dynamic run per DOF (s): mesh, stable step, gravity state; of an undrained
-#: soil (False) and of a frictional one (True, :data:`FRICTIONAL_MODELS`), whose gravity state
-#: is slower.
+#: soil (False) and of a frictional one (True: the scene's ``soil.frictional``), whose gravity
+#: state is slower.
 FIXED_SECONDS_PER_DOF = {False: 4.0e-4, True: 1.1e-3}
 #: Cost per step and DOF (s): compiled return maps, and the vectorised fallback.
 SECONDS_PER_DOF_STEP = {True: 1.0e-7, False: 6.1e-6}
 #: Cost of a soil's statics (stiffness and vertical pushover) per DOF (s).
 STATIC_SECONDS_PER_DOF = 3.0e-3
-#: Soil models whose return map is compiled for the explicit route
-#: (:data:`upliftlab.continuum.dynamics.kernels.MATERIAL_KINDS`).
-COMPILED_MODELS = ("elastic", "tresca", "von_mises", "mohr_coulomb")
-#: Soil models with a friction angle (the fixed part's key).
-FRICTIONAL_MODELS = ("mohr_coulomb", "drucker_prager")
+
+
+def compiled_soil_model(model: str) -> bool:
+    """True when the soil model ``model`` has a compiled point return, which the explicit
+    route's compiled element loop runs
+    (:func:`~upliftlab.continuum.materials.registry.compiled_models`); the others run through
+    their vectorised return map."""
+    from ....continuum.materials.registry import compiled_models
+
+    return model in compiled_models()
+
+
+def _frictional(model: str) -> bool:
+    """True for a soil model of frictional strength (the scene's list of models)."""
+    return SOIL_MODELS.get(model) == FRICTIONAL
+
 #: Cost of a soil's impedance per DOF of its mesh and per frequency (s): 19 frequencies on 4
 #: and on 16 across, the clay's elastic constants, on the loaded 2-core machine.
 IMPEDANCE_SECONDS_PER_DOF_FREQUENCY = 3.2e-5
@@ -139,7 +151,7 @@ def _stored_rates(stored: Iterable[Mapping]) -> dict:
     for rec in stored:
         dofs, steps = rec["dofs"], max(1, rec["steps"])
         compiled = bool(rec["compiled"])
-        frictional = (rec["soil_model"] in FRICTIONAL_MODELS if "soil_model" in rec
+        frictional = (_frictional(rec["soil_model"]) if "soil_model" in rec
                       else not compiled)
         rest = max(0.0, rec["wall_time_s"] - FIXED_SECONDS_PER_DOF[frictional] * dofs)
         rates.setdefault(compiled, []).append(rest / (dofs * steps))
@@ -210,8 +222,8 @@ def estimate_cost(static: Sequence[tuple[str, object, bool]],
             stored += 1
             continue
         dofs, h_min = mesh_size(scene)
-        compiled = scene.soil.model in COMPILED_MODELS
-        frictional = scene.soil.model in FRICTIONAL_MODELS
+        compiled = compiled_soil_model(scene.soil.model)
+        frictional = scene.soil.frictional
         per_second = density.get(dofs) or wave_speeds(scene.soil)[0] / (COURANT_ESTIMATE * h_min)
         rate = rates.get(compiled, SECONDS_PER_DOF_STEP[compiled])
         cost = (FIXED_SECONDS_PER_DOF[frictional] * dofs

@@ -8,7 +8,7 @@ import numpy as np
 
 from .analysis import RECORD_KINDS, pick_text
 from ...beds import BEDS
-from .cost import COMPILED_MODELS, SECONDS_PER_DOF_STEP
+from .cost import SECONDS_PER_DOF_STEP, compiled_soil_model
 from .energy import energy_lines, energy_numbers
 from .goal import goal_text
 from .grid import MEASURE_LABELS, SOIL_LABELS, FLOOR_FRACTION
@@ -216,7 +216,7 @@ def _input_text(d) -> str:
 def _speed_of_soils(d) -> str:
     from .grid import SOILS
 
-    slow = [soil for soil in d.grid.soils if SOILS[soil]["model"] not in COMPILED_MODELS]
+    slow = [soil for soil in d.grid.soils if not compiled_soil_model(SOILS[soil]["model"])]
     if not slow:
         return " The explicit route runs every soil's return map compiled (numba)."
     ratio = SECONDS_PER_DOF_STEP[False] / SECONDS_PER_DOF_STEP[True]

@@ -119,7 +119,7 @@ def check_scene(scene: Scene) -> None:
         raise InputError(f"scene {scene.name!r}: foundation.support = "
                          f"{scene.foundation.support!r}; the study needs 'uplift'")
     soil, N, B = scene.soil, scene.structure.vertical_weight, scene.foundation.width
-    if soil.model in ("tresca", "von_mises") and soil.undrained_strength is not None:
+    if soil.undrained and soil.undrained_strength is not None:
         prandtl = prandtl_capacity(soil.undrained_strength, B)
         if not N < prandtl:
             raise InputError(f"structure.vertical_weight = {N:g}: the footing cannot carry it; "

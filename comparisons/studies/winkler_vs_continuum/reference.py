@@ -88,7 +88,7 @@ def continuum_reference(scene: Scene, theta_on: float, records: Sequence[dict]
     """The reference from the records of the :func:`continuum_points` (in their order)."""
     cyclic, monotonic, vertical, elastic, stiffness = records
     soil = scene.soil
-    cu = soil.undrained_strength if soil.model in ("tresca", "von_mises") else None
+    cu = soil.undrained_strength if soil.undrained else None
     return ContinuumReference(N=scene.structure.vertical_weight, B=scene.foundation.width,
                               h=scene.structure.height, G=soil.shear_modulus,
                               nu=soil.poisson_ratio, cu=cu, K_v=stiffness["K_v"],
