@@ -14,7 +14,6 @@ the other scenes are unaffected.
 from __future__ import annotations
 
 import concurrent.futures as cf
-import contextlib
 import math
 import multiprocessing
 import os
@@ -28,6 +27,7 @@ from .. import __version__
 from ..checks import InputError
 from ..motions import Motion
 from ..scenes import MotionSpec, Scene, build_motion
+from ..workers import SINGLE_THREAD_ENVIRONMENT, inherited_environment
 from . import kernels as kn
 from .integrators import StepPlan, method
 from .model import build_model
@@ -44,8 +44,6 @@ STATUS_NAMES = {kn.OK: "ok", kn.CHATTER: "chattering", kn.NONFINITE: "non-finite
                 kn.STEP_UNDERFLOW: "step underflow", ENERGY: "energy balance beyond tolerance"}
 COLUMNS = ("u", "theta", "uplift_left", "residual_settlement", "base_shear",
            "energy_balance_error", "dt")
-SINGLE_THREAD = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
-                 "NUMBA_NUM_THREADS": "1"}
 
 
 @dataclass(frozen=True, eq=False)
@@ -244,7 +242,7 @@ def _execute(pieces, motions, workers):
             yield _run_chunk(piece, [motions[i] for i in _used(piece)], _used(piece))
         return
     context = multiprocessing.get_context("spawn")
-    with _environment(SINGLE_THREAD), cf.ProcessPoolExecutor(
+    with inherited_environment(SINGLE_THREAD_ENVIRONMENT), cf.ProcessPoolExecutor(
             max_workers=min(workers, len(pieces)), mp_context=context,
             initializer=_single_threaded) as pool:
         futures = [pool.submit(_run_chunk, piece, [motions[i] for i in _used(piece)],
@@ -264,22 +262,7 @@ def _used(piece) -> list[int]:
 
 def _single_threaded() -> None:
     """Worker initializer: one thread for OpenMP, BLAS and numba."""
-    os.environ.update(SINGLE_THREAD)
-
-
-@contextlib.contextmanager
-def _environment(values):
-    """Set environment variables for the block (processes spawned in it inherit them)."""
-    old = {k: os.environ.get(k) for k in values}
-    os.environ.update(values)
-    try:
-        yield
-    finally:
-        for k, v in old.items():
-            if v is None:
-                os.environ.pop(k, None)
-            else:
-                os.environ[k] = v
+    os.environ.update(SINGLE_THREAD_ENVIRONMENT)
 
 
 def _run_chunk(piece, accelerations, indices):

@@ -31,6 +31,7 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 
 from ...checks import InputError, integer_at_least
+from ...workers import SINGLE_THREAD_ENVIRONMENT, inherited_environment
 from .freshness import DEFAULT_SAMPLE, check_stale
 from .store import Store, function_name, plain_params, point_key, record_meta
 
@@ -38,8 +39,6 @@ __all__ = ["run_sweep", "sweep_executor", "SweepProgress", "StderrProgress",
            "SINGLE_THREAD_ENVIRONMENT", "DASK_ENV"]
 
 DASK_ENV = "DASK_SCHEDULER_ADDRESS"
-SINGLE_THREAD_ENVIRONMENT = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
-                             "OPENBLAS_NUM_THREADS": "1", "NUMBA_NUM_THREADS": "1"}
 MAX_CHUNK = 16
 TASKS_PER_WORKER = 4
 
@@ -109,21 +108,6 @@ def watch_parent(poll: float = PARENT_POLL) -> threading.Thread:
     thread = threading.Thread(target=watch, name="upliftlab-parent-watch", daemon=True)
     thread.start()
     return thread
-
-
-@contextlib.contextmanager
-def _environment(values: Mapping[str, str]):
-    """Set environment variables for the block (workers spawned in it inherit them)."""
-    old = {k: os.environ.get(k) for k in values}
-    os.environ.update(values)
-    try:
-        yield
-    finally:
-        for k, v in old.items():
-            if v is None:
-                os.environ.pop(k, None)
-            else:
-                os.environ[k] = v
 
 
 def _evaluate_chunk(function, items, store_root, meta, batched):
@@ -345,7 +329,7 @@ def sweep_executor(scheduler=None, *, workers: int | None = None):
     pool = cf.ProcessPoolExecutor(max_workers=n, mp_context=multiprocessing.get_context("spawn"),
                                   initializer=_single_threaded_worker)
     try:
-        with _environment(SINGLE_THREAD_ENVIRONMENT):
+        with inherited_environment(SINGLE_THREAD_ENVIRONMENT):
             yield pool
     finally:  # nothing is waited for: finished work is stored, unstarted work is cancelled
         pool.shutdown(wait=False, cancel_futures=True)
