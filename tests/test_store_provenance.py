@@ -144,7 +144,8 @@ def test_a_pack_holds_the_records_and_reads_them_back(code, tmp_path):
 
 def test_store_verify_checks_every_functions_stale_records(code, tmp_path, capsys):
     """``upliftlab store verify DIR --sample 2``: the stale records of a declared function
-    are checked and accepted (exit 0); a store whose records moved ends with exit 3."""
+    are checked and accepted (exit 0), with progress after each one made again; a store whose
+    records moved ends with exit 3."""
     from upliftlab.cli import main
 
     store = Store(tmp_path / "store")
@@ -152,7 +153,11 @@ def test_store_verify_checks_every_functions_stale_records(code, tmp_path, capsy
     code("b")
     CALLS.clear()
     assert main(["store", "verify", str(tmp_path / "store"), "--sample", "2"]) == 0
-    assert len(CALLS) == 2 and "accepted" in capsys.readouterr().out
+    out = capsys.readouterr().out
+    assert len(CALLS) == 2 and "accepted" in out
+    # progress after each record made again: count, elapsed time, and the time left until the last
+    assert ": 1 of 2 made again, " in out and "s left" in out.split(": 2 of 2")[0]
+    assert ": 2 of 2 made again, " in out
     code("c")
     FACTOR["value"] = 5.0
     assert main(["store", "verify", str(tmp_path / "store"), "--sample", "2"]) == 3

@@ -20,6 +20,7 @@ import datetime as _dt
 import hashlib
 import math
 import random
+import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
@@ -135,6 +136,30 @@ def _here(function, items):
     return [(key, function(point)) for key, point in items]
 
 
+def _estimate(store: Store, stale: Mapping[str, Mapping], sample: int) -> str:
+    """", about N s" from the wall times the sampled records kept when they were made (what
+    making them again costs, give or take the machine), or "" when they kept none."""
+    times = [(store.get(k) or {}).get("wall_time_s") for k in seeded_sample(list(stale), sample)]
+    times = [t for t in times if isinstance(t, (int, float)) and math.isfinite(t)]
+    return f", about {sum(times):.0f} s (their recorded wall times)" if times else ""
+
+
+def _here_saying(say):
+    """:func:`_here` that says, after each record made again, how many are done, the elapsed
+    time and an estimate of the time left (the mean so far times the records left)."""
+    def evaluate(function, items):
+        made, start = [], time.monotonic()
+        for key, point in items:
+            made.append((key, function(point)))
+            elapsed = time.monotonic() - start
+            left = elapsed / len(made) * (len(items) - len(made))
+            say(f"upliftlab store verify: {function_name(function)}: {len(made)} of "
+                f"{len(items)} made again, {elapsed:.0f} s"
+                + (f", about {left:.0f} s left" if len(made) < len(items) else ""))
+        return made
+    return evaluate
+
+
 def stale_keys(store: Store, keys: Sequence[str]) -> list[str]:
     """Those of ``keys`` whose stored records are stale (made by other, unaccepted code)."""
     out = []
@@ -162,9 +187,10 @@ def verify_store(store: Store, *, sample: int = DEFAULT_SAMPLE, say=print) -> li
             raise StaleStoreError(f"store {store.root}: {len(stale)} stale records of {name!r}, "
                                   "a point function this upliftlab does not have")
         say(f"upliftlab store verify: {name}: {len(stale)} stale records, making "
-            f"{min(sample, len(stale))} again")
+            f"{min(sample, len(stale))} again{_estimate(store, stale, sample)}")
         try:
-            checks.append(check_stale(store, function, stale, sample=sample))
+            checks.append(check_stale(store, function, stale, sample=sample,
+                                      evaluate=_here_saying(say)))
         except (KeyError, InputError) as exc:
             raise InputError(f"store {store.root}: the records of {name} cannot be made again "
                              f"from what the store keeps ({type(exc).__name__}: {exc}); run the "
