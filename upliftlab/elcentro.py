@@ -5,12 +5,11 @@ The record is not in the repository: the user supplies it on ``UPLIFTLAB_MOTIONS
 differ in step, length, sign and peak, so a copy is checked against the one the founding
 study's figures and upliftlab's stated numbers were computed on:
 
-* the Imperial Valley earthquake of 1940-05-18 (UTC 05-19), El Centro Terminal Substation,
-  N-S component (S00E), the public-domain USGS record in the widely used 0.02 s digitization
-  of A. K. Chopra's *Dynamics of Structures*; copies of it circulate (``elcentro.dat`` on
-  vibrationdata.com among them), some shifted by a leading zero sample, and this check tells
-  whether a copy holds the same samples;
-* 1,560 samples at 0.02 s, in g, starting 0.00630 g at t = 0, peak 0.31882 g at t = 2.02 s;
+* the 1940 El Centro accelerogram, north–south component, as tabulated at 0.02 s in
+  A. K. Chopra's *Dynamics of Structures* (Appendix on ground motions); copies of it circulate,
+  some shifted by a leading zero sample, and this check tells whether a copy holds the same
+  samples;
+* its length, step and peak (:data:`EXPECTED`), in g;
 * the SHA-256 :data:`SAMPLES_SHA256` of its samples as whole multiples of 1e-5 g
   (little-endian int64), so that a copy with other comments, spacing or columns still matches.
 """

@@ -47,8 +47,8 @@ __all__ = [
 MOTIONS_ENV = "UPLIFTLAB_MOTIONS"
 ELCENTRO = "elcentro_1940_ns"
 ELCENTRO_DESCRIPTION = (
-    "El Centro 1940 N-S (Imperial Valley, S00E; public-domain USGS record, 0.02 s digitization, "
-    "in g), file elcentro_1940_ns.txt"
+    "El Centro 1940 N-S as tabulated at 0.02 s in Chopra's Dynamics of Structures, in g; "
+    "file elcentro_1940_ns.txt"
 )
 _SUFFIXES = ("", ".txt", ".dat", ".csv", ".acc", ".AT2", ".at2")
 _UNIFORM_DT_RTOL = 1e-6
