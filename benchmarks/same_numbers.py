@@ -6,7 +6,9 @@ folder against the other's, timings and provenance aside.
 A change that is meant to leave every number as it was (a restructuring, a faster kernel) is
 checked by running the same command before and after it into two folders and comparing them
 here. Files are matched by their path relative to the folder; a file only one side has is
-reported (a renamed file must be named in ``--rename OLD=NEW``). JSON leaves and CSV cells
+reported (a renamed file must be named in ``--rename OLD=NEW``); with ``--added-ok`` what only
+the after side has (a file, a variable, a key, an attribute) is listed apart and does not count
+(a restructuring that adds labels, keeping every number it had). JSON leaves and CSV cells
 compare as numbers where both parse as numbers (equal to ``--rtol``, default 0: bit for bit),
 as text otherwise; NetCDF files compare variable by variable (values, dims) and their
 non-provenance attributes. What is left out: keys and attributes that name a time or a
@@ -158,15 +160,26 @@ def differences(before: Path, after: Path, rtol: float = 0.0,
     return out
 
 
+def is_addition(line: str) -> bool:
+    """Whether a difference line says only that the after side has something more."""
+    return line.endswith(": only in after") or re.search(r"@[^:]+: None → ", line) is not None
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("before", type=Path)
     parser.add_argument("after", type=Path)
     parser.add_argument("--rtol", type=float, default=0.0)
     parser.add_argument("--rename", action="append", default=[], metavar="OLD=NEW")
+    parser.add_argument("--added-ok", action="store_true",
+                        help="what only the after side has is listed apart, not counted")
     args = parser.parse_args(argv)
     rename = dict(item.split("=", 1) for item in args.rename)
     found = differences(args.before, args.after, args.rtol, rename)
+    if args.added_ok:
+        added = [line for line in found if is_addition(line)]
+        found = [line for line in found if not is_addition(line)]
+        print(f"{len(added)} additions (only in after), not counted", file=sys.stderr)
     for line in found[:200]:
         print(line)
     print(f"{len(found)} differences" if found else "the same numbers", file=sys.stderr)
