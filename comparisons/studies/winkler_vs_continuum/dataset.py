@@ -5,12 +5,12 @@ The result is an :class:`xarray.DataTree` of two kinds of node, one NetCDF file 
 * ``comparison``: the continuum's numbers (``N``, ``B``, ``K_r``, ``K_v``, ``N_ult``,
   ``theta_on``, its uplift onsets ``onset_*`` and, on elastic soil, ``elastic_onset_*``), its
   vertical pushover (``vertical_step``), the rotation paths of the continuum, the elastic
-  continuum and each bed over ``model`` (``M_monotonic`` over ``theta_over_theta_on``,
-  ``M_cyclic`` over ``cyclic_step``), each bed's calibration over ``calibration`` (its
-  stiffness as built, R_k, R_e, FS_v, what it matches and why it misses), the end stiffening
-  (``end_stiffening_*``), and the error table: ``error`` over (calibration, quantity), with
-  each quantity's ``value_<q>`` (the beds) and ``reference_<q>`` (the continuum, its error
-  floor as an attribute);
+  continuum and each bed over ``model`` (``M_monotonic`` over ``theta_over_theta_on``;
+  ``M_cyclic`` over ``cyclic_step``, since a cycle visits each θ twice), each bed's
+  calibration over ``calibration`` (its stiffness as calibrated, R_k, R_e, FS_v, what it
+  matches and why it misses), the end stiffening (``end_stiffening_*``), and the error table:
+  ``error`` over (calibration, quantity), with each quantity's ``value_<q>`` (the beds) and
+  ``reference_<q>`` (the continuum, its error floor as an attribute);
 * ``dynamic_<motion>``: one motion's histories over (model, time) and its peaks over model
   (:func:`.dynamic_data.dynamic_dataset`).
 
