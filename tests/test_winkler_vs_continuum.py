@@ -22,10 +22,12 @@ import concurrent.futures as cf
 import json
 import math
 from dataclasses import replace
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
+from upliftlab import open_study
 from upliftlab.anchors import (HALF_PLANE_ONSET_ECCENTRICITY, TOLERANCES,
                                WINKLER_ONSET_ECCENTRICITY, half_plane_rocking_stiffness,
                                prandtl_capacity, ultimate_moment_ratio, winkler_rocking)
@@ -33,6 +35,7 @@ from upliftlab.checks import InputError
 from upliftlab.comparisons import beds
 from upliftlab.comparisons.studies import winkler_vs_continuum as wvc
 from upliftlab.comparisons.framework.store import Store
+from upliftlab.comparisons.framework.study import json_default
 from upliftlab.continuum import build_model, footing_stiffness
 from upliftlab.reduced import build_model as build_reduced, end_stiffened_bed
 from upliftlab.results import read_netcdf
@@ -45,58 +48,87 @@ def study(tmp_path_factory):
     return wvc.run(fast=True, out=out, progress=False)
 
 
+@pytest.fixture(scope="module")
+def ds(study):
+    """The study's ``comparison`` dataset, as computed."""
+    return wvc.comparison(study.data)
+
+
+def _scene():
+    """The fast study's scene (its mesh override applied)."""
+    return load_scene("strip_footing_clay", overrides=list(wvc.FAST_OPTIONS.fast_overrides))
+
+
+def _calibration(ds, name: str) -> beds.Calibration:
+    """The bed ``name`` as the dataset describes it."""
+    c = ds.sel(calibration=name)
+    fs = c.yield_multiple.item()  # NaN: elastic springs, which never yield
+    return beds.Calibration(name, beds.LABELS[name], str(c.layout.item()), str(c.law.item()),
+                            int(c.springs), 0.5 * ds.B.item(),
+                            c.bed_vertical_stiffness.item(), c.bed_rocking_stiffness.item(),
+                            c.end_stiffness_ratio.item(), c.end_length.item(),
+                            fs if math.isfinite(fs) else 3.0,
+                            tuple(str(c.matches.item()).split(",")))
+
+
+def _error(ds, calibration: str, quantity: str) -> float:
+    return ds.error.sel(calibration=calibration, quantity=quantity).item()
+
+
 # ---------------------------------------------------------------------------------------------
 # Calibrations
 # ---------------------------------------------------------------------------------------------
 
 
-def test_uniform_bed_has_the_continuum_rocking_stiffness(study):
-    """Calibration identity: Σ k_i x_i² of the built uniform bed (elastic and elasto-plastic)
-    equals the continuum's K_r to 1e-6, and the continuum's K_r is within 1 % of the
-    half-plane closed form π G B²/(8(1 − ν)) (anchors §4; measured +0.14 %)."""
-    ref = study.reference
+def test_uniform_bed_has_the_continuum_rocking_stiffness(ds):
+    """Calibration identity: Σ k_i x_i² of the uniform bed (elastic and elasto-plastic), built
+    again from the dataset's calibration, equals the continuum's K_r to 1e-6, and the
+    continuum's K_r is within 1 % of the half-plane closed form π G B²/(8(1 − ν)) (anchors
+    §4; measured +0.14 %)."""
+    K_r = ds.K_r.item()
     for name in ("uniform", "uniform_plastic"):
-        bed = study.bed(name)
-        assert bed.K_r == pytest.approx(ref.K_r, rel=1e-6)
-        assert abs(study.table.error(name, "K_r")) <= 1e-6
-        model = build_reduced(beds.bed_scene(study.scene, bed.calibration))
-        assert model.layout.rocking_stiffness == pytest.approx(ref.K_r, rel=1e-6)
-    closed = half_plane_rocking_stiffness(ref.G, ref.B, ref.nu)
-    assert ref.K_r_closed_form == pytest.approx(closed, rel=1e-12)
-    assert 0.0 < ref.K_r / closed - 1.0 <= TOLERANCES["rocking_stiffness"].value
+        assert ds.value_K_r.sel(calibration=name).item() == pytest.approx(K_r, rel=1e-6)
+        assert abs(_error(ds, name, "K_r")) <= 1e-6
+        model = build_reduced(beds.bed_scene(_scene(), _calibration(ds, name)))
+        assert model.layout.rocking_stiffness == pytest.approx(K_r, rel=1e-6)
+    closed = half_plane_rocking_stiffness(ds.G.item(), ds.B.item(), ds.nu.item())
+    assert 0.0 < K_r / closed - 1.0 <= TOLERANCES["rocking_stiffness"].value
 
 
-def test_end_stiffened_bed_reports_why_the_default_box_cannot_match_K_v(study):
+def test_end_stiffened_bed_reports_why_the_default_box_cannot_match_K_v(study, ds):
     """2D fact (anchors §4, §6): K_θ/K_v ≤ b² for any bed under the footing, and the 10B box's
     K_r/K_v is larger (measured 1.571 m² against b² = 1 m²), so no R_k matches both. The study
     must say so, keep K_r exact (1e-6), use R_k,max and report the K_v it misses, equal to
     K_r/(K_θ/K_v at R_k,max) − K_v."""
-    ref, cal = study.reference, study.calibration("end_stiffened")
-    stiff = cal.stiffening
-    b = 0.5 * ref.B
-    assert ref.K_r / ref.K_v > b * b
-    assert not stiff.feasible and stiff.supremum < b * b < stiff.target
-    assert cal.end_stiffness_ratio == study.options.max_end_stiffness_ratio
-    assert study.bed("end_stiffened").K_r == pytest.approx(ref.K_r, rel=1e-6)
-    assert cal.matches == ("K_r",) and "infeasible" in study.study.summary
-    bed = end_stiffened_bed(b, 1.0, cal.springs, cal.end_stiffness_ratio, cal.end_length)
-    expected_kv = ref.K_r / (bed.rocking_stiffness / bed.vertical_stiffness)
-    assert study.table.error("end_stiffened", "K_v") == pytest.approx(
-        expected_kv / ref.K_v - 1.0, rel=1e-9)
+    K_r, K_v = ds.K_r.item(), ds.K_v.item()
+    end = ds.sel(calibration="end_stiffened")
+    b = 0.5 * ds.B.item()
+    assert K_r / K_v > b * b
+    assert not bool(ds.end_stiffening_feasible)
+    assert ds.end_stiffening_supremum.item() < b * b < ds.end_stiffening_target.item()
+    assert end.end_stiffness_ratio.item() == wvc.FAST_OPTIONS.max_end_stiffness_ratio
+    assert end.value_K_r.item() == pytest.approx(K_r, rel=1e-6)
+    assert end.matches.item() == "K_r" and "infeasible" in study.study.summary
+    bed = end_stiffened_bed(b, 1.0, int(end.springs), end.end_stiffness_ratio.item(),
+                            end.end_length.item())
+    expected_kv = K_r / (bed.rocking_stiffness / bed.vertical_stiffness)
+    assert _error(ds, "end_stiffened", "K_v") == pytest.approx(expected_kv / K_v - 1.0,
+                                                               rel=1e-9)
 
 
-def test_end_stiffened_bed_matches_both_K_r_and_K_v_of_a_shallow_layer(study):
+def test_end_stiffened_bed_matches_both_K_r_and_K_v_of_a_shallow_layer(ds):
     """On a soil layer of depth B over a rigid base the continuum's K_r/K_v (measured 0.588 m²)
     lies within reach of R_k ∈ [1, 10] for R_e = 1/3: the calibrated bed then has both the
     continuum's K_r and K_v, to 1e-6 (calibration identity)."""
     scene = load_scene("strip_footing_clay", overrides=[
         "continuum.elements_across=8", "soil.layer_depth=2.0"])
     k = footing_stiffness(build_model(scene))
-    ref = replace(study.reference, K_r=k.rocking, K_v=k.vertical)
-    cal = next(c for c in beds.calibrate(ref, study.options) if c.name == "end_stiffened")
+    ref = SimpleNamespace(B=ds.B.item(), N=ds.N.item(), N_ult=ds.N_ult.item(), K_r=k.rocking,
+                          K_v=k.vertical)
+    cal = next(c for c in beds.calibrate(ref, wvc.FAST_OPTIONS) if c.name == "end_stiffened")
     assert cal.stiffening.feasible and 1.0 < cal.end_stiffness_ratio < 10.0
     assert cal.matches == ("K_r", "K_v")
-    model = build_reduced(beds.bed_scene(study.scene, cal))
+    model = build_reduced(beds.bed_scene(_scene(), cal))
     assert model.layout.rocking_stiffness == pytest.approx(k.rocking, rel=1e-6)
     assert model.layout.vertical_stiffness == pytest.approx(k.vertical, rel=1e-6)
 
@@ -114,21 +146,22 @@ def test_end_stiffening_solver_recovers_a_known_ratio():
     assert not low.feasible and low.ratio == 1.0 and low.exact < 1.0
 
 
-def test_elastoplastic_springs_take_the_continuum_capacity(study):
+def test_elastoplastic_springs_take_the_continuum_capacity(ds):
     """FS_v = q_ult B/N with q_ult from the continuum's vertical pushover: within 0–5 % above
     Prandtl's (2 + π) c_u B (anchors §4; measured +2.0 % on 8 across, smooth base); the plastic
     beds' N_ult equals the continuum's (calibration, 1e-9) and the uniform plastic bed's moment
     at the end of the pushover is within 1 % of (N B/2)(1 − 1/FS_v) (anchors §3)."""
-    ref = study.reference
-    prandtl = prandtl_capacity(ref.cu, ref.B)
-    assert 0.0 < ref.N_ult / prandtl - 1.0 <= 0.05
-    fs = ref.N_ult / ref.N
+    N, B, N_ult = ds.N.item(), ds.B.item(), ds.N_ult.item()
+    prandtl = prandtl_capacity(ds.c_u.item(), B)
+    assert 0.0 < N_ult / prandtl - 1.0 <= 0.05
+    fs = N_ult / N
     for name in ("uniform_plastic", "end_stiffened_plastic"):
-        assert study.calibration(name).yield_multiple == pytest.approx(fs, rel=1e-12)
-        assert abs(study.table.error(name, "N_ult")) <= 1e-9
-    assert math.isnan(study.table.error("uniform", "N_ult"))
-    meyerhof = ref.N * ref.B * ultimate_moment_ratio(fs)
-    assert study.bed("uniform_plastic").monotonic["M"][-1] == pytest.approx(meyerhof, rel=0.01)
+        assert ds.yield_multiple.sel(calibration=name).item() == pytest.approx(fs, rel=1e-12)
+        assert abs(_error(ds, name, "N_ult")) <= 1e-9
+    assert math.isnan(_error(ds, "uniform", "N_ult"))
+    meyerhof = N * B * ultimate_moment_ratio(fs)
+    last = ds.M_monotonic.sel(model="uniform_plastic").isel(theta_over_theta_on=-1).item()
+    assert last == pytest.approx(meyerhof, rel=0.01)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -136,11 +169,11 @@ def test_elastoplastic_springs_take_the_continuum_capacity(study):
 # ---------------------------------------------------------------------------------------------
 
 
-def test_uplift_onset_continuum_later_than_winkler(study):
+def test_uplift_onset_continuum_later_than_winkler(study, ds):
     """Anchors §3–4: the elastic continuum lifts off at e/B within 1 % of 1/4 (measured −0.28 %);
     the uniform bed at (1/6)(1 + 1/n) (1e-9), within 1.5/n of 1/6; the continuum (elastic and
     the scene's Tresca soil, measured 0.219) lifts off later than the bed."""
-    a, n = study.anchors, study.options.springs
+    a, n = study.study.numbers["anchors"], int(ds.springs.sel(calibration="uniform"))
     elastic = a["continuum_elastic_onset_e_over_B"]
     tresca = a["continuum_monotonic_onset_e_over_B"]
     winkler = a["winkler_onset_e_over_B"]
@@ -150,28 +183,30 @@ def test_uplift_onset_continuum_later_than_winkler(study):
     assert winkler == pytest.approx(WINKLER_ONSET_ECCENTRICITY, rel=1.5 / n)
     assert elastic > winkler and tresca > winkler
     assert study.study.numbers["onset_ordering_holds"] is True
-    onset = study.reference.onset("monotonic")
-    assert study.table.error("uniform", "onset_moment") == pytest.approx(
-        winkler * study.reference.N * study.reference.B / onset["M"] - 1, rel=1e-9)
+    NB = ds.N.item() * ds.B.item()
+    assert _error(ds, "uniform", "onset_moment") == pytest.approx(
+        winkler * NB / ds.onset_M.item() - 1, rel=1e-9)
 
 
-def test_uniform_bed_follows_the_winkler_closed_form(study):
+def test_uniform_bed_follows_the_winkler_closed_form(ds):
     """Anchor §3: M = (kB³/12)θ to θ_up, then M/M_up = 3 − 2√(θ_up/θ), c = B√(θ_up/θ), with
     k = K_v/B of the built bed. A bed of n = 48 strips is within 0.2 % in M (measured 0.10 %),
     one strip width in c, and 1 % of N/(kB) in settlement."""
-    bed, ref = study.bed("uniform"), study.reference
-    theta = np.asarray(bed.monotonic["theta"])
-    k = bed.K_v / ref.B
-    closed = winkler_rocking(theta, ref.N, ref.B, k)
+    N, B = ds.N.item(), ds.B.item()
+    bed = ds.sel(model="uniform", calibration="uniform")
+    theta = ds.monotonic_theta.values
+    M = bed.M_monotonic.values
+    k = bed.value_K_v.item() / B
+    closed = winkler_rocking(theta, N, B, k)
     beyond = theta > closed["theta_up"]
     assert beyond.sum() >= 5
-    ratio = bed.monotonic["M"][beyond] / (ref.N * ref.B / 6)
+    ratio = M[beyond] / (N * B / 6)
     np.testing.assert_allclose(ratio, 3 - 2 * np.sqrt(closed["theta_up"] / theta[beyond]),
                                rtol=2e-3)
-    np.testing.assert_allclose(bed.monotonic["M"][1:], closed["M"][1:], rtol=2e-3)
-    assert np.max(np.abs(bed.monotonic["contact"] - closed["c"])) <= ref.B / bed.calibration.springs
-    assert np.max(np.abs(bed.monotonic["settlement"] - closed["settlement"])) \
-        <= 0.01 * ref.N / (k * ref.B)
+    np.testing.assert_allclose(M[1:], closed["M"][1:], rtol=2e-3)
+    assert np.max(np.abs(bed.contact_monotonic.values - closed["c"])) <= B / int(bed.springs)
+    assert np.max(np.abs(bed.settlement_monotonic.values - closed["settlement"])) \
+        <= 0.01 * N / (k * B)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -179,22 +214,24 @@ def test_uniform_bed_follows_the_winkler_closed_form(study):
 # ---------------------------------------------------------------------------------------------
 
 
-def test_error_table_entries_come_from_the_paths(study):
+def test_error_table_entries_come_from_the_paths(ds):
     """Each M/c/settlement error is (bed − continuum)/max(|continuum|, floor) at the same θ
-    (floors: 0.01 N B, 0.05 B, 0.1 × settlement under N), read directly off the paths."""
-    ref, t = study.reference, study.table
-    r = study.options.theta_ratios[-2]
-    k = int(np.argmin(np.abs(np.asarray(ref.monotonic["theta"]) - r * ref.theta_on)))
-    s0 = ref.monotonic["settlement"][0]
+    (floors: 0.01 N B, 0.05 B, 0.1 × settlement under N), read off the paths by label
+    (θ/θ_on) and the error table by label (calibration, quantity)."""
+    N, B = ds.N.item(), ds.B.item()
+    r = wvc.FAST_OPTIONS.theta_ratios[-2]
+    at = ds.sel(theta_over_theta_on=r, method="nearest")
+    assert at.theta_over_theta_on.item() == pytest.approx(r, rel=1e-12)
+    s0 = ds.settlement_monotonic.sel(model="continuum").isel(theta_over_theta_on=0).item()
     for name in beds.CALIBRATIONS:
-        bed = study.bed(name).monotonic
-        for key, q, floor in (("M", f"M_{r:g}", 0.01 * ref.N * ref.B),
-                              ("contact", f"contact_{r:g}", 0.05 * ref.B),
+        for key, q, floor in (("M", f"M_{r:g}", 0.01 * N * B),
+                              ("contact", f"contact_{r:g}", 0.05 * B),
                               ("settlement", f"settlement_{r:g}", 0.1 * abs(s0))):
-            expect = (bed[key][k] - ref.monotonic[key][k]) / max(abs(ref.monotonic[key][k]),
-                                                                 floor)
-            assert t.error(name, q) == pytest.approx(expect, rel=1e-12, abs=1e-15)
-    assert t.errors.shape == (4, len(t.quantities))
+            path = at[f"{key}_monotonic"]
+            bed, cont = path.sel(model=name).item(), path.sel(model="continuum").item()
+            expect = (bed - cont) / max(abs(cont), floor)
+            assert _error(ds, name, q) == pytest.approx(expect, rel=1e-12, abs=1e-15)
+    assert ds.error.shape == (4, ds.quantity.size)
 
 
 def test_recommendation_picks_the_smallest_error_per_question():
@@ -213,15 +250,21 @@ def test_recommendation_picks_the_smallest_error_per_question():
     assert "pick `c`, largest error 40 % (no calibration within 10 %)" in rec.text
 
 
-def test_recommendation_in_the_study_matches_its_table(study):
-    """The study's per-question pick has the smallest worst-case |error| of its table."""
-    t, rec = study.table, study.recommendation
-    e = np.where(np.isfinite(t.errors), np.abs(t.errors), np.inf)
-    for group, (pick, worst, *_) in rec.per_group.items():
-        cols = [j for j, g in enumerate(t.groups) if g == group]
-        assert worst == pytest.approx(e[:, cols].max(axis=1).min())
-        assert e[t.calibrations.index(pick), cols].max() == pytest.approx(worst)
-    assert study.study.numbers["best_per_question"]["capacity"]["pick"] in beds.CALIBRATIONS
+def test_recommendation_in_the_study_matches_its_table(study, ds):
+    """The study's per-question pick (summary.json) has the smallest worst-case |error| of its
+    table, read from the dataset by label (the quantities of each group by their ``group``
+    coordinate)."""
+    e = np.abs(ds.error).fillna(np.inf)
+    numbers = study.study.numbers["best_per_question"]
+    names = wvc.quantity_names(wvc.FAST_OPTIONS.theta_ratios, wvc.motion_keys(study.data))
+    # the summary's group names (unicode) -> the dataset's group coordinate (ASCII)
+    groups = {group: str(g) for (_, _, group), g in zip(names, ds.group.values)}
+    for group, ascii_group in groups.items():
+        worst = e.where(ds.group == ascii_group, drop=True).max("quantity")
+        pick = numbers[group]["pick"]
+        assert numbers[group]["largest_error"] == pytest.approx(worst.min().item())
+        assert worst.sel(calibration=pick).item() == pytest.approx(worst.min().item())
+    assert numbers["capacity"]["pick"] in beds.CALIBRATIONS
 
 
 # ---------------------------------------------------------------------------------------------
@@ -229,86 +272,104 @@ def test_recommendation_in_the_study_matches_its_table(study):
 # ---------------------------------------------------------------------------------------------
 
 
-def test_dynamic_pulse_compared_when_the_continuum_dynamics_exists(study):
+def test_dynamic_pulse_compared_when_the_continuum_dynamics_exists(study, ds):
     """With upliftlab.continuum.dynamics.run, the fast study runs the scene's Ricker pulse (2 s, a
     4-across mesh) in both models and puts the four peaks in the error table, each equal to
-    (bed − continuum)/max(|continuum|, floor) of the stored peaks. Physics checks: in the
-    bonded first swing (t < 0.5 s) the beds, calibrated to K_r, follow the continuum's peak θ
-    within 15 % (measured +10 %), and the first lift-off comes in the order of the static onset
-    moments: uniform bed (0.48 s) no later than the continuum (0.51 s), no later than the
+    (bed − continuum)/max(|continuum|, floor) of the peaks in the run's dataset. Physics checks:
+    in the bonded first swing (t < 0.5 s) the beds, calibrated to K_r, follow the continuum's
+    peak θ within 15 % (measured +10 %), and the first lift-off comes in the order of the static
+    onset moments: uniform bed (0.48 s) no later than the continuum (0.51 s), no later than the
     end-stiffened bed (0.68 s). Without the module, the summary says it was not run."""
     ok, why = wvc.dynamics_available()
-    dyn = study.dynamics
     if not ok:
-        assert not dyn.available and dyn.reason.startswith(wvc.DYNAMIC_MISSING)
+        assert not ds.attrs["dynamic_available"]
+        assert ds.attrs["dynamic_reason"].startswith(wvc.DYNAMIC_MISSING)
         assert wvc.DYNAMIC_MISSING in study.study.summary
         return
-    assert dyn.available, dyn.reason
-    assert [r.key for r in dyn.runs] == ["pulse"]
-    run = dyn.runs[0]
+    assert ds.attrs["dynamic_available"], ds.attrs["dynamic_reason"]
+    assert wvc.motion_keys(study.data) == ["pulse"]
+    run = study.data["dynamic_pulse"].to_dataset()
     for m in wvc.DYNAMIC_MEASURES:
         q = f"pulse_{m}"
-        floor = study.table.floors[study.table.quantities.index(q)]
-        ref = run.continuum["peaks"][m]
+        floor = ds[f"reference_{q}"].attrs["error_floor"]
+        ref = run[f"peak_{m}"].sel(model="continuum").item()
+        assert ds[f"reference_{q}"].item() == ref
         for name in beds.CALIBRATIONS:
-            peak = run.beds[name]["peaks"][m]
-            assert study.table.error(name, q) == pytest.approx(
-                (peak - ref) / max(abs(ref), floor), rel=1e-12)
-    early = run.time < 0.5
-    bonded = np.max(np.abs(np.asarray(run.continuum["theta"])[early]))
+            peak = run[f"peak_{m}"].sel(model=name).item()
+            assert _error(ds, name, q) == pytest.approx((peak - ref) / max(abs(ref), floor),
+                                                        rel=1e-12)
+    early = run.sel(time=slice(None, 0.5 - 1e-9))
+    bonded = np.max(np.abs(early.theta.sel(model="continuum").values))
     assert bonded > 0.0
     for name in beds.CALIBRATIONS:
-        bed = np.max(np.abs(np.asarray(run.beds[name]["theta"])[early]))
+        bed = np.max(np.abs(early.theta.sel(model=name).values))
         assert bed == pytest.approx(bonded, rel=0.15)
 
-    def lift_off(record):
-        return run.time[np.argmax(np.asarray(record["uplift"]) > 1e-5)]
+    def lift_off(model):
+        uplift = run.uplift.sel(model=model)
+        return run.time.values[np.argmax(uplift.values > 1e-5)]
 
-    assert (lift_off(run.beds["uniform"]) <= lift_off(run.continuum)
-            <= lift_off(run.beds["end_stiffened"]))
+    assert lift_off("uniform") <= lift_off("continuum") <= lift_off("end_stiffened")
     assert (study.study.directory / "dynamic_pulse.nc").is_file()
     assert (study.study.directory / "figures" / "dynamic_pulse.png").is_file()
 
 
-def test_missing_continuum_dynamics_is_reported_not_faked(study, monkeypatch):
+def test_missing_continuum_dynamics_is_reported_not_faked(monkeypatch):
     """When upliftlab.continuum.dynamics.run cannot be used, no dynamic point is made and the
     comparison carries the statement 'dynamic comparison not run: continuum dynamics
     unavailable' with the reason."""
     monkeypatch.setattr(wvc.dynamics, "dynamics_available",
                         lambda: (False, "module absent (test)"))
-    motions, points, reason = wvc.dynamic_points(study.scene, study.options, fast=True)
+    motions, points, reason = wvc.dynamic_points(_scene(), wvc.FAST_OPTIONS, fast=True)
     assert motions == [] and points == []
     assert reason == f"{wvc.DYNAMIC_MISSING} (module absent (test))"
-    dyn = wvc.compare_dynamics(study.scene, study.calibrations, motions, points, [], reason)
+    dyn = wvc.compare_dynamics(_scene(), (), motions, points, [], reason)
     assert not dyn.available and dyn.runs == () and dyn.reason == reason
 
 
-def test_outputs_written(study):
-    """Data (CSV, NetCDF), figures and summary.md/summary.json, with the numbers of the run."""
+def test_outputs_written(study, ds):
+    """Data (CSV, NetCDF), figures and summary.md/summary.json, with the numbers of the run;
+    the CSV paths hold the dataset's paths (to their ten digits)."""
     d = study.study.directory
-    for name in ("monotonic.csv", "cyclic.csv", "errors.nc", "summary.md", "summary.json",
+    for name in ("monotonic.csv", "cyclic.csv", "comparison.nc", "summary.md", "summary.json",
                  "figures/monotonic.png", "figures/cyclic.png", "figures/errors.png"):
         assert (d / name).is_file() and (d / name).stat().st_size > 0, name
     numbers = json.loads((d / "summary.json").read_text())["numbers"]
-    assert numbers["continuum"]["K_r"] == pytest.approx(study.reference.K_r, rel=1e-12)
+    assert numbers["continuum"]["K_r"] == ds.K_r.item()
     assert set(numbers["errors"]) == set(beds.CALIBRATIONS)
-    variables, attrs = read_netcdf(d / "errors.nc")
-    np.testing.assert_array_equal(variables["error"], study.table.errors)
-    # by label, in memory and from the file (reference: the table's arrays by position)
-    k = study.table.quantities.index("onset_moment")
-    for tree in (study.to_xarray(), study.study.to_xarray()):
-        errors = tree["errors"]
-        assert errors.error.sel(calibration="uniform_plastic", quantity="onset_moment").item() \
-            == study.table.error("uniform_plastic", "onset_moment")
-        assert errors.reference_onset_moment.item() == study.table.reference[k]
-        assert errors.reference_K_r.attrs["units"] == "kN*m/m/rad"
-    frame = study.to_dataframe()
-    assert frame.loc["uniform_plastic", "onset_moment"] == study.table.error(
-        "uniform_plastic", "onset_moment")
-    header = (d / "monotonic.csv").read_text().splitlines()
-    columns = next(line for line in header if not line.startswith("#")).split(",")
-    assert "M_continuum" in columns and "M_uniform_plastic" in columns
+    variables, attrs = read_netcdf(d / "comparison.nc")
+    np.testing.assert_array_equal(variables["error"], ds.error.values)
+    assert ds.reference_K_r.attrs["units"] == "kN*m/m/rad"
+    lines = [x for x in (d / "monotonic.csv").read_text().splitlines() if not x.startswith("#")]
+    table = np.genfromtxt(lines, delimiter=",", names=True)
+    assert "M_continuum" in table.dtype.names and "M_uniform_plastic" in table.dtype.names
+    np.testing.assert_allclose(table["M_uniform_plastic"],
+                               ds.M_monotonic.sel(model="uniform_plastic").values, rtol=1e-9)
     assert not list(d.rglob(".*.part"))
+
+
+def test_the_folder_opens_again_as_the_same_labelled_data(study):
+    """Consistency of what the study wrote (the dataset files against the summary written from
+    the same data): :func:`upliftlab.open_study` of the folder selects by label the numbers of
+    ``summary.json`` bit for bit (an error by calibration and quantity, the continuum's moment
+    at θ/θ_on = 10, a dynamic peak by model), and the key numbers and the Markdown computed
+    from the folder are the ``summary.json`` and ``summary.md`` written."""
+    folder = study.study.directory
+    tree = open_study(folder)
+    data = tree["comparison"]
+    numbers = json.loads((folder / "summary.json").read_text())["numbers"]
+    error = data.error.sel(calibration="uniform_plastic", quantity="onset_moment").item()
+    assert error == numbers["errors"]["uniform_plastic"]["onset_moment"]
+    assert data.reference_M_10.item() == numbers["reference_values"]["M_10"]
+    M = data.M_monotonic.sel(model="continuum").sel(theta_over_theta_on=10.0, method="nearest")
+    assert M.item() == numbers["reference_values"]["M_10"]
+    assert data.K_r.attrs["units"] == "kN*m/m/rad"
+    if numbers["dynamic"]["available"]:
+        peak = tree["dynamic_pulse"].peak_theta.sel(model="uniform").item()
+        assert peak == numbers["dynamic"]["peaks"]["pulse"]["uniform"]["theta"]
+    again = json.loads(json.dumps(wvc.key_numbers(tree), default=json_default))
+    assert again == numbers
+    assert wvc.summarise(tree) == (folder / "summary.md").read_text()
 
 
 class _Refusing(cf.Executor):
@@ -316,16 +377,16 @@ class _Refusing(cf.Executor):
         raise AssertionError("a stored continuum point was computed again")
 
 
-def test_rerun_computes_nothing(study, tmp_path):
+def test_rerun_computes_nothing(study, ds, tmp_path):
     """Content-keyed store: the same inputs again submit no work (the executor refuses any) and
     give the same table; the store holds one record per continuum analysis (5 static, and the
     dynamic pulse when the continuum dynamics exists)."""
     store = Store(study.study.directory / "store")
-    count = 5 + len(study.dynamics.runs)
+    count = 5 + len(wvc.motion_keys(study.data))
     assert len(store) == count
     again = wvc.run(fast=True, out=tmp_path / "again", store=store, executor=_Refusing(),
                     progress=False, options=replace(wvc.FAST_OPTIONS, figures=False))
-    np.testing.assert_array_equal(again.table.errors, study.table.errors)
+    np.testing.assert_array_equal(wvc.comparison(again.data).error.values, ds.error.values)
     assert len(store) == count
 
 

@@ -34,25 +34,37 @@ Each continuum analysis is one point of :func:`.sweep.run_sweep` in a content-ad
 error table, the recommendation (the calibration with the smallest error per quantity and per
 question) and every statement of ``summary.md`` are computed from the data.
 
+The result is an :class:`xarray.DataTree` (:func:`.dataset.study_dataset`): the node
+``comparison`` (the continuum's numbers, the paths over ``model``, the calibrations and the
+error table over ``calibration`` and ``quantity``) and one node ``dynamic_<motion>`` per motion
+(their time axes differ), written as ``comparison.nc`` and ``dynamic_<motion>.nc`` beside the
+CSV paths; the summary is computed from it alone (:func:`.summary.summarise`,
+:func:`.numbers.key_numbers`), so :func:`upliftlab.open_study` of the output folder gives it
+back: ``open_study(folder)["comparison"].error.sel(calibration="uniform_plastic",
+quantity="onset_moment")``.
+
 Run it with ``upliftlab study winkler_vs_continuum [--fast] [--out DIR]``.
 """
 
 from __future__ import annotations
 
-from .analysis import ErrorTable, Recommendation, error_table, recommend
+from .analysis import (ErrorTable, Recommendation, error_table, quantity_names, recommend,
+                       table_of)
 from .closed_forms import closed_form_checks
+from .dataset import comparison, dynamic_runs, motion_keys, study_dataset
 from .dynamics import (DYNAMIC_LABELS, DYNAMIC_MEASURES, DynamicComparison, compare_dynamics,
                        dynamic_points, dynamics_available)
+from .numbers import key_numbers
 from .options import (DYNAMIC_MISSING, FAST_OPTIONS, FULL_OPTIONS, ONSET_ANCHOR, Options, STUDY,
                       WINKLER_ONSET, check_options)
-from .output import write
 from .reference import ContinuumReference, continuum_reference
-from .result import WinklerVsContinuum
-from .workflow import DEFINITION, compute, run
+from .summary import summarise
+from .workflow import DEFINITION, compute, run, write
 
 __all__ = ["STUDY", "Options", "FULL_OPTIONS", "FAST_OPTIONS", "check_options",
            "ContinuumReference", "ErrorTable", "Recommendation", "DynamicComparison",
-           "WinklerVsContinuum", "error_table", "recommend", "DEFINITION", "compute", "write",
-           "run", "DYNAMIC_MISSING", "DYNAMIC_MEASURES", "DYNAMIC_LABELS", "continuum_reference",
-           "compare_dynamics", "dynamic_points", "dynamics_available", "closed_form_checks",
-           "WINKLER_ONSET", "ONSET_ANCHOR"]
+           "error_table", "quantity_names", "table_of", "recommend", "DEFINITION", "compute",
+           "write", "run", "study_dataset", "comparison", "dynamic_runs", "motion_keys",
+           "summarise", "key_numbers", "DYNAMIC_MISSING", "DYNAMIC_MEASURES", "DYNAMIC_LABELS",
+           "continuum_reference", "compare_dynamics", "dynamic_points", "dynamics_available",
+           "closed_form_checks", "WINKLER_ONSET", "ONSET_ANCHOR"]

@@ -1,4 +1,6 @@
-"""The error table of each bed against the continuum, and the recommendation drawn from it."""
+"""The error table of each bed against the continuum (:func:`error_table`, computed from the
+runs; :func:`table_of`, read back from the study's dataset), and the recommendation drawn from
+it (:func:`recommend`)."""
 
 from __future__ import annotations
 
@@ -21,28 +23,40 @@ from .reference import ContinuumReference
 # ---------------------------------------------------------------------------------------------
 
 
-def _quantities(ref: ContinuumReference, options: Options) -> list[tuple[str, str, str, float]]:
-    """(key, label, group, floor) of every compared quantity."""
-    NB, s0 = ref.N * ref.B, abs(ref.monotonic["settlement"][0])
-    q = [("K_r", "K_r", "bonded stiffness", 0.0), ("K_v", "K_v", "bonded stiffness", 0.0),
-         ("onset_moment", "uplift-onset M", "uplift onset", FLOORS["moment"] * NB)]
-    for r in options.theta_ratios:
-        q.append((f"M_{r:g}", f"M at {r:g} θ_on", "monotonic M–θ", FLOORS["moment"] * NB))
-    for r in options.theta_ratios:
-        q.append((f"contact_{r:g}", f"c at {r:g} θ_on", "contact length",
-                  FLOORS["contact"] * ref.B))
-    q.append(("settlement_0", "settlement under N", "settlement", FLOORS["settlement"] * s0))
-    for r in options.theta_ratios:
-        q.append((f"settlement_{r:g}", f"settlement at {r:g} θ_on", "settlement",
-                  FLOORS["settlement"] * s0))
-    q += [("N_ult", "N_ult", "capacity", 0.0),
-          ("M_max", "largest M (pushover)", "capacity", FLOORS["moment"] * NB),
-          ("cyclic_M", "cyclic peak M (worst)", "cyclic M–θ", FLOORS["moment"] * NB),
-          ("cyclic_energy", "cyclic dissipated energy", "cyclic M–θ",
-           FLOORS["energy"] * NB * ref.theta_on),
-          ("cyclic_settlement", "settlement over the cycles", "cyclic M–θ",
-           FLOORS["settlement"] * s0)]
+def quantity_names(theta_ratios, motions=()) -> list[tuple[str, str, str]]:
+    """(key, label, group) of every compared quantity, in the error table's order: the static
+    ones at ``theta_ratios`` (θ/θ_on), then the peaks of each dynamic run of ``motions``."""
+    q = [("K_r", "K_r", "bonded stiffness"), ("K_v", "K_v", "bonded stiffness"),
+         ("onset_moment", "uplift-onset M", "uplift onset")]
+    q += [(f"M_{r:g}", f"M at {r:g} θ_on", "monotonic M–θ") for r in theta_ratios]
+    q += [(f"contact_{r:g}", f"c at {r:g} θ_on", "contact length") for r in theta_ratios]
+    q.append(("settlement_0", "settlement under N", "settlement"))
+    q += [(f"settlement_{r:g}", f"settlement at {r:g} θ_on", "settlement") for r in theta_ratios]
+    q += [("N_ult", "N_ult", "capacity"), ("M_max", "largest M (pushover)", "capacity"),
+          ("cyclic_M", "cyclic peak M (worst)", "cyclic M–θ"),
+          ("cyclic_energy", "cyclic dissipated energy", "cyclic M–θ"),
+          ("cyclic_settlement", "settlement over the cycles", "cyclic M–θ")]
+    q += [(f"{key}_{m}", f"{DYNAMIC_LABELS[m]} ({key})", f"dynamics ({key})")
+          for key in motions for m in DYNAMIC_MEASURES]
     return q
+
+
+def quantity_floors(ref: ContinuumReference, scene: Scene, theta_ratios, motions=()
+                    ) -> list[float]:
+    """The error floor of each quantity of :func:`quantity_names` (same order): moments
+    0.01 N B, contact 0.05 B, settlements 0.1 × the continuum's settlement under N, energy
+    0.01 N B θ_on (:data:`FLOORS`); dynamic peaks 0.1 × θ_on (θ), 0.1 × the story deformation
+    at the Winkler bed's quasi-static uplift, (N B/6)/(h k) (u), and 0.1 × the settlement
+    under N (uplift, residual settlement); none for K_r, K_v, N_ult."""
+    NB, s0, n = ref.N * ref.B, abs(ref.monotonic["settlement"][0]), len(theta_ratios)
+    moment, settle = FLOORS["moment"] * NB, FLOORS["settlement"] * s0
+    floors = ([0.0, 0.0, moment] + [moment] * n + [FLOORS["contact"] * ref.B] * n
+              + [settle] * (n + 1) + [0.0, moment, moment,
+                                      FLOORS["energy"] * NB * ref.theta_on, settle])
+    k = scene.structure.stories[-1].stiffness
+    dynamic = {"theta": 0.1 * ref.theta_on, "u": 0.1 * ref.N * ref.B / (6.0 * ref.h * k),
+               "uplift": 0.1 * s0, "residual_settlement": 0.1 * s0}
+    return floors + [dynamic[m] for _ in motions for m in DYNAMIC_MEASURES]
 
 
 @dataclass(frozen=True, eq=False)
@@ -66,24 +80,14 @@ class ErrorTable:
                                  self.quantities.index(quantity)])
 
 
-def dynamic_quantities(ref: ContinuumReference, scene: Scene, dynamics) -> list[tuple]:
-    """(key, label, group, floor) of the dynamic peaks; floors 0.1 × θ_on (θ), 0.1 × the
-    story deformation at the Winkler bed's quasi-static uplift, (N B/6)/(h k) (u), and 0.1 ×
-    the continuum's settlement under N (uplift, residual settlement)."""
-    s0 = abs(ref.monotonic["settlement"][0])
-    k = scene.structure.stories[-1].stiffness
-    floors = {"theta": 0.1 * ref.theta_on, "u": 0.1 * ref.N * ref.B / (6.0 * ref.h * k),
-              "uplift": 0.1 * s0, "residual_settlement": 0.1 * s0}
-    return [(f"{run.key}_{m}", f"{DYNAMIC_LABELS[m]} ({run.key})", f"dynamics ({run.key})",
-             floors[m]) for run in dynamics.runs for m in DYNAMIC_MEASURES]
-
-
-def error_table(ref: ContinuumReference, beds: Sequence[BedResponse],
-                options: Options, dynamic: Sequence[tuple] = (), runs: Sequence = ()
-                ) -> ErrorTable:
+def error_table(ref: ContinuumReference, beds: Sequence[BedResponse], options: Options,
+                scene: Scene, runs: Sequence = ()) -> ErrorTable:
     """The error table of every calibration against the continuum (package docstring), with
-    the ``dynamic`` quantities (:func:`dynamic_quantities`) of the dynamic ``runs``."""
-    spec = _quantities(ref, options) + list(dynamic)
+    the peaks of the dynamic ``runs`` (:class:`.dynamics.DynamicRun`) on ``scene``."""
+    motions = [run.key for run in runs]
+    spec = [(*names, floor) for names, floor in zip(
+        quantity_names(options.theta_ratios, motions),
+        quantity_floors(ref, scene, options.theta_ratios, motions))]
     mono = dict(ref.monotonic, _theta_on=ref.theta_on)
     cont = {"K_r": ref.K_r, "K_v": ref.K_v, "onset_moment": _onset_moment(ref),
             "N_ult": ref.N_ult, **path_values(mono, ref.cyclic, options.theta_ratios)}
@@ -118,6 +122,31 @@ def error_table(ref: ContinuumReference, beds: Sequence[BedResponse],
                       np.array([s[3] for s in spec]),
                       np.array([cont[key] for key, *_ in spec], dtype=float),
                       np.array(vals, dtype=float), np.array(rows, dtype=float))
+
+
+def table_of(ds) -> ErrorTable:
+    """The error table held by the study's ``comparison`` dataset (:mod:`.dataset`): its
+    arrays as written, the labels and groups of :func:`quantity_names` (the dataset's are
+    ASCII)."""
+    quantities = tuple(str(q) for q in ds.quantity.values)
+    motions = texts(ds.attrs.get("motions", ""))
+    names = quantity_names(np.atleast_1d(ds.attrs["theta_ratios"]).tolist(), motions)
+    if tuple(n[0] for n in names) != quantities:
+        raise ValueError(f"the dataset's quantities {quantities} are not the study's")
+    return ErrorTable(tuple(str(c) for c in ds.calibration.values), quantities,
+                      tuple(n[1] for n in names), tuple(n[2] for n in names),
+                      np.array([ds[f"reference_{q}"].attrs["error_floor"] for q in quantities],
+                               dtype=float),
+                      np.array([ds[f"reference_{q}"].item() for q in quantities], dtype=float),
+                      np.stack([ds[f"value_{q}"].values for q in quantities], axis=1),
+                      np.asarray(ds.error.transpose("calibration", "quantity").values))
+
+
+def texts(value) -> list[str]:
+    """A list-of-text attribute as a list (NetCDF gives one item back as text, none as '')."""
+    if isinstance(value, str):
+        return [value] if value else []
+    return [str(v) for v in np.atleast_1d(value)]
 
 
 def _onset_moment(ref: ContinuumReference) -> float:

@@ -16,7 +16,7 @@ from ...framework.measures import edge_uplift_history, reduced_edge_gap_history
 from ...beds.continuum_points import history_grid, motion_scene, sampled_histories
 from ...beds.pushover import bed_scene
 from ...beds.stiffness import Calibration
-from .options import DYNAMIC_MISSING, Options, finite_or_none
+from .options import DYNAMIC_MISSING, Options
 
 
 # ---------------------------------------------------------------------------------------------
@@ -53,12 +53,6 @@ class DynamicComparison:
     available: bool
     reason: str
     runs: tuple[DynamicRun, ...] = ()
-
-    def peaks(self) -> dict:
-        """motion -> model (``continuum`` or a calibration) -> measure -> peak (None: NaN)."""
-        return {r.key: {name: {m: finite_or_none(rec["peaks"][m]) for m in DYNAMIC_MEASURES}
-                        for name, rec in (("continuum", r.continuum), *r.beds.items())}
-                for r in self.runs}
 
 
 def dynamics_available() -> tuple[bool, str]:

@@ -1,35 +1,46 @@
-"""The study's protocol: compute, run, its definition and its command line."""
+"""The study's protocol: compute (the labelled data), write, run, its definition and its
+command line."""
 
 from __future__ import annotations
 
 import contextlib
 import os
-from dataclasses import replace
+from dataclasses import asdict, replace
 from pathlib import Path
 
+from ....provenance import provenance
 from ....scenes import Scene, load_scene
 from ...beds.continuum_points import evaluate_continuum
 from ...beds.pushover import bed_response
 from ...beds.stiffness import calibrate, end_zone
-from ...framework.protocol import Context, Study, run_study
+from ...framework.protocol import Context, Study, StudyRun, run_study
 from ...framework.store import Store
-from ...framework.study import require_matplotlib
+from ...framework.study import StudyResult, require_matplotlib, write_study
 from ...framework.sweep import run_sweep, sweep_executor
-from .analysis import dynamic_quantities, error_table, recommend
-from .closed_forms import closed_form_checks
+from .analysis import error_table, texts
+from .dataset import comparison, study_dataset
 from .dynamics import compare_dynamics, dynamic_points
+from .figures import write_figures
+from .numbers import key_numbers, read
 from .options import FAST_OPTIONS, FULL_OPTIONS, Options, STUDY, check_options, check_scene
-from .output import write
 from .reference import continuum_points, continuum_reference
-from .result import WinklerVsContinuum
+from .summary import summarise
+from .tables import write_tables
 
 
-def compute(scene: str | Scene, ctx: Context) -> WinklerVsContinuum:
-    """The continuum reference, the calibrated beds, their errors and the dynamics of
-    ``scene`` (with ``[soil]``) under ``ctx.options`` (default :data:`FAST_OPTIONS` or
-    :data:`FULL_OPTIONS`). Every parameter is checked before anything runs."""
+def _options(ctx: Context) -> Options:
+    """The study's options: ``ctx.options``, else :data:`FAST_OPTIONS` or :data:`FULL_OPTIONS`
+    (checked)."""
+    return check_options(ctx.options or (FAST_OPTIONS if ctx.fast else FULL_OPTIONS))
+
+
+def compute(scene: str | Scene, ctx: Context):
+    """The study's :class:`xarray.DataTree` (:func:`.dataset.study_dataset`): the continuum
+    reference, the calibrated beds, their errors and the dynamics of ``scene`` (with
+    ``[soil]``) under ``ctx.options`` (default :data:`FAST_OPTIONS` or :data:`FULL_OPTIONS`).
+    Every parameter is checked before anything runs."""
     fast = ctx.fast
-    options = check_options(ctx.options or (FAST_OPTIONS if fast else FULL_OPTIONS))
+    options = _options(ctx)
     if options.figures:
         require_matplotlib(STUDY)
     scene = scene if isinstance(scene, Scene) else load_scene(scene)
@@ -55,24 +66,39 @@ def compute(scene: str | Scene, ctx: Context) -> WinklerVsContinuum:
     beds = tuple(bed_response(scene, c, ref) for c in calibrations)
     dynamics = compare_dynamics(scene, calibrations, motions, dynamic, records[len(static):],
                                 reason)
-    table = error_table(ref, beds, options, dynamic_quantities(ref, scene, dynamics),
-                        dynamics.runs)
-    return WinklerVsContinuum(None, scene, ref, calibrations, beds, table,
-                              recommend(table, options.adequate), closed_form_checks(ref, beds),
-                              dynamics, options)
+    table = error_table(ref, beds, options, scene, dynamics.runs)
+    return study_dataset(scene, options, fast, ref, calibrations, beds, table, dynamics)
+
+
+def write(data, ctx: Context) -> StudyResult:
+    """The tables, the figures (when ``options.figures``), the data (``comparison.nc`` and
+    ``dynamic_<motion>.nc``) and the summary into ``ctx.out``."""
+    options, ds = _options(ctx), comparison(data)
+    attrs = ds.attrs
+    prov = provenance(study=STUDY, scene=attrs["scene"], scene_digest=attrs["scene_digest"],
+                      overrides=texts(attrs.get("overrides", "")), fast=ctx.fast,
+                      options=asdict(options), store=str(ctx.store.root),
+                      continuum_dofs=int(ds.continuum_dofs))
+    out = Path(ctx.out)
+    files = write_tables(ds, out)
+    if options.figures:
+        files += write_figures(data, out / "figures")
+    return write_study(STUDY, data, ctx, summarise=summarise, numbers=key_numbers,
+                       provenance=prov, files=files)
 
 
 def run(scene: str | Scene = "strip_footing_clay", fast: bool = False, *,
         out: str | Path | None = None, store: Store | str | Path | None = None,
         options: Options | None = None, executor=None, scheduler=None,
-        progress=None) -> WinklerVsContinuum:
+        progress=None) -> StudyRun:
     """Run the study on ``scene`` (with ``[soil]``; its own motion is used for nothing static).
 
     ``fast`` applies ``options.fast_overrides`` (a coarse mesh) and the smaller
     :data:`FAST_OPTIONS` paths; full mode uses the scene's mesh and :data:`FULL_OPTIONS`.
     ``out``: output directory (default ``results/winkler_vs_continuum[-fast]``); ``store`` the
     results store (default ``<out>/store``); ``executor``/``scheduler``/``progress`` go to
-    :func:`.sweep.run_sweep`. Every parameter is checked before anything runs.
+    :func:`.sweep.run_sweep`. Every parameter is checked before anything runs. Returns the
+    data (``.data``, :func:`compute`) and what was written (``.study``).
     """
     return run_study(DEFINITION, scene, Context(fast=fast, out=out, store=store, options=options,
                                                 executor=executor, scheduler=scheduler,
@@ -97,9 +123,11 @@ def _context_from(args, ctx: Context, say) -> Context:
                                         figures=not args.no_figures))
 
 
-def _describe(result: WinklerVsContinuum) -> list[str]:
-    return [result.recommendation.text,
-            result.dynamics.reason if not result.dynamics.available else "dynamics compared"]
+def _describe(run: StudyRun) -> list[str]:
+    reading = read(run.data)
+    attrs = reading.ds.attrs
+    return [reading.recommendation.text, "dynamics compared" if attrs["dynamic_available"]
+            else str(attrs.get("dynamic_reason", ""))]
 
 
 DEFINITION = Study(STUDY, "Winkler against the continuum",
