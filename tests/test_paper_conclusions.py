@@ -43,6 +43,26 @@ def test_verdict_follows_the_evidence():
     assert Conclusion(1, "s", ()).verdict == "not tested"
 
 
+def test_two_spring_conclusion_reads_the_written_tree():
+    """Conclusion 5 reads the two-spring study's folder as open_study gives it: the summary's
+    numbers at the root, the threshold on the statics node. Made-up numbers: Case C shares
+    tie at 0.25 between equivalent and calibrated (the equivalent pair is named, as the
+    two-spring study's own statement breaks ties), 12 points; holds."""
+    import xarray as xr
+
+    from upliftlab.comparisons.studies.paper import conclusion_two_springs
+
+    tree = xr.DataTree.from_dict({"statics": xr.Dataset(attrs={"threshold": 0.2})})
+    tree.attrs = {"ewing": {"holds": True, "text": "t", "uplifting_points": {"C": 12},
+                            "share": {"C": {"edges": {"all": 0.0}, "equivalent": {"all": 0.25},
+                                            "calibrated": {"all": 0.25}}}}}
+    c = conclusion_two_springs(tree)
+    (e,) = c.evidence
+    assert c.verdict == "holds" and e.values == {"share_within": 0.25, "points": 12}
+    assert "(equivalent) within 20 %" in e.says and "at 25 %" in e.says
+    assert conclusion_two_springs(None).verdict == "not tested"
+
+
 def test_every_conclusion_is_decided_from_runs(study):
     """With the record, every statement has evidence; none is left untested."""
     assert [c.number for c in study.conclusions] == list(range(1, 9))

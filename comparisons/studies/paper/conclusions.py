@@ -104,21 +104,36 @@ def conclusion_settlement(r: Mapping, record: Motion | None) -> Conclusion:
 
 
 def conclusion_two_springs(equivalence) -> Conclusion:
+    """Conclusion 5 from the two-spring equivalence study's written folder, opened as its tree
+    (:func:`upliftlab.open_study`; None: the study did not run): its summary's numbers (the
+    root's attributes: Ewing's conclusion quantified, ``ewing``) and its threshold (the
+    attribute of its ``statics`` node)."""
     if equivalence is None:
         return Conclusion(5, TWO_SPRING_STATEMENT, (),
                           "the two-spring equivalence study did not run")
-    e = equivalence.ewing
+    e = equivalence.attrs["ewing"]
+    threshold = float(equivalence["statics"].attrs["threshold"])
     ev = []
-    if e.holds is not None:
-        layout, share = e.best("C")
+    if e["holds"] is not None:
+        layout, share = best_layout(e["share"]["C"])
         ev.append(Evidence("reduced model, two-spring equivalence maps (Case C)",
-                           f"best two-spring layout ({layout}) within {100 * e.threshold:g} % "
+                           f"best two-spring layout ({layout}) within {100 * threshold:g} % "
                            f"of the Winkler bed in all six measures at {100 * share:.0f} % of "
                            "the uplifting points", {"share_within": share,
-                                                    "points": e.points["C"]}, "-",
-                           bool(e.holds)))
+                                                    "points": e["uplifting_points"]["C"]}, "-",
+                           bool(e["holds"])))
     return Conclusion(5, TWO_SPRING_STATEMENT, tuple(ev), "" if ev else "no Case C point uplifted",
-                      "" if all(x.supports for x in ev) else e.text)
+                      "" if all(x.supports for x in ev) else e["text"])
+
+
+def best_layout(shares: Mapping, measure: str = "all") -> tuple[str, float]:
+    """(layout, share) of the two-spring layout most often within the threshold, from the
+    two-spring study's shares {layout: {measure: share}}; ties go to ``equivalent``, then
+    ``calibrated``, then ``edges``, as that study's own statement decides them."""
+    values = {k: v[measure] for k, v in shares.items()}
+    preference = ("equivalent", "calibrated", "edges")
+    layout = max(values, key=lambda k: (values[k], -preference.index(k)))
+    return layout, values[layout]
 
 
 TWO_SPRING_STATEMENT = ("With foundation nonlinearity and impact damping, a Winkler foundation is "

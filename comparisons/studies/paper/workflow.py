@@ -8,6 +8,7 @@ from pathlib import Path
 from ....checks import InputError
 from ....motions import ELCENTRO, Motion, load_motion
 from ....provenance import provenance
+from ....study_files import open_study
 from ...framework.protocol import Context, Study, run_study
 from ...framework.study import StudyResult, write_summary
 from .conclusions import (conclusion_decay, conclusion_long_period_peak, conclusion_more_with_c,
@@ -31,10 +32,11 @@ class Options:
 
 def compute(scene: None, ctx: Context) -> PaperConclusions:
     """Decide every conclusion (``scene`` must be None: the paper's buildings). The two-spring
-    conclusion reuses ``ctx.results["two_spring_equivalence"]`` when the report computed it,
-    else runs that study (from its store) beside ``ctx.out``: by its registered name
-    (:func:`..registry.definition`), since a study imports no other study's code, only reads
-    its result."""
+    conclusion reads the two-spring equivalence study's written folder
+    (:func:`upliftlab.open_study`): the one of ``ctx.results["two_spring_equivalence"]`` when
+    the report ran it, else that study is run (from its store) beside ``ctx.out`` by its
+    registered name (:func:`..registry.definition`), since a study imports no other study's
+    code, only reads its written result."""
     if scene is not None:
         raise InputError(f"scene = {scene!r}: this study runs the paper's buildings; pass "
                          "scene=None")
@@ -51,6 +53,7 @@ def compute(scene: None, ctx: Context) -> PaperConclusions:
         name = "two_spring_equivalence"
         equivalence = run_study(definition(name), None, Context(
             fast=fast, out=out.parent / (name + ("-fast" if fast else ""))))
+    equivalence = open_study(equivalence.study.directory)
     conclusions = (
         conclusion_peak_u(responses, record), conclusion_long_period_peak(responses, record),
         conclusion_decay(responses, record),
@@ -77,7 +80,8 @@ def run(fast: bool = False, *, out: str | Path | None = None, motion: str | None
 
     ``motion``: the El Centro record (a name on UPLIFTLAB_MOTIONS or a path; default the
     packaged name, skipped with a note if not found). ``equivalence``: a finished
-    :func:`.two_spring_equivalence.run` result to reuse (else it is run, from its store).
+    :func:`.two_spring_equivalence.run` result (its written folder is read) to reuse (else it
+    is run, from its store).
     """
     results = {} if equivalence is None else {"two_spring_equivalence": equivalence}
     return run_study(DEFINITION, None, Context(fast=fast, out=out, options=Options(motion),

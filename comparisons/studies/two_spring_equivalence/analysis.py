@@ -1,5 +1,5 @@
-"""What the maps say: the corner regions where a layout stays within the threshold, and
-Ewing's conclusion, decided from the maps."""
+"""What the maps say, read from their datasets (:mod:`.views`): the corner regions where a
+layout stays within the threshold, and Ewing's conclusion, decided from the maps."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ import numpy as np
 from .... import checks
 from ...framework.study import Region, corner_region, region_text
 from .grid import CASES, LAYOUTS, METRICS, METRIC_LABELS
-from .maps import ErrorMap
+from .views import cases, error, layouts, map_axes, uplifted
 
 
 # ---------------------------------------------------------------------------------------------
@@ -39,9 +39,8 @@ def _subject(layout: str) -> str:
             "calibrated": "calibrated springs (±√(K_θ/K_v))"}[layout]
 
 
-def _record_statement(emap: ErrorMap, ok: np.ndarray, subject: str, threshold: float) -> str:
-    """Per record, the highest intensity up to which every lower one passes."""
-    x = emap.x
+def _record_statement(x, ok: np.ndarray, subject: str, threshold: float) -> str:
+    """Per record, the highest intensity (axis ``x``) up to which every lower one passes."""
     limits = []
     for row in ok:
         n = int(np.argmin(row)) if not row.all() else row.size
@@ -58,24 +57,25 @@ def _record_statement(emap: ErrorMap, ok: np.ndarray, subject: str, threshold: f
     return f"{subject} stay within {100 * threshold:g} % " + ", ".join(parts)
 
 
-def equivalence_regions(maps: Sequence[ErrorMap], threshold: float) -> list[RegionStatement]:
-    """For each map, case, layout and measure (and all six): where |error| ≤ ``threshold``."""
+def equivalence_regions(maps: Sequence, threshold: float) -> list[RegionStatement]:
+    """For each map (a dataset of :func:`.views.maps`), case, layout and measure (and all six):
+    where |error| ≤ ``threshold``."""
     checks.in_range("threshold", threshold, 0.0, 10.0, low_open=True)
     out = []
-    for emap in maps:
-        for case in emap.cases:
-            for layout in emap.layouts:
+    for ds in maps:
+        name, (x, y) = ds.attrs["name"], map_axes(ds)
+        for case in cases(ds):
+            for layout in layouts(ds):
                 for metric in (*METRICS, "all"):
-                    err = emap.error(case, layout, metric)
-                    ok = np.nan_to_num(err, nan=np.inf) <= threshold
+                    ok = np.nan_to_num(error(ds, case, layout, metric), nan=np.inf) <= threshold
                     subject = f"{_subject(layout)} [{METRIC_LABELS[metric]}]"
-                    if emap.name == "records":
-                        text, region = _record_statement(emap, ok, subject, threshold), None
+                    if name == "records":
+                        text, region = _record_statement(x, ok, subject, threshold), None
                     else:
-                        y_sides = ("<=", ">=") if emap.y.key == "intensity" else (">=", "<=")
-                        region = corner_region(ok, emap.x, emap.y, y_sides=y_sides)
+                        y_sides = ("<=", ">=") if y.key == "intensity" else (">=", "<=")
+                        region = corner_region(ok, x, y, y_sides=y_sides)
                         text = region_text(region, subject, threshold)
-                    out.append(RegionStatement(emap.name, case, layout, metric, text, region,
+                    out.append(RegionStatement(name, case, layout, metric, text, region,
                                                int(ok.sum()), ok.size))
     return out
 
@@ -111,26 +111,28 @@ class EwingConclusion:
         return layout, shares[layout]
 
 
-def _pooled(maps: Sequence[ErrorMap], case: str, layout: str, metric: str, uplifted: bool):
+def _pooled(maps: Sequence, case: str, layout: str, metric: str, lifted: bool):
     """Errors at the cells whose bed run is usable and did (not) uplift, over ``maps``."""
     values = []
-    for emap in maps:
-        if case in emap.cases:
-            c = emap.cases.index(case)
-            cells = (emap.uplifted[c] == uplifted) & np.isfinite(emap.reference[c, 0])
-            values.append(emap.error(case, layout, metric)[cells])
+    for ds in maps:
+        if case in cases(ds):
+            usable = np.isfinite(ds[f"reference_{METRICS[0]}"].sel(case=case).values)
+            cells = (uplifted(ds, case) == lifted) & usable
+            values.append(error(ds, case, layout, metric)[cells])
     return np.concatenate(values) if values else np.zeros(0)
 
 
-def ewing_conclusion(maps: Sequence[ErrorMap], threshold: float) -> EwingConclusion:
-    """Shares of uplifting points where each two-spring layout stays within ``threshold``."""
+def ewing_conclusion(maps: Sequence, threshold: float) -> EwingConclusion:
+    """Shares of uplifting points where each two-spring layout stays within ``threshold``,
+    over the maps (datasets of :func:`.views.maps`) of the uniform bed with a case axis."""
     checks.in_range("threshold", threshold, 0.0, 10.0, low_open=True)
-    pooled = [m for m in maps if m.bed == "uniform" and m.name != "yield_restitution"]
-    cases = tuple(c for c in CASES if any(c in m.cases for m in pooled))
-    share = {c: {k: {} for k in LAYOUTS} for c in cases}
-    median = {c: {k: {} for k in LAYOUTS} for c in cases}
+    pooled = [m for m in maps if m.attrs["bed"] == "uniform"
+              and m.attrs["name"] != "yield_restitution"]
+    found = tuple(c for c in CASES if any(c in cases(m) for m in pooled))
+    share = {c: {k: {} for k in LAYOUTS} for c in found}
+    median = {c: {k: {} for k in LAYOUTS} for c in found}
     points = {}
-    for c in cases:
+    for c in found:
         for layout in LAYOUTS:
             for metric in (*METRICS, "all"):
                 errors = _pooled(pooled, c, layout, metric, True)
@@ -138,14 +140,14 @@ def ewing_conclusion(maps: Sequence[ErrorMap], threshold: float) -> EwingConclus
                 median[c][layout][metric] = (float(np.nanmedian(errors)) if errors.size
                                              else math.nan)
                 points[c] = int(errors.size)
-    bonded = {k: np.concatenate([_pooled(pooled, c, k, "all", False) for c in cases])
-              if cases else np.zeros(0) for k in LAYOUTS}
+    bonded = {k: np.concatenate([_pooled(pooled, c, k, "all", False) for c in found])
+              if found else np.zeros(0) for k in LAYOUTS}
     bonded_error = {k: float(np.nanmax(v)) if v.size else math.nan for k, v in bonded.items()}
     verdict = {c: (max(share[c][k]["all"] for k in LAYOUTS) < 0.5 if points.get(c) else None)
                for c in ("A", "C")}
     conclusion = EwingConclusion(threshold, share, median, points, bonded_error,
                                  int(bonded[LAYOUTS[0]].size), verdict["C"], verdict["A"], "")
-    return replace(conclusion, text=_ewing_text(conclusion, cases))
+    return replace(conclusion, text=_ewing_text(conclusion, found))
 
 
 def _share(errors: np.ndarray, threshold: float) -> float:
@@ -165,12 +167,12 @@ _CASE_NAMES = {"A": "Case A (elastic, 40 % damping)", "B": "Case B (elasto-plast
                "C": "Case C (elasto-plastic with impact, ε = 0.7)"}
 
 
-def _ewing_text(e: EwingConclusion, cases) -> str:
+def _ewing_text(e: EwingConclusion, found) -> str:
     thr = f"{100 * e.threshold:g} %"
     lines = [f"Where the Winkler bed never separates ({e.bonded_points} points), the largest "
              "error over the six measures is "
              + ", ".join(f"{_pct(e.bonded_error[k])} for {k}" for k in LAYOUTS) + "."]
-    for c in cases:
+    for c in found:
         if not e.points[c]:
             continue
         sh = e.share[c]
@@ -194,8 +196,8 @@ def _ewing_text(e: EwingConclusion, cases) -> str:
         "points.")
     if e.elastic_holds is not None:
         best_a, value_a = e.best("A")
-        trend = ", ".join(f"{_pct(e.best(c)[1])} in {c}" for c in cases)
-        trend_u = ", ".join(f"{_pct(e.best(c, 'u')[1])} in {c}" for c in cases)
+        trend = ", ".join(f"{_pct(e.best(c)[1])} in {c}" for c in found)
+        trend_u = ", ".join(f"{_pct(e.best(c, 'u')[1])} in {c}" for c in found)
         if e.elastic_holds:
             lines.append(
                 f"The equivalence is already lost in the elastic Case A (best: {best_a}, "

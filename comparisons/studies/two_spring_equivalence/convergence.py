@@ -5,13 +5,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
 
 import numpy as np
 
 from ....reduced import rocking_pushover, uplift_onset_force
 from ...framework.study import relative_error
 from ...framework.sweep import run_sweep
+from .dataset import convergence_dataset
 from .grid import CASES, FLOOR_FRACTION, Grid, METRICS, Options, STUDY
 from .maps import refusal
 from .motions import motion_label
@@ -22,30 +22,6 @@ from .statics import static_model
 # ---------------------------------------------------------------------------------------------
 # Convergence of the Winkler bed in N
 # ---------------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True, eq=False)
-class Convergence:
-    """The convergence check of the uniform Winkler bed in the number of springs N.
-
-    ``static`` measure -> values per N (onset, M(3θ_up), M_ult, normalised by N B); ``dynamic``
-    case -> measure -> values per N at the middle intensity; ``changes`` "static"/case -> the
-    largest relative change from each N to the next (over every intensity of the grid).
-    ``springs`` is the smallest N from which every later doubling changes the static measures
-    by at most ``static_tolerance`` and the dynamic ones of Cases A and B by at most
-    ``tolerance``; ``converged`` is False when even the largest pair differs by more (N is then
-    the largest candidate).
-    """
-
-    candidates: tuple[int, ...]
-    springs: int
-    converged: bool
-    tolerance: float
-    static_tolerance: float
-    static: dict
-    dynamic: dict
-    changes: dict
-    motion: str
 
 
 def _static_measures(base: Base, springs: int, options: Options) -> dict:
@@ -78,9 +54,18 @@ def _first_converged(changes: Sequence[float], tolerance: float) -> int | None:
 
 
 def check_convergence(base: Base, grid: Grid, options: Options, motion: Mapping, store,
-                      sweep_options: Mapping) -> Convergence:
-    """Choose N from the statics and the base scene at every intensity of the grid (Cases A
-    and B; Case C reported). A dynamic change is the largest over the intensities."""
+                      sweep_options: Mapping):
+    """The convergence check of the uniform Winkler bed in the number of springs N, as a
+    labelled dataset over ``springs`` (:func:`.dataset.convergence_dataset`).
+
+    The static measures per N (onset, M(3θ_up), M_ult, normalised by N B) and the dynamic ones
+    per case at the middle intensity; ``changes`` "static"/case: the largest relative change
+    from each N to the next (a dynamic change is the largest over every intensity of the grid).
+    The chosen N (attribute ``chosen_springs``) is the smallest from which every later
+    doubling changes the static measures by at most ``options.static_tolerance`` and the
+    dynamic ones of Cases A and B by at most ``options.convergence_tolerance`` (Case C is
+    reported); ``converged`` is False when even the largest pair differs by more (N is then
+    the largest candidate)."""
     counts = tuple(int(n) for n in grid.spring_counts)
     static = [_static_measures(base, n, options) for n in counts]
     cases, levels = tuple(CASES), tuple(grid.intensities)
@@ -99,14 +84,17 @@ def check_convergence(base: Base, grid: Grid, options: Options, motion: Mapping,
     picks += [_first_converged(changes[c], options.convergence_tolerance) for c in ("A", "B")]
     converged = all(p is not None for p in picks)
     index = max(picks) if converged else len(counts) - 1
-    return Convergence(counts, counts[index], converged, options.convergence_tolerance,
-                       options.static_tolerance,
-                       {k: [s[k] for s in static] for k in static[0]},
-                       {c: {m: [r.get(m, math.nan) for r in recs] for m in METRICS}
-                        for c, recs in dynamic.items()},
-                       changes, f"{motion_label(motion)} at intensities "
+    check = {"candidates": counts, "springs": counts[index], "converged": converged,
+             "tolerance": options.convergence_tolerance,
+             "static_tolerance": options.static_tolerance,
+             "static": {k: [s[k] for s in static] for k in static[0]},
+             "dynamic": {c: {m: [r.get(m, math.nan) for r in recs] for m in METRICS}
+                         for c, recs in dynamic.items()},
+             "changes": changes,
+             "motion": f"{motion_label(motion)} at intensities "
                        f"{', '.join(f'{v:g}' for v in levels)} (figure: "
-                       f"{_middle(levels):g} × a_up)")
+                       f"{_middle(levels):g} × a_up)"}
+    return convergence_dataset(check, base.table["units"])
 
 
 def _middle(levels: Sequence[float]) -> float:

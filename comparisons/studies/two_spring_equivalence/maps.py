@@ -11,41 +11,14 @@ from ...framework.study import Axis, relative_error
 from ...framework.sweep import run_sweep
 from .grid import ENERGY_TOLERANCE, FLOOR_FRACTION, Grid, LAYOUTS, METRICS, Options, STUDY
 from .motions import motion_label
+from .dataset import map_dataset
 from .points import Base, evaluate_point, make_point
+from .views import axis
 
 
 # ---------------------------------------------------------------------------------------------
 # Error maps
 # ---------------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True, eq=False)
-class ErrorMap:
-    """Relative errors of the two-spring layouts against the Winkler bed over two parameters.
-
-    ``errors`` and ``values`` have shape (case, layout, measure, y, x); ``reference`` (case,
-    measure, y, x) holds the bed's values; ``uplifted`` (case, y, x) whether the bed separated.
-    Errors are signed, (two-spring − bed)/max(|bed|, floor); NaN where a run failed.
-    """
-
-    name: str
-    title: str
-    x: Axis
-    y: Axis
-    bed: str
-    cases: tuple[str, ...]
-    layouts: tuple[str, ...]
-    errors: np.ndarray
-    values: np.ndarray
-    reference: np.ndarray
-    uplifted: np.ndarray
-    failures: tuple[str, ...] = ()
-    energy_balance_error: float = 0.0
-
-    def error(self, case: str, layout: str, metric: str = "all") -> np.ndarray:
-        """|error| on the (y, x) grid; ``all`` is the largest over the six measures."""
-        e = np.abs(self.errors[self.cases.index(case), self.layouts.index(layout)])
-        return e.max(axis=0) if metric == "all" else e[METRICS.index(metric)]
 
 
 @dataclass(frozen=True)
@@ -69,33 +42,32 @@ class MapContext:
 
 
 def _intensity_axis(values) -> Axis:
-    return Axis("intensity", "intensity", tuple(values), " × a_up")
+    return axis("intensity", values)
 
 
 def _map_specs(ctx: MapContext) -> list[_MapSpec]:
     g = ctx.grid
     ref = motion_label(ctx.reference_motion)
     cases = tuple(g.cases)
-    aspect = Axis("h_over_b", "h/b", tuple(g.aspect_ratios))
-    pulses = Axis("pulse_period", "pulse period", tuple(g.pulse_periods), " s")
+    aspect = axis("h_over_b", g.aspect_ratios)
+    pulses = axis("pulse_period", g.pulse_periods)
     specs = {
         "aspect": _MapSpec("aspect", f"h/b × intensity, {ref}", aspect,
                            _intensity_axis(g.intensities), "uniform", cases),
         "period": _MapSpec("period", f"period × intensity, {ref}",
-                           Axis("period", "T", tuple(g.periods), " s"),
+                           axis("period", g.periods),
                            _intensity_axis(g.intensities), "uniform", cases),
         "yield_restitution": _MapSpec(
             "yield_restitution", f"FS_v × ε, elasto-plastic bed (10 % damping), {ref} at "
-            f"{g.reference_intensity:g} × a_up", Axis("yield_multiple", "FS_v",
-                                                      tuple(g.yield_multiples)),
-            Axis("restitution", "ε", tuple(g.restitutions)), "uniform", ("B/C",)),
+            f"{g.reference_intensity:g} × a_up", axis("yield_multiple", g.yield_multiples),
+            axis("restitution", g.restitutions), "uniform", ("B/C",)),
         "sine_pulse": _MapSpec("sine_pulse", "one-cycle sine pulse: period × intensity", pulses,
                                _intensity_axis(g.intensities), "uniform", cases),
         "ricker_pulse": _MapSpec("ricker_pulse", "Ricker pulse: period × intensity", pulses,
                                  _intensity_axis(g.intensities), "uniform", cases),
         "records": _MapSpec("records", "records × intensity",
                             _intensity_axis(g.record_intensities),
-                            Axis("record", "record", tuple(r["name"] for r in ctx.records)),
+                            axis("record", [r["name"] for r in ctx.records]),
                             "uniform", cases),
         "end_stiffened": _MapSpec(
             "end_stiffened", f"end-stiffened bed (R_k = {ctx.options.end_stiffness_ratio:g}, "
@@ -145,7 +117,7 @@ def refusal(record: Mapping) -> str | None:
     return None
 
 
-def _assemble(spec: _MapSpec, records: Sequence[Mapping]) -> ErrorMap:
+def _assemble(spec: _MapSpec, records: Sequence[Mapping], units: str):
     nc, nl, nm = len(spec.cases), len(LAYOUTS), len(METRICS)
     ny, nx = len(spec.y.values), len(spec.x.values)
     errors = np.full((nc, nl, nm, ny, nx), np.nan)
@@ -176,18 +148,20 @@ def _assemble(spec: _MapSpec, records: Sequence[Mapping]) -> ErrorMap:
                             values[c, k, m, iy, ix] = run[metric]
                             errors[c, k, m, iy, ix] = relative_error(run[metric], ref[metric],
                                                                      floor)
-    return ErrorMap(spec.name, spec.title, spec.x, spec.y, spec.bed, spec.cases, LAYOUTS,
-                    errors, values, reference, uplifted, tuple(failures), balance)
+    return map_dataset(spec, {"layouts": LAYOUTS, "errors": errors, "values": values,
+                              "reference": reference, "uplifted": uplifted,
+                              "failures": failures, "energy_balance_error": balance}, units)
 
 
-def compute_maps(ctx: MapContext, store, sweep_options: Mapping) -> list[ErrorMap]:
-    """Every map's points in one sweep, then the errors of each layout against the bed."""
+def compute_maps(ctx: MapContext, store, sweep_options: Mapping) -> dict:
+    """Every map's points in one sweep, then the errors of each layout against the bed: {name:
+    the map's dataset (:func:`.dataset.map_dataset`)}."""
     specs = _map_specs(ctx)
     per_map = [_map_points(spec, ctx) for spec in specs]
     records = run_sweep(evaluate_point, [p for pts in per_map for p in pts], store, study=STUDY,
                         **sweep_options)
-    maps, start = [], 0
+    maps, start, units = {}, 0, ctx.base.table["units"]
     for spec, pts in zip(specs, per_map):
-        maps.append(_assemble(spec, records[start:start + len(pts)]))
+        maps[spec.name] = _assemble(spec, records[start:start + len(pts)], units)
         start += len(pts)
     return maps

@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -16,65 +16,6 @@ from .points import Base, make_point, point_scene
 # ---------------------------------------------------------------------------------------------
 # Statics
 # ---------------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True, eq=False)
-class StaticLayout:
-    """Static response of one foundation, normalised by N B (N the weight, B = 2b).
-
-    ``onset`` uplift-onset moment; ``capacity`` the elastic moment as θ → ∞ (beds: extrapolated
-    in θ^(-1/2) from 100 and 400 θ_up); ``ultimate`` the elasto-plastic moment at 1000 θ_up; each
-    with its closed form. ``theta`` (θ/θ_up, θ_up = N/(K_v b)) and the ``elastic`` and
-    ``plastic`` backbones M/(N B).
-    """
-
-    label: str
-    bed: str | None
-    layout: str
-    positions: tuple[float, ...]
-    onset: float
-    onset_closed_form: float
-    capacity: float
-    capacity_closed_form: float
-    ultimate: float
-    ultimate_closed_form: float
-    theta: np.ndarray
-    elastic: np.ndarray
-    plastic: np.ndarray
-
-
-@dataclass(frozen=True, eq=False)
-class Statics:
-    """The static comparison at N springs and yield multiple FS_v."""
-
-    springs: int
-    yield_multiple: float
-    layouts: tuple[StaticLayout, ...]
-
-    def of(self, label: str) -> StaticLayout:
-        return next(s for s in self.layouts if s.label == label)
-
-    @property
-    def onset_ratio(self) -> float:
-        """Uplift-onset moment, equivalent springs over the uniform bed (anchor 1.73)."""
-        return self.of("equivalent").onset / self.of("uniform bed").onset
-
-    @property
-    def capacity_ratio(self) -> float:
-        """Capacity as θ → ∞, equivalent springs over the uniform bed (anchor 0.58)."""
-        return self.of("equivalent").capacity / self.of("uniform bed").capacity
-
-    def within(self, label: str, threshold: float, which: str = "elastic") -> float:
-        """Largest θ/θ_up up to which ``label``'s backbone stays within ``threshold`` of the
-        uniform bed's (0 if not even at the first point)."""
-        mine, ref = getattr(self.of(label), which), getattr(self.of("uniform bed"), which)
-        bad = np.abs(mine - ref) > threshold * np.abs(ref)
-        first = int(np.argmax(bad)) if bad.any() else mine.size
-        return float(self.theta[first - 1]) if first > 0 else 0.0
-
-    @property
-    def theta(self) -> np.ndarray:
-        return self.layouts[0].theta
 
 
 def static_model(base: Base, bed, layout, springs, options, law):
@@ -100,7 +41,12 @@ def _rigid_plastic_moment(model, fs: float) -> float:
     return moment
 
 
-def _static_layout(base, label, bed, layout, springs, options, thetas) -> StaticLayout:
+def _static_layout(base, bed, layout, springs, options, thetas) -> dict:
+    """One foundation's pushovers, normalised by N B (N the weight, B = 2b): ``onset``
+    uplift-onset moment; ``capacity`` the elastic moment as θ → ∞ (beds: extrapolated in
+    θ^(-1/2) from 100 and 400 θ_up); ``ultimate`` the elasto-plastic moment at the last θ
+    (1000 θ_up); each with its closed form; the ``elastic`` and ``plastic`` backbones M/(N B)
+    at ``thetas`` (θ/θ_up, θ_up = N/(K_v b)) and the spring ``positions`` x/b."""
     elastic = static_model(base, bed, layout, springs, options, "elastic")
     plastic = static_model(base, bed, layout, springs, options, "elastoplastic")
     w, b = elastic.weight, elastic.layout.half_width
@@ -123,20 +69,98 @@ def _static_layout(base, label, bed, layout, springs, options, thetas) -> Static
         ultimate_cf = (ultimate_moment_ratio(fs) if bed == "uniform"
                        else _rigid_plastic_moment(plastic, fs) / nb)
     path = rocking_pushover(plastic, theta_up * thetas)
-    return StaticLayout(label, bed, layout, tuple(float(v) for v in x / b), onset, onset_cf,
-                        float(capacity), capacity_cf, float(path.moment[-1] / nb), ultimate_cf,
-                        thetas, rocking_pushover(elastic, theta_up * thetas).moment / nb,
-                        path.moment / nb)
+    return {"positions": x / b, "onset": onset, "onset_closed_form": onset_cf,
+            "capacity": float(capacity), "capacity_closed_form": capacity_cf,
+            "ultimate": float(path.moment[-1] / nb), "ultimate_closed_form": ultimate_cf,
+            "elastic": rocking_pushover(elastic, theta_up * thetas).moment / nb,
+            "plastic": path.moment / nb}
 
 
-def compute_statics(base: Base, springs: int, options: Options, points: int) -> Statics:
-    """Pushovers and closed forms of the beds and the two-spring layouts (anchors §2–3)."""
+def compute_statics(base: Base, springs: int, options: Options, points: int):
+    """Pushovers and closed forms of the beds and the two-spring layouts (anchors §2–3) at N =
+    ``springs`` and the base's FS_v, as a labelled dataset (:func:`statics_dataset`)."""
     thetas = np.geomspace(0.05, 1000.0, points)
     rows = [("uniform bed", "uniform", "winkler"), ("end-stiffened bed", "end_stiffened",
                                                     "winkler"),
             ("edges", None, "edges"), ("equivalent", None, "equivalent"),
             ("calibrated (uniform)", "uniform", "calibrated"),
             ("calibrated (end-stiffened)", "end_stiffened", "calibrated")]
-    layouts = tuple(_static_layout(base, label, bed, layout, springs, options, thetas)
-                    for label, bed, layout in rows)
-    return Statics(springs, base.yield_multiple, layouts)
+    found = {label: {**_static_layout(base, bed, layout, springs, options, thetas),
+                     "bed": bed or "", "layout": layout}
+             for label, bed, layout in rows}
+    return statics_dataset(found, thetas, springs, base.yield_multiple)
+
+
+#: The scalar results of each foundation, M/(N B), and what they mean.
+SCALARS = {"onset": "uplift-onset moment", "capacity": "elastic moment as theta -> infinity",
+           "ultimate": "elasto-plastic moment at the largest theta"}
+
+
+def statics_dataset(found: Mapping, thetas, springs: int, yield_multiple: float):
+    """The statics as a labelled dataset by ``foundation`` (its label: ``uniform bed``,
+    ``edges``, …; with its ``bed`` and ``layout``): ``onset``, ``capacity``, ``ultimate`` and
+    their ``*_closed_form`` (M/(N B)); the ``elastic`` and ``plastic`` backbones over
+    ``theta_over_theta_up``; the spring ``position`` x/b over ``spring``, NaN beyond a
+    foundation's own springs (two for a pair, N for a bed)."""
+    import xarray as xr
+
+    labels = list(found)
+    width = max(len(f["positions"]) for f in found.values())
+    position = np.full((len(labels), width), np.nan)
+    for i, f in enumerate(found.values()):
+        position[i, :len(f["positions"])] = f["positions"]
+    one = ("foundation",)
+    data = {}
+    for key, meaning in SCALARS.items():
+        data[key] = (one, np.array([f[key] for f in found.values()], float),
+                     {"units": "1", "long_name": f"{meaning}, M/(N B)"})
+        data[f"{key}_closed_form"] = (one, np.array([f[f"{key}_closed_form"]
+                                                     for f in found.values()], float),
+                                      {"units": "1", "long_name": f"{meaning}, closed form"})
+    for which in ("elastic", "plastic"):
+        data[which] = (("foundation", "theta_over_theta_up"),
+                       np.array([f[which] for f in found.values()], float),
+                       {"units": "1", "long_name": f"{which} springs' backbone, M/(N B)"})
+    data["position"] = (("foundation", "spring"), position, {
+        "units": "1", "long_name": "spring position x/b (NaN: no such spring)"})
+    coords = {"foundation": ("foundation", labels, {"long_name": "foundation"}),
+              "bed": ("foundation", [f["bed"] for f in found.values()],
+                      {"long_name": "Winkler bed of the foundation (empty: none)"}),
+              "layout": ("foundation", [f["layout"] for f in found.values()],
+                         {"long_name": "layout of the springs"}),
+              "theta_over_theta_up": ("theta_over_theta_up", np.asarray(thetas, float), {
+                  "units": "1", "long_name": "rotation over theta_up = N/(K_v b)"})}
+    attrs = {"Conventions": "CF-1.10", "title": "rocking pushovers of every foundation",
+             "springs": int(springs), "yield_multiple": float(yield_multiple)}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def positions(ds, label: str) -> tuple[float, ...]:
+    """The spring positions x/b of foundation ``label``."""
+    x = ds.position.sel(foundation=label).values
+    return tuple(float(v) for v in x[np.isfinite(x)])
+
+
+def of(ds, label: str, key: str) -> float:
+    """One scalar result (``onset``, ``capacity_closed_form``, …) of foundation ``label``."""
+    return float(ds[key].sel(foundation=label))
+
+
+def onset_ratio(ds) -> float:
+    """Uplift-onset moment, equivalent springs over the uniform bed (anchor 1.73)."""
+    return of(ds, "equivalent", "onset") / of(ds, "uniform bed", "onset")
+
+
+def capacity_ratio(ds) -> float:
+    """Capacity as θ → ∞, equivalent springs over the uniform bed (anchor 0.58)."""
+    return of(ds, "equivalent", "capacity") / of(ds, "uniform bed", "capacity")
+
+
+def within(ds, label: str, threshold: float, which: str = "elastic") -> float:
+    """Largest θ/θ_up up to which ``label``'s backbone stays within ``threshold`` of the
+    uniform bed's (0 if not even at the first point)."""
+    mine = ds[which].sel(foundation=label).values
+    ref = ds[which].sel(foundation="uniform bed").values
+    bad = np.abs(mine - ref) > threshold * np.abs(ref)
+    first = int(np.argmax(bad)) if bad.any() else mine.size
+    return float(ds.theta_over_theta_up.values[first - 1]) if first > 0 else 0.0

@@ -1,36 +1,41 @@
-"""The study's protocol: compute, write, run, its definition and its command line."""
+"""The study's protocol: compute (the labelled data), write, run, its definition and its
+command line."""
 
 from __future__ import annotations
 
 import contextlib
+import json
 from dataclasses import asdict, replace
 from pathlib import Path
 
 from ....provenance import provenance
-from ....results import write_dataset
 from ....scenes import Scene
-from ...framework.protocol import Context, Study, run_study
+from ...framework.protocol import Context, Study, StudyRun, run_study
 from ...framework.store import Store
-from ...framework.study import StudyResult, require_matplotlib, write_summary
+from ...framework.study import StudyResult, require_matplotlib, write_study
 from ...framework.sweep import sweep_executor
-from .analysis import equivalence_regions, ewing_conclusion
+from . import statics as st
 from .convergence import check_convergence
-from .dataset import TwoSpringEquivalence, convergence_dataset, map_dataset
+from .dataset import study_tree
 from .figures import write_figures
 from .grid import FAST_GRID, FULL_GRID, Grid, Options, RECORD_SETS, STUDY, check_grid, check_options
 from .maps import MapContext, compute_maps
 from .motions import study_motions
 from .points import load_base
 from .statics import compute_statics
-from .summary import summary_markdown, summary_numbers
+from .summary import key_numbers, summarise
 from .tables import write_statics
+from .views import STATICS, study_attrs
 
 
-def compute(scene: str | Scene, ctx: Context) -> TwoSpringEquivalence:
-    """The convergence check, the error maps, the statics and the conclusions of ``scene``
-    (a one-story scene; its own motion is not used), with ``ctx.grid`` (default
-    :data:`FAST_GRID` or :data:`FULL_GRID`) and ``ctx.options`` (:class:`Options`). Every
-    parameter is checked before anything runs."""
+def compute(scene: str | Scene, ctx: Context):
+    """The study's :class:`xarray.DataTree` (:func:`.dataset.study_tree`): the convergence
+    check, the statics and the error maps of ``scene`` (a one-story scene; its own motion is
+    not used), with ``ctx.grid`` (default :data:`FAST_GRID` or :data:`FULL_GRID`) and
+    ``ctx.options`` (:class:`Options`). The study's own attributes go on the statics node:
+    the base scene's name, h/b and period (s), the ``threshold``, ``fast``, the
+    ``record_note``, whether to draw ``figures``, and the ``grid`` and ``options`` as JSON
+    (the provenance of what was asked). Every parameter is checked before anything runs."""
     grid = check_grid(ctx.grid or (FAST_GRID if ctx.fast else FULL_GRID))
     options = check_options(ctx.options or Options())
     if options.figures:
@@ -43,48 +48,44 @@ def compute(scene: str | Scene, ctx: Context) -> TwoSpringEquivalence:
             executor = stack.enter_context(sweep_executor(ctx.scheduler))
         sweep = {"executor": executor, "progress": ctx.progress}
         convergence = check_convergence(base, grid, options, reference, store, sweep)
-        maps_ctx = MapContext(base, grid, options, convergence.springs, reference, records)
-        maps = tuple(compute_maps(maps_ctx, store, sweep))
-    statics = compute_statics(base, convergence.springs, options, grid.backbone_points)
-    regions = tuple(equivalence_regions(maps, options.threshold))
-    ewing = ewing_conclusion(maps, options.threshold)
-    return TwoSpringEquivalence(None, convergence.springs, convergence, statics, maps, regions,
-                                ewing, grid, options, record_note, base)
+        springs = int(convergence.attrs["chosen_springs"])
+        maps_ctx = MapContext(base, grid, options, springs, reference, records)
+        maps = compute_maps(maps_ctx, store, sweep)
+    statics = compute_statics(base, springs, options, grid.backbone_points)
+    attrs = {"scene": base.name, "h_over_b": base.h_over_b, "period": base.period,
+             "threshold": options.threshold, "fast": bool(ctx.fast),
+             "record_note": record_note, "figures": options.figures,
+             "grid": json.dumps(asdict(grid)), "options": json.dumps(asdict(options))}
+    return study_tree(convergence, statics, maps, attrs)
 
 
-def write(result: TwoSpringEquivalence, ctx: Context) -> StudyResult:
-    """Statics (CSV), convergence and maps (NetCDF, :mod:`.dataset`), figures and the summary
-    into ``ctx.out``."""
-    base, fast, out, store = result.base, ctx.fast, ctx.out, ctx.store
-    prov = provenance(study=STUDY, scene=base.name, fast=fast, grid=asdict(result.grid),
-                      options=asdict(result.options), springs=result.springs,
-                      store=str(store.root))
-    units = base.table["units"]
-    files = [write_statics(result.statics, out / "statics.csv"),
-             write_dataset(out / "convergence.nc",
-                           convergence_dataset(result.convergence, prov, units))]
-    files += [write_dataset(out / f"map_{m.name}.nc", map_dataset(m, prov, units))
-              for m in result.maps]
-    if result.options.figures:
-        files += write_figures(result, out / "figures")
-    elapsed = ctx.elapsed()
-    numbers = summary_numbers(result, elapsed)
-    text = summary_markdown(result, base, fast, elapsed)
-    files += list(write_summary(out, text, {"numbers": numbers, "provenance": prov}))
-    return StudyResult(STUDY, fast, out, tuple(files), text, numbers, prov, elapsed)
+def write(tree, ctx: Context) -> StudyResult:
+    """Statics (CSV), the data (NetCDF, one file per node of :mod:`.dataset`), figures and the
+    summary into ``ctx.out``."""
+    out, study = Path(ctx.out), study_attrs(tree)
+    statics = tree[STATICS].to_dataset()
+    prov = provenance(study=STUDY, scene=study["scene"], fast=ctx.fast,
+                      grid=json.loads(study["grid"]), options=json.loads(study["options"]),
+                      springs=int(statics.attrs["springs"]), store=str(ctx.store.root))
+    files = [write_statics(statics, out / "statics.csv")]
+    if study.get("figures"):
+        files += write_figures(tree, out / "figures")
+    return write_study(STUDY, tree, ctx, summarise=summarise, numbers=key_numbers,
+                       provenance=prov, files=files)
 
 
 def run(scene: str | Scene = "short_period_elcentro", fast: bool = False, *,
         out: str | Path | None = None, store: Store | str | Path | None = None,
         grid: Grid | None = None, options: Options | None = None, executor=None,
-        scheduler=None, progress=None) -> TwoSpringEquivalence:
+        scheduler=None, progress=None) -> StudyRun:
     """Run the study on ``scene`` (a one-story scene; its own motion is not used).
 
     ``fast`` uses :data:`FAST_GRID` (pulses only, small maps: seconds) instead of
     :data:`FULL_GRID` (El Centro, the record set, minutes). ``out``: output directory (default
     ``results/two_spring_equivalence[-fast]``); ``store``: the results store (default
     ``<out>/store``); ``executor``/``scheduler``/``progress`` go to :func:`.sweep.run_sweep`.
-    Every parameter is checked before anything runs.
+    Every parameter is checked before anything runs. Returns the data (``.data``, the
+    :class:`xarray.DataTree`) and what was written (``.study``).
     """
     return run_study(DEFINITION, scene, Context(
         fast=fast, out=out, store=store, grid=grid, options=options, executor=executor,
@@ -112,9 +113,11 @@ def _context_from(args, ctx: Context, say) -> Context:
     return replace(ctx, options=options)
 
 
-def _describe(result: TwoSpringEquivalence) -> list[str]:
-    return [f"{STUDY}: N = {result.springs}; onset ratio {result.statics.onset_ratio:.4f}, "
-            f"capacity ratio {result.statics.capacity_ratio:.4f}", result.ewing.text]
+def _describe(run: StudyRun) -> list[str]:
+    statics, numbers = run.data[STATICS].to_dataset(), run.study.numbers
+    return [f"{STUDY}: N = {int(statics.attrs['springs'])}; onset ratio "
+            f"{st.onset_ratio(statics):.4f}, capacity ratio {st.capacity_ratio(statics):.4f}",
+            numbers["ewing"]["text"]]
 
 
 DEFINITION = Study(STUDY, "Two-spring equivalence",
