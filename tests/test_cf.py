@@ -143,3 +143,33 @@ def test_open_result_refuses_a_folder(tmp_path):
 
     with pytest.raises(InputError, match="is not a file"):
         open_result(tmp_path)
+
+
+def test_labels_round_trip_beside_a_studys_own_label(tmp_path, cf_failures):
+    # Reference: the dataset written, read back by upliftlab.results.read_dataset (identical);
+    # a study that labels its calibration keys by a calibration_label of its own (the Winkler
+    # map does) keeps it, and the keys go to calibration_key; a file written before the CF
+    # forms (text coordinate variables, time in s) reads back unchanged.
+    import xarray as xr
+
+    from upliftlab.results import write_dataset
+
+    ds = xr.Dataset(
+        {"error": (("calibration", "case"), np.arange(4.0).reshape(2, 2),
+                   {"units": "1", "long_name": "relative error"})},
+        coords={"calibration": ("calibration", ["uniform", "es_f"], {"long_name": "bed key"}),
+                "calibration_label": ("calibration", ["U", "ES-f"], {"long_name": "bed"}),
+                "case": ("case", ["A", "B"], {"long_name": "case"})},
+        attrs={"title": "labels"})
+    path = write_dataset(tmp_path / "labels.nc", ds)
+    assert cf_failures(path) == ([], [])
+    with xr.open_dataset(path) as raw:
+        assert {"calibration_key", "calibration_label", "case_label"} <= set(raw.variables)
+        assert "calibration" not in raw.variables and "case" not in raw.variables
+    xr.testing.assert_identical(read_dataset(path).drop_attrs(deep=True),
+                                ds.drop_attrs(deep=True))
+    old = ds.assign_coords(time=("time", [0.0, 0.5], {"units": "s", "long_name": "time"}))
+    old.to_netcdf(tmp_path / "old.nc", engine="h5netcdf")
+    back = read_dataset(tmp_path / "old.nc")
+    assert list(back.calibration.values) == ["uniform", "es_f"]
+    assert back.time.attrs["units"] == "s" and back.time.values.tolist() == [0.0, 0.5]

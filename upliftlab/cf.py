@@ -19,8 +19,9 @@ finds no failing required check. :func:`encode` is applied by
 - **Labels are not coordinate variables.** A coordinate variable is numeric and strictly
   monotonic (CF section 1.3; ``string x(x)`` is not allowed, cf-conventions issue 174), so a
   dimension labelled by text (``dof``, ``component``, ``case``) is written without one, its
-  labels as the auxiliary coordinate ``<dimension>_label`` (section 6.1); :func:`decode` makes
-  them the dimension's index again. With ``xarray.open_dataset``:
+  labels as the auxiliary coordinate ``<dimension>_label`` (section 6.1; ``<dimension>_key``
+  if the dataset has a ``<dimension>_label`` of its own); :func:`decode` makes them the
+  dimension's index again. With ``xarray.open_dataset``:
   ``ds.set_index(dof="dof_label")`` or ``ds.swap_dims(dof="dof_label")``.
 - **Index coordinates have units**: a numeric coordinate variable without units (a spring's,
   a load step's, a node's index) gets ``units = "1"``.
@@ -63,7 +64,9 @@ def _typed(attrs: dict, dtype) -> dict:
     return out
 
 
-LABEL = "{}_label"
+#: The names of a dimension's text labels on disk: the first one the dataset leaves free (a
+#: study may already label ``calibration`` keys by a ``calibration_label`` of its own).
+LABELS = ("{}_label", "{}_key")
 
 
 def _labels(dataset) -> list[str]:
@@ -89,11 +92,27 @@ def encode(dataset) -> tuple[object, dict[str, dict]]:
         var.attrs = attrs
         if name in dataset.coords and var.dtype.kind in "fc":
             encoding[str(name)] = {"_FillValue": None}
-    labels = {d: LABEL.format(d) for d in _labels(dataset)}
-    taken = [label for label in labels.values() if label in dataset.variables]
-    if taken:
-        raise ValueError(f"cannot write the labels of a dimension as {taken}: taken")
+    labels = {}
+    for d in _labels(dataset):
+        free = [f.format(d) for f in LABELS if f.format(d) not in dataset.variables]
+        if not free:
+            raise ValueError(f"cannot write the labels of {d!r}: "
+                             f"{[f.format(d) for f in LABELS]} are taken")
+        labels[d] = free[0]
     return dataset.rename_vars(labels), encoding
+
+
+def _label_of(dataset, dim: str) -> str | None:
+    """The variable that holds ``dim``'s text labels on disk (as :func:`encode` named it), or
+    None: ``<dim>_key`` when ``<dim>_label`` is the dataset's own, else ``<dim>_label``."""
+    if dim in dataset.variables:
+        return None
+    names = [f.format(dim) for f in LABELS]
+    found = [n for n in names if n in dataset.coords and dataset[n].dims == (dim,)
+             and dataset[n].dtype.kind in "USO"]
+    if names[1] in found and names[0] in dataset.variables:
+        return names[1]
+    return names[0] if names[0] in found else None
 
 
 def decode(dataset):
@@ -103,9 +122,8 @@ def decode(dataset):
         if var.attrs.get("units") == TIME_UNITS:
             var.attrs["units"] = "s"
     for dim in list(dataset.dims):
-        label = LABEL.format(dim)
-        if dim not in dataset.variables and label in dataset.coords \
-                and dataset[label].dims == (dim,) and dataset[label].dtype.kind in "USO":
+        label = _label_of(dataset, str(dim))
+        if label is not None:
             values = dataset[label]
             dataset = dataset.drop_vars(label).assign_coords(
                 {dim: (dim, values.values, values.attrs)})
