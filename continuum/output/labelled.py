@@ -99,8 +99,10 @@ def _field_coordinates(result, length: str) -> dict:
 def _dataset(result, data: dict, coords: dict):
     import xarray as xr
 
+    scene = result.metadata.get("scene") or "a footing"
     attrs = cf_attributes({
-        "Conventions": "CF-1.10", "source": "upliftlab continuum model (plane strain)",
+        "Conventions": "CF-1.10", "title": f"{result.kind} of {scene} (upliftlab continuum)",
+        "source": "upliftlab continuum model (plane strain)",
         "kind": result.kind, "width": result.width, **result.metadata})
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
