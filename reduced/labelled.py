@@ -4,7 +4,9 @@
 The dataset follows the CF conventions where they apply: a coordinate variable per dimension
 (``time`` in s, ``dof`` by the DOF's name, ``spring`` by its index with its ``position`` and
 ``kind`` as coordinates, ``component`` of the energy account by name), ``units`` and
-``long_name`` on every variable, and the contact state as ``flag_values``/``flag_meanings``.
+``long_name`` on every variable (the DOFs ``q``, lengths and a rotation, have no one unit:
+each DOF's is the coordinate ``dof_units``), and the contact state as
+``flag_values``/``flag_meanings``.
 The peaks are scalar variables with their units (``peak_theta``; the story drifts along
 ``story``); the ground motion as the run read it is in the dataset, on its own time axis
 ``record_time``. The run's information and its provenance are attributes, one per key
@@ -66,6 +68,12 @@ def _units(response) -> dict[str, str]:
             "rad": "rad", "stiffness": f"{u.force}/{u.length}", "energy": f"{u.force}*{u.length}"}
 
 
+def _dof_unit(name: str, units: dict) -> str:
+    """The unit of a DOF by its name (:class:`~.compatibility.DofMap`): ``rad`` for the base
+    rotation θ, ``1`` for sin θ (exact kinematics), the scene's length otherwise."""
+    return {"theta": "rad", "sin_theta": "1"}.get(name, units["length"])
+
+
 def _histories(response) -> dict:
     """:data:`SCALAR_HISTORIES` of this response: the sway only when it has a sway spring."""
     sways = response.model.sway_spring >= 0
@@ -82,10 +90,14 @@ def to_dataset(response):
     names = list(response.dofs.names)
     modes = sp.MODE_NAMES[sp.UPLIFT]
     coords = {
-        "time": ("time", response.time, {"units": "s", "long_name": "time", "axis": "T"}),
+        "time": ("time", response.time, {"units": "s", "long_name": "time",
+                                         "standard_name": "time", "axis": "T"}),
         "dof": ("dof", names, {"long_name": "degree of freedom"}),
+        "dof_units": ("dof", [_dof_unit(name, units) for name in names],
+                      {"long_name": "unit of the DOF (of its rate: this per s)"}),
         "spring": ("spring", np.arange(model.params.size),
-                   {"long_name": "spring index (stories first, then the sway spring if any, "
+                   {"units": "1",
+                    "long_name": "spring index (stories first, then the sway spring if any, "
                                  "then the foundation)"}),
         "position": ("spring", model.params["x"],
                      {"units": units["length"], "long_name": "spring position from O"}),
@@ -98,10 +110,13 @@ def to_dataset(response):
                    {"units": units[kind], "long_name": long})
             for name, (long, kind) in _histories(response).items()}
     data.update({
-        "q": (("time", "dof"), response.q, {"units": "scene units of each DOF",
-                                            "long_name": "DOFs relative to the ground"}),
-        "qd": (("time", "dof"), response.qd, {"units": "scene units of each DOF per s",
-                                              "long_name": "rates of the DOFs"}),
+        # lengths and a rotation in one array: no one unit, each DOF's is in dof_units
+        "q": (("time", "dof"), response.q, {
+            "long_name": "DOFs relative to the ground",
+            "comment": "each DOF in its unit, the coordinate dof_units"}),
+        "qd": (("time", "dof"), response.qd, {
+            "long_name": "rates of the DOFs",
+            "comment": "each DOF's rate in its unit (the coordinate dof_units) per s"}),
         "spring_deformation": (("time", "spring"), response.deformation,
                                {"units": units["length"], "long_name": "spring deformation"}),
         "spring_force": (("time", "spring"), response.force,
@@ -138,7 +153,7 @@ def _peaks(response, units) -> dict:
         if isinstance(value, list):
             data[f"peak_{name}"] = ("story", np.asarray(value, dtype=float), attrs)
             data["story"] = ("story", np.arange(1, len(value) + 1),
-                             {"long_name": "story, counted from the base"})
+                             {"units": "1", "long_name": "story, counted from the base"})
         else:
             data[f"peak_{name}"] = ((), value, attrs)
     return data

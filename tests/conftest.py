@@ -25,3 +25,28 @@ def elcentro():
             pytest.fail(f"CI needs the El Centro record: {exc}")
         pytest.skip(f"El Centro record not available: {exc}")
     return load_motion(ELCENTRO)
+
+
+@pytest.fixture(scope="session")
+def cf_failures():
+    """A function: the checks of the CF-1.10 conventions that a NetCDF file fails, as the IOOS
+    compliance checker (``compliance-checker --test cf:1.10``, with its CF standard-name table
+    and UDUNITS) finds them: ``(required, errors)``, the failing high-priority checks as
+    ``section: messages`` lines and the checks that raised instead of running."""
+    from compliance_checker.base import BaseCheck
+    from compliance_checker.suite import CheckSuite
+
+    CheckSuite.load_all_available_checkers()
+
+    def failures(path) -> tuple[list[str], list[str]]:
+        suite = CheckSuite()
+        ds = suite.load_dataset(str(path))
+        try:
+            groups, errors = suite.run_all(ds, ["cf:1.10"])["cf:1.10"]
+        finally:
+            ds.close()
+        required = [f"{g.name}: {g.msgs or [m for c in g.children for m in c.msgs]}"
+                    for g in groups if g.weight >= BaseCheck.HIGH and g.value[0] != g.value[1]]
+        return required, [f"{name}: {exc}" for name, (exc, _) in errors.items()]
+
+    return failures

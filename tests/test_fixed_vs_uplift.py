@@ -163,3 +163,14 @@ def test_the_folder_opens_again_as_the_same_labelled_data(study):
     r = numbers["spectra"]["short"]["C_shear"]
     assert fvu.spectrum_ranges(ds, "short")[("C", "shear")].min_ratio == r["min_ratio"]
     assert fvu.summarise(ds) == (folder / "summary.md").read_text()
+
+
+def test_its_files_pass_the_cf_checker(study, cf_failures):
+    # Reference: the IOOS compliance checker, cf:1.10 (tests/test_cf.py says which): no
+    # failing required check and no check that raised, in every NetCDF file of the folder.
+    from upliftlab.study_files import study_files
+
+    files = study_files(study.study.directory)
+    assert files
+    for name, path in files.items():
+        assert cf_failures(path) == ([], []), name

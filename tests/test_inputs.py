@@ -13,7 +13,7 @@ from upliftlab.cli import main as cli
 from upliftlab.motions import (Motion, cosine_pulse, find_motion, free_vibration, harmonic,
                                load_motion, read_motion, ricker_pulse, sine_pulse)
 from upliftlab.reduced import run
-from upliftlab.results import read_netcdf, write_netcdf
+from upliftlab.results import read_dataset, read_netcdf, write_netcdf
 from upliftlab.scenes import load_scene, packaged_scenes
 
 BAD_FIELDS = [
@@ -172,15 +172,18 @@ def test_netcdf_results_are_self_describing_and_read_by_xarray(tmp_path):
     assert path.read_bytes()[:8] == b"\x89HDF\r\n\x1a\n"  # NetCDF-4 is HDF5
     with h5py.File(path) as h5:
         assert h5["spring_force"].compression == "gzip" and h5["spring_force"].shuffle
-    ds = xr.open_dataset(path, engine="h5netcdf")
+    ds = read_dataset(path)  # xarray's reader, the CF time axis and labels as in memory
     np.testing.assert_array_equal(ds["u"].values, response.u)
     np.testing.assert_array_equal(ds.spring_force.sel(spring=3).values, response.force[:, 3])
     np.testing.assert_array_equal(ds.q.sel(dof="theta").values, response.theta)
     assert ds.attrs["Conventions"] == "CF-1.10" and ds["u"].attrs["units"] == "in"
     for name, var in ds.variables.items():
         assert var.attrs.get("long_name"), name
-        if var.dtype.kind == "f":
+        if var.dtype.kind == "f" and name not in ("q", "qd"):
             assert var.attrs.get("units"), name
+    # the DOFs are lengths and a rotation: no one unit; each DOF's is a coordinate
+    assert ds.dof_units.values.tolist() == ["in", "rad", "in"]
+    assert "dof_units" in ds.q.attrs["comment"] and "dof_units" in ds.qd.attrs["comment"]
     assert ds["spring_mode"].attrs["flag_meanings"].split() == [
         "separated", "contact", "yielding", "clipped"]
     assert ds["peak_u"].item() == response.peaks["u"] and ds["peak_u"].attrs["units"] == "in"

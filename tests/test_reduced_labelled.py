@@ -38,8 +38,14 @@ def test_every_variable_has_units_and_a_long_name(response):
     ds = response.to_xarray()
     for name in list(ds.data_vars) + ["time", "position"]:
         assert ds[name].attrs.get("long_name"), name
-        # CF: a flag variable carries flag_values and flag_meanings instead of units
-        assert ds[name].attrs.get("units") or "flag_values" in ds[name].attrs, name
+        # CF: a flag variable carries flag_values and flag_meanings instead of units; the DOFs
+        # (lengths and a rotation) one unit each, in the coordinate dof_units
+        per_dof = "dof_units" in ds[name].attrs.get("comment", "")
+        assert ds[name].attrs.get("units") or "flag_values" in ds[name].attrs or per_dof, name
+    assert [name for name in ds.data_vars if "units" not in ds[name].attrs
+            and "flag_values" not in ds[name].attrs] == ["q", "qd"]
+    # the wall's DOFs: the story x1 (length), θ (rad), V (length); the scene is in kip-in-s
+    assert ds.dof_units.values.tolist() == ["in", "rad", "in"]
     mode = ds.spring_mode.attrs
     assert len(mode["flag_values"]) == len(mode["flag_meanings"].split())
     assert "contact" in mode["flag_meanings"].split()

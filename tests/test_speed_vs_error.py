@@ -243,3 +243,14 @@ def test_a_refused_warm_up_does_not_make_the_point_an_error(monkeypatch):
     direct = run(svp.point_scene(point), integrator="events", dt=0.005, histories=False)
     assert out["theta"] == pytest.approx(direct.peaks["theta"], rel=1e-12)
     assert out["u"] == pytest.approx(direct.peaks["u"], rel=1e-12)
+
+
+def test_its_files_pass_the_cf_checker(study, cf_failures):
+    # Reference: the IOOS compliance checker, cf:1.10 (tests/test_cf.py says which): no
+    # failing required check and no check that raised, in every NetCDF file of the folder.
+    from upliftlab.study_files import study_files
+
+    files = study_files(study.study.directory)
+    assert files
+    for name, path in files.items():
+        assert cf_failures(path) == ([], []), name

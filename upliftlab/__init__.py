@@ -54,10 +54,11 @@ def _numba_cache_outside_the_package() -> None:
 _numba_cache_outside_the_package()
 
 _LAZY = {"InputError": "checks", "Motion": "motions", "load_motion": "motions",
-         "Scene": "scenes", "load_scene": "scenes", "open_study": "study_files"}
+         "Scene": "scenes", "load_scene": "scenes", "open_study": "study_files",
+         "open_result": "result_files"}
 
 __all__ = ["__version__", "InputError", "Motion", "load_motion", "Scene", "load_scene",
-           "open_study"]
+           "open_study", "open_result"]
 
 
 def __getattr__(name: str):

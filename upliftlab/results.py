@@ -2,9 +2,11 @@
 
 NetCDF files are NetCDF-4 (HDF5 underneath), written by xarray through h5netcdf with every
 array compressed (zlib, level 4, byte shuffle): a labelled :class:`xarray.Dataset` goes to disk
-as it is (:func:`write_dataset`), so ``xarray.open_dataset`` gives back the same coordinates,
-units and attributes, and ParaView, ncdump and netCDF4 read the files too. Attributes follow
-the CF conventions: numbers, text and flat lists only; a mapping of scalars becomes one
+as it is (:func:`write_dataset`), and :func:`read_dataset` gives back the same coordinates,
+units and attributes; ParaView, ncdump, netCDF4 and ``xarray.open_dataset`` read the files too.
+The files follow the CF-1.10 conventions (:mod:`upliftlab.cf` says what that changes on disk:
+the time axis, text labels, fill values, flag types) and open as tables split by dimension
+with :func:`upliftlab.open_result`. Attributes follow the CF conventions: numbers, text and flat lists only; a mapping of scalars becomes one
 attribute per key (``provenance_numpy``), and only a nested record that no coordinate or
 variable could hold (the scene as loaded) stays JSON text (:func:`cf_attributes`). Every writer
 goes through :func:`atomic_path`: the file appears complete or not at all.
@@ -21,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import cf
 from .paths import check_target, temporary_sibling
 
 __all__ = ["atomic_path", "staging_folder", "move_into_place", "write_dataset", "write_netcdf", "read_netcdf", "read_dataset",
@@ -137,16 +140,20 @@ def cf_attributes(attrs: Mapping[str, object] | None, prefix: str = "") -> dict[
 
 def write_dataset(path: str | os.PathLike, dataset) -> Path:
     """Write an :class:`xarray.Dataset` to ``path`` as compressed NetCDF-4 (module docstring);
-    atomic. Booleans are stored as int8 (NetCDF has no boolean type)."""
+    atomic. Booleans are stored as int8 (NetCDF has no boolean type); the time axis, the
+    coordinates' fill values and the flags' types as CF-1.10 wants them (:mod:`upliftlab.cf`)."""
     dataset = dataset.copy()
     for name in [n for n, var in dataset.variables.items() if var.dtype == bool]:
         dataset[name] = dataset[name].astype(np.int8)
     dataset.attrs = cf_attributes(dataset.attrs)
     for var in dataset.variables.values():
         var.attrs = cf_attributes(var.attrs)
+    dataset, cf_encoding = cf.encode(dataset)
     encoding = {name: {"zlib": True, "complevel": 4, "shuffle": True}
                 for name, var in dataset.variables.items()
                 if var.ndim and var.dtype.kind in "fiu"}
+    for name, extra in cf_encoding.items():
+        encoding[name] = {**encoding.get(name, {}), **extra}
     with atomic_path(path) as tmp:
         dataset.to_netcdf(tmp, engine="h5netcdf", format="NETCDF4", encoding=encoding)
     return Path(path)
@@ -174,10 +181,12 @@ def write_netcdf(path: str | os.PathLike, variables: Mapping[str, Variable],
 
 
 def read_dataset(path: str | os.PathLike):
-    """A result file as an :class:`xarray.Dataset`, loaded into memory (the file is closed)."""
+    """A result file as an :class:`xarray.Dataset`, loaded into memory (the file is closed),
+    as it was before it was written: its time axis in seconds (:func:`upliftlab.cf.decode`)."""
     import xarray as xr
 
-    return xr.load_dataset(path, engine="h5netcdf")
+    return cf.decode(xr.load_dataset(path, engine="h5netcdf", decode_times=False,
+                                     decode_timedelta=False))
 
 
 def read_netcdf(path: str | os.PathLike) -> tuple[dict[str, np.ndarray], dict[str, object]]:

@@ -16,7 +16,8 @@ from pathlib import Path
 import numpy as np
 
 from ...results import write_dataset
-from ..output.fields import element_average, max_shear_stress, result_metadata
+from ..output.fields import (element_average, field_coordinates, max_shear_stress,
+                             result_metadata)
 from ..contact.footing import OPEN
 
 __all__ = ["ENERGY", "DynamicResult", "Recorder"]
@@ -44,7 +45,10 @@ class DynamicResult:
     tolerance; HHT's dissipation and central differences' O(dt²) make it drift
     (:attr:`energy_balance_error`).
     Soil fields at ``snapshot_step``: ``displacement`` (nk, ndofs), ``plastic_strain`` and
-    ``max_shear_stress`` (nk, nelems) element averages. ``width`` B; ``metadata`` provenance.
+    ``max_shear_stress`` (nk, nelems) element averages, where they live: ``dof_xy``,
+    ``dof_direction``, ``element_xy``
+    (:func:`~upliftlab.continuum.output.fields.field_coordinates`). ``width`` B; ``metadata``
+    provenance.
     """
 
     #: The names of the energy account's columns (:data:`ENERGY`).
@@ -73,6 +77,9 @@ class DynamicResult:
     max_shear_stress: np.ndarray = field(repr=False)
     metadata: dict = field(default_factory=dict, repr=False)
     kind: str = "dynamic"
+    dof_xy: np.ndarray | None = field(default=None, repr=False)
+    dof_direction: np.ndarray | None = field(default=None, repr=False)
+    element_xy: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def snapshot_time(self) -> np.ndarray:
@@ -203,4 +210,4 @@ class Recorder:
             refactored=self.refactored[:n], energy=self.energy[:n], width=model.width,
             snapshot_step=self.snap_steps[snaps], displacement=self.disp[snaps],
             plastic_strain=self.eps[snaps], max_shear_stress=self.shear[snaps],
-            metadata=result_metadata(model, "dynamic", extra))
+            metadata=result_metadata(model, "dynamic", extra), **field_coordinates(model))

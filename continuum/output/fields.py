@@ -18,7 +18,8 @@ import numpy as np
 from ...checks import InputError
 from ...provenance import provenance
 
-__all__ = ["element_average", "max_shear_stress", "snapshot_steps", "field_snapshots",
+__all__ = ["element_average", "max_shear_stress", "snapshot_steps", "field_coordinates",
+           "field_snapshots",
            "result_metadata"]
 
 
@@ -55,13 +56,26 @@ def snapshot_steps(record_fields, steps: int) -> np.ndarray | None:
     return np.unique(np.where(chosen < 0, chosen + steps, chosen))
 
 
+def field_coordinates(model) -> dict:
+    """Where the soil fields live, as the keyword arguments of a result record: ``dof_xy``
+    (ndofs, 2) the (x, y) of each displacement DOF's node (length), ``dof_direction`` (ndofs)
+    0 for an x and 1 for a y displacement, and ``element_xy`` (nelems, 2) each element's
+    centroid (the area-weighted mean of its quadrature points)."""
+    basis = model.disc.basis
+    direction = np.zeros(basis.N, dtype=np.int8)
+    direction[basis.split_indices()[1]] = 1
+    return dict(dof_xy=np.asarray(basis.doflocs).T.copy(), dof_direction=direction,
+                element_xy=element_average(model, model.disc.qp_coordinates).T.copy())
+
+
 def field_snapshots(model, states, snapshots: np.ndarray | None) -> dict:
-    """The recorded fields of ``states`` at the steps ``snapshots`` (None: none), as the
-    keyword arguments of a result record."""
+    """The recorded fields of ``states`` at the steps ``snapshots`` (None: none) and where they
+    live (:func:`field_coordinates`), as the keyword arguments of a result record."""
     if snapshots is None:
         return {}
     chosen = [states[k] for k in snapshots]
     return dict(
+        **field_coordinates(model),
         snapshot_step=snapshots,
         displacement=np.array([s.u for s in chosen]),
         plastic_strain=np.array([element_average(model, s.material.equivalent_plastic_strain)

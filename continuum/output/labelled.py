@@ -6,9 +6,11 @@ CF conventions where they apply: coordinate variables ``time`` (s), ``node`` (th
 contact nodes, with their ``x``) and ``component`` (of the energy account); ``units`` and
 ``long_name`` on every variable; the contact state as ``flag_values``/``flag_meanings``. The soil
 fields of the snapshots are here too, as the model's DOF vector and element averages along
-``snapshot`` (the XDMF output draws them on the mesh); the run's metadata and provenance are
-attributes, one per key (:func:`~upliftlab.results.cf_attributes`). This dataset is what the
-results' ``save`` writes. Nothing here computes: every value is one the result holds.
+``snapshot``, located by the coordinates ``dof_x``, ``dof_y``, ``dof_direction`` and
+``element_x``, ``element_y`` (the XDMF output draws them on the mesh); the run's metadata
+and provenance are attributes, one per key (:func:`~upliftlab.results.cf_attributes`). This
+dataset is what the results' ``save`` writes (on disk as :mod:`upliftlab.cf` says; read back
+by :func:`upliftlab.open_result`). Nothing here computes: every value is one the result holds.
 """
 
 from __future__ import annotations
@@ -30,23 +32,24 @@ def _footing_and_contact(result, dim: str) -> tuple[dict, dict]:
     node = (dim, "node")
     data = {
         "u": (dim, result.footing[:, 0], {"units": length, "long_name": "footing sliding"}),
-        "v": (dim, result.footing[:, 1], {"units": length, "positive": "up",
+        "v": (dim, result.footing[:, 1], {"units": length,
                                            "long_name": "footing settlement (up positive)"}),
         "H": (dim, result.H, {"units": force, "long_name": "horizontal load on the footing"}),
-        "N": (dim, result.N, {"units": force, "positive": "compression",
-                              "long_name": "vertical load on the footing"}),
+        "N": (dim, result.N, {"units": force,
+                              "long_name": "vertical load on the footing (compression positive)"}),
         "M": (dim, result.M, {"units": moment, "long_name": "moment about the base centre"}),
         "contact_length": (dim, result.contact_length,
                            {"units": length, "long_name": "length of the base in contact"}),
-        "pressure": (node, result.pressure, {"units": units["stress"], "positive": "compression",
-                                             "long_name": "contact pressure"}),
+        "pressure": (node, result.pressure, {
+            "units": units["stress"], "long_name": "contact pressure (compression positive)"}),
         "gap": (node, result.gap, {"units": length, "long_name": "gap under the base"}),
         "status": (node, result.status.astype(np.int8), {
             "long_name": "contact state of a base node",
             "flag_values": np.array([OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE], np.int8),
             "flag_meanings": "open stick slip_positive slip_negative"}),
     }
-    coords = {"node": ("node", np.arange(result.x.size), {"long_name": "base node index"}),
+    coords = {"node": ("node", np.arange(result.x.size),
+                       {"units": "1", "long_name": "base node index"}),
               "x": ("node", result.x, {"units": length,
                                        "long_name": "position along the base from its centre"})}
     return data, coords
@@ -57,7 +60,7 @@ def _snapshots(result, data: dict, coords: dict, time_units: str, time_meaning: 
     units = result.metadata["units"]
     snap, step = "snapshot", "time" if "time" in coords else "step"
     coords["snapshot"] = ("snapshot", np.arange(result.snapshot_step.size),
-                          {"long_name": "snapshot index"})
+                          {"units": "1", "long_name": "snapshot index"})
     data.update({
         "snapshot_step": (snap, result.snapshot_step, {
             "units": "1", "long_name": f"index along {step} of the snapshot"}),
@@ -71,13 +74,35 @@ def _snapshots(result, data: dict, coords: dict, time_units: str, time_meaning: 
         "max_shear_stress": ((snap, "element"), result.max_shear_stress, {
             "units": units["stress"], "long_name": "element-averaged (s1 - s3)/2"}),
     })
+    if getattr(result, "dof_xy", None) is not None:
+        coords.update(_field_coordinates(result, units["length"]))
+
+
+def _field_coordinates(result, length: str) -> dict:
+    """Where the soil fields live: each DOF's node (x, y) and direction, each element's
+    centroid (x, y), as coordinates along ``dof`` and ``element``."""
+    where = "of the node of the displacement DOF"
+    return {
+        "dof_x": ("dof", result.dof_xy[:, 0], {"units": length, "long_name": f"x {where}"}),
+        "dof_y": ("dof", result.dof_xy[:, 1], {"units": length,
+                                              "long_name": f"y {where} (up; surface 0)"}),
+        "dof_direction": ("dof", result.dof_direction.astype(np.int8), {
+            "long_name": "direction of the displacement DOF",
+            "flag_values": np.array([0, 1], np.int8), "flag_meanings": "x y"}),
+        "element_x": ("element", result.element_xy[:, 0],
+                      {"units": length, "long_name": "x of the element's centroid"}),
+        "element_y": ("element", result.element_xy[:, 1],
+                      {"units": length, "long_name": "y of the element's centroid"}),
+    }
 
 
 def _dataset(result, data: dict, coords: dict):
     import xarray as xr
 
+    scene = result.metadata.get("scene") or "a footing"
     attrs = cf_attributes({
-        "Conventions": "CF-1.10", "source": "upliftlab continuum model (plane strain)",
+        "Conventions": "CF-1.10", "title": f"{result.kind} of {scene} (upliftlab continuum)",
+        "source": "upliftlab continuum model (plane strain)",
         "kind": result.kind, "width": result.width, **result.metadata})
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
@@ -104,7 +129,7 @@ def to_dataset(result):
                    {"units": f"{force}*{length}", "long_name": "cumulative energy account"}),
     })
     coords.update({"time": ("time", result.time, {"units": "s", "long_name": "time",
-                                                  "axis": "T"}),
+                                                  "standard_name": "time", "axis": "T"}),
                    "component": ("component", list(result.energy_names),
                                  {"long_name": "energy account"})})
     _snapshots(result, data, coords, "s", "time of the snapshot")
@@ -123,7 +148,7 @@ def path_to_dataset(path):
         "cuts": ("step", path.cuts, {"units": "1", "long_name": "step cuts"}),
     })
     coords.update({"step": ("step", np.arange(1, path.theta.size + 1),
-                            {"long_name": "load step"}),
+                            {"units": "1", "long_name": "load step"}),
                    "theta": ("step", path.theta, {"units": "rad",
                                                   "long_name": "footing rotation"})})
     if path.has_fields:

@@ -29,7 +29,10 @@ class StaticPath:
     ``snapshot_step`` (nk) the recorded step indices; ``displacement`` (nk, ndofs) the soil
     displacement DOF vector in the model basis's ordering (length); ``plastic_strain``
     (nk, nelems) the element-averaged equivalent plastic strain; ``max_shear_stress``
-    (nk, nelems) the element-averaged (σ1 − σ3)/2 (force/length²).
+    (nk, nelems) the element-averaged (σ1 − σ3)/2 (force/length²); where they live:
+    ``dof_xy`` (ndofs, 2) each DOF's node (length), ``dof_direction`` (0 x, 1 y) and
+    ``element_xy`` (nelems, 2) each element's centroid
+    (:func:`~upliftlab.continuum.output.fields.field_coordinates`).
     The properties ``time`` (the step number, a pseudo-time), ``footing`` (n, 3) and
     ``snapshot_time`` give a static path the shape of a dynamic result for
     :mod:`~upliftlab.continuum.output.series`.
@@ -56,6 +59,9 @@ class StaticPath:
     displacement: np.ndarray | None = field(default=None, repr=False)
     plastic_strain: np.ndarray | None = field(default=None, repr=False)
     max_shear_stress: np.ndarray | None = field(default=None, repr=False)
+    dof_xy: np.ndarray | None = field(default=None, repr=False)
+    dof_direction: np.ndarray | None = field(default=None, repr=False)
+    element_xy: np.ndarray | None = field(default=None, repr=False)
 
     def to_xarray(self):
         """The path as an :class:`xarray.Dataset` over its load step with CF attributes

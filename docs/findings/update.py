@@ -57,15 +57,15 @@ def plain(value):
 
 def netcdf_numbers(path: Path) -> dict:
     """The attributes and the small variables of a NetCDF file."""
-    import xarray as xr
+    from upliftlab.results import read_dataset
 
-    with xr.open_dataset(path) as ds:
-        out = {"attrs": {k: plain(v) for k, v in ds.attrs.items()
-                         if not (isinstance(v, str) and len(v) > 500)}}
-        for name, var in {**ds.coords, **ds.data_vars}.items():
-            if var.size <= MAX_VALUES and var.dtype.kind in "biufUSO":
-                out[str(name)] = plain(var.values)
-        return out
+    ds = read_dataset(path)  # as written: seconds, and labels as indexes (upliftlab.cf)
+    out = {"attrs": {k: plain(v) for k, v in ds.attrs.items()
+                     if not (isinstance(v, str) and len(v) > 500)}}
+    for name, var in {**ds.coords, **ds.data_vars}.items():
+        if var.size <= MAX_VALUES and var.dtype.kind in "biufUSO":
+            out[str(name)] = plain(var.values)
+    return out
 
 
 def study_name(folder: Path, summary: dict) -> str:
