@@ -31,7 +31,7 @@ from ..workers import SINGLE_THREAD_ENVIRONMENT, inherited_environment
 from . import kernels as kn
 from .integrators import StepPlan, method
 from .model import build_model
-from .peak_slots import decode_peaks
+from .peak_slots import decode_peaks, static_energy, weighted_plastic_settlement
 from .response import energy_balance_error
 from .run import KernelInputs, ground_acceleration, initial_conditions, integrate, plan_run
 
@@ -42,8 +42,10 @@ ENERGY = 100
 STATUS_NAMES = {kn.OK: "ok", kn.CHATTER: "chattering", kn.NONFINITE: "non-finite state",
                 kn.NO_CONVERGENCE: "Newton did not converge", kn.OVERTURNED: "overturned",
                 kn.STEP_UNDERFLOW: "step underflow", ENERGY: "energy balance beyond tolerance"}
-COLUMNS = ("u", "theta", "uplift_left", "residual_settlement", "base_shear",
-           "energy_balance_error", "dt")
+COLUMNS = ("u", "theta", "uplift_left", "weighted_plastic_settlement",
+           "final_vertical_position", "base_shear", "energy_balance_error", "dt")
+#: The columns defined only with a foundation of springs.
+_FOUNDATION_COLUMNS = ("uplift_left", "weighted_plastic_settlement", "final_vertical_position")
 
 
 @dataclass(frozen=True, eq=False)
@@ -51,8 +53,12 @@ class BatchResult:
     """One row per scene, in the order given (units of each scene).
 
     ``u`` peak superstructure deformation, ``theta`` peak base rotation, ``uplift_left`` peak
-    gap under the leftmost foundation spring, ``residual_settlement`` −V at the end (NaN without
-    a foundation), ``base_shear`` peak base shear, ``energy_balance_error`` as
+    gap under the leftmost foundation spring, ``weighted_plastic_settlement`` Σkε_p/Σk at the
+    end (down positive: :func:`~.peak_slots.weighted_plastic_settlement`),
+    ``final_vertical_position`` V at the end (up positive) (these three NaN without a
+    foundation; a batch keeps the ends of each run only, so it cannot tell whether a run ended
+    at rest and has no residual settlement), ``base_shear`` peak base shear,
+    ``energy_balance_error`` as
     :attr:`~.response.Response.energy_balance_error` over the first and last states, ``dt`` the
     step taken (s), ``status`` 0 when the run finished (:data:`STATUS_NAMES`): an overturned
     structure keeps its peaks up to the toppling; a failed run, or one whose energy balance is
@@ -63,7 +69,8 @@ class BatchResult:
     u: np.ndarray
     theta: np.ndarray
     uplift_left: np.ndarray
-    residual_settlement: np.ndarray
+    weighted_plastic_settlement: np.ndarray
+    final_vertical_position: np.ndarray
     base_shear: np.ndarray
     energy_balance_error: np.ndarray
     dt: np.ndarray
@@ -277,7 +284,7 @@ def _run_chunk(piece, accelerations, indices):
         if codes[r] in (kn.OK, kn.OVERTURNED):
             row = _row(job, out)
             defined = [v for v, name in zip(row, COLUMNS) if job.leftmost >= 0
-                       or name not in ("uplift_left", "residual_settlement")]
+                       or name not in _FOUNDATION_COLUMNS]
             if not row[COLUMNS.index("energy_balance_error")] <= job.energy_tolerance:
                 codes[r] = ENERGY
             elif np.all(np.isfinite(defined)):
@@ -300,12 +307,14 @@ def _row(job: _Job, out: dict) -> list[float]:
     """The values of :attr:`~.response.Response.peaks` that the batch keeps, from the same
     arrays (the first and last states, the tracked peaks)."""
     inputs = job.inputs
+    static = static_energy(inputs.params)
     pk = decode_peaks(out["raw_peaks"], stories=inputs.stories, rocks=inputs.theta >= 0,
-                      settles=inputs.v >= 0, exact=job.exact)
+                      settles=inputs.v >= 0, exact=job.exact, static=static)
     u, theta, shear = pk.u, pk.theta, pk.base_shear
-    uplift = settlement = math.nan
+    uplift = settlement = final_v = math.nan
     if job.leftmost >= 0:
         uplift = max(float(pk.opening[job.leftmost]), 0.0)
-        settlement = float(-out["q"][-1, inputs.v])
-    energy = max(energy_balance_error(out["energy"]), pk.energy_residual)
-    return [u, theta, uplift, settlement, shear, energy, job.plan.dt]
+        settlement = weighted_plastic_settlement(inputs.params, out["plastic"][-1])
+        final_v = float(out["q"][-1, inputs.v])
+    energy = max(energy_balance_error(out["energy"], static), pk.energy_residual)
+    return [u, theta, uplift, settlement, final_v, shear, energy, job.plan.dt]

@@ -50,7 +50,12 @@ PEAK_UNITS = {
     "uplift_left": ("peak uplift of the left edge", "length"),
     "uplift_max": ("peak uplift of any foundation spring", "length"),
     "spring_force_max": ("peak compression in a foundation spring", "force"),
-    "residual_settlement": ("settlement of O at the end of the run (down positive)", "length"),
+    "residual_settlement": ("settlement of O at the end of a run that ended at rest (down "
+                            "positive)", "length"),
+    "weighted_plastic_settlement": ("stiffness-weighted mean plastic settlement of the "
+                                    "springs at the end, sum(k*plastic)/sum(k)", "length"),
+    "final_vertical_position": ("vertical displacement V of O at the end of the run (up "
+                                "positive, moving or not)", "length"),
     "plastic_settlement_max": ("largest plastic settlement of a spring at the end", "length"),
     "plastic_settlement_mean": ("mean plastic settlement of the springs at the end", "length"),
     "min_contact_length": ("least length of the base in contact", "length"),

@@ -109,12 +109,9 @@ def decay_time(response: Response, fraction: float = 0.1) -> float:
 
 
 def at_rest(response: Response, fraction: float = 1e-3, tail: float = 0.1) -> bool:
-    """Whether a run ends at rest: its kinetic energy over the last ``tail`` of the run stays
-    below ``fraction`` of its largest. Only then is the final settlement a residual one."""
-    kinetic = response.energy[:, 1]
-    last = response.time >= response.time[-1] * (1.0 - tail)
-    peak = float(np.max(kinetic))
-    return peak == 0.0 or float(np.max(kinetic[last])) <= fraction * peak
+    """Whether a run ends at rest (:meth:`~.response.Response.at_rest`). Only then is the
+    final settlement a residual one."""
+    return response.at_rest(fraction, tail)
 
 
 def paper_study(out: Path, record: Motion | None, progress=None) -> dict:

@@ -18,7 +18,7 @@ import numpy as np
 from ..paths import check_target
 from ..results import write_csv, write_dataset
 from .model import ReducedModel
-from .peak_slots import TrackedPeaks, decode_peaks
+from .peak_slots import TrackedPeaks, decode_peaks, static_energy, weighted_plastic_settlement
 from .static import contact_lengths
 
 __all__ = ["Response", "ENERGY_NAMES", "energy_balance_error"]
@@ -203,9 +203,11 @@ class Response:
 
     @property
     def energy_balance_error(self) -> float:
-        """max |residual| / max(max input, initial energy): the balance's relative error, over
-        the stored states and the checks the integrator made between them."""
-        return max(energy_balance_error(self.energy), self.tracked.energy_residual)
+        """max |residual| / max(max input, initial energy, static strain energy of the bed):
+        the balance's relative error, over the stored states and the checks the integrator
+        made between them (:func:`energy_balance_error`)."""
+        return max(energy_balance_error(self.energy, static_energy(self.model.params)),
+                   self.tracked.energy_residual)
 
     @property
     def verdict(self) -> str:
@@ -219,15 +221,22 @@ class Response:
         """The peaks the integrator tracked at every step (:func:`~.peak_slots.decode_peaks`)."""
         return decode_peaks(self.raw_peaks, stories=self.model.story_count,
                             rocks=self.dofs.theta >= 0, settles=self.dofs.v >= 0,
-                            exact=self.model.exact, sways=self.dofs.sway >= 0)
+                            exact=self.model.exact, sways=self.dofs.sway >= 0,
+                            static=static_energy(self.model.params))
 
     @cached_property
     def peaks(self) -> dict[str, float]:
         """Peak values over the whole run, tracked at every step whatever is stored: u, θ, V,
         the gaps and (event stepper) the story shears and the overturning moment with cubic
         interpolation inside the steps; with the fixed-step integrators the shears and moment
-        at the step ends; the least contact length at the step ends. The residual
-        settlement and the plastic settlements are those of the last state."""
+        at the step ends; the least contact length at the step ends. Of the last state: the
+        plastic settlements (``weighted_plastic_settlement`` Σkε_p/Σk,
+        :func:`~.peak_slots.weighted_plastic_settlement`), ``final_vertical_position`` (V
+        at the end, up positive, whether or not the base still moves) and, only when the
+        run ends at rest (:meth:`at_rest`), ``residual_settlement`` (−V then, down
+        positive): the settlement the structure came to rest at. A run that ends still
+        moving has no residual settlement (before, its −V was reported as one: −0.42 in, an
+        upward "settlement", for an elastic wall still rocking)."""
         pk = self.tracked
         f = self.foundation_slice
         gap = pk.opening[f]
@@ -251,7 +260,11 @@ class Response:
             out["uplift_left"] = max(float(gap[self.leftmost]), 0.0)
             out["uplift_max"] = max(float(np.max(gap)), 0.0)
             out["spring_force_max"] = float(np.max(pk.force[f]))
-            out["residual_settlement"] = float(-self.V[-1])
+            out["final_vertical_position"] = float(self.V[-1])
+            out["weighted_plastic_settlement"] = weighted_plastic_settlement(
+                self.model.params, self.plastic[-1])
+            if self.at_rest():
+                out["residual_settlement"] = float(-self.V[-1])
             out["plastic_settlement_max"] = float(np.max(self.plastic[-1, f]))
             out["plastic_settlement_mean"] = float(np.mean(self.plastic[-1, f]))
             out["min_contact_length"] = pk.min_contact_length
@@ -281,7 +294,10 @@ class Response:
             out["peak_sway"] = pk["sway"]
         if "uplift_left" in pk:
             out["peak_uplift_left"] = pk["uplift_left"]
-            out["residual_settlement"] = pk["residual_settlement"]
+            out["at_rest"] = self.at_rest()
+            out["residual_settlement"] = pk.get("residual_settlement")  # None: still moving
+            out["final_vertical_position"] = pk["final_vertical_position"]
+            out["weighted_plastic_settlement"] = pk["weighted_plastic_settlement"]
         out["energy_balance_error"] = pk["energy_balance_error"]
         out["notes"] = list(self.info.get("notes", []))
         # valid JSON: an unbounded limit (implicit integrators) is null, never Infinity
@@ -307,8 +323,22 @@ class Response:
             text += f", peak sway = {s['peak_sway']:.4g} {u.length}"
         if "peak_uplift_left" in s:
             text += (f", uplift of leftmost spring = {s['peak_uplift_left']:.4g} {u.length}, "
-                     f"residual settlement = {s['residual_settlement']:.4g} {u.length}")
+                     + (f"residual settlement (at rest) = {s['residual_settlement']:.4g} "
+                        f"{u.length}" if s["residual_settlement"] is not None else
+                        f"still moving at the end (final V = "
+                        f"{s['final_vertical_position']:.4g} {u.length}, up positive)"))
         return text
+
+    def at_rest(self, fraction: float = 1e-3, tail: float = 0.1) -> bool:
+        """Whether the run ends at rest: its kinetic energy over the last ``tail`` of the run
+        (at least ten stored states) stays below ``fraction`` of its largest. Only then is
+        −V at the end a residual settlement. A run stored at its ends only cannot tell."""
+        kinetic = self.energy[:, 1]
+        last = self.time >= self.time[-1] * (1.0 - tail)
+        if np.count_nonzero(last) < 10:
+            return False
+        peak = float(np.max(kinetic))
+        return peak == 0.0 or float(np.max(kinetic[last])) <= fraction * peak
 
     # ---- labelled data ----------------------------------------------------------------------
     def to_xarray(self):
@@ -349,12 +379,13 @@ class Response:
         return written
 
 
-def energy_balance_error(energy: np.ndarray) -> float:
+def energy_balance_error(energy: np.ndarray, static: float = 0.0) -> float:
     """Relative error of an energy balance (rows of cumulative :data:`ENERGY_NAMES`): the
-    largest residual, stored + dissipated − input − initial total, over the larger of the
-    largest input and the initial energy."""
+    largest residual, stored + dissipated − input − initial total, over the largest of the
+    largest input, the initial energy and ``static``, the bed's static strain energy
+    (:func:`~.peak_slots.static_energy`)."""
     total = energy[:, 1:].sum(axis=1) - energy[:, 0]
-    scale = max(np.max(np.abs(energy[:, 0])), abs(energy[0, 1:].sum()), 1e-300)
+    scale = max(np.max(np.abs(energy[:, 0])), abs(energy[0, 1:].sum()), static, 1e-300)
     return float(np.max(np.abs(total - total[0])) / scale)
 
 

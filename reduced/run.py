@@ -177,7 +177,8 @@ def check_response(response: Response) -> None:
                                f"({', '.join(bad) or 'state'}); nothing is reported")
     if not error <= tol:
         raise EnergyBalanceError(
-            f"{where}: the energy balance closes to {error:.3g} of the input, beyond "
+            f"{where}: the energy balance closes to {error:.3g} of its scale (the largest of "
+            "the input, the initial energy and the bed's static strain energy), beyond "
             f"analysis.energy_tolerance = {tol:g}; refine the step (analysis.dt, or "
             "analysis.rtol for the event stepper) or relax the tolerance")
 

@@ -177,7 +177,10 @@ def test_cli_json(capsys):
 
 
 @pytest.mark.parametrize("args, words", [
-    (["--quantity", "peak_x"], ["--quantity = 'peak_x'", "'peak_u'", "'residual_settlement'"]),
+    (["--quantity", "peak_x"], ["--quantity = 'peak_x'", "'peak_u'",
+                                    "'weighted_plastic_settlement'"]),
+    (["--quantity", "residual_settlement"], ["--quantity = 'residual_settlement'", "to rest",
+                                             "'weighted_plastic_settlement'"]),
     (["--tol", "150%"], ["--tol = 150%", "(0 %, 100 %)"]),
     (["--tol", "0%"], ["--tol = 0%", "(0 %, 100 %)"]),
     (["--tol", "-0.1"], ["--tol = -0.1", "(0 %, 100 %)"]),

@@ -9,7 +9,7 @@ an override that has no effect (a motion override on a pushover, ``motion.dt`` o
 that has its own step) is an error.
 
 The list is fixed (no randomness): the fields are read from the packaged scene files, and
-every field gets the same eleven mutations (:data:`MUTATIONS`), each table one unknown key.
+every field gets the same twelve mutations (:data:`MUTATIONS`), each table one unknown key.
 Physically admissible means, for the reduced model, an energy balance closed to 1 % and
 |θ| < 1 rad; for the continuum pushover of a tensionless frictionless footing,
 0 <= M/(N B) <= 1/2 (the rigid-plastic limit of a footing on a tensionless interface:
@@ -45,8 +45,8 @@ from upliftlab.cli import main as cli_main
 # ---------------------------------------------------------------------------------------------
 
 #: How each field is mutated: name -> TOML text (None: computed from the field's value).
-MUTATIONS = ("wrong_type", "negative", "zero", "nan", "inf", "huge", "tiny", "empty", "list",
-             "missing", "unknown")
+MUTATIONS = ("wrong_type", "negative", "zero", "nan", "inf", "huge", "tiny", "subnormal",
+             "empty", "list", "missing", "unknown")
 
 _SCENE_DIR = Path(__file__).resolve().parent.parent / "scenes"
 
@@ -121,7 +121,7 @@ def _mutation(kind: str, value) -> str:
     if kind == "unknown":
         return "true" if numeric else '"bogus"'
     return {"zero": "0", "nan": "nan", "inf": "inf", "huge": "1e300", "tiny": "1e-300",
-            "empty": '""', "list": "[1, 2]", "missing": ""}[kind]
+            "subnormal": "1e-310", "empty": '""', "list": "[1, 2]", "missing": ""}[kind]
 
 
 def _no_effect(label: str, key: str) -> bool:
@@ -334,6 +334,60 @@ def file_cases() -> list[Case]:
         c.append(Case(f"option:run:{name}", (*_RUN, "--out", path), "refuse", setup=setup))
         c.append(Case(f"option:continuum:{name}", (*_PUSH, "--steps", "3", "--out", path),
                       "refuse", "pushover", setup=setup))
+    return c + issue_37_cases()
+
+
+_AT2_OK = _GOOD_AT2.decode()
+_FRAME = ("run", "three_story_frame", "--set", "analysis.duration=0.2", "--no-figure", "--json")
+
+
+def issue_37_cases() -> list[Case]:
+    """The classes of issue 37, each through several cases: malformed PEER headers, record
+    data and list indices not in ASCII digits, output folders that cannot be one and
+    scheduler addresses that are not one through every command that takes them, and tiny
+    (valid) motions that must run."""
+    c = []
+    headers = {"dt_two_points": "NPTS=5, DT=1.2.3", "dt_dot": "NPTS=5, DT=.",
+               "dt_letter": "NPTS=5, DT=e", "npts_5000_digits": "NPTS=" + "9" * 5000 + ", DT=.02",
+               "npts_arabic_indic": "NPTS=\u0665, DT=.02", "dt_trailing": "NPTS=5, DT=.02abc",
+               "npts_twice": "NPTS=5, DT=.02, NPTS=9", "dt_arabic_indic": "NPTS=5, DT=.0\u0662"}
+    for name, header in headers.items():
+        text = _AT2_OK.replace("NPTS=   5, DT=   .0200 SEC", header.encode().decode(
+            "unicode_escape"))
+        c.append(_motion_case(f"at2_{name}", text.encode(), suffix=".AT2"))
+    data = {"arabic_indic": "0 0\n0.02 \u0660.\u0661\n0.04 0\n",
+            "underscore": "0 0\n0.02 0.1\n0.04 1_0\n",
+            "fullwidth": "0 0\n0.02 \uff11\n0.04 0\n"}
+    for name, text in data.items():
+        c.append(_motion_case(f"data_{name}", text.encode().decode("unicode_escape").encode()))
+    c.append(_motion_case("tiny_record", _TWO_COLUMNS, "run", ("--set", "motion.scale=1e-100")))
+    for name, index in (("superscript", "\u00b2"), ("arabic_indic", "\u0660"),
+                        ("fullwidth", "\uff11"), ("long", "9" * 40)):
+        index = index.encode().decode("unicode_escape")
+        c.append(Case(f"option:set_index_{name}", (*_FRAME, "--set",
+                                                    f"structure.story.{index}.weight=1",
+                                                    "--out", "{out}"), "refuse"))
+    c.append(Case("option:wall_tiny_velocity", ("run", "wall_free", "--case", "e07", "--set",
+                                                 "motion.velocity=1e-200", "--set",
+                                                 "motion.duration=0.5", "--no-figure", "--json",
+                                                 "--out", "{out}"), "run"))
+    commands = {"run": _RUN, "paper": ("paper",), "report": ("report", "--fast"),
+                "study_verification": ("study", "verification"),
+                "study_speed_vs_error": ("study", "speed_vs_error", "--fast"),
+                "opensees": ("opensees", "wall_free", "--case", "e10")}
+    outs = {"name_300": "a" * 300, "newline": "{tmp}/x\ny", "nul": "{tmp}/n\x00l",
+            "path_5000": "/".join(["d" * 200] * 25)}
+    for command, argv in commands.items():
+        for name, out in outs.items():
+            out = out.encode().decode("unicode_escape")
+            c.append(Case(f"option:{command}:out_{name}", (*argv, "--out", out), "refuse",
+                          "none"))
+    for command, argv in (("report", ("report", "--fast")),
+                          ("study", ("study", "verification"))):
+        for name, address in (("words", "not an address"), ("colons", "::::"),
+                              ("port", "tcp://h:99999"), ("scheme", "http://h:1")):
+            c.append(Case(f"option:{command}:scheduler_{name}",
+                          (*argv, "--scheduler", address, "--out", "{out}"), "refuse", "none"))
     return c
 
 
@@ -472,7 +526,16 @@ def run_case(case: Case, tmp: Path) -> tuple[str, str]:
 #: and failed there with exit 3, 7 usage errors of many lines, 5 NaN or inadmissible results,
 #: 2 hangs). After the fixes: 1135 refused, 99 ran, 0 failed.
 BEFORE = {"refused": 1005, "ran": 128, "failed": 101}
-AFTER = {"refused": 1135, "ran": 99, "failed": 0}
+#: The cases issue 37 added: the subnormal mutation of every field (100) and
+#: :func:`issue_37_cases` (49). On the code before its fixes (c6add74), of the first 130 of
+#: them 10 failed (tracebacks from DT=1.2.3, DT=., DT=e, NPTS of 5000 digits and a study's
+#: --out of 300 characters; DT=.02abc, NPTS given twice and data '1_0' ran; a record scaled by
+#: 1e-100 and a wall at 1e-200 in/s ended with exit 3 on the energy check); the study and
+#: report folder and scheduler cases after them tracebacked or started their work (counted by
+#: hand, not by the list).
+ADDED_37 = 149
+#: Every case on this code (``python tests/test_fuzz.py``): 1383 cases.
+AFTER = {"refused": 1283, "ran": 100, "failed": 0}
 
 
 #: Limits of the child process that runs the fuzz list: a case that hangs or allocates without
@@ -510,7 +573,7 @@ def test_every_fuzz_case_runs_admissibly_or_is_refused_in_one_line(outcomes):
 
 
 def test_the_fuzz_list_is_fixed_and_covers_every_field(outcomes):
-    """The list is what the issue asks for: eleven mutations of every field of the three
+    """The list is what the issue asks for: twelve mutations of every field of the three
     scenes (four commands), plus files and options; counted exactly."""
     counts = {label: sum(1 for k in outcomes if k.startswith(label + ":"))
               for label, *_ in TARGETS}
@@ -521,7 +584,8 @@ def test_the_fuzz_list_is_fixed_and_covers_every_field(outcomes):
     assert sum(counts.values()) >= 1000
     assert len(outcomes) - sum(counts.values()) >= 100
     # the recorded counts were measured on exactly this list: a changed list needs them again
-    assert sum(BEFORE.values()) == sum(AFTER.values()) == len(outcomes)
+    assert sum(BEFORE.values()) + ADDED_37 == sum(AFTER.values()) == len(outcomes)
+    assert len(issue_37_cases()) + sum(k.endswith(":subnormal") for k in outcomes) == ADDED_37
 
 
 # ---------------------------------------------------------------------------------------------

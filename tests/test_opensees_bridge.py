@@ -212,7 +212,7 @@ def test_run_json_has_the_same_keys_for_both(opensees, tmp_path, capsys):
     data = json.loads(lines[-1])
     assert set(data) == {"upliftlab", "opensees"}
     keys = {"peak_u", "peak_theta", "peak_base_shear", "peak_uplift_left",
-            "residual_settlement", "dt", "runtime_s", "verdict"}
+            "final_vertical_position", "dt", "runtime_s", "verdict"}
     assert keys <= set(data["upliftlab"]) and set(data["upliftlab"]) == set(data["opensees"])
     assert all(math.isfinite(data["opensees"][k]) for k in keys - {"verdict"})
     for quantity in ("peak_u", "peak_theta"):

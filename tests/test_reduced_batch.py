@@ -54,7 +54,8 @@ def _expected(scene) -> dict:
     r = run(scene, histories=False)
     pk = r.peaks
     return {"u": pk["u"], "theta": pk["theta"], "uplift_left": pk.get("uplift_left", math.nan),
-            "residual_settlement": pk.get("residual_settlement", math.nan),
+            "weighted_plastic_settlement": pk.get("weighted_plastic_settlement", math.nan),
+            "final_vertical_position": pk.get("final_vertical_position", math.nan),
             "base_shear": pk["base_shear"], "energy_balance_error": pk["energy_balance_error"],
             "dt": r.info["dt"]}
 

@@ -6,7 +6,9 @@ run used to end in a memory error after minutes, or run for days with no end in 
 the steps and the memory of a run are estimated from its sizes before any of it is done, and
 a run above ``analysis.max_steps`` steps or ``analysis.max_memory`` GiB is refused with an
 :class:`~upliftlab.checks.InputError` that says what it would cost and which key raises the
-limit (``--set analysis.max_steps=...``).
+limit (``--set analysis.max_steps=...``). A run estimated to take more than
+:data:`LONG_RUN_SECONDS` is announced with its estimated time before it starts (the event
+stepper's time grows as the square of the springs: :data:`EVENTS_PER_SPRING_SECOND`).
 
 The memory is that of the arrays the run keeps (histories, snapshots, a factorisation's fill,
 estimated); the time is a rough figure from per-step rates measured on the project's 2-core
@@ -20,6 +22,7 @@ import math
 from dataclasses import dataclass
 
 from .checks import InputError
+from .log import logger
 
 __all__ = ["Cost", "check", "reduced_cost", "continuum_cost", "GIB"]
 
@@ -28,6 +31,14 @@ GIB = 2.0 ** 30
 #: Seconds per step of the reduced model: a fixed part and a part per spring (event stepper:
 #: 6 µs per step with 40 springs, 22 µs with 160).
 REDUCED_SECONDS_PER_STEP = (1.0e-6, 1.3e-7)
+#: Switches (separations and recontacts) the event stepper locates per spring and second of
+#: a rocking run (the figure its event log is sized by): each is a step of its own over every
+#: spring, so the run's time grows as springs² (measured on wall_free e07, 3 s: 250, 1000 and
+#: 4000 springs took 0.37, 5.2 and 133 s; this estimate gives 0.5, 7.9 and 125 s).
+EVENTS_PER_SPRING_SECOND = 20
+#: A run estimated to take longer than this (s) is announced with its estimate (a warning on
+#: stderr) before it starts.
+LONG_RUN_SECONDS = 600.0
 #: Seconds per step and DOF of the continuum (dynamics: 509 s for 8000 steps on 20 160 DOFs;
 #: a pushover step takes several Newton iterations: 31.5 s for 42 steps on 20 160 DOFs).
 CONTINUUM_SECONDS_PER_DOF_STEP = {"dynamic": 3.2e-6, "pushover": 3.7e-5}
@@ -73,6 +84,9 @@ def check(cost: Cost, max_steps: int, max_memory: float) -> Cost:
         raise InputError(f"analysis.max_memory = {max_memory:g} GiB: {about}; raise it "
                          f"(--set analysis.max_memory={need:g}) if the machine has the "
                          "memory, or make the run smaller")
+    if cost.seconds > LONG_RUN_SECONDS:
+        logger("budget").warning(f"upliftlab: warning: {about} (estimated before it starts; "
+                                 "fewer springs or a shorter duration make it shorter)")
     return cost
 
 
@@ -84,11 +98,14 @@ def reduced_cost(*, steps: int, step: float, stride: int, dofs: int, springs: in
     outputs = (steps // max(stride, 1) + 1) if histories else 2
     per_output = 8.0 * (2 * dofs + 6 * springs + 8)  # q, q̇, spring arrays, derived, energy
     duration = steps * step
-    log = 40.0 * max(1000, 20 * springs * int(duration + 1)) if events else 0.0
+    switches = EVENTS_PER_SPRING_SECOND * springs * int(duration + 1) if events else 0
+    log = 40.0 * max(1000, switches) if events else 0.0
     memory = outputs * per_output + log + 8.0 * dofs * springs + 200.0 * springs
     a, b = REDUCED_SECONDS_PER_STEP
+    located = f", up to {switches:.3g} located switches" if events else ""
     return Cost("the reduced run", int(steps), float(step), memory,
-                steps * (a + b * springs), f"{springs} springs, {dofs} DOFs")
+                (steps + switches) * (a + b * springs), f"{springs} springs, {dofs} DOFs"
+                + located)
 
 
 def continuum_cost(*, analysis: str, steps: int, step: float, dofs: int,

@@ -7,6 +7,8 @@ Every scene, motion and option passes through these before any work starts. The 
 from __future__ import annotations
 
 import math
+import re
+import sys
 from collections.abc import Iterable, Sequence
 
 import numpy as np
@@ -21,7 +23,16 @@ __all__ = [
     "one_of",
     "integer_at_least",
     "boolean",
+    "not_subnormal",
+    "scheduler_address",
+    "SMALLEST_NORMAL",
 ]
+
+#: The smallest positive normal double (2.2e-308). Below it a number is subnormal: it has lost
+#: precision, and no physical quantity in any unit system of a scene is that small, so a value
+#: 0 < |x| < SMALLEST_NORMAL is a mistake, never a quantity (it would make a matrix singular or
+#: a response all zeros instead of leaving a term out).
+SMALLEST_NORMAL = sys.float_info.min
 
 
 class InputError(ValueError):
@@ -35,6 +46,15 @@ def _number(field: str, value) -> float:
     value = _as_float(field, value)
     if math.isnan(value):
         raise InputError(f"{field} = nan: expected a finite number")
+    return not_subnormal(field, value)
+
+
+def not_subnormal(field: str, value: float) -> float:
+    """``value``, unless it is subnormal (0 < |value| < :data:`SMALLEST_NORMAL`)."""
+    if value != 0.0 and abs(value) < SMALLEST_NORMAL:
+        raise InputError(f"{field} = {value:g}: not zero, yet a subnormal number (0 < |value| < "
+                         f"{SMALLEST_NORMAL:.3g}), below anything physical; give 0 or a value "
+                         "in the field's range")
     return value
 
 
@@ -130,3 +150,27 @@ def boolean(field: str, value) -> bool:
     if not isinstance(value, bool):
         raise InputError(f"{field} = {value!r}: expected true or false")
     return value
+
+
+#: A Dask scheduler address: an optional protocol, a host name, IPv4 address or bracketed IPv6
+#: address, and an optional port.
+_ADDRESS = re.compile(r"(?:(?P<scheme>tcp|tls|ws|wss|ucx)://)?"
+                      r"(?P<host>\[[0-9A-Fa-f:.]+\]"
+                      r"|[A-Za-z0-9](?:[A-Za-z0-9.-]{0,251}[A-Za-z0-9])?)"
+                      r"(?::(?P<port>[0-9]{1,5}))?/?", re.ASCII)
+
+
+def scheduler_address(field: str, value) -> str:
+    """A Dask scheduler address, ``host:port`` or ``tcp://host:port`` (also ``tls``, ``ws``,
+    ``wss``, ``ucx``; the port 1–65535 optional), checked before any work: an address that is
+    not one used to start the work and fail (or hang) when the first sweep connected."""
+    valid = "expected a Dask scheduler address such as tcp://host:8786 or host:8786"
+    if not isinstance(value, str):
+        raise InputError(f"{field} = {value!r}: {valid}")
+    match = _ADDRESS.fullmatch(value.strip())
+    if not value.strip() or match is None:
+        raise InputError(f"{field} = {value[:80]!r}: {valid}")
+    port = match.group("port")
+    if port is not None and not 1 <= int(port) <= 65535:
+        raise InputError(f"{field} = {value!r}: port {port} is not in 1..65535; {valid}")
+    return value.strip()

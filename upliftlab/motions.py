@@ -280,8 +280,29 @@ def _read_motion_cached(given: str, resolved: str, mtime_ns: int, size: int,
     return Motion(name=path.stem, dt=step, acceleration=acc, source=resolved)
 
 
+def _floats(line: str) -> bool:
+    """Whether ``line`` is blank-separated numbers that ``float`` reads."""
+    try:
+        [float(f) for f in line.split()]
+    except ValueError:
+        return False
+    return True
+
+
+def _ascii_numbers(lines: list[str], path: Path, first: int = 0) -> None:
+    """Refuse a data line (from index ``first``, before a ``#``) with characters that are
+    not ASCII numbers: ``float`` reads '٠.١' (Arabic-Indic digits) and '1_0' as numbers, so a
+    record in another script, or with a typo, would run as a different record."""
+    for number, line in enumerate(lines[first:], start=first + 1):
+        body = line.split("#", 1)[0]
+        if not _DATA_LINE.fullmatch(body):
+            raise InputError(f"motion file {str(path)!r} line {number}: {body.strip()[:60]!r} "
+                             "is not numbers written in the digits 0-9")
+
+
 def _parse_columns(text: str, path: Path, dt: float | None) -> tuple[float, np.ndarray]:
     rows, lines = [], []
+    _ascii_numbers(text.splitlines(), path)
     for number, line in enumerate(text.splitlines(), start=1):
         body = line.split("#", 1)[0].strip()
         if not body:
@@ -346,8 +367,16 @@ def _uniform_step(time: np.ndarray, path: Path, lines: list[int]) -> float:
     return float(step)
 
 
-_AT2_HEADER = re.compile(r"NPTS\s*=\s*(\d+)\s*,?\s*DT\s*=\s*([0-9.eE+-]+)", re.IGNORECASE)
-_AT2_HEADER_NEW = re.compile(r"^\s*(\d+)\s+([0-9.eE+-]+)\s+NPTS", re.IGNORECASE)
+#: A number as a PEER header writes it: ASCII digits only (``\\d`` and ``float`` also take
+#: other scripts' digits), a whole word (not the start of ``.02abc`` or ``1.2.3``).
+_COUNT = r"([0-9]{1,12})(?=[\s,]|$)"
+_REAL = r"([+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]{1,3})?)(?=[\s,]|$)"
+_AT2_HEADER = re.compile(r"NPTS\s*=\s*" + _COUNT + r"\s*,?\s*DT\s*=\s*" + _REAL,
+                         re.IGNORECASE | re.ASCII)
+_AT2_HEADER_NEW = re.compile(r"^\s*" + _COUNT + r"\s+" + _REAL + r"\s+NPTS",
+                             re.IGNORECASE | re.ASCII)
+#: A data line of a record: ASCII numbers, separated by blanks or commas.
+_DATA_LINE = re.compile(r"[0-9eE+\-., \t\r]*|.*(?:nan|inf).*", re.IGNORECASE | re.ASCII)
 
 
 def _parse_at2(text: str, path: Path) -> tuple[float, np.ndarray]:
@@ -355,22 +384,26 @@ def _parse_at2(text: str, path: Path) -> tuple[float, np.ndarray]:
     if len(lines) < 5:
         raise InputError(f"motion file {str(path)!r}: too short for a PEER .AT2 record")
     header = lines[3]
-    match = _AT2_HEADER.search(header) or _AT2_HEADER_NEW.search(header)
-    if not match:
-        raise InputError(f"motion file {str(path)!r} line 4: {header.strip()!r} does not give "
-                         "NPTS and DT as a PEER .AT2 header does")
-    npts, step = int(match.group(1)), float(match.group(2))
+    matches = [m for m in (_AT2_HEADER.search(header), _AT2_HEADER_NEW.search(header)) if m]
+    if len(matches) != 1 or len(re.findall(r"NPTS", header, re.IGNORECASE)) != 1:
+        raise InputError(f"motion file {str(path)!r} line 4: {header.strip()[:80]!r} does not "
+                         "give NPTS and DT once each, in the digits 0-9, as a PEER .AT2 header "
+                         "does (e.g. 'NPTS=  2000, DT=   .0100 SEC')")
+    npts, step = int(matches[0].group(1)), float(matches[0].group(2))
+    _ascii_numbers(lines, path, first=4)
     try:
         values = np.array(" ".join(lines[4:]).split(), dtype=float)
     except ValueError:
-        raise InputError(f"motion file {str(path)!r}: the data after line 4 is not numbers") from None
+        number = next(i for i, line in enumerate(lines[4:], start=5) if not _floats(line))
+        raise InputError(f"motion file {str(path)!r} line {number}: "
+                         f"{lines[number - 1].strip()[:60]!r} is not numbers") from None
     if values.size != npts:
         raise InputError(f"motion file {str(path)!r}: header says NPTS={npts} but the file "
                          f"holds {values.size} values")
     if not np.all(np.isfinite(values)):
         i = int(np.flatnonzero(~np.isfinite(values))[0])
         raise InputError(f"motion file {str(path)!r}: value {i} is {values[i]}, not finite")
-    return positive("DT", step), values
+    return positive(f"motion file {str(path)!r} line 4: DT", step), values
 
 
 def free_vibration(duration: float, dt: float = 0.01, *, velocity: float = 0.0,

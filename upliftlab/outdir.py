@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .checks import InputError
-from .paths import pop_root, push_root
+from .paths import check_folder_name, pop_root, push_root
 
 __all__ = ["MARKER", "LOCK", "Claim", "claim", "settings_digest", "read_marker"]
 
@@ -158,7 +158,7 @@ def claim(out: str | os.PathLike | None, default: str | os.PathLike, *, settings
     ``settings`` (module docstring). Nothing is computed before this returns."""
     if out is not None and (not isinstance(out, (str, os.PathLike)) or not str(out).strip()):
         raise InputError(f"{option} = {out!r}: expected a folder path")
-    path = Path(out if out is not None else default).expanduser()
+    path = check_folder_name(out if out is not None else default, option)
     try:
         return _claim(path, settings, force, option)
     except OSError as exc:  # a name too long, a folder not reachable: one line, not a trace

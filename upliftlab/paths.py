@@ -31,8 +31,8 @@ from pathlib import Path
 
 from .checks import InputError
 
-__all__ = ["MAX_COMPONENT", "path_component", "check_target", "output_root",
-           "temporary_sibling", "TEMPORARY_TAG"]
+__all__ = ["MAX_COMPONENT", "path_component", "check_folder_name", "check_target",
+           "output_root", "temporary_sibling", "TEMPORARY_TAG"]
 
 #: Longest name upliftlab turns into a path component (a file name may hold 255 bytes; the
 #: name is joined with a case, a suffix and a temporary file's tag).
@@ -42,6 +42,7 @@ MAX_COMPONENT = 100
 TEMPORARY_TAG = "upliftlab"
 
 _UNSAFE = re.compile(r"[\x00-\x1f\x7f/\\]")
+_CONTROL_CHAR = re.compile(r"[\x00-\x1f\x7f]")
 _ROOTS: list[Path] = []
 _ROOTS_LOCK = threading.Lock()
 
@@ -57,6 +58,38 @@ def path_component(name: str, field: str) -> str:
     if _UNSAFE.search(name) or name.startswith(".") or name.strip() != name:
         raise InputError(f"{field} = {name!r}: cannot name a file; {valid}")
     return name
+
+
+def check_folder_name(path: str | os.PathLike, option: str = "--out") -> Path:
+    """``path`` as a folder path, checked by its text alone before any work: no control
+    character (NUL, a line break, a tab, …), no component longer than the file system's
+    NAME_MAX and no path longer than its PATH_MAX (:func:`_limits`)."""
+    if not isinstance(path, (str, os.PathLike)) or not str(path).strip():
+        raise InputError(f"{option} = {path!r}: expected a folder path")
+    text = str(path)
+    if _CONTROL_CHAR.search(text):
+        raise InputError(f"{option} = {text[:80]!r}: a folder name with a control character "
+                         "(NUL, a line break, a tab, …) is refused")
+    name_max, path_max = _limits()
+    longest = max(Path(text).expanduser().parts, key=lambda p: len(os.fsencode(p)), default="")
+    if len(os.fsencode(longest)) > name_max:
+        raise InputError(f"{option} = {text[:80]!r}: a folder name of "
+                         f"{len(os.fsencode(longest))} bytes; the file system allows at most "
+                         f"{name_max} in one name")
+    full = len(os.fsencode(os.path.abspath(os.path.expanduser(text))))
+    if full >= path_max:
+        raise InputError(f"{option} = {text[:80]!r}: a path of {full} bytes; the file system "
+                         f"allows fewer than {path_max}")
+    return Path(text).expanduser()
+
+
+def _limits() -> tuple[int, int]:
+    """(NAME_MAX, PATH_MAX) of the file system of the working folder (255 and 4096 where
+    it does not say)."""
+    try:
+        return os.pathconf(".", "PC_NAME_MAX"), os.pathconf(".", "PC_PATH_MAX")
+    except (OSError, ValueError, AttributeError):
+        return 255, 4096
 
 
 @contextlib.contextmanager

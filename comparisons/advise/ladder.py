@@ -36,8 +36,12 @@ from .continuum import (COST_MODEL, NOT_TIMED, ContinuumAdvice, Work, format_con
 __all__ = ["QUANTITIES", "Candidate", "Measured", "ReferenceCheck", "Advice", "advise",
            "parse_tolerance", "ladder", "format_advice", "select", "PICK_RULE", "Work"]
 
+#: ``--quantity`` -> the speed-vs-error study's measure. ``weighted_plastic_settlement`` is
+#: Σkε_p/Σk, the response's quantity of that name (``upliftlab run`` reports it under the same
+#: name); a run's ``residual_settlement`` (−V at rest) is another quantity, which advise does
+#: not ladder (a candidate need not end at rest).
 QUANTITIES = {"peak_u": "u", "peak_theta": "theta", "peak_uplift": "uplift",
-              "residual_settlement": "residual_settlement"}
+              "weighted_plastic_settlement": "residual_settlement"}
 FULL = {"reference_springs": 640, "ladder_springs": (10, 20, 40, 80, 160, 320)}
 FAST = {"reference_springs": 160, "ladder_springs": (10, 20, 40, 80)}
 LADDER_INTEGRATORS = ("events", "rk4")
@@ -171,6 +175,10 @@ def parse_tolerance(text) -> float:
 
 
 def _quantity(name: str) -> str:
+    if name == "residual_settlement":
+        raise InputError("--quantity = 'residual_settlement': a run's residual settlement is −V "
+                         "once it has come to rest, which a candidate of the ladder need not; "
+                         "advise ladders 'weighted_plastic_settlement' (Σ k_i ε_p,i / Σ k_i)")
     if name not in QUANTITIES:
         raise InputError(f"--quantity = {name!r}: must be one of "
                          f"{', '.join(map(repr, QUANTITIES))}")

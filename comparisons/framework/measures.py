@@ -73,13 +73,13 @@ def reduced_edge_uplift_from_peaks(response) -> float:
 
 
 def reduced_plastic_settlement(response) -> float:
-    """Σ k_i ε_p,i / Σ k_i at the end of the run (0 for elastic springs): the settlement of the
-    base centre once it rests on every spring again. Unlike −V at the end it does not depend on
-    how much the base still rocks then."""
-    model = response.model
-    found = model.foundation_slice
-    k = model.params["k"][found]
-    return float(np.sum(k * response.plastic[-1, found]) / np.sum(k))
+    """Σ k_i ε_p,i / Σ k_i at the end of the run (0 for elastic springs): the response's
+    ``weighted_plastic_settlement``
+    (:func:`upliftlab.reduced.peak_slots.weighted_plastic_settlement`), where the base centre
+    would rest if every spring were in contact again. Unlike −V at the end it does not depend
+    on how much the base still rocks then; the studies that compare "residual settlement"
+    across models name this definition in their measure's label."""
+    return float(response.peaks["weighted_plastic_settlement"])
 
 
 def edge_uplift_history(gap) -> np.ndarray:

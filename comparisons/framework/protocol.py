@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ... import checks
+from ...paths import check_folder_name
 from .store import Store
 
 __all__ = ["Study", "Context", "StudyRun", "run_study", "default_out", "CHECKOUT"]
@@ -133,7 +134,10 @@ class StudyRun:
 def _resolved(study: Study, context: Context) -> Context:
     checks.boolean("fast", context.fast)
     out = Path(context.out) if context.out is not None else default_out(study.name, context.fast)
+    check_folder_name(out, "out")
     store = context.store
+    if store is not None and not isinstance(store, Store):
+        check_folder_name(store, "store")
     store = store if isinstance(store, Store) else Store(store or out / "store")
     return dataclasses.replace(context, out=out, store=store)
 

@@ -30,7 +30,7 @@ import time
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 
-from ...checks import InputError, integer_at_least
+from ...checks import InputError, integer_at_least, scheduler_address
 from ...workers import SINGLE_THREAD_ENVIRONMENT, inherited_environment
 from .freshness import DEFAULT_SAMPLE, check_stale
 from .store import Store, function_name, plain_params, point_key, record_meta
@@ -127,6 +127,15 @@ def _evaluate_chunk(function, items, store_root, meta, batched):
     return out
 
 
+def _address(scheduler):
+    """The scheduler given (an address is checked as one, before any work), else the
+    address of ``DASK_SCHEDULER_ADDRESS`` (checked likewise), else None."""
+    if scheduler is None:
+        env = os.environ.get(DASK_ENV) or None
+        return None if env is None else scheduler_address(DASK_ENV, env)
+    return scheduler_address("scheduler", scheduler) if isinstance(scheduler, str) else scheduler
+
+
 def _dask_client(scheduler):
     """(client, owned): a ``distributed.Client`` for an address, cluster or client."""
     if hasattr(scheduler, "get_executor"):
@@ -207,7 +216,7 @@ def run_sweep(function: Callable, points: Iterable[Mapping], store: Store | str 
         chunk = integer_at_least("chunk", chunk, 1)
     if workers is not None:
         workers = integer_at_least("workers", workers, 1)
-    address = scheduler if scheduler is not None else os.environ.get(DASK_ENV) or None
+    address = _address(scheduler)
     kind = _kind(executor) if executor is not None else ("Dask" if address else "process")
     _check_function(function, kind)
     entries = {k: store.entry(k) for k in dict.fromkeys(keys)}
@@ -316,7 +325,7 @@ def sweep_executor(scheduler=None, *, workers: int | None = None):
     processes (default: the CPU count), spawned with one thread each
     (:data:`SINGLE_THREAD_ENVIRONMENT`, set in this process while the block runs so that the
     workers inherit it at birth)."""
-    address = scheduler if scheduler is not None else os.environ.get(DASK_ENV) or None
+    address = _address(scheduler)
     if address:
         client, owned = _dask_client(address)
         try:

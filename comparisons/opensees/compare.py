@@ -33,12 +33,12 @@ __all__ = ["SUMMARY_KEYS", "PEAK_KEYS", "Comparison", "compare", "write_comparis
 
 #: The keys of both models' summaries (the uplift ones only with a foundation of springs).
 SUMMARY_KEYS = ("scene", "verdict", "integrator", "dt", "units", "runtime_s", "peak_u",
-                "peak_theta", "peak_base_shear", "peak_uplift_left", "residual_settlement")
+                "peak_theta", "peak_base_shear", "peak_uplift_left", "final_vertical_position")
 PEAK_KEYS = ("peak_u", "peak_theta", "peak_uplift_left", "peak_base_shear",
-             "residual_settlement")
+             "final_vertical_position")
 _LABELS = {"peak_u": "peak u", "peak_theta": "peak θ [rad]", "peak_uplift_left":
            "peak uplift, leftmost spring", "peak_base_shear": "peak base shear",
-           "residual_settlement": "residual settlement"}
+           "final_vertical_position": "final V (up)"}
 
 
 @dataclass(frozen=True, eq=False)

@@ -431,7 +431,7 @@ def write_outputs(observer, status, runtime, setup, steps):
                "peak_base_shear": pk["shear"]}
     if FOUNDATION:
         summary["peak_uplift_left"] = max(pk["uplift"], 0.0)
-        summary["residual_settlement"] = -last[3]
+        summary["final_vertical_position"] = last[3]  # V at the end, up positive
     bad = [key for key, value in summary.items()
            if isinstance(value, float) and not math.isfinite(value)]
     if bad:

@@ -312,9 +312,8 @@ def build_report(fast: bool = False, *, out: str | Path | None = None,
 
     start = time.perf_counter()
     checks.boolean("fast", fast)
-    if scheduler is not None and (not isinstance(scheduler, str) or not scheduler.strip()):
-        raise InputError(f"--scheduler = {scheduler!r}: expected a Dask scheduler address such "
-                         "as tcp://host:8786")
+    if scheduler is not None:
+        scheduler = checks.scheduler_address("--scheduler", scheduler)
     if budget is not None:
         checks.positive("--budget", budget)
     default = Path("results") / (REPORT + ("-fast" if fast else ""))

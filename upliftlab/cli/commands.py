@@ -53,8 +53,8 @@ def add_reduced_commands(sub) -> None:
                                       "scene and recommend the cheapest within a tolerance")
     a.add_argument("scene", help="a packaged scene name or a TOML path")
     a.add_argument("--quantity", default="peak_u",
-                   help="peak_u, peak_theta, peak_uplift or residual_settlement "
-                        "(the permanent settlement Σ k_i ε_p,i / Σ k_i)")
+                   help="peak_u, peak_theta, peak_uplift or weighted_plastic_settlement "
+                        "(Σ k_i ε_p,i / Σ k_i, as `upliftlab run` reports it)")
     a.add_argument("--tol", default="5%", help="tolerance, e.g. 5%% or 0.05 (default 5%%)")
     a.add_argument("--case", help="a case of the scene, e.g. A, B or C")
     a.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",

@@ -7,6 +7,8 @@ Exit 0 when every section was built and the verification passed, 1 when a sectio
 
 from __future__ import annotations
 
+from .. import checks
+
 from ..extras import need_extra
 from ..log import logger
 from .common import number
@@ -35,6 +37,7 @@ def report_command(args) -> int:
     """Build the report; the exit code of the module docstring."""
     need_extra("upliftlab report", "matplotlib", "skfem", "meshio", "pyvista", "imageio")
     if args.scheduler is not None:
+        checks.scheduler_address("--scheduler", args.scheduler)
         need_extra("upliftlab report --scheduler", "distributed")
     from ..comparisons.report.build import REPORT_BUDGET, build_report
 

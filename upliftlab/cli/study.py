@@ -14,6 +14,7 @@ import argparse
 
 from .. import checks
 from ..log import configure, logger
+from ..paths import check_folder_name
 from .common import Parser
 from .exits import EXIT_FAILED, EXIT_OK
 
@@ -64,6 +65,11 @@ def study_command(args) -> int:
 
         workers = number("--workers", options.workers, integer=True, low=1, high=4096)
     checks.boolean("--fast", options.fast)
+    if options.scheduler is not None:
+        checks.scheduler_address("--scheduler", options.scheduler)
+    for option in ("out", "store"):
+        if getattr(options, option) is not None:
+            check_folder_name(getattr(options, option), f"--{option}")
     context = Context(fast=options.fast, out=options.out, store=options.store,
                       scheduler=options.scheduler, workers=workers)
     if study.context_from is not None:

@@ -42,6 +42,7 @@ from .laws import (ElasticLaw, ElastoplasticLaw, LawRecord, QzLaw,  # noqa: F401
 from .structure import (IMPACT_MASSES, KINEMATICS, LAWS, LAYOUTS,  # noqa: F401
                         MAX_SPRINGS, SUPPORTS, Foundation, Story, Structure, read_foundation,
                         read_structure)
+from .frozen import freeze
 from .table import SCHEMA_VERSION, Table, check_values, string
 from ..units import UnitSystem, unit_system  # noqa: F401
 
@@ -67,7 +68,8 @@ __all__ = [
 
 @dataclass(frozen=True)
 class Scene:
-    """A validated scene. ``data`` is the merged table it came from (for provenance).
+    """A validated scene. ``data`` is the merged table it came from (for provenance), a
+    read-only copy (:mod:`upliftlab.scenes.frozen`): changing it raises ``TypeError``.
 
     The fields are the scene; ``data``, :attr:`digest` and :attr:`table` describe them. A scene
     made otherwise than by :func:`scene_from_dict` (``dataclasses.replace``, or the typed
@@ -98,6 +100,8 @@ class Scene:
         if not validated:
             from .edit import revalidate
             revalidate(self, scene_from_dict)
+        # read-only and the scene's own copy: provenance records what ran (:mod:`.frozen`)
+        object.__setattr__(self, "data", freeze(self.data))
 
     @property
     def g(self) -> float:

@@ -118,6 +118,9 @@ def apply_override(data: dict, item: str) -> None:
 
 
 def list_index(part: str, node: list, where: str) -> int:
-    if not part.isdigit() or int(part) >= len(node):
-        raise InputError(f"--set {where}: index {part!r} is not in 0..{len(node) - 1}")
+    """``part`` as an index of ``node``: ASCII digits 0-9 only (``str.isdigit`` also takes
+    '²', '٣' and '１', which ``int`` refuses or reads as other numbers), within the list."""
+    if not (part.isascii() and part.isdigit() and len(part) <= 9) or int(part) >= len(node):
+        raise InputError(f"--set {where}: index {part!r} is not in 0..{len(node) - 1} "
+                         "(written in the digits 0-9)")
     return int(part)

@@ -89,8 +89,8 @@ MAX_DEPTH = 12
 
 def check_values(data, where: str = "scene", depth: int = 0) -> None:
     """Refuse, naming the key, what no field of a scene can hold and that would otherwise fail
-    deep inside the reading: tables and lists nested beyond :data:`MAX_DEPTH`, and integers
-    beyond the range of a float."""
+    deep inside the reading: tables and lists nested beyond :data:`MAX_DEPTH`, integers
+    beyond the range of a float, and subnormal numbers (:func:`~upliftlab.checks.not_subnormal`)."""
     if depth > MAX_DEPTH:
         raise InputError(f"{where}: tables or lists nested more than {MAX_DEPTH} deep; a scene "
                          "file nests at most a few levels")
@@ -100,6 +100,8 @@ def check_values(data, where: str = "scene", depth: int = 0) -> None:
     elif isinstance(data, list):
         for i, value in enumerate(data):
             check_values(value, f"{where}[{i}]", depth + 1)
+    elif isinstance(data, float):
+        checks.not_subnormal(where, data)
     elif isinstance(data, int) and not isinstance(data, bool):
         try:
             float(data)
