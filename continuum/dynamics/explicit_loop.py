@@ -2,11 +2,10 @@
 the steps between two recorded rows in one call, with no Python in between.
 
 The loop :func:`run_steps` gives performs exactly the steps of
-:meth:`upliftlab.continuum.dynamics.explicit._Explicit`'s Python loop (which serves the materials without a compiled return map; a test runs both on one
-scene and compares them): the internal force (:mod:`~upliftlab.continuum.dynamics.kernels`), the
-diagonal
-soil update (:func:`~upliftlab.continuum.dynamics.kernels.soil_predict`), the footing and story
-form, the
+:meth:`upliftlab.continuum.dynamics.explicit._Explicit`'s Python loop (which serves the
+materials without a compiled return map; a test runs both on one scene and compares them):
+the internal force (:mod:`~upliftlab.continuum.dynamics.kernels`), the diagonal soil update
+(:func:`~upliftlab.continuum.dynamics.kernels.soil_predict`), the footing and story form, the
 contact forces (:func:`~upliftlab.continuum.contact.step.frictionless_step`, or
 :func:`~upliftlab.continuum.contact.step.tangential_step` for a bonded or Coulomb interface) and
 the energy increments.
