@@ -26,7 +26,6 @@ from dataclasses import dataclass, field, fields
 
 import numpy as np
 import skfem
-from scipy.optimize import brentq
 
 from ..checks import InputError, in_range, integer_at_least, one_of, positive
 from ..scenes import ELEMENTS, ContinuumOptions
@@ -236,6 +235,9 @@ def _outer_count(n: int, length: float, half_footing: float, first: float) -> in
 
 def _growth_ratio(first: float, count: int, length: float) -> float:
     """q >= 1 with first · (1 + q + ... + q^(count-1)) = length."""
+    from scipy.optimize import brentq  # here, not at the top: its import costs every fresh
+    # process about 0.2 s of CPU, and only a graded mesh needs it
+
     if count == 1 or count * first >= length:
         return 1.0
     powers = np.arange(count)

@@ -93,15 +93,36 @@ def test_provenance_names_the_code_the_libraries_and_the_motion(elcentro):
 
 def test_an_uncached_kernel_is_announced_as_compiled_in_every_process(monkeypatch, tmp_path,
                                                                       capsys):
-    # Reference: numba's own cache object of the continuum's explicit time loop, which is
-    # jitted with cache=False (numba gives it a NullCache): "once" would be untrue there.
-    from upliftlab.continuum.dynamics.explicit_loop import run_steps
+    # Reference: numba's own cache object of a function jitted with cache=False (numba gives
+    # it a NullCache): "once" would be untrue there.
+    import numba
 
-    assert type(run_steps._cache).__name__ == "NullCache"
+    @numba.njit(cache=False)
+    def uncached(x):
+        return x
+
+    assert type(uncached._cache).__name__ == "NullCache"
     log.configure(0)
     monkeypatch.delenv("NUMBA_DISABLE_JIT", raising=False)
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
     monkeypatch.setattr(log, "_announced", set())
-    log.announce_compilation("the loop", run_steps)
+    log.announce_compilation("the loop", uncached)
     err = capsys.readouterr().err
     assert "compiling the loop (in every new process" in err and "once" not in err
+
+
+def test_the_explicit_loop_is_announced_as_compiled_once(monkeypatch, tmp_path, capsys):
+    # Reference: numba's cache object of the continuum's explicit time loop, a disk cache
+    # (cache=True; issue 35: it was compiled in every process); without its index in the
+    # cache folder the notice says it is compiled once.
+    from upliftlab.continuum.dynamics.explicit_loop import run_steps
+
+    for parallel in (False, True):
+        assert type(run_steps(parallel)._cache).__name__ != "NullCache"
+    log.configure(0)
+    monkeypatch.delenv("NUMBA_DISABLE_JIT", raising=False)
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(log, "_announced", set())
+    log.announce_compilation("the loop", run_steps(False), "about 20–60 s")
+    err = capsys.readouterr().err
+    assert "compiling the loop (about 20–60 s, once" in err

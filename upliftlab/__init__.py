@@ -16,7 +16,8 @@ from .version import __version__
 #: by their digest.
 KERNEL_SOURCES = ("upliftlab.reduced/kernels/", "upliftlab.reduced/laws/",
                   "upliftlab.continuum/dynamics/kernels.py",
-                  "upliftlab.continuum/materials/")
+                  "upliftlab.continuum/dynamics/explicit_loop.py",
+                  "upliftlab.continuum/contact/", "upliftlab.continuum/materials/")
 
 
 def _numba_cache_outside_the_package() -> None:
@@ -28,8 +29,9 @@ def _numba_cache_outside_the_package() -> None:
     kernels' sources (:data:`KERNEL_SOURCES`, :func:`upliftlab.provenance.code_digest`): numba
     keys a cached function on its own file only (numba issue 1833), so an edit to a spring law
     must compile every kernel afresh instead of loading integrators cached with the old law,
-    and an edit to a continuum soil model's point return (each model's module in
-    ``materials/``) the element loops that inline it.
+    an edit to a continuum soil model's point return (each model's module in ``materials/``)
+    the element loops that inline it, and an edit to the element loops or the contact steps
+    the explicit time loop that holds them (``explicit_loop.py``).
     Left alone when the folder cannot be written."""
     import os
     import sys

@@ -57,7 +57,7 @@ from .explicit_step import (COURANT_ESTIMATE, STABILITY_FRACTION, ExplicitSettin
 from ..contact.footing import OPEN, STICK
 from .ground import boundaries, dynamic_fixed, ground_velocity, static_fixed, x_dofs
 from .iteration_matrix import soil_residual
-from .kernels import compiled_pair, soil_predict
+from .kernels import soil_predict
 from ..statics.newton import ConvergenceError
 from .run_control import MECHANISM_GROWTH, BearingFailure, keeping_what_ran, settled_to_failure
 from .soil_force import SoilForce
@@ -293,7 +293,7 @@ class _Explicit:
         lay, m_step = soil.layout, self.mass + 0.5 * dt * self.c
         free = np.flatnonzero(self.free_q)
         Lf = np.ascontiguousarray(self.L[:nc][:, self.free_q])
-        elements, gather = compiled_pair(numba.get_num_threads() > 1)
+        loop = run_steps(numba.get_num_threads() > 1)
         done, Fz_prev = -1, np.zeros(4)
         rings, carry = (U, V, Z, VZ, FC, ST), (R_prev, F_prev, Fz_prev, energy, counters)
         soil_data = (lay.nodes, lay.dNdx, lay.dNdy, lay.dx, soil.eigenstrain, soil.plastic,
@@ -304,11 +304,10 @@ class _Explicit:
         structure = (z.M, z.C, z.K, z.gravity, self.ground_z)
         contact = (free, Lf, f.uy.astype(np.int64), f.ux.astype(np.int64), f.x,
                    f.interface.mu, f.width, f.interface.tangential)
-        announce_compilation("the continuum's explicit kernels", run_steps)
+        announce_compilation("the continuum's explicit kernels", loop, "about 20–60 s")
         for k in recorded_steps(st):
             with self.diverging(done + 1, k, U[k % 3], U[(k - 1) % 3], Z[k % 3][:3]):
-                run_steps(done + 1, k, dt, rings, carry, soil_data, elements, gather, loads,
-                          structure, contact)
+                loop(done + 1, k, dt, rings, carry, soil_data, loads, structure, contact)
             done = k
             self.record(rec, progress, k, U, V, Z, VZ, FC, ST, energy, counters, ag_all[k])
 

@@ -1,13 +1,11 @@
 """The compiled time loop of the explicit route, for a material with a compiled return map:
 the steps between two recorded rows in one call, with no Python in between.
 
-:func:`run_steps` performs exactly the steps of
-:meth:`upliftlab.continuum.dynamics.explicit._Explicit`'s
-Python loop (which serves the materials without a compiled return map; a test runs both on one
-scene and compares them): the internal force (:mod:`~upliftlab.continuum.dynamics.kernels`), the
-diagonal
-soil update (:func:`~upliftlab.continuum.dynamics.kernels.soil_predict`), the footing and story
-form, the
+The loop :func:`run_steps` gives performs exactly the steps of
+:meth:`upliftlab.continuum.dynamics.explicit._Explicit`'s Python loop (which serves the
+materials without a compiled return map; a test runs both on one scene and compares them):
+the internal force (:mod:`~upliftlab.continuum.dynamics.kernels`), the diagonal soil update
+(:func:`~upliftlab.continuum.dynamics.kernels.soil_predict`), the footing and story form, the
 contact forces (:func:`~upliftlab.continuum.contact.step.frictionless_step`, or
 :func:`~upliftlab.continuum.contact.step.tangential_step` for a bonded or Coulomb interface) and
 the energy increments.
@@ -20,6 +18,16 @@ holds the contact forces of step k − 1 (at u_y, then u_x for a tangential inte
 ``F_prev`` and ``Fz_prev`` carry the last step's internal and external forces; ``energy``
 (kinetic, strain, damping, input, contact) and ``counters`` (active-set iterations) accumulate
 in place.
+
+**Cached on disk.** numba does not cache a function that takes other compiled functions as
+arguments (it compiled such a loop again in every process, 10–20 s of CPU). The loop's body,
+:func:`_steps`, takes the element and gather kernels as arguments but is inlined (numba IR)
+into two loops that name them as globals, :func:`_serial` and :func:`_parallel`; these take
+only arrays, numbers and the soil model's constants, and are cached like any other kernel.
+numba specialises and caches each for every soil model, by the type of its constants (a named
+tuple class, :mod:`~upliftlab.continuum.materials.compiled`). Since a cached loop holds the
+kernels it calls from other modules (the element loops, the soil models' returns, the contact
+steps), the cache folder is keyed on their sources (:data:`upliftlab.KERNEL_SOURCES`).
 """
 
 from __future__ import annotations
@@ -29,9 +37,14 @@ import numpy as np
 
 from ..contact.step import frictionless_step, tangential_step
 from ..contact.footing import OPEN, STICK
-from .kernels import soil_predict
+from .kernels import compiled_pair, soil_predict
 
 __all__ = ["run_steps"]
+
+#: The serial and the parallel kernels, as globals of the loops that call them (module
+#: docstring: a loop that took them as arguments could not be cached).
+_ELEMENTS_SERIAL, _GATHER_SERIAL = compiled_pair(False)
+_ELEMENTS_PARALLEL, _GATHER_PARALLEL = compiled_pair(True)
 
 
 @nb.njit(cache=True)
@@ -85,20 +98,17 @@ def _tangential(A, b, prescribed, z, u, u_next, v_next, m_eff, h, dt, uy, ux, x,
     return force, q, story, its
 
 
-@nb.njit(cache=False)  # takes kernels as arguments: numba cannot reuse a cached copy (it
-# compiled it again in every process) and writing it failed now and then (ReferenceError:
-# underlying object has vanished, pickling a kernel's type), which failed the run
-def run_steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure, contact):
+@nb.njit(inline="always")
+def _steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure, contact):
     """Steps k0…k1 (module docstring); returns nothing, the rings hold the state. The arrays
     travel in tuples: ``rings`` (U, V, Z, VZ, FC, ST) and ``carry`` (R_prev, F_prev, Fz_prev,
     energy, counters), both updated in place; ``soil`` the compiled soil force's layout, state
-    and workspace (:class:`~upliftlab.continuum.dynamics.soil_force.SoilForce`); ``loads`` (datum,
-    keep,
-    ground, incident, ag_all, vinc_all, mass, damping, m_step); ``structure`` (M, C, K,
-    gravity, ground influence of the footing and story); ``contact`` (free, Lf, uy, ux, x, μ,
-    width, tangential). ``elements`` and ``gather``: the serial or parallel kernels
-    (:func:`~upliftlab.continuum.dynamics.kernels.compiled_pair`), passed in so that the serial loop
-    never compiles the parallel ones."""
+    and workspace (:class:`~upliftlab.continuum.dynamics.soil_force.SoilForce`); ``loads``
+    (datum, keep, ground, incident, ag_all, vinc_all, mass, damping, m_step); ``structure``
+    (M, C, K, gravity, ground influence of the footing and story); ``contact`` (free, Lf, uy,
+    ux, x, μ, width, tangential). ``elements`` and ``gather``: the serial or parallel kernels
+    (:func:`~upliftlab.continuum.dynamics.kernels.compiled_pair`), named by the caller
+    (:func:`_serial`, :func:`_parallel`) into which numba inlines this body."""
     U, V, Z, VZ, FC, ST = rings
     R_prev, F_prev, Fz_prev, energy, counters = carry
     (nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, stress, work, fint, ptr,
@@ -165,3 +175,24 @@ def run_steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure
                     horizontal += mean
             energy[4] -= on_soil - (horizontal * dz[0] + vertical * dz[1] + moment * dz[2])
         Fz_prev[:] = Fz
+
+
+@nb.njit(cache=True)
+def _serial(k0, k1, dt, rings, carry, soil, loads, structure, contact):
+    """:func:`_steps` with the serial kernels."""
+    _steps(k0, k1, dt, rings, carry, soil, _ELEMENTS_SERIAL, _GATHER_SERIAL, loads, structure,
+           contact)
+
+
+@nb.njit(cache=True)
+def _parallel(k0, k1, dt, rings, carry, soil, loads, structure, contact):
+    """:func:`_steps` with the parallel kernels."""
+    _steps(k0, k1, dt, rings, carry, soil, _ELEMENTS_PARALLEL, _GATHER_PARALLEL, loads,
+           structure, contact)
+
+
+def run_steps(parallel: bool):
+    """The compiled loop of steps k0…k1, with the serial or the ``parallel`` kernels:
+    ``run_steps(parallel)(k0, k1, dt, rings, carry, soil, loads, structure, contact)``
+    (:func:`_steps` says what the tuples hold)."""
+    return _parallel if parallel else _serial

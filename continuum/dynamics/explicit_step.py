@@ -7,7 +7,9 @@ eigenvalue of M⁻¹K of the elastic soil on its free DOFs (computed by Lanczos,
 ``eigsh``, on M^{-1/2} K M^{-1/2}; a plastic tangent is softer and the exact contact does not
 restrict the step). The admissible step is :data:`STABILITY_FRACTION` of that limit; the
 default dt is the largest divisor of the record's step below it, and a larger dt is refused
-with the limit in the message.
+with the limit in the message. A fresh process reads the limit of a mesh, mass and set of free
+DOFs from the set-up cache (:mod:`~upliftlab.continuum.setup_cache`) when an earlier one has
+computed it (:func:`stable_limit`).
 """
 
 from __future__ import annotations
@@ -19,13 +21,15 @@ import numpy as np
 import skfem
 
 from ...checks import InputError
+from .. import setup_cache
 from .ground import boundaries
 from .iteration_matrix import elastic_plane_tangent
 from .superstructure import check_footing_mass, check_superstructure
 from .waves import dashpot_data, full_basis, time_step_limit
 
 __all__ = ["STABILITY_FRACTION", "COURANT_ESTIMATE", "ExplicitSettings", "lumped_mass",
-           "lumped_dashpots", "critical_step", "recorded_steps", "explicit_settings"]
+           "lumped_dashpots", "critical_step", "stable_limit", "recorded_steps",
+           "explicit_settings"]
 
 #: The admissible step as a fraction of the central-difference limit 2/ω_max.
 STABILITY_FRACTION = 0.9
@@ -81,6 +85,25 @@ def critical_step(model, mass: np.ndarray, free: np.ndarray) -> tuple[float, flo
     return 2.0 / omega, omega
 
 
+#: The sources of the stable step (as :func:`upliftlab.provenance.code_digest` names them).
+STEP_SOURCES = setup_cache.MODEL_SOURCES + ("upliftlab.continuum/dynamics/explicit_step.py",
+                                            "upliftlab.continuum/dynamics/iteration_matrix.py")
+
+
+def stable_limit(model, mass: np.ndarray, free: np.ndarray) -> tuple[float, float]:
+    """:func:`critical_step`, read from the set-up cache when a process has computed it for
+    this model, ``mass`` and ``free`` DOFs (each by the digest of its values)."""
+    inputs = {**setup_cache.model_inputs(model),
+              "mass": setup_cache.array_digest({"mass": np.asarray(mass, dtype=float)}),
+              "free": setup_cache.array_digest({"free": np.asarray(free, dtype=np.int64)})}
+
+    def build():
+        critical, omega = critical_step(model, mass, free)
+        return {"critical": np.array(critical), "omega": np.array(omega)}
+    arrays, _ = setup_cache.cached("stable_step", inputs, STEP_SOURCES, build)
+    return float(arrays["critical"]), float(arrays["omega"])
+
+
 def recorded_steps(settings: ExplicitSettings) -> np.ndarray:
     """The steps recorded as rows: every ``record_every``-th and the last."""
     return np.unique(np.append(np.arange(0, settings.steps, settings.record_every),
@@ -100,7 +123,7 @@ def explicit_settings(model, scene, motion, options, mass, free) -> ExplicitSett
                          f"is not positive at {bad.size} DOFs; the explicit route needs Q2, Q1 or "
                          "P1 (or continuum.dynamics = 'implicit')")
     check_footing_mass(scene)
-    critical, omega = critical_step(model, mass, free)
+    critical, omega = stable_limit(model, mass, free)
     limit = STABILITY_FRACTION * critical
     if options.dt is None:
         dt = motion.dt / max(1, math.ceil(motion.dt / limit * (1.0 - 1e-12)))

@@ -16,18 +16,25 @@ in equilibrium at t = 0.
 **Gravity first.** :func:`gravity_state`: the geostatic state, then the weight
 ``vertical_weight`` ramped on the footing in ``load_steps`` statics steps (θ held, then
 released), under the static boundary conditions; the motion starts from that state at rest.
+It depends only on the model and a few options, and a fresh process reads it from the set-up
+cache (:mod:`~upliftlab.continuum.setup_cache`) when an earlier one has made it.
 """
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from ...checks import InputError
+from .. import setup_cache
+from ..materials import State
+from ..model import evaluated
 from ..statics.newton import ContinuumState, Control, follow
 from ..statics.analyses import geostatic
 
 __all__ = ["boundaries", "dynamic_fixed", "static_fixed", "x_dofs", "ground_velocity",
-           "gravity_state"]
+           "gravity_state", "state_arrays", "state_of", "GRAVITY_SOURCES"]
 
 
 def boundaries(model, options) -> tuple[str, str]:
@@ -93,14 +100,59 @@ def ground_velocity(motion, dt: float, steps: int) -> np.ndarray:
     return np.where(inside, vel[k] + a0 * tau + 0.5 * slope * tau ** 2, vel[n])
 
 
+#: The sources of the gravity state (as :func:`upliftlab.provenance.code_digest` names them).
+GRAVITY_SOURCES = setup_cache.MODEL_SOURCES + ("upliftlab.continuum/statics/",
+                                               "upliftlab.continuum/dynamics/ground.py")
+#: The arrays of a :class:`ContinuumState` in the set-up cache, beside its material history.
+_STATE_ARRAYS = ("u", "q", "force", "status", "stress", "reaction")
+
+
 def gravity_state(model, scene, options, prescribe_u: bool) -> ContinuumState:
     """Geostatic state, then the footing's weight ramped with θ held in ``options.load_steps``
     steps (:class:`~upliftlab.continuum.dynamics.options.DynamicOptions`), then θ released;
-    ``prescribe_u``: the footing's u is held (a frictionless interface)."""
+    ``prescribe_u``: the footing's u is held (a frictionless interface). Read from the set-up
+    cache when a process has made it for the same model and options (module docstring)."""
+    inputs = {**setup_cache.model_inputs(model), "weight": scene.structure.vertical_weight,
+              "load_steps": options.load_steps, "prescribe_u": bool(prescribe_u),
+              "newton": dataclasses.asdict(options.newton)}
+    made = []
+
+    def build():
+        made.append(_gravity_state(model, scene.structure.vertical_weight, options,
+                                   prescribe_u))
+        return state_arrays(made[0])
+    arrays, _ = setup_cache.cached("gravity", inputs, GRAVITY_SOURCES, build)
+    return made[0] if made else state_of(arrays)
+
+
+def _gravity_state(model, weight: float, options, prescribe_u: bool) -> ContinuumState:
     state = geostatic(model)
-    N = scene.structure.vertical_weight
-    loads = N * np.arange(1, options.load_steps + 1) / options.load_steps
+    loads = weight * np.arange(1, options.load_steps + 1) / options.load_steps
     controls = [Control((prescribe_u, False, True), (0.0, -n, 0.0)) for n in loads]
-    controls.append(Control((prescribe_u, False, False), (0.0, -N, 0.0)))
+    controls.append(Control((prescribe_u, False, False), (0.0, -weight, 0.0)))
     return follow(model, state, controls, options.newton)[-1]
 
+
+def state_arrays(state: ContinuumState) -> dict[str, np.ndarray]:
+    """The arrays of a converged ``state`` (its tangent evaluated), as the set-up cache keeps
+    them; :func:`state_of` makes the state again."""
+    arrays = {name: np.asarray(getattr(state, name)) for name in _STATE_ARRAYS}
+    arrays.update(plastic_strain=state.material.plastic_strain,
+                  equivalent_plastic_strain=state.material.equivalent_plastic_strain,
+                  region=state.material.region,
+                  counts=np.array([state.iterations, state.cuts]))
+    for name in ("eigenstrain", "tangent"):
+        value = evaluated(getattr(state, name))
+        if value is not None:
+            arrays[name] = np.asarray(value)
+    return arrays
+
+
+def state_of(arrays: dict[str, np.ndarray]) -> ContinuumState:
+    """The :class:`ContinuumState` of :func:`state_arrays`."""
+    material = State(arrays["plastic_strain"], arrays["equivalent_plastic_strain"],
+                     arrays["region"])
+    iterations, cuts = (int(n) for n in arrays["counts"])
+    return ContinuumState(**{name: arrays[name] for name in _STATE_ARRAYS}, material=material,
+                          eigenstrain=arrays.get("eigenstrain"), tangent=arrays.get("tangent"),
+                          iterations=iterations, cuts=cuts)

@@ -15,10 +15,6 @@ from pathlib import Path
 from ..checks import InputError
 from ..log import logger
 from ..outdir import claim
-from ..scenes import load_scene
-from ..comparisons.opensees.compare import comparison_table, compare, write_comparison
-from ..comparisons.opensees.script import write_script
-from ..comparisons.opensees.spec import opensees_spec
 
 __all__ = ["add_opensees", "opensees_command"]
 
@@ -60,6 +56,13 @@ def _positive(name: str, text: str | None) -> float | None:
 def opensees_command(args) -> int:
     """Run the subcommand; 0 when the script was written (and, with --run, both runs
     finished)."""
+    # imported here, not with the parser: the comparison loads the reduced model, which every
+    # other command (a continuum run among them) would otherwise load to build its parser
+    from ..comparisons.opensees.compare import comparison_table, compare, write_comparison
+    from ..comparisons.opensees.script import write_script
+    from ..comparisons.opensees.spec import opensees_spec
+    from ..scenes import load_scene
+
     if args.json and not args.run:
         raise InputError("--json: only with --run (it prints both models' summaries)")
     dt = _positive("--dt", args.dt)
