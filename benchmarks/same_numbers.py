@@ -17,7 +17,9 @@ duration or derives from one (``*time*``, ``*seconds*``, ``elapsed*``, ``*_utc``
 machine's load), provenance
 (``provenance*``, ``source_sha256``, versions, ``platform``, ``python``), machine paths
 (values that are absolute paths), and figures (PNG, SVG, GIF, PDF, HTML: looked at, not
-compared). Exit 0 when the same, 1 with one line per difference (the first 200) otherwise.
+compared). NetCDF files are read as upliftlab reads them back (its CF encodings undone);
+``--values-only`` leaves their attributes out. Exit 0 when the same, 1 with one line per
+difference (the first 200) otherwise.
 """
 
 from __future__ import annotations
@@ -35,6 +37,8 @@ IGNORED_KEY = re.compile(r"(time|seconds|elapsed|_utc$|^computed|provenance|sha2
                          r"^numba$|^scikit_fem$|^xarray$|^h5py$|session|measured_utc|"
                          r"^directory$|^files$|^store$|^html$|^path$|^key$|speed|_s$|_ms$|"
                          r"faster|ratio$|cheapest|pareto|repeats|^conclusion$)", re.I)
+#: Files that hold timings alone (a file named for a scene, "wall_elcentro", is compared).
+TIMING_FILE = re.compile(r"^(timings?|runtimes?|speed|elapsed)$", re.I)
 SKIPPED_SUFFIX = {".png", ".svg", ".gif", ".pdf", ".html", ".xdmf", ".h5", ".lock", ".part",
                   ".npz", ".gz"}
 
@@ -94,14 +98,26 @@ def _csv_diffs(a: Path, b: Path, where: str, rtol: float, out: list) -> None:
                            f"{x[i]!r} → {y[i]!r}")
 
 
-def _netcdf_diffs(a: Path, b: Path, where: str, rtol: float, out: list) -> None:
-    import numpy as np
-    import xarray as xr
+def _open(path: Path):
+    """A NetCDF file as upliftlab reads it back (:func:`upliftlab.results.read_dataset`: CF's
+    encodings of time and labels undone), so a change of encoding alone is not a change of
+    numbers; plain xarray where upliftlab is not importable."""
+    try:
+        from upliftlab.results import read_dataset
+    except ImportError:
+        import xarray as xr
+        return xr.load_dataset(path, engine="h5netcdf", decode_times=False)
+    return read_dataset(path)
 
-    with xr.open_dataset(a, engine="h5netcdf") as x, xr.open_dataset(b, engine="h5netcdf") as y:
+
+def _netcdf_diffs(a: Path, b: Path, where: str, rtol: float, out: list,
+                  attributes: bool = True) -> None:
+    import numpy as np
+
+    with _open(a) as x, _open(b) as y:
         names = sorted(set(x.variables) | set(y.variables))
         for name in names:
-            if IGNORED_KEY.search(name):
+            if IGNORED_KEY.search(name) and name != "time":
                 continue
             if name not in x.variables or name not in y.variables:
                 side = "after" if name in y.variables else "before"
@@ -122,17 +138,17 @@ def _netcdf_diffs(a: Path, b: Path, where: str, rtol: float, out: list) -> None:
                                f"{p.ravel()[k]!r} → {q.ravel()[k]!r}")
             elif not np.array_equal(p, q):
                 out.append(f"{where}:{name}: values differ")
-            for key in sorted(set(u.attrs) | set(v.attrs)):
+            for key in sorted(set(u.attrs) | set(v.attrs)) if attributes else ():
                 if not IGNORED_KEY.search(key) and str(u.attrs.get(key)) != str(v.attrs.get(key)):
                     out.append(f"{where}:{name}@{key}: {u.attrs.get(key)!r} → "
                                f"{v.attrs.get(key)!r}")
-        for key in sorted(set(x.attrs) | set(y.attrs)):
+        for key in sorted(set(x.attrs) | set(y.attrs)) if attributes else ():
             if not IGNORED_KEY.search(key) and str(x.attrs.get(key)) != str(y.attrs.get(key)):
                 out.append(f"{where}@{key}: {x.attrs.get(key)!r} → {y.attrs.get(key)!r}")
 
 
 def differences(before: Path, after: Path, rtol: float = 0.0,
-                rename: dict[str, str] | None = None) -> list[str]:
+                rename: dict[str, str] | None = None, attributes: bool = True) -> list[str]:
     """Every difference between the two folders (module docstring), one line each."""
     rename = rename or {}
 
@@ -140,7 +156,7 @@ def differences(before: Path, after: Path, rtol: float = 0.0,
         return {str(p.relative_to(root)): p for p in root.rglob("*")
                 if p.is_file() and p.suffix.lower() not in SKIPPED_SUFFIX
                 and "store" not in p.relative_to(root).parts
-                and not IGNORED_KEY.search(p.stem)
+                and not TIMING_FILE.search(p.stem)
                 and not p.name.startswith(".") and p.name != "upliftlab-run.json"}
 
     a, b = files(before), files(after)
@@ -154,7 +170,7 @@ def differences(before: Path, after: Path, rtol: float = 0.0,
         elif suffix == ".csv":
             _csv_diffs(a[name], b[name], name, rtol, out)
         elif suffix == ".nc":
-            _netcdf_diffs(a[name], b[name], name, rtol, out)
+            _netcdf_diffs(a[name], b[name], name, rtol, out, attributes)
         elif a[name].read_bytes() != b[name].read_bytes() and suffix not in (".md", ".txt"):
             out.append(f"{name}: bytes differ")
     return out
@@ -171,11 +187,13 @@ def main(argv=None) -> int:
     parser.add_argument("after", type=Path)
     parser.add_argument("--rtol", type=float, default=0.0)
     parser.add_argument("--rename", action="append", default=[], metavar="OLD=NEW")
+    parser.add_argument("--values-only", action="store_true",
+                        help="compare the NetCDF files' values, not their attributes")
     parser.add_argument("--added-ok", action="store_true",
                         help="what only the after side has is listed apart, not counted")
     args = parser.parse_args(argv)
     rename = dict(item.split("=", 1) for item in args.rename)
-    found = differences(args.before, args.after, args.rtol, rename)
+    found = differences(args.before, args.after, args.rtol, rename, not args.values_only)
     if args.added_ok:
         added = [line for line in found if is_addition(line)]
         found = [line for line in found if not is_addition(line)]

@@ -49,3 +49,22 @@ def test_a_changed_value_fails_even_with_additions_allowed(tmp_path):
     assert result.returncode == 1
     assert "map.nc:theta: 1 values differ" in result.stdout
     assert "summary.json.numbers.peak" in result.stdout
+
+
+def test_values_only_ignores_attributes_and_scene_named_files_are_compared(tmp_path):
+    """A file named for a scene ("wall_elcentro") holds numbers: it used to be skipped for its
+    "wall"; an attribute alone differs only when attributes are compared."""
+    before = _folder(tmp_path / "before", 2.0, extra=False)
+    after = _folder(tmp_path / "after", 2.0, extra=False)
+    with xr.open_dataset(after / "map.nc", engine="h5netcdf") as ds:
+        changed = ds.load()
+    changed["theta"].attrs["units"] = "degree"
+    (after / "map.nc").unlink()
+    changed.to_netcdf(after / "map.nc", engine="h5netcdf")
+    assert _run(before, after).returncode == 1
+    assert _run(before, after, "--values-only").returncode == 0
+    for root, value in ((before, 1.0), (after, 1.5)):
+        xr.Dataset({"peak_u": ("x", [value])}).to_netcdf(root / "wall_elcentro.nc",
+                                                          engine="h5netcdf")
+    result = _run(before, after, "--values-only")
+    assert result.returncode == 1 and "wall_elcentro.nc:peak_u" in result.stdout
