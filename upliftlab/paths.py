@@ -16,11 +16,15 @@ the user's files, whatever field or path carries it:
   named ``.<target>.upliftlab-<pid>-<random>.part``, beside its target; before writing a target,
   the temporary files of that same target whose process is no longer alive are removed, and
   nothing else.
+
+A write that finds no room (a full disk, a quota, a file-size limit: :func:`disk_full`) is not
+bad input: the command line ends it with its own line and exit code.
 """
 
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import re
 import stat
@@ -32,7 +36,7 @@ from pathlib import Path
 from .checks import InputError
 
 __all__ = ["MAX_COMPONENT", "path_component", "check_target", "output_root",
-           "temporary_sibling", "TEMPORARY_TAG"]
+           "temporary_sibling", "TEMPORARY_TAG", "DISK_FULL", "disk_full"]
 
 #: Longest name upliftlab turns into a path component (a file name may hold 255 bytes; the
 #: name is joined with a case, a suffix and a temporary file's tag).
@@ -40,6 +44,9 @@ MAX_COMPONENT = 100
 
 #: What marks a temporary file as upliftlab's own.
 TEMPORARY_TAG = "upliftlab"
+
+#: The errors of a write that found no room: no space, a quota, a file-size limit.
+DISK_FULL = frozenset({errno.ENOSPC, errno.EDQUOT, errno.EFBIG})
 
 _UNSAFE = re.compile(r"[\x00-\x1f\x7f/\\]")
 _ROOTS: list[Path] = []
@@ -175,3 +182,8 @@ def temporary_sibling(target: str | os.PathLike, *, directory: bool = False) -> 
     fd, name = tempfile.mkstemp(prefix=prefix, suffix=".part", dir=target.parent)
     os.close(fd)
     return Path(name)
+
+
+def disk_full(exc: BaseException) -> bool:
+    """Whether ``exc`` is a write that found no room (:data:`DISK_FULL`)."""
+    return isinstance(exc, OSError) and exc.errno in DISK_FULL
