@@ -15,7 +15,8 @@ the user's files, whatever field or path carries it:
 * **Only files upliftlab made are removed** (:func:`temporary_sibling`). A temporary file is
   named ``.<target>.upliftlab-<pid>-<random>.part``, beside its target; before writing a target,
   the temporary files of that same target whose process is no longer alive are removed, and
-  nothing else.
+  nothing else. A process that is ended (a pool's worker told to stop) removes its own
+  unfinished temporaries first (:func:`remove_live_temporaries`).
 
 A write that finds no room (a full disk, a quota, a file-size limit: :func:`disk_full`) is not
 bad input: the command line ends it with its own line and exit code.
@@ -27,6 +28,7 @@ import contextlib
 import errno
 import os
 import re
+import shutil
 import stat
 import tempfile
 import threading
@@ -36,7 +38,8 @@ from pathlib import Path
 from .checks import InputError
 
 __all__ = ["MAX_COMPONENT", "path_component", "check_target", "output_root",
-           "temporary_sibling", "TEMPORARY_TAG", "DISK_FULL", "disk_full"]
+           "temporary_sibling", "TEMPORARY_TAG", "DISK_FULL", "disk_full",
+           "forget_temporary", "remove_live_temporaries"]
 
 #: Longest name upliftlab turns into a path component (a file name may hold 255 bytes; the
 #: name is joined with a case, a suffix and a temporary file's tag).
@@ -50,6 +53,7 @@ DISK_FULL = frozenset({errno.ENOSPC, errno.EDQUOT, errno.EFBIG})
 
 _UNSAFE = re.compile(r"[\x00-\x1f\x7f/\\]")
 _ROOTS: list[Path] = []
+_LIVE: set[Path] = set()  # this process's temporaries not yet moved into place or removed
 _ROOTS_LOCK = threading.Lock()
 
 
@@ -178,10 +182,30 @@ def temporary_sibling(target: str | os.PathLike, *, directory: bool = False) -> 
     remove_stale_temporaries(target)
     prefix = f"{_prefix(target)}{os.getpid()}-"
     if directory:
-        return Path(tempfile.mkdtemp(prefix=prefix, suffix=".part", dir=target.parent))
-    fd, name = tempfile.mkstemp(prefix=prefix, suffix=".part", dir=target.parent)
-    os.close(fd)
-    return Path(name)
+        made = Path(tempfile.mkdtemp(prefix=prefix, suffix=".part", dir=target.parent))
+    else:
+        fd, name = tempfile.mkstemp(prefix=prefix, suffix=".part", dir=target.parent)
+        os.close(fd)
+        made = Path(name)
+    _LIVE.add(made)
+    return made
+
+
+def forget_temporary(path: Path) -> None:
+    """``path``, a temporary of :func:`temporary_sibling`, was moved into place or removed."""
+    _LIVE.discard(path)
+
+
+def remove_live_temporaries() -> None:
+    """Remove every temporary file or folder this process made and has not finished (a process
+    being ended calls it: nothing half-written stays behind)."""
+    for path in list(_LIVE):
+        with contextlib.suppress(OSError):
+            if path.is_dir() and not path.is_symlink():
+                shutil.rmtree(path, ignore_errors=True)
+            else:
+                path.unlink()
+        _LIVE.discard(path)
 
 
 def disk_full(exc: BaseException) -> bool:

@@ -29,7 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .paths import DISK_FULL, check_target, disk_full, temporary_sibling
+from .paths import (DISK_FULL, check_target, disk_full, forget_temporary,
+                    temporary_sibling)
 
 __all__ = ["atomic_path", "staging_folder", "move_into_place", "write_dataset", "write_netcdf",
            "read_netcdf", "read_dataset", "cf_attributes", "write_csv", "write_text",
@@ -63,6 +64,7 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     finally:
         if tmp.exists():
             tmp.unlink()
+        forget_temporary(tmp)
 
 
 @contextlib.contextmanager
@@ -75,6 +77,7 @@ def staging_folder(path: str | os.PathLike) -> Iterator[Path]:
         yield folder
     finally:
         shutil.rmtree(folder, ignore_errors=True)
+        forget_temporary(folder)
 
 
 def move_into_place(written: str | os.PathLike, path: str | os.PathLike) -> Path:

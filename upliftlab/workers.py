@@ -16,8 +16,9 @@ at any moment ends every process it started:
   process is being started is held until the pool has recorded it, so no worker is started
   that the pool does not know of;
 * when the pool's block ends by an exception (an interruption, a failed point) the pool is
-  shut down, its unstarted tasks cancelled, and every worker terminated (SIGTERM, then SIGKILL
-  after :data:`TERMINATE_GRACE` s); at a normal end the workers are asked to exit and are
+  shut down, its unstarted tasks cancelled, and every worker terminated (SIGTERM, on which a
+  worker removes the temporary file it was writing and ends; SIGKILL after
+  :data:`TERMINATE_GRACE` s); at a normal end the workers are asked to exit and are
   waited for;
 * a worker whose parent has gone (killed with SIGKILL, which nothing can catch) ends itself
   within :data:`PARENT_POLL` s (:func:`watch_parent`), also when the parent died while the
@@ -35,6 +36,8 @@ import signal
 import threading
 import time
 from collections.abc import Callable, Iterator, Mapping
+
+from .paths import remove_live_temporaries
 
 __all__ = ["SINGLE_THREAD_ENVIRONMENT", "PARENT_POLL", "TERMINATE_GRACE",
            "inherited_environment", "signals_deferred", "process_pool", "watch_parent"]
@@ -80,13 +83,13 @@ def signals_deferred() -> Iterator[None]:
     held: list[int] = []
     previous = {s: signal.signal(s, lambda signum, frame: held.append(signum))
                 for s in _INTERRUPTS}
-    signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
     try:
         yield
     finally:
         for s, handler in previous.items():
             signal.signal(s, handler)
-        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
         if held:
             signal.raise_signal(held[0])
 
@@ -108,11 +111,18 @@ def watch_parent(parent: int | None = None, poll: float = PARENT_POLL) -> thread
     return thread
 
 
+def _stopped(signum, frame) -> None:
+    """A worker's SIGTERM: remove what it was writing, and end at once."""
+    remove_live_temporaries()
+    os._exit(128 + signum)
+
+
 def _worker_start(parent: int, initializer, initargs) -> None:
-    """Every worker's first act: one thread, no SIGINT, end with the parent ``parent``, then
-    the pool's own ``initializer``."""
+    """Every worker's first act: one thread, no SIGINT, SIGTERM ends it without leaving a part
+    file, end with the parent ``parent``, then the pool's own ``initializer``."""
     os.environ.update(SINGLE_THREAD_ENVIRONMENT)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, _stopped)
     watch_parent(parent)
     if initializer is not None:
         initializer(*initargs)

@@ -21,11 +21,10 @@ EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_NUMERICS, EXIT_INTERRUPTED = 0, 1, 2, 3, 
 def exit_code(exc: BaseException) -> int:
     """The exit code of a command that ended with ``exc``."""
     from ..checks import InputError
+    from ..paths import disk_full
 
     if isinstance(exc, InputError):
         return EXIT_INPUT
-    from ..paths import disk_full
-
     if isinstance(exc, KeyboardInterrupt):
         return EXIT_INTERRUPTED
     if disk_full(exc):
@@ -43,7 +42,8 @@ def one_line(exc: BaseException) -> str:
 def disk_full_line(exc: OSError) -> str:
     """The one line of a write that found no space (:func:`upliftlab.paths.disk_full`)."""
     where = f" writing {exc.filename}" if getattr(exc, "filename", None) else ""
-    return (f"upliftlab: error: no space left on device{where} ({exc.strerror or exc}); the "
+    why = " ".join(str(exc.strerror or exc).split())
+    return (f"upliftlab: error: no space left on device{where} ({why}); the "
             "unfinished file was removed and the folder is not marked complete: free some "
             "space and run the command again")
 
