@@ -13,9 +13,7 @@ the other scenes are unaffected.
 
 from __future__ import annotations
 
-import concurrent.futures as cf
 import math
-import multiprocessing
 import os
 import time
 from collections.abc import Sequence
@@ -27,7 +25,7 @@ from .. import __version__
 from ..checks import InputError
 from ..motions import Motion
 from ..scenes import MotionSpec, Scene, build_motion
-from ..workers import SINGLE_THREAD_ENVIRONMENT, inherited_environment
+from ..workers import process_pool
 from . import kernels as kn
 from .integrators import StepPlan, method
 from .model import build_model
@@ -248,28 +246,15 @@ def _execute(pieces, motions, workers):
         for piece in pieces:
             yield _run_chunk(piece, [motions[i] for i in _used(piece)], _used(piece))
         return
-    context = multiprocessing.get_context("spawn")
-    with inherited_environment(SINGLE_THREAD_ENVIRONMENT), cf.ProcessPoolExecutor(
-            max_workers=min(workers, len(pieces)), mp_context=context,
-            initializer=_single_threaded) as pool:
+    with process_pool(min(workers, len(pieces))) as pool:  # ends every worker on the way out
         futures = [pool.submit(_run_chunk, piece, [motions[i] for i in _used(piece)],
                                _used(piece)) for piece in pieces]
-        try:
-            for future in futures:
-                yield future.result()
-        except BaseException:
-            for future in futures:
-                future.cancel()
-            raise
+        for future in futures:
+            yield future.result()
 
 
 def _used(piece) -> list[int]:
     return sorted({job.motion for job in piece})
-
-
-def _single_threaded() -> None:
-    """Worker initializer: one thread for OpenMP, BLAS and numba."""
-    os.environ.update(SINGLE_THREAD_ENVIRONMENT)
 
 
 def _run_chunk(piece, accelerations, indices):

@@ -156,7 +156,8 @@ def test_failing_point_stops_the_sweep_and_resume_loses_nothing(tmp_path):
     FAIL_AFTER["calls"] = 5
     with cf.ThreadPoolExecutor(1) as pool, pytest.raises(RuntimeError) as failure:
         run_sweep(square_plus, _points(12), store, executor=pool, chunk=4, progress=False)
-    assert "Run it again to resume" in "".join(getattr(failure.value, "__notes__", []))
+    assert "running the sweep again computes only the rest" in "".join(
+        getattr(failure.value, "__notes__", []))
     assert len(store) == 5
     FAIL_AFTER["calls"] = None
     seen = []
@@ -171,9 +172,9 @@ def test_failing_point_stops_the_sweep_and_resume_loses_nothing(tmp_path):
 def test_interrupted_process_sweep_resumes_to_the_uninterrupted_result(tmp_path):
     """A KeyboardInterrupt from the progress hook after the first chunk stops a sweep on local
     processes; resuming completes it. Reference: the same reduced-model runs evaluated in this
-    process (equal to the last bit). The interrupt leaves points unstored (the workers' running
-    and queued points finish after it, and are stored), the resume computes exactly the rest,
-    and every point is stored exactly once."""
+    process (equal to the last bit). The interrupt leaves points unstored (the workers are
+    ended with the sweep), the resume computes exactly the rest, and every point is stored
+    exactly once."""
     points = _pulse_points() + _pulse_points(intensity=3.0)
     reference = [tse.evaluate_point(p) for p in points]
     store = Store(tmp_path / "store")
@@ -184,9 +185,8 @@ def test_interrupted_process_sweep_resumes_to_the_uninterrupted_result(tmp_path)
 
     with pytest.raises(KeyboardInterrupt):
         run_sweep(tse.evaluate_point, points, store, chunk=1, workers=2, progress=interrupt)
-    # nothing is waited for on an interrupt: the points the workers were running (and those
-    # already handed to them) are still written through to the store after it; count the store
-    # once it has stopped growing (a loaded machine finished one after the count, CI at 3cd1700)
+    # an interrupt ends the workers (upliftlab.workers.process_pool): a point a worker stored
+    # before it was stopped is kept; count the store once it has stopped growing
     stored_before, deadline = len(store), time.monotonic() + 60.0
     while time.monotonic() < deadline:
         time.sleep(2.0)

@@ -16,6 +16,9 @@ Physically admissible means, for the reduced model, an energy balance closed to 
 M <= N B/2, with 0.5 % for the mesh) and a contact loss in [0, 1]; for the continuum
 dynamics, finite peaks with |θ| < 1 rad.
 
+The harm classes that are not inputs (a full disk, signals at every phase of a run, concurrent
+runs) are fuzzed in ``tests/test_fuzz_interruptions.py``.
+
 ``python tests/test_fuzz.py`` prints the counts (refused / ran fine / failed) and every failure;
 ``python benchmarks/fuzz_counts.py`` runs each case in a forked child with a timeout and
 a memory limit, which is how the counts of the code before the fixes were measured (hangs and

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .checks import InputError
-from .paths import check_folder_name, pop_root, push_root
+from .paths import check_folder_name, disk_full, pop_root, push_root
 
 __all__ = ["MARKER", "LOCK", "Claim", "claim", "settings_digest", "read_marker"]
 
@@ -94,8 +94,13 @@ class Claim:
         except FileExistsError:
             raise InputError(f"{option} = {str(self.path)!r}: another upliftlab run is writing "
                              f"to it ({_lock_owner(lock)})") from None
-        with os.fdopen(fd, "w") as fh:
-            fh.write(str(os.getpid()))
+        try:
+            with os.fdopen(fd, "w") as fh:
+                fh.write(str(os.getpid()))
+        except OSError:  # no room even for a process id: leave no empty lock behind
+            with contextlib.suppress(OSError):
+                lock.unlink()
+            raise
         self.locked = True
         self.root = push_root(self.path)
 
@@ -162,6 +167,8 @@ def claim(out: str | os.PathLike | None, default: str | os.PathLike, *, settings
     try:
         return _claim(path, settings, force, option)
     except OSError as exc:  # a name too long, a folder not reachable: one line, not a trace
+        if disk_full(exc):  # not bad input: the command's own exit (3, no space left)
+            raise
         raise InputError(f"{option} = {str(path)[:80]!r}: cannot be used as a folder "
                          f"({exc.strerror or exc})") from None
 
@@ -186,6 +193,8 @@ def _claim(path: Path, settings: dict, force: bool, option: str) -> Claim:
         os.unlink(probe)
     except OSError as exc:
         result.abandon()
+        if disk_full(exc):
+            raise
         raise InputError(f"{option} = {str(path)!r}: cannot write there "
                          f"({exc.strerror or exc})") from None
     if (path / LOCK).exists():
@@ -201,7 +210,7 @@ def _claim(path: Path, settings: dict, force: bool, option: str) -> Claim:
                              "choose another folder, or add --force to replace it")
     try:
         result._lock(option)
-    except InputError:
+    except (InputError, OSError):
         result.abandon()
         raise
     return result

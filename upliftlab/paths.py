@@ -15,14 +15,20 @@ the user's files, whatever field or path carries it:
 * **Only files upliftlab made are removed** (:func:`temporary_sibling`). A temporary file is
   named ``.<target>.upliftlab-<pid>-<random>.part``, beside its target; before writing a target,
   the temporary files of that same target whose process is no longer alive are removed, and
-  nothing else.
+  nothing else. A process that is ended (a pool's worker told to stop) removes its own
+  unfinished temporaries first (:func:`remove_live_temporaries`).
+
+A write that finds no room (a full disk, a quota, a file-size limit: :func:`disk_full`) is not
+bad input: the command line ends it with its own line and exit code.
 """
 
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import re
+import shutil
 import stat
 import tempfile
 import threading
@@ -32,7 +38,8 @@ from pathlib import Path
 from .checks import InputError
 
 __all__ = ["MAX_COMPONENT", "path_component", "check_folder_name", "check_target",
-           "output_root", "temporary_sibling", "TEMPORARY_TAG"]
+           "output_root", "temporary_sibling", "TEMPORARY_TAG", "DISK_FULL", "disk_full",
+           "forget_temporary", "remove_live_temporaries"]
 
 #: Longest name upliftlab turns into a path component (a file name may hold 255 bytes; the
 #: name is joined with a case, a suffix and a temporary file's tag).
@@ -41,9 +48,13 @@ MAX_COMPONENT = 100
 #: What marks a temporary file as upliftlab's own.
 TEMPORARY_TAG = "upliftlab"
 
+#: The errors of a write that found no room: no space, a quota, a file-size limit.
+DISK_FULL = frozenset({errno.ENOSPC, errno.EDQUOT, errno.EFBIG})
+
 _UNSAFE = re.compile(r"[\x00-\x1f\x7f/\\]")
 _CONTROL_CHAR = re.compile(r"[\x00-\x1f\x7f]")
 _ROOTS: list[Path] = []
+_LIVE: set[Path] = set()  # this process's temporaries not yet moved into place or removed
 _ROOTS_LOCK = threading.Lock()
 
 
@@ -204,7 +215,32 @@ def temporary_sibling(target: str | os.PathLike, *, directory: bool = False) -> 
     remove_stale_temporaries(target)
     prefix = f"{_prefix(target)}{os.getpid()}-"
     if directory:
-        return Path(tempfile.mkdtemp(prefix=prefix, suffix=".part", dir=target.parent))
-    fd, name = tempfile.mkstemp(prefix=prefix, suffix=".part", dir=target.parent)
-    os.close(fd)
-    return Path(name)
+        made = Path(tempfile.mkdtemp(prefix=prefix, suffix=".part", dir=target.parent))
+    else:
+        fd, name = tempfile.mkstemp(prefix=prefix, suffix=".part", dir=target.parent)
+        os.close(fd)
+        made = Path(name)
+    _LIVE.add(made)
+    return made
+
+
+def forget_temporary(path: Path) -> None:
+    """``path``, a temporary of :func:`temporary_sibling`, was moved into place or removed."""
+    _LIVE.discard(path)
+
+
+def remove_live_temporaries() -> None:
+    """Remove every temporary file or folder this process made and has not finished (a process
+    being ended calls it: nothing half-written stays behind)."""
+    for path in list(_LIVE):
+        with contextlib.suppress(OSError):
+            if path.is_dir() and not path.is_symlink():
+                shutil.rmtree(path, ignore_errors=True)
+            else:
+                path.unlink()
+        _LIVE.discard(path)
+
+
+def disk_full(exc: BaseException) -> bool:
+    """Whether ``exc`` is a write that found no room (:data:`DISK_FULL`)."""
+    return isinstance(exc, OSError) and exc.errno in DISK_FULL

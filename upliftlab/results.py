@@ -10,11 +10,19 @@ with :func:`upliftlab.open_result`. Attributes follow the CF conventions: number
 attribute per key (``provenance_numpy``), and only a nested record that no coordinate or
 variable could hold (the scene as loaded) stays JSON text (:func:`cf_attributes`). Every writer
 goes through :func:`atomic_path`: the file appears complete or not at all.
+
+**A full disk.** HDF5 does not survive a write that fails for want of space (it ends the
+process with a segmentation fault, leaving its part file and the folder's lock), so no HDF5
+file is written to disk by HDF5: a NetCDF file is made in memory (:func:`netcdf_bytes`) and
+written with Python's own I/O (:func:`write_bytes`), where a full disk (ENOSPC), a quota
+(EDQUOT) or a file-size limit (EFBIG) is an ordinary :class:`OSError`
+(:func:`disk_full`) that removes the part file on its way out.
 """
 
 from __future__ import annotations
 
 import contextlib
+import io
 import json
 import os
 import shutil
@@ -24,10 +32,12 @@ from pathlib import Path
 import numpy as np
 
 from . import cf
-from .paths import check_target, temporary_sibling
+from .paths import (DISK_FULL, check_target, disk_full, forget_temporary,
+                    temporary_sibling)
 
-__all__ = ["atomic_path", "staging_folder", "move_into_place", "write_dataset", "write_netcdf", "read_netcdf", "read_dataset",
-           "cf_attributes", "write_csv", "write_text", "Variable"]
+__all__ = ["atomic_path", "staging_folder", "move_into_place", "write_dataset", "write_netcdf",
+           "read_netcdf", "read_dataset", "cf_attributes", "write_csv", "write_text",
+           "write_bytes", "netcdf_bytes", "disk_full", "DISK_FULL", "Variable"]
 
 Variable = tuple  # (dims: tuple[str, ...], values: array-like, attrs: dict)
 
@@ -57,6 +67,7 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     finally:
         if tmp.exists():
             tmp.unlink()
+        forget_temporary(tmp)
 
 
 @contextlib.contextmanager
@@ -69,6 +80,7 @@ def staging_folder(path: str | os.PathLike) -> Iterator[Path]:
         yield folder
     finally:
         shutil.rmtree(folder, ignore_errors=True)
+        forget_temporary(folder)
 
 
 def move_into_place(written: str | os.PathLike, path: str | os.PathLike) -> Path:
@@ -80,11 +92,25 @@ def move_into_place(written: str | os.PathLike, path: str | os.PathLike) -> Path
     return Path(path)
 
 
-def write_text(path: str | os.PathLike, text: str) -> Path:
-    """Write ``text`` to ``path`` atomically."""
+def write_bytes(path: str | os.PathLike, data: bytes) -> Path:
+    """Write ``data`` to ``path`` atomically with Python's own I/O, flushed to the disk (so
+    that a full disk is seen here, as an :class:`OSError` naming ``path``, and not later)."""
     with atomic_path(path) as tmp:
-        tmp.write_text(text)
+        try:
+            with open(tmp, "wb") as fh:
+                fh.write(data)
+                fh.flush()
+                os.fsync(fh.fileno())
+        except OSError as exc:
+            if exc.filename is None and disk_full(exc):
+                raise OSError(exc.errno, exc.strerror, str(path)) from None
+            raise
     return Path(path)
+
+
+def write_text(path: str | os.PathLike, text: str) -> Path:
+    """Write ``text`` to ``path`` atomically (UTF-8)."""
+    return write_bytes(path, text.encode())
 
 
 def _netcdf_array(values) -> np.ndarray:
@@ -154,9 +180,14 @@ def write_dataset(path: str | os.PathLike, dataset) -> Path:
                 if var.ndim and var.dtype.kind in "fiu"}
     for name, extra in cf_encoding.items():
         encoding[name] = {**encoding.get(name, {}), **extra}
-    with atomic_path(path) as tmp:
-        dataset.to_netcdf(tmp, engine="h5netcdf", format="NETCDF4", encoding=encoding)
-    return Path(path)
+    return write_bytes(path, netcdf_bytes(dataset, encoding))
+
+
+def netcdf_bytes(dataset, encoding: Mapping | None = None) -> bytes:
+    """``dataset`` as the bytes of a NetCDF-4 file, made in memory (module docstring)."""
+    buffer = io.BytesIO()
+    dataset.to_netcdf(buffer, engine="h5netcdf", format="NETCDF4", encoding=dict(encoding or {}))
+    return buffer.getvalue()
 
 
 def write_netcdf(path: str | os.PathLike, variables: Mapping[str, Variable],

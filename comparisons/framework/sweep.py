@@ -5,7 +5,8 @@ the :class:`~.store.Store`, in chunks (one task evaluates several points, so tha
 task is amortised over many millisecond runs of the reduced model), on
 
 * local processes (default): a ``ProcessPoolExecutor`` with one worker per CPU, started with
-  ``spawn`` and ``OMP_NUM_THREADS=1`` (and the MKL/OpenBLAS equivalents) in the workers;
+  ``spawn`` and ``OMP_NUM_THREADS=1`` (and the MKL/OpenBLAS equivalents) in the workers, all
+  ended with the sweep, also when it is interrupted (:func:`upliftlab.workers.process_pool`);
 * a Dask cluster, when ``scheduler`` or ``DASK_SCHEDULER_ADDRESS`` gives its address
   (``distributed.Client(address).get_executor()``; Dask is the optional extra ``dask``);
 * any ``concurrent.futures`` executor passed as ``executor``.
@@ -22,21 +23,19 @@ from __future__ import annotations
 import concurrent.futures as cf
 import contextlib
 import math
-import multiprocessing
 import os
 import sys
-import threading
 import time
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 
 from ...checks import InputError, integer_at_least, scheduler_address
-from ...workers import SINGLE_THREAD_ENVIRONMENT, inherited_environment
+from ...workers import PARENT_POLL, SINGLE_THREAD_ENVIRONMENT, process_pool, watch_parent
 from .freshness import DEFAULT_SAMPLE, check_stale
 from .store import Store, function_name, plain_params, point_key, record_meta
 
 __all__ = ["run_sweep", "sweep_executor", "SweepProgress", "StderrProgress",
-           "SINGLE_THREAD_ENVIRONMENT", "DASK_ENV"]
+           "SINGLE_THREAD_ENVIRONMENT", "DASK_ENV", "PARENT_POLL", "watch_parent"]
 
 DASK_ENV = "DASK_SCHEDULER_ADDRESS"
 MAX_CHUNK = 16
@@ -80,34 +79,6 @@ class StderrProgress:
         eta = "" if finished or not math.isfinite(left) else f", about {left:.0f} s left"
         print(f"{p.study}: {p.done}/{p.total} points ({100.0 * p.done / p.total:.0f} %), "
               f"{p.elapsed:.0f} s{eta}", file=self.stream or sys.stderr, flush=True)
-
-
-#: How often (s) a worker checks that the process that started it is still alive.
-PARENT_POLL = 0.5
-
-
-def _single_threaded_worker() -> None:
-    """Process-pool initializer: one thread per worker for OpenMP/BLAS/numba, and a watchdog
-    that ends the worker when its parent dies (a killed sweep or report must not leave workers
-    computing, writing to the store and then idling forever)."""
-    os.environ.update(SINGLE_THREAD_ENVIRONMENT)
-    watch_parent()
-
-
-def watch_parent(poll: float = PARENT_POLL) -> threading.Thread:
-    """Start a daemon thread that ends this process (exit status 1) as soon as the process
-    that started it has gone (it is re-parented: ``os.getppid()`` changes)."""
-    parent = os.getppid()
-
-    def watch():
-        while True:
-            time.sleep(poll)
-            if os.getppid() != parent:
-                os._exit(1)
-
-    thread = threading.Thread(target=watch, name="upliftlab-parent-watch", daemon=True)
-    thread.start()
-    return thread
 
 
 def _evaluate_chunk(function, items, store_root, meta, batched):
@@ -288,8 +259,9 @@ def _compute(function, todo, store, meta, report, executor, chunk, batched, thro
     except BaseException as exc:
         stopped = sum(1 for f in futures if f.cancel())
         exc.add_note(f"run_sweep({meta['study']}): {already + counts['computed']} of {total} "
-                     f"points are stored in {store.root} (and any that running workers "
-                     f"finish); {stopped} chunks were not started. Run it again to resume.")
+                     f"points are stored in {store.root} (with any that a worker stored "
+                     f"before it was stopped); {stopped} chunks were not started; running "
+                     "the sweep again computes only the rest")
         raise
 
 
@@ -324,7 +296,8 @@ def sweep_executor(scheduler=None, *, workers: int | None = None):
     ``distributed.Client``) or ``DASK_SCHEDULER_ADDRESS`` is given, otherwise ``workers`` local
     processes (default: the CPU count), spawned with one thread each
     (:data:`SINGLE_THREAD_ENVIRONMENT`, set in this process while the block runs so that the
-    workers inherit it at birth)."""
+    workers inherit it at birth), all ended when the block ends, also by an interruption
+    (:func:`upliftlab.workers.process_pool`)."""
     address = _address(scheduler)
     if address:
         client, owned = _dask_client(address)
@@ -334,11 +307,5 @@ def sweep_executor(scheduler=None, *, workers: int | None = None):
             if owned:
                 client.close()
         return
-    n = workers or os.cpu_count() or 1
-    pool = cf.ProcessPoolExecutor(max_workers=n, mp_context=multiprocessing.get_context("spawn"),
-                                  initializer=_single_threaded_worker)
-    try:
-        with inherited_environment(SINGLE_THREAD_ENVIRONMENT):
-            yield pool
-    finally:  # nothing is waited for: finished work is stored, unstarted work is cancelled
-        pool.shutdown(wait=False, cancel_futures=True)
+    with process_pool(workers or os.cpu_count() or 1) as pool:
+        yield pool  # interrupted: unstarted work cancelled, workers ended (finished work is stored)

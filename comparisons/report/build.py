@@ -78,6 +78,7 @@ from pathlib import Path
 from ... import __version__, checks
 from ...checks import InputError
 from ...provenance import provenance
+from ...paths import disk_full
 from ...results import write_text
 from ..framework.protocol import CHECKOUT, Context, Study, run_study
 from ..studies.registry import STUDIES, definition
@@ -291,6 +292,10 @@ def _run_section(item: str | Study, run: _Run, record_sha: str | None, say) -> S
 
 
 def _failed(name: str, title: str, intro: str, start: float, exc: BaseException) -> Section:
+    """The section of a study that failed; a full disk is not the study's failure: it ends the
+    report (:func:`upliftlab.paths.disk_full`)."""
+    if disk_full(exc):
+        raise exc
     lines = traceback.format_exception(type(exc), exc, exc.__traceback__)
     tail = "".join(lines[-6:])
     message = f"{type(exc).__name__}: {exc}"

@@ -137,12 +137,13 @@ def figure_title(result, scene=None) -> str:
 
 
 def write_outputs(directory, model, result, *, scene=None, renders: bool = True,
-                  scale: float | None = None, progress=None) -> dict[str, Path]:
+                  scale: float | None = None, progress=None, stop=None) -> dict[str, Path]:
     """Write a run's files into ``directory``: ``result.nc`` (``result.save``), ``fields.xdmf``
     and ``fields.h5`` (the soil), ``footing.xdmf`` and ``footing.h5`` (the contact along the
     base; both time series at the same time values: :mod:`~upliftlab.continuum.output.xdmf`),
     ``uplift.png`` (the snapshot of largest |θ|) and ``uplift.gif`` (every snapshot; skipped if
-    not ``renders``), and for a pushover ``moment_rotation.png``.
+    not ``renders``, or once ``stop()`` is true: the user asked the run to stop while its data
+    were written), and for a pushover ``moment_rotation.png``.
     ``progress(message)`` reports each file. Returns {name: path}."""
     from ...meshes.render import animate_uplift, render_uplift
 
@@ -165,7 +166,7 @@ def write_outputs(directory, model, result, *, scene=None, renders: bool = True,
         fig = moment_rotation_figure(result, scene=scene)
         written["moment_rotation.png"] = save_figure(fig, directory / "moment_rotation.png")
         say(f"wrote {written['moment_rotation.png']}")
-    if renders:
+    if renders and not (stop is not None and stop()):
         title = figure_title(result, scene)
         rows = snapshot_rows(result)
         peak = int(np.argmax(np.abs(np.asarray(result.footing)[rows, 2])))

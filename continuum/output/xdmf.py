@@ -46,7 +46,9 @@ working directory (meshio 5.3.5 would put the ``.h5`` there).
 
 from __future__ import annotations
 
+import io
 import json
+import os
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
@@ -122,17 +124,30 @@ def time_axis(result) -> TimeAxis:
 
 def _writer_class():
     import meshio
+    from meshio.xdmf.time_series import write_xml
 
     class _Writer(meshio.xdmf.TimeSeriesWriter):
         """meshio's time-series writer with its ``.h5`` beside the ``.xdmf`` (an absolute
-        path), not in the working directory; the ``.xdmf`` refers to it by base name."""
+        path), not in the working directory; the ``.xdmf`` refers to it by base name. The
+        ``.h5`` is made in memory and written by Python when the writer closes
+        (:mod:`upliftlab.results`: HDF5 does not survive a full disk)."""
 
         def __enter__(self):
             import h5py
 
             self.h5_filename = str(self.filename.with_suffix(".h5").resolve())
-            self.h5_file = h5py.File(self.h5_filename, "w")
+            self.h5_buffer = io.BytesIO()
+            self.h5_file = h5py.File(self.h5_buffer, "w")
             return self
+
+        def __exit__(self, kind, *_):
+            self.h5_file.close()
+            if kind is None:
+                write_xml(self.filename, self.xdmf_file)
+                with open(self.h5_filename, "wb") as fh:
+                    fh.write(self.h5_buffer.getbuffer())
+                    fh.flush()
+                    os.fsync(fh.fileno())
 
     return _Writer
 

@@ -27,8 +27,15 @@ last (``upliftlab-run.json``); a folder that holds a different run is not overwr
 ``--force``. The library raises; this package alone turns what it raises into exit codes
 (:mod:`.exits`): 0 done, 1 a verification, report section or study check failed, 2 bad input,
 3 a numerical failure (the message names the step, or the energy balance beyond its
-tolerance), 130 interrupted (a continuum dynamic run writes what it computed, marked
-incomplete).
+tolerance; no space left on device: the unfinished file removed), 130 interrupted.
+
+**Interruptions.** Ctrl-C and SIGTERM end every command the same way, at any moment: one line
+that says what was kept and the command that resumes the run (:func:`.exits.interrupted_line`),
+the output folder unlocked and without its completion marker, no part file, and every worker
+process the command started ended (:func:`upliftlab.workers.process_pool`). Finished points of
+a study stay in its store, so the same command resumes it. A continuum dynamic run turns the
+interruption into a flag its time loop checks and writes what it computed, marked incomplete
+(:mod:`.continuum`, :mod:`.stop`).
 
 BLAS and OpenMP use one thread unless the user set ``OMP_NUM_THREADS``,
 ``OPENBLAS_NUM_THREADS`` or ``MKL_NUM_THREADS``: the solves here are small and the machines
@@ -43,13 +50,17 @@ import os
 for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
+import contextlib  # noqa: E402
+import signal  # noqa: E402
 import sys  # noqa: E402
+import threading  # noqa: E402
 
 from .. import __version__  # noqa: E402
 from ..checks import InputError  # noqa: E402
 from ..log import configure  # noqa: E402
 from .common import Parser, add_verbosity  # noqa: E402
-from .exits import EXIT_INPUT, EXIT_INTERRUPTED, EXIT_NUMERICS, exit_code, one_line  # noqa: E402
+from .exits import (EXIT_INPUT, EXIT_INTERRUPTED, EXIT_NUMERICS, disk_full_line,  # noqa: E402
+                    exit_code, interrupted_line, one_line)
 
 __all__ = ["main", "parser"]
 
@@ -88,13 +99,42 @@ def _handler(command: str):
             "store": store.store}[command]
 
 
+def _terminated(signum, frame):
+    raise KeyboardInterrupt(signal.Signals(signum).name)
+
+
+@contextlib.contextmanager
+def _sigterm_interrupts():
+    """SIGTERM raises KeyboardInterrupt, as Ctrl-C does, while the block runs (in the main
+    thread only, where a handler can be set), so that every ``finally`` of the command runs."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGTERM, _terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the command line ``argv``; its exit code (:mod:`.exits`)."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    try:
+        with _sigterm_interrupts():
+            return _main(argv)
+    except KeyboardInterrupt as exc:  # also one that came while the line above was printed
+        print(interrupted_line(exc, argv), file=sys.stderr)
+        return EXIT_INTERRUPTED
+
+
+def _main(argv: list[str]) -> int:
     try:
         args = parser().parse_args(argv)
     except SystemExit as exc:  # --help, --version, or a one-line usage error
         return exc.code if isinstance(exc.code, int) else 0
     configure(int(args.verbose) - int(args.quiet))
+    args.argv = argv  # a command that names how to resume it
     try:
         return _handler(args.command)(args)
     except InputError as exc:
@@ -107,10 +147,14 @@ def main(argv: list[str] | None = None) -> int:
         print("upliftlab: error: out of memory; the run's estimate was within "
               "analysis.max_memory, lower it or make the run smaller", file=sys.stderr)
         return EXIT_NUMERICS
-    except KeyboardInterrupt:
-        print("upliftlab: interrupted before any result was computed; nothing written",
-              file=sys.stderr)
+    except KeyboardInterrupt as exc:
+        print(interrupted_line(exc, argv), file=sys.stderr)
         return EXIT_INTERRUPTED
     except BrokenPipeError:  # `upliftlab scenes | head`: the reader has gone
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
+    except OSError as exc:
+        if exit_code(exc) != EXIT_NUMERICS:
+            raise
+        print(disk_full_line(exc), file=sys.stderr)
+        return EXIT_NUMERICS

@@ -7,12 +7,18 @@ the physics the model can carry (a small-strain model: rotations up to
 dynamics; a load that is not lost in the solver's tolerance against the soil's stiffness),
 the output folder, and the size of the mesh and of the run against the scene's budget
 (:mod:`upliftlab.budget`), first estimated from the grid lines, then counted on the mesh.
+
+An interruption (Ctrl-C, SIGTERM) of a dynamic run is a flag its time loop checks
+(:mod:`.stop`): in the loop the run ends at the step it reached and writes the rows computed
+so far, marked incomplete; after the loop every data file is still written (the pictures are
+skipped) and the folder is left without its completion marker; either way the exit code is 130
+with one line saying what was written.
 """
 
 from __future__ import annotations
 
 import math
-import signal
+import shlex
 import sys
 import time
 
@@ -26,6 +32,7 @@ from .common import (MESH_KEYS, default_out, eta, mesh_overrides, number,
                      refuse_without_effect, say, say_if_rounded)
 from .exits import EXIT_INTERRUPTED, EXIT_NUMERICS
 from ..outdir import claim
+from .stop import stop_flag
 
 __all__ = ["add_continuum", "continuum", "CONTINUUM_ANALYSES", "MAX_ROTATION"]
 
@@ -192,7 +199,8 @@ def continuum(args) -> int:
                 "motion": args.motion, "theta_max": given["theta_max"],
                 "steps": given["steps"]}
     default = default_out(f"{scene.name}-continuum-{args.analysis}", variant)
-    with claim(args.out, default, settings=settings, force=args.force) as out:
+    with claim(args.out, default, settings=settings, force=args.force) as out, \
+            stop_flag() as flag:
         from ..continuum import build_model
 
         started = time.perf_counter()
@@ -206,7 +214,8 @@ def continuum(args) -> int:
             from ..continuum.dynamics.run_control import BearingFailure
 
             try:
-                result = _dynamic(model, scene, motion, options["threads"] or 1, out, started)
+                result = _dynamic(model, scene, motion, options["threads"] or 1, out, started,
+                                  flag, _command(args))
             except BearingFailure as exc:
                 if exc.result is None or exc.result.time.size < 2:
                     raise
@@ -225,13 +234,19 @@ def continuum(args) -> int:
         out.start_writing()
         written = write_outputs(out.path, model, result, scene=scene,
                                 renders=not args.no_render, scale=options["scale"],
-                                progress=say)
+                                progress=say, stop=lambda: flag.stopped)
         if failed is not None:  # no completion marker: the folder holds a failed run
             print(f"upliftlab: error: {' '.join(str(failed).split())} (the rows and snapshots "
                   f"until t = {float(result.time[-1]):.4g} s written to "
                   f"{out.path}, result.nc marked incomplete = 1, failure = bearing)",
                   file=sys.stderr)
             return EXIT_NUMERICS
+        if flag.stopped:  # after the time loop: every data file written, no completion marker
+            print(f"upliftlab: interrupted ({flag.name}) after the time loop ended at t = "
+                  f"{float(result.time[-1]):.4g} s; wrote {', '.join(sorted(written))} to "
+                  f"{out.path}{'' if args.no_render else ' (pictures skipped)'}, not marked "
+                  f"complete; resume with: {_command(args)}", file=sys.stderr)
+            return EXIT_INTERRUPTED
         out.complete(written.values() if isinstance(written, dict) else written)
     if args.json:
         import json
@@ -321,31 +336,37 @@ def _pushover(model, scene, theta_max, steps):
     return rotation_pushover(model, N, rotations, record_fields=True, progress=progress)
 
 
-def _dynamic(model, scene, motion, threads: int, out, started: float):
-    """The dynamic run, or the exit code of a run that was interrupted (Ctrl-C or SIGTERM: the
-    rows computed so far written to ``result.nc``, marked incomplete, no completion marker) or
-    that failed its energy check (its result written, marked failed)."""
+def _dynamic(model, scene, motion, threads: int, out, started: float, flag, command: str):
+    """The dynamic run, or the exit code of a run that was interrupted (``flag``, checked at
+    every step of the time loop: the rows computed so far written to ``result.nc``, marked
+    incomplete, no completion marker) or that failed its energy check (its result written,
+    marked failed)."""
     from ..continuum.dynamics.run import DynamicOptions, run_dynamic
     from ..continuum.dynamics.run_control import EnergyBalanceError, Interrupted
 
     duration = scene.analysis.duration or motion.duration
     say(f"{model.options.dynamics} dynamics (continuum.dynamics), {duration:g} s of "
          f"{motion.name} (--set analysis.duration=T runs the first T s)")
+    report = _dynamic_progress(duration, started)
 
-    def terminate(signum, frame):
-        raise KeyboardInterrupt(f"signal {signum}")
+    def progress(k, n, state):
+        flag.defer()  # the loop has rows to keep: a signal now only sets the flag
+        report(k, n, state)
+        if k < n:  # at the last step the run is whole: it is written as after the loop
+            flag.check()
 
-    previous = signal.signal(signal.SIGTERM, terminate)
     try:
         return run_dynamic(model, scene, motion, DynamicOptions(threads=threads),
-                           progress=_dynamic_progress(duration, started))
+                           progress=progress)
     except Interrupted as exc:
+        if exc.result.time.size == 0:  # stopped before the loop's first row: nothing to keep
+            raise KeyboardInterrupt(flag.name) from None
         out.start_writing()
         path = exc.result.save(out.path / "result.nc")
-        until = exc.result.metadata["completed_until"]
-        print(f"upliftlab: interrupted at t = {until:.4g} s of the motion; wrote the rows "
-              f"computed so far to {path} (attribute incomplete = 1, completed_until = "
-              f"{until:.4g} s)", file=sys.stderr)
+        until = exc.result.metadata.get("completed_until", float(exc.result.time[-1]))
+        print(f"upliftlab: interrupted at t = {until:.4g} s of the motion ("
+              f"{flag.name or 'Ctrl-C'}); wrote the rows computed so far to {path} (attribute incomplete = 1, "
+              f"completed_until = {until:.4g} s); resume with: {command}", file=sys.stderr)
         return EXIT_INTERRUPTED
     except EnergyBalanceError as exc:
         out.start_writing()
@@ -354,8 +375,11 @@ def _dynamic(model, scene, motion, threads: int, out, started: float):
         print(f"upliftlab: error: {exc} (result written to {path}, energy_check = failed)",
               file=sys.stderr)
         return EXIT_NUMERICS
-    finally:
-        signal.signal(signal.SIGTERM, previous)
+
+
+def _command(args) -> str:
+    """The command line that runs this command again."""
+    return shlex.join(["upliftlab", *getattr(args, "argv", sys.argv[1:])])
 
 
 def _dynamic_progress(duration: float, started: float):

@@ -1,0 +1,335 @@
+"""The fuzz test's harm classes that are not inputs (``tests/test_fuzz.py`` fuzzes the inputs):
+a full disk, a signal at every phase of a run, and concurrent runs. Each is driven through the
+command line in a child process, through more than one subcommand or moment.
+
+The rule each case is held to (issue 37, "trusted on every path"):
+
+* **a full disk** (a file-size limit, RLIMIT_FSIZE, with SIGXFSZ ignored so that a write gets
+  EFBIG as it gets ENOSPC on a full disk: no root needed) ends with exactly one line
+  ``upliftlab: error: no space left on device ...`` and exit 3, never a crash of HDF5 (before:
+  a segmentation fault, exit -11, and on a full tmpfs a part file and the lock left behind), and
+  leaves no part file and no lock;
+* **a signal** (Ctrl-C to the whole process group, SIGTERM to the command, SIGKILL) at any
+  moment ends every process the command started; Ctrl-C and SIGTERM end it with exit 130 and
+  one line, the last, that names the command resuming it, no traceback; what was computed is
+  kept: a study's stored points, a continuum run's rows (in the time loop: the rows so far,
+  marked incomplete; after it: the whole run);
+* **concurrent runs** never mix: a second command into a folder a live run holds is refused in
+  one line (exit 2) and the first run's result is unaffected.
+
+Reference: the rule itself; the continuum's kept rows are compared with an uninterrupted run of
+the same command (equal to 1e-12 rad: the same arithmetic, step by step).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import resource
+import signal
+import subprocess
+import sys
+import threading
+import time
+import uuid
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from upliftlab.results import read_netcdf
+
+SMALL_BOX = ["--set", "continuum.elements_across=4", "--set", "continuum.domain_width=3",
+             "--set", "continuum.domain_depth=3"]
+RUN = ["run", "wall_free", "--case", "e07", "--set", "analysis.duration=0.2", "--no-figure"]
+PUSHOVER = ["continuum", "strip_footing_clay", *SMALL_BOX, "--steps", "3", "--no-render"]
+DYNAMIC = ["continuum", "strip_footing_clay", "--analysis", "dynamic", *SMALL_BOX,
+           "--set", "analysis.duration=0.3", "--no-render"]
+STUDY = ["study", "two_spring_equivalence", "--fast", "--no-figures", "--workers", "2"]
+#: The marker each child's environment carries, inherited by every process it starts.
+TAG = "UPLIFTLAB_FUZZ_TAG"
+
+
+def _env(tag: str = "") -> dict:
+    return {**os.environ, "MPLBACKEND": "Agg", TAG: tag}
+
+
+def _leftovers(folder: Path) -> list[str]:
+    """Part files and locks under ``folder``: what no ending of a command may leave."""
+    return sorted(str(p.relative_to(folder)) for p in folder.rglob("*")
+                  if p.name.endswith(".part") or p.name == ".upliftlab.lock")
+
+
+def _final_line(stderr: str, start: str) -> str:
+    """The one line of ``stderr`` that begins with ``start``; it must be the last, and no
+    traceback may come before it."""
+    lines = [line for line in stderr.splitlines() if line.strip()]
+    mine = [line for line in lines if line.startswith(("upliftlab: error:",
+                                                       "upliftlab: interrupted"))]
+    assert "Traceback" not in stderr, stderr[-3000:]
+    assert len(mine) == 1 and lines[-1] == mine[0] and mine[0].startswith(start), lines[-5:]
+    return mine[0]
+
+
+# ---------------------------------------------------------------------------------------------
+# A full disk
+# ---------------------------------------------------------------------------------------------
+
+def _limited(limit: int):
+    def start():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+    return start
+
+
+def _cli(argv, cwd, limit: int | None = None, timeout: float = 600):
+    return subprocess.run([sys.executable, "-m", "upliftlab", *argv], cwd=cwd, env=_env(),
+                          capture_output=True, text=True, timeout=timeout,
+                          preexec_fn=_limited(limit) if limit else None)
+
+
+@pytest.mark.parametrize("command", ["run", "pushover", "opensees"])
+def test_a_full_disk_ends_in_one_line_with_exit_3_and_leaves_nothing_half_written(
+        command, tmp_path):
+    """Each command first runs unlimited (which also fills the compiled-code cache, which a
+    limit would stop); then with a file-size limit of half its largest file (its result file
+    fails), and of 1 byte (the folder's lock fails): exit 3, one line, no part file, no lock,
+    and no completion marker."""
+    argv = {"run": RUN, "pushover": PUSHOVER,
+            "opensees": ["opensees", "wall_free", "--case", "e10"]}[command]
+    whole = _cli([*argv, "--out", "whole"], tmp_path)
+    assert whole.returncode == 0, whole.stderr[-2000:]
+    largest = max(p.stat().st_size for p in (tmp_path / "whole").iterdir())
+    for limit in sorted({largest // 2, 1}):
+        out = tmp_path / f"limit{limit}"
+        done = _cli([*argv, "--out", out.name], tmp_path, limit=limit)
+        line = _final_line(done.stderr, "upliftlab: error: no space left on device")
+        assert done.returncode == 3, (limit, line)
+        assert not out.exists() or (_leftovers(out) == []
+                                    and not (out / "upliftlab-run.json").exists()), limit
+
+
+def test_hdf5_files_meet_a_full_disk_as_an_os_error(tmp_path):
+    """The writers of HDF5 files (NetCDF through xarray, XDMF's .h5 through meshio) under a
+    file-size limit in a child: an OSError (EFBIG) that the caller sees, the temporary files
+    removed, instead of HDF5 ending the process (before: a segmentation fault)."""
+    code = f"""
+import errno, os, sys
+import numpy as np, xarray as xr
+from upliftlab.results import write_dataset
+folder = {str(tmp_path)!r}
+try:
+    write_dataset(os.path.join(folder, "big.nc"),
+                  xr.Dataset({{"a": ("x", np.random.default_rng(1).random(200_000))}}))
+except OSError as exc:
+    print("netcdf", exc.errno == errno.EFBIG)
+from upliftlab.continuum.output import xdmf
+axis = xdmf.TimeAxis(np.array([0.0]), "time", "s", "time")
+points = np.random.default_rng(2).random((30_000, 2))
+try:
+    xdmf._write_series(os.path.join(folder, "f.xdmf"), points,
+                       [("vertex", np.arange(30_000).reshape(-1, 1))],
+                       [({{"u": points}}, {{}})], axis, [])
+except OSError as exc:
+    print("xdmf", exc.errno == errno.EFBIG)
+"""
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          env=_env(), preexec_fn=_limited(100_000), timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.split() == ["netcdf", "True", "xdmf", "True"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
+
+
+# ---------------------------------------------------------------------------------------------
+# Signals: every process the command started ends; what was computed is kept
+# ---------------------------------------------------------------------------------------------
+
+def _tagged(tag: str) -> list[int]:
+    """Running processes (not zombies) whose environment carries ``tag``."""
+    found = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/environ", "rb") as fh:
+                if f"{TAG}={tag}".encode() not in fh.read().split(b"\0"):
+                    continue
+            with open(f"/proc/{entry}/stat") as fh:
+                if fh.read().rsplit(")", 1)[1].split()[0] != "Z":
+                    found.append(int(entry))
+        except OSError:
+            continue
+    return found
+
+
+def _interrupt(argv, cwd, when, how: str, timeout: float = 600):
+    """Start ``upliftlab argv`` in a session of its own; when ``when(child pids, stderr so
+    far)`` is true, signal it (``how``: ``ctrl-c`` SIGINT to the process group, ``term``
+    SIGTERM to the command, ``kill`` SIGKILL to it); return (exit code, stderr, the tag of its
+    processes)."""
+    tag = uuid.uuid4().hex
+    proc = subprocess.Popen([sys.executable, "-m", "upliftlab", *argv], cwd=cwd,
+                            env=_env(tag), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            text=True, start_new_session=True)
+    lines: list[str] = []
+    reader = threading.Thread(target=lambda: lines.extend(proc.stderr), daemon=True)
+    reader.start()  # the lines as they come (the pipe closes only when every holder ends)
+    deadline = time.monotonic() + timeout
+    while proc.poll() is None and time.monotonic() < deadline:
+        if when([p for p in _tagged(tag) if p != proc.pid], "".join(lines)):
+            break
+        time.sleep(0.01)
+    assert proc.poll() is None, f"the command ended before the signal: {''.join(lines)[-2000:]}"
+    if how == "ctrl-c":
+        os.killpg(proc.pid, signal.SIGINT)
+    else:
+        proc.send_signal(signal.SIGTERM if how == "term" else signal.SIGKILL)
+    proc.wait(timeout=120)
+    reader.join(timeout=120)
+    if reader.is_alive():
+        survivors = _tagged(tag)
+        for pid in survivors:
+            os.kill(pid, signal.SIGKILL)
+        pytest.fail(f"{how}: processes {survivors} held the command's pipe for 120 s")
+    err = "".join(lines)
+    return proc.returncode, err, tag
+
+
+def _gone(tag: str, within: float = 20.0) -> list[int]:
+    """The processes of ``tag`` still running after ``within`` s (killed then, and returned)."""
+    deadline = time.monotonic() + within
+    while _tagged(tag) and time.monotonic() < deadline:
+        time.sleep(0.2)
+    survivors = _tagged(tag)
+    for pid in survivors:
+        os.kill(pid, signal.SIGKILL)
+    return survivors
+
+
+def _workers(n: int):
+    """When ``n`` worker processes have been spawned (they may still be starting)."""
+    def when(children, err):
+        return sum(1 for p in children if b"spawn_main" in _cmdline(p)) >= n
+    return when
+
+
+def _cmdline(pid: int) -> bytes:
+    try:
+        with open(f"/proc/{pid}/cmdline", "rb") as fh:
+            return fh.read()
+    except OSError:
+        return b""
+
+
+def _stored(store: Path, n: int):
+    """When the study's store holds ``n`` points."""
+    def when(children, err):
+        return store.is_dir() and len([p for p in store.rglob("*.json")]) >= n
+    return when
+
+
+@pytest.mark.parametrize("moment, how", [("first worker starting", "term"),
+                                         ("first worker starting", "kill"),
+                                         ("second worker starting", "ctrl-c"),
+                                         ("points stored", "ctrl-c"),
+                                         ("points stored", "term")])
+def test_an_interrupted_study_ends_every_process_it_started(moment, how, tmp_path):
+    """A study's sweep on two worker processes, interrupted while its workers start or once
+    points are stored: no process it started survives (before: a worker that was starting when
+    its parent went lived on forever, holding the caller's pipe); Ctrl-C and SIGTERM end in
+    one line naming the resume command, exit 130, no traceback; the stored points are kept,
+    each a whole record."""
+    out = tmp_path / "study"
+    when = {"first worker starting": _workers(1), "second worker starting": _workers(2),
+            "points stored": _stored(out / "store", 2)}[moment]
+    code, err, tag = _interrupt([*STUDY, "--out", str(out)], tmp_path, when, how)
+    assert _gone(tag) == []
+    assert _leftovers(tmp_path) == [] or how == "kill"
+    if how == "kill":
+        assert code == -signal.SIGKILL
+        return
+    line = _final_line(err, "upliftlab: interrupted")
+    assert code == 130 and f"resume with: upliftlab {' '.join(STUDY)}" in line
+    records = list((out / "store").rglob("*.json")) if (out / "store").is_dir() else []
+    assert all(json.loads(p.read_text()) for p in records)
+    assert (moment != "points stored") or len(records) >= 2
+
+
+def _line(text: str):
+    """When stderr has a line containing ``text``."""
+    return lambda children, err: text in err
+
+
+@pytest.fixture(scope="module")
+def whole_dynamic(tmp_path_factory):
+    """The uninterrupted dynamic run's result.nc (the reference of the kept rows)."""
+    folder = tmp_path_factory.mktemp("whole")
+    done = _cli([*DYNAMIC, "--out", "whole"], folder)
+    assert done.returncode == 0, done.stderr[-2000:]
+    return read_netcdf(folder / "whole" / "result.nc")
+
+
+@pytest.mark.parametrize("moment, how", [("model built", "term"), ("in the loop", "term"),
+                                         ("in the loop", "ctrl-c"), ("loop ended", "term"),
+                                         ("writing", "ctrl-c")])
+def test_an_interrupted_continuum_run_keeps_what_it_computed(moment, how, tmp_path,
+                                                             whole_dynamic):
+    """SIGTERM or Ctrl-C before, in and after the time loop and while the files are written:
+    exit 130, one line, no lock, no part file, no completion marker, and result.nc holds
+    what was computed: nothing before the loop; in it, rows marked incomplete that are the
+    uninterrupted run's first rows; after it, the whole run (before: a traceback or
+    'interrupted before any result was computed' with nothing written at the loop's end, and
+    the process killed with its lock left during the writing)."""
+    out = tmp_path / "dyn"
+    when = {"model built": _line("DOFs, soil"), "in the loop": _line("(10%)"),
+            "loop ended": _line("(100%)"), "writing": _line("dyn/result.nc")}[moment]
+    code, err, tag = _interrupt([*DYNAMIC, "--out", str(out)], tmp_path, when, how)
+    assert _gone(tag) == []
+    line = _final_line(err, "upliftlab: interrupted")
+    assert code == 130 and "resume with: upliftlab continuum strip_footing_clay" in line
+    assert _leftovers(tmp_path) == [] and not (out / "upliftlab-run.json").exists()
+    if moment == "model built":
+        assert not (out / "result.nc").exists()
+        return
+    rows, attrs = read_netcdf(out / "result.nc")
+    whole = whole_dynamic[0]
+    n = rows["time"].size
+    assert np.array_equal(rows["time"], whole["time"][:n])
+    assert np.abs(rows["theta"] - whole["theta"][:n]).max() <= 1e-12
+    if attrs.get("incomplete") == 1:
+        assert moment == "in the loop" and 1 <= n < whole["time"].size
+        assert attrs["completed_until"] == pytest.approx(rows["time"][-1], rel=1e-6)
+    else:
+        assert n == whole["time"].size and (out / "fields.xdmf").is_file()
+
+
+# ---------------------------------------------------------------------------------------------
+# Concurrent runs
+# ---------------------------------------------------------------------------------------------
+
+def test_a_second_run_into_a_folder_a_live_run_holds_is_refused_in_one_line(tmp_path):
+    """While a dynamic run writes into ``held``, the same and another command into ``held``
+    are refused (one line, exit 2) and a run into another folder completes; the first run,
+    interrupted, leaves its folder unlocked, and the next run completes there."""
+    held = tmp_path / "held"
+    tag = uuid.uuid4().hex
+    long = [*DYNAMIC, "--set", "analysis.duration=3"]  # minutes: it outlasts the checks
+    first = subprocess.Popen([sys.executable, "-m", "upliftlab", *long, "--out", str(held)],
+                             cwd=tmp_path, env=_env(tag), stdout=subprocess.DEVNULL,
+                             stderr=subprocess.PIPE, text=True)
+    for line in first.stderr:
+        if "DOFs, soil" in line:
+            break
+    for argv in (DYNAMIC, RUN):
+        refused = _cli([*argv, "--out", str(held)], tmp_path)
+        line = _final_line(refused.stderr, "upliftlab: error:")
+        assert refused.returncode == 2 and "another upliftlab run is writing to it" in line
+    beside = _cli([*RUN, "--out", "beside"], tmp_path)
+    assert beside.returncode == 0, beside.stderr[-2000:]
+    first.send_signal(signal.SIGTERM)
+    rest = first.communicate(timeout=300)[1]
+    assert first.returncode in (0, 130), rest[-2000:]
+    assert _gone(tag) == [] and _leftovers(held) == []
+    again = _cli([*RUN, "--out", str(held), "--force"], tmp_path)
+    assert again.returncode == 0, again.stderr[-2000:]
+    assert json.loads((held / "upliftlab-run.json").read_text())["complete"]
