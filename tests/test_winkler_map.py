@@ -32,7 +32,13 @@ from upliftlab.anchors import prandtl_capacity, winkler_rocking
 from upliftlab.checks import InputError
 from upliftlab.comparisons.beds import bed_foundation, BedReference, BEDS
 from upliftlab.comparisons.studies import winkler_map as wm
-from upliftlab.comparisons.studies.winkler_map.analysis import regions
+from upliftlab.comparisons.framework.store import Store
+from upliftlab.comparisons.framework.study import ascii_text
+from upliftlab.comparisons.studies.winkler_map.analysis import analyse, regions
+from upliftlab.comparisons.studies.winkler_map.maps import calibration_inputs
+from upliftlab.comparisons.studies.winkler_map.parts import (POINT_DIMS, errors_of, estimate_of,
+                                                             map_of, statics_of, texts)
+from upliftlab.comparisons.studies.winkler_map.rocking import QUANTITY_GROUPS
 from upliftlab.comparisons.studies.registry import STUDIES, definition
 from upliftlab.continuum import build_model, footing_stiffness
 from upliftlab.reduced import build_model as build_reduced
@@ -59,12 +65,26 @@ def study(tmp_path_factory, executor):
 
 
 @pytest.fixture(scope="module")
+def m(study):
+    """The map dataset the study computed (``tree["map"]``)."""
+    return map_of(study.data)
+
+
+@pytest.fixture(scope="module")
+def inputs(study):
+    """({soil: statics}, {soil: impedance}, {(soil, fs_v): rotation pushovers}) the fast map's
+    beds were calibrated from, read back from its store."""
+    return calibration_inputs(wm.FAST_GRID, wm.FAST_OPTIONS, tuple(BEDS),
+                              Store(study.study.directory / "store"))
+
+
+@pytest.fixture(scope="module")
 def written(study):
     return read_dataset(study.study.directory / "map.nc"), \
         read_dataset(study.study.directory / "statics.nc")
 
 
-def test_the_fast_map_runs_end_to_end_and_writes_its_files(study):
+def test_the_fast_map_runs_end_to_end_and_writes_its_files(study, m):
     """Every file is written; the map has the grid's points (1 soil × 2 FS_v × 1 × 1 × 1 × 1
     motion) and the registered calibrations; every measure is finite; the estimate made
     before the work counted the runs the grid implies (one soil's statics, its impedance for
@@ -73,21 +93,45 @@ def test_the_fast_map_runs_end_to_end_and_writes_its_files(study):
     out = study.study.directory
     for name in FILES:
         assert (out / name).is_file(), name
-    d = study.data
-    assert d.continuum_wall.shape == (1, 2, 1, 1, 1, 1)
-    assert d.calibrations == tuple(BEDS)
-    assert np.isfinite(d.continuum).all() and np.isfinite(d.beds).all()
+    assert m.continuum_wall_time.dims == POINT_DIMS
+    assert m.continuum_wall_time.shape == (1, 2, 1, 1, 1, 1)
+    assert tuple(m.calibration.values) == tuple(BEDS)
+    for q in wm.MEASURES:
+        assert np.isfinite(m[f"continuum_{q}"]).all() and np.isfinite(m[f"bed_{q}"]).all()
     # one soil's statics pair, its impedance, and a cyclic and a monotonic rotation pushover
     # per FS_v; each dynamic point twice (its run and its energy run)
-    assert (d.estimate.runs, d.estimate.static, d.estimate.dynamic) == (10, 6, 4)
-    assert d.computed == 10
+    estimate = estimate_of(m)
+    assert (estimate.runs, estimate.static, estimate.dynamic) == (10, 6, 4)
+    assert int(m.attrs["computed"]) == 10
     assert "winkler_map" in STUDIES and definition("winkler_map") is wm.DEFINITION
-    tree = study.to_xarray()
+    tree = study.study.to_xarray()
+    c = list(BEDS).index("uniform")
     assert float(tree["map"].error.sel(calibration="uniform", measure="theta", fs_v=2.0)
-                 .squeeze()) == pytest.approx(float(d.errors[0, 0, 0, 0, 0, 0, 0, 0]), abs=0)
+                 .squeeze()) == pytest.approx(float(errors_of(m)[0, 0, 0, 0, 0, 0, c, 0]), abs=0)
 
 
-def test_every_bed_has_the_continuums_rocking_stiffness(study, written):
+def test_the_opened_folder_selects_an_error_by_label_as_the_summary_states_it(study):
+    """``upliftlab.open_study`` of the fast map's folder selects one error by its labels
+    (soil, FS_v, h/B, period, intensity, calibration, measure = "theta"; one motion) and it
+    equals the signed median that summary.json states for that FS_v (a median over the one
+    point there is that point's error), exactly. A consistency check, not a verification: the
+    reference is the summary the study's own summarise wrote from the same data; it shows that
+    the folder opens by label as what the summary read."""
+    from upliftlab import open_study
+
+    folder = study.study.directory
+    tree = open_study(folder)
+    numbers = json.loads((folder / "summary.json").read_text())["numbers"]
+    for name in BEDS:
+        for f, fs in enumerate(wm.FAST_GRID.fs_v):
+            error = tree["map"].error.sel(soil="clay", fs_v=fs, h_over_B=1.5, period=0.2,
+                                          intensity=3.0, calibration=name, measure="theta")
+            assert error.dims == ("motion",) and error.size == 1
+            assert float(error.squeeze()) == numbers["signed_bias"]["clay"][name]["theta"][f]
+    assert tree.attrs["signed_bias"] == numbers["signed_bias"]
+
+
+def test_every_bed_has_the_continuums_rocking_stiffness(written, inputs):
     """Calibration identity: Σ k_i x_i² of every built bed equals the continuum's K_r of the
     4-across mesh (footing_stiffness computed here, not read from the store) to 1e-9, in the
     file and in a bed rebuilt here from the registry; the continuum's K_r is within 1 % of
@@ -107,8 +151,8 @@ def test_every_bed_has_the_continuums_rocking_stiffness(study, written):
     ref = BedReference("clay", 100.0, 2.0, 3.0, k.vertical, k.rocking, 500.0,
                           soil.shear_modulus, soil.poisson_ratio,
                           extra={"density": soil.density, "structure": structure,
-                                 "impedance": dict(study.data.impedances)["clay"], **pushover})
-    pushovers = dict(study.data.pushovers)
+                                 "impedance": inputs[1]["clay"], **pushover})
+    pushovers = inputs[2]
     for name in BEDS:
         rocking = pushovers["clay", 2.0]  # the fitted bed's statics (any FS_v: K_r is kept)
         table = bed_foundation(name, replace(ref, extra={**ref.extra, "rocking": rocking}),
@@ -131,7 +175,7 @@ def test_the_maps_fs_v_is_the_continuums_capacity_over_N(written):
     assert 0.0 < v_ult / prandtl - 1.0 < 0.08
 
 
-def test_the_regions_recomputed_from_the_file(study, written):
+def test_the_regions_recomputed_from_the_file(study, written, m):
     """The region rule, implemented again with numpy on map.nc: a (FS_v, h/B) cell passes when,
     at every period and intensity, the median over the motions of |error| is ≤ 10 % in peak θ
     and in edge uplift and ≤ 20 % in residual settlement; the passing counts equal the
@@ -147,11 +191,11 @@ def test_the_regions_recomputed_from_the_file(study, written):
         cells = ok.sel(soil=entry["soil"], calibration=entry["calibration"]).values  # fs, hb
         assert entry["passing"] == int(cells.sum())
         assert entry["total"] == cells.size
-        region = study.analysis.region(entry["calibration"], entry["soil"]).region
+        region = analyse(m).region(entry["calibration"], entry["soil"]).region
         assert region.count == _largest_corner(cells)
 
 
-def test_a_bearing_failure_is_a_hit_only_for_a_bed_that_fails_too(study):
+def test_a_bearing_failure_is_a_hit_only_for_a_bed_that_fails_too(m):
     """The fast map's data with its FS_v = 5 point turned into a bearing failure of the
     continuum (measures and errors NaN) that the first calibration's bed called and the others
     did not. Reference, by hand from the unchanged errors: the FS_v = 2 point is a hit where
@@ -160,41 +204,48 @@ def test_a_bearing_failure_is_a_hit_only_for_a_bed_that_fails_too(study):
     failure."""
     from upliftlab.comparisons.studies.winkler_map.analysis import missed_failures, share
 
-    d = study.data
-    nb = len(d.calibrations)
-    bearing = np.zeros(d.continuum.shape[:-1], bool)
-    bearing[0, 1] = True
-    called = np.zeros(bearing.shape + (nb,), bool)
-    called[0, 1, ..., 0] = True
-    continuum, errors = d.continuum.copy(), d.errors.copy()
-    continuum[0, 1], errors[0, 1] = np.nan, np.nan
-    failed = replace(d, continuum=continuum, errors=errors, bearing_failure=bearing,
-                     bed_bearing_failure=called)
+    names = [str(c) for c in m.calibration.values]
+    nb = len(names)
+    failed = m.copy(deep=True)
+    failed["continuum_bearing_failure"].loc[{"fs_v": 5.0}] = 1
+    failed["bed_bearing_failure"].loc[{"fs_v": 5.0, "calibration": names[0]}] = 1
+    for q in wm.MEASURES:
+        failed[f"continuum_{q}"].loc[{"fs_v": 5.0}] = np.nan
+    failed["error"].loc[{"fs_v": 5.0}] = np.nan
     got = share(failed)
-    e = np.abs(d.errors[0, 0]).reshape(nb, -1)  # one motion at FS_v = 2: (calibration, measure)
+    e = np.abs(errors_of(m)[0, 0]).reshape(nb, -1)  # one motion at FS_v = 2: (bed, measure)
     q = wm.MEASURES.index
     hit = (e[:, q("theta")] <= 0.10) & (e[:, q("uplift")] <= 0.10)
     assert got.points == 2 and got.bearing_failures == 1
-    assert got.by_bed == {n: (float(hit[c]) + (c == 0)) / 2 for c, n in enumerate(d.calibrations)}
-    assert got.called == {n: int(c == 0) for c, n in enumerate(d.calibrations)}
+    assert got.by_bed == {n: (float(hit[c]) + (c == 0)) / 2 for c, n in enumerate(names)}
+    assert got.called == {n: int(c == 0) for c, n in enumerate(names)}
     missed = missed_failures(failed)
     assert not missed[0, 0].any() and not missed[0, 1, ..., 0].any()
     assert missed[0, 1, ..., 1:].all()
 
 
-def test_a_region_stated_in_the_maps_own_parameters(study):
+def test_a_region_stated_in_the_maps_own_parameters(m):
     """Hand-made errors on a 2 FS_v × 3 h/B grid with three motions: |error| 5 % everywhere,
     except peak θ 30 % at FS_v = 2 and residual settlement 50 % at h/B = 2.5, and one motion
     90 % off in peak θ everywhere (the median over the motions ignores it). By hand: the cells
     FS_v = 5 with h/B ≤ 1.5 pass, a corner region of 2 cells."""
-    grid = replace(wm.FAST_GRID, fs_v=(2.0, 5.0), h_over_B=(1.0, 1.5, 2.5))
+    import xarray as xr
+
     shape = (1, 2, 3, 1, 1, 3, len(BEDS), len(wm.MEASURES))
     errors = np.full(shape, 0.05)
     theta, settle = wm.MEASURES.index("theta"), wm.MEASURES.index("residual_settlement")
     errors[:, 0, ..., theta] = 0.30
     errors[:, :, 2, ..., settle] = -0.50
     errors[..., 2, :, theta] = 0.90
-    data = replace(study.data, grid=grid, errors=errors)
+    coords = {"soil": ["clay"], "fs_v": [2.0, 5.0], "h_over_B": [1.0, 1.5, 2.5],
+              "period": [0.2], "intensity": [3.0], "motion": ["a", "b", "c"],
+              "calibration": list(BEDS), "measure": list(wm.MEASURES)}
+    none = np.zeros(shape[:6], np.int8)
+    data = xr.Dataset({"error": (POINT_DIMS + ("calibration", "measure"), errors),
+                       "continuum_bearing_failure": (POINT_DIMS, none),
+                       "bed_bearing_failure": (POINT_DIMS + ("calibration",),
+                                               np.zeros(shape[:7], np.int8))},
+                      coords=coords, attrs=m.attrs)
     for region in regions(data):
         assert (region.passing, region.total, region.region.count) == (2, 6, 2)
         assert "for FS_v ≥ 5 and h/B ≤ 1.5 (2 of 6 cells; 2 pass anywhere)" in region.text
@@ -245,13 +296,14 @@ def test_the_beds_pass_reports_its_progress(study, tmp_path, executor):
     seen = []
     again = wm.run(fast=True, out=tmp_path / "again", store=study.study.directory / "store",
                    executor=executor, progress=seen.append)
-    assert again.data.computed == 0 and again.data.estimate.runs == 0
-    assert "already stored): every run is read from the store" in again.data.estimate.text(1)
+    m = map_of(again.data)
+    assert int(m.attrs["computed"]) == 0 and estimate_of(m).runs == 0
+    assert "already stored): every run is read from the store" in estimate_of(m).text(1)
     assert [(p.done, p.total) for p in seen if p.study == "winkler_map beds"] == \
         [(0, 2), (1, 2), (2, 2)]
 
 
-def test_the_goal_verdict_counts_the_best_fast_bed_and_how_it_misses(study):
+def test_the_goal_verdict_counts_the_best_fast_bed_and_how_it_misses(m):
     """The goal (one bed within 10 % in peak θ and edge uplift at more than half the points,
     at least 1000 times faster) on the fast map's two points with errors set by hand: the
     first bed hits both, the second only at FS_v = 5 (at FS_v = 2 its edge uplift is 30 %
@@ -262,14 +314,16 @@ def test_the_goal_verdict_counts_the_best_fast_bed_and_how_it_misses(study):
     from upliftlab.comparisons.studies.winkler_map.analysis import share
     from upliftlab.comparisons.studies.winkler_map.goal import goal, goal_text
 
-    d = study.data
-    names, q = d.calibrations, wm.MEASURES.index
-    errors = np.full(d.errors.shape, 0.5)
+    names, q = [str(c) for c in m.calibration.values], wm.MEASURES.index
+    errors = np.full(m.error.shape, 0.5)
     errors[..., 0, :] = 0.0
     errors[0, 1, ..., 1, :] = 0.0
     errors[0, 0, ..., 1, :] = 0.0
     errors[0, 0, ..., 1, q("uplift")] = -0.3
-    data = replace(d, errors=errors, bearing_failure=None, bed_bearing_failure=None)
+    data = m.copy(deep=True)
+    data["error"] = (POINT_DIMS + ("calibration", "measure"), errors)
+    data["continuum_bearing_failure"][:] = 0
+    data["bed_bearing_failure"][:] = 0
     by_bed = share(data).by_bed
     slow_first = goal(data, by_bed, {n: 500.0 if n == names[0] else 2000.0 for n in names})
     assert (slow_first.met, slow_first.bed, slow_first.share) == (False, names[1], 0.5)
@@ -405,11 +459,12 @@ def test_a_second_run_recomputes_nothing(study, executor):
     again = wm.run(fast=True, out=study.study.directory, executor=executor,
                    progress=seen.append,
                    options=replace(wm.FAST_OPTIONS, figures=False))
-    assert again.data.computed == 0 and again.data.estimate.runs == 0
+    m, first = map_of(again.data), map_of(study.data)
+    assert int(m.attrs["computed"]) == 0 and estimate_of(m).runs == 0
     assert all(p.computed == 0 for p in seen if p.study == wm.STUDY)  # the sweeps'
     assert {p: p.stat().st_mtime_ns for p in store.glob("??/*.json")} == before
-    np.testing.assert_array_equal(again.data.continuum, study.data.continuum)
-    np.testing.assert_array_equal(again.data.continuum_wall, study.data.continuum_wall)
+    for name in [f"continuum_{q}" for q in wm.MEASURES] + ["continuum_wall_time"]:
+        np.testing.assert_array_equal(m[name].values, first[name].values)
 
 
 def test_the_gazetas_bed_carries_the_handbook_strips_dashpots():
@@ -433,7 +488,7 @@ def test_the_gazetas_bed_carries_the_handbook_strips_dashpots():
 
 
 def test_the_bearing_bed_yields_at_one_pressure_where_the_plastic_bed_yields_at_its_stiffness(
-        study):
+        inputs):
     # Reference: the bearing capacity V_ult shared over the tributary widths (V_ult/B per unit
     # width, by hand); the springs and the dashpots are those of the end-stiffened plastic and
     # the impedance beds, built here from the registry (1e-12)
@@ -442,7 +497,7 @@ def test_the_bearing_bed_yields_at_one_pressure_where_the_plastic_bed_yields_at_
                  "rotary_inertia": 10.0}
     ref = BedReference("clay", N, B, 3.0, 27_000.0, 43_000.0, V_ult, G, nu,
                           extra={"density": 1.8, "structure": structure,
-                                 "impedance": dict(study.data.impedances)["clay"]})
+                                 "impedance": inputs[1]["clay"]})
     tables = {name: bed_foundation(name, ref, wm.FAST_OPTIONS)
               for name in ("end_stiffened_plastic", "end_stiffened_bearing",
                            "end_stiffened_plastic_impedance", "uniform_plastic_impedance")}
@@ -510,25 +565,26 @@ def test_the_statics_rows_errors_recomputed_from_the_file(study, written):
         got = err.sel(statics_quantity=key).transpose("soil", "fs_v", "calibration").values
         np.testing.assert_allclose(got, expected, rtol=1e-12, atol=1e-15)
     worst = study.study.numbers["statics_worst_error"]["clay"]
-    groups = np.array(study.data.rocking.groups)  # the file's statics_group is ASCII
-    for name in study.data.calibrations:
-        for group in set(groups):
-            block = err.sel(calibration=name, soil="clay").values[:, groups == group]
-            assert worst[name][group] == pytest.approx(np.nanmax(np.abs(block)), rel=1e-12)
+    groups = np.array([str(g) for g in statics.statics_group.values])  # ASCII in the file
+    for name in statics.calibration.values:
+        for group in QUANTITY_GROUPS:
+            block = err.sel(calibration=name, soil="clay").transpose(
+                "fs_v", "statics_quantity").values[:, groups == ascii_text(group)]
+            assert worst[str(name)][group] == pytest.approx(np.nanmax(np.abs(block)),
+                                                            rel=1e-12)
     assert (statics.rocking_continuum_cyclic_energy.values > 0).all()
     np.testing.assert_allclose(
         err.sel(statics_quantity="cyclic_energy", calibration="uniform").values, -1.0,
         atol=1e-9)
 
 
-def test_the_qz_bed_runs_on_the_fast_map(study):
+def test_the_qz_bed_runs_on_the_fast_map(m):
     """The q–z bed's runs on the fast map give finite measures: a run whose energy balance is
     beyond the project's tolerance (analysis.energy_tolerance, 1e-3 of the input) is refused by
     reduced.run and would leave NaN here."""
-    d = study.data
-    c = d.calibrations.index("qz")
-    assert np.isfinite(d.beds[..., c, :]).all()
-    assert not [r for r in d.refusals if r.endswith("qz: ") or ", qz:" in r]
+    for q in wm.MEASURES:
+        assert np.isfinite(m[f"bed_{q}"].sel(calibration="qz")).all()
+    assert not [r for r in texts(m.attrs["refusals"]) if r.endswith("qz: ") or ", qz:" in r]
 
 
 #: The README's map commands (its second finding and "Comparisons and the report") as argv
@@ -680,7 +736,7 @@ def test_a_continuum_run_that_fails_is_reported_and_left_out_or_held_to(tmp_path
     are stored: a second run does not retry them."""
     from upliftlab.comparisons.studies.winkler_map import points as wmp
     from upliftlab.comparisons.beds import BASE_SCENE, base_table, bed_foundation
-    from upliftlab.comparisons.studies.winkler_map.maps import _dynamic_points, _reference, _scene
+    from upliftlab.comparisons.studies.winkler_map.plan import dynamic_points, reference, scene_of
     from upliftlab.continuum import BearingFailure, ConvergenceError
     from upliftlab.scenes import load_scene
 
@@ -696,26 +752,35 @@ def test_a_continuum_run_that_fails_is_reported_and_left_out_or_held_to(tmp_path
 
     monkeypatch.setattr(wmp, "_timed_run", fails)
     result = wm.run(fast=True, out=tmp_path / "out", executor=executor, progress=False)
-    d, share = result.data, result.analysis.share
-    assert np.isnan(d.continuum).all() and np.isnan(d.errors).all()
-    assert d.bearing_failure[0, 0].all() and not d.bearing_failure[0, 1].any()
-    failed = [r for r in d.refusals if "the continuum:" in r]
+    d = map_of(result.data)
+    share = analyse(d).share
+    names = [str(c) for c in d.calibration.values]
+    for q in wm.MEASURES:
+        assert np.isnan(d[f"continuum_{q}"]).all()
+    assert np.isnan(d.error).all()
+    failure = d.continuum_bearing_failure
+    assert failure.sel(fs_v=2.0).all() and not failure.sel(fs_v=5.0).any()
+    failed = [r for r in texts(d.attrs["refusals"]) if "the continuum:" in r]
     assert len(failed) == 2
     assert failed[0].startswith("clay, FS_v = 2")
     assert "BearingFailure: the soil failed in bearing (stand-in)" in failed[0]
     assert failed[1].startswith("clay, FS_v = 5")
     assert "ConvergenceError: explicit steps 10…14 diverged (stand-in)" in failed[1]
-    assert np.isfinite(d.beds[0, 0, ..., :2]).all() and np.isnan(d.beds[0, 1]).all()
+    beds = np.stack([d[f"bed_{q}"].values for q in wm.MEASURES], axis=-1)
+    assert np.isfinite(beds[0, 0, ..., :2]).all() and np.isnan(beds[0, 1]).all()
     # each bed's flag against its own peak settlement at the failed point
-    st = d.statics_of("clay")
-    point = _dynamic_points(d.grid, d.options, list(d.motions), base_table(),
-                            load_scene(BASE_SCENE).g, {"clay": st.V_ult})[0]
-    ref = _reference(st, _scene(point["scene"]), point["scene"]["structure"],
-                     dict(d.impedances).get("clay"), dict(d.pushovers)["clay", 2.0])
-    called = {name: wm.run_bed(point, bed_foundation(name, ref, d.options))["peak_settlement"]
-              >= 0.2 for name in d.calibrations}
-    assert {n: bool(d.bed_bearing_failure[0, 0, 0, 0, 0, 0, c])
-            for c, n in enumerate(d.calibrations)} == called
+    statics, impedances, pushovers = calibration_inputs(
+        wm.FAST_GRID, wm.FAST_OPTIONS, tuple(BEDS), Store(tmp_path / "out" / "store"))
+    st = statics["clay"]
+    motions = wm.study_motions(wm.FAST_GRID, wm.FAST_OPTIONS, tmp_path / "out")
+    point = dynamic_points(wm.FAST_GRID, wm.FAST_OPTIONS, motions, base_table(),
+                           load_scene(BASE_SCENE).g, {"clay": st.V_ult})[0]
+    ref = reference(st, scene_of(point["scene"]), point["scene"]["structure"],
+                    impedances.get("clay"), pushovers["clay", 2.0])
+    called = {name: wm.run_bed(point, bed_foundation(name, ref, wm.FAST_OPTIONS))[
+        "peak_settlement"] >= 0.2 for name in names}
+    assert {n: bool(d.bed_bearing_failure.sel(fs_v=2.0, calibration=n).squeeze())
+            for n in names} == called
     assert share.points == 1 and share.bearing_failures == 1
     assert share.by_bed == {n: float(v) for n, v in called.items()}
     assert share.called == {n: int(v) for n, v in called.items()}
@@ -723,20 +788,27 @@ def test_a_continuum_run_that_fails_is_reported_and_left_out_or_held_to(tmp_path
                                                             "summary.md").read_text()
     monkeypatch.setattr(wmp, "_timed_run", real)
     again = wm.run(fast=True, out=tmp_path / "out", executor=executor, progress=False)
-    assert again.data.computed == 0 and again.data.bearing_failure[0, 0].all()
+    m = map_of(again.data)
+    assert int(m.attrs["computed"]) == 0
+    assert m.continuum_bearing_failure.sel(fs_v=2.0).all()
 
 
-def test_the_summary_states_the_workers_the_map_ran_on(study):
+def test_the_summary_states_the_workers_the_map_ran_on(study, m):
     """The summary's cost line divides the estimate by the workers of the run that made it, as
     the line logged before the work does (reference: :meth:`Estimate.text` of the same
     estimate, tested above), not always by one."""
-    from upliftlab.comparisons.studies.winkler_map.summary import _cost_text
+    from upliftlab.comparisons.studies.winkler_map.summary import cost_text
 
-    d = study.data
+    st = statics_of(study.data)
     for workers in (1, 2, None):
-        text = _cost_text(replace(d, workers=workers))
-        assert f"Estimated before any work: {d.estimate.text(workers)}." in text
-    assert "on 2 workers" in _cost_text(replace(d, workers=2))
+        attrs = {k: v for k, v in m.attrs.items() if k != "workers"}
+        if workers is not None:
+            attrs["workers"] = workers
+        ds = m.copy()
+        ds.attrs = attrs
+        text = cost_text(ds, st)
+        assert f"Estimated before any work: {estimate_of(m).text(workers)}." in text
+    assert "on 2 workers" in cost_text(m.assign_attrs(workers=2), st)
 
 
 def _copied_store(study, tmp_path, revision=None):
@@ -763,7 +835,7 @@ def test_the_stores_timed_runs_are_its_dynamic_runs_of_the_current_model(study, 
     from upliftlab.comparisons.studies.winkler_map.cost import timed_dynamic_runs
 
     timed = timed_dynamic_runs(Store(_copied_store(study, tmp_path)))
-    walls = np.sort(np.ravel(study.data.continuum_wall))
+    walls = np.sort(np.ravel(map_of(study.data).continuum_wall_time.values))
     assert sorted(r["wall_time_s"] for r in timed) == pytest.approx(walls, rel=1e-12)
     other = Store(_copied_store(study, tmp_path / "stale", revision=0))
     assert timed_dynamic_runs(other) == []

@@ -140,15 +140,19 @@ def fast_map(tmp_path_factory):
 
 
 def test_the_fast_map_runs_with_the_impedance_bed(fast_map):
-    d = fast_map.data
-    assert d.calibrations == ("uniform_plastic", "uniform_plastic_impedance")
-    assert np.isfinite(d.continuum).all() and np.isfinite(d.beds).all()
-    assert np.isfinite(d.errors).all()
-    (soil, record), = d.impedances
-    assert soil == "clay" and tuple(record.a0) == IMPEDANCE_A0
+    from upliftlab.comparisons.studies.winkler_map.parts import estimate_of, map_of, statics_of
+
+    d, statics = map_of(fast_map.data), statics_of(fast_map.data)
+    assert tuple(d.calibration.values) == ("uniform_plastic", "uniform_plastic_impedance")
+    for q in wm.MEASURES:
+        assert np.isfinite(d[f"continuum_{q}"]).all() and np.isfinite(d[f"bed_{q}"]).all()
+    assert np.isfinite(d.error).all()
+    assert list(statics.soil.values) == ["clay"]
+    assert tuple(statics.impedance_a0.sel(soil="clay").values) == IMPEDANCE_A0
     # the statics pair, the impedance, a cyclic and a monotonic rotation pushover per FS_v;
     # each dynamic point twice (its run and, the fast options making E_F, its energy run)
-    assert (d.estimate.runs, d.estimate.static, d.estimate.dynamic) == (10, 6, 4)
+    estimate = estimate_of(d)
+    assert (estimate.runs, estimate.static, estimate.dynamic) == (10, 6, 4)
     text = (fast_map.study.directory / "summary.md").read_text()
     assert "No bed has a sway spring" in text and "U-p-I" in text
     assert fast_map.study.numbers["impedance"]["clay"]["a0"] == list(IMPEDANCE_A0)
@@ -162,7 +166,7 @@ def test_the_continuum_footing_does_not_sway_on_the_maps_frictionless_soil(fast_
     from upliftlab.continuum.dynamics.run import DynamicOptions, run_dynamic
     from upliftlab.comparisons.studies.winkler_map.points import point_scene
 
-    table = point_table(base_table(), "clay", 4, fast_map.data.N[0, 0], 1.5, 0.2, G_ACC)
+    table = point_table(base_table(), "clay", 4, float(fast_map.data["map"].vertical_load.sel(soil="clay", fs_v=2.0)), 1.5, 0.2, G_ACC)
     point = {"scene": table, "motion": {"type": "ricker", "period": 0.2, "duration": 0.4,
                                         "name": "ricker"}, "intensity": 3.0}
     scene = point_scene(point)

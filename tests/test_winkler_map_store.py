@@ -14,11 +14,18 @@ from __future__ import annotations
 import shutil
 from dataclasses import replace
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from upliftlab.comparisons.studies import winkler_map as wm
+from upliftlab.comparisons.studies.winkler_map.analysis import analyse
+from upliftlab.comparisons.studies.winkler_map.energy import ENERGIES
+from upliftlab.comparisons.studies.winkler_map.parts import (bearing_failures,
+                                                             capacity_fits_of, errors_of,
+                                                             labels, map_of, point_values,
+                                                             statics_of, texts)
 
 STORE = Path(__file__).resolve().parents[1] / "benchmarks" / "winkler_map_store"
 PULSES = {"elcentro": False, "fema_components": 0}
@@ -32,11 +39,45 @@ RECORDS_STIFF_HALF = {**RECORDS_STIFF, "intensities": (1.5,)}  # ... at 1.5 a_up
 pytestmark = pytest.mark.slow
 
 
+class _Data:
+    """The map's arrays by position (soil, fs_v, h_over_B, period, intensity, motion[,
+    calibration][, measure or energy]), read from its labelled datasets for the assertions
+    below, which index them."""
+
+    def __init__(self, tree):
+        m, st = map_of(tree), statics_of(tree)
+        self.calibrations = tuple(labels(m, "calibration"))
+        self.grid = SimpleNamespace(soils=tuple(labels(m, "soil")),
+                                    fs_v=tuple(m.fs_v.values.tolist()),
+                                    h_over_B=tuple(m.h_over_B.values.tolist()))
+        self.motion_names = tuple(labels(m, "motion"))
+        self.motions = tuple({"name": n, "type": "ricker" if k == "ricker" else "record"}
+                             for n, k in zip(self.motion_names, labels(m, "motion_kind")))
+        self.errors = errors_of(m)
+        self.bearing_failure, self.bed_bearing_failure = bearing_failures(m)
+        self.balance = point_values(m, "energy_balance_error")
+        self.continuum_wall = point_values(m, "continuum_wall_time")
+        self.continuum = np.stack([point_values(m, f"continuum_{q}") for q in wm.MEASURES], -1)
+        self.scale = np.stack([m[f"floor_{q}"].transpose("soil", "fs_v", "h_over_B", "period")
+                               .values for q in wm.MEASURES], -1) / wm.FLOOR_FRACTION
+        self.refusals = texts(m.attrs.get("refusals", ""))
+        self.capacity_fits = tuple((cell, SimpleNamespace(beta=beta, misfit=misfit))
+                                   for cell, (beta, misfit) in capacity_fits_of(st).items())
+        self.continuum_energy = np.stack([point_values(m, f"continuum_{e}") for e in ENERGIES],
+                                         -1)
+        self.continuum_energy_left = point_values(m, "continuum_energy_left")
+        self.energy_errors = np.stack([point_values(m, f"{e}_error", "calibration")
+                                       for e in ENERGIES], -1)
+
+
 def _map(tmp_path, **grid):
+    """The map of the grid's slice from a copy of the kept store: its ``analysis`` and its
+    ``data`` (:class:`_Data`)."""
     store = tmp_path / "store"
     shutil.copytree(STORE, store)  # the committed files are never written by a test
-    return wm.run(out=tmp_path / "out", store=store, grid=replace(wm.FULL_GRID, **grid),
-                  options=replace(wm.FULL_OPTIONS, budget=1e-6, figures=False), progress=False)
+    run = wm.run(out=tmp_path / "out", store=store, grid=replace(wm.FULL_GRID, **grid),
+                 options=replace(wm.FULL_OPTIONS, budget=1e-6, figures=False), progress=False)
+    return SimpleNamespace(analysis=analyse(map_of(run.data)), data=_Data(run.data))
 
 
 def _pct(value: float) -> float:

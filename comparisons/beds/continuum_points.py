@@ -14,6 +14,7 @@ import numpy as np
 from ...checks import InputError
 from ...scenes import Scene, scene_from_dict
 from ..framework.measures import edge_uplift_history, settlement_when_flattest
+from ..framework.sources import point_sources
 from ..framework.store import point_function
 
 __all__ = ["evaluate_continuum", "evaluate_dynamic", "motion_scene", "sampled_histories",
@@ -37,7 +38,8 @@ def floats(values) -> list[float]:
 
 
 @point_function("upliftlab.comparisons.winkler_vs_continuum:evaluate_continuum",
-                models=("continuum",), tolerance=1e-4)
+                models=("continuum",), tolerance=1e-4,
+                sources=point_sources(__name__, __package__))
 def evaluate_continuum(point: Mapping) -> dict:
     """One continuum analysis of a point: ``stiffness`` (K_v, K_r in full contact),
     ``rotation`` (a rotation pushover at ``N`` through ``rotations``), ``vertical`` (a vertical

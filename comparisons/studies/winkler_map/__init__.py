@@ -30,7 +30,14 @@ per point, :mod:`.energy_points`).
 Before any run the study logs how many continuum runs it will make and what they should cost
 (:mod:`.cost`), and refuses above ``--budget``.
 
-Written: ``map.nc`` and ``statics.nc`` (NetCDF-4, CF), figures (one question each),
+The result is labelled data (:mod:`.dataset`): an :class:`xarray.DataTree` of ``map`` (every
+point by soil, fs_v, h_over_B, period, intensity, motion, calibration and measure) and
+``statics`` (per soil and FS_v, :mod:`.statics_dataset`), written as ``map.nc`` and
+``statics.nc`` (NetCDF-4, CF) and opened again by :func:`upliftlab.open_study`::
+
+    tree["map"].error.sel(h_over_B=1.5, calibration="uniform", measure="theta")
+
+The summary (:mod:`.summary`) reads that data alone. Written too: figures (one question each),
 ``summary.md``/``summary.json``: each bed's region within 10 % in peak θ and edge uplift and
 20 % in residual settlement, the calibration to pick per quantity with the median and 90th
 percentile of its error, the share of the map the best bed covers, the speed of each bed.
@@ -47,24 +54,25 @@ from .cost import Estimate, estimate_cost, impedance_dofs, timed_dynamic_runs
 from .grid import (FAST_GRID, FAST_OPTIONS, FLOOR_FRACTION, FULL_GRID, FULL_OPTIONS, Grid,
                    MEASURES, Options, SOILS, STUDY, check_grid, check_options, grid_with)
 from .impedance_points import evaluate_impedance, impedance_point_of, soil_impedance
-from .maps import MapData, compute_map, estimate_map
-from .output import write
+from .dataset import POINT_DIMS
+from .maps import compute_map, estimate_map
 from .bed_runs import reduced_measures, run_bed
 from .energy_points import evaluate_energy
 from .motions import study_motions
 from .points import continuum_measures, evaluate_dynamic, scales, story_constants
-from .result import WinklerMap
 from .rocking import pushover_points
 from .statics import SoilStatics, evaluate_static
-from .workflow import DEFINITION, KEPT_STORE, compute, run
+from .summary import key_numbers, summarise
+from .workflow import DEFINITION, KEPT_STORE, compute, run, write
 
 __all__ = ["STUDY", "SOILS", "MEASURES", "Grid", "Options", "FULL_GRID", "FAST_GRID",
            "FULL_OPTIONS", "FAST_OPTIONS", "check_grid", "check_options", "grid_with", "Estimate",
            "estimate_cost",
-           "MapData", "compute_map", "estimate_map", "SoilStatics", "evaluate_static",
+           "POINT_DIMS", "compute_map", "estimate_map", "SoilStatics", "evaluate_static",
            "evaluate_dynamic", "evaluate_energy", "run_bed", "Analysis", "BedRegion", "Pick",
            "Share", "Speed",
-           "analyse", "cell_passes", "median_over_motions", "WinklerMap", "DEFINITION", "compute",
+           "analyse", "cell_passes", "median_over_motions", "key_numbers", "summarise",
+           "DEFINITION", "compute",
            "write", "run", "main", "KEPT_STORE", "FLOOR_FRACTION", "impedance_dofs",
            "timed_dynamic_runs", "evaluate_impedance", "impedance_point_of", "soil_impedance",
            "reduced_measures", "continuum_measures", "scales", "story_constants",

@@ -1,6 +1,7 @@
-"""What the map says, computed from its data: each bed's region, the calibration to pick per
-quantity with its error distribution, the share of the map a calibrated bed covers, the
-speed of each bed against the continuum, and whether one bed is enough (:mod:`.goal`)."""
+"""What the map says, computed from its ``map`` dataset (:mod:`.dataset`): each bed's region,
+the calibration to pick per quantity with its error distribution, the share of the map a
+calibrated bed covers, the speed of each bed against the continuum, and whether one bed is
+enough (:mod:`.goal`)."""
 
 from __future__ import annotations
 
@@ -13,12 +14,13 @@ from ...framework.study import Axis, Region, corner_region
 from ...beds import BEDS
 from .energy import EnergyPick, energy_picks
 from .goal import Goal, goal, hits
-from .grid import MEASURE_LABELS, MEASURES, SOIL_LABELS
-from .maps import MapData
+from .parts import (bearing_failures, errors_of, names, options_of, point_array,
+                    point_values)
+from .grid import MEASURES, SOIL_LABELS
 
 __all__ = ["BedRegion", "Pick", "Share", "Speed", "Analysis", "analyse", "cell_passes",
-           "missed_failures",
-           "median_over_motions", "signed_bias", "BIAS_MEASURES"]
+           "missed_failures", "bearing_failures", "errors_of", "names",
+           "median_over_motions", "signed_bias", "BIAS_MEASURES", "subject"]
 
 #: The measures whose signed error is summarised by FS_v (:func:`signed_bias`).
 BIAS_MEASURES = ("theta", "uplift", "residual_settlement")
@@ -26,7 +28,7 @@ BIAS_MEASURES = ("theta", "uplift", "residual_settlement")
 RECORD_KINDS = ("elcentro", "fema_p695")
 
 
-def median_over_motions(data: MapData) -> np.ndarray:
+def median_over_motions(ds) -> np.ndarray:
     """|error| (soil, fs_v, h_over_B, period, intensity, calibration, measure): the median
     over the motions (NaN runs left out; NaN if every run was refused)."""
     with np.errstate(all="ignore"):
@@ -34,30 +36,28 @@ def median_over_motions(data: MapData) -> np.ndarray:
 
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
-            return np.nanmedian(np.abs(data.errors), axis=5)
+            return np.nanmedian(np.abs(errors_of(ds)), axis=5)
 
 
-def missed_failures(data: MapData) -> np.ndarray:
+def missed_failures(ds) -> np.ndarray:
     """(…, motion, calibration): the continuum's soil failed in bearing and the bed's did not
-    (:attr:`MapData.bearing_failure`): a bed that misses the outcome misses the point."""
-    shape = data.errors.shape[:-1]
-    if data.bearing_failure is None:
-        return np.zeros(shape, bool)
-    return data.bearing_failure[..., None] & ~data.bed_bearing_failure
+    (:func:`bearing_failures`): a bed that misses the outcome misses the point."""
+    failed, bed = bearing_failures(ds)
+    return failed[..., None] & ~bed
 
 
-def cell_passes(data: MapData) -> np.ndarray:
+def cell_passes(ds) -> np.ndarray:
     """(soil, fs_v, h_over_B, period, intensity, calibration): the median |error| over the
     motions is within ``theta_tolerance`` in peak θ and in peak edge uplift and within
     ``settlement_tolerance`` in residual settlement (NaN fails), and the bed fails in
     bearing wherever the continuum does (:func:`missed_failures`)."""
-    med = np.nan_to_num(median_over_motions(data), nan=np.inf)
-    o = data.options
+    med = np.nan_to_num(median_over_motions(ds), nan=np.inf)
+    o = options_of(ds)
     q = MEASURES.index
-    return ((med[..., q("theta")] <= o.theta_tolerance)
-            & (med[..., q("uplift")] <= o.theta_tolerance)
-            & (med[..., q("residual_settlement")] <= o.settlement_tolerance)
-            & ~missed_failures(data).any(axis=5))
+    return ((med[..., q("theta")] <= o["theta_tolerance"])
+            & (med[..., q("uplift")] <= o["theta_tolerance"])
+            & (med[..., q("residual_settlement")] <= o["settlement_tolerance"])
+            & ~missed_failures(ds).any(axis=5))
 
 
 @dataclass(frozen=True)
@@ -138,29 +138,29 @@ class Analysis:
         return next(r for r in self.regions if (r.calibration, r.soil) == (calibration, soil))
 
 
-def _subject(name: str) -> str:
+def subject(name: str) -> str:
+    """What a calibration is, in a sentence (its registry label, or its name)."""
     return BEDS[name].label if name in BEDS else name
 
 
-def regions(data: MapData) -> list[BedRegion]:
+def regions(ds) -> list[BedRegion]:
     """Per calibration and soil: the corner region of the FS_v × h/B map where
     :func:`cell_passes` holds at every period and intensity."""
-    ok = cell_passes(data).all(axis=(3, 4))  # (soil, fs_v, h_over_B, calibration)
-    g = data.grid
-    x = Axis("fs_v", "FS_v", tuple(g.fs_v))
-    y = Axis("h_over_B", "h/B", tuple(g.h_over_B))
-    o = data.options
+    ok = cell_passes(ds).all(axis=(3, 4))  # (soil, fs_v, h_over_B, calibration)
+    x = Axis("fs_v", "FS_v", names(ds, "fs_v"))
+    y = Axis("h_over_B", "h/B", names(ds, "h_over_B"))
+    o = options_of(ds)
     out = []
-    for c, name in enumerate(data.calibrations):
-        for s, soil in enumerate(g.soils):
+    for c, name in enumerate(names(ds, "calibration")):
+        for s, soil in enumerate(names(ds, "soil")):
             cells = ok[s, :, :, c].T  # (h_over_B, fs_v)
             region = corner_region(cells, x, y, x_sides=(">=", "<="), y_sides=("<=", ">="))
             where = region.condition
             where = ("nowhere on the map" if not cells.any() else where
                      if region.count == 0 or where == "over the whole map" else f"for {where}")
-            text = (f"On {SOIL_LABELS[soil]}, the {_subject(name)} is within "
-                    f"{100 * o.theta_tolerance:g} % in peak θ and edge uplift and "
-                    f"{100 * o.settlement_tolerance:g} % in residual settlement (median over "
+            text = (f"On {SOIL_LABELS[soil]}, the {subject(name)} is within "
+                    f"{100 * o['theta_tolerance']:g} % in peak θ and edge uplift and "
+                    f"{100 * o['settlement_tolerance']:g} % in residual settlement (median over "
                     f"the motions, at every period and intensity) {where} ({region.count} of "
                     f"{cells.size} cells; {int(cells.sum())} pass anywhere)")
             out.append(BedRegion(name, soil, text, region, int(cells.sum()), cells.size))
@@ -174,21 +174,21 @@ def _stats(values: np.ndarray) -> tuple[float, float]:
     return float(np.median(values)), float(np.percentile(values, 90))
 
 
-def picks(data: MapData) -> list[Pick]:
+def picks(ds) -> list[Pick]:
     """Per measure: each calibration's error distribution and the one to pick."""
-    records = np.array([k in RECORD_KINDS for k in data.motion_kinds])
+    records = np.array([str(k) in RECORD_KINDS for k in ds["motion_kind"].values])
+    calibrations = names(ds, "calibration")
     out = []
-    for q, measure in enumerate(MEASURES):
+    for measure in MEASURES:
         med, p90, rmed, rp90, refused = {}, {}, {}, {}, {}
-        for c, name in enumerate(data.calibrations):
-            err = np.abs(data.errors[..., c, q])
+        for name in calibrations:
+            err = np.abs(point_array(ds["error"].sel(calibration=name, measure=measure)))
             med[name], p90[name] = _stats(err.ravel())
             rmed[name], rp90[name] = (_stats(err[..., records].ravel()) if records.any()
                                       else (math.nan, math.nan))
             refused[name] = int(np.isnan(err).sum())
-        best = min(data.calibrations, key=lambda n: (_inf(med[n]), _inf(p90[n])))
-        out.append(Pick(measure, med, p90, rmed, rp90, refused,
-                        int(data.errors[..., 0, q].size), best))
+        best = min(calibrations, key=lambda n: (_inf(med[n]), _inf(p90[n])))
+        out.append(Pick(measure, med, p90, rmed, rp90, refused, int(err.size), best))
     return out
 
 
@@ -196,43 +196,45 @@ def _inf(value: float) -> float:
     return value if math.isfinite(value) else math.inf
 
 
-def share(data: MapData) -> Share:
+def share(ds) -> Share:
     """Shares of points within ``theta_tolerance`` in peak θ and edge uplift (:class:`Share`),
     over the points whose continuum run finished or ended in a bearing failure (there, a bed
     that fails too is a hit; :func:`.goal.hits`)."""
-    nb = len(data.calibrations)
-    hit, counted, failed, called = hits(data)
+    calibrations = names(ds, "calibration")
+    nb = len(calibrations)
+    hit, counted, failed, called = hits(ds)
     ok = hit[counted]  # (points, calibration)
     by_bed = {name: float(ok[:, c].mean()) if ok.size else math.nan
-              for c, name in enumerate(data.calibrations)}
-    best = max(data.calibrations, key=lambda n: (_inf(by_bed[n]), -data.calibrations.index(n)))
+              for c, name in enumerate(calibrations)}
+    best = max(calibrations, key=lambda n: (_inf(by_bed[n]), -calibrations.index(n)))
     called = called.reshape(-1, nb)[failed.ravel()]
-    return Share(data.options.theta_tolerance, ok.shape[0], by_bed, best, by_bed[best],
+    return Share(options_of(ds)["theta_tolerance"], ok.shape[0], by_bed, best, by_bed[best],
                  float(ok.any(axis=1).mean()) if ok.size else math.nan, int(failed.sum()),
-                 {name: int(called[:, c].sum()) for c, name in enumerate(data.calibrations)})
+                 {name: int(called[:, c].sum()) for c, name in enumerate(calibrations)})
 
 
-def speed(data: MapData) -> Speed:
+def speed(ds) -> Speed:
     """The continuum's wall time over each bed's, point by point (:class:`Speed`)."""
     median, minimum, bed_median = {}, {}, {}
-    cw = data.continuum_wall
-    for c, name in enumerate(data.calibrations):
-        ratio = (cw / data.bed_wall[..., c]).ravel()
+    cw = point_values(ds, "continuum_wall_time")
+    for name in names(ds, "calibration"):
+        bw = point_array(ds["bed_wall_time"].sel(calibration=name))
+        ratio = (cw / bw).ravel()
         ratio = ratio[np.isfinite(ratio)]
         median[name] = float(np.median(ratio)) if ratio.size else math.nan
         minimum[name] = float(np.min(ratio)) if ratio.size else math.nan
-        bed_median[name] = float(np.nanmedian(data.bed_wall[..., c]))
+        bed_median[name] = float(np.nanmedian(bw))
     ran = cw[np.isfinite(cw)]
     return Speed(median, minimum, float(np.median(ran)) if ran.size else math.nan, bed_median)
 
 
-def signed_bias(data: MapData) -> np.ndarray:
+def signed_bias(ds) -> np.ndarray:
     """(soil, fs_v, calibration, measure of :data:`BIAS_MEASURES`): the median of the signed
     error over h/B, period, intensity and motion (NaN runs left out). Where the |error| is
     large, its sign says whether a bed overshoots or falls short everywhere at that FS_v (a
     missing mechanism) or scatters both ways (a mismatch of timing)."""
     q = [MEASURES.index(m) for m in BIAS_MEASURES]
-    e = np.moveaxis(data.errors[..., q], 6, 2)  # (soil, fs_v, cal, h, T, I, motion, 3)
+    e = np.moveaxis(errors_of(ds)[..., q], 6, 2)  # (soil, fs_v, cal, h, T, I, motion, 3)
     flat = e.reshape(e.shape[:3] + (-1, len(q)))  # (soil, fs_v, calibration, points, 3)
     import warnings
 
@@ -241,21 +243,8 @@ def signed_bias(data: MapData) -> np.ndarray:
         return np.nanmedian(flat, axis=3)
 
 
-def analyse(data: MapData) -> Analysis:
-    """Every statement of the summary, from the data."""
-    covered, fast = share(data), speed(data)
-    return Analysis(tuple(regions(data)), tuple(picks(data)), covered, fast,
-                    goal(data, covered.by_bed, fast.median), energy_picks(data))
-
-
-def pick_text(pick: Pick) -> str:
-    """One sentence: the calibration to pick for a measure, with its distribution."""
-    label = MEASURE_LABELS[pick.measure]
-    best = pick.best
-    return (f"For {label}, pick the {_subject(best)}: |error| median "
-            f"{_pct(pick.median[best])}, 90th percentile {_pct(pick.p90[best])} over "
-            f"{pick.points} points")
-
-
-def _pct(value: float) -> str:
-    return "n/a" if not math.isfinite(value) else f"{100 * value:.1f} %"
+def analyse(ds) -> Analysis:
+    """Every statement of the summary, from the map dataset ``ds`` (``tree["map"]``)."""
+    covered, fast = share(ds), speed(ds)
+    return Analysis(tuple(regions(ds)), tuple(picks(ds)), covered, fast,
+                    goal(ds, covered.by_bed, fast.median), energy_picks(ds))

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...beds import BEDS
+from .parts import point_values
 
 __all__ = ["ENERGIES", "ENERGY_LABELS", "ENERGY_SYMBOLS", "EnergyPick", "energy_scale",
            "energies_of",
@@ -90,40 +91,42 @@ def _rank(median: dict, p90: dict, names) -> str | None:
     return min(finite, key=lambda n: (median[n], p90[n])) if finite else None
 
 
-def energy_picks(data) -> tuple[EnergyPick, ...]:
+def energy_picks(ds) -> tuple[EnergyPick, ...]:
     """The error distribution of each energy of :data:`ENERGIES` per calibration
-    (:class:`EnergyPick`) over the points whose continuum energy run is stored; empty when the
-    map holds none."""
-    if data.energy_errors is None or not np.isfinite(data.continuum_energy).any():
+    (:class:`EnergyPick`) over the points whose continuum energy run is stored, from the map
+    dataset ``ds``; empty when the map holds none."""
+    if not any(np.isfinite(ds[f"continuum_{q}"].values).any() for q in ENERGIES):
         return ()
-    return tuple(_pick(data, k, quantity) for k, quantity in enumerate(ENERGIES))
+    return tuple(_pick(ds, quantity) for quantity in ENERGIES)
 
 
-def _pick(data, k: int, quantity: str) -> EnergyPick:
-    errors, continuum = data.energy_errors[..., k], data.continuum_energy[..., k]
+def _pick(ds, quantity: str) -> EnergyPick:
+    errors = point_values(ds, f"{quantity}_error", "calibration")
+    continuum = point_values(ds, f"continuum_{quantity}")
+    calibrations = tuple(str(c) for c in ds["calibration"].values)
     median, p90, bias = {}, {}, {}
-    for c, name in enumerate(data.calibrations):
+    for c, name in enumerate(calibrations):
         median[name], p90[name], bias[name] = _stats(errors[..., c].ravel())
     soils = {}
-    for s, soil in enumerate(data.grid.soils):
+    for s, soil in enumerate(str(v) for v in ds["soil"].values):
         n = int(np.isfinite(continuum[s]).sum())
         if n:
             stats = {name: _stats(errors[s, ..., c].ravel())
-                     for c, name in enumerate(data.calibrations)}
+                     for c, name in enumerate(calibrations)}
             best = _rank({k: v[0] for k, v in stats.items()},
-                         {k: v[1] for k, v in stats.items()}, data.calibrations)
+                         {k: v[1] for k, v in stats.items()}, calibrations)
             soils[soil] = (n, best, stats[best][0] if best else math.nan,
                            stats[best][1] if best else math.nan)
     return EnergyPick(quantity, int(np.isfinite(continuum).sum()), median, p90, bias,
-                      _rank(median, p90, data.calibrations), soils)
+                      _rank(median, p90, calibrations), soils)
 
 
 def _pct(value: float) -> str:
     return "n/a" if not math.isfinite(value) else f"{100 * value:.1f} %"
 
 
-def energy_lines(data, picks: tuple[EnergyPick, ...]) -> list[str]:
-    """The summary's section on E_F and E_M (markdown lines)."""
+def energy_lines(ds, picks: tuple[EnergyPick, ...]) -> list[str]:
+    """The summary's section on E_F and E_M (markdown lines) of the map dataset ``ds``."""
     intro = ("E_F is the energy the structure lost to its foundation over the run, from the "
              "structure's own side of the balance (the ground's input less the change of its "
              "kinetic, story and gravity energy and its story dashpot's work): a bed's dashpot, "
@@ -136,7 +139,7 @@ def energy_lines(data, picks: tuple[EnergyPick, ...]) -> list[str]:
              "books plastic work with stored elastic energy, and the soil's own free-field "
              "response with them. Errors are relative, with the floor "
              "0.1 × ½ (N B/6)²/K_r (a uniform bed's strain energy at its uplift threshold).")
-    total = data.continuum_wall.size
+    total = ds["continuum_wall_time"].size
     if not picks:
         return [intro, "", f"No point of this map has a continuum energy run stored (0 of "
                            f"{total}): E_F is not compared. Run the map with --energy to make "
@@ -146,13 +149,14 @@ def energy_lines(data, picks: tuple[EnergyPick, ...]) -> list[str]:
              "| calibration | E_F: median of the error's size (%) | 90th percentile (%) | "
              "signed median (%) | E_M: median of the error's size (%) | 90th percentile (%) | "
              "signed median (%) |", "|---|---|---|---|---|---|---|"]
-    for name in data.calibrations:
+    for name in (str(c) for c in ds["calibration"].values):
         lines.append(f"| `{name}` | {_pct(f.median[name])} | {_pct(f.p90[name])} | "
                      f"{_pct(f.bias[name])} | {_pct(m.median[name])} | {_pct(m.p90[name])} | "
                      f"{_pct(m.bias[name])} |")
     lines.append("")
     with np.errstate(divide="ignore", invalid="ignore"):
-        held = data.continuum_energy_left / np.abs(data.continuum_energy[..., 1])
+        held = (ds["continuum_energy_left"].values
+                / np.abs(ds[f"continuum_{ENERGIES[1]}"].values))
     held = held[np.isfinite(held)]
     if held.size:
         lines += [f"Both are taken at the end of the run. There the continuum's structure "

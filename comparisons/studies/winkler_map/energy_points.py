@@ -13,6 +13,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from ...framework.sources import point_sources
 from ...framework.store import point_function
 from .foundation_energy import structure_energy_terms
 from .points import _timed_run, _warm_kernels, continuum_measures, point_scene
@@ -35,7 +36,8 @@ def continuum_energy_terms(scene, result) -> dict:
 
 
 @point_function("upliftlab.comparisons.winkler_map:evaluate_energy",
-                models=("continuum",), tolerance=1e-4)
+                models=("continuum",), tolerance=1e-4,
+                sources=point_sources(__name__, __package__))
 def evaluate_energy(point: Mapping) -> dict:
     """One continuum dynamic run of a point as :func:`.points.evaluate_dynamic` makes it, with
     ``foundation_energy`` E_F (scene units, force·length per length) and the structure's

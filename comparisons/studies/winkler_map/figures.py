@@ -12,6 +12,7 @@ import numpy as np
 
 from ...framework.study import Axis, write_figure
 from .analysis import median_over_motions
+from .parts import names, point_array, point_values
 from ...beds import BEDS
 from .energy import ENERGY_LABELS, ENERGY_SYMBOLS
 from .grid import MEASURE_LABELS, MEASURES, SOIL_LABELS
@@ -19,30 +20,31 @@ from .grid import MEASURE_LABELS, MEASURES, SOIL_LABELS
 __all__ = ["write_figures"]
 
 
-def write_figures(result, directory: Path) -> list[Path]:
-    data, analysis = result.data, result.analysis
-    files = [_error_map(data, directory / f"{m}_error.png", m)
+def write_figures(ds, analysis, directory: Path) -> list[Path]:
+    """The figures of the map dataset ``ds`` (``tree["map"]``) and its ``analysis`` into
+    ``directory``."""
+    files = [_error_map(ds, directory / f"{m}_error.png", m)
              for m in ("theta", "uplift", "residual_settlement")]
-    files.append(_distributions(data, analysis, directory / "error_distribution.png"))
-    files.append(_speed(data, analysis, directory / "speed.png"))
+    files.append(_distributions(ds, analysis, directory / "error_distribution.png"))
+    files.append(_speed(ds, analysis, directory / "speed.png"))
     return files
 
 
-def _error_map(data, path: Path, measure: str) -> Path:
+def _error_map(ds, path: Path, measure: str) -> Path:
     """|error| over FS_v × h/B: the median over the motions, the worst over the periods and
     intensities; one row per soil, one panel per calibration; contours at 10 and 20 %."""
-    g = data.grid
-    med = median_over_motions(data)[..., MEASURES.index(measure)]
+    med = median_over_motions(ds)[..., MEASURES.index(measure)]
     with np.errstate(all="ignore"), warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # a cell whose every run failed: NaN
         worst = np.nanmax(med, axis=(3, 4)) if np.isfinite(med).any() else med[:, :, :, 0, 0]
-    x = Axis("fs_v", "FS_v", tuple(g.fs_v))
-    y = Axis("h_over_B", "h/B", tuple(g.h_over_B))
+    x = Axis("fs_v", "FS_v", names(ds, "fs_v"))
+    y = Axis("h_over_B", "h/B", names(ds, "h_over_B"))
     rows = [[(f"{soil}: {name}", worst[s, :, :, c].T)
-             for c, name in enumerate(data.calibrations)] for s, soil in enumerate(g.soils)]
-    soils = "; ".join(SOIL_LABELS[s] for s in g.soils)
+             for c, name in enumerate(names(ds, "calibration"))]
+            for s, soil in enumerate(names(ds, "soil"))]
+    soils = "; ".join(SOIL_LABELS[s] for s in names(ds, "soil"))
     title = (f"|bed − continuum| / continuum in {MEASURE_LABELS[measure]}: median over "
-             f"{len(data.motions)} motions, worst over T and intensity\n({soils})")
+             f"{ds.sizes['motion']} motions, worst over T and intensity\n({soils})")
     return _heat_maps(path, title, x, y, rows)
 
 
@@ -104,7 +106,7 @@ def _colours(count: int):
     return [cmap(i) for i in range(count)]
 
 
-def _distributions(data, analysis, path: Path) -> Path:
+def _distributions(ds, analysis, path: Path) -> Path:
     """Per measure and calibration: the median and 90th percentile of |error| over the map, and
     of the foundation energy E_F over the points whose continuum energy run is stored."""
     import matplotlib
@@ -112,22 +114,22 @@ def _distributions(data, analysis, path: Path) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    names = data.calibrations
+    beds = names(ds, "calibration")
     groups = [(MEASURE_LABELS[m], analysis.pick(m).median, analysis.pick(m).p90)
               for m in MEASURES]
     groups += [(f"{ENERGY_LABELS[e.quantity]}\n({e.points} points)", e.median, e.p90)
                for e in analysis.energy]
     fig, ax = plt.subplots(figsize=(9.5 + 1.2 * len(analysis.energy),
-                                    4.2 + 0.16 * ((len(names) + 1) // 2)),
+                                    4.2 + 0.16 * ((len(beds) + 1) // 2)),
                            constrained_layout=True)
-    width = 0.8 / len(names)
+    width = 0.8 / len(beds)
     x = np.arange(len(groups))
-    for c, (name, colour) in enumerate(zip(names, _colours(len(names)))):
+    for c, (name, colour) in enumerate(zip(beds, _colours(len(beds)))):
         med = [100 * g[1][name] for g in groups]
         p90 = [100 * g[2][name] for g in groups]
-        ax.bar(x + (c - (len(names) - 1) / 2) * width, med, width, color=colour,
+        ax.bar(x + (c - (len(beds) - 1) / 2) * width, med, width, color=colour,
                label=_legend_label(name))
-        ax.plot(x + (c - (len(names) - 1) / 2) * width, p90, "v", color=colour,
+        ax.plot(x + (c - (len(beds) - 1) / 2) * width, p90, "v", color=colour,
                 markeredgecolor="k", markersize=6)
     for level in (10, 20):
         ax.axhline(level, color="k", ls=":", lw=0.8)
@@ -145,23 +147,24 @@ def _distributions(data, analysis, path: Path) -> Path:
     return write_figure(path, fig)
 
 
-def _speed(data, analysis, path: Path) -> Path:
+def _speed(ds, analysis, path: Path) -> Path:
     """Per calibration: the continuum's wall time over the bed's, point by point."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    names = data.calibrations
+    beds = names(ds, "calibration")
     fig, ax = plt.subplots(figsize=(7, 3.6), constrained_layout=True)
-    for c, name in enumerate(names):
-        ratio = (data.continuum_wall / data.bed_wall[..., c]).ravel()
+    cw = point_values(ds, "continuum_wall_time")
+    for c, name in enumerate(beds):
+        ratio = (cw / point_array(ds["bed_wall_time"].sel(calibration=name))).ravel()
         ratio = ratio[np.isfinite(ratio)]
         ax.plot(np.full(ratio.size, c), ratio, "o", alpha=0.5)
         ax.plot([c - 0.3, c + 0.3], [analysis.speed.median[name]] * 2, "k-")
     ax.axhline(1000, color="r", ls=":", label="1000 ×")
     ax.set_yscale("log")
-    ax.set_xticks(range(len(names)), [_short(n) for n in names], fontsize=7)
+    ax.set_xticks(range(len(beds)), [_short(n) for n in beds], fontsize=7)
     ax.set_ylabel("continuum wall time / bed wall time")
     ax.set_title(f"How much faster is each bed? (median: line; continuum runs: median "
                  f"{analysis.speed.continuum_median:.3g} s)", fontsize=8)

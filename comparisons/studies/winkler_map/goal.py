@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .parts import bearing_failures, errors_of, options_of, point_values
 from .grid import MEASURES, SOIL_LABELS
 
 __all__ = ["GOAL_SHARE", "GOAL_SPEEDUP", "Goal", "hits", "goal", "goal_text"]
@@ -26,21 +27,18 @@ GOAL_SHARE = 0.5
 GOAL_SPEEDUP = 1000.0
 
 
-def hits(data) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def hits(ds) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(hit, counted, failed, called): ``hit`` (…, motion, calibration) the bed is within
     ``theta_tolerance`` in peak θ and edge uplift, or, where the continuum's soil failed in
     bearing (``failed``, …, motion), the bed's failed too (``called``, …, motion,
     calibration); ``counted`` (…, motion) the points that count: the continuum run finished
     or ended in a bearing failure (a point whose solver gave up has nothing to be within of)."""
-    thr = data.options.theta_tolerance
-    e = np.nan_to_num(np.abs(data.errors), nan=np.inf)
+    thr = options_of(ds)["theta_tolerance"]
+    e = np.nan_to_num(np.abs(errors_of(ds)), nan=np.inf)
     q = MEASURES.index
     within = (e[..., q("theta")] <= thr) & (e[..., q("uplift")] <= thr)
-    ran = np.isfinite(data.continuum[..., MEASURES.index("theta")])
-    failed = (np.zeros_like(ran) if data.bearing_failure is None
-              else np.asarray(data.bearing_failure, bool))
-    called = (np.zeros(within.shape, bool) if data.bed_bearing_failure is None
-              else np.asarray(data.bed_bearing_failure, bool))
+    ran = np.isfinite(point_values(ds, "continuum_theta"))
+    failed, called = bearing_failures(ds)
     return np.where(failed[..., None], called, within), ran | failed, failed, called
 
 
@@ -67,23 +65,22 @@ class Goal:
     under: float
 
 
-def goal(data, by_bed: dict, speedup: dict) -> Goal:
-    """The verdict for ``data`` from each calibration's share (``by_bed``, as
+def goal(ds, by_bed: dict, speedup: dict) -> Goal:
+    """The verdict for the map dataset ``ds`` from each calibration's share (``by_bed``, as
     :func:`.analysis.share` counts it) and median speed-up (``speedup``)."""
-    names = list(data.calibrations)
+    names = [str(c) for c in ds["calibration"].values]
     fast = [n for n in names if math.isfinite(speedup[n]) and speedup[n] >= GOAL_SPEEDUP]
     bed = max(fast or names, key=lambda n: (_or_less(by_bed[n]), -names.index(n)))
     c = names.index(bed)
-    hit, counted, failed, _ = hits(data)
-    g = data.grid
+    hit, counted, failed, _ = hits(ds)
     by_cell = {}
-    for s, soil in enumerate(g.soils):
-        for f, fs in enumerate(g.fs_v):
+    for s, soil in enumerate(str(v) for v in ds["soil"].values):
+        for f, fs in enumerate(ds["fs_v"].values.tolist()):
             points = counted[s, f]
             by_cell[(soil, float(fs))] = (float(hit[s, f][points][:, c].mean()) if points.any()
                                           else math.nan)
-    thr = data.options.theta_tolerance
-    errors = data.errors[..., c, :]
+    thr = options_of(ds)["theta_tolerance"]
+    errors = errors_of(ds)[..., c, :]
     finite = np.isfinite(errors[..., MEASURES.index("theta")]) & np.isfinite(
         errors[..., MEASURES.index("uplift")])
     missed = counted & ~failed & finite & ~hit[..., c]

@@ -37,6 +37,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ...framework.sources import point_sources
 from ...framework.store import point_function
 from .statics import static_scene
 from .soils import SOILS
@@ -99,7 +100,8 @@ def _impedance_options(point: Mapping):
 
 
 @point_function("upliftlab.comparisons.winkler_map:evaluate_impedance",
-                models=("continuum",), tolerance=1e-4)
+                models=("continuum",), tolerance=1e-4,
+                sources=point_sources(__name__, __package__))
 def evaluate_impedance(point: Mapping) -> dict:
     """The footing's impedance on the point's elastic soil (module docstring): ``a0``,
     ``omega`` (rad/s), the 3×3 complex impedance per frequency as ``real`` and ``imag`` (n × 3

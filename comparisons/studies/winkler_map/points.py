@@ -21,6 +21,7 @@ import numpy as np
 from ....scenes import Scene, scene_from_dict
 from ...framework.measures import (continuum_peak_edge_gap, peak_story_shear, residual_rotation,
                                    settlement_when_flattest)
+from ...framework.sources import point_sources
 from ...framework.store import point_function
 from .motions import locate
 from .soils import SOILS
@@ -143,7 +144,8 @@ def continuum_measures(scene, result):
 
 
 @point_function("upliftlab.comparisons.winkler_map:evaluate_dynamic",
-                models=("continuum",), tolerance=1e-4)
+                models=("continuum",), tolerance=1e-4,
+                sources=point_sources(__name__, __package__))
 def evaluate_dynamic(point: Mapping) -> dict:
     """One continuum dynamic run of a point (explicit route, no soil snapshots): the measures
     of :func:`measured` from every recorded step, the run's steps, DOFs, step (s),

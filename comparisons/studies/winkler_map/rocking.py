@@ -28,7 +28,8 @@ from ...beds.continuum_points import floats
 from ...beds.pushover import FLOORS, cyclic_path, path_values, rotation_path
 from .grid import SOILS, Options
 
-__all__ = ["QUANTITY_GROUPS", "RockingData", "rocking_points", "pushover_points",
+__all__ = ["QUANTITY_GROUPS", "RockingData", "group_worst", "rocking_points",
+           "pushover_points",
            "rocking_quantities", "rocking_data"]
 
 #: The groups of statics quantities the issue names, and the quantity keys in each (``{r}``:
@@ -124,18 +125,26 @@ class RockingData:
 
     def group_worst(self) -> np.ndarray:
         """(soil, calibration, group) the largest |error| over FS_v and the group's quantities
-        (NaN where none is finite), groups in :data:`QUANTITY_GROUPS` order."""
-        names = list(QUANTITY_GROUPS)
-        out = np.full(self.errors.shape[:1] + self.errors.shape[2:3] + (len(names),), np.nan)
-        for g, name in enumerate(names):
-            cols = [i for i, grp in enumerate(self.groups) if grp == name]
-            block = np.abs(self.errors[..., cols])  # soil, fs, cal, q
-            block = np.moveaxis(block, 1, 2).reshape(block.shape[0], block.shape[2], -1)
-            with np.errstate(all="ignore"):
-                finite = np.isfinite(block).any(axis=2)
-                worst = np.nanmax(np.where(np.isfinite(block), block, -np.inf), axis=2)
-            out[..., g] = np.where(finite, worst, np.nan)
-        return out
+        (:func:`group_worst`)."""
+        return group_worst(self.errors, self.groups)
+
+
+def group_worst(errors: np.ndarray, groups, names=tuple(QUANTITY_GROUPS)) -> np.ndarray:
+    """(soil, calibration, group) the largest |error| over FS_v and the group's quantities
+    (NaN where none is finite), of ``errors`` (soil, fs_v, calibration, quantity) whose
+    quantities belong to ``groups``; the groups in the order of ``names`` (those of
+    :data:`QUANTITY_GROUPS`, as ``groups`` spells them)."""
+    names = list(names)
+    out = np.full(errors.shape[:1] + errors.shape[2:3] + (len(names),), np.nan)
+    for g, name in enumerate(names):
+        cols = [i for i, grp in enumerate(groups) if grp == name]
+        block = np.abs(errors[..., cols])  # soil, fs, cal, q
+        block = np.moveaxis(block, 1, 2).reshape(block.shape[0], block.shape[2], -1)
+        with np.errstate(all="ignore"):
+            finite = np.isfinite(block).any(axis=2)
+            worst = np.nanmax(np.where(np.isfinite(block), block, -np.inf), axis=2)
+        out[..., g] = np.where(finite, worst, np.nan)
+    return out
 
 
 def rocking_data(soils: Sequence[str], fs_v: Sequence[float], loads: np.ndarray,

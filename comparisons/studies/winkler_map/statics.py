@@ -17,6 +17,7 @@ import numpy as np
 
 from ....scenes import scene_from_dict
 from ...beds.base import base_table
+from ...framework.sources import point_sources
 from ...framework.store import point_function
 from .soils import SOILS
 
@@ -52,7 +53,8 @@ def static_scene(point: Mapping):
 
 
 @point_function("upliftlab.comparisons.winkler_map:evaluate_static",
-                models=("continuum",), tolerance=1e-4)
+                models=("continuum",), tolerance=1e-4,
+                sources=point_sources(__name__, __package__))
 def evaluate_static(point: Mapping) -> dict:
     """One continuum static analysis of a soil: ``stiffness`` (K_v, K_r with every contact node
     tied to the footing) or ``vertical`` (the load–settlement path and its maximum,

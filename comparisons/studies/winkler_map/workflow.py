@@ -1,4 +1,5 @@
-"""The study's protocol: compute, run, its definition and its command line."""
+"""The study's protocol: compute (the map's labelled data), write, run, its definition and its
+command line."""
 
 from __future__ import annotations
 
@@ -7,25 +8,28 @@ from dataclasses import replace
 from pathlib import Path
 
 from ....checks import InputError
-from ...framework.protocol import Context, Study, run_study
-from ...framework.store import Store
-from ...framework.study import require_matplotlib
-from .analysis import analyse
+from ....provenance import provenance
 from ...beds import BEDS, bed_names
+from ...framework.protocol import Context, Study, StudyRun, run_study
+from ...framework.store import Store
+from ...framework.study import StudyResult, require_matplotlib, write_study
+from .analysis import analyse
 from .grid import (FAST_GRID, FAST_OPTIONS, FULL_GRID, FULL_OPTIONS, Grid, Options, STUDY,
                    check_grid, check_options, grid_with)
 from .maps import compute_map
 from .motions import study_motions
-from .output import write
-from .result import WinklerMap
+from .parts import map_of
+from .summary import key_numbers, summarise
 
 #: Where the full grid's continuum runs are kept with the repository (relative to the checkout):
 #: the report's full build and the README's map commands resume from it.
 KEPT_STORE = "benchmarks/winkler_map_store"
 
 
-def compute(scene, ctx: Context) -> WinklerMap:
-    """The map of ``ctx.grid`` (default :data:`FAST_GRID` or :data:`FULL_GRID`) under
+def compute(scene, ctx: Context):
+    """The map as an :class:`xarray.DataTree` of its ``map`` and ``statics`` datasets
+    (:mod:`.dataset`, :mod:`.statics_dataset`): the map of ``ctx.grid`` (default
+    :data:`FAST_GRID` or :data:`FULL_GRID`) under
     ``ctx.options`` (default :data:`FAST_OPTIONS` or :data:`FULL_OPTIONS`): every parameter
     checked, the motions found and the cost estimated (and refused above ``options.budget``)
     before any run; ``ctx.budget`` (the report's) applies when the options set none.
@@ -41,14 +45,33 @@ def compute(scene, ctx: Context) -> WinklerMap:
     fresh = [p for p in (out, out / "motions") if not p.exists()]
     motions = study_motions(grid, options, out)
     try:
-        data = compute_map(grid, options, bed_names(options), motions, ctx)
+        tree = compute_map(grid, options, bed_names(options), motions, ctx)
     except InputError:  # refused: leave no copied records behind, and no empty folders
         if out / "motions" in fresh:
             shutil.rmtree(out / "motions", ignore_errors=True)
         if out in fresh:
             _remove_empty_folders(out)
         raise
-    return WinklerMap(None, data, analyse(data))
+    return tree
+
+
+def write(tree, ctx: Context) -> StudyResult:
+    """The figures (when the options make them), the map's data (``map.nc`` and
+    ``statics.nc``) and its summary (:func:`.summary.summarise`, :func:`.summary.key_numbers`)
+    into ``ctx.out``."""
+    m = map_of(tree)
+    grid = {k.removeprefix("grid_"): v for k, v in m.attrs.items() if k.startswith("grid_")}
+    options = {k.removeprefix("options_"): v for k, v in m.attrs.items()
+               if k.startswith("options_")}
+    prov = provenance(study=STUDY, fast=ctx.fast, grid=grid, options=options,
+                      store=str(ctx.store.root))
+    files = []
+    if int(m.attrs["options_figures"]):
+        from .figures import write_figures
+
+        files = write_figures(m, analyse(m), Path(ctx.out) / "figures")
+    return write_study(STUDY, tree, ctx, summarise=summarise, numbers=key_numbers,
+                       provenance=prov, files=files)
 
 
 def _remove_empty_folders(root: Path) -> None:
@@ -64,12 +87,13 @@ def _remove_empty_folders(root: Path) -> None:
 def run(fast: bool = False, *, out: str | Path | None = None,
         store: Store | str | Path | None = None, grid: Grid | None = None,
         options: Options | None = None, executor=None, scheduler=None, workers=None,
-        progress=None) -> WinklerMap:
+        progress=None) -> StudyRun:
     """Run the map. ``fast``: :data:`FAST_GRID` and :data:`FAST_OPTIONS` (one soil, two FS_v,
     one short pulse on 4 elements across) instead of the full grid on the reference mesh.
     ``out``: output directory (default ``results/winkler_map[-fast]``); ``store`` the results
     store (default ``<out>/store``); ``executor``/``scheduler``/``workers``/``progress`` go to
-    :func:`.sweep.run_sweep`. Every parameter is checked before anything runs."""
+    :func:`.sweep.run_sweep`. Every parameter is checked before anything runs. Returns the
+    map's tree (``.data``) and what was written (``.study``)."""
     return run_study(DEFINITION, None, Context(
         fast=fast, out=out, store=store, grid=grid, options=options, executor=executor,
         scheduler=scheduler, workers=workers, progress=progress))
@@ -113,9 +137,10 @@ def _context_from(args, ctx: Context, say) -> Context:
     return replace(ctx, options=options, grid=grid)
 
 
-def _describe(result: WinklerMap) -> list[str]:
-    s = result.analysis.share
-    return [f"{STUDY}: {result.data.continuum_wall.size} points; the best calibration "
+def _describe(run: StudyRun) -> list[str]:
+    m = map_of(run.data)
+    s = analyse(m).share
+    return [f"{STUDY}: {m.continuum_wall_time.size} points; the best calibration "
             f"({s.best}) is within {100 * s.threshold:g} % in peak θ and edge uplift at "
             f"{100 * s.best_share:.0f} % of them"]
 

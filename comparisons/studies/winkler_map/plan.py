@@ -1,0 +1,154 @@
+"""The map's plan: its points in array order (the statics, the impedance, the rotation
+pushovers and the dynamic runs, each a point of :func:`.sweep.run_sweep`), their store keys,
+the reference numbers a bed is calibrated from, and the cost of what is not stored yet,
+estimated before any run (:func:`estimate_map`)."""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Mapping, Sequence
+
+from ....scenes import load_scene, scene_from_dict
+from ...beds import BASE_SCENE, BEDS, BedReference, base_table
+from ...beds.continuum_points import evaluate_continuum
+from ...framework.store import point_key
+from .cost import Estimate, estimate_cost, impedance_dofs, timed_dynamic_runs, with_checks
+from .energy_points import evaluate_energy
+from .grid import STUDY, Grid, Options
+from .impedance_points import evaluate_impedance, impedance_point
+from .motions import motion_duration
+from .points import evaluate_dynamic, point_table
+from .rocking import rocking_points
+from .statics import SoilStatics, evaluate_static, static_points
+
+__all__ = ["cells", "dynamic_points", "point_key_of", "scene_of", "map_rocking_points",
+           "reference", "estimate_map", "plan_map", "FREE_MOTION"]
+
+
+def cells(grid: Grid):
+    """(index tuple, values) over soil × fs_v × h/B × period × intensity."""
+    axes = (grid.soils, grid.fs_v, grid.h_over_B, grid.periods, grid.intensities)
+    for idx in itertools.product(*(range(len(a)) for a in axes)):
+        yield idx, tuple(a[i] for a, i in zip(axes, idx))
+
+
+def dynamic_points(grid, options, motions, base, g, loads) -> list[dict]:
+    """Every dynamic point in array order; ``loads[soil]`` the V_ult of each soil (a
+    placeholder before the statics are known: the points then serve only for the estimate)."""
+    points = []
+    for _, (soil, fs, hb, period, intensity) in cells(grid):
+        table = point_table(base, soil, options.elements_across, loads[soil] / fs, hb, period, g)
+        for motion in motions:
+            points.append({"scene": table, "motion": motion, "intensity": float(intensity)})
+    return points
+
+
+FREE_MOTION = {"type": "free", "velocity": 1.0, "duration": 1.0}  # a scene's motion, unused
+
+
+def point_key_of(point, function) -> str:
+    """The store key of ``point`` of the map's point ``function``."""
+    return point_key(STUDY, function, point)
+
+
+def scene_of(table: Mapping):
+    """The validated scene of a point's table (its motion unused)."""
+    return scene_from_dict({**table, "motion": dict(FREE_MOTION)}, merged=True)
+
+
+def map_rocking_points(grid, options, base, loads) -> list[dict]:
+    """The continuum's rotation pushovers, two per (soil, fs_v) in array order."""
+    return [p for soil in grid.soils for fs in grid.fs_v
+            for p in rocking_points(base, soil, loads[soil] / fs, options)]
+
+
+def _estimate(grid, options, motions, base, g, store, statics_points, loads,
+              impedance_points) -> Estimate:
+    """The cost of what is not stored yet. A soil whose statics are not stored has no vertical
+    load yet: its dynamic points and its rotation pushovers all count as still to run. The
+    rates are those of the grid's stored dynamic runs, else of the store's others."""
+    static_records = [store.get(point_key_of(p, evaluate_static)) for p in statics_points]
+    impedance_records = [store.get(point_key_of(p, evaluate_impedance)) for p in impedance_points]
+    impedance_rows = [(soil, impedance_dofs(p), len(p["impedance"]["a0"]), r is not None)
+                      for soil, p, r in zip(grid.soils, impedance_points, impedance_records)]
+    static_rows = []
+    for i, soil in enumerate(grid.soils):
+        point = statics_points[2 * i]
+        table = {**base, "soil": point["soil"],
+                 "continuum": {**base.get("continuum", {}), **point["continuum"]}}
+        static_rows.append((soil, scene_of(table), soil in loads))
+    rotations = map_rocking_points(grid, options, base, {s: loads.get(s, 1.0) for s in grid.soils})
+    for k, point in enumerate(rotations):
+        soil = grid.soils[k // (2 * len(grid.fs_v))]
+        stored = soil in loads and store.has(point_key_of(point, evaluate_continuum))
+        static_rows.append((soil, scene_of(point["scene"]), stored,
+                            len(point["rotations"]) / (options.vertical_steps + 1)))
+    dynamic = dynamic_points(grid, options, motions, base, g,
+                              {s: loads.get(s, 1.0) for s in grid.soils})
+    durations = {m["name"]: motion_duration(m) for m in motions}
+    scenes, rows, records = {}, [], []
+    soils = [soil for _, (soil, *_) in cells(grid) for _ in motions]
+    for soil, point in zip(soils, dynamic):
+        record = store.get(point_key_of(point, evaluate_dynamic)) if soil in loads else None
+        records.append(record)
+        if soil not in scenes:
+            scenes[soil] = scene_of(point["scene"])
+        rows.append((soil, scenes[soil], durations[point["motion"]["name"]], record is not None))
+        if options.energy:  # the same run again, with E_F
+            rows.append((soil, scenes[soil], durations[point["motion"]["name"]],
+                         soil in loads and store.has(point_key_of(point, evaluate_energy))))
+    pairs = [static_records[i:i + 2] for i in range(0, len(static_records), 2)]
+    stored_static = [{"dofs": a["dofs"], "wall_time_s": a["wall_time_s"] + b["wall_time_s"]}
+                     for a, b in pairs if a is not None and b is not None]
+    timed = [r for r in records if r is not None and "error" not in r] or timed_dynamic_runs(store)
+    estimate = estimate_cost(static_rows, rows, stored_static, timed,
+                             impedance_rows, [r for r in impedance_records if r is not None])
+    keyed = [(point_key_of(p, f), f) for points, f in (
+        (statics_points, evaluate_static), (impedance_points, evaluate_impedance),
+        (rotations if loads else [], evaluate_continuum), (dynamic if loads else [],
+                                                           evaluate_dynamic),
+        (dynamic if loads else [], evaluate_energy)) for p in points]
+    return with_checks(estimate, store, keyed)
+
+
+def estimate_map(grid: Grid, options: Options, calibrations: Sequence[str], motions,
+                 store) -> Estimate:
+    """What the map of ``grid`` would cost with ``store``: the continuum runs it holds and
+    those it would still make, estimated as :func:`compute_map` does before its first run
+    (nothing is run or written)."""
+    return plan_map(grid, options, calibrations, motions, store)[-1]
+
+
+def plan_map(grid, options, calibrations, motions, store) -> tuple:
+    """The base table and g, the statics points and their stored records, the impedance
+    points and the estimate."""
+    base = base_table()
+    g = load_scene(BASE_SCENE).g
+    b = base["foundation"]["half_width"]
+    statics_points = [p for soil in grid.soils for p in static_points(soil, options, b)]
+    static_records = [store.get(point_key_of(p, evaluate_static)) for p in statics_points]
+    loads = {soil: static_records[2 * i + 1]["capacity"] for i, soil in enumerate(grid.soils)
+             if static_records[2 * i] is not None and static_records[2 * i + 1] is not None}
+    needs = {n for c in calibrations for n in BEDS[c].needs}
+    impedance_points = ([impedance_point(soil, options, b) for soil in grid.soils]
+                        if "impedance" in needs else [])
+    estimate = _estimate(grid, options, motions, base, g, store, statics_points, loads,
+                         impedance_points)
+    return base, g, statics_points, static_records, impedance_points, estimate
+
+
+def reference(st: SoilStatics, scene, structure: Mapping, impedance=None,
+              rocking=None) -> BedReference:
+    """The continuum numbers a bed is calibrated from, at a point's scene: its numbers, the
+    soil's statics, and in ``extra`` the soil's density, the point's ``[structure]`` table,
+    the soil's impedance (when a bed needs it) and the continuum's rotation pushovers at the
+    point's N (``rocking``, where they ran to their end)."""
+    extra = {"density": scene.soil.density, "structure": dict(structure),
+             "settlement": st.settlement, "load": st.load}
+    if impedance is not None:
+        extra["impedance"] = impedance
+    if rocking is not None:
+        extra["rocking"] = rocking
+    return BedReference(st.soil, scene.structure.weight, scene.foundation.width,
+                        scene.structure.height, st.K_v, st.K_r, st.V_ult,
+                        scene.soil.shear_modulus, scene.soil.poisson_ratio, extra=extra)
