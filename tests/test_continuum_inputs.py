@@ -9,6 +9,7 @@ s, I0 of a 2 m × 4 m block, a Winkler bed with the continuum's K_r).
 from __future__ import annotations
 
 import dataclasses
+import copy
 import math
 
 import numpy as np
@@ -99,7 +100,7 @@ def test_geostatic_stress_outside_the_yield_surface_is_refused():
 ])
 def test_scene_tables_refuse_bad_continuum_keys(table, key, value, message):
     # Reference: scenes.py, unknown keys and out-of-range values are errors naming the field.
-    data = load_scene("strip_footing_clay").data
+    data = copy.deepcopy(load_scene("strip_footing_clay").data)  # a scene's data is read-only
     data[table][key] = value
     with pytest.raises(InputError, match=message):
         scene_from_dict(data, merged=True)

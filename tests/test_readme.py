@@ -321,7 +321,9 @@ def test_compiled_kernels_are_cached_outside_the_installed_package(tmp_path):
     reduced laws' compiled forms in reduced/laws/, which the kernels inline>, also when numba was
     imported first. The digest also covers the continuum's compiled kernels, whose soil
     models' point returns (one module each in continuum/materials/) are compiled into the element
-    loops of dynamics/kernels.py. Reference: hashlib over (name, bytes) of those files."""
+    loops of dynamics/kernels.py, and the explicit time loop (dynamics/explicit_loop.py), cached
+    on disk, that inlines those loops and the contact steps (contact/). Reference: hashlib over
+    (name, bytes) of those files."""
     code = ("import numba, os, upliftlab\n"
             "print(os.environ['NUMBA_CACHE_DIR'], numba.config.CACHE_DIR)\n")
     env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
@@ -333,10 +335,12 @@ def test_compiled_kernels_are_cached_outside_the_installed_package(tmp_path):
                for p in sorted((root / "reduced" / "kernels").glob("*.py"))]
     kernels += [(f"upliftlab.reduced/laws/{p.relative_to(root / 'reduced' / 'laws').as_posix()}",
                  p) for p in sorted((root / "reduced" / "laws").rglob("*.py"))]
-    kernels += [("upliftlab.continuum/dynamics/kernels.py",
-                 root / "continuum" / "dynamics" / "kernels.py")]
-    kernels += [(f"upliftlab.continuum/materials/{p.name}", p)
-                for p in sorted((root / "continuum" / "materials").glob("*.py"))]
+    kernels += [(f"upliftlab.continuum/dynamics/{name}", root / "continuum" / "dynamics" / name)
+                for name in ("kernels.py", "explicit_loop.py")]
+    for folder in ("materials", "contact"):
+        base = root / "continuum" / folder
+        kernels += [(f"upliftlab.continuum/{folder}/{p.relative_to(base).as_posix()}", p)
+                    for p in sorted(base.rglob("*.py")) if "__pycache__" not in p.parts]
     digest = hashlib.sha256(b"".join(name.encode() + b"\0" + p.read_bytes() + b"\0"
                                      for name, p in sorted(kernels))).hexdigest()[:16]
     assert out == [str(tmp_path / "upliftlab" / "numba" / digest)] * 2
