@@ -37,8 +37,9 @@ IGNORED_KEY = re.compile(r"(time|seconds|elapsed|_utc$|^computed|provenance|sha2
                          r"^numba$|^scikit_fem$|^xarray$|^h5py$|session|measured_utc|"
                          r"^directory$|^files$|^store$|^html$|^path$|^key$|speed|_s$|_ms$|"
                          r"faster|ratio$|cheapest|pareto|repeats|^conclusion$)", re.I)
-#: Files that hold timings alone (a file named for a scene, "wall_elcentro", is compared).
-TIMING_FILE = re.compile(r"^(timings?|runtimes?|speed|elapsed)$", re.I)
+#: Files that hold timings alone, or what timings pick (the Pareto front); a file named for a
+#: scene ("wall_elcentro") is compared.
+TIMING_FILE = re.compile(r"^(timings?|runtimes?|speed|elapsed|pareto)$", re.I)
 SKIPPED_SUFFIX = {".png", ".svg", ".gif", ".pdf", ".html", ".xdmf", ".h5", ".lock", ".part",
                   ".npz", ".gz"}
 
@@ -130,8 +131,9 @@ def _netcdf_diffs(a: Path, b: Path, where: str, rtol: float, out: list,
             p, q = np.asarray(u.values), np.asarray(v.values)
             if p.dtype.kind in "fc" or q.dtype.kind in "fc":
                 p, q = p.astype(float), q.astype(float)
-                bad = ~((p == q) | (np.isnan(p) & np.isnan(q))
-                        | (np.abs(p - q) <= rtol * np.maximum(np.abs(p), np.abs(q))))
+                with np.errstate(invalid="ignore"):  # inf − inf where both are inf: equal
+                    bad = ~((p == q) | (np.isnan(p) & np.isnan(q))
+                            | (np.abs(p - q) <= rtol * np.maximum(np.abs(p), np.abs(q))))
                 if bad.any():
                     k = int(np.flatnonzero(bad.ravel())[0])
                     out.append(f"{where}:{name}: {bad.sum()} values differ, first "
