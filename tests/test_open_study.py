@@ -53,7 +53,7 @@ def test_a_single_dataset_is_one_file_named_by_the_study(tmp_path):
 
 
 def test_a_study_without_netcdf_files_opens_as_its_numbers(tmp_path):
-    # the verification and the paper's conclusions write summary.json alone
+    # the paper's conclusions write summary.json alone
     (tmp_path / "summary.json").write_text(json.dumps({"numbers": {"passed": True}}))
     opened = upliftlab.open_study(tmp_path)
     assert not opened.children and opened.attrs == {"passed": True}

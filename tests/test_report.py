@@ -339,6 +339,39 @@ def test_every_verification_row_passes_with_its_tolerance(reports):
     assert orders["uplifting", "events"]["slope"] > 3.7
 
 
+
+def verification_folder_matches_its_tables(folder: Path) -> None:
+    """A consistency check, not an accuracy one: the dataset that upliftlab.open_study reads
+    back from a verification folder (verification.nc) holds the anchors and orders that
+    anchors.csv and orders.csv of the same folder list, id for id (the CSV header) and value
+    for value (the CSV keeps 10 significant digits: 1e-9 relative)."""
+    import numpy as np
+
+    import upliftlab
+
+    ds = upliftlab.open_study(folder)["verification"].to_dataset()
+    anchors = np.loadtxt(folder / "anchors.csv", delimiter=",", comments="#", skiprows=2,
+                         ndmin=2)
+    header = (folder / "anchors.csv").read_text().splitlines()[0].split(": ", 1)[1]
+    assert [item.split("=", 1)[1] for item in header.split("; ")] == ds.anchor.values.tolist()
+    for column, name in ((1, "measured"), (2, "expected"), (3, "error")):
+        np.testing.assert_allclose(ds[name].values, anchors[:, column], rtol=1e-9, atol=0,
+                                   equal_nan=True)
+    passed = np.where(ds.status.values == "pass", 1.0,
+                      np.where(ds.status.values == "fail", 0.0, np.nan))
+    np.testing.assert_array_equal(passed, anchors[:, 4])
+    orders = np.loadtxt(folder / "orders.csv", delimiter=",", comments="#", skiprows=2,
+                        ndmin=2)
+    np.testing.assert_allclose(ds.order_slope.values, orders[:, 1], rtol=1e-9, equal_nan=True)
+    numbers = json.loads((folder / "summary.json").read_text())["numbers"]
+    assert numbers["counts"]["pass"] == int((ds.status == "pass").sum()) + int(
+        (ds.order_status == "pass").sum())
+
+
+def test_the_verification_folder_opens_as_the_dataset_of_its_tables(reports):
+    # The fast report's verification folder, opened again (consistency of its files).
+    verification_folder_matches_its_tables(reports["out"] / "studies" / "verification-fast")
+
 def test_two_spring_ratios_come_through(reports):
     # Anchor §2: equivalent springs uplift at 0.288675 N B, the uniform bed at (1/6)(1 + 1/N)
     # N B with N strips, so the onset ratio is 1.7321/(1 + 1/N); the capacity ratio as θ → ∞

@@ -50,16 +50,17 @@ def test_store_key_follows_the_sources(tmp_path, monkeypatch):
     again = vf.run(True, out=tmp_path / "out", store=tmp_path / "store")
     assert calls == ["good"]
     assert not first.reused and again.reused
-    assert again.key == first.key and again.computed_utc == first.computed_utc
-    assert [r.status for r in again.rows] == [vf.PASS, vf.FAIL]
-    assert "ZeroDivisionError: a check that crashes" in again.rows[1].note
-    assert not again.passed and "a check that crashes" in again.study.summary
+    assert again.data.attrs["key"] == first.data.attrs["key"]
+    assert again.data.attrs["computed_utc"] == first.data.attrs["computed_utc"]
+    assert again.data.status.values.tolist() == [vf.PASS, vf.FAIL]
+    assert "ZeroDivisionError: a check that crashes" in str(again.data.note.values[1])
+    assert not again.study.numbers["passed"] and "a check that crashes" in again.study.summary
     monkeypatch.setattr(vf.workflow, "source_digest", lambda: "sources-v2")
     edited = vf.run(True, out=tmp_path / "out", store=tmp_path / "store")
-    assert calls == ["good", "good"] and not edited.reused and edited.key != first.key
+    assert calls == ["good", "good"] and not edited.reused
+    assert edited.data.attrs["key"] != first.data.attrs["key"]
     full = vf.run(False, out=tmp_path / "out", store=tmp_path / "store")
-    assert full.key != edited.key and calls == ["good"] * 3
-
+    assert full.data.attrs["key"] != edited.data.attrs["key"] and calls == ["good"] * 3
 
 def test_the_code_digest_follows_the_bytes_of_the_sources_it_covers(tmp_path, monkeypatch):
     # Reference: SHA-256 over (name, bytes) of the covered files, computed here by hashlib: a

@@ -25,8 +25,19 @@ against Q2.
 study's inputs (fast or full, the El Centro file's SHA-256), the package version and a SHA-256
 of the source files of ``reduced/``, ``continuum/``, ``meshes/``, the core modules (but not the
 command line) and this package. A second run with the same key reads the record and recomputes
-nothing (``Verification.reused``); editing any of those sources gives a new key, so a stale
-table is never shown. A check that raises becomes a failing row that carries the message.
+nothing (the dataset's ``reused`` attribute); editing any of those sources gives a new key,
+so a stale table is never shown. A check that raises becomes a failing row that carries the
+message.
+
+**Result.** The study's result is an :class:`xarray.Dataset` (:mod:`.dataset`), built after
+the store's record is read (the record itself is unchanged): per ``anchor`` (the row's id) the
+text fields (group, quantity, reference, unit, kind, tolerance, status, note) and ``measured``,
+``expected``, ``error`` (NaN for none); per ``order`` the observed orders (``order_slope``,
+``order_low``, ``order_high``, ``order_status``, the fitted ``order_steps``/``order_errors``
+over ``level``); ``check_seconds`` per ``check``; attributes ``fast``, ``reused``, ``key``,
+``computed_utc``, ``compute_seconds`` and ``inputs_*``. :func:`.summary.summarise` and
+:func:`.summary.key_numbers` read it alone; the write step puts ``anchors.csv``,
+``orders.csv``, ``verification.nc`` and the summary into the output folder.
 
 ``upliftlab study verification [--fast] [--out DIR] [--store DIR]``
 (exit 1 if a row fails).
@@ -34,14 +45,16 @@ table is never shown. A check that raises becomes a failing row that carries the
 
 from __future__ import annotations
 
-from .output import error_text, fmt, markdown, write
-from .records import (CheckContext, FAIL, Order, PASS, Row, SKIP, STUDY, Verification,
-                      absolute_row, bound_row, order_row, relative_row, skipped_row)
+from .dataset import failures, orders_of, rows_of, status_counts, verification_dataset
+from .records import (CheckContext, FAIL, Order, PASS, Row, SKIP, STUDY, absolute_row,
+                      bound_row, order_row, relative_row, skipped_row)
 from .reduced_statics import drop_mass
+from .summary import error_text, fmt, key_numbers, summarise
 from .workflow import (CHECKS, DEFINITION, compute, compute_or_read, run, single_threaded,
-                       source_digest)
+                       source_digest, write)
 
-__all__ = ["STUDY", "Row", "Order", "Verification", "DEFINITION", "compute_or_read", "write",
-           "run", "source_digest", "drop_mass", "PASS", "FAIL", "SKIP", "CHECKS",
-           "relative_row", "absolute_row", "bound_row", "skipped_row", "order_row",
-           "single_threaded", "compute", "fmt", "error_text", "markdown", "CheckContext"]
+__all__ = ["STUDY", "Row", "Order", "DEFINITION", "compute_or_read", "write", "run",
+           "source_digest", "drop_mass", "PASS", "FAIL", "SKIP", "CHECKS", "relative_row",
+           "absolute_row", "bound_row", "skipped_row", "order_row", "single_threaded",
+           "compute", "fmt", "error_text", "summarise", "key_numbers", "CheckContext",
+           "verification_dataset", "rows_of", "orders_of", "failures", "status_counts"]

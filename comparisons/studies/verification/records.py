@@ -1,16 +1,12 @@
-"""The verification's records: a row (one anchor), an observed order, the whole table, and
+"""The verification's records: a row (one anchor), an observed order, and
 the builders of rows that decide pass or fail from a tolerance."""
 
 from __future__ import annotations
 
-import dataclasses
 import math
-from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
-
-from ...framework.study import StudyResult
 
 
 STUDY = "verification"
@@ -64,40 +60,6 @@ class Order:
     high: float
     status: str
     note: str = ""
-
-
-@dataclass(frozen=True, eq=False)
-class Verification:
-    """The table (``rows``), the orders, whether the record was ``reused`` from the store, its
-    ``key`` and the study record (files, Markdown summary, numbers)."""
-
-    rows: tuple[Row, ...]
-    orders: tuple[Order, ...]
-    reused: bool
-    key: str
-    computed_utc: str
-    compute_seconds: float
-    study: StudyResult | None = None
-    inputs: Mapping = dataclasses.field(default_factory=dict)
-    check_seconds: Mapping = dataclasses.field(default_factory=dict)
-
-    @property
-    def failures(self) -> list[str]:
-        bad = [f"{r.group}: {r.quantity} ({r.note or r.status})" for r in self.rows
-               if r.status == FAIL]
-        bad += [f"{o.group}: order of {o.method} on {o.case} ({o.note or o.status})"
-                for o in self.orders if o.status == FAIL]
-        return bad
-
-    @property
-    def passed(self) -> bool:
-        return not self.failures
-
-    def row(self, id: str) -> Row:
-        return next(r for r in self.rows if r.id == id)
-
-    def order(self, case: str, method: str) -> Order:
-        return next(o for o in self.orders if (o.case, o.method) == (case, method))
 
 
 #: The unit of each anchor's measured and expected values, by row id (a trailing ``*`` matches

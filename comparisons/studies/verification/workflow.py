@@ -12,16 +12,18 @@ from .... import __version__
 from ....checks import InputError
 from ....motions import ELCENTRO, find_motion, load_motion
 from ....provenance import MODEL_SOURCES, code_digest, provenance
-from ...framework.protocol import Context, Study, run_study
+from ...framework.protocol import Context, Study, StudyRun, run_study
 from ...framework.store import Store, point_key
-from ...framework.study import file_sha256
+from ...framework.study import StudyResult, file_sha256, write_study
 from .continuum_checks import flamant, prandtl, rocking_stiffness, uplift_eccentricity
-from .output import write
-from .records import FAIL, STUDY, C, CheckContext, Order, R, Row, Verification
+from .dataset import verification_dataset
+from .records import FAIL, STUDY, C, CheckContext, Order, R, Row
 from .reduced_dynamics import energy_balance, orders_smooth, orders_uplift, rigid_block
 from .reduced_statics import (bonded_periods, fixed_base, impact_damper, reduced_uplift_onset,
                               static_reactions, stiffness_entries, ultimate_moment,
                               winkler_pushover)
+from .summary import key_numbers, summarise
+from .tables import write_tables
 
 # ---------------------------------------------------------------------------------------------
 # The study
@@ -108,9 +110,11 @@ def compute_checks(fast: bool, progress=None) -> dict:
             "orders": [dataclasses.asdict(o) for o in orders], "seconds": seconds}
 
 
-def compute_or_read(scene: None, ctx: Context) -> Verification:
-    """Every anchor, computed or read from ``ctx.store`` under the content key of the module
-    docstring (``scene`` must be None: the checks build their own)."""
+def compute_or_read(scene: None, ctx: Context):
+    """Every anchor as the study's :class:`xarray.Dataset` (:func:`.dataset.verification_dataset`),
+    its checks computed or read from ``ctx.store`` under the content key of the module
+    docstring (``scene`` must be None: the checks build their own). The store keeps the checks'
+    record as before; the dataset is built from it after reading."""
     if scene is not None:
         raise InputError(f"scene = {scene!r}: the verification builds its own scenes; pass "
                          "scene=None")
@@ -126,17 +130,31 @@ def compute_or_read(scene: None, ctx: Context) -> Verification:
         entry["compute_seconds"] = time.perf_counter() - t0
         entry["computed_utc"] = provenance()["created_utc"]
         store.put(key, entry, {"study": STUDY, "params": params, "version": __version__})
-    rows = tuple(Row(**r) for r in entry["rows"])
-    orders = tuple(Order(**{**o, "steps": tuple(o["steps"]), "errors": tuple(o["errors"])})
-                   for o in entry["orders"])
-    return Verification(rows, orders, reused, key, entry["computed_utc"],
-                        entry["compute_seconds"], None, params, entry.get("seconds", {}))
+    return verification_dataset(entry, {
+        "fast": bool(fast), "reused": reused, "key": key,
+        "computed_utc": entry["computed_utc"], "compute_seconds": entry["compute_seconds"],
+        "inputs": params})
+
+
+def write(ds, ctx: Context) -> StudyResult:
+    """``anchors.csv``, ``orders.csv``, the dataset (``verification.nc``) and the summary into
+    ``ctx.out``."""
+    a = ds.attrs
+    inputs = {"fast": bool(a["inputs_fast"]), "elcentro_sha256": a.get("inputs_elcentro_sha256"),
+              "source": a["inputs_source"]}
+    prov = provenance(study=STUDY, fast=ctx.fast, key=a["key"], store=str(ctx.store.root),
+                      computed_utc=a["computed_utc"], reused=bool(a["reused"]), inputs=inputs)
+    files = write_tables(ds, Path(ctx.out))
+    return write_study(STUDY, ds, ctx, summarise=summarise, numbers=key_numbers,
+                       provenance=prov, files=files)
 
 
 def run(fast: bool = False, *, out: str | Path | None = None,
-        store: Store | str | Path | None = None, progress=None, **_ignored) -> Verification:
+        store: Store | str | Path | None = None, progress=None, **_ignored) -> StudyRun:
     """Compute (or read from ``store``) every anchor; write ``anchors.csv``, ``orders.csv``,
-    ``summary.md`` and ``summary.json`` into ``out`` (default ``results/verification[-fast]``).
+    ``verification.nc``, ``summary.md`` and ``summary.json`` into ``out`` (default
+    ``results/verification[-fast]``). Returns the dataset (``.data``) and what was written
+    (``.study``).
 
     ``store`` defaults to ``<out>/store``. Keyword arguments other studies take (``scheduler``)
     are accepted and ignored: the checks run in this process.
@@ -153,6 +171,6 @@ DEFINITION = Study(STUDY, "Verification anchors",
                    "Every verification anchor (closed forms, published values and converged "
                    "runs, listed in the table with their references) recomputed through the "
                    "library, with its measured error against its tolerance.", None,
-                   compute_or_read, write, describe=lambda result: [result.study.summary],
-                   passed=lambda result: result.passed, context_from=_context_from,
+                   compute_or_read, write, describe=lambda run: [run.study.summary],
+                   passed=lambda run: bool(run.study.numbers["passed"]), context_from=_context_from,
                    own_store=True, help_fast="skip the costly continuum levels")
