@@ -10,6 +10,7 @@ in tests/test_report.py through the fast report.
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import pytest
 
@@ -94,3 +95,15 @@ def test_drop_mass_damper_alone_is_exact():
     assert d["dy"] == pytest.approx(10 * 0.518 * 0.3 / 10, rel=1e-6)
     assert d["duration"] == pytest.approx(0.518 / 10 * math.log(1 / 0.7), rel=1e-4)
     assert d["impact_energy"] == pytest.approx(0.5 * 0.518 * 100 * (1 - 0.49), rel=1e-6)
+
+
+def test_the_stored_table_is_keyed_on_this_packages_own_checks():
+    """The key's sources name the package's files (the prefix once matched no file after the
+    checks moved under studies/, so an edited check read an old table as current). Reference:
+    the package's folder listed by pathlib."""
+    from upliftlab.comparisons.studies.verification import workflow
+    from upliftlab.provenance import package_files
+
+    named = {n.rsplit("/", 1)[-1] for n in package_files() if n.startswith(workflow.OWN_SOURCES)}
+    folder = {p.name for p in Path(workflow.__file__).parent.glob("*.py")}
+    assert folder and named == folder
