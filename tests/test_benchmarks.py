@@ -4,9 +4,9 @@ Each fast-path test runs ``python benchmarks/<script>.py --quick --out <tmp>`` i
 (from the temporary folder, so nothing lands in the work tree), asserts exit status 0 and the
 files the script names, and reads its Markdown table back: a number is checked against the
 bound that the script's committed table (``benchmarks/*.md``) or its own stated target gives,
-named in each test. The El Centro record comes from the ``elcentro`` fixture (skips without
-it, fails under CI); openseespy likewise (the OpenSees benchmarks skip without it, and fail
-under ``CI=true``). ``continuum_speed``'s fast path takes about two minutes: it is marked slow
+named in each test. The El Centro record comes from the ``elcentro`` fixture (a failure
+without it); openseespy likewise (the test extra installs it; the OpenSees benchmarks fail
+without it). ``continuum_speed``'s fast path takes about two minutes: it is marked slow
 (``-m slow``); the others take well under a minute each.
 
 The section tests run :func:`bench_output.run_sections` with a failing later section (a tiny
@@ -47,17 +47,11 @@ def _load(name: str):
 bench_output = _load("bench_output")
 
 
-def _ci() -> bool:
-    return os.environ.get("CI", "").lower() in ("1", "true", "yes")
-
-
 @pytest.fixture(scope="module")
 def opensees():
-    """openseespy, or a skip (a failure under CI, where the test extra installs it)."""
+    """openseespy (the test extra installs it: its absence is a failure)."""
     if importlib.util.find_spec("openseespy") is None:
-        if _ci():
-            pytest.fail("CI needs openseespy for the OpenSees benchmarks (upliftlab[opensees])")
-        pytest.skip("openseespy is not installed (pip install 'upliftlab[opensees]')")
+        pytest.fail("openseespy is not installed (pip install 'upliftlab[opensees]')")
 
 
 def run_fast_path(script: str, out: Path, *extra: str) -> subprocess.CompletedProcess:

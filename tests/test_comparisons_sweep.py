@@ -227,7 +227,7 @@ def test_dask_local_cluster_gives_the_local_result(tmp_path):
     """The reduced-model sweep on a Dask LocalCluster (2 in-process workers, the cluster itself
     given: its in-process address, inproc://…, is not one the address check takes) equals the
     same points evaluated in this process, to the last bit, and stores every point once."""
-    distributed = pytest.importorskip("distributed")
+    import distributed  # the test extra installs it: upliftlab[dask]
     points = _pulse_points()
     reference = [tse.evaluate_point(p) for p in points]
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,

