@@ -15,14 +15,22 @@ import numpy as np
 import pytest
 
 from upliftlab.comparisons.studies import paper
-from upliftlab.comparisons.studies.paper import Conclusion, Evidence, apparent_period
+from upliftlab.comparisons.studies.paper import (Conclusion, Evidence, apparent_period,
+                                                 conclusions_dataset, conclusions_of)
+from upliftlab.study_files import open_study
 from upliftlab.reduced.paper import claims
 
 
 @pytest.fixture(scope="module")
-def study(elcentro, tmp_path_factory):
+def run(elcentro, tmp_path_factory):
     out = tmp_path_factory.mktemp("paper")
     return paper.run(fast=True, out=out / "paper", motion=elcentro.source)
+
+
+@pytest.fixture(scope="module")
+def study(run):
+    """The conclusions as records, read back from the study's dataset."""
+    return conclusions_of(run.data)
 
 
 def test_apparent_period_of_a_sine_is_its_period():
@@ -65,9 +73,9 @@ def test_two_spring_conclusion_reads_the_written_tree():
 
 def test_every_conclusion_is_decided_from_runs(study):
     """With the record, every statement has evidence; none is left untested."""
-    assert [c.number for c in study.conclusions] == list(range(1, 9))
-    assert all(c.evidence for c in study.conclusions)
-    assert all(c.why for c in study.conclusions if c.verdict != "holds")
+    assert [c.number for c in study] == list(range(1, 9))
+    assert all(c.evidence for c in study)
+    assert all(c.why for c in study if c.verdict != "holds")
 
 
 def test_verdicts_agree_with_the_reduced_claim_checks(study, elcentro):
@@ -80,7 +88,7 @@ def test_verdicts_agree_with_the_reduced_claim_checks(study, elcentro):
                                               motion=record, histories=False)
             for c in ("A", "B", "C", "fixed")}
     reference = {c["statement"]: c for c in claims(runs)}
-    by_number = {c.number: c for c in study.conclusions}
+    by_number = {c.number: c for c in study}
     short = lambda c: next(e for e in c.evidence if "short-period" in e.source  # noqa: E731
                            and "free" not in e.source)
     peak = next(v for k, v in reference.items() if "gives a larger peak" in k)
@@ -98,18 +106,47 @@ def test_fixed_base_period_is_the_nominal_period(study):
     """Conclusion 8's fixed-base measure recovers the superstructure's fixed-base period
     2π√(m/k) (0.15 s and 0.59 s in the paper) within 15 % — the forced response of a 5 %-damped
     oscillator crosses zero near its own period — and the uplifting period is longer."""
-    c8 = next(c for c in study.conclusions if c.number == 8)
+    c8 = next(c for c in study if c.number == 8)
     for e, nominal in zip(c8.evidence, (0.15, 0.59)):
         assert e.values["fixed"] == pytest.approx(nominal, rel=0.15)
         assert e.values["uplift (C)"] > e.values["fixed"]
 
 
-def test_summary_files_carry_the_verdicts(study):
-    numbers = json.loads((study.study.directory / "summary.json").read_text())
-    assert [c["verdict"] for c in numbers["conclusions"]] == [c.verdict
-                                                              for c in study.conclusions]
-    text = (study.study.directory / "summary.md").read_text()
-    assert all(f"## {c.number}." in text for c in study.conclusions)
+def test_summary_files_carry_the_verdicts(run, study):
+    numbers = json.loads((run.study.directory / "summary.json").read_text())
+    assert [c["verdict"] for c in numbers["conclusions"]] == [c.verdict for c in study]
+    text = (run.study.directory / "summary.md").read_text()
+    assert all(f"## {c.number}." in text for c in study)
+
+
+def test_the_dataset_selects_by_label_and_reads_back_from_disk(run, study):
+    """The written ``paper.nc`` opened again (open_study) holds the same conclusions, values
+    bit for bit, and the summary written from it is the one on disk (issue 34 §4: one
+    compute → Dataset, one summarise(Dataset) → Markdown)."""
+    ds = run.data
+    assert list(ds.conclusion.values) == list(range(1, 9))
+    assert ds.verdict.sel(conclusion=8).item() == study[7].verdict
+    first = ds.value_number.where(ds.value_evidence == 0, drop=True).values
+    assert list(first) == list(study[0].evidence[0].values.values())
+    tree = open_study(run.study.directory)
+    again = tree["paper"].to_dataset()
+    assert json.dumps(paper.key_numbers(again)) == json.dumps(paper.key_numbers(ds))
+    assert paper.summarise(tree["paper"].to_dataset()) == (
+        run.study.directory / "summary.md").read_text()
+
+
+def test_dataset_round_trip_keeps_every_value():
+    """Made-up conclusions: one without evidence, one with two pieces (values in order, a
+    NaN kept), read back equal; the verdicts as the records decide them."""
+    yes = Evidence("reduced A", "larger", {"A": 1.5, "B": float("nan")}, "in", True)
+    no = Evidence("reduced C", "smaller", {"C": -2.0}, "m", False)
+    made = (Conclusion(1, "s1", (yes, no), why="w"), Conclusion(2, "s2", (), note="n"))
+    ds = conclusions_dataset(made, None)
+    back = conclusions_of(ds)
+    assert [c.verdict for c in back] == ["holds in part", "not tested"]
+    assert back[0].evidence[1] == no and back[1] == made[1]
+    assert list(back[0].evidence[0].values) == ["A", "B"]
+    assert math.isnan(back[0].evidence[0].values["B"]) and "record" not in ds.attrs
 
 
 def test_without_the_record_el_centro_conclusions_say_what_to_supply(tmp_path, monkeypatch):
@@ -117,7 +154,7 @@ def test_without_the_record_el_centro_conclusions_say_what_to_supply(tmp_path, m
     ones are not tested and name the file and the variable."""
     monkeypatch.setenv("UPLIFTLAB_MOTIONS", str(tmp_path))
     result = paper.run(fast=True, out=tmp_path / "p")
-    by_number = {c.number: c for c in result.conclusions}
+    by_number = {c.number: c for c in conclusions_of(result.data)}
     assert by_number[3].evidence and by_number[1].evidence  # free vibration
     assert by_number[6].verdict == "not tested"
     assert "UPLIFTLAB_MOTIONS" in by_number[6].note and "elcentro_1940_ns" in by_number[6].note

@@ -59,8 +59,8 @@ def open_study(path: str | os.PathLike):
     memory (the files are closed): one node per NetCDF file, named by its relative path without
     ``.nc`` (:func:`study_files`), holding the dataset as written (coordinates, units,
     attributes); the root's attributes are the summary's numbers, one per key, and their
-    ``provenance``. A study that writes no NetCDF file (the verification, the paper's
-    conclusions) opens as a root with its numbers alone. Raises
+    ``provenance``. A folder with ``summary.json`` and no NetCDF file opens as a root with its
+    numbers alone. Raises
     :class:`~upliftlab.checks.InputError` when ``path`` is not a folder, or holds neither a
     NetCDF file nor ``summary.json``."""
     import xarray as xr

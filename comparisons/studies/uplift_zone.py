@@ -11,35 +11,29 @@ and the report's figures by
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import json
 from pathlib import Path
 
 from ...anchors import half_plane_onset_rotation
 from ...provenance import provenance
-from ..framework.protocol import Context, Study, run_study
-from ..framework.study import StudyResult
+from ..framework.protocol import Context, Study, StudyRun, run_study
+from ..framework.study import StudyResult, json_default
 from .uplift_figures import write_figures
 
-__all__ = ["STUDY", "DEFINITION", "continuum_pushover", "run"]
+__all__ = ["STUDY", "DEFINITION", "continuum_pushover", "run", "summarise", "pushover_of"]
 
 STUDY = "uplift_zone"
 SCENE = "strip_footing_clay"
 
 
-@dataclass(frozen=True, eq=False)
-class Pushover:
-    """The pushover's scene, model, rotation schedule (rad) and path; ``study`` once written."""
-
-    scene: object
-    model: object
-    rotations: object
-    path: object
-    study: StudyResult | None = None
-
-
-def compute(scene, ctx: Context) -> Pushover:
-    """The scene, model, rotations and pushover path (``scene``: a name, default
-    :data:`SCENE`)."""
+def compute(scene, ctx: Context):
+    """The pushover as the study's :class:`xarray.Dataset` (``scene``: a name, default
+    :data:`SCENE`): the continuum's labelled path with its soil fields
+    (:func:`upliftlab.continuum.output.labelled.path_to_dataset`, over load ``step``), and as
+    attributes what its files are written from again: the scene's full table
+    (``scene_table``, JSON), its ``scene_source`` and ``scene_case``, the path's own metadata
+    (``run_metadata``, JSON), the number of ``rotation_steps`` asked for and whether the
+    mesh is the ``fast`` one (1) or the scene's (0)."""
     from ...continuum import build_model, rotation_pushover
     from ...continuum.output.series import rotation_schedule
     from ...scenes import load_scene
@@ -51,36 +45,61 @@ def compute(scene, ctx: Context) -> Pushover:
     theta_on = half_plane_onset_rotation(N, model.width, soil.shear_modulus, soil.poisson_ratio)
     rotations = rotation_schedule(10.0 * theta_on, 12 if ctx.fast else 40, theta_on)
     path = rotation_pushover(model, N, rotations, record_fields=True)
-    return Pushover(scene, model, rotations, path)
+    return path.to_xarray().assign_attrs(
+        scene_table=json.dumps(scene.table, sort_keys=True, default=str),
+        scene_source=scene.source, scene_case=scene.case or "",
+        run_metadata=json.dumps(path.metadata, sort_keys=True, default=json_default),
+        rotation_steps=int(rotations.size - 1), fast=int(bool(ctx.fast)))
 
 
-def write(result, ctx: Context) -> StudyResult:
-    """The renders, the XDMF and a summary into ``ctx.out``."""
-    from ...continuum.output.series import pushover_summary, summary_line, write_outputs
+def pushover_of(ds):
+    """(scene, model, path) again from the study's dataset: the scene validated from its
+    table (the same digest), its model built, the path with its own metadata."""
+    from ...continuum import build_model
+    from ...continuum.statics.results import StaticPath
+    from ...scenes import scene_from_dict
 
-    scene, model, rotations, path = result.scene, result.model, result.rotations, result.path
-    fast, out = ctx.fast, ctx.out
-    written = write_outputs(out, model, path, scene=scene, renders=True)
-    summary = pushover_summary(path)
+    a = ds.attrs
+    scene = scene_from_dict(json.loads(a["scene_table"]), source=a["scene_source"],
+                            case=a["scene_case"] or None, merged=True)
+    return scene, build_model(scene), StaticPath.from_xarray(ds, json.loads(a["run_metadata"]))
+
+
+def summarise(ds, scene, model, path) -> str:
+    """The Markdown of the pushover: mesh, steps, the summary line of its path."""
+    from ...continuum.output.series import pushover_summary, summary_line
+
     units = {"length": scene.units.length,
              "moment/length": f"{scene.units.force}·{scene.units.length}/{scene.units.length}"}
     N = scene.structure.vertical_weight
-    text = "\n".join([
+    fast = bool(ds.attrs["fast"])
+    return "\n".join([
         f"# Rotation pushover, {scene.name}", "",
         f"{scene.title}. Mesh: {model.disc.element}, {scene.continuum.elements_across} "
-        f"elements across B ({model.dofs} DOFs), {rotations.size - 1} rotation steps to "
-        f"10 θ_on at constant N = {N:g} {scene.units.force}/{scene.units.length}"
+        f"elements across B ({model.dofs} DOFs), {int(ds.attrs['rotation_steps'])} rotation "
+        f"steps to 10 θ_on at constant N = {N:g} {scene.units.force}/{scene.units.length}"
         + (" (coarse mesh: fast mode)." if fast else "."), "",
-        summary_line(summary, units) + ".", "",
+        summary_line(pushover_summary(path), units) + ".", "",
         "The picture shows the snapshot of largest rotation (displacements magnified, the "
         "magnification is printed in it); the M–θ figure compares the FE path with the "
         "elastic half-plane and the V–M capacity; the frame slider steps through the "
         "pushover with the contact pressure and the gap under the footing."])
-    figures = write_figures(Path(out), scene, model, path, renders="uplift.png" in written)
+
+
+def write(ds, ctx: Context) -> StudyResult:
+    """The renders, the XDMF, ``result.nc`` (the path, as the continuum writes it) and the
+    summary into ``ctx.out``, all from the dataset (:func:`pushover_of`)."""
+    from ...continuum.output.series import pushover_summary, write_outputs
+
+    scene, model, path = pushover_of(ds)
+    out = Path(ctx.out)
+    written = write_outputs(out, model, path, scene=scene, renders=True)
+    text = summarise(ds, scene, model, path)
+    figures = write_figures(out, scene, model, path, renders="uplift.png" in written)
     files = tuple(written[k] for k in ("uplift.png", "moment_rotation.png") if k in written)
     files += tuple(p for k, p in written.items() if not k.endswith(".png")) + tuple(figures)
-    return StudyResult(STUDY, fast, Path(out), files, text, summary,
-                       provenance(study=STUDY, fast=fast), ctx.elapsed())
+    return StudyResult(STUDY, ctx.fast, out, files, text, pushover_summary(path),
+                       provenance(study=STUDY, fast=ctx.fast), ctx.elapsed())
 
 
 def continuum_pushover(fast: bool, out: Path) -> StudyResult:
@@ -94,7 +113,7 @@ DEFINITION = Study(STUDY, "Uplift zone of the continuum",
                    scene=SCENE, help_fast="8 elements across B, 12 rotation steps")
 
 
-def run(scene: str | None = None, fast: bool = False, *, out=None) -> Pushover:
-    """Run the pushover on ``scene`` (default :data:`SCENE`)."""
+def run(scene: str | None = None, fast: bool = False, *, out=None) -> StudyRun:
+    """Run the pushover on ``scene`` (default :data:`SCENE`): the dataset (``.data``) and what
+    was written (``.study``)."""
     return run_study(DEFINITION, scene, Context(fast=fast, out=out))
-

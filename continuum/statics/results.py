@@ -70,6 +70,27 @@ class StaticPath:
 
         return path_to_dataset(self)
 
+    @classmethod
+    def from_xarray(cls, dataset, metadata: dict) -> StaticPath:
+        """The path a dataset of :meth:`to_xarray` was made from, every array as the dataset
+        holds it (the contact states as int8); ``metadata``: the path's own (the dataset's
+        attributes hold it flattened, one attribute per key, which cannot be undone in
+        general). What a study that keeps its pushover as data writes the pushover's files
+        and figures from."""
+        d = {name: np.asarray(var.values) for name, var in dataset.variables.items()}
+        fields = {}
+        if "snapshot_step" in d:
+            fields = {name: d[name] for name in ("snapshot_step", "displacement",
+                                                 "plastic_strain", "max_shear_stress")}
+            if "dof_x" in d:
+                fields.update(dof_xy=np.column_stack((d["dof_x"], d["dof_y"])),
+                              dof_direction=d["dof_direction"],
+                              element_xy=np.column_stack((d["element_x"], d["element_y"])))
+        return cls(str(dataset.attrs["kind"]), d["u"], d["v"], d["theta"], d["H"], d["N"],
+                   d["M"], d["contact_length"], d["x"], d["pressure"], d["shear"], d["gap"],
+                   d["status"], d["iterations"], d["cuts"], float(dataset.attrs["width"]),
+                   dict(metadata), **fields)
+
     @property
     def time(self) -> np.ndarray:
         """The load-step number 1, 2, …, n: the pseudo-time of a static path."""

@@ -2,8 +2,8 @@
 
 The founding study (R. D. Ewing, "Influence of foundation model on uplifting of structures",
 1988) states these in its Conclusions, Results and Introduction. Each becomes a :class:`Conclusion`
-whose verdict is
-computed from runs:
+whose verdict is computed from runs; the study's result is their :class:`xarray.Dataset`
+(:mod:`.dataset`, written as ``paper.nc``):
 
 1. Case A (elastic spring, 40 % viscous damping) overestimates the peak superstructure
    deformation (Conclusions) ...
@@ -29,12 +29,14 @@ from __future__ import annotations
 from .conclusions import (conclusion_decay, conclusion_long_period_peak, conclusion_more_with_c,
                           conclusion_peak_u, conclusion_period, conclusion_settlement,
                           conclusion_two_springs, conclusion_uplift_beneficial)
-from .records import BUILDINGS, Conclusion, Evidence, PaperConclusions, STUDY
+from .dataset import conclusions_dataset, conclusions_of
+from .records import BUILDINGS, Conclusion, Evidence, STUDY
 from .responses import apparent_period
+from .summary import key_numbers, summarise
 from .workflow import DEFINITION, Options, compute, run, write
 
-__all__ = ["Evidence", "Conclusion", "PaperConclusions", "Options", "DEFINITION", "compute",
-           "write", "run", "apparent_period", "STUDY", "BUILDINGS", "conclusion_peak_u",
+__all__ = ["Evidence", "Conclusion", "Options", "DEFINITION", "compute", "write", "run",
+           "conclusions_dataset", "conclusions_of", "summarise", "key_numbers", "apparent_period", "STUDY", "BUILDINGS", "conclusion_peak_u",
            "conclusion_long_period_peak", "conclusion_decay", "conclusion_settlement",
            "conclusion_two_springs", "conclusion_uplift_beneficial", "conclusion_more_with_c",
            "conclusion_period"]

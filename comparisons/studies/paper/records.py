@@ -1,12 +1,10 @@
-"""The records of the paper's conclusions: a piece of evidence, a conclusion and its verdict,
-and the study's result."""
+"""The records of the paper's conclusions: a piece of evidence, and a conclusion with its
+verdict (the study's result is their dataset, :mod:`.dataset`)."""
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
-
-from ...framework.study import StudyResult
+from dataclasses import dataclass
 
 
 STUDY = "paper"
@@ -44,12 +42,3 @@ class Conclusion:
         support = [e.supports for e in self.evidence]
         return "holds" if all(support) else "does not hold" if not any(support) \
             else "holds in part"
-
-
-@dataclass(frozen=True)
-class PaperConclusions:
-    """The conclusions and the study record (files, summary, numbers)."""
-
-    conclusions: tuple[Conclusion, ...]
-    record: str | None
-    study: StudyResult | None = field(default=None, repr=False)

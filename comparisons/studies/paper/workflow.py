@@ -9,13 +9,15 @@ from ....checks import InputError
 from ....motions import ELCENTRO, Motion, load_motion
 from ....provenance import provenance
 from ....study_files import open_study
-from ...framework.protocol import Context, Study, run_study
-from ...framework.study import StudyResult, write_summary
+from ...framework.protocol import Context, Study, StudyRun, run_study
+from ...framework.study import StudyResult, with_attributes, write_data, write_summary
 from .conclusions import (conclusion_decay, conclusion_long_period_peak, conclusion_more_with_c,
                           conclusion_peak_u, conclusion_period, conclusion_settlement,
                           conclusion_two_springs, conclusion_uplift_beneficial)
-from .records import STUDY, Conclusion, PaperConclusions
+from .dataset import conclusions_dataset, conclusions_of
+from .records import STUDY
 from .responses import paper_responses
+from .summary import key_numbers, summarise
 
 # ---------------------------------------------------------------------------------------------
 # Study
@@ -30,8 +32,9 @@ class Options:
     motion: str | None = None
 
 
-def compute(scene: None, ctx: Context) -> PaperConclusions:
-    """Decide every conclusion (``scene`` must be None: the paper's buildings). The two-spring
+def compute(scene: None, ctx: Context):
+    """Decide every conclusion (``scene`` must be None: the paper's buildings) and return them
+    as the study's dataset (:func:`.dataset.conclusions_dataset`). The two-spring
     conclusion reads the two-spring equivalence study's written folder
     (:func:`upliftlab.open_study`): the one of ``ctx.results["two_spring_equivalence"]`` when
     the report ran it, else that study is run (from its store) beside ``ctx.out`` by its
@@ -60,28 +63,34 @@ def compute(scene: None, ctx: Context) -> PaperConclusions:
         conclusion_settlement(responses, record), conclusion_two_springs(equivalence),
         conclusion_uplift_beneficial(responses, record), conclusion_more_with_c(responses, record),
         conclusion_period(responses, record))
-    return PaperConclusions(conclusions, None if record is None else record.source)
+    return conclusions_dataset(conclusions, None if record is None else record.source)
 
 
-def write(result: PaperConclusions, ctx: Context) -> StudyResult:
-    """``summary.md`` and ``summary.json`` into ``ctx.out``."""
-    fast, out = ctx.fast, ctx.out
-    numbers = {"conclusions": [conclusion_numbers(c) for c in result.conclusions],
-               "record": result.record, "provenance": provenance(study=STUDY, fast=fast)}
-    markdown = summary_markdown(result)
-    md, js = write_summary(out, markdown, numbers)
-    return StudyResult(STUDY, fast, out, (md, js), markdown, numbers, numbers["provenance"],
-                       ctx.elapsed())
+def write(ds, ctx: Context) -> StudyResult:
+    """The dataset (``paper.nc``), ``summary.md`` and ``summary.json`` (the numbers of
+    :func:`.summary.key_numbers` beside the provenance, as the study always wrote them) into
+    ``ctx.out``; both summaries read the dataset alone."""
+    fast, out = ctx.fast, Path(ctx.out)
+    prov = provenance(study=STUDY, fast=fast)
+    elapsed = ctx.elapsed()
+    files = write_data(out, with_attributes(ds, {"elapsed_s": elapsed, "provenance": prov}),
+                       STUDY)
+    numbers = {**key_numbers(ds), "provenance": prov}
+    markdown = summarise(ds)
+    files += list(write_summary(out, markdown, numbers))
+    return StudyResult(STUDY, fast, out, tuple(files), markdown, numbers, prov, elapsed)
 
 
 def run(fast: bool = False, *, out: str | Path | None = None, motion: str | None = None,
-        equivalence=None, progress=None) -> PaperConclusions:
+        equivalence=None, progress=None) -> StudyRun:
     """Decide every conclusion. ``fast``: coarser output sampling and the fast two-spring maps.
+    Returns the dataset (``.data``; :func:`.dataset.conclusions_of` gives the records) and
+    what was written (``.study``).
 
     ``motion``: the El Centro record (a name on UPLIFTLAB_MOTIONS or a path; default the
     packaged name, skipped with a note if not found). ``equivalence``: a finished
-    :func:`.two_spring_equivalence.run` result (its written folder is read) to reuse (else it
-    is run, from its store).
+    two-spring equivalence run (its written folder is read) to reuse (else it is run, from
+    its store).
     """
     results = {} if equivalence is None else {"two_spring_equivalence": equivalence}
     return run_study(DEFINITION, None, Context(fast=fast, out=out, options=Options(motion),
@@ -97,35 +106,6 @@ def load_record(motion: str | None) -> Motion | None:
         return None
 
 
-def conclusion_numbers(c: Conclusion) -> dict:
-    return {"number": c.number, "statement": c.statement, "verdict": c.verdict, "note": c.note,
-            "why": c.why,
-            "evidence": [{"source": e.source, "says": e.says, "supports": e.supports,
-                          "unit": e.unit, "values": {k: float(v) for k, v in e.values.items()}}
-                         for e in c.evidence]}
-
-
-def summary_markdown(result: PaperConclusions) -> str:
-    lines = ["# The founding study's conclusions, checked", ""]
-    verdicts = [c.verdict for c in result.conclusions]
-    lines += [f"{verdicts.count('holds')} of {len(verdicts)} conclusions hold, "
-              f"{verdicts.count('holds in part')} hold in part, "
-              f"{verdicts.count('does not hold')} do not hold and "
-              f"{verdicts.count('not tested')} are not tested.", ""]
-    for c in result.conclusions:
-        lines += [f"## {c.number}. {c.statement}", "", f"**Verdict: {c.verdict}.**", ""]
-        for e in c.evidence:
-            values = ", ".join(f"{k} = {v:.4g}" for k, v in e.values.items())
-            mark = "supports" if e.supports else "**contradicts**"
-            lines.append(f"- {mark} — {e.source}: {e.says} ({values} {e.unit})")
-        if c.note:
-            lines += ["", f"Note: {c.note}"]
-        if c.why:
-            lines += ["", f"Where we differ, and why: {c.why}"]
-        lines.append("")
-    return "\n".join(lines)
-
-
 def _arguments(parser) -> None:
     parser.add_argument("--motion", help="the El Centro record: a name or a path")
 
@@ -137,7 +117,7 @@ def _context_from(args, ctx: Context, say) -> Context:
 DEFINITION = Study(STUDY, "The founding paper's conclusions",
                    "Each conclusion of Ewing's study, decided from runs of our models.", Options,
                    compute, write,
-                   describe=lambda result: [f"{c.number}. {c.verdict}: {c.statement}"
-                                            for c in result.conclusions],
+                   describe=lambda run: [f"{c.number}. {c.verdict}: {c.statement}"
+                                         for c in conclusions_of(run.data)],
                    arguments=_arguments, context_from=_context_from,
                    help_fast="fast two-spring maps")
