@@ -196,6 +196,7 @@ def test_a_pushover_plots_renders_and_shows_a_bar(coarse, capsys):
     path = rotation_pushover(model, 171.39, rotations, record_fields=True, progress=True)
     err = capsys.readouterr().err
     assert "continuum pushover" in err and "5/5" in err and "%|" in err
+    assert re.search(r"\[\d\d:\d\d<\d\d:\d\d, ", err)  # elapsed < ETA
     fig = path.plot()
     assert np.array_equal(fig.axes[0].lines[0].get_xdata(), path.theta)
     assert np.array_equal(fig.axes[0].lines[0].get_ydata(), path.M)
@@ -226,6 +227,33 @@ def test_progress_where_asked_and_nowhere_else(coarse, capsys):
     with pytest.raises(InputError, match="progress = 'yes'"):
         with steps_progress("yes", "x"):
             pass
+
+
+def test_a_terminal_shows_a_bar_unless_the_command_line_logs(monkeypatch):
+    # Reference: upliftlab.progress's rule: a terminal in the main process shows a bar, unless
+    # upliftlab.log.configure (what the command line calls) has set up its log lines
+    import io
+    import sys
+
+    from upliftlab.log import _Handler, configure, logger
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    monkeypatch.setattr(sys, "stderr", Terminal())
+    root = logger()
+    saved = (list(root.handlers), root.level, root.propagate)
+    for handler in [h for h in root.handlers if isinstance(h, _Handler)]:
+        root.removeHandler(handler)
+    try:
+        assert watched()
+        configure(0)
+        assert not watched()
+    finally:
+        root.handlers[:] = saved[0]
+        root.setLevel(saved[1])
+        root.propagate = saved[2]
 
 
 def test_a_sweep_reports_by_lines_or_a_bar():
