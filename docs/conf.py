@@ -79,6 +79,8 @@ sphinx_gallery_conf = {
     "remove_config_comments": True,
     "abort_on_example_error": True,
     "image_scrapers": ("matplotlib",),
+    # a cell that ends on a figure (``result.plot()``) shows the figure, not its repr
+    "ignore_repr_types": r"matplotlib\.(figure|text|axes)",
     "matplotlib_animations": False,
     "min_reported_time": 1,
 }

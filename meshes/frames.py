@@ -147,7 +147,9 @@ class Frame:
 
 
 def _label(result, k: int, row: int) -> str:
-    if getattr(result, "snapshot_step", None) is not None:
+    """A static path's step, a dynamic run's time (a dynamic result has snapshot steps too)."""
+    if getattr(result, "kind", "") != "dynamic" and \
+            getattr(result, "snapshot_step", None) is not None:
         return f"step {row + 1} of {np.size(result.time)}"
     return f"t = {float(np.asarray(result.snapshot_time)[k]):.3f} s"
 

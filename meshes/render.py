@@ -36,8 +36,8 @@ from .frames import (Frame, SubMesh, View, frames, linear_submesh, nice_scale,  
                      snapshot_rows, uplift_view)
 
 __all__ = ["SubMesh", "linear_submesh", "View", "Frame", "uplift_view", "frames",
-           "snapshot_rows", "render_frame", "render_uplift", "animate_uplift", "render_frames",
-           "frame_subset", "nice_scale"]
+           "snapshot_rows", "render_frame", "uplift_figure", "render_uplift", "animate_uplift",
+           "render_frames", "frame_subset", "nice_scale"]
 
 #: Colour map of the equivalent plastic strain (zero is a pale yellow, distinct from white).
 CMAP = "YlOrRd"
@@ -165,12 +165,15 @@ def _layout(fig_width: float, view: View):
 
 
 def _figure(frame: Frame, image: np.ndarray, view: View, dpi: int,
-            fig_width: float = FIGURE_WIDTH_IN):
+            fig_width: float = FIGURE_WIDTH_IN, make=None):
+    """The page of one frame on a new figure: ``make(width, height, dpi)`` (inches) if given,
+    else a matplotlib Figure outside pyplot."""
     import matplotlib
     from matplotlib.figure import Figure
 
     height, soil_rect, contact_rect, bar_rect = _layout(fig_width, view)
-    fig = Figure(figsize=(fig_width, height), dpi=dpi)
+    fig = (Figure(figsize=(fig_width, height), dpi=dpi) if make is None
+           else make(fig_width, height, dpi))
     soil = fig.add_axes(soil_rect)
     xmin, xmax, ymin, ymax = view.window
     soil.imshow(image, extent=view.window, origin="upper", interpolation="antialiased")
@@ -241,10 +244,11 @@ def _painter(sub: SubMesh, view: View, dpi: int,
     return _SoilPainter(sub, view, width_px=int(round(1.5 * soil_rect[2] * width_in * dpi)))
 
 
-def render_uplift(path, result, basis, footing_width: float, *, snapshot: int = -1,
-                  scale: float | None = None, title: str = "", dpi: int = 100):
-    """Write the PNG of one snapshot (default the last) of a result on ``basis`` to ``path``.
-    Returns the path."""
+def uplift_figure(result, basis, footing_width: float, *, snapshot: int = -1,
+                  scale: float | None = None, title: str = "", dpi: int = 100, make=None):
+    """The matplotlib figure of one snapshot (default the last) of a result on ``basis`` (the
+    module docstring's picture), nothing written; ``make(width, height, dpi)`` makes the
+    figure (default: a Figure outside pyplot)."""
     sub = linear_submesh(basis)
     all_frames = frames(result, sub)
     if not -len(all_frames) <= snapshot < len(all_frames):
@@ -253,9 +257,17 @@ def render_uplift(path, result, basis, footing_width: float, *, snapshot: int = 
     view = uplift_view(result, sub, footing_width, scale=scale, title=title)
     painter = _painter(sub, view, dpi)
     try:
-        fig = _figure(all_frames[snapshot], painter.paint(all_frames[snapshot]), view, dpi)
+        return _figure(all_frames[snapshot], painter.paint(all_frames[snapshot]), view, dpi,
+                       make=make)
     finally:
         painter.close()
+
+
+def render_uplift(path, result, basis, footing_width: float, *, snapshot: int = -1,
+                  scale: float | None = None, title: str = "", dpi: int = 100):
+    """Write the PNG of :func:`uplift_figure` to ``path``. Returns the path."""
+    fig = uplift_figure(result, basis, footing_width, snapshot=snapshot, scale=scale,
+                        title=title, dpi=dpi)
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
     FigureCanvasAgg(fig)

@@ -340,6 +340,22 @@ class Response:
         peak = float(np.max(kinetic))
         return peak == 0.0 or float(np.max(kinetic[last])) <= fraction * peak
 
+    # ---- notebook ---------------------------------------------------------------------------
+    def plot(self, variables=None, ax=None):
+        """A matplotlib figure of the run (nothing written): θ, the largest uplift, the
+        settlement and the M–θ loops by default, or the panels ``variables`` (names of
+        :data:`~.notebook.PANELS`), on new axes or on ``ax`` (one axis per panel)."""
+        from .notebook import response_plot
+
+        return response_plot(self, variables, ax)
+
+    def _repr_html_(self) -> str:
+        """The notebook's table of the run: scene, span, verdict, peaks with units, energy
+        balance, code digest (:func:`~.notebook.response_html`)."""
+        from .notebook import response_html
+
+        return response_html(self)
+
     # ---- labelled data ----------------------------------------------------------------------
     def to_xarray(self):
         """The response as an :class:`xarray.Dataset` with labelled coordinates and CF

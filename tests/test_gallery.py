@@ -82,9 +82,24 @@ def test_labelled_results(tmp_path, monkeypatch):
     assert out["round_trip_error"] == 0.0
 
 
+def test_in_a_notebook(tmp_path, monkeypatch):
+    # Reference: the results' own arrays, which plot() draws exactly, and their peaks, which
+    # their tables state to 4 digits (tests/test_notebook.py runs the same script as a notebook
+    # in a Jupyter kernel and checks what it shows there).
+    import numpy as np
+
+    out = run_script("plot_6_in_a_notebook.py", tmp_path, monkeypatch)
+    winkler, continuum = out["winkler"], out["continuum"]
+    assert np.array_equal(out["reduced_theta_plotted"], winkler.theta)
+    assert f"{winkler.peaks['theta']:.4g} rad" in winkler._repr_html_()
+    assert f"{np.max(np.abs(continuum.theta)):.4g} rad" in continuum._repr_html_()
+    assert out["picture"].get_suptitle().startswith("strip_footing_clay: t = ")
+    assert not list(tmp_path.iterdir())  # nothing written
+
+
 def test_every_gallery_script_is_checked():
     # Reference: this file's tests, one per script of the gallery.
     checked = {"plot_1_run_a_scene.py", "plot_2_pushover_two_springs_vs_winkler.py",
                "plot_3_free_vibration_decay.py", "plot_4_continuum_prandtl.py",
-               "plot_5_labelled_results.py"}
+               "plot_5_labelled_results.py", "plot_6_in_a_notebook.py"}
     assert {p.name for p in GALLERY.glob("plot_*.py")} == checked

@@ -54,6 +54,20 @@ class StudyResult:
         return (f"<StudyResult {self.name} ({variant}): {len(self.files)} files in "
                 f"{self.directory}, {self.elapsed:.1f} s>")
 
+    def _repr_html_(self) -> str:
+        """The notebook's table: the study, its variant, its folder and files, its wall time,
+        its key numbers that are single values (:attr:`numbers`) and the code's digest."""
+        from ...notebook import digest_line, html_table
+
+        rows = [("study", f"{self.name} ({'fast' if self.fast else 'full'})"),
+                ("folder", f"{self.directory} ({len(self.files)} files)"),
+                ("elapsed", f"{self.elapsed:.1f} s")]
+        rows += [(key, f"{value:.4g}" if isinstance(value, float) else str(value))
+                 for key, value in self.numbers.items()
+                 if isinstance(value, (int, float, str, bool))]
+        rows.append(("provenance", digest_line(dict(self.provenance))))
+        return html_table(f"StudyResult: {self.name}", rows)
+
     def to_xarray(self):
         """The study's output folder read back from disk, :func:`upliftlab.open_study` of
         :attr:`directory`: an :class:`xarray.DataTree` with a node per NetCDF file, named by

@@ -32,6 +32,7 @@ from dataclasses import dataclass
 from ...checks import InputError, integer_at_least, scheduler_address
 from ...workers import PARENT_POLL, SINGLE_THREAD_ENVIRONMENT, process_pool, watch_parent
 from .freshness import DEFAULT_SAMPLE, check_stale
+from .sweep_bar import sweep_report
 from .store import Store, function_name, plain_params, point_key, record_meta
 
 __all__ = ["run_sweep", "sweep_executor", "SweepProgress", "StderrProgress",
@@ -165,8 +166,8 @@ def run_sweep(function: Callable, points: Iterable[Mapping], store: Store | str 
     ``concurrent.futures`` executor (kept open); otherwise :func:`sweep_executor`
     (``scheduler`` or local processes, ``workers`` of them). ``chunk`` points go to each task
     (default: up to :data:`MAX_CHUNK`, about :data:`TASKS_PER_WORKER` tasks per worker).
-    ``progress``: None prints on stderr for long sweeps, False is silent, or a callable taking
-    a :class:`SweepProgress` (called at the start and after every chunk; an exception it
+    ``progress``: None prints on stderr for long sweeps (a bar in a notebook), True a bar
+    (:mod:`.sweep_bar`), False is silent, or a callable taking a :class:`SweepProgress` (called at the start and after every chunk; an exception it
     raises, such as KeyboardInterrupt, stops the sweep with every finished point stored).
     ``write_through`` (default: True except on Dask): workers store each point as soon as it is
     done. Stored records made by earlier code are checked before they are used: ``verify`` of
@@ -194,7 +195,7 @@ def run_sweep(function: Callable, points: Iterable[Mapping], store: Store | str 
     todo = {k: p for k, p in zip(keys, points) if entries[k] is None}
     stale = {k: p for k, p in zip(keys, points)
              if entries[k] is not None and not store.is_fresh(entries[k])}
-    report = StderrProgress() if progress is None else (progress or None)
+    report = sweep_report(progress, StderrProgress)
     meta = {k: v for k, v in record_meta(study, function, {}).items() if k != "params"}
     if todo or stale:
         through = (kind != "Dask") if write_through is None else bool(write_through)

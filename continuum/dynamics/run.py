@@ -23,6 +23,7 @@ The names of those modules that callers used from here stay importable from here
 from __future__ import annotations
 
 from ...checks import InputError
+from ...progress import steps_progress
 from ...time_schemes import NewmarkCoefficients, hht
 from .options import SCHEMES, DynamicOptions
 from .result import ENERGY, DynamicResult
@@ -54,7 +55,9 @@ def run_dynamic(model, scene, motion, options: DynamicOptions = DynamicOptions()
     (:func:`~upliftlab.continuum.dynamics.implicit.run_implicit`). Every input is checked before
     any work
     (InputError naming the field, the value and the valid range). ``progress(k, n, state)`` is
-    called after each step (explicit: each recorded row) if given. Raises
+    called after each step (explicit: each recorded row) if given; None shows a bar (elapsed
+    time, ETA, θ and N) where someone watches, True always, False never
+    (:mod:`upliftlab.progress`). Raises
     :class:`~upliftlab.continuum.statics.newton.ConvergenceError` naming the time if a step fails,
     :class:`~upliftlab.continuum.dynamics.run_control.EnergyBalanceError` if the energy balance
     error
@@ -72,10 +75,16 @@ def run_dynamic(model, scene, motion, options: DynamicOptions = DynamicOptions()
         raise InputError(f"DynamicOptions.soil_mass_scale = {options.soil_mass_scale:g}: only "
                          "the explicit route scales the soil's mass; valid with the implicit "
                          "route: 1 (or method = 'explicit')")
-    if method == "explicit":
-        from .explicit import run_explicit
-        result = run_explicit(model, scene, motion, options, progress=progress)
-    else:
-        result = run_implicit(model, scene, motion, options, progress=progress)
+    with steps_progress(progress, f"continuum dynamics ({method})",
+                        postfix=_postfix) as report:
+        if method == "explicit":
+            from .explicit import run_explicit
+            result = run_explicit(model, scene, motion, options, progress=report)
+        else:
+            result = run_implicit(model, scene, motion, options, progress=report)
     check_energy(result, tolerance, energy_floor(scene, model.width))
     return result
+
+
+def _postfix(state) -> str:
+    return f"θ = {state.q[2]:.3g} rad, N = {state.N:.4g}"

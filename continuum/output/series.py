@@ -24,6 +24,7 @@ from ...meshes.render import snapshot_rows
 from ...results import atomic_path
 from ...scenes.soil import SOIL_MODELS, UNDRAINED
 from .field_history import FieldHistory, check_history
+from .notebook import figure_title
 from .summaries import dynamic_summary, pushover_summary, rotation_schedule, summary_line
 from .xdmf import TimeAxis, read_xdmf, time_axis, write_footing_xdmf, write_xdmf
 
@@ -121,19 +122,6 @@ def save_figure(fig, path) -> Path:
 # ---------------------------------------------------------------------------------------------
 # Everything a run writes
 # ---------------------------------------------------------------------------------------------
-
-
-def figure_title(result, scene=None) -> str:
-    """The title of a run's figures: the scene, and for a run that did not finish, why and
-    when it stopped (a bearing failure, or an interruption), so that a picture of a failed
-    run is never taken for a finished one."""
-    meta = result.metadata
-    title = meta.get("scene", "") or (scene.name if scene else "")
-    if meta.get("failure") == "bearing":
-        title += f" (failed in bearing at t = {float(meta['failure_time']):.4g} s)"
-    elif meta.get("incomplete"):
-        title += f" (incomplete: until t = {float(meta['completed_until']):.4g} s)"
-    return title
 
 
 def write_outputs(directory, model, result, *, scene=None, renders: bool = True,

@@ -22,6 +22,7 @@ import numpy as np
 
 from ... import checks
 from ...checks import InputError
+from ...progress import steps_progress
 from ..contact.footing import OPEN
 from ..output.fields import (element_average, field_snapshots, max_shear_stress, result_metadata,
                              snapshot_steps)
@@ -79,21 +80,27 @@ def footing_stiffness(model) -> FootingStiffness:
 
 
 def _follow(model, state, controls, options, progress) -> list[ContinuumState]:
-    """:func:`follow`, calling ``progress(k, n, state)`` after each step if given (the steps
-    are the same: :func:`follow` takes its controls one after the other)."""
-    if progress is None:
-        return follow(model, state, controls, options)
-    states = []
-    for k, control in enumerate(controls):
-        try:
-            state = follow(model, state, [control], options)[0]
-        except ConvergenceError as exc:
-            raise ConvergenceError(f"step {k} of {len(controls)}: {exc}", step=k,
-                                   fraction=exc.fraction, residual=exc.residual,
-                                   iterations=exc.iterations) from exc
-        states.append(state)
-        progress(k, len(controls), state)
-    return states
+    """:func:`follow`, calling ``progress(k, n, state)`` after each step (the steps are the
+    same: :func:`follow` takes its controls one after the other); ``progress`` None shows a
+    bar where someone watches, True always, False never (:mod:`upliftlab.progress`)."""
+    with steps_progress(progress, "continuum pushover", offset=1, postfix=_postfix) as report:
+        if report is None:
+            return follow(model, state, controls, options)
+        states = []
+        for k, control in enumerate(controls):
+            try:
+                state = follow(model, state, [control], options)[0]
+            except ConvergenceError as exc:
+                raise ConvergenceError(f"step {k} of {len(controls)}: {exc}", step=k,
+                                       fraction=exc.fraction, residual=exc.residual,
+                                       iterations=exc.iterations) from exc
+            states.append(state)
+            report(k, len(controls), state)
+        return states
+
+
+def _postfix(state) -> str:
+    return f"θ = {state.q[2]:.3g} rad, N = {state.N:.4g}"
 
 
 def _path(model, kind: str, states, extra=None, snapshots=None) -> StaticPath:
@@ -124,7 +131,9 @@ def _u_control(model) -> tuple[bool, float]:
 
 
 RecordFields = bool | Iterable[int]
-Progress = Callable[[int, int, ContinuumState], None] | None
+#: ``progress(k, n, state)`` after each step, or None (a bar where someone watches), True (a
+#: bar) or False (nothing): :mod:`upliftlab.progress`.
+Progress = Callable[[int, int, ContinuumState], None] | bool | None
 
 
 def vertical_pushover(model, settlements, *, state: ContinuumState | None = None,
