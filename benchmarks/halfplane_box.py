@@ -102,7 +102,7 @@ def point_data(point: str, across: int, record_seconds: float) -> dict:
     return data
 
 
-def run(point: str, case: str, box: float, across: int, record_seconds: float,
+def run(point: str, case: str, box: str, across: int, record_seconds: float,
         elastic: bool = False) -> dict:
     """One run: the map's measures, the run's size and time."""
     from upliftlab.comparisons.studies.winkler_map.points import continuum_measures
@@ -112,8 +112,9 @@ def run(point: str, case: str, box: float, across: int, record_seconds: float,
 
     base, sides, tie, damped = CASES[case]
     data = point_data(point, across, record_seconds)
-    data["continuum"] = {**data["continuum"], "domain_width": box, "domain_depth": box,
-                         "base": base, "boundary": sides}
+    width, _, depth = box.partition("x")
+    data["continuum"] = {**data["continuum"], "domain_width": float(width),
+                         "domain_depth": float(depth or width), "base": base, "boundary": sides}
     if elastic:
         data["soil"] = {k: v for k, v in data["soil"].items()
                         if k in ("youngs_modulus", "poisson_ratio", "density", "interface")}
@@ -153,7 +154,8 @@ def tail_mean(result) -> float:
 
 def table(rows: list[dict]) -> str:
     """The Markdown table of ``rows``: each larger box against the first box of its case."""
-    head = ("| point | case | box (×B) | peak θ (mrad) | uplift (mm) | residual settlement (mm) "
+    head = ("| point | case | box (×B, W or WxD) | peak θ (mrad) | uplift (mm) "
+            "| residual settlement (mm) "
             "| Δθ | Δuplift | Δsettlement | within targets | mean settlement, last quarter (mm) "
             "| its Δ | DOFs | energy error | wall (s) |")
     lines = [head, "|" + "|".join("---" for _ in range(head.count("|") - 1)) + "|"]
@@ -169,7 +171,7 @@ def table(rows: list[dict]) -> str:
             mean = r["settlement_mean"] / ref["settlement_mean"] - 1.0
             d = [f"{100 * ch[m]:+.1f} %" for m in TARGETS] + [
                 "yes" if ok else "no", f"{1e3 * r['settlement_mean']:.2f}", f"{100 * mean:+.1f} %"]
-        lines.append(f"| {r['point']} | {r['case']} | {r['box']:g} | {1e3 * r['theta']:.3f} | "
+        lines.append(f"| {r['point']} | {r['case']} | {r['box']} | {1e3 * r['theta']:.3f} | "
                      f"{1e3 * r['uplift']:.2f} | {1e3 * r['residual_settlement']:.2f} | "
                      + " | ".join(d) + f" | {r['dofs']} | {r['energy']:.3g} | {r['wall']:.0f} |")
     return "\n".join(lines) + "\n"
@@ -180,7 +182,8 @@ def main(argv=None) -> int:
     add_output_arguments(parser, NAME, committed=False)
     parser.add_argument("--cases", default=",".join(CASES))
     parser.add_argument("--points", default="clay-pulse")
-    parser.add_argument("--boxes", default="10,20", help="box widths = depths (× B)")
+    parser.add_argument("--boxes", default="10,20",
+                        help="boxes (× B): a width = depth, or WxD (width x depth)")
     parser.add_argument("--across", type=int, default=8)
     parser.add_argument("--record-seconds", type=float, default=10.0)
     parser.add_argument("--elastic", action="store_true",
@@ -195,17 +198,22 @@ def main(argv=None) -> int:
     for p in points:
         if p not in POINTS:
             parser.error(f"--points: {p!r}; valid: {', '.join(POINTS)}")
-    boxes = [float(b) for b in args.boxes.split(",")]
+    boxes = args.boxes.split(",")
+    for b in boxes:
+        try:
+            [float(x) for x in b.split("x")]
+        except ValueError:
+            parser.error(f"--boxes: {b!r}; valid: a number or WxD")
     folder = output_folder(args, NAME)
     rows = []
     for p in points:
         for c in cases:
             for b in boxes:
-                say(f"{NAME}: {p}, {c}, box {b:g} B, {args.across} across ...")
+                say(f"{NAME}: {p}, {c}, box {b} B, {args.across} across ...")
                 try:
                     rows.append(run(p, c, b, args.across, args.record_seconds, args.elastic))
                 except Exception as exc:  # a failed run is reported, the others go on
-                    say(f"{NAME}: {p}, {c}, box {b:g}: {type(exc).__name__}: {exc}")
+                    say(f"{NAME}: {p}, {c}, box {b}: {type(exc).__name__}: {exc}")
                     continue
                 say(f"{NAME}:   {rows[-1]['wall']:.0f} s")
                 write_text(folder / "halfplane_box.json", json.dumps(rows, indent=1))
