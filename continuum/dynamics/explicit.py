@@ -32,7 +32,9 @@ that a footing with no horizontal mass of its own (the whole weight in the story
 determined: its u row is then a spring balancing the story's force. Its dashpot acts at the
 mid-step velocity like the story's, against the anchor's velocity v_ff at t_n. The energy
 account books the tie's force with the other footing loads at n, which is off by O(dt) in the
-tie's share.
+tie's share: the balance error of the clay scene's pulse (4 across, compliant base, shear
+sides) is 6.1e-3 of the input with the tie at the default step and 3.1e-3 at half of it
+(bonded, without a tie: 1.6e-4 and 3.7e-5), within ``continuum.energy_tolerance``.
 
 **Energy.** Kinetic energy ½ v̄ᵀ M v̄ at whole steps (v̄_n the mean of the half-step velocities);
 the work of the soil's internal force less its weight, the story spring and the footing weight
