@@ -48,15 +48,17 @@ _ELEMENTS_PARALLEL, _GATHER_PARALLEL = compiled_pair(True)
 
 
 @nb.njit(cache=True)
-def _structure_form(M, C, K, z, vz, Fz, dt, first):
-    """(A, b) of the footing and story (A z_{n+1} + b + [Lᵀ f_c; 0] = 0)."""
+def _structure_form(M, C, K, K_next, z, vz, Fz, dt, first):
+    """(A, b) of the footing and story (A z_{n+1} + b + [Lᵀ f_c; 0] = 0); ``K_next`` the part
+    of K taken at n+1 (:func:`~upliftlab.continuum.dynamics.superstructure.
+    central_difference_form`)."""
     if first:
         h = 0.5 * dt * dt
-        A = M / h
+        A = M / h + K_next
         b = -(A @ z) - (M @ vz) / (0.5 * dt) - Fz + K @ z + C @ vz
     else:
         h = dt * dt
-        A = (M + 0.5 * dt * C) / h
+        A = (M + 0.5 * dt * C) / h + K_next
         b = -(A @ z) - ((M - 0.5 * dt * C) @ vz) / dt - Fz + K @ z
     return A, b
 
@@ -105,7 +107,8 @@ def _steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure, c
     energy, counters), both updated in place; ``soil`` the compiled soil force's layout, state
     and workspace (:class:`~upliftlab.continuum.dynamics.soil_force.SoilForce`); ``loads``
     (datum, keep, ground, incident, ag_all, vinc_all, mass, damping, m_step); ``structure``
-    (M, C, K, gravity, ground influence of the footing and story); ``contact`` (free, Lf, uy,
+    (M, C, K, the part of K taken at n+1, gravity, the footing's and story's ground loads at
+    every step, rows); ``contact`` (free, Lf, uy,
     ux, x, μ, width, tangential). ``elements`` and ``gather``: the serial or parallel kernels
     (:func:`~upliftlab.continuum.dynamics.kernels.compiled_pair`), named by the caller
     (:func:`_serial`, :func:`_parallel`) into which numba inlines this body."""
@@ -114,7 +117,7 @@ def _steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure, c
     (nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, stress, work, fint, ptr,
      entries) = soil
     datum, keep, ground, incident, ag_all, vinc_all, mass, damping, m_step = loads
-    Mz, Cz, Kz, gravity_z, ground_z = structure
+    Mz, Cz, Kz, Kz_next, gravity_z, ground_all = structure
     free, Lf, uy, ux, x, mu, width, tangential = contact
     nc = uy.size
     prescribed = np.ones(3, dtype=np.bool_)
@@ -133,8 +136,8 @@ def _steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure, c
         strain, work_in, dissipated = soil_predict(
             u, u_prev, v, fint, datum, keep, ground, incident, ag, vinc_all[k], mass, damping,
             dt, first, R_prev, F_prev, u_next, v_next)
-        Fz = ground_z * ag + gravity_z
-        A, b = _structure_form(Mz, Cz, Kz, z, vz, Fz, dt, first)
+        Fz = ground_all[k] + gravity_z
+        A, b = _structure_form(Mz, Cz, Kz, Kz_next, z, vz, Fz, dt, first)
         h = dt * (0.5 * dt if first else dt)
         m_eff = mass if first else m_step
         status = ST[(k + 1) % 2]

@@ -22,7 +22,7 @@ import skfem
 
 from ...checks import InputError
 from .. import setup_cache
-from .ground import boundaries
+from .ground import boundaries, held_horizontally
 from .iteration_matrix import elastic_plane_tangent
 from .superstructure import check_footing_mass, check_superstructure
 from .waves import dashpot_data, full_basis, time_step_limit
@@ -42,8 +42,9 @@ COURANT_ESTIMATE = 0.3
 @dataclass(frozen=True)
 class ExplicitSettings:
     """``dt`` (s), ``steps``, ``record_every`` (steps per recorded row), ``base``, ``sides``,
-    ``prescribe_u`` (frictionless: the footing's u follows the base), the admissible step
-    ``limit`` = :data:`STABILITY_FRACTION` × ``critical`` = 2/``omega_max`` (s, rad/s)."""
+    ``prescribe_u`` (frictionless without a tie: the footing's u follows the base), the
+    admissible step ``limit`` = :data:`STABILITY_FRACTION` × ``critical`` = 2/``omega_max``
+    (s, rad/s)."""
 
     dt: float
     steps: int
@@ -143,5 +144,5 @@ def explicit_settings(model, scene, motion, options, mass, free) -> ExplicitSett
                                                 * (1.0 - 1e-12)))
         every = max(1, int(math.floor(implicit / dt * (1.0 + 1e-9))))
     return ExplicitSettings(dt=dt, steps=steps, record_every=min(every, steps), base=base,
-                            sides=sides, prescribe_u=not model.footing.interface.tangential,
+                            sides=sides, prescribe_u=held_horizontally(model),
                             limit=limit, critical=critical, omega_max=omega)

@@ -9,7 +9,15 @@ half-space, the bottom carrying dashpots and the incident wave
 with u̇_inc = v_g/2 (:func:`ground_velocity`): the record is taken as the *outcrop* motion of the
 underlying rock, twice the incident wave. ``sides``: ``rollers`` (u_x = 0, statics' condition),
 ``shear`` (u_y = 0, u_x free: exact for a vertically incident S wave in a layered column) or
-``lysmer`` (free, with dashpots). DOFs released for dynamics (held in statics,
+``lysmer`` (free, with dashpots).
+
+**Horizontal tie** (``continuum.horizontal_tie`` K_t, compliant base): a footing on a frictionless
+interface takes no horizontal force from the soil, so on a compliant base a spring K_t holds it
+to the free field's surface displacement u_ff(t) (:func:`free_field_motion`), with a parallel
+dashpot C_t (``continuum.horizontal_tie_damping``): the footing feels −K_t (u − u_ff) −
+C_t (u̇ − v_ff), the force a sway spring and dashpot of a bed on the moving ground give. On a rigid
+base the footing's u is prescribed to the base's instead, which ties the footing to the rock at
+the box's depth. DOFs released for dynamics (held in statics,
 :func:`static_fixed`) carry their static reaction as a constant load, so the gravity state stays
 in equilibrium at t = 0.
 
@@ -33,8 +41,9 @@ from ..model import evaluated
 from ..statics.newton import ContinuumState, Control, follow
 from ..statics.analyses import geostatic
 
-__all__ = ["boundaries", "dynamic_fixed", "static_fixed", "x_dofs", "ground_velocity",
-           "gravity_state", "state_arrays", "state_of", "GRAVITY_SOURCES"]
+__all__ = ["boundaries", "free_field_motion", "held_horizontally", "dynamic_fixed",
+           "static_fixed", "x_dofs", "ground_velocity", "gravity_state", "state_arrays",
+           "state_of", "GRAVITY_SOURCES"]
 
 
 def boundaries(model, options) -> tuple[str, str]:
@@ -47,14 +56,46 @@ def boundaries(model, options) -> tuple[str, str]:
                               "rollers" if base == "rigid" and cont.boundary == "fixed" else
                               "shear")
     tangential = model.footing.interface.tangential
-    if base == "compliant" and not tangential:
+    tie = cont.horizontal_tie
+    if base == "compliant" and not tangential and tie is None:
         raise InputError("soil.interface = 'frictionless' with base = 'compliant': a frictionless "
                          "footing cannot follow the horizontal ground; valid: bonded or coulomb, "
-                         "or base = 'rigid'")
+                         "continuum.horizontal_tie > 0 (a spring to the free field), or "
+                         "base = 'rigid'")
+    if tie is not None and base != "compliant":
+        raise InputError(f"continuum.horizontal_tie = {tie:g}: the tie holds a footing on a "
+                         f"compliant base, and base = {base!r} holds it already; valid: "
+                         "base = 'compliant', or no horizontal_tie")
     if base == "compliant" and model.soil.density <= 0.0:
         raise InputError(f"soil.density = {model.soil.density:g}: a compliant base radiates "
                          "through ρV; valid range is > 0")
     return base, sides
+
+
+def free_field_motion(model, velocity: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray]:
+    """(u_ff, v_ff) (length, length/s) at t_k = k dt: the surface displacement and velocity
+    of the free field of a homogeneous elastic half-plane under the vertically incident S
+    wave that enters the compliant base, ``velocity`` (length/s at t_k) being the outcrop
+    motion (twice the incident wave, :func:`ground_velocity` times g). At the surface the
+    incident and the reflected wave add up to the outcrop motion, delayed by the travel time
+    D/V_s from the base at depth D: v_ff(t) = v(t − D/V_s), u_ff(t) = ∫₀^{t − D/V_s} v dt
+    (trapezoidal rule on the step; 0 before the wave arrives). Exact while the free field
+    stays elastic."""
+    from .waves import wave_speeds
+
+    y = model.mesh.p[1]
+    delay = float(y.max() - y.min()) / wave_speeds(model.soil)[1]
+    v = np.asarray(velocity, dtype=float)
+    u = np.concatenate(([0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * dt)))
+    t = np.arange(v.size) * dt
+    return np.interp(t - delay, t, u, left=0.0), np.interp(t - delay, t, v, left=0.0)
+
+
+def held_horizontally(model) -> bool:
+    """Whether a dynamic run prescribes the footing's u (to the rigid base's): a frictionless
+    interface without a horizontal tie. The gravity state holds it for every frictionless
+    footing, which the tie, at rest, does not change."""
+    return not model.footing.interface.tangential and model.options.horizontal_tie is None
 
 
 def dynamic_fixed(model, base: str, sides: str) -> np.ndarray:

@@ -59,6 +59,10 @@ def implicit_settings(model, scene, motion, options) -> ImplicitSettings:
     check_superstructure(scene, motion)
     base, sides = boundaries(model, options)
     tangential = model.footing.interface.tangential
+    if model.options.horizontal_tie is not None:
+        raise InputError(f"continuum.horizontal_tie = {model.options.horizontal_tie:g}: the "
+                         "horizontal tie is in the explicit route only; valid with the implicit "
+                         "route: no horizontal_tie (or continuum.dynamics = 'explicit')")
     alpha = 0.0 if options.scheme == "newmark" else (
         scene.analysis.hht_alpha if options.alpha is None else options.alpha)
     if not -1.0 / 3.0 <= alpha <= 0.0:

@@ -118,16 +118,24 @@ def hht_form(z: StructureMatrices, c, d, v, a, reaction, F1, F0):
     return A, b
 
 
-def central_difference_form(z: StructureMatrices, dt: float, zn, vz, Fz, first: bool):
+def central_difference_form(z: StructureMatrices, dt: float, zn, vz, Fz, first: bool,
+                            implicit=None):
     """(A, b) of one central-difference step from z_n = ``zn`` with the half-step velocity
-    ż_{n−½} = ``vz`` (the first step: ż_0) under the load ``Fz`` at n."""
+    ż_{n−½} = ``vz`` (the first step: ż_0) under the load ``Fz`` at n. ``implicit`` (4, 4;
+    None: none): the part of ``z.K`` taken at n+1 instead of n (a horizontal tie, which holds a
+    footing that has no horizontal mass of its own: :mod:`~upliftlab.continuum.dynamics.
+    explicit`)."""
     if first:
         h = 0.5 * dt * dt
         A = z.M / h
-        b = -A @ zn - z.M @ vz / (0.5 * dt) - Fz + z.K @ zn + z.C @ vz
     else:
         h = dt * dt
         A = (z.M + 0.5 * dt * z.C) / h
+    if implicit is not None:
+        A = A + implicit
+    if first:
+        b = -A @ zn - z.M @ vz / (0.5 * dt) - Fz + z.K @ zn + z.C @ vz
+    else:
         b = -A @ zn - (z.M - 0.5 * dt * z.C) @ vz / dt - Fz + z.K @ zn
     return A, b
 

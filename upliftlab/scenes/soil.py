@@ -121,6 +121,11 @@ class ContinuumOptions:
     base the sides are ``shear``), ``shear`` (the sides' u_y held and u_x free: a free-field
     column, exact for a vertically incident S wave in a layered soil) or ``lysmer`` (dashpots).
     Statics hold the sides' u_x whatever ``boundary`` says.
+    ``horizontal_tie`` (force/length per length; None: no tie): a horizontal spring from the
+    footing to the free field's surface, the way a frictionless footing is held horizontally
+    on a ``compliant`` base (a half-plane: :mod:`~upliftlab.continuum.dynamics.ground`), with a
+    parallel dashpot ``horizontal_tie_damping`` (force·time/length per length; None: none); a
+    bed's sway spring and sway dashpot of the same constants match them.
     ``intorder`` is the quadrature order (None: the element's default, Q2 2×2 reduced).
     ``dynamics``: the time integration of a dynamic run, ``explicit`` (central differences,
     lumped mass; the default) or ``implicit`` (HHT-α with Newton). ``energy_tolerance``: the
@@ -136,6 +141,8 @@ class ContinuumOptions:
     base: str = "rigid"
     boundary: str = "fixed"
     intorder: int | None = None
+    horizontal_tie: float | None = None
+    horizontal_tie_damping: float | None = None
     dynamics: str = "explicit"
     energy_tolerance: float = 0.05
 
@@ -157,8 +164,13 @@ def read_continuum(data) -> ContinuumOptions:
         base=table.get("base", choice(("rigid", "compliant")), "rigid"),
         boundary=table.get("boundary", choice(("fixed", "shear", "lysmer")), "fixed"),
         intorder=table.get("intorder", bounded_integer(1, 10), None),
+        horizontal_tie=table.get("horizontal_tie", in_range(0.0, 1e12, low_open=True), None),
+        horizontal_tie_damping=table.get("horizontal_tie_damping", in_range(0.0, 1e12), None),
         dynamics=table.get("dynamics", choice(DYNAMICS), "explicit"),
         energy_tolerance=table.get("energy_tolerance", in_range(0.0, 1.0, low_open=True), 0.05),
     )
     table.done()
+    if options.horizontal_tie_damping is not None and options.horizontal_tie is None:
+        raise InputError(f"continuum.horizontal_tie_damping = {options.horizontal_tie_damping:g}"
+                         ": the dashpot is the tie's; valid: with continuum.horizontal_tie")
     return options

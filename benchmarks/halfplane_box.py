@@ -1,0 +1,225 @@
+"""Does the box matter? The continuum's dynamic answer when its box doubles in width and depth,
+on the old boundaries (a rigid base) and on the half-plane ones (a compliant base).
+
+    python benchmarks/halfplane_box.py --out DIR [--cases a,b,...] [--boxes 10,20] [--across 8]
+                                       [--point clay-pulse,clay-record,sand-record]
+
+Writes ``HALFPLANE_BOX.md`` and ``halfplane_box.json`` to ``--out`` (default
+``results/bench/halfplane_box``), rewritten as each run ends; it never touches a committed
+file. Each run is a fresh model (mesh, gravity, explicit time loop) in this process.
+
+**Cases** (``continuum.base``, the sides ``continuum.boundary``, how the footing is held):
+
+- ``rigid-fixed``: the scene's default, a rigid base with the sides' u_x held (a rigid
+  container), the frictionless footing's u prescribed to the base's;
+- ``rigid-shear``: the map's, a rigid base with free-field shear sides (u_y held, u_x free);
+- ``compliant-shear``: the half-plane with free-field shear sides: a compliant base
+  (Lysmer–Kuhlemeyer dashpots, the record entering as the incident S wave 2ρV_s v_inc), the
+  footing held horizontally by a tie ``continuum.horizontal_tie`` = K_h to the free field's
+  surface, with its dashpot ``continuum.horizontal_tie_damping`` = C_h;
+- ``compliant-lysmer``: the same with dashpots on the sides as well;
+- ``compliant-shear-undamped``, ``compliant-lysmer-undamped``: the tie without its dashpot.
+
+The tie's stiffness K_h = 2G/(2 − ν) is the handbook strip's horizontal stiffness per unit length
+and C_h = ρ V_s B its high-frequency dashpot (Gazetas 1991,
+:mod:`upliftlab.continuum.impedance.gazetas`), the sway spring and dashpot a bed would carry.
+
+**Points.** ``clay-pulse``: ``strip_footing_clay`` as packaged (its own Ricker pulse, 0.3 g,
+0.4 s, 4 s). ``clay-record`` / ``sand-record``: the map's point (:mod:`upliftlab.comparisons.
+studies.winkler_map.points`) with the clay scene's N = 171.4 kN/m (FS_v = 3 on the clay's
+Prandtl capacity; more on the sand), h/B = 1.5, T = 0.5 s, under the first ``--record-seconds``
+(default 10) of El Centro at 1.5 a_up (0.167 g), on the map's clay or sand. ``--elastic``: the
+same points on elastic soil (the uplift stays), which separates the boundaries from the soil's
+yielding.
+
+**Measures** (the map's, :func:`~upliftlab.comparisons.studies.winkler_map.points.
+continuum_measures`): peak |θ|, peak edge uplift, residual settlement (when flattest in the last
+quarter); and the settlement averaged over the last quarter, which a footing that still rocks at
+the end (the clay scene's does, ±5 mrad, on either base) oscillates about. Each larger box's
+row gives the change against the first box of the same case and point: the targets of issue
+35 are 2 % (θ, uplift) and 5 % (settlement).
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import argparse  # noqa: E402
+import json  # noqa: E402
+import math  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_output import add_output_arguments, output_folder, say, write_text  # noqa: E402
+
+NAME = "halfplane_box"
+CASES = {"rigid-fixed": ("rigid", "fixed", False, False),
+         "rigid-shear": ("rigid", "shear", False, False),
+         "compliant-shear": ("compliant", "shear", True, True),
+         "compliant-lysmer": ("compliant", "lysmer", True, True),
+         "compliant-shear-undamped": ("compliant", "shear", True, False),
+         "compliant-lysmer-undamped": ("compliant", "lysmer", True, False)}
+POINTS = ("clay-pulse", "clay-record", "sand-record")
+#: The map point of a record run: h/B, T (s), intensity (× a_up); N is the clay scene's
+RECORD_POINT = (1.5, 0.5, 1.5)
+TARGETS = {"theta": 0.02, "uplift": 0.02, "residual_settlement": 0.05}
+
+
+def handbook_sway(soil, width: float) -> tuple[float, float]:
+    """(K_h, C_h) per unit length of a strip of ``width`` B: 2G/(2 − ν) and ρ V_s B."""
+    from upliftlab.continuum.impedance.gazetas import handbook_strip
+
+    strip = handbook_strip([0.0], shear_modulus=soil.shear_modulus, poisson=soil.poisson_ratio,
+                           density=soil.density, width=width)
+    return float(strip.K_h), float(strip.C_h)
+
+
+def point_data(point: str, across: int, record_seconds: float) -> dict:
+    """The scene table of ``point`` (module docstring)."""
+    import copy
+
+    from upliftlab.scenes import load_scene
+
+    base = load_scene("strip_footing_clay")
+    data = copy.deepcopy(dict(base.table))
+    if point != "clay-pulse":
+        from upliftlab.comparisons.studies.winkler_map.points import motion_table, point_table
+        from upliftlab.motions import ELCENTRO, find_motion
+
+        soil = point.split("-")[0]
+        hb, period, intensity = RECORD_POINT
+        data = point_table(data, soil, across, base.structure.vertical_weight, hb, period, base.g)
+        data["motion"] = motion_table({"type": "record", "_path": str(find_motion(ELCENTRO))},
+                                      intensity, 2.0 * data["foundation"]["half_width"],
+                                      data["structure"]["height"])
+        data.setdefault("analysis", {})["duration"] = float(record_seconds)
+    data["continuum"] = {**data["continuum"], "elements_across": int(across)}
+    return data
+
+
+def run(point: str, case: str, box: str, across: int, record_seconds: float,
+        elastic: bool = False) -> dict:
+    """One run: the map's measures, the run's size and time."""
+    from upliftlab.comparisons.studies.winkler_map.points import continuum_measures
+    from upliftlab.continuum import build_model
+    from upliftlab.continuum.dynamics.run import DynamicOptions, run_dynamic
+    from upliftlab.scenes import scene_from_dict
+
+    base, sides, tie, damped = CASES[case]
+    data = point_data(point, across, record_seconds)
+    width, _, depth = box.partition("x")
+    data["continuum"] = {**data["continuum"], "domain_width": float(width),
+                         "domain_depth": float(depth or width), "base": base, "boundary": sides}
+    if elastic:
+        data["soil"] = {k: v for k, v in data["soil"].items()
+                        if k in ("youngs_modulus", "poisson_ratio", "density", "interface")}
+        data["soil"]["model"] = "elastic"
+    scene = scene_from_dict(data, merged=True)
+    if tie:
+        K_h, C_h = handbook_sway(scene.soil, scene.foundation.width)
+        scene = scene.replace("continuum", horizontal_tie=K_h,
+                              horizontal_tie_damping=C_h if damped else None)
+    started = time.perf_counter()
+    model = build_model(scene)
+    result = run_dynamic(model, scene, scene.build_motion(), DynamicOptions(snapshots=0))
+    wall = time.perf_counter() - started
+    *_, measures = continuum_measures(scene, result)
+    return {"point": point + (" (elastic)" if elastic else ""), "case": case, "box": box,
+            "across": across,
+            "theta": measures["theta"], "uplift": measures["uplift"],
+            "residual_settlement": measures["residual_settlement"],
+            "settlement_end": float(result.footing[0, 1] - result.footing[-1, 1]),
+            "settlement_mean": tail_mean(result),
+            "dofs": int(model.dofs), "steps": int(result.metadata["steps"]),
+            "energy": float(result.energy_balance_error),
+            "max_plastic_strain": float(result.metadata.get("max_plastic_strain", math.nan)),
+            "tie": scene.continuum.horizontal_tie, "wall": wall}
+
+
+def tail_mean(result) -> float:
+    """The settlement v(0) − v averaged over the run's last quarter (trapezoidal rule): the
+    settlement about which a footing that still rocks at the end oscillates."""
+    import numpy as np
+
+    t, v = np.asarray(result.time), np.asarray(result.footing)[:, 1]
+    tail = t >= t[0] + 0.75 * (t[-1] - t[0])
+    s = v[0] - v[tail]
+    return float(np.sum(0.5 * (s[1:] + s[:-1]) * np.diff(t[tail])) / (t[tail][-1] - t[tail][0]))
+
+
+def table(rows: list[dict]) -> str:
+    """The Markdown table of ``rows``: each larger box against the first box of its case."""
+    head = ("| point | case | box (×B, W or WxD) | peak θ (mrad) | uplift (mm) "
+            "| residual settlement (mm) "
+            "| Δθ | Δuplift | Δsettlement | within targets | mean settlement, last quarter (mm) "
+            "| its Δ | DOFs | energy error | wall (s) |")
+    lines = [head, "|" + "|".join("---" for _ in range(head.count("|") - 1)) + "|"]
+    first = {}
+    for r in rows:
+        key = (r["point"], r["case"])
+        ref = first.setdefault(key, r)
+        if ref is r:
+            d = ["", "", "", "", f"{1e3 * r['settlement_mean']:.2f}", ""]
+        else:
+            ch = {m: r[m] / ref[m] - 1.0 if ref[m] else math.nan for m in TARGETS}
+            ok = all(abs(ch[m]) <= TARGETS[m] for m in TARGETS)
+            mean = r["settlement_mean"] / ref["settlement_mean"] - 1.0
+            d = [f"{100 * ch[m]:+.1f} %" for m in TARGETS] + [
+                "yes" if ok else "no", f"{1e3 * r['settlement_mean']:.2f}", f"{100 * mean:+.1f} %"]
+        lines.append(f"| {r['point']} | {r['case']} | {r['box']} | {1e3 * r['theta']:.3f} | "
+                     f"{1e3 * r['uplift']:.2f} | {1e3 * r['residual_settlement']:.2f} | "
+                     + " | ".join(d) + f" | {r['dofs']} | {r['energy']:.3g} | {r['wall']:.0f} |")
+    return "\n".join(lines) + "\n"
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    add_output_arguments(parser, NAME, committed=False)
+    parser.add_argument("--cases", default=",".join(CASES))
+    parser.add_argument("--points", default="clay-pulse")
+    parser.add_argument("--boxes", default="10,20",
+                        help="boxes (× B): a width = depth, or WxD (width x depth)")
+    parser.add_argument("--across", type=int, default=8)
+    parser.add_argument("--record-seconds", type=float, default=10.0)
+    parser.add_argument("--elastic", action="store_true",
+                        help="the soil elastic (its Young's modulus, ν, ρ and interface kept): "
+                             "the boundaries without the soil's yielding")
+    args = parser.parse_args(argv)
+    cases = args.cases.split(",")
+    points = args.points.split(",")
+    for c in cases:
+        if c not in CASES:
+            parser.error(f"--cases: {c!r}; valid: {', '.join(CASES)}")
+    for p in points:
+        if p not in POINTS:
+            parser.error(f"--points: {p!r}; valid: {', '.join(POINTS)}")
+    boxes = args.boxes.split(",")
+    for b in boxes:
+        try:
+            [float(x) for x in b.split("x")]
+        except ValueError:
+            parser.error(f"--boxes: {b!r}; valid: a number or WxD")
+    folder = output_folder(args, NAME)
+    rows = []
+    for p in points:
+        for c in cases:
+            for b in boxes:
+                say(f"{NAME}: {p}, {c}, box {b} B, {args.across} across ...")
+                try:
+                    rows.append(run(p, c, b, args.across, args.record_seconds, args.elastic))
+                except Exception as exc:  # a failed run is reported, the others go on
+                    say(f"{NAME}: {p}, {c}, box {b}: {type(exc).__name__}: {exc}")
+                    continue
+                say(f"{NAME}:   {rows[-1]['wall']:.0f} s")
+                write_text(folder / "halfplane_box.json", json.dumps(rows, indent=1))
+                write_text(folder / "HALFPLANE_BOX.md", table(rows))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
