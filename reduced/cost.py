@@ -3,7 +3,9 @@
 :func:`check_run_cost` is called by :func:`~.run.run_model` once the step is chosen and before
 anything is integrated: it refuses a duration shorter than one step (the run would silently
 last a whole step) and a run above the scene's ``analysis.max_steps`` or
-``analysis.max_memory``, saying what it would cost. Under error control the event stepper's
+``analysis.max_memory``, or estimated to take longer than its time budget (the caller's
+``budget``, :data:`~upliftlab.budget.REDUCED_BUDGET_SECONDS` by default), saying what it would
+cost. Under error control the event stepper's
 steps are counted at its first trial step (40 per shortest bonded period), an upper estimate
 on the paper's scenes (measured: 2 to 5 times the steps it takes).
 """
@@ -12,7 +14,7 @@ from __future__ import annotations
 
 import math
 
-from ..budget import Cost, check, reduced_cost
+from ..budget import REDUCED_BUDGET_SECONDS, Cost, check, reduced_cost, time_budget
 from ..checks import InputError
 from .integrators import StepPlan, method
 from .model import ReducedModel
@@ -21,9 +23,10 @@ __all__ = ["check_run_cost"]
 
 
 def check_run_cost(model: ReducedModel, plan: StepPlan, duration: float, name: str,
-                   histories: bool = True) -> Cost:
+                   histories: bool = True, budget: float | None = None) -> Cost:
     """The cost of integrating ``model`` for ``duration`` (s) with ``plan`` and integrator
-    ``name``; an :class:`InputError` if it is above the scene's budget."""
+    ``name``; an :class:`InputError` if it is above the scene's budget or its estimated time
+    above ``budget`` (s; None: :data:`~upliftlab.budget.REDUCED_BUDGET_SECONDS`)."""
     if duration < 0.5 * plan.dt:
         raise InputError(f"analysis.duration = {duration:g} s: shorter than one time step "
                          f"({plan.dt:.4g} s); give a duration of at least one step")
@@ -36,4 +39,5 @@ def check_run_cost(model: ReducedModel, plan: StepPlan, duration: float, name: s
                         springs=model.spring_count, events=method(name).locates_switches,
                         histories=histories)
     a = model.scene.analysis
-    return check(cost, a.max_steps, a.max_memory)
+    return check(cost, a.max_steps, a.max_memory, time_budget(budget, REDUCED_BUDGET_SECONDS),
+                 api="budget= of upliftlab.reduced.run")

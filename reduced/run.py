@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..budget import REDUCED_BUDGET_SECONDS, time_budget
 from ..checks import InputError
 from ..log import announce_compilation, logger
 from ..motions import Motion, motion_checksum
@@ -70,7 +71,7 @@ def initial_conditions(model: ReducedModel, motion: Motion) -> tuple[np.ndarray,
 
 def run(scene: Scene, *, motion: Motion | None = None, integrator: str | None = None,
         dt: float | None = None, output_dt: float | None = None,
-        histories: bool = True) -> Response:
+        histories: bool = True, budget: float | None = None) -> Response:
     """Integrate ``scene`` (its motion unless ``motion`` is given) and return the response.
 
     Every input is checked, and the step chosen or checked against the stability limit, before
@@ -78,22 +79,26 @@ def run(scene: Scene, *, motion: Motion | None = None, integrator: str | None = 
     are tracked at every step either way). A structure that passes its toppling angle ends the
     run there, with ``info["verdict"] = "overturned"``. Raises :class:`EnergyBalanceError` if
     the energy balance ends beyond ``analysis.energy_tolerance``, and
-    :class:`IntegrationError` if the integration fails.
+    :class:`IntegrationError` if the integration fails. ``budget``: the run's time budget (s,
+    estimated before it starts, :mod:`upliftlab.budget`; None:
+    :data:`~upliftlab.budget.REDUCED_BUDGET_SECONDS`); a run estimated above it is refused with
+    an :class:`InputError`. It changes no number (it is not part of the scene or its digest).
     """
+    time_budget(budget, REDUCED_BUDGET_SECONDS)  # a bad budget is refused before any work
     model = build_model(scene)
     motion = motion if motion is not None else scene.build_motion()
     return run_model(model, motion, integrator=integrator, dt=dt, output_dt=output_dt,
-                     histories=histories)
+                     histories=histories, budget=budget)
 
 
 def run_model(model: ReducedModel, motion: Motion, *, integrator: str | None = None,
               dt: float | None = None, output_dt: float | None = None,
-              histories: bool = True) -> Response:
+              histories: bool = True, budget: float | None = None) -> Response:
     """As :func:`run`, for an already built model."""
     a = model.scene.analysis
     name = integrator or a.integrator
     plan, motion = plan_run(model, motion, name, dt=dt, output_dt=output_dt,
-                            histories=histories)
+                            histories=histories, budget=budget)
     q0, qd0 = initial_conditions(model, motion)
     timings: dict = {}
     status, out, counters = integrate(KernelInputs.of(model, plan), name, plan, q0, qd0,
@@ -137,10 +142,11 @@ class ModelWarning(UserWarning):
 
 
 def plan_run(model: ReducedModel, motion: Motion, name: str, *, dt: float | None = None,
-             output_dt: float | None = None, histories: bool = True):
-    """(StepPlan, the motion extended to the run's duration): every check of integrator, step
-    and kinematics a run makes before it starts. Without ``histories`` the plan stores the
-    first and last states only."""
+             output_dt: float | None = None, histories: bool = True,
+             budget: float | None = None):
+    """(StepPlan, the motion extended to the run's duration): every check of integrator, step,
+    kinematics and cost (within the time ``budget``, s) a run makes before it starts. Without
+    ``histories`` the plan stores the first and last states only."""
     a = model.scene.analysis
     m = method(name)
     if model.exact and not m.explicit:
@@ -159,7 +165,7 @@ def plan_run(model: ReducedModel, motion: Motion, name: str, *, dt: float | None
                      dt=dt if dt is not None else a.dt, subcycle=a.subcycle,
                      output_dt=output_dt if output_dt is not None else a.output_dt)
     plan = plan if histories else plan.without_histories()
-    check_run_cost(model, plan, duration, name, histories)  # refused above the scene's budget
+    check_run_cost(model, plan, duration, name, histories, budget)  # refused above budget
     return plan, motion
 
 

@@ -391,6 +391,16 @@ def issue_37_cases() -> list[Case]:
                               ("port", "tcp://h:99999"), ("scheme", "http://h:1")):
             c.append(Case(f"option:{command}:scheduler_{name}",
                           (*argv, "--scheduler", address, "--out", "{out}"), "refuse", "none"))
+    # a run estimated above its time budget (100 000 springs on 1 s: about 14 h; a budget the
+    # caller gives but cannot be one), before any integration or meshing
+    many = ("run", "strip_footing_clay", "--set", "foundation.springs=100000", "--set",
+            "motion.duration=1", "--no-figure", "--json", "--out", "{out}")
+    c.append(Case("option:run:springs_over_budget", many, "refuse"))
+    for name, value in (("zero", "0"), ("nan", "nan")):
+        c.append(Case(f"option:run:budget_{name}", (*_RUN, "--budget", value, "--out", "{out}"),
+                      "refuse"))
+    c.append(Case("option:continuum:over_budget", (*_DYN, "--budget", "1e-6", "--out", "{out}"),
+                  "refuse"))
     return c
 
 
@@ -529,16 +539,17 @@ def run_case(case: Case, tmp: Path) -> tuple[str, str]:
 #: and failed there with exit 3, 7 usage errors of many lines, 5 NaN or inadmissible results,
 #: 2 hangs). After the fixes: 1135 refused, 99 ran, 0 failed.
 BEFORE = {"refused": 1005, "ran": 128, "failed": 101}
-#: The cases issue 37 added: the subnormal mutation of every field (100) and
-#: :func:`issue_37_cases` (49). On the code before its fixes (c6add74), of the first 130 of
-#: them 10 failed (tracebacks from DT=1.2.3, DT=., DT=e, NPTS of 5000 digits and a study's
-#: --out of 300 characters; DT=.02abc, NPTS given twice and data '1_0' ran; a record scaled by
-#: 1e-100 and a wall at 1e-200 in/s ended with exit 3 on the energy check); the study and
-#: report folder and scheduler cases after them tracebacked or started their work (counted by
-#: hand, not by the list).
-ADDED_37 = 149
-#: Every case on this code (``python tests/test_fuzz.py``): 1383 cases.
-AFTER = {"refused": 1283, "ran": 100, "failed": 0}
+#: The cases issue 37 added: the subnormal mutation of every field (100) and :func:`issue_37_cases`
+#: (49; 53 with the budget's, below). On the code before its fixes (c6add74), of the first 130 of
+#: them 10 failed (tracebacks from DT=1.2.3, DT=., DT=e, NPTS of 5000 digits and a study's --out of
+#: 300 characters; DT=.02abc, NPTS given twice and data '1_0' ran; a record scaled by 1e-100 and a
+#: wall at 1e-200 in/s ended with exit 3 on the energy check); the study and report folder and
+#: scheduler cases after them tracebacked or started their work (counted by hand, not by the list).
+#: Then four cases of the time budget (a run estimated above it, a budget that cannot be one),
+#: which ran (100 000 springs, with a warning) or were not there.
+ADDED_37 = 153
+#: Every case on this code (``python tests/test_fuzz.py``): 1387 cases.
+AFTER = {"refused": 1287, "ran": 100, "failed": 0}
 
 
 #: Limits of the child process that runs the fuzz list: a case that hangs or allocates without

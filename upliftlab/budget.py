@@ -8,7 +8,12 @@ a run above ``analysis.max_steps`` steps or ``analysis.max_memory`` GiB is refus
 :class:`~upliftlab.checks.InputError` that says what it would cost and which key raises the
 limit (``--set analysis.max_steps=...``). A run estimated to take more than
 :data:`LONG_RUN_SECONDS` is announced with its estimated time before it starts (the event
-stepper's time grows as the square of the springs: :data:`EVENTS_PER_SPRING_SECOND`).
+stepper's time grows as the square of the springs: :data:`EVENTS_PER_SPRING_SECOND`), and one
+estimated above its time budget is refused: :data:`REDUCED_BUDGET_SECONDS` for the reduced
+model (100 000 springs on 1 s of a pulse: about 14 h), :data:`CONTINUUM_BUDGET_SECONDS` for
+the continuum, raised on purpose by the caller (``--budget SECONDS`` on the command line,
+``budget=`` in the API). The time budget is an option of the run, not a field of the scene:
+it changes no number, so neither a scene's digest nor a store key.
 
 The memory is that of the arrays the run keeps (histories, snapshots, a factorisation's fill,
 estimated); the time is a rough figure from per-step rates measured on the project's 2-core
@@ -24,7 +29,8 @@ from dataclasses import dataclass
 from .checks import InputError
 from .log import logger
 
-__all__ = ["Cost", "check", "reduced_cost", "continuum_cost", "GIB"]
+__all__ = ["Cost", "check", "reduced_cost", "continuum_cost", "GIB", "time_budget",
+           "REDUCED_BUDGET_SECONDS", "CONTINUUM_BUDGET_SECONDS", "MAX_BUDGET_SECONDS"]
 
 GIB = 2.0 ** 30
 
@@ -42,12 +48,22 @@ LONG_RUN_SECONDS = 600.0
 #: Seconds per step and DOF of the continuum (dynamics: 509 s for 8000 steps on 20 160 DOFs;
 #: a pushover step takes several Newton iterations: 31.5 s for 42 steps on 20 160 DOFs).
 CONTINUUM_SECONDS_PER_DOF_STEP = {"dynamic": 3.2e-6, "pushover": 3.7e-5}
+#: Default time budget (s, estimated) of a reduced run: the model takes milliseconds to
+#: seconds per earthquake; a run estimated above an hour asks for more springs than resolve
+#: anything (``--budget`` raises it).
+REDUCED_BUDGET_SECONDS = 3600.0
+#: Default time budget (s, estimated) of a continuum run: a day (the map's finest dynamic
+#: runs, 12 100 steps on about 20 000 DOFs, are estimated at about 13 min).
+CONTINUUM_BUDGET_SECONDS = 86400.0
+#: The largest time budget a caller may give (s): about 30 years, i.e. no budget.
+MAX_BUDGET_SECONDS = 1e9
 
 
 @dataclass(frozen=True)
 class Cost:
     """The estimated cost of a run: ``steps`` of ``step`` (s; 0 for load steps), ``memory``
-    (bytes), ``seconds`` (rough), and what was counted (``sizes``, e.g. "12 springs")."""
+    (bytes), ``seconds`` (rough), what was counted (``sizes``, e.g. "12 springs") and what
+    makes the run ``smaller``."""
 
     what: str
     steps: int
@@ -55,6 +71,7 @@ class Cost:
     memory: float
     seconds: float
     sizes: str
+    smaller: str = "a coarser model or a shorter duration"
 
 
 def _time(seconds: float) -> str:
@@ -67,9 +84,28 @@ def _time(seconds: float) -> str:
     return f"{seconds / 86400:.3g} days"
 
 
-def check(cost: Cost, max_steps: int, max_memory: float) -> Cost:
+def time_budget(budget: float | None, default: float) -> float:
+    """The time budget (s) of a run: ``budget`` as the caller gave it (``--budget``,
+    ``budget=``), checked, or ``default``."""
+    if budget is None:
+        return default
+    try:
+        value = float(budget)
+    except (TypeError, ValueError):
+        value = math.nan
+    if not 0.0 < value <= MAX_BUDGET_SECONDS:  # NaN fails too
+        raise InputError(f"--budget = {budget!r}: the estimated run time allowed, in seconds; "
+                         f"valid range is (0, {MAX_BUDGET_SECONDS:g}]")
+    return value
+
+
+def check(cost: Cost, max_steps: int, max_memory: float,
+          max_seconds: float | None = None, api: str = "") -> Cost:
     """Refuse ``cost`` above ``max_steps`` steps or ``max_memory`` GiB (the scene's
-    ``analysis.max_steps`` and ``analysis.max_memory``); return it otherwise."""
+    ``analysis.max_steps`` and ``analysis.max_memory``) or an estimated time above
+    ``max_seconds`` (the run's time budget, :func:`time_budget`; None: not checked; ``api``
+    names the argument that raises it in the API besides ``--budget``); return it
+    otherwise."""
     step = f" of {cost.step:.3g} s" if cost.step else ""
     about = (f"{cost.what} would take {cost.steps:.4g} steps{step} ({cost.sizes}), "
              f"{cost.memory / GIB:.3g} GiB and roughly {_time(cost.seconds)}")
@@ -84,10 +120,22 @@ def check(cost: Cost, max_steps: int, max_memory: float) -> Cost:
         raise InputError(f"analysis.max_memory = {max_memory:g} GiB: {about}; raise it "
                          f"(--set analysis.max_memory={need:g}) if the machine has the "
                          "memory, or make the run smaller")
+    if max_seconds is not None and cost.seconds > max_seconds:
+        raise InputError(f"--budget = {max_seconds:g} s: {about}, estimated before it starts; "
+                         f"valid: a run estimated within the budget; raise it (--budget "
+                         f"{_raise_to(cost.seconds)}{', ' + api if api else ''}) to run it "
+                         "anyway, "
+                         f"or make the run smaller ({cost.smaller})")
     if cost.seconds > LONG_RUN_SECONDS:
         logger("budget").warning(f"upliftlab: warning: {about} (estimated before it starts; "
-                                 "fewer springs or a shorter duration make it shorter)")
+                                 f"{cost.smaller} make it shorter)")
     return cost
+
+
+def _raise_to(seconds: float) -> str:
+    """A budget (s) a little above ``seconds``, as a short number."""
+    return f"{float(f'{seconds * 1.1:.2g}'):.0f}" if seconds * 1.1 <= MAX_BUDGET_SECONDS \
+        else f"{MAX_BUDGET_SECONDS:g}"
 
 
 def reduced_cost(*, steps: int, step: float, stride: int, dofs: int, springs: int,
@@ -105,7 +153,7 @@ def reduced_cost(*, steps: int, step: float, stride: int, dofs: int, springs: in
     located = f", up to {switches:.3g} located switches" if events else ""
     return Cost("the reduced run", int(steps), float(step), memory,
                 (steps + switches) * (a + b * springs), f"{springs} springs, {dofs} DOFs"
-                + located)
+                + located, "fewer springs or a shorter duration")
 
 
 def continuum_cost(*, analysis: str, steps: int, step: float, dofs: int,
@@ -116,4 +164,5 @@ def continuum_cost(*, analysis: str, steps: int, step: float, dofs: int,
     memory = 8.0 * dofs * (150 + 12 * snapshots) + 400.0 * steps
     rate = CONTINUUM_SECONDS_PER_DOF_STEP[analysis]
     return Cost(f"the continuum {analysis}", int(steps), float(step), memory,
-                rate * steps * dofs, f"{dofs} DOFs")
+                rate * steps * dofs, f"{dofs} DOFs", "a coarser mesh or a shorter duration"
+                if analysis == "dynamic" else "a coarser mesh or fewer steps")

@@ -19,8 +19,12 @@ contact conditions exactly (:mod:`~upliftlab.continuum.contact.step`): with a lu
 couples only the footing nodes, the footing's (u, v, θ) and the story DOF, a complementarity
 problem of the size of the footing. A node that lands stops with the footing in that step (an
 inelastic impact of its lumped mass), and the contact forces only ever dissipate. The recorded
-contact force of row n is the one of the step that ends at t_n, paired with the gap at t_n: the
-complementarity g ≥ 0, P ≥ 0, P g = 0 holds for every recorded pair to round-off.
+contact forces of row n (the pressure, the status, and the reactions H, N, M they add up to)
+are those of step n, f_c,n: the ones in the equation of motion at t_n, in equilibrium with the
+displacement u_n and the footing's q_n recorded in the same row, as the implicit route records
+them. They close the gaps at t_{n+1}, so the complementarity g ≥ 0, P ≥ 0, P g = 0 holds to
+round-off between the pressure of row n and the gap of row n + 1 (the forward-increment
+Lagrange multipliers of Carpenter, Taylor & Katona, IJNME 32, 1991). Row 0 is the static state.
 
 :mod:`~upliftlab.continuum.dynamics.explicit_step` sets the stable step, the lumped mass and
 dashpots and
@@ -238,7 +242,6 @@ class _Explicit:
         free = np.flatnonzero(self.free_q)
         Lf = np.ascontiguousarray(self.L[:f.nodes][:, self.free_q])
         uy = np.asarray(f.uy, dtype=np.int64)
-        recorded = status
         for k in range(n_steps + 1):
             first = k == 0
             with self.diverging(k, k, u, u_prev, zn[:3]):
@@ -278,15 +281,15 @@ class _Explicit:
                 zbar = vz if first else 0.5 * (vz + vz_new)
                 energy[0] = 0.5 * float(np.dot(self.mass * vbar, vbar)) + 0.5 * float(
                     zbar @ z.M @ zbar)
+                recorded = np.where(closed, STICK, OPEN).astype(np.int8) \
+                    if not f.interface.tangential else status.copy()
                 state = self.static if first else _Row(
-                    u, zn[:3], force_prev, recorded, self.L.T @ force_prev, self.soil)
+                    u, zn[:3], force, recorded, self.L.T @ force, self.soil)
                 rec.record(rec.rows, k * dt, state, _Structure(zn, zbar), ag, energy,
                            iterations, False, kinetic=energy[0])
                 if progress is not None:
                     progress(k, n_steps, state)
                 iterations = 0
-            recorded = np.where(closed, STICK, OPEN).astype(np.int8) \
-                if not f.interface.tangential else status.copy()
             if k == n_steps:
                 break
             z_prev, Fz_prev = zn, Fz
@@ -396,9 +399,9 @@ class _Explicit:
         energy[0] = 0.5 * float(np.dot(self.mass * vbar, vbar)) + 0.5 * float(zbar @ z.M @ zbar)
         if k == 0:
             state = self.static
-        else:
-            force = FC[k % 2].copy()
-            status = ST[k % 2].copy()
+        else:  # the contact forces of step k, in the equation of motion at t_k
+            force = FC[(k + 1) % 2].copy()
+            status = ST[(k + 1) % 2].copy()
             state = _Row(u, zk[:3], force, status, self.L.T @ force, self.soil)
         rec.record(rec.rows, k * st.dt, state, _Structure(zk, zbar), ag, energy,
                    int(counters[0]), False, kinetic=energy[0])

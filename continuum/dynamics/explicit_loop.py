@@ -14,7 +14,9 @@ The state lives in rings indexed by the step k, so that nothing is copied from s
 ``U[k % 3]`` is u_k (``U[(k ± 1) % 3]`` its neighbours), ``V[k % 2]`` is v_{k−½} and
 ``V[(k + 1) % 2]`` v_{k+½}; the same for the footing and story z (``Z``, ``VZ``); ``FC[k % 2]``
 holds the contact forces of step k − 1 (at u_y, then u_x for a tangential interface) and
-``ST[k % 2]`` its node status, which the recorded row k pairs with the gaps of u_k. ``R_prev``,
+``ST[k % 2]`` its node status, ``FC[(k + 1) % 2]`` and ``ST[(k + 1) % 2]`` those of step k,
+which the recorded row k pairs with u_k and q_k (the forces in the equation of motion at t_k,
+:mod:`~upliftlab.continuum.dynamics.explicit`). ``R_prev``,
 ``F_prev`` and ``Fz_prev`` carry the last step's internal and external forces; ``energy``
 (kinetic, strain, damping, input, contact) and ``counters`` (active-set iterations) accumulate
 in place.

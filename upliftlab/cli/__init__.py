@@ -1,7 +1,7 @@
 """The ``upliftlab`` command (also ``python -m upliftlab``)::
 
     upliftlab run SCENE [--case C] [--motion NAME|PATH] [--set KEY=VALUE ...] [--out DIR] [--json]
-                  [--force]
+                  [--force] [--budget SECONDS]
     upliftlab paper [--out DIR] [--motion PATH] [--force]
     upliftlab scenes
     upliftlab advise SCENE --quantity peak_u --tol 5% [--case C] [--set KEY=VALUE ...] [--fast]
@@ -13,7 +13,7 @@
                         [--set KEY=VALUE ...] [--mesh KEY=VALUE[,KEY=VALUE ...] ...]
                         [--theta-max RAD] [--steps N] [--motion NAME|PATH] [--a0 LIST]
                         [--boundary pml|lysmer] [--scale S] [--threads N] [--out DIR]
-                        [--no-render] [--json] [--force]
+                        [--no-render] [--json] [--force] [--budget SECONDS]
     upliftlab opensees SCENE [--case A|B] [--set KEY=VALUE ...] [--out DIR] [--run] [--json]
                        [--force]
     upliftlab store verify|migrate|pack DIR [--sample N] [--name NAME]

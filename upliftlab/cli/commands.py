@@ -11,6 +11,7 @@ import json
 import warnings
 
 from .. import bounds
+from ..budget import MAX_BUDGET_SECONDS
 from ..extras import need_extra
 from ..log import logger
 from ..outdir import claim
@@ -39,6 +40,9 @@ def add_reduced_commands(sub) -> None:
     r.add_argument("--no-figure", action="store_true", help="skip the PNG figure")
     r.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     r.add_argument("--force", action="store_true", help="replace a different run in --out")
+    r.add_argument("--budget", metavar="SECONDS",
+                   help="refuse (exit 2) before any integration a run estimated to take "
+                        "longer than this (default 3600 s); raise it to run one on purpose")
 
     pp = sub.add_parser("paper", help="Ewing's reduced-model study: Figs. 4, 5, 7-12 and a "
                                       "summary of the peaks (the main job)")
@@ -82,6 +86,7 @@ def run_command(args) -> int:
     scene = load_scene(args.scene, case=args.case, overrides=args.overrides, motion=args.motion)
     refuse_without_effect(args.overrides, "the reduced model", REDUCED_KEYS)
     dt = number("--dt", args.dt, high=bounds.KINDS["step"].high)
+    budget = number("--budget", args.budget, high=MAX_BUDGET_SECONDS)  # not in the folder's name
     variant = {"overrides": list(args.overrides), "motion": args.motion, "dt": dt,
                "integrator": args.integrator}
     settings = {"command": "run", "scene": scene.name, "scene_digest": scene.digest,
@@ -93,7 +98,8 @@ def run_command(args) -> int:
         from ..reduced import run
         with warnings.catch_warnings():  # the model's notes are printed as notes, below
             warnings.simplefilter("ignore")
-            response = run(scene, motion=motion, integrator=args.integrator, dt=dt)
+            response = run(scene, motion=motion, integrator=args.integrator, dt=dt,
+                           budget=budget)
         for note in response.info.get("notes", []):
             logger("cli").warning(f"upliftlab run: note: {note}")
         say_if_rounded("upliftlab run", scene.analysis.duration or motion.duration,

@@ -5,8 +5,9 @@ overrides the analysis would ignore (a pushover takes no motion; the continuum h
 the physics the model can carry (a small-strain model: rotations up to
 :data:`MAX_ROTATION`; a load below the strip's bearing capacity; a soil with mass for the
 dynamics; a load that is not lost in the solver's tolerance against the soil's stiffness),
-the output folder, and the size of the mesh and of the run against the scene's budget
-(:mod:`upliftlab.budget`), first estimated from the grid lines, then counted on the mesh.
+the output folder, and the size of the mesh and of the run against the scene's budget and the
+time budget (``--budget``; :mod:`upliftlab.budget`), first estimated from the grid lines, then
+counted on the mesh.
 
 An interruption (Ctrl-C, SIGTERM) of a dynamic run is a flag its time loop checks
 (:mod:`.stop`): in the loop the run ends at the step it reached and writes the rows computed
@@ -25,7 +26,8 @@ import time
 from .. import bounds
 from ..anchors import prandtl_capacity
 from ..budget import check as check_budget
-from ..budget import continuum_cost
+from ..budget import (CONTINUUM_BUDGET_SECONDS, MAX_BUDGET_SECONDS, continuum_cost,
+                      time_budget)
 from ..checks import InputError
 from ..extras import need_extra
 from .common import (MESH_KEYS, default_out, eta, mesh_overrides, number,
@@ -97,6 +99,9 @@ def add_continuum(sub) -> None:
     c.add_argument("--no-render", action="store_true", help="skip the PNG and GIF renders")
     c.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     c.add_argument("--force", action="store_true", help="replace a different run in --out")
+    c.add_argument("--budget", metavar="SECONDS",
+                   help="refuse (exit 2) before any meshing a run estimated to take longer "
+                        "than this (default 86400 s); raise it to run one on purpose")
 
 
 def _options(args) -> dict:
@@ -163,6 +168,7 @@ def continuum(args) -> int:
     from ..scenes import ContinuumOptions, load_scene
 
     options = _options(args)
+    seconds = number("--budget", args.budget, high=MAX_BUDGET_SECONDS)  # not in the folder name
     need_extra("upliftlab continuum", "skfem", "meshio")
     if args.analysis == "pushover":  # the M-θ figure
         need_extra("upliftlab continuum", "matplotlib")
@@ -192,7 +198,8 @@ def continuum(args) -> int:
     else:
         (steps, dt), snapshots = _dynamic_steps(scene, motion, h_min), 41
     check_budget(continuum_cost(analysis=args.analysis, steps=steps, step=dt, dofs=dofs,
-                                snapshots=snapshots), budget.max_steps, budget.max_memory)
+                                snapshots=snapshots), budget.max_steps, budget.max_memory,
+                 time_budget(seconds, CONTINUUM_BUDGET_SECONDS))
     variant = {"overrides": overrides, "motion": args.motion, **given}
     settings = {"command": f"continuum {args.analysis}", "scene": scene.name,
                 "scene_digest": scene.digest, "overrides": list(scene.overrides),
