@@ -62,6 +62,10 @@ class BatchInterrupted(KeyboardInterrupt):
         super().__init__(why)
         self.add_note(f"run_batch: {done} of {len(partial.status)} runs done")
 
+    def __reduce__(self):
+        """Pickled with its partial result (a worker's interruption reaches its caller)."""
+        return type(self), (self.partial, str(self))
+
     def __str__(self) -> str:
         return self.args[0] if self.args else "Ctrl-C"
 

@@ -10,6 +10,7 @@ values while its neighbours keep their numbers.
 from __future__ import annotations
 
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -248,6 +249,8 @@ def test_an_interrupted_batch_ends_in_one_line_and_resumes(monkeypatch):
     assert lines[0].startswith("run_batch interrupted (SIGINT): 1 of 4 runs done; resume with: "
                                "run_batch(scenes, ")
     assert exc.partial.status.tolist() == [whole.status[0]] + [NOT_RUN] * 3
+    again = pickle.loads(pickle.dumps(exc))  # as it comes back from a worker process
+    assert again.line == exc.line and again.partial.status.tolist() == exc.partial.status.tolist()
     assert exc.partial.to_dataframe()["status"].tolist()[1] == "not run (interrupted)"
     line = interrupted_line(exc, ["study", "fixed_vs_uplift"])
     assert "\n" not in line and "1 of 4 runs done" in line and line.endswith(
