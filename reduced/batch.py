@@ -3,7 +3,12 @@
 :func:`run_batch` integrates each scene exactly as :func:`~.run.run` with ``histories=False``
 would (same model, motion, step and kernel), but keeps only a row of peak values per scene and
 skips what a single run spends around its integration: histories, provenance, a
-:class:`~.response.Response`. Chunks of scenes go to a pool of processes.
+:class:`~.response.Response`. Chunks of scenes go to a pool of processes, or to a Dask cluster
+(``scheduler``: an address, a cluster or a ``distributed.Client``), :mod:`.batch_chunks`;
+warnings a run raises on a worker are raised again in the caller, naming the run. The result
+is also a :class:`pandas.DataFrame` (:meth:`BatchResult.to_dataframe`: one row per run, the
+columns' units in its ``attrs``). Ctrl-C ends the batch with :class:`BatchInterrupted`, one
+line with the call that resumes it (``resume=``), holding the finished runs.
 
 Every scene is checked first — its model, its motion, its step against the stability limit — so
 that bad input in any scene raises before any scene is integrated. A scene that the integrator
@@ -25,29 +30,20 @@ from .. import __version__
 from ..checks import InputError
 from ..motions import Motion
 from ..scenes import MotionSpec, Scene, build_motion
-from ..workers import process_pool
 from . import kernels as kn
+from .batch_chunks import COLUMNS, ENERGY, NOT_RUN, STATUS_NAMES, execute, rewarn
+from .batch_table import BatchInterrupted, BatchTable
 from .integrators import StepPlan, method
 from .model import build_model
-from .peak_slots import decode_peaks, static_energy, weighted_plastic_settlement
-from .response import energy_balance_error
-from .run import KernelInputs, ground_acceleration, initial_conditions, integrate, plan_run
+from .run import KernelInputs, initial_conditions, plan_run
 
-__all__ = ["BatchResult", "run_batch", "STATUS_NAMES", "COLUMNS"]
+__all__ = ["BatchResult", "BatchInterrupted", "run_batch", "STATUS_NAMES", "COLUMNS", "NOT_RUN",
+           "ENERGY"]
 
-#: A run that finished with its energy balance beyond ``analysis.energy_tolerance``.
-ENERGY = 100
-STATUS_NAMES = {kn.OK: "ok", kn.CHATTER: "chattering", kn.NONFINITE: "non-finite state",
-                kn.NO_CONVERGENCE: "Newton did not converge", kn.OVERTURNED: "overturned",
-                kn.STEP_UNDERFLOW: "step underflow", ENERGY: "energy balance beyond tolerance"}
-COLUMNS = ("u", "theta", "uplift_left", "weighted_plastic_settlement",
-           "final_vertical_position", "base_shear", "energy_balance_error", "dt")
-#: The columns defined only with a foundation of springs.
-_FOUNDATION_COLUMNS = ("uplift_left", "weighted_plastic_settlement", "final_vertical_position")
 
 
 @dataclass(frozen=True, eq=False)
-class BatchResult:
+class BatchResult(BatchTable):
     """One row per scene, in the order given (units of each scene).
 
     ``u`` peak superstructure deformation, ``theta`` peak base rotation, ``uplift_left`` peak
@@ -60,8 +56,11 @@ class BatchResult:
     :attr:`~.response.Response.energy_balance_error` over the first and last states, ``dt`` the
     step taken (s), ``status`` 0 when the run finished (:data:`STATUS_NAMES`): an overturned
     structure keeps its peaks up to the toppling; a failed run, or one whose energy balance is
-    beyond its ``analysis.energy_tolerance`` (:data:`ENERGY`), has NaN values. ``info`` holds
-    the integrator, the pool, the wall time and the package version.
+    beyond its ``analysis.energy_tolerance`` (:data:`ENERGY`), has NaN values, and one that an
+    interruption left undone has :data:`NOT_RUN`. ``names``, ``cases``, ``overrides`` and
+    ``units`` (name, length, force) describe each scene; ``info`` holds the integrator, the
+    pool or scheduler, the wall time and the package version. :meth:`to_dataframe` gives the
+    table as a :class:`pandas.DataFrame`.
     """
 
     u: np.ndarray
@@ -75,6 +74,9 @@ class BatchResult:
     status: np.ndarray
     names: tuple[str, ...] = ()
     info: dict = field(default_factory=dict)
+    cases: tuple = ()
+    overrides: tuple[tuple[str, ...], ...] = ()
+    units: tuple[tuple[str, str, str], ...] = ()
 
     def __len__(self) -> int:
         return self.status.size
@@ -116,34 +118,68 @@ class _Job:
 
 def run_batch(scenes: Sequence[Scene], motion: Motion | None = None, *,
               integrator: str | None = "events", dt: float | None = None,
-              workers: int | None = None, chunk: int | None = None) -> BatchResult:
+              workers: int | None = None, chunk: int | None = None, scheduler=None,
+              resume: BatchResult | None = None) -> BatchResult:
     """Integrate every scene and return its peaks; the same numbers as
     ``run(scene, motion=motion, integrator=integrator, dt=dt, histories=False).peaks``.
 
     ``motion`` replaces every scene's own motion; ``integrator`` None takes each scene's;
     ``dt`` None takes each scene's step (``analysis.dt``, else the automatic one). ``workers``
     processes (default: the CPU count; 1 runs in this process), each given ``chunk`` scenes
-    at a time (default: enough chunks for eight per worker, at most 200 scenes each).
+    at a time (default: enough chunks for eight per worker, at most 200 scenes each); or the
+    Dask cluster ``scheduler`` (an address, a cluster or a ``distributed.Client``; the extra
+    ``dask``). Warnings raised by a run on a worker are raised again here, naming the run.
+    ``resume``: the partial result of an interrupted batch of the same scenes
+    (:class:`BatchInterrupted`'s ``partial``): only the runs it lacks are integrated.
     Raises :class:`~upliftlab.checks.InputError`, naming the scene, before any integration if
-    any scene cannot be run.
+    any scene cannot be run; an interruption (Ctrl-C) raises :class:`BatchInterrupted`, one
+    line with the command that resumes the batch, holding the finished runs.
     """
     start = time.perf_counter()
     scenes = list(scenes)
     workers = _count("workers", os.cpu_count() or 1 if workers is None else workers)
     jobs, motions, names = _prepare(scenes, motion, integrator, dt)
+    rows, status = _resumed(resume, names)
+    todo = [i for i in range(len(jobs)) if status[i] == NOT_RUN]
     if chunk is None:
-        chunk = max(1, min(200, math.ceil(len(jobs) / (8 * workers))))
+        chunk = max(1, min(200, math.ceil(len(todo) / (8 * workers))))
     chunk = _count("chunk", chunk)
-    pieces = [jobs[i:i + chunk] for i in range(0, len(jobs), chunk)]
-    rows = np.full((len(jobs), len(COLUMNS)), np.nan)
-    status = np.zeros(len(jobs), np.int64)
-    for k, (values, codes) in enumerate(_execute(pieces, motions, workers)):
-        rows[k * chunk:k * chunk + len(codes)] = values
-        status[k * chunk:k * chunk + len(codes)] = codes
+    pieces = [[jobs[i] for i in todo[k:k + chunk]] for k in range(0, len(todo), chunk)]
+    where = {k: todo[k * chunk:(k + 1) * chunk] for k in range(len(pieces))}
+    meta = {"names": tuple(names), "cases": tuple(s.case for s in scenes),
+            "overrides": tuple(tuple(s.overrides) for s in scenes),
+            "units": tuple((s.units.name, s.units.length, s.units.force) for s in scenes)}
     info = {"integrator": integrator or "per scene", "workers": workers, "chunk": chunk,
-            "scenes": len(jobs), "wall_time_s": time.perf_counter() - start,
+            "scenes": len(jobs), "scheduler": None if scheduler is None else str(
+                getattr(scheduler, "scheduler_address", scheduler)),
             "version": __version__, "created": time.strftime("%Y-%m-%dT%H:%M:%S%z")}
-    return BatchResult(*rows.T, status=status, names=tuple(names), info=info)
+    runs = execute(pieces, motions, workers, scheduler)
+    try:
+        for k, (values, codes, caught) in runs:
+            rows[where[k]], status[where[k]] = values, codes
+            rewarn(caught, names, where[k])
+    except KeyboardInterrupt as exc:
+        runs.close()  # every worker ended before the line is printed
+        partial = BatchResult(*rows.T, status=status, info=info, **meta)
+        raise BatchInterrupted(partial, str(exc) or "Ctrl-C") from None
+    finally:
+        runs.close()
+    info["wall_time_s"] = time.perf_counter() - start
+    return BatchResult(*rows.T, status=status, info=info, **meta)
+
+
+def _resumed(resume, names) -> tuple[np.ndarray, np.ndarray]:
+    """(rows, statuses) to start from: all NOT_RUN, or the finished runs of ``resume``."""
+    rows = np.full((len(names), len(COLUMNS)), np.nan)
+    status = np.full(len(names), NOT_RUN, np.int64)
+    if resume is None:
+        return rows, status
+    if not isinstance(resume, BatchResult) or tuple(resume.names) != tuple(names):
+        raise InputError(f"resume = {type(resume).__name__}: expected the partial result of "
+                         f"an interrupted batch of the same {len(names)} scenes "
+                         "(BatchInterrupted.partial)")
+    return np.array([resume.columns()[c] for c in COLUMNS], float).T.copy(), \
+        resume.status.copy()
 
 
 def _count(name: str, value) -> int:
@@ -233,73 +269,3 @@ def _base_motion(scene: Scene, motion: Motion | None, bases: dict, motions: list
         else:
             factor = spec.scale
     return index, factor, base
-
-
-# ---------------------------------------------------------------------------------------------
-# Execution
-# ---------------------------------------------------------------------------------------------
-
-
-def _execute(pieces, motions, workers):
-    """Each chunk's (values, statuses), in order: in this process or on a pool."""
-    if workers == 1 or len(pieces) <= 1:
-        for piece in pieces:
-            yield _run_chunk(piece, [motions[i] for i in _used(piece)], _used(piece))
-        return
-    with process_pool(min(workers, len(pieces))) as pool:  # ends every worker on the way out
-        futures = [pool.submit(_run_chunk, piece, [motions[i] for i in _used(piece)],
-                               _used(piece)) for piece in pieces]
-        for future in futures:
-            yield future.result()
-
-
-def _used(piece) -> list[int]:
-    return sorted({job.motion for job in piece})
-
-
-def _run_chunk(piece, accelerations, indices):
-    """Integrate a chunk of jobs; their values (rows × COLUMNS) and statuses."""
-    base = dict(zip(indices, accelerations))
-    values = np.full((len(piece), len(COLUMNS)), np.nan)
-    codes = np.zeros(len(piece), np.int64)
-    for r, job in enumerate(piece):
-        codes[r], out, counters = integrate(job.inputs, job.name, job.plan, job.q0, job.qd0,
-                                            _samples(job, base[job.motion]), job.dtg,
-                                            impacts=False)
-        if codes[r] in (kn.OK, kn.OVERTURNED):
-            row = _row(job, out)
-            defined = [v for v, name in zip(row, COLUMNS) if job.leftmost >= 0
-                       or name not in _FOUNDATION_COLUMNS]
-            if not row[COLUMNS.index("energy_balance_error")] <= job.energy_tolerance:
-                codes[r] = ENERGY
-            elif np.all(np.isfinite(defined)):
-                values[r] = row
-            else:
-                codes[r] = kn.NONFINITE
-    return values, codes
-
-
-def _samples(job: _Job, acceleration: np.ndarray) -> np.ndarray:
-    """The kernel's ground acceleration for a job: its base motion scaled (as
-    :meth:`~upliftlab.motions.Motion.scaled`), padded (as ``extended``), in length/s²."""
-    acc = acceleration * job.factor if job.factor is not None else acceleration
-    if job.samples > acc.size:
-        acc = np.concatenate([acc, np.zeros(job.samples - acc.size)])
-    return ground_acceleration(acc, job.g)
-
-
-def _row(job: _Job, out: dict) -> list[float]:
-    """The values of :attr:`~.response.Response.peaks` that the batch keeps, from the same
-    arrays (the first and last states, the tracked peaks)."""
-    inputs = job.inputs
-    static = static_energy(inputs.params)
-    pk = decode_peaks(out["raw_peaks"], stories=inputs.stories, rocks=inputs.theta >= 0,
-                      settles=inputs.v >= 0, exact=job.exact, static=static)
-    u, theta, shear = pk.u, pk.theta, pk.base_shear
-    uplift = settlement = final_v = math.nan
-    if job.leftmost >= 0:
-        uplift = max(float(pk.opening[job.leftmost]), 0.0)
-        settlement = weighted_plastic_settlement(inputs.params, out["plastic"][-1])
-        final_v = float(out["q"][-1, inputs.v])
-    energy = max(energy_balance_error(out["energy"], static), pk.energy_residual)
-    return [u, theta, uplift, settlement, final_v, shear, energy, job.plan.dt]

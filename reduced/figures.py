@@ -57,19 +57,22 @@ def response_figure(response, title: str | None = None):
     return fig
 
 
-def comparison_figure(panels, title: str):
-    """Stacked panels, each ``(ylabel, [(label, t, y), ...])``, sharing the time axis."""
+def comparison_figure(panels, title: str, beside=None):
+    """Stacked panels, each ``(ylabel, [(label, t, y), ...])``, sharing the time axis; with
+    ``beside`` (panels of the same form, as many) a second column of them."""
     plt = pyplot()
-    fig, axes = plt.subplots(len(panels), 1, figsize=(8, 3.0 * len(panels)), sharex=True,
-                             squeeze=False)
-    for ax, (ylabel, curves) in zip(axes[:, 0], panels):
-        for label, t, y in curves:
-            ax.plot(t, y, lw=0.8, label=label)
-        ax.axhline(0.0, color="0.6", lw=0.5)
-        ax.set_ylabel(ylabel)
-        ax.grid(True, lw=0.3)
-        ax.legend(fontsize=8, loc="upper right")
-    axes[-1, 0].set_xlabel("time [s]")
+    columns = [panels] if beside is None else [panels, beside]
+    fig, axes = plt.subplots(len(panels), len(columns), figsize=(8 * len(columns),
+                             3.0 * len(panels)), sharex=True, squeeze=False)
+    for col, column in enumerate(columns):
+        for ax, (ylabel, curves) in zip(axes[:, col], column):
+            for label, t, y in curves:
+                ax.plot(t, y, lw=0.8, label=label)
+            ax.axhline(0.0, color="0.6", lw=0.5)
+            ax.set_ylabel(ylabel)
+            ax.grid(True, lw=0.3)
+            ax.legend(fontsize=8, loc="upper right")
+        axes[-1, col].set_xlabel("time [s]")
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     return fig

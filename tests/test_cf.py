@@ -68,6 +68,21 @@ def test_every_result_file_passes_the_cf_checker(files, kind, cf_failures):
     assert required == [] and errors == []
 
 
+def test_a_vm_envelope_file_passes_the_cf_checker(tmp_path, cf_failures):
+    # The continuum's V–M envelope (continuum.statics.Envelope.save, units as a scene's
+    # result_metadata gives them in kN-m-s): no failing required check; values as given.
+    from upliftlab.continuum.statics.results import Envelope
+
+    units = {"length": "m", "force/length": "kN/m", "moment/length": "kN*m/m"}
+    envelope = Envelope(V=np.array([10.0, 20.0]), M=np.array([3.0, 4.0]), V_ult=40.0,
+                        width=2.0, metadata={"units": units, "analysis": "vm_envelope"})
+    path = envelope.save(tmp_path / "envelope.nc")
+    assert cf_failures(path) == ([], [])
+    back = read_dataset(path)
+    assert back.m.values.tolist() == [3.0 / 80.0, 4.0 / 80.0] and back.v.values.tolist() == \
+        [0.25, 0.5]
+
+
 def test_a_reduced_file_reads_back_as_the_run_holds_it(files):
     """The values on disk are the run's, bit for bit; the time axis reads back in s and the
     DOF labels as the index (the file holds CF's forms: dates, ``dof_label``)."""

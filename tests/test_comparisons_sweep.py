@@ -225,7 +225,7 @@ def test_progress_is_printed_on_stderr_for_long_sweeps(capsys):
 
 def test_dask_local_cluster_gives_the_local_result(tmp_path):
     """The reduced-model sweep on a Dask LocalCluster (2 in-process workers, the cluster itself
-    given: its in-process address, inproc://…, is not one the address check takes) equals the
+    given; its inproc:// address is taken too: tests/test_reduced_batch.py) equals the
     same points evaluated in this process, to the last bit, and stores every point once."""
     import distributed  # the test extra installs it: upliftlab[dask]
     points = _pulse_points()

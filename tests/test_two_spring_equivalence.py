@@ -312,9 +312,29 @@ def test_open_study_selects_a_map_error_by_labels_as_the_summary_states(study):
     assert point == value == summary["ewing"]["bonded_error"]["edges"]
     ds = tree["map_aspect"]
     assert set(ds.error.dims) == {"case", "layout", "measure", "h_over_b", "intensity"}
-    assert ds.intensity.attrs["units"] == "a_up" and ds.h_over_b.attrs["units"] == "1"
+    assert ds.intensity.attrs["units"] == "1" and ds.h_over_b.attrs["units"] == "1"
+    assert ds.intensity.attrs["long_name"] == "intensity in units of a_up"
     stated = next(r for r in summary["regions"] if (r["map"], r["case"], r["layout"],
                   r["measure"]) == ("aspect", "C", "edges", "u"))
     within = abs(ds.error.sel(case="C", layout="edges", measure="u")).fillna(np.inf)
     assert int((within <= float(tree["statics"].attrs["threshold"])).sum()) == stated["passing"]
     assert int(within.size) == stated["total"]
+
+
+def test_its_files_pass_the_cf_checker(study, cf_failures):
+    # Reference: the IOOS compliance checker, cf:1.10 (tests/test_cf.py says which): no
+    # failing required check and no check that raised, in every NetCDF file of the folder
+    # (the statics, the convergence, every map; a map's intensity, PGA over a_up, was
+    # written with units = "a_up", which UDUNITS does not know: now a ratio, "1"). Its axis
+    # values are the grid's, unchanged.
+    from upliftlab.study_files import study_files
+    from upliftlab.results import read_dataset
+
+    files = study_files(study.study.directory)
+    assert {"statics", "convergence", "map_aspect", "map_ricker_pulse"} <= set(files)
+    for name, path in files.items():
+        assert cf_failures(path) == ([], []), name
+    aspect = read_dataset(files["map_aspect"])
+    assert aspect.intensity.values.tolist() == list(tse.FAST_GRID.intensities)
+    np.testing.assert_array_equal(aspect.error.values,
+                                  study.data["map_aspect"].to_dataset().error.values)

@@ -107,3 +107,28 @@ def test_the_stored_table_is_keyed_on_this_packages_own_checks():
     named = {n.rsplit("/", 1)[-1] for n in package_files() if n.startswith(workflow.OWN_SOURCES)}
     folder = {p.name for p in Path(workflow.__file__).parent.glob("*.py")}
     assert folder and named == folder
+
+
+def test_its_file_passes_the_cf_checker(tmp_path, cf_failures):
+    # Reference: the IOOS compliance checker, cf:1.10 (tests/test_cf.py says which): no
+    # failing required check and no check that raised in verification.nc, built from a store
+    # entry of two anchors, one observed order and two checks' times (the text fields, the
+    # NaN-padded fit over (order, level)); it reads back as built.
+    from dataclasses import asdict
+
+    import numpy as np
+
+    from upliftlab.comparisons.studies.verification.dataset import verification_dataset
+    from upliftlab.results import read_dataset, write_dataset
+
+    rows = [vf.relative_row("reduced", "a", "q", "r", 2.0, 2.0, 1e-3),
+            vf.absolute_row("continuum", "b", "q", "r", 1.0, 1.0, 1e-3)]
+    order = vf.order_row("reduced", "c", "m", [0.1, 0.05], [1e-2, 2.5e-3], "2", 1.9, 2.1)
+    entry = {"rows": [asdict(r) for r in rows], "orders": [asdict(order)],
+             "seconds": {"one": 1.0, "two": 2.0}}
+    ds = verification_dataset(entry, {"fast": True})
+    path = write_dataset(tmp_path / "verification.nc", ds)
+    assert cf_failures(path) == ([], [])
+    back = read_dataset(path)
+    for name, var in ds.data_vars.items():
+        np.testing.assert_array_equal(back[name].values, var.values, err_msg=name)

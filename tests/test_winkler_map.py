@@ -857,3 +857,21 @@ def test_a_new_slice_of_a_kept_store_is_estimated_at_its_rates(study, tmp_path, 
 
     assert source(_copied_store(study, tmp_path)) == "the stored runs'"
     assert source(_copied_store(study, tmp_path / "stale", revision=0)) == "default"
+
+
+def test_its_files_pass_the_cf_checker(study, m, cf_failures):
+    # Reference: the IOOS compliance checker, cf:1.10 (tests/test_cf.py says which): no
+    # failing required check and no check that raised in map.nc and statics.nc (the map's
+    # intensity, PGA over a_up, was written with units = "a_up", which UDUNITS does not know:
+    # now a ratio, "1", the quantity in its long name). Values unchanged: the file's axis is
+    # the grid's and its errors the computed map's, bit for bit.
+    from upliftlab.study_files import study_files
+
+    files = study_files(study.study.directory)
+    assert {"map", "statics"} <= set(files)
+    for name, path in files.items():
+        assert cf_failures(path) == ([], []), name
+    back = read_dataset(files["map"])
+    assert back.intensity.attrs["units"] == "1" and "a_up" in back.intensity.attrs["long_name"]
+    assert back.intensity.values.tolist() == list(wm.FAST_GRID.intensities)
+    np.testing.assert_array_equal(back.error.values, m.error.values)

@@ -435,3 +435,19 @@ def test_full_mode_runs_its_dynamics_on_the_benchmarked_8_across_mesh(elcentro):
     assert {p["scene"]["continuum"]["elements_across"] for p in full} == {8}
     assert {p["scene"]["continuum"]["elements_across"] for p in fast} == {4}
     assert len(full) == 2  # the scene's pulse and El Centro
+
+
+def test_its_files_pass_the_cf_checker(study, ds, cf_failures):
+    # Reference: the IOOS compliance checker, cf:1.10 (tests/test_cf.py says which): no
+    # failing required check and no check that raised in every NetCDF file of the folder
+    # (the comparison and the dynamic runs' nodes); the comparison reads back as computed.
+    from upliftlab.results import read_dataset
+    from upliftlab.study_files import study_files
+
+    files = study_files(study.study.directory)
+    assert "comparison" in files and any(n.startswith("dynamic") for n in files)
+    for name, path in files.items():
+        assert cf_failures(path) == ([], []), name
+    back = read_dataset(files["comparison"])
+    for name, var in ds.data_vars.items():
+        np.testing.assert_array_equal(back[name].values, var.values, err_msg=name)

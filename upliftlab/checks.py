@@ -158,15 +158,30 @@ _ADDRESS = re.compile(r"(?:(?P<scheme>tcp|tls|ws|wss|ucx)://)?"
                       r"(?P<host>\[[0-9A-Fa-f:.]+\]"
                       r"|[A-Za-z0-9](?:[A-Za-z0-9.-]{0,251}[A-Za-z0-9])?)"
                       r"(?::(?P<port>[0-9]{1,5}))?/?", re.ASCII)
+#: The address of a Dask scheduler in this process (``LocalCluster(processes=False)``, whose
+#: ``scheduler_address`` is ``inproc://<host>/<process id>/<counter>``): reachable from this
+#: process only, as Dask's own ``inproc`` transport is.
+_INPROC = re.compile(r"inproc://(?:[A-Za-z0-9](?:[A-Za-z0-9.-]{0,251}[A-Za-z0-9])?"
+                     r"|\[[0-9A-Fa-f:.]+\])/[0-9]{1,10}/[0-9]{1,10}", re.ASCII)
 
 
-def scheduler_address(field: str, value) -> str:
+def scheduler_address(field: str, value, *, in_process: bool = True) -> str:
     """A Dask scheduler address, ``host:port`` or ``tcp://host:port`` (also ``tls``, ``ws``,
-    ``wss``, ``ucx``; the port 1–65535 optional), checked before any work: an address that is
-    not one used to start the work and fail (or hang) when the first sweep connected."""
-    valid = "expected a Dask scheduler address such as tcp://host:8786 or host:8786"
+    ``wss``, ``ucx``; the port 1–65535 optional), or the ``inproc://host/pid/n`` address of a
+    scheduler in this process (as a ``LocalCluster(processes=False)`` gives it: the same
+    cluster is accepted as an object or by its address), checked before any work: an address
+    that is not one used to start the work and fail (or hang) when the first sweep connected.
+    ``in_process`` False (a command line, whose new process holds no scheduler) refuses an
+    ``inproc://`` address."""
+    valid = ("expected a Dask scheduler address such as tcp://host:8786 or host:8786 (or the "
+             "inproc://host/pid/n address of a scheduler in this process)")
     if not isinstance(value, str):
         raise InputError(f"{field} = {value!r}: {valid}")
+    if _INPROC.fullmatch(value.strip()):
+        if not in_process:
+            raise InputError(f"{field} = {value!r}: an inproc:// scheduler lives in the process "
+                             "that made it, not in this command's; give its tcp:// address")
+        return value.strip()
     match = _ADDRESS.fullmatch(value.strip())
     if not value.strip() or match is None:
         raise InputError(f"{field} = {value[:80]!r}: {valid}")

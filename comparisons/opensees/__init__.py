@@ -2,6 +2,7 @@
 side by side.
 
 * :mod:`.spec` — the reduced model's numbers for OpenSees, and what OpenSees cannot represent;
+* :mod:`.qz` — a q–z bed as QzSimple2 springs: the mapping, both backbones, where they differ;
 * :mod:`.model_script` — the standalone script itself, a real module written unchanged as
   ``model.py``: readable and runnable without upliftlab, a BNWF model (zeroLength springs
   under a rigid footing, the scene's superstructure, gravity then the motion, Newmark with
@@ -9,7 +10,8 @@ side by side.
 * :mod:`.script` — writes it beside the scene's numbers (``model.json``) and its motion
   (``motion.txt``);
 * :mod:`.runner` — runs the script in a subprocess with a timeout and reads its output;
-* :mod:`.compare` — peaks, histories and a note per difference (``upliftlab opensees --run``).
+* :mod:`.compare` — peaks, histories and a note per difference (``upliftlab opensees --run``);
+  its plot draws upliftlab − OpenSees, the two histories beside it.
 """
 
 from .compare import SUMMARY_KEYS, Comparison, compare, comparison_table, write_comparison

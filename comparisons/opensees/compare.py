@@ -178,9 +178,22 @@ def _histories(c: Comparison) -> dict:
     return cols
 
 
-def _figure(c: Comparison, path: Path) -> Path | None:
-    from ...reduced.figures import comparison_figure, save
+def difference_panels(c: Comparison) -> list:
+    """The comparison plot's panels: for u, θ (mrad) and the leftmost spring, upliftlab minus
+    OpenSees on upliftlab's stored times (OpenSees' series interpolated), as
+    ``(ylabel, [(label, t, difference)])``."""
+    h, L = _histories(c), c.spec.length
+    quantities = [("u", f"u [{L}]", 1.0), ("theta", "θ [mrad]", 1e3)]
+    if c.spec.has_foundation:
+        quantities.append(("left_spring", f"leftmost spring [{L}]", 1.0))
+    return [(f"Δ{label}\nupliftlab − OpenSees",
+             [("upliftlab − OpenSees", h["time"],
+               scale * (h[f"{q}_upliftlab"] - h[f"{q}_opensees"]))])
+            for q, label, scale in quantities]
 
+
+def _curve_panels(c: Comparison) -> list:
+    """Both models' histories, overlaid (the plot's optional second column)."""
     r, h, L = c.response, c.opensees.histories, c.spec.length
     mine = f"upliftlab {r.info['integrator']}"
     panels = [(f"u [{L}]", [(mine, r.time, r.u), ("OpenSees", h["time"], h["u"])]),
@@ -190,16 +203,33 @@ def _figure(c: Comparison, path: Path) -> Path | None:
         panels.append((f"leftmost spring [{L}]\n(+ compression)",
                        [(mine, r.time, r.left_spring_displacement),
                         ("OpenSees", h["time"], h["left_spring_displacement"])]))
+    return panels
+
+
+def comparison_plot(c: Comparison, curves: bool = True):
+    """The comparison plot (a matplotlib figure): the difference upliftlab − OpenSees of each
+    history (:func:`difference_panels`), and with ``curves`` both histories overlaid in a
+    second column."""
+    from ...reduced.figures import comparison_figure
+
+    return comparison_figure(difference_panels(c), f"{c.spec.title}: upliftlab − OpenSees",
+                             beside=_curve_panels(c) if curves else None)
+
+
+def _figure(c: Comparison, path: Path, curves: bool = True) -> Path | None:
+    from ...reduced.figures import save
+
     try:
-        fig = comparison_figure(panels, f"{c.spec.title}: upliftlab and OpenSees")
+        fig = comparison_plot(c, curves)
     except InputError as exc:  # matplotlib missing: the numbers are written all the same
         _say(f"no figure: {exc}")
         return None
     return save(fig, path)
 
 
-def write_comparison(c: Comparison, out: str | Path) -> list[Path]:
-    """``comparison.md``, ``comparison.json``, ``histories.csv``, ``histories.png`` and
+def write_comparison(c: Comparison, out: str | Path, *, curves: bool = True) -> list[Path]:
+    """``comparison.md``, ``comparison.json``, ``histories.csv``, ``histories.png`` (the
+    difference upliftlab − OpenSees; with ``curves`` both histories beside it) and
     ``upliftlab.nc`` (each atomically)."""
     out = Path(out)
     notes = "\n".join(f"- {n}" for n in c.notes)
@@ -219,5 +249,5 @@ def write_comparison(c: Comparison, out: str | Path) -> list[Path]:
                                 f"times; units {c.spec.units}; left spring: compression from "
                                 "rest")]
     written += c.response.save(out / "upliftlab.nc")
-    figure = _figure(c, out / "histories.png")
+    figure = _figure(c, out / "histories.png", curves)
     return written + ([figure] if figure else [])

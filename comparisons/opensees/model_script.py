@@ -37,6 +37,7 @@ MOTION_FILE = None  # the ground acceleration beside this script ("" for none)
 INITIAL_VELOCITY = None  # length/s, of the top mass relative to the ground
 TOLERANCE = None  # length: Newton's displacement increment
 TIE_STIFFNESS = None  # force·length/rad: ties a floor's rotation to the footing's
+QZ = ()  # a q–z bed: per spring the QzSimple2 (type, q_ult, z50, suction, c); () otherwise
 NOTES = ()  # one sentence per modelling choice
 
 
@@ -45,8 +46,8 @@ def load_scene_numbers(path=None):
     numbers and the scene's names, never code."""
     with open(path or os.path.join(HERE, "model.json"), encoding="utf-8") as f:
         numbers = json.load(f)
-    for name in ("FOUNDATION", "STORIES"):
-        numbers[name] = [tuple(row) for row in numbers[name]]
+    for name in ("FOUNDATION", "STORIES", "QZ"):
+        numbers[name] = [tuple(row) for row in numbers.get(name, ())]
     numbers["NOTES"] = tuple(numbers["NOTES"])
     unknown = set(numbers) - {n for n in globals() if n.isupper()}
     if unknown:
@@ -189,12 +190,20 @@ def build_model(ops):
         ops.fix(soil_node(i), 1, 1, 1)
         ops.node(footing_node(i), x, 0.0)
         ops.rigidLink("beam", BASE, footing_node(i))
+        if QZ:  # QzSimple2: compression negative, so the element runs from soil to footing
+            qz_type, qult, z50, suction, dashpot = QZ[i - 1]
+            ops.uniaxialMaterial("QzSimple2", 10 * (1000 + i), int(qz_type), qult, z50,
+                                 suction, dashpot)
+            ops.element("zeroLength", 1000 + i, soil_node(i), footing_node(i), "-mat",
+                        10 * (1000 + i), "-dir", 2)
+            springs.append(1000 + i)
+            continue
         mat = foundation_material(ops, 10 * (1000 + i), k, c, fy)
         rayleigh = ["-doRayleigh", 1] if DASHPOTS == "detaching" and c > 0.0 else []
         ops.element("zeroLength", 1000 + i, footing_node(i), soil_node(i), "-mat", mat,
                     "-dir", 2, *rayleigh)
         springs.append(1000 + i)
-    if DASHPOTS == "detaching" and any(c > 0.0 for _, _, c, _, _ in FOUNDATION):
+    if DASHPOTS == "detaching" and not QZ and any(c > 0.0 for _, _, c, _, _ in FOUNDATION):
         # stiffness-proportional damping on each spring's current tangent, β = c_i/k_i: zero
         # while the spring is open (and while it yields), never clipped
         beta = FOUNDATION[0][2] / FOUNDATION[0][1]

@@ -49,7 +49,18 @@ def modelling_notes(spec: OpenSeesSpec) -> list[str]:
     """One sentence per modelling choice: what OpenSees does and how it compares with upliftlab's
     reduced model (the same notes go into the script and the comparison)."""
     notes = []
-    if spec.has_foundation:
+    if spec.qz:
+        types = sorted({q.qz_type for q in spec.qz})
+        notes.append(f"Foundation springs: {len(spec.springs)} zeroLength springs under a rigid "
+                     f"footing, each a QzSimple2 (type {', '.join(map(str, types))}) of the "
+                     "spring's q_ult, a z50 that makes its initial stiffness the spring's k, "
+                     "the spring's suction and its dashpot c on the far field (OpenSees' "
+                     "compression is negative: the element runs from soil to footing). Past "
+                     "the elastic range the backbones differ (QzSimple2's elastic range and "
+                     "z_ref are fixed fractions of its z50, upliftlab's are the bed's); its "
+                     "near field and closure are stiff, not rigid, and its dashpot is not "
+                     "clipped at zero force.")
+    elif spec.has_foundation:
         plastic = spec.law == "elastoplastic"
         if spec.support == "bonded":
             law = ("ElasticPP, yielding in compression at yield_multiple x F0" if plastic
@@ -66,7 +77,7 @@ def modelling_notes(spec: OpenSeesSpec) -> list[str]:
         notes.append(f"Foundation springs: {len(spec.springs)} zeroLength springs under a rigid "
                      f"footing (rigid links), their deformation the soil's compression; {law}. "
                      "The same law as upliftlab's.")
-    if spec.has_dashpots and spec.support == "uplift":
+    if spec.has_dashpots and spec.support == "uplift" and not spec.qz:
         beta = spec.dashpot_time
         text = {
             "clipped": (f"Foundation dashpots (clipped): Viscous c_i beside each spring, both "
@@ -140,6 +151,7 @@ def script_numbers(spec: OpenSeesSpec, motion_file: str | None) -> dict:
         # ties a floor's rotation to the footing's, 1e7 times the stiffest k_j Δh_j² (a story
         # drift is then off by 1e-7 of itself)
         "TIE_STIFFNESS": 1e7 * max(t.stiffness * d * d for t, d in zip(s.stories, lever)),
+        "QZ": [q.args() for q in s.qz],
         "NOTES": modelling_notes(spec),
     }
 

@@ -19,6 +19,7 @@ from ...checks import InputError
 from ...motions import Motion
 from ...reduced import build_model
 from ...scenes import Scene
+from .qz import QzSimple2Spring, qzsimple2_springs
 
 __all__ = ["DASHPOT_MODELS", "POINTS_PER_PERIOD", "FoundationSpring", "Story", "OpenSeesSpec",
            "check_representable", "default_step", "opensees_spec"]
@@ -70,7 +71,8 @@ class OpenSeesSpec:
     ``vertical_weight`` W_v and ``rotary_inertia`` I₀ about O; ``springs`` and ``stories``;
     ``dashpots`` one of :data:`DASHPOT_MODELS`; ``dt`` the Newmark step and ``duration`` (s);
     the ground ``motion`` (accelerations in g every ``motion.dt``) and the top mass's
-    ``initial_velocity`` (length/s).
+    ``initial_velocity`` (length/s); ``qz`` the QzSimple2 springs of a q–z bed (:mod:`.qz`),
+    in the order of ``springs`` (empty for the other laws).
     """
 
     scene_name: str
@@ -95,6 +97,7 @@ class OpenSeesSpec:
     duration: float
     motion: Motion
     initial_velocity: float
+    qz: tuple[QzSimple2Spring, ...] = ()
 
     @property
     def has_foundation(self) -> bool:
@@ -131,12 +134,6 @@ def check_representable(scene: Scene) -> None:
         raise InputError(
             "foundation.dashpots: the OpenSees script sizes every dashpot from "
             "foundation.damping_ratio (c_i proportional to k_i); remove foundation.dashpots")
-    if f.law.name == "qz":
-        raise InputError(
-            "foundation.law = 'qz': the bridge writes the elastic and elasto-plastic springs; "
-            "upliftlab's q–z spring differs from OpenSees QzSimple2 (rigid closure and near "
-            "field, calibrated far field), so it is not written; valid: 'elastic', "
-            "'elastoplastic'")
     if f.law.name == "elastoplastic" and f.law.yield_multiple is None:
         key = "yield_forces" if f.law.yield_forces is not None else "capacity_multiple"
         raise InputError(
@@ -171,6 +168,9 @@ def opensees_spec(scene: Scene, *, dt: float | None = None,
     check_representable(scene)
     if dashpots not in DASHPOT_MODELS:
         raise InputError(f"--dashpots = {dashpots!r}: valid: {', '.join(DASHPOT_MODELS)}")
+    if scene.foundation.law.name == "qz" and dashpots != "clipped":
+        raise InputError(f"--dashpots = {dashpots!r}: a q–z bed's dashpot is QzSimple2's own "
+                         "(on its far field); valid: the default")
     model = build_model(scene)
     if scene.structure.p_delta and abs(model.static_rotation) > 1e-12:
         raise InputError(
@@ -205,4 +205,5 @@ def opensees_spec(scene: Scene, *, dt: float | None = None,
         p_delta=s.p_delta, vertical_weight=s.vertical_weight, rotary_inertia=s.rotary_inertia,
         springs=springs, stories=stories, dashpots=dashpots,
         damping_ratio=scene.foundation.damping_ratio, dt=step, duration=duration,
-        motion=motion, initial_velocity=motion.initial_velocity)
+        motion=motion, initial_velocity=motion.initial_velocity,
+        qz=qzsimple2_springs(found) if scene.foundation.law.name == "qz" else ())

@@ -37,7 +37,7 @@ def report_command(args) -> int:
     """Build the report; the exit code of the module docstring."""
     need_extra("upliftlab report", "matplotlib", "skfem", "meshio", "pyvista", "imageio")
     if args.scheduler is not None:
-        checks.scheduler_address("--scheduler", args.scheduler)
+        checks.scheduler_address("--scheduler", args.scheduler, in_process=False)
         need_extra("upliftlab report --scheduler", "distributed")
     from ..comparisons.report.build import REPORT_BUDGET, build_report
 

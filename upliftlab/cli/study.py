@@ -66,7 +66,7 @@ def study_command(args) -> int:
         workers = number("--workers", options.workers, integer=True, low=1, high=4096)
     checks.boolean("--fast", options.fast)
     if options.scheduler is not None:
-        checks.scheduler_address("--scheduler", options.scheduler)
+        checks.scheduler_address("--scheduler", options.scheduler, in_process=False)
     for option in ("out", "store"):
         if getattr(options, option) is not None:
             check_folder_name(getattr(options, option), f"--{option}")

@@ -82,11 +82,9 @@ def map_dataset(spec, arrays: Mapping, units: str):
         "case": ("case", list(spec.cases), {"long_name": "foundation model (Case A, B or C)"}),
         "layout": ("layout", list(layouts), {"long_name": "two-spring layout"}),
         "measure": ("measure", list(METRICS), {"long_name": "measure compared"}),
-        x.key: (x.key, np.array(x.values, dtype=float), {
-            "long_name": ascii_text(x.label), "units": _axis_unit(x.unit)}),
+        x.key: (x.key, np.array(x.values, dtype=float), _axis_attributes(x.label, x.unit)),
         y.key: (y.key, np.array(y.values, dtype=float) if numeric_y
-                else [str(v) for v in y.values],
-                {"long_name": ascii_text(y.label), "units": _axis_unit(y.unit)}),
+                else [str(v) for v in y.values], _axis_attributes(y.label, y.unit)),
     }
     dims = ("case", "layout", "measure", y.key, x.key)
     data = {
@@ -109,11 +107,19 @@ def map_dataset(spec, arrays: Mapping, units: str):
     return xr.Dataset(data, coords=coords, attrs=cf_attributes(attrs))
 
 
-def _axis_unit(unit: str) -> str:
-    """An axis's unit as CF text: seconds as ``s``, a multiple of a named quantity as its name
-    (e.g. ``a_up``), and ``1`` for a plain number or a label."""
+#: The axes' units that UDUNITS knows (CF section 3.1); any other is a named quantity.
+_CF_UNITS = ("s",)
+
+
+def _axis_attributes(label: str, unit: str) -> dict:
+    """An axis's ``long_name`` and CF ``units``: seconds as ``s``; a multiple of a named
+    quantity (``× a_up``), which UDUNITS does not know, as the ratio it is (``1``) with the
+    quantity named in the long name (``intensity in units of a_up``); ``1`` for a plain
+    number or a label."""
     text = ascii_text(unit).strip().lstrip("x×* ").strip()
-    return text or "1"
+    if text and text not in _CF_UNITS:
+        return {"long_name": f"{ascii_text(label)} in units of {text}", "units": "1"}
+    return {"long_name": ascii_text(label), "units": text or "1"}
 
 
 def study_tree(convergence, statics, error_maps, attrs: Mapping):

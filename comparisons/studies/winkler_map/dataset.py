@@ -92,8 +92,10 @@ def _coords(grid, motions, calibrations) -> dict:
         "period": ("period", np.array(grid.periods, dtype=float), {
             "units": "s", "long_name": "fixed-base period of the structure"}),
         "intensity": ("intensity", np.array(grid.intensities, dtype=float), {
-            "units": "a_up", "long_name": "PGA over a_up = g B/(6h), the rigid block's uplift "
-                                          "acceleration on a uniform tensionless Winkler bed"}),
+            # a ratio (UDUNITS knows no a_up): CF units "1", the quantity in the long name
+            "units": "1", "long_name": "intensity in units of a_up: PGA over a_up = g B/(6h), "
+                                       "the rigid block's uplift acceleration on a uniform "
+                                       "tensionless Winkler bed"}),
         "motion": ("motion", [m["name"] for m in motions], {"long_name": "ground motion"}),
         "motion_kind": ("motion", [m["kind"] for m in motions], {
             "long_name": "kind of motion: ricker, elcentro or fema_p695"}),
