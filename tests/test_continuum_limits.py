@@ -22,6 +22,7 @@ from upliftlab.checks import InputError
 from upliftlab.continuum import build_model, footing_stiffness, make_model
 from upliftlab.continuum.dynamics import run as dyn
 from upliftlab.continuum.dynamics import ground
+from upliftlab.continuum.dynamics.ground import dynamic_ground
 from upliftlab.continuum.dynamics.step_rules import implicit_settings
 from upliftlab.continuum.dynamics.run import DynamicOptions, run_dynamic
 from upliftlab.scenes import ContinuumOptions, Soil, load_scene
@@ -129,7 +130,8 @@ def test_implicit_dynamics_accepts_nu_049():
     scene = load_scene(SCENE, overrides=["continuum.elements_across=4", "soil.model=elastic",
                                          "soil.poisson_ratio=0.49"])
     model = build_model(scene)
-    settings = implicit_settings(model, scene, scene.build_motion(),
-                                 DynamicOptions(method="implicit"))
+    options = DynamicOptions(method="implicit")
+    settings = implicit_settings(model, scene, scene.build_motion(), options,
+                                 dynamic_ground(model, options))
     vs = dyn.wave_speeds(model.soil)[1]
     assert vs * settings.dt / dyn.smallest_element(model) == pytest.approx(0.2414, rel=1e-3)

@@ -63,14 +63,15 @@ import numpy as np
 
 from ...checks import InputError
 from ...log import announce_compilation
-from . import explicit_step, ground
+from . import explicit_step
 from ..contact.step import footing_schur, frictionless_step, tangential_step
 from .result import DynamicResult, Recorder
 from .explicit_loop import run_steps
 from .explicit_step import (COURANT_ESTIMATE, STABILITY_FRACTION, ExplicitSettings, critical_step,
-                            explicit_settings, lumped_dashpots, lumped_mass, recorded_steps)
+                            explicit_settings, explicit_setup, lumped_dashpots, lumped_mass,
+                            recorded_steps)
 from ..contact.footing import OPEN, STICK
-from .ground import boundaries, dynamic_fixed, ground_velocity, static_fixed, x_dofs
+from .ground import free_field_motion, gravity_state, ground_velocity
 from .iteration_matrix import soil_residual
 from .kernels import soil_predict
 from ..statics.newton import ConvergenceError
@@ -78,7 +79,6 @@ from .run_control import MECHANISM_GROWTH, BearingFailure, keeping_what_ran, set
 from .soil_force import SoilForce
 from .superstructure import (MIN_ROTARY_INERTIA, central_difference_form, check_footing_mass,
                              structure_matrices, structure_work)
-from .waves import incident_load
 
 __all__ = ["STABILITY_FRACTION", "ExplicitSettings", "lumped_mass", "lumped_dashpots",
            "critical_step", "check_footing_mass", "MIN_ROTARY_INERTIA", "explicit_settings",
@@ -125,25 +125,24 @@ class _Structure:
         self.d, self.v = z, v
 
 
-def run_explicit(model, scene, motion, options, *, progress=None) -> DynamicResult:
+def run_explicit(model, scene, motion, options, ground, *, progress=None) -> DynamicResult:
     """Gravity, then ``motion`` by central differences (module docstring); the arguments and
-    the result are those of :func:`~upliftlab.continuum.dynamics.run.run_dynamic`."""
-    base, sides = boundaries(model, options)
+    the result are those of :func:`~upliftlab.continuum.dynamics.run.run_dynamic`, which
+    passes the run's ``ground`` (its :class:`~upliftlab.continuum.dynamics.ground.Ground`)."""
+    base, sides = ground.base, ground.sides
     if options.soil_mass_scale != 1.0 and (base != "rigid" or sides == "lysmer"):
         raise InputError(f"DynamicOptions.soil_mass_scale = {options.soil_mass_scale:g}: a "
                          f"scaled soil mass with base {base!r} and sides {sides!r} would keep "
                          "the dashpots of the unscaled soil; valid there: 1 (a scaled mass "
                          "needs a rigid base and sides without dashpots)")
-    mass = options.soil_mass_scale * lumped_mass(model)
-    fixed = dynamic_fixed(model, base, sides)
-    free = np.setdiff1d(np.arange(model.disc.ndofs), fixed)
-    settings = explicit_settings(model, scene, motion, options, mass, free)
+    settings, mass, dashpots = explicit_setup(model, scene, motion, options, ground)
     started = _time.perf_counter()
-    static = ground.gravity_state(model, scene, options, not model.footing.interface.tangential)
+    static = gravity_state(model, scene, options, not model.footing.interface.tangential)
     threads = numba.get_num_threads()
     numba.set_num_threads(min(options.threads, numba.config.NUMBA_NUM_THREADS))
     try:
-        run = _Explicit(model, scene, motion, options, settings, static, mass, fixed)
+        run = _Explicit(model, scene, motion, options, settings, static, mass, dashpots,
+                        ground)
         result = run.loop(progress)
     finally:
         numba.set_num_threads(threads)
@@ -154,29 +153,27 @@ def run_explicit(model, scene, motion, options, *, progress=None) -> DynamicResu
 class _Explicit:
     """The time loop's constant pieces (module docstring)."""
 
-    def __init__(self, model, scene, motion, options, settings, static, mass, fixed):
+    def __init__(self, model, scene, motion, options, settings, static, mass, dashpots,
+                 ground):
         self.model, self.scene, self.motion = model, scene, motion
         self.options, self.settings, self.static = options, settings, static
         n = model.disc.ndofs
         self.keep = np.ones(n)
-        self.keep[fixed] = 0.0
+        self.keep[ground.fixed] = 0.0
         self.mass = np.where(self.keep > 0.0, mass, 1.0)
-        names = (["sides"] if settings.sides == "lysmer" else []) + (
-            ["bottom"] if settings.base == "compliant" else [])
-        self.c = lumped_dashpots(model, names) * self.keep
-        released = np.setdiff1d(static_fixed(model), fixed)
+        self.c = dashpots * self.keep
         R0 = soil_residual(model, static.stress)
         release = np.zeros(n)
-        release[released] = R0[released]
+        release[ground.released] = R0[ground.released]
         self.datum = model.body_force + release  # R = f_int − datum
-        if settings.base == "rigid":
+        if ground.incident is None:  # a rigid base: the relative formulation
             r = np.zeros(n)
-            r[x_dofs(model)] = 1.0
+            r[ground.x] = 1.0
             self.ground_soil = -(mass * r) * self.keep
             self.incident = np.zeros(n)
         else:
             self.ground_soil = np.zeros(n)
-            self.incident = incident_load(model, options.wave) * self.keep
+            self.incident = ground.incident * self.keep
         self.z = structure_matrices(scene)
         ground_z = -(self.z.M @ self.z.r) if settings.base == "rigid" else np.zeros(4)
         self.vg = ground_velocity(motion, settings.dt, settings.steps + 1)
@@ -192,7 +189,7 @@ class _Explicit:
             self.K_next[0, 0] = tie
             self.z = dataclasses.replace(self.z, K=self.z.K + self.K_next,
                                          C=self.z.C + np.diag([c_tie, 0.0, 0.0, 0.0]))
-            u_ff, v_ff = ground.free_field_motion(model, self.vg[:settings.steps + 2] * scene.g,
+            u_ff, v_ff = free_field_motion(model, self.vg[:settings.steps + 2] * scene.g,
                                                   settings.dt)
             self.ground_all[:, 0] += tie * u_ff[1:] + c_tie * v_ff[:-1]
         f = model.footing

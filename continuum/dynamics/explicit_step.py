@@ -22,14 +22,13 @@ import skfem
 
 from ...checks import InputError
 from .. import setup_cache
-from .ground import boundaries, held_horizontally
 from .iteration_matrix import elastic_plane_tangent
 from .superstructure import check_footing_mass, check_superstructure
 from .waves import dashpot_data, full_basis, time_step_limit
 
 __all__ = ["STABILITY_FRACTION", "COURANT_ESTIMATE", "ExplicitSettings", "lumped_mass",
            "lumped_dashpots", "critical_step", "stable_limit", "recorded_steps",
-           "explicit_settings"]
+           "explicit_settings", "explicit_setup"]
 
 #: The admissible step as a fraction of the central-difference limit 2/ω_max.
 STABILITY_FRACTION = 0.9
@@ -111,10 +110,22 @@ def recorded_steps(settings: ExplicitSettings) -> np.ndarray:
                                settings.steps))
 
 
-def explicit_settings(model, scene, motion, options, mass, free) -> ExplicitSettings:
-    """The explicit run's step, duration and boundaries, checked before any work."""
+def explicit_setup(model, scene, motion, options, ground) -> tuple[ExplicitSettings,
+                                                                   np.ndarray, np.ndarray]:
+    """(settings, mass, dashpots) of an explicit run on ``ground`` (a
+    :class:`~upliftlab.continuum.dynamics.ground.Ground`): :func:`explicit_settings`, the
+    soil's lumped mass scaled by ``options.soil_mass_scale`` and the row sums of the dashpots
+    on ``ground.dashpots`` (per DOF), all made here, each once."""
+    mass = options.soil_mass_scale * lumped_mass(model)
+    free = np.setdiff1d(np.arange(model.disc.ndofs), ground.fixed)
+    settings = explicit_settings(model, scene, motion, options, ground, mass, free)
+    return settings, mass, lumped_dashpots(model, ground.dashpots)
+
+
+def explicit_settings(model, scene, motion, options, ground, mass, free) -> ExplicitSettings:
+    """The explicit run's step, duration and boundaries (``ground``'s), checked before any
+    work."""
     check_superstructure(scene, motion)
-    base, sides = boundaries(model, options)
     if options.mass not in (None, "lumped"):
         raise InputError(f"DynamicOptions.mass = {options.mass!r}: the explicit route needs a "
                          "diagonal mass; valid: 'lumped' (or continuum.dynamics = 'implicit')")
@@ -143,6 +154,6 @@ def explicit_settings(model, scene, motion, options, mass, free) -> ExplicitSett
         implicit = motion.dt / max(1, math.ceil(motion.dt / time_step_limit(model)
                                                 * (1.0 - 1e-12)))
         every = max(1, int(math.floor(implicit / dt * (1.0 + 1e-9))))
-    return ExplicitSettings(dt=dt, steps=steps, record_every=min(every, steps), base=base,
-                            sides=sides, prescribe_u=held_horizontally(model),
+    return ExplicitSettings(dt=dt, steps=steps, record_every=min(every, steps), base=ground.base,
+                            sides=ground.sides, prescribe_u=ground.prescribe_u,
                             limit=limit, critical=critical, omega_max=omega)

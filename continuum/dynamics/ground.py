@@ -31,6 +31,7 @@ cache (:mod:`~upliftlab.continuum.setup_cache`) when an earlier one has made it.
 from __future__ import annotations
 
 import dataclasses
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -41,9 +42,45 @@ from ..model import evaluated
 from ..statics.newton import ContinuumState, Control, follow
 from ..statics.analyses import geostatic
 
-__all__ = ["boundaries", "free_field_motion", "held_horizontally", "dynamic_fixed",
+__all__ = ["Ground", "dynamic_ground", "boundaries", "free_field_motion", "held_horizontally", "dynamic_fixed",
            "static_fixed", "x_dofs", "ground_velocity", "gravity_state", "state_arrays",
            "state_of", "GRAVITY_SOURCES"]
+
+
+@dataclass(frozen=True, eq=False)
+class Ground:
+    """How the ground motion enters a dynamic run's domain, decided once before either route
+    sets up (:func:`dynamic_ground`): the ``base`` and ``sides`` (:func:`boundaries`); the
+    DOFs ``fixed`` in the run (:func:`dynamic_fixed`) and those ``released`` from the statics'
+    (:func:`static_fixed`), which carry their static reaction as a constant load; ``x``, every
+    u_x DOF (the rigid-body vector r of a rigid base, :func:`x_dofs`); the boundaries with
+    ``dashpots``; the ``incident`` load per unit incident velocity on a compliant base (force
+    per length/s, :func:`~upliftlab.continuum.dynamics.waves.incident_load`; None on a rigid
+    one); and whether the footing's u is prescribed (``prescribe_u``,
+    :func:`held_horizontally`)."""
+
+    base: str
+    sides: str
+    fixed: np.ndarray
+    released: np.ndarray
+    x: np.ndarray
+    dashpots: tuple[str, ...]
+    incident: np.ndarray | None
+    prescribe_u: bool
+
+
+def dynamic_ground(model, options) -> Ground:
+    """The :class:`Ground` of a dynamic run of ``model`` with ``options`` (a
+    :class:`~upliftlab.continuum.dynamics.options.DynamicOptions`), checked before any work."""
+    from .waves import incident_load
+
+    base, sides = boundaries(model, options)
+    fixed = dynamic_fixed(model, base, sides)
+    dashpots = (("sides",) if sides == "lysmer" else ()) + (
+        ("bottom",) if base == "compliant" else ())
+    incident = incident_load(model, options.wave) if base == "compliant" else None
+    return Ground(base, sides, fixed, np.setdiff1d(static_fixed(model), fixed), x_dofs(model),
+                  dashpots, incident, held_horizontally(model))
 
 
 def boundaries(model, options) -> tuple[str, str]:

@@ -47,17 +47,16 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...time_schemes import NewmarkCoefficients, hht
-from . import ground
 from .result import DynamicResult, Recorder
 from ..contact.footing import ContactError
-from .ground import static_fixed, x_dofs, ground_velocity
+from .ground import gravity_state, ground_velocity
 from .iteration_matrix import FrozenTangent, dynamic_model, soil_residual
 from ..statics.newton import Anderson, Control, ConvergenceError, FootingTerm, SoilTerm, equilibrium
 from .run_control import BearingFailure, keeping_what_ran, settled_to_failure
 from .step_rules import implicit_settings
 from .superstructure import (eliminate_story, hht_form, story_deformation, structure_matrices,
                              structure_work)
-from .waves import COURANT_LIMIT, dashpot_data, incident_load, mass_data
+from .waves import COURANT_LIMIT, dashpot_data, mass_data
 
 __all__ = ["Kinematics", "run_implicit", "ImplicitRun"]
 
@@ -89,15 +88,16 @@ class Kinematics:
                 -c.c0 * self.d + c.c1 * self.v + c.c2 * self.a)
 
 
-def run_implicit(model, scene, motion, options, *, progress=None) -> DynamicResult:
+def run_implicit(model, scene, motion, options, ground, *, progress=None) -> DynamicResult:
     """Gravity, then ``motion`` by HHT-α (module docstring); the arguments and the result are
-    those of :func:`~upliftlab.continuum.dynamics.run.run_dynamic`, which checks the energy."""
-    settings = implicit_settings(model, scene, motion, options)
+    those of :func:`~upliftlab.continuum.dynamics.run.run_dynamic`, which checks the energy and
+    passes the run's ``ground`` (its :class:`~upliftlab.continuum.dynamics.ground.Ground`)."""
+    settings = implicit_settings(model, scene, motion, options, ground)
     started = _time.perf_counter()
-    static = ground.gravity_state(model, scene, options, settings.prescribe_u)
-    dyn = dynamic_model(model, settings)
-    frozen = dyn if model.linear else dynamic_model(model, settings, FrozenTangent)
-    run = ImplicitRun(dyn, frozen, scene, motion, options, settings, static)
+    static = gravity_state(model, scene, options, settings.prescribe_u)
+    dyn = dynamic_model(model, ground.fixed)
+    frozen = dyn if model.linear else dynamic_model(model, ground.fixed, FrozenTangent)
+    run = ImplicitRun(dyn, frozen, scene, motion, options, settings, static, ground)
     result = run.loop(progress)
     result.metadata["wall_time_s"] = _time.perf_counter() - started
     return result
@@ -106,32 +106,29 @@ def run_implicit(model, scene, motion, options, *, progress=None) -> DynamicResu
 class ImplicitRun:
     """The time loop's constant pieces and its mutable state."""
 
-    def __init__(self, dyn, frozen, scene, motion, options, settings, static):
+    def __init__(self, dyn, frozen, scene, motion, options, settings, static, ground):
         self.dyn, self.frozen, self.scene, self.motion = dyn, frozen, scene, motion
         self.options, self.settings = options, settings
         self.c = hht(settings.alpha, settings.dt)
         c, alpha = self.c, settings.alpha
         pattern = dyn.disc.pattern
         self.M = pattern.matrix(mass_data(dyn, options.mass or "consistent"))
-        boundaries = (["sides"] if settings.sides == "lysmer" else []) + (
-            ["bottom"] if settings.base == "compliant" else [])
-        self.C = pattern.matrix(dashpot_data(dyn, boundaries))
+        self.C = pattern.matrix(dashpot_data(dyn, ground.dashpots))
         self.soil_data = c.a0 / (1.0 + alpha) * self.M.data + c.c0 * self.C.data
         self.soil_matrix = pattern.matrix(self.soil_data)
         self.C = self.C.copy()  # its own index arrays: the pattern's are shared
         self.C.eliminate_zeros()  # a box without dashpots: its products then cost nothing
-        released = np.setdiff1d(static_fixed(dyn), dyn.blocks.fixed)
         R0 = soil_residual(dyn, static.stress)
         self.release = np.zeros(dyn.disc.ndofs)
-        self.release[released] = R0[released]
-        if settings.base == "rigid":
+        self.release[ground.released] = R0[ground.released]
+        if ground.incident is None:  # a rigid base: the relative formulation
             r = np.zeros(dyn.disc.ndofs)
-            r[x_dofs(dyn)] = 1.0
+            r[ground.x] = 1.0
             self.ground_soil = -(self.M @ r)       # per unit a_g (length/s²)
             self.incident = np.zeros(dyn.disc.ndofs)
         else:
             self.ground_soil = np.zeros(dyn.disc.ndofs)
-            self.incident = incident_load(dyn, options.wave)  # per unit incident velocity
+            self.incident = ground.incident  # per unit incident velocity
         self.z = structure_matrices(scene)
         self.ground_z = -(self.z.M @ self.z.r) if settings.base == "rigid" else np.zeros(4)
         self.g = scene.g

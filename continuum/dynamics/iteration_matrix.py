@@ -28,7 +28,6 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from .. import assembly
-from .ground import dynamic_fixed
 from ..materials import plane_strain_stress, plane_strain_tangent
 from .kernel_response import KernelResponse
 from ..model import ContinuumModel, Response, evaluated, make_blocks, node_groups
@@ -102,10 +101,9 @@ def elastic_plane_tangent(model) -> np.ndarray:
     return np.ascontiguousarray(np.broadcast_to(D[..., None, None], (3, 3) + model.disc.qp_shape))
 
 
-def dynamic_model(model, settings, cls=ContinuumModel):
-    """The model with the blocks of a dynamic run of ``settings`` (its ``base`` and ``sides``
-    hold the DOFs :func:`~upliftlab.continuum.dynamics.ground.dynamic_fixed` names), as ``cls``."""
-    fixed = dynamic_fixed(model, settings.base, settings.sides)
+def dynamic_model(model, fixed, cls=ContinuumModel):
+    """The model with the blocks of a dynamic run that holds the DOFs ``fixed`` (a
+    :class:`~upliftlab.continuum.dynamics.ground.Ground`'s), as ``cls``."""
     contact = model.footing.contact_dofs
     basis = model.disc.basis
     interior = np.setdiff1d(np.arange(model.disc.ndofs), np.union1d(fixed, contact))

@@ -27,7 +27,7 @@ from ...progress import steps_progress
 from ...time_schemes import NewmarkCoefficients, hht
 from .options import SCHEMES, DynamicOptions
 from .result import ENERGY, DynamicResult
-from .ground import boundaries, dynamic_fixed
+from .ground import Ground, boundaries, dynamic_fixed, dynamic_ground
 from .implicit import run_implicit
 from .run_control import check_energy, energy_floor
 from .step_rules import MIN_SHEAR_COURANT
@@ -38,7 +38,8 @@ from .waves import (COURANT_LIMIT, dashpot_data, incident_load, mass_data, small
 __all__ = ["DynamicOptions", "DynamicResult", "run_dynamic", "COURANT_LIMIT", "SCHEMES",
            "mass_data", "dashpot_data", "incident_load", "wave_speeds", "smallest_element",
            "time_step_limit", "newmark_parameters", "structure_matrices", "StructureMatrices",
-           "MIN_SHEAR_COURANT", "ENERGY", "boundaries", "dynamic_fixed"]
+           "MIN_SHEAR_COURANT", "ENERGY", "boundaries", "dynamic_fixed", "Ground",
+           "dynamic_ground"]
 
 
 def newmark_parameters(alpha: float, dt: float) -> NewmarkCoefficients:
@@ -75,13 +76,14 @@ def run_dynamic(model, scene, motion, options: DynamicOptions = DynamicOptions()
         raise InputError(f"DynamicOptions.soil_mass_scale = {options.soil_mass_scale:g}: only "
                          "the explicit route scales the soil's mass; valid with the implicit "
                          "route: 1 (or method = 'explicit')")
+    ground = dynamic_ground(model, options)  # how the motion enters: decided once, for both
     with steps_progress(progress, f"continuum dynamics ({method})",
                         postfix=_postfix) as report:
         if method == "explicit":
             from .explicit import run_explicit
-            result = run_explicit(model, scene, motion, options, progress=report)
+            result = run_explicit(model, scene, motion, options, ground, progress=report)
         else:
-            result = run_implicit(model, scene, motion, options, progress=report)
+            result = run_implicit(model, scene, motion, options, ground, progress=report)
     check_energy(result, tolerance, energy_floor(scene, model.width))
     return result
 

@@ -29,7 +29,6 @@ import math
 from dataclasses import dataclass
 
 from ...checks import InputError
-from .ground import boundaries
 from .superstructure import check_superstructure
 from .waves import COURANT_LIMIT, smallest_element, time_step_limit, wave_speeds
 
@@ -53,11 +52,12 @@ class ImplicitSettings:
     limit: float
 
 
-def implicit_settings(model, scene, motion, options) -> ImplicitSettings:
+def implicit_settings(model, scene, motion, options, ground) -> ImplicitSettings:
     """The step, duration and boundaries of an implicit run of ``options`` (a
-    :class:`~upliftlab.continuum.dynamics.options.DynamicOptions`), checked before any work."""
+    :class:`~upliftlab.continuum.dynamics.options.DynamicOptions`) on ``ground`` (its
+    :class:`~upliftlab.continuum.dynamics.ground.Ground`), checked before any work."""
     check_superstructure(scene, motion)
-    base, sides = boundaries(model, options)
+    base, sides = ground.base, ground.sides
     tangential = model.footing.interface.tangential
     if model.options.horizontal_tie is not None:
         raise InputError(f"continuum.horizontal_tie = {model.options.horizontal_tie:g}: the "
