@@ -7,6 +7,7 @@ from pathlib import Path
 
 from ....checks import InputError
 from ....motions import ELCENTRO, Motion, load_motion
+from ....number_text import number_text
 from ....provenance import provenance
 from ....study_files import open_study
 from ...framework.protocol import Context, Study, run_study
@@ -16,6 +17,10 @@ from .conclusions import (conclusion_decay, conclusion_long_period_peak, conclus
                           conclusion_two_springs, conclusion_uplift_beneficial)
 from .records import STUDY, Conclusion, PaperConclusions
 from .responses import paper_responses
+
+#: What an infinite value of a conclusion's evidence means: a decay time of a free vibration
+#: whose energy never stays below the fraction within the run (:func:`.reduced.paper.decay_time`).
+_UNBOUNDED = "not reached within the run"
 
 # ---------------------------------------------------------------------------------------------
 # Study
@@ -115,9 +120,10 @@ def summary_markdown(result: PaperConclusions) -> str:
     for c in result.conclusions:
         lines += [f"## {c.number}. {c.statement}", "", f"**Verdict: {c.verdict}.**", ""]
         for e in c.evidence:
-            values = ", ".join(f"{k} = {v:.4g}" for k, v in e.values.items())
+            values = ", ".join(f"{k} = {number_text(v, '.4g', e.unit, unbounded=_UNBOUNDED)}"
+                               for k, v in e.values.items())
             mark = "supports" if e.supports else "**contradicts**"
-            lines.append(f"- {mark} — {e.source}: {e.says} ({values} {e.unit})")
+            lines.append(f"- {mark} — {e.source}: {e.says} ({values})")
         if c.note:
             lines += ["", f"Note: {c.note}"]
         if c.why:
