@@ -725,7 +725,8 @@ def test_every_bed_code_is_explained_at_its_first_use(reports):
                    and after.startswith(f"</abbr> ({label})"))
         legend = before.rsplit('<p class="legend">', 1)
         in_legend = (len(legend) == 2 and "</p>" not in legend[1]
-                     and before.endswith("<strong>") and after.startswith(f"</strong>: {label}")
+                     and before.endswith("<strong>")
+                     and after.startswith(f"</strong> is the {label}")
                      and after.split("</p>", 1)[1].lstrip().startswith(
                          ('<div class="scroll"><table>', "<table>")))
         assert in_text or in_legend, (entry.short, before[-120:], after[:120])

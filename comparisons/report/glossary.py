@@ -3,7 +3,9 @@ from the bed registry (:data:`..beds.BEDS`: each entry's ``short`` code and ``la
 
 The page's text outside tags, code and scripts is scanned in order. A code first met in
 running text gets its label in parentheses after it; a code first met in a table gets a line
-above the table ("Bed codes in this table: ..."), so the table's cells stay as they are.
+above the table ("Bed codes in this table: ES-b is the ..."; a code and its label are
+separated by words, not a colon: a printed "ES-b:" would be another word than the table's
+"ES-b"), so the table's cells stay as they are.
 Each first use is an ``<abbr>`` whose title is the label.
 """
 
@@ -69,7 +71,7 @@ def explain_codes(page: str) -> str:
                 table_at = _wrapper(out)
             elif tag == "table" and table_at is not None:
                 if in_table:
-                    legend = "; ".join(f"<strong>{c}</strong>: {html.escape(codes[c])}"
+                    legend = "; ".join(f"<strong>{c}</strong> is the {html.escape(codes[c])}"
                                        for c in in_table)
                     out.insert(table_at, f'<p class="legend">Bed codes in this table: '
                                          f"{legend}.</p>")
