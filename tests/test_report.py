@@ -69,6 +69,8 @@ def reports(tmp_path_factory, elcentro):
     return {"out": out, "sources_changed": digests[0] != digests[1], "first": first,
             "second": second, "first_json": first_json,
             "second_json": json.loads((out / "report.json").read_text()),
+            # the whole report's page, before a test writes a smaller report in its folder
+            "page": (out / "report.html").read_text(),
             "records_first": after_first, "records_second": _records(out / "store")}
 
 
@@ -510,7 +512,7 @@ def test_headings_get_unique_ids_that_links_can_use():
 def test_every_link_of_the_report_lands_on_an_element(reports):
     # Every in-page link (the contents, the findings, the anchors, the figures) names an id
     # that the page holds, and no id is given twice.
-    page = (reports["out"] / "report.html").read_text()
+    page = reports["page"]
     ids = re.findall(r'\sid="([^"]+)"', page)
     assert len(ids) == len(set(ids)), [i for i, n in Counter(ids).items() if n > 1][:5]
     targets = {h[1:] for h in re.findall(r'href="(#[^"]*)"', page)}
@@ -663,7 +665,7 @@ def test_no_number_of_the_report_is_printed_as_nan_or_inf(reports):
     # Whatever section writes it, the page a reader sees holds no "nan" or "inf" where a
     # number was meant to be (it printed "Δt = nan s" for refused runs, "R_k = inf" and
     # "B = inf" for a decay never reached).
-    text = _visible((reports["out"] / "report.html").read_text())
+    text = _visible(reports["page"])
     found = [text[max(0, m.start() - 60):m.end() + 20]
              for m in re.finditer(r"(?i)(?<![\w-])[+−-]?(nan|inf|infinity)(?![\w-])", text)]
     assert found == []
@@ -675,7 +677,7 @@ def test_the_report_opens_with_the_three_findings(reports):
     # code) and a figure with an id that a link names.
     from upliftlab.comparisons.beds import BEDS
 
-    page = (reports["out"] / "report.html").read_text()
+    page = reports["page"]
     assert page.index('id="findings"') < page.index('class="status')
     opening = page.split('<section id="findings">', 1)[1].split("</section>", 1)[0]
     text = " ".join(_visible(opening).split())
@@ -709,7 +711,7 @@ def test_every_bed_code_is_explained_at_its_first_use(reports):
     # that first uses it, where the table's cell is the <abbr>.
     from upliftlab.comparisons.beds import BEDS
 
-    page = (reports["out"] / "report.html").read_text()
+    page = reports["page"]
     body = page.split("<body>", 1)[1]
     used = 0
     for entry in BEDS.values():
