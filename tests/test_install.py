@@ -121,6 +121,31 @@ def test_the_closure_follows_markers_and_extras():
     assert "matplotlib" in closure(declared(frozenset({"plot"})))
 
 
+#: The extras that hold the developers' tools, not something a user runs: the docs build and
+#: the test command.
+DEVELOPER_EXTRAS = {"docs", "test"}
+
+
+def test_the_all_extra_installs_every_users_extra():
+    """``upliftlab[all]`` declares every requirement of every other extra a user can use (all
+    but the docs and test tools), and each of them by name (reference: pyproject.toml itself;
+    an extra added later and not named in ``all`` fails this)."""
+    optional = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"][
+        "optional-dependencies"]
+    users = set(optional) - DEVELOPER_EXTRAS - {"all"}
+    assert users >= {"plot", "continuum", "render", "opensees", "records", "dask"}
+    named = set().union(*(Requirement(r).extras for r in optional["all"]
+                          if canonicalize_name(Requirement(r).name) == "upliftlab"))
+    assert named == users
+    everything = {str(r) for r in declared(frozenset({"all"}))}
+    for extra in users:
+        assert {str(r) for r in declared(frozenset({extra}))} <= everything, extra
+    # every extra that a command's refusal names (upliftlab.extras) is a user's extra
+    from upliftlab.extras import EXTRAS
+
+    assert set(EXTRAS.values()) <= users
+
+
 def test_the_core_install_writes_a_result(tmp_path):
     """The writer stack (xarray, h5netcdf, h5py) comes with the core dependencies: a reduced
     run without its figure writes its NetCDF file; its peak reads back."""

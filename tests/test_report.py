@@ -69,6 +69,8 @@ def reports(tmp_path_factory, elcentro):
     return {"out": out, "sources_changed": digests[0] != digests[1], "first": first,
             "second": second, "first_json": first_json,
             "second_json": json.loads((out / "report.json").read_text()),
+            # the whole report's page, before a test writes a smaller report in its folder
+            "page": (out / "report.html").read_text(),
             "records_first": after_first, "records_second": _records(out / "store")}
 
 
@@ -471,16 +473,50 @@ def test_bad_options_are_refused_with_exit_code_2(tmp_path, capsys):
 
 
 def test_markdown_subset():
-    # The converter: headings shifted, tables (with |x| mended), lists, code, no raw HTML, no
-    # links (their text only).
+    # The converter (markdown-it-py, CommonMark with pipe tables): headings shifted with ids,
+    # tables (a literal bar escaped as GFM has it), lists, code, no raw HTML, no links (their
+    # text only).
     text = ("# T\n\nA *b* **c** `d<e>` [x](https://example.org)\n\n- one\n- two\n\n"
-            "| a | |err| |\n|---|---|\n| 1 | pass |\n\n```\n<raw>\n```\n<b>no</b>")
+            "| a | \\|err\\| |\n|---|---|\n| 1 | pass |\n\n```\n<raw>\n```\n<b>no</b>")
     out = rp.markdown_to_html(text, shift=2)
-    assert "<h3>T</h3>" in out and "<em>b</em>" in out and "<strong>c</strong>" in out
-    assert "<code>d&lt;e&gt;</code>" in out and "https" not in out
-    assert "<ul><li>one</li><li>two</li></ul>" in out
+    assert '<h3 id="t">T</h3>' in out and "<em>b</em>" in out and "<strong>c</strong>" in out
+    assert "<code>d&lt;e&gt;</code>" in out and "https" not in out and ">x<" not in out
+    assert re.search(r"<ul>\s*<li>one</li>\s*<li>two</li>\s*</ul>", out)
     assert "<th>|err|</th>" in out and '<span class="ok">pass</span>' in out
     assert "&lt;raw&gt;" in out and "<b>" not in out
+
+
+def test_a_table_with_bars_and_code_keeps_its_cells():
+    # A GFM table whose cells hold escaped bars, inline code with a bar and a bed's code: one
+    # <table> of 1 header row and 2 body rows of exactly 3 cells each (reference: the GFM
+    # specification's tables extension, example 200: "\\|" inside a cell, code included).
+    text = ("| bed | rule | \\|error\\| (%) |\n|---|---|---:|\n"
+            "| `ES-f-I` | `a \\| b` | 1.5 |\n| U-p-G | *k*/w | 12 |\n")
+    out = rp.markdown_to_html(text)
+    assert out.count("<table>") == 1 and out.startswith('<div class="scroll"><table>')
+    rows = re.findall(r"<tr>(.*?)</tr>", out, flags=re.S)
+    assert [len(re.findall(r"<t[hd][ >]", r)) for r in rows] == [3, 3, 3]
+    assert "<code>a | b</code>" in out and "|error| (%)" in out
+    assert '<td class="name">U-p-G</td>' in out
+
+
+def test_headings_get_unique_ids_that_links_can_use():
+    # Each heading's id is its slug (after the caller's prefix), unique within one call.
+    from upliftlab.comparisons.report.markdown import slug
+
+    assert slug("§2 Ewing's stiffness matrix") == "2-ewing-s-stiffness-matrix"
+    out = rp.markdown_to_html("## Results\n\n## Results\n\n### Peak θ", prefix="map-")
+    assert re.findall(r'id="([^"]+)"', out) == ["map-results", "map-results-2", "map-peak-θ"]
+
+
+def test_every_link_of_the_report_lands_on_an_element(reports):
+    # Every in-page link (the contents, the findings, the anchors, the figures) names an id
+    # that the page holds, and no id is given twice.
+    page = reports["page"]
+    ids = re.findall(r'\sid="([^"]+)"', page)
+    assert len(ids) == len(set(ids)), [i for i, n in Counter(ids).items() if n > 1][:5]
+    targets = {h[1:] for h in re.findall(r'href="(#[^"]*)"', page)}
+    assert targets and targets <= set(ids), sorted(targets - set(ids))[:5]
 
 
 def test_a_cell_that_is_one_hyphenated_name_stays_on_one_line():
@@ -597,3 +633,106 @@ def test_the_estimate_is_printed_before_the_first_section_starts(tmp_path, monke
     assert len(progress) == len(rp.STUDIES)
     assert f"{len(progress)}/{len(progress)} sections done" in progress[-1]
     assert "about 0 s left" in progress[-1]
+
+
+def _visible(page: str) -> str:
+    """The page's text as a reader sees it (no tags, styles, scripts or embedded images)."""
+    body = re.sub(r"<(style|script|head)\b.*?</\1>", " ", page, flags=re.S)
+    return html.unescape(re.sub(r"<[^>]+>", " ", body))
+
+
+def test_a_missing_number_is_said_not_printed():
+    # The class of "Δt = nan s": a value that is not a finite number is never formatted as
+    # one. number_text says what is missing; a refused run's label has no step.
+    import math
+
+    from upliftlab.number_text import number_text
+    from upliftlab.comparisons.studies.speed_vs_error.analysis import Run
+    from upliftlab.comparisons.studies.speed_vs_error.summary import short_label
+
+    assert number_text(0.0123456, ".3g", "s") == "0.0123 s"
+    assert number_text(math.nan, ".3g", "s") == "not measured" and number_text(None) == \
+        "not measured"
+    assert number_text(math.inf, unbounded="never") == "never"
+    assert number_text(-math.inf) == "−unbounded"
+    refused = Run("edges", 2, "newmark", math.nan, math.nan, 0, {}, {}, "refused")
+    assert short_label(refused) == "2 springs ±b, newmark, Δt not recorded (the run was refused)"
+    ran = Run("winkler", 10, "events", 0.0025, 0.01, 5, {}, {})
+    assert short_label(ran) == "N = 10, events, Δt = 0.0025 s"
+
+
+def test_no_number_of_the_report_is_printed_as_nan_or_inf(reports):
+    # Whatever section writes it, the page a reader sees holds no "nan" or "inf" where a
+    # number was meant to be (it printed "Δt = nan s" for refused runs, "R_k = inf" and
+    # "B = inf" for a decay never reached).
+    text = _visible(reports["page"])
+    found = [text[max(0, m.start() - 60):m.end() + 20]
+             for m in re.finditer(r"(?i)(?<![\w-])[+−-]?(nan|inf|infinity)(?![\w-])", text)]
+    assert found == []
+
+
+def test_the_report_opens_with_the_three_findings(reports):
+    # The findings come first, above the verification's status box: three paragraphs, each
+    # with the numbers its study wrote (summary.json, read here independently of the report's
+    # code) and a figure with an id that a link names.
+    from upliftlab.comparisons.beds import BEDS
+
+    page = reports["page"]
+    assert page.index('id="findings"') < page.index('class="status')
+    opening = page.split('<section id="findings">', 1)[1].split("</section>", 1)[0]
+    text = " ".join(_visible(opening).split())
+    studies = reports["out"] / "studies"
+
+    def numbers(name):
+        return json.loads((studies / f"{name}-fast" / "summary.json").read_text())["numbers"]
+
+    two, area, speed = (numbers(n) for n in ("two_spring_equivalence", "winkler_map",
+                                             "speed_vs_error"))
+    for k in (1, 2, 3):
+        assert f'id="finding-{k}"' in opening
+    assert f"uplifts at {two['onset_ratio_equivalent_vs_winkler']:.2f} times" in text
+    assert f"caps the moment at {two['capacity_ratio_equivalent_vs_winkler']:.2f}" in text
+    best = BEDS[area["share"]["best"]].short
+    assert f"the best bed, {best}" in text
+    assert f"at {100 * area['share']['best_share']:.1f} % of the points" in text
+    front = text.split("points by integrator: ", 1)[1].split(".", 1)[0].split(", ")
+    assert sorted(front) == sorted(f"{k} {v}" for k, v in
+                                   speed["pareto_points_by_integrator"].items())
+    figures = re.findall(r'<figure id="(finding-fig-[^"]+)"', opening)
+    assert len(figures) == 3, figures
+    for ident in figures:
+        assert f'id="{ident.removeprefix("finding-")}"' in page  # its own copy in its section
+
+
+def test_every_bed_code_is_explained_at_its_first_use(reports):
+    # Every registered bed code that the page uses (in its prose: code spans hold the beds'
+    # long names, "qz" among them) is, at its first use, an <abbr> titled with the registry's
+    # label followed by the label in parentheses, or first in the legend line above the table
+    # that first uses it, where the table's cell is the <abbr>.
+    from upliftlab.comparisons.beds import BEDS
+
+    page = reports["page"]
+    body = page.split("<body>", 1)[1]
+    used = 0
+    for entry in BEDS.values():
+        label = html.escape(entry.label)
+        first = re.search(r"(?<![\w-])" + re.escape(entry.short) + r"(?![\w-])",
+                          re.sub(r"<code>.*?</code>|<[^>]+>", lambda m: " " * len(m.group(0)),
+                                 body, flags=re.S))
+        if first is None:
+            continue
+        used += 1
+        before, after = body[:first.start()], body[first.end():]
+        in_text = (before.endswith(f'<abbr title="{label}">')
+                   and after.startswith(f"</abbr> ({label})"))
+        legend = before.rsplit('<p class="legend">', 1)
+        in_legend = (len(legend) == 2 and "</p>" not in legend[1]
+                     and before.endswith("<strong>")
+                     and after.startswith(f"</strong> is the {label}")
+                     and after.split("</p>", 1)[1].lstrip().startswith(
+                         ('<div class="scroll"><table>', "<table>")))
+        assert in_text or in_legend, (entry.short, before[-120:], after[:120])
+        if in_legend:  # and in the table under it, its first use is titled with the label
+            table = body[first.end():].split('<div class="scroll"><table>', 1)[1]
+            assert f'<abbr title="{label}">{entry.short}</abbr>' in table.split("</table>")[0]
+    assert used >= 8

@@ -20,7 +20,7 @@ from .animation import animation_html
 from .images import data_uri
 from ..framework.study import StudyResult
 
-__all__ = ["records_of", "figure_html", "figures_html"]
+__all__ = ["records_of", "figure_id", "figure_html", "figures_html"]
 
 
 
@@ -37,25 +37,40 @@ def caption_html(record: FigureRecord) -> str:
             f'<span class="conclusion">{html.escape(c.conclusion)}</span></figcaption>')
 
 
-def figure_html(record: FigureRecord) -> str:
-    """One ``<figure>``: the image (or the animation) and its caption; a notice if the image
-    file is gone."""
+def figure_id(study: str, record: FigureRecord) -> str:
+    """The id of ``record``'s figure in ``study``'s section: ``fig-<study>-<file stem>``,
+    unique in the page (a study's figures are files of one folder), so a link can name it."""
+    return f"fig-{study}-{record.image.stem}".replace("_", "-").replace(" ", "-")
+
+
+def _anchored(caption: str, ident: str) -> str:
+    """The caption with a link to its own figure at its end (to copy the figure's address)."""
+    return caption.replace("</figcaption>", f' <a class="anchor" href="#{ident}" '
+                           f'title="link to this figure">#</a></figcaption>')
+
+
+def figure_html(record: FigureRecord, ident: str = "") -> str:
+    """One ``<figure>`` (with the id ``ident``, and a link to itself in its caption, when
+    given): the image (or the animation) and its caption; a notice if the image file is
+    gone."""
+    caption = _anchored(caption_html(record), ident) if ident else caption_html(record)
     if record.frames:
-        return animation_html(record, caption_html(record))
+        return (f'<span id="{ident}"></span>' if ident else "") + animation_html(record, caption)
     if not record.image.is_file():
         return (f'<p class="notice">Figure “{html.escape(record.caption.title)}”: its file '
                 f"{html.escape(record.image.name)} is missing.</p>")
     kind = "plot" if record.vector else "render"
-    return (f'<figure><img class="{kind}" alt="{html.escape(record.caption.title)}" '
-            f'src="{data_uri(record.image)}">{caption_html(record)}</figure>')
+    where = f' id="{ident}"' if ident else ""
+    return (f'<figure{where}><img class="{kind}" alt="{html.escape(record.caption.title)}" '
+            f'src="{data_uri(record.image)}">{caption}</figure>')
 
 
 def figures_html(study: StudyResult) -> str:
-    """Every figure of ``study``: the readable ones in order, then the dense ones behind one
-    expandable section."""
+    """Every figure of ``study``, each with its id (:func:`figure_id`): the readable ones in
+    order, then the dense ones behind one expandable section."""
     records = records_of(study)
-    main = [figure_html(r) for r in records if not r.caption.dense]
-    dense = [figure_html(r) for r in records if r.caption.dense]
+    main = [figure_html(r, figure_id(study.name, r)) for r in records if not r.caption.dense]
+    dense = [figure_html(r, figure_id(study.name, r)) for r in records if r.caption.dense]
     out = "\n".join(main)
     if dense:
         out += (f'\n<details class="dense"><summary>All panels, measure by measure '

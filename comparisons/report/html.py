@@ -12,6 +12,8 @@ from ... import __version__
 from ...provenance import provenance
 from .animation import SCRIPT
 from .figures import figures_html
+from .findings import findings_html
+from .glossary import explain_codes
 from .markdown import markdown_to_html
 from ..framework.study import StudyResult
 
@@ -66,6 +68,8 @@ figure{margin:14px 0 22px}figure img{display:block;max-width:100%;height:auto}
 figure img.plot{width:100%;max-width:840px}figure img.render{border:1px solid #e3e6eb}
 figcaption{font-size:13px;color:#3d4452;max-width:840px;margin-top:4px}
 figcaption .conclusion{color:#1d2330;font-weight:600}
+figcaption a.anchor{color:#8a93a3;text-decoration:none}p.legend{font-size:13px;color:#3d4452}
+abbr[title]{text-decoration:underline dotted}
 details.dense{margin:10px 0 18px;border:1px solid #d6dae1;padding:6px 12px;background:#fafbfc}
 details.dense>summary{cursor:pointer;font-weight:600}
 figure.anim .slider{display:flex;gap:12px;align-items:center;font-size:13px;margin:6px 0}
@@ -166,7 +170,7 @@ def _section_html(s: Section) -> str:
                  f"{where}.</p>")
     if s.name == "verification":
         return "".join(parts) + _verification_tables(study)
-    parts.append(markdown_to_html(_without_title(study.summary), shift=2))
+    parts.append(markdown_to_html(_without_title(study.summary), shift=2, prefix=f"{s.name}-"))
     parts.append(figures_html(study))
     return "".join(parts)
 
@@ -184,13 +188,16 @@ def _anchors_appendix() -> str:
     not contain."""
     return ('<h2 id="anchors">Appendix: the verification anchors</h2>'
             '<p class="meta">"anchor §N" in the tables refers to the sections below.</p>'
-            + markdown_to_html(_without_title(anchors_text()), shift=1))
+            + markdown_to_html(_without_title(anchors_text()), shift=1, prefix="anchor-"))
 
 
 def _without_title(markdown: str) -> str:
     """The summary without its first ``# `` heading (the section has its own)."""
     lines = markdown.lstrip().split("\n")
     return "\n".join(lines[1:]) if lines and lines[0].startswith("# ") else markdown
+
+
+_SPLIT = "<!-- the opening ends here -->"
 
 
 def render_html(sections: Sequence[Section], *, fast: bool, passed: bool,
@@ -215,7 +222,7 @@ def render_html(sections: Sequence[Section], *, fast: bool, passed: bool,
         kind = "missing" if s.status == "missing" else "failed"
         status_lines.append(f"<br>Section “{html.escape(s.title)}”: {kind} "
                             f"({html.escape(s.error.split(chr(10), 1)[0][:200])}).")
-    items = []
+    items = ['<li><a href="#findings">What the studies found</a></li>']
     for s in sections:
         flag = "" if s.status == "ok" else f' <small class="note">({s.status})</small>'
         items.append(f'<li><a href="#{s.name}">{html.escape(s.title)}</a>{flag}</li>')
@@ -223,7 +230,10 @@ def render_html(sections: Sequence[Section], *, fast: bool, passed: bool,
             items.append('<li><a href="#orders">Observed convergence orders</a></li>')
     items.append('<li><a href="#anchors">Appendix: the verification anchors</a></li>')
     nav = "".join(items)
-    body = "".join(_section_html(s) for s in sections) + _anchors_appendix()
+    # the findings open the page, above the status box; bed codes are explained at their
+    # first use in the page's order
+    opening, body = explain_codes(findings_html(sections) + _SPLIT + "".join(
+        _section_html(s) for s in sections) + _anchors_appendix()).split(_SPLIT, 1)
     return (
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
@@ -235,6 +245,7 @@ def render_html(sections: Sequence[Section], *, fast: bool, passed: bool,
         f"(Python {html.escape(str(prov['python']))}, numpy {html.escape(str(prov['numpy']))})"
         f" in {elapsed:.1f} s. {'Fast mode: small grids and coarse meshes.' if fast else ''}"
         "</p>"
+        f"{opening}"
         f'<div class="status{"" if passed else " failing"}">{" ".join(status_lines)}</div>'
         f"<nav><ol>{nav}</ol></nav>{body}</main>"
         + (SCRIPT if 'class="anim"' in body else "") + "</body></html>\n")

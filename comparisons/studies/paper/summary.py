@@ -4,10 +4,15 @@ values, and the record)."""
 
 from __future__ import annotations
 
+from ....number_text import number_text
 from .dataset import conclusions_of
 from .records import Conclusion
 
 __all__ = ["summarise", "key_numbers", "conclusion_numbers"]
+
+#: What an infinite value of a conclusion's evidence means: a decay time of a free vibration
+#: whose energy never stays below the fraction within the run (:func:`.reduced.paper.decay_time`).
+_UNBOUNDED = "not reached within the run"
 
 
 def conclusion_numbers(c: Conclusion) -> dict:
@@ -37,9 +42,10 @@ def summarise(ds) -> str:
     for c in conclusions:
         lines += [f"## {c.number}. {c.statement}", "", f"**Verdict: {c.verdict}.**", ""]
         for e in c.evidence:
-            values = ", ".join(f"{k} = {v:.4g}" for k, v in e.values.items())
+            values = ", ".join(f"{k} = {number_text(v, '.4g', e.unit, unbounded=_UNBOUNDED)}"
+                               for k, v in e.values.items())
             mark = "supports" if e.supports else "**contradicts**"
-            lines.append(f"- {mark} — {e.source}: {e.says} ({values} {e.unit})")
+            lines.append(f"- {mark} — {e.source}: {e.says} ({values})")
         if c.note:
             lines += ["", f"Note: {c.note}"]
         if c.why:

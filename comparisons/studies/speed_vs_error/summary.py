@@ -106,7 +106,9 @@ def short_label(p: Run) -> str:
     model = {"edges": "2 springs ±b", "equivalent": "2 springs ±b/√3",
              "continuum": f"continuum {p.springs} elements across"}.get(p.model,
                                                                           f"N = {p.springs}")
-    return f"{model}, {p.integrator}, Δt = {p.dt:.3g} s"
+    step = (f"Δt = {p.dt:.3g} s" if math.isfinite(p.dt)
+            else "Δt not recorded (the run was refused)")
+    return f"{model}, {p.integrator}, {step}"
 
 
 def _continuum_lines(ds, scenes: dict) -> list[str]:
@@ -205,7 +207,7 @@ def summary_markdown(ds, scenes: dict, numbers: dict, elapsed: float) -> str:
     lines += ["", "## Pareto fronts", "", "Points on the fronts (all scenes and quantities) by "
               "integrator: " + ", ".join(f"{n} {c}" for n, c in tally.items()) + ".", ""]
     for label, points in scenes.items():
-        lines += [f"### {label} — peak u", "", "| runtime (ms) | |error| | discretization |",
+        lines += [f"### {label} — peak u", "", r"| runtime (ms) | \|error\| | discretization |",
                   "|---|---|---|"]
         lines += [f"| {p.runtime * 1e3:.3g} | {_pct(p.abs_error('u'))} | {short_label(p)} |"
                   for p in front(points, "u")]

@@ -5,6 +5,7 @@ each bed is than the continuum."""
 
 from __future__ import annotations
 
+import textwrap
 import warnings
 from pathlib import Path
 
@@ -30,62 +31,80 @@ def write_figures(ds, analysis, directory: Path) -> list[Path]:
     return files
 
 
+#: Panels per row of an error map: the map's ten beds in two rows per soil, so that the
+#: figure stays near a page's proportions (it was one strip of 20 panels, 2,756 × 474 px,
+#: whose long titles overlapped).
+MAP_COLUMNS = 5
+#: An error map's width (in): the report's figure width (840 px at 110 dpi is 7.6 in).
+MAP_WIDTH_IN = 8.0
+
+
 def _error_map(ds, path: Path, measure: str) -> Path:
     """|error| over FS_v × h/B: the median over the motions, the worst over the periods and
-    intensities; one row per soil, one panel per calibration; contours at 10 and 20 %."""
+    intensities; one group of rows per soil, one panel per calibration; contours at 10 and
+    20 %."""
     med = median_over_motions(ds)[..., MEASURES.index(measure)]
     with np.errstate(all="ignore"), warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # a cell whose every run failed: NaN
         worst = np.nanmax(med, axis=(3, 4)) if np.isfinite(med).any() else med[:, :, :, 0, 0]
     x = Axis("fs_v", "FS_v", names(ds, "fs_v"))
     y = Axis("h_over_B", "h/B", names(ds, "h_over_B"))
-    rows = [[(f"{soil}: {name}", worst[s, :, :, c].T)
-             for c, name in enumerate(names(ds, "calibration"))]
-            for s, soil in enumerate(names(ds, "soil"))]
+    beds = names(ds, "calibration")
+    groups = [(soil, [(name, worst[s, :, :, c].T) for c, name in enumerate(beds)])
+              for s, soil in enumerate(names(ds, "soil"))]
     soils = "; ".join(SOIL_LABELS[s] for s in names(ds, "soil"))
     title = (f"|bed − continuum| / continuum in {MEASURE_LABELS[measure]}: median over "
              f"{ds.sizes['motion']} motions, worst over T and intensity\n({soils})")
-    return _heat_maps(path, title, x, y, rows)
+    return write_figure(path, error_map_figure(title, x, y, groups))
 
 
-def _heat_maps(path: Path, title: str, x: Axis, y: Axis, rows) -> Path:
-    """Panels of |error| (%) on an index grid (log colour scale 1–100 %, viridis), each cell
-    annotated, contours at 10 % (white) and 20 % (red) where the grid allows them."""
+def error_map_figure(title: str, x: Axis, y: Axis, groups):
+    """The figure of an error map: ``groups`` is ``[(soil, [(calibration, errors), ...])]``,
+    ``errors`` an array over (y, x) of relative errors. Each soil's panels fill rows of
+    :data:`MAP_COLUMNS`, each titled by its bed's code with the soil at the row's left; the
+    codes are spelled out under the panels. Panels of |error| (%) on an index grid (log colour
+    scale 1–100 %, viridis), each cell annotated, contours at 10 % (white) and 20 % (red)
+    where the grid allows them."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.colors import LogNorm
 
-    nrows, ncols = len(rows), max(len(r) for r in rows)
-    fig, axes = plt.subplots(nrows, ncols, figsize=(2.4 * ncols + 1.0, 1.0 + 1.6 * nrows),
-                             squeeze=False, constrained_layout=True)
+    ncols = min(MAP_COLUMNS, max(len(panels) for _, panels in groups))
+    layout = [(soil, panels[k:k + ncols]) for soil, panels in groups
+              for k in range(0, len(panels), ncols)]
+    fig, axes = plt.subplots(len(layout), ncols, squeeze=False, constrained_layout=True,
+                             figsize=(MAP_WIDTH_IN, 1.3 + 1.45 * len(layout)))
     norm, image = LogNorm(vmin=1.0, vmax=100.0), None
-    for r, row in enumerate(rows):
-        for c, (name, errors) in enumerate(row):
+    for r, (soil, panels) in enumerate(layout):
+        for c, (name, errors) in enumerate(panels):
             ax = axes[r][c]
             percent = np.clip(100.0 * np.abs(np.asarray(errors, dtype=float)), 1.0, 100.0)
             image = ax.imshow(percent, norm=norm, cmap="viridis", origin="lower",
                               aspect="auto", interpolation="nearest")
             if min(percent.shape) >= 2 and np.isfinite(percent).any():
                 ax.contour(np.arange(percent.shape[1]), np.arange(percent.shape[0]), percent,
-                           levels=[10.0, 20.0], colors=["white", "red"], linewidths=1.2)
+                           levels=[10.0, 20.0], colors=["white", "red"], linewidths=1.0)
             for j, i in zip(*np.nonzero(np.isfinite(percent))):
                 ax.text(i, j, f"{percent[j, i]:.2g}" if percent[j, i] < 99.5 else "≥100",
-                        ha="center", va="center", fontsize=8,
+                        ha="center", va="center", fontsize=6,
                         color="white" if percent[j, i] < 10 else "black")
-            ax.set_title(name, fontsize=9)
-            ax.set_xticks(range(len(x.values)), [f"{v:g}" for v in x.values], fontsize=8)
-            ax.set_yticks(range(len(y.values)), [f"{v:g}" for v in y.values], fontsize=8)
-            ax.set_xlabel(x.label, fontsize=8)
+            ax.set_title(_short(name), fontsize=8.5)
+            ax.set_xticks(range(len(x.values)), [f"{v:g}" for v in x.values], fontsize=7)
+            ax.set_yticks(range(len(y.values)), [f"{v:g}" for v in y.values], fontsize=7)
+            ax.set_xlabel(x.label, fontsize=7, labelpad=1)
             if c == 0:
-                ax.set_ylabel(y.label, fontsize=8)
-        for c in range(len(row), ncols):
+                ax.set_ylabel(f"{soil}\n{y.label}", fontsize=8)
+        for c in range(len(panels), ncols):
             axes[r][c].set_visible(False)
     if image is not None:
-        fig.colorbar(image, ax=axes, label="|relative error| (%)", shrink=0.9)
+        fig.colorbar(image, ax=axes, label="|relative error| (%)", shrink=0.6)
     fig.suptitle(title, fontsize=9)
-    return write_figure(path, fig)
+    beds = dict.fromkeys(name for _, panels in groups for name, _ in panels)
+    fig.supxlabel(textwrap.fill("; ".join(_legend_label(n) for n in beds), 150,
+                                  break_on_hyphens=False), fontsize=6.5)
+    return fig
 
 
 def _short(name: str) -> str:

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 
+from ....number_text import number_text
 from ...beds.pushover import FLOORS
 from .analysis import ErrorTable, pct, signed_pct
 from .dataset import texts
@@ -85,7 +86,8 @@ def _calibration_lines(r: Reading) -> list[str]:
     R_e, stiff = end.end_length.item(), end_stiffening(ds)
     lines += ["", (f"End stiffening (R_e = {R_e:.4g} b, i.e. end zones of "
                    f"{R_e * ds.B.item() / 2:.4g} {u.length} at each edge): target "
-                   f"K_r/K_v = {stiff['target']:.4g}, solved R_k = {stiff['exact']:.6g}; "
+                   f"K_r/K_v = {stiff['target']:.4g}, solved R_k = "
+                   f"{number_text(stiff['exact'], '.6g', unbounded='none (no finite R_k)')}; "
                    + ("feasible." if stiff["feasible"] else
                       f"**infeasible** — {end.note.item()}."))]
     return lines
