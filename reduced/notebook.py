@@ -14,8 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..checks import InputError
-from ..notebook import check_variables, digest_line, html_table, new_figure, number
+from ..notebook import check_variables, digest_line, html_table, number, panel_axes
 
 __all__ = ["PANELS", "panel_data", "response_plot", "response_html"]
 
@@ -46,23 +45,12 @@ def panel_data(response, name: str) -> tuple[np.ndarray, np.ndarray, str, str]:
             f"overturning moment M [{u.force}·{u.length}]")
 
 
-def _axes(ax, count: int):
-    if ax is None:
-        fig = new_figure(7.0, 1.9 * count + 0.6)
-        return fig, list(fig.subplots(count, 1, squeeze=False)[:, 0])
-    axes = [ax] if hasattr(ax, "plot") else list(ax)
-    if len(axes) != count:
-        raise InputError(f"ax: {len(axes)} axes for {count} panels (give one axis per "
-                         "variable)")
-    return axes[0].figure, axes
-
-
 def response_plot(response, variables=None, ax=None):
     """The figure of ``response``'s panels ``variables`` (module docstring), drawn on new axes
     or on ``ax`` (one matplotlib axis per variable)."""
     fixed = response.model.layout is None
     chosen = check_variables(variables, PANELS, FIXED_DEFAULT if fixed else FOUNDATION_DEFAULT)
-    fig, axes = _axes(ax, len(chosen))
+    fig, axes = panel_axes(ax, len(chosen))
     for axis, name in zip(axes, chosen):
         x, y, xlabel, ylabel = panel_data(response, name)
         axis.plot(x, y, lw=0.9, label=name)

@@ -20,7 +20,8 @@ import math
 from .checks import InputError
 from .progress import in_kernel
 
-__all__ = ["new_figure", "html_table", "digest_line", "number", "check_variables"]
+__all__ = ["new_figure", "panel_axes", "html_table", "digest_line", "number",
+           "check_variables"]
 
 
 def _matplotlib():
@@ -55,6 +56,19 @@ def new_figure(width: float, height: float, *, dpi: float | None = None,
     import matplotlib.pyplot as plt
 
     return plt.figure(figsize=(width, height), dpi=dpi, layout=layout)
+
+
+def panel_axes(ax, count: int):
+    """(figure, axes): ``count`` stacked panels on a new figure (7 in wide, 1.9 in per
+    panel), or the user's ``ax`` (one matplotlib axis per panel, else an InputError)."""
+    if ax is None:
+        fig = new_figure(7.0, 1.9 * count + 0.6)
+        return fig, list(fig.subplots(count, 1, squeeze=False)[:, 0])
+    axes = [ax] if hasattr(ax, "plot") else list(ax)
+    if len(axes) != count:
+        raise InputError(f"ax: {len(axes)} axes for {count} panels (give one axis per "
+                         "variable)")
+    return axes[0].figure, axes
 
 
 def check_variables(variables, valid: tuple[str, ...], default: tuple[str, ...]) -> tuple:

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from ...results import write_dataset
+from ..output.views import NotebookViews
 from ..output.fields import (element_average, field_coordinates, max_shear_stress,
                              result_metadata)
 from ..contact.footing import OPEN
@@ -26,7 +27,7 @@ ENERGY = ("kinetic", "strain", "damping", "input", "contact")
 
 
 @dataclass(frozen=True, eq=False)
-class DynamicResult:
+class DynamicResult(NotebookViews):
     """Histories of a dynamic run, one row per step (row 0: the static state at t = 0).
 
     ``time`` (s); ``footing`` (nt, 3) u, v (up), θ (rad) relative to the base (rigid base) or
@@ -117,30 +118,6 @@ class DynamicResult:
                 f"{self.time[-1]:.4g} s, peak |theta| = {np.max(np.abs(self.footing[:, 2])):.4g}"
                 f" rad, settlement at the end = {-self.footing[-1, 1]:.4g} {length}, "
                 f"{self.snapshot_step.size} snapshots, B = {self.width:g} {length}{incomplete}>")
-
-    def plot(self, variables=None, ax=None):
-        """A matplotlib figure of the run (nothing written): the panels ``variables`` (names
-        of :data:`~upliftlab.continuum.output.notebook.PANELS`; default by kind), on new axes
-        or on ``ax`` (one axis per panel)."""
-        from ..output.notebook import result_plot
-
-        return result_plot(self, variables, ax)
-
-    def render(self, model, snapshot: int | None = None, *, scale: float | None = None,
-               title: str | None = None):
-        """A matplotlib figure of the soil picture at snapshot index ``snapshot`` (default:
-        the one of largest |θ|): the deformed soil coloured by plastic strain, the footing,
-        and the contact pressure and gap along the base; ``model`` is the model the result was
-        computed on (:func:`~upliftlab.continuum.output.notebook.render_result`)."""
-        from ..output.notebook import render_result
-
-        return render_result(self, model, snapshot, scale=scale, title=title)
-
-    def _repr_html_(self) -> str:
-        """The notebook's table: kind, scene, span, peaks with units, code digest."""
-        from ..output.notebook import result_html
-
-        return result_html(self)
 
     def to_xarray(self):
         """The footing's histories and its contact along the base as an

@@ -21,7 +21,8 @@ import numpy as np
 
 from ...checks import InputError
 from ...meshes.frames import snapshot_rows, units_of
-from ...notebook import check_variables, digest_line, html_table, new_figure, number
+from ...notebook import (check_variables, digest_line, html_table, new_figure, number,
+                         panel_axes)
 
 __all__ = ["PANELS", "panel_data", "result_plot", "result_html", "render_result",
            "figure_title"]
@@ -73,22 +74,11 @@ def panel_data(result, name: str) -> tuple[np.ndarray, np.ndarray, str, str]:
         f"N{_unit(force)}"
 
 
-def _axes(ax, count: int):
-    if ax is None:
-        fig = new_figure(7.0, 1.9 * count + 0.6)
-        return fig, list(fig.subplots(count, 1, squeeze=False)[:, 0])
-    axes = [ax] if hasattr(ax, "plot") else list(ax)
-    if len(axes) != count:
-        raise InputError(f"ax: {len(axes)} axes for {count} panels (give one axis per "
-                         "variable)")
-    return axes[0].figure, axes
-
-
 def result_plot(result, variables=None, ax=None):
     """The figure of ``result``'s panels ``variables`` (module docstring), on new axes or on
     ``ax`` (one matplotlib axis per variable)."""
     chosen = check_variables(variables, PANELS, _default(result))
-    fig, axes = _axes(ax, len(chosen))
+    fig, axes = panel_axes(ax, len(chosen))
     static = _static(result)
     for axis, name in zip(axes, chosen):
         x, y, xlabel, ylabel = panel_data(result, name)

@@ -11,12 +11,13 @@ from pathlib import Path
 import numpy as np
 
 from ...results import write_dataset, write_netcdf
+from ..output.views import NotebookViews
 
 __all__ = ["StaticPath", "UpliftOnset", "Envelope"]
 
 
 @dataclass(frozen=True, eq=False)
-class StaticPath:
+class StaticPath(NotebookViews):
     """Histories of a static analysis, one entry per converged step.
 
     ``u``, ``v`` (length), ``theta`` (rad) of the footing; ``H``, ``N``, ``M`` it carries;
@@ -62,30 +63,6 @@ class StaticPath:
     dof_xy: np.ndarray | None = field(default=None, repr=False)
     dof_direction: np.ndarray | None = field(default=None, repr=False)
     element_xy: np.ndarray | None = field(default=None, repr=False)
-
-    def plot(self, variables=None, ax=None):
-        """A matplotlib figure of the run (nothing written): the panels ``variables`` (names
-        of :data:`~upliftlab.continuum.output.notebook.PANELS`; default by kind), on new axes
-        or on ``ax`` (one axis per panel)."""
-        from ..output.notebook import result_plot
-
-        return result_plot(self, variables, ax)
-
-    def render(self, model, snapshot: int | None = None, *, scale: float | None = None,
-               title: str | None = None):
-        """A matplotlib figure of the soil picture at snapshot index ``snapshot`` (default:
-        the one of largest |θ|): the deformed soil coloured by plastic strain, the footing,
-        and the contact pressure and gap along the base; ``model`` is the model the result was
-        computed on (:func:`~upliftlab.continuum.output.notebook.render_result`)."""
-        from ..output.notebook import render_result
-
-        return render_result(self, model, snapshot, scale=scale, title=title)
-
-    def _repr_html_(self) -> str:
-        """The notebook's table: kind, scene, span, peaks with units, code digest."""
-        from ..output.notebook import result_html
-
-        return result_html(self)
 
     def to_xarray(self):
         """The path as an :class:`xarray.Dataset` over its load step with CF attributes
