@@ -56,7 +56,6 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import math
-import time as _time
 
 import numba
 import numpy as np
@@ -71,7 +70,7 @@ from .explicit_step import (COURANT_ESTIMATE, STABILITY_FRACTION, ExplicitSettin
                             explicit_settings, explicit_setup, lumped_dashpots, lumped_mass,
                             recorded_steps)
 from ..contact.footing import OPEN, STICK
-from .ground import free_field_motion, gravity_state, ground_velocity
+from .ground import free_field_motion, ground_velocity
 from .iteration_matrix import soil_residual
 from .kernels import soil_predict
 from ..statics.newton import ConvergenceError
@@ -82,7 +81,7 @@ from .superstructure import (MIN_ROTARY_INERTIA, central_difference_form, check_
 
 __all__ = ["STABILITY_FRACTION", "ExplicitSettings", "lumped_mass", "lumped_dashpots",
            "critical_step", "check_footing_mass", "MIN_ROTARY_INERTIA", "explicit_settings",
-           "run_explicit", "COURANT_ESTIMATE", "recorded_steps"]
+           "ExplicitRoute", "COURANT_ESTIMATE", "recorded_steps"]
 
 #: Run frictionless contact with a compiled material in the compiled loop
 #: (:mod:`~upliftlab.continuum.dynamics.explicit_loop`; False: the Python loop, for comparison).
@@ -125,29 +124,35 @@ class _Structure:
         self.d, self.v = z, v
 
 
-def run_explicit(model, scene, motion, options, ground, *, progress=None) -> DynamicResult:
-    """Gravity, then ``motion`` by central differences (module docstring); the arguments and
-    the result are those of :func:`~upliftlab.continuum.dynamics.run.run_dynamic`, which
-    passes the run's ``ground`` (its :class:`~upliftlab.continuum.dynamics.ground.Ground`)."""
-    base, sides = ground.base, ground.sides
-    if options.soil_mass_scale != 1.0 and (base != "rigid" or sides == "lysmer"):
-        raise InputError(f"DynamicOptions.soil_mass_scale = {options.soil_mass_scale:g}: a "
-                         f"scaled soil mass with base {base!r} and sides {sides!r} would keep "
-                         "the dashpots of the unscaled soil; valid there: 1 (a scaled mass "
-                         "needs a rigid base and sides without dashpots)")
-    settings, mass, dashpots = explicit_setup(model, scene, motion, options, ground)
-    started = _time.perf_counter()
-    static = gravity_state(model, scene, options, not model.footing.interface.tangential)
-    threads = numba.get_num_threads()
-    numba.set_num_threads(min(options.threads, numba.config.NUMBA_NUM_THREADS))
-    try:
-        run = _Explicit(model, scene, motion, options, settings, static, mass, dashpots,
-                        ground)
-        result = run.loop(progress)
-    finally:
-        numba.set_num_threads(threads)
-    result.metadata["wall_time_s"] = _time.perf_counter() - started
-    return result
+class ExplicitRoute:
+    """The explicit route of a run (module docstring), planned before any work: its settings,
+    the soil's lumped mass and the dashpots (:func:`~.explicit_step.explicit_setup`), all
+    checked here; :meth:`run` integrates from the gravity state that
+    :func:`~upliftlab.continuum.dynamics.run.run_dynamic` makes for either route."""
+
+    def __init__(self, model, scene, motion, options, ground):
+        base, sides = ground.base, ground.sides
+        if options.soil_mass_scale != 1.0 and (base != "rigid" or sides == "lysmer"):
+            raise InputError(f"DynamicOptions.soil_mass_scale = {options.soil_mass_scale:g}: "
+                             f"a scaled soil mass with base {base!r} and sides {sides!r} would "
+                             "keep the dashpots of the unscaled soil; valid there: 1 (a scaled "
+                             "mass needs a rigid base and sides without dashpots)")
+        self.model, self.scene, self.motion, self.options = model, scene, motion, options
+        self.ground = ground
+        self.settings, self.mass, self.dashpots = explicit_setup(model, scene, motion, options,
+                                                                 ground)
+
+    def run(self, static, progress=None) -> DynamicResult:
+        """The time histories from the gravity state ``static`` (``progress`` as
+        :func:`~upliftlab.continuum.dynamics.run.run_dynamic` takes it)."""
+        threads = numba.get_num_threads()
+        numba.set_num_threads(min(self.options.threads, numba.config.NUMBA_NUM_THREADS))
+        try:
+            run = _Explicit(self.model, self.scene, self.motion, self.options, self.settings,
+                            static, self.mass, self.dashpots, self.ground)
+            return run.loop(progress)
+        finally:
+            numba.set_num_threads(threads)
 
 
 class _Explicit:
@@ -166,14 +171,14 @@ class _Explicit:
         release = np.zeros(n)
         release[ground.released] = R0[ground.released]
         self.datum = model.body_force + release  # R = f_int − datum
-        if ground.incident is None:  # a rigid base: the relative formulation
+        if ground.waves.incident is None:  # a rigid base: the relative formulation
             r = np.zeros(n)
             r[ground.x] = 1.0
             self.ground_soil = -(mass * r) * self.keep
             self.incident = np.zeros(n)
         else:
             self.ground_soil = np.zeros(n)
-            self.incident = ground.incident * self.keep
+            self.incident = ground.waves.incident * self.keep
         self.z = structure_matrices(scene)
         ground_z = -(self.z.M @ self.z.r) if settings.base == "rigid" else np.zeros(4)
         self.vg = ground_velocity(motion, settings.dt, settings.steps + 1)

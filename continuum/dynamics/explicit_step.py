@@ -24,7 +24,7 @@ from ...checks import InputError
 from .. import setup_cache
 from .iteration_matrix import elastic_plane_tangent
 from .superstructure import check_footing_mass, check_superstructure
-from .waves import dashpot_data, full_basis, time_step_limit
+from .waves import dashpot_data, full_basis
 
 __all__ = ["STABILITY_FRACTION", "COURANT_ESTIMATE", "ExplicitSettings", "lumped_mass",
            "lumped_dashpots", "critical_step", "stable_limit", "recorded_steps",
@@ -64,7 +64,11 @@ def lumped_mass(model) -> np.ndarray:
 
 def lumped_dashpots(model, names) -> np.ndarray:
     """Row sums of the Lysmer–Kuhlemeyer dashpot matrix on the boundaries ``names``."""
-    data = dashpot_data(model, names)
+    return row_sums(model, dashpot_data(model, names))
+
+
+def row_sums(model, data: np.ndarray) -> np.ndarray:
+    """Row sums of a matrix given as CSR ``data`` in the model's pattern."""
     return np.asarray(model.disc.pattern.matrix(data).sum(axis=1)).ravel()
 
 
@@ -115,11 +119,11 @@ def explicit_setup(model, scene, motion, options, ground) -> tuple[ExplicitSetti
     """(settings, mass, dashpots) of an explicit run on ``ground`` (a
     :class:`~upliftlab.continuum.dynamics.ground.Ground`): :func:`explicit_settings`, the
     soil's lumped mass scaled by ``options.soil_mass_scale`` and the row sums of the dashpots
-    on ``ground.dashpots`` (per DOF), all made here, each once."""
+    of ``ground.waves`` (per DOF), all made here, each once."""
     mass = options.soil_mass_scale * lumped_mass(model)
+    dashpots = row_sums(model, ground.waves.dashpots)
     free = np.setdiff1d(np.arange(model.disc.ndofs), ground.fixed)
-    settings = explicit_settings(model, scene, motion, options, ground, mass, free)
-    return settings, mass, lumped_dashpots(model, ground.dashpots)
+    return explicit_settings(model, scene, motion, options, ground, mass, free), mass, dashpots
 
 
 def explicit_settings(model, scene, motion, options, ground, mass, free) -> ExplicitSettings:
@@ -151,7 +155,7 @@ def explicit_settings(model, scene, motion, options, ground, mass, free) -> Expl
     if options.record_every is not None:
         every = options.record_every
     else:
-        implicit = motion.dt / max(1, math.ceil(motion.dt / time_step_limit(model)
+        implicit = motion.dt / max(1, math.ceil(motion.dt / ground.waves.step_limit
                                                 * (1.0 - 1e-12)))
         every = max(1, int(math.floor(implicit / dt * (1.0 + 1e-9))))
     return ExplicitSettings(dt=dt, steps=steps, record_every=min(every, steps), base=ground.base,

@@ -53,34 +53,33 @@ class Ground:
     sets up (:func:`dynamic_ground`): the ``base`` and ``sides`` (:func:`boundaries`); the
     DOFs ``fixed`` in the run (:func:`dynamic_fixed`) and those ``released`` from the statics'
     (:func:`static_fixed`), which carry their static reaction as a constant load; ``x``, every
-    u_x DOF (the rigid-body vector r of a rigid base, :func:`x_dofs`); the boundaries with
-    ``dashpots``; the ``incident`` load per unit incident velocity on a compliant base (force
-    per length/s, :func:`~upliftlab.continuum.dynamics.waves.incident_load`; None on a rigid
-    one); and whether the footing's u is prescribed (``prescribe_u``,
-    :func:`held_horizontally`)."""
+    u_x DOF (the rigid-body vector r of a rigid base, :func:`x_dofs`); whether the footing's u
+    is prescribed (``prescribe_u``, :func:`held_horizontally`); and the ``waves`` of the
+    domain, the dashpots on its absorbing boundaries and the incident load of a compliant base
+    among them (:class:`~upliftlab.continuum.dynamics.waves.DomainWaves`)."""
 
     base: str
     sides: str
     fixed: np.ndarray
     released: np.ndarray
     x: np.ndarray
-    dashpots: tuple[str, ...]
-    incident: np.ndarray | None
     prescribe_u: bool
+    waves: object
 
 
 def dynamic_ground(model, options) -> Ground:
     """The :class:`Ground` of a dynamic run of ``model`` with ``options`` (a
     :class:`~upliftlab.continuum.dynamics.options.DynamicOptions`), checked before any work."""
-    from .waves import incident_load
+    from .waves import domain_waves
 
     base, sides = boundaries(model, options)
     fixed = dynamic_fixed(model, base, sides)
+    released, x = np.setdiff1d(static_fixed(model), fixed), x_dofs(model)
+    held = held_horizontally(model)
     dashpots = (("sides",) if sides == "lysmer" else ()) + (
         ("bottom",) if base == "compliant" else ())
-    incident = incident_load(model, options.wave) if base == "compliant" else None
-    return Ground(base, sides, fixed, np.setdiff1d(static_fixed(model), fixed), x_dofs(model),
-                  dashpots, incident, held_horizontally(model))
+    waves = domain_waves(model, dashpots, options.wave if base == "compliant" else None)
+    return Ground(base, sides, fixed, released, x, held, waves)
 
 
 def boundaries(model, options) -> tuple[str, str]:

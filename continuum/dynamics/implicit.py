@@ -41,7 +41,6 @@ The step rules are :mod:`~upliftlab.continuum.dynamics.step_rules`', the iterati
 from __future__ import annotations
 
 import math
-import time as _time
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -49,16 +48,16 @@ import numpy as np
 from ...time_schemes import NewmarkCoefficients, hht
 from .result import DynamicResult, Recorder
 from ..contact.footing import ContactError
-from .ground import gravity_state, ground_velocity
+from .ground import ground_velocity
 from .iteration_matrix import FrozenTangent, dynamic_model, soil_residual
 from ..statics.newton import Anderson, Control, ConvergenceError, FootingTerm, SoilTerm, equilibrium
 from .run_control import BearingFailure, keeping_what_ran, settled_to_failure
 from .step_rules import implicit_settings
 from .superstructure import (eliminate_story, hht_form, story_deformation, structure_matrices,
                              structure_work)
-from .waves import COURANT_LIMIT, dashpot_data, mass_data
+from .waves import COURANT_LIMIT, mass_data
 
-__all__ = ["Kinematics", "run_implicit", "ImplicitRun"]
+__all__ = ["Kinematics", "ImplicitRoute", "ImplicitRun"]
 
 
 @dataclass(eq=False)
@@ -88,19 +87,26 @@ class Kinematics:
                 -c.c0 * self.d + c.c1 * self.v + c.c2 * self.a)
 
 
-def run_implicit(model, scene, motion, options, ground, *, progress=None) -> DynamicResult:
-    """Gravity, then ``motion`` by HHT-α (module docstring); the arguments and the result are
-    those of :func:`~upliftlab.continuum.dynamics.run.run_dynamic`, which checks the energy and
-    passes the run's ``ground`` (its :class:`~upliftlab.continuum.dynamics.ground.Ground`)."""
-    settings = implicit_settings(model, scene, motion, options, ground)
-    started = _time.perf_counter()
-    static = gravity_state(model, scene, options, settings.prescribe_u)
-    dyn = dynamic_model(model, ground.fixed)
-    frozen = dyn if model.linear else dynamic_model(model, ground.fixed, FrozenTangent)
-    run = ImplicitRun(dyn, frozen, scene, motion, options, settings, static, ground)
-    result = run.loop(progress)
-    result.metadata["wall_time_s"] = _time.perf_counter() - started
-    return result
+class ImplicitRoute:
+    """The implicit route of a run (module docstring), planned before any work: its settings
+    (:func:`~.step_rules.implicit_settings`), checked here; :meth:`run` integrates from the
+    gravity state that :func:`~upliftlab.continuum.dynamics.run.run_dynamic` makes for either
+    route."""
+
+    def __init__(self, model, scene, motion, options, ground):
+        self.model, self.scene, self.motion, self.options = model, scene, motion, options
+        self.ground = ground
+        self.settings = implicit_settings(model, scene, motion, options, ground)
+
+    def run(self, static, progress=None) -> DynamicResult:
+        """The time histories from the gravity state ``static`` (``progress`` as
+        :func:`~upliftlab.continuum.dynamics.run.run_dynamic` takes it)."""
+        model, fixed = self.model, self.ground.fixed
+        dyn = dynamic_model(model, fixed)
+        frozen = dyn if model.linear else dynamic_model(model, fixed, FrozenTangent)
+        run = ImplicitRun(dyn, frozen, self.scene, self.motion, self.options, self.settings,
+                          static, self.ground)
+        return run.loop(progress)
 
 
 class ImplicitRun:
@@ -113,7 +119,7 @@ class ImplicitRun:
         c, alpha = self.c, settings.alpha
         pattern = dyn.disc.pattern
         self.M = pattern.matrix(mass_data(dyn, options.mass or "consistent"))
-        self.C = pattern.matrix(dashpot_data(dyn, ground.dashpots))
+        self.C = pattern.matrix(ground.waves.dashpots)
         self.soil_data = c.a0 / (1.0 + alpha) * self.M.data + c.c0 * self.C.data
         self.soil_matrix = pattern.matrix(self.soil_data)
         self.C = self.C.copy()  # its own index arrays: the pattern's are shared
@@ -121,14 +127,14 @@ class ImplicitRun:
         R0 = soil_residual(dyn, static.stress)
         self.release = np.zeros(dyn.disc.ndofs)
         self.release[ground.released] = R0[ground.released]
-        if ground.incident is None:  # a rigid base: the relative formulation
+        if ground.waves.incident is None:  # a rigid base: the relative formulation
             r = np.zeros(dyn.disc.ndofs)
             r[ground.x] = 1.0
             self.ground_soil = -(self.M @ r)       # per unit a_g (length/s²)
             self.incident = np.zeros(dyn.disc.ndofs)
         else:
             self.ground_soil = np.zeros(dyn.disc.ndofs)
-            self.incident = ground.incident  # per unit incident velocity
+            self.incident = ground.waves.incident  # per unit incident velocity
         self.z = structure_matrices(scene)
         self.ground_z = -(self.z.M @ self.z.r) if settings.base == "rigid" else np.zeros(4)
         self.g = scene.g

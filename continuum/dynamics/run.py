@@ -22,13 +22,15 @@ The names of those modules that callers used from here stay importable from here
 
 from __future__ import annotations
 
+import time as _time
+
 from ...checks import InputError
 from ...progress import steps_progress
 from ...time_schemes import NewmarkCoefficients, hht
 from .options import SCHEMES, DynamicOptions
 from .result import ENERGY, DynamicResult
-from .ground import Ground, boundaries, dynamic_fixed, dynamic_ground
-from .implicit import run_implicit
+from .ground import Ground, boundaries, dynamic_fixed, dynamic_ground, gravity_state
+from .implicit import ImplicitRoute
 from .run_control import check_energy, energy_floor
 from .step_rules import MIN_SHEAR_COURANT
 from .superstructure import StructureMatrices, structure_matrices
@@ -52,9 +54,11 @@ def run_dynamic(model, scene, motion, options: DynamicOptions = DynamicOptions()
     """Gravity, then ``motion`` on ``model`` (built from ``scene``): see the module docstring.
 
     ``options.method`` (else the scene's ``continuum.dynamics``) chooses the explicit route
-    (:func:`~upliftlab.continuum.dynamics.explicit.run_explicit`) or the implicit one
-    (:func:`~upliftlab.continuum.dynamics.implicit.run_implicit`). Every input is checked before
-    any work
+    (:class:`~upliftlab.continuum.dynamics.explicit.ExplicitRoute`) or the implicit one
+    (:class:`~upliftlab.continuum.dynamics.implicit.ImplicitRoute`). How the motion enters the
+    domain (:func:`~upliftlab.continuum.dynamics.ground.dynamic_ground`) is decided once, the
+    route is planned, and then the gravity state is made once for either route. Every input is
+    checked before any work
     (InputError naming the field, the value and the valid range). ``progress(k, n, state)`` is
     called after each step (explicit: each recorded row) if given; None shows a bar (elapsed
     time, ETA, θ and N) where someone watches, True always, False never
@@ -77,13 +81,17 @@ def run_dynamic(model, scene, motion, options: DynamicOptions = DynamicOptions()
                          "the explicit route scales the soil's mass; valid with the implicit "
                          "route: 1 (or method = 'explicit')")
     ground = dynamic_ground(model, options)  # how the motion enters: decided once, for both
+    if method == "explicit":  # every check of the route before any work
+        from .explicit import ExplicitRoute
+        route = ExplicitRoute(model, scene, motion, options, ground)
+    else:
+        route = ImplicitRoute(model, scene, motion, options, ground)
+    started = _time.perf_counter()
     with steps_progress(progress, f"continuum dynamics ({method})",
                         postfix=_postfix) as report:
-        if method == "explicit":
-            from .explicit import run_explicit
-            result = run_explicit(model, scene, motion, options, ground, progress=report)
-        else:
-            result = run_implicit(model, scene, motion, options, ground, progress=report)
+        static = gravity_state(model, scene, options, not model.footing.interface.tangential)
+        result = route.run(static, report)
+    result.metadata["wall_time_s"] = _time.perf_counter() - started
     check_energy(result, tolerance, energy_floor(scene, model.width))
     return result
 

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 from ...checks import InputError
 from .superstructure import check_superstructure
-from .waves import COURANT_LIMIT, smallest_element, time_step_limit, wave_speeds
+from .waves import COURANT_LIMIT
 
 __all__ = ["MIN_SHEAR_COURANT", "ImplicitSettings", "implicit_settings", "check_smallest_step"]
 
@@ -67,36 +67,39 @@ def implicit_settings(model, scene, motion, options, ground) -> ImplicitSettings
         scene.analysis.hht_alpha if options.alpha is None else options.alpha)
     if not -1.0 / 3.0 <= alpha <= 0.0:
         raise InputError(f"analysis.hht_alpha = {alpha:g}: valid range is [-1/3, 0]")
-    limit = time_step_limit(model)
+    waves = ground.waves
+    limit = waves.step_limit
     if options.dt is None:
         dt = motion.dt / max(1, math.ceil(motion.dt / limit * (1.0 - 1e-12)))
     else:
         dt = options.dt
         if dt > limit:
-            vp = wave_speeds(model.soil)[0]
+            vp = waves.speeds[0]
             raise InputError(
                 f"DynamicOptions.dt = {dt:g} s: too coarse for the mesh's shortest wave transit "
-                f"(h_min = {smallest_element(model):.4g}, V_p = {vp:.4g}, h_min/V_p = "
+                f"(h_min = {waves.smallest_element:.4g}, V_p = {vp:.4g}, h_min/V_p = "
                 f"{limit / COURANT_LIMIT:.4g} s); valid range is (0, {limit:.4g}] s "
                 f"(V_p dt/h_min ≤ {COURANT_LIMIT:g})")
-    check_smallest_step(model, dt, limit, automatic=options.dt is None)
+    check_smallest_step(model.soil, waves, dt, automatic=options.dt is None)
     duration = options.duration or scene.analysis.duration or motion.duration
     steps = max(1, int(round(duration / dt)))
     return ImplicitSettings(alpha=alpha, dt=dt, steps=steps, base=base, sides=sides,
                      prescribe_u=not tangential, limit=limit)
 
 
-def check_smallest_step(model, dt: float, limit: float, automatic: bool) -> None:
-    """Refuse a step below :data:`MIN_SHEAR_COURANT` h_min/V_s (module docstring): naming ν
-    when the P-wave rule forced it, else the step."""
-    vp, vs = wave_speeds(model.soil)
-    floor = MIN_SHEAR_COURANT * smallest_element(model) / vs
+def check_smallest_step(soil, waves, dt: float, automatic: bool) -> None:
+    """Refuse a step below :data:`MIN_SHEAR_COURANT` h_min/V_s (module docstring) of the
+    domain's ``waves`` (:class:`~upliftlab.continuum.dynamics.waves.DomainWaves`): naming the
+    ``soil``'s ν when the P-wave rule forced it, else the step."""
+    vp, vs = waves.speeds
+    limit = waves.step_limit
+    floor = MIN_SHEAR_COURANT * waves.smallest_element / vs
     if dt >= floor * (1.0 - 1e-12):
         return
     why = (f"below {floor:.4g} s = {MIN_SHEAR_COURANT:g} h_min/V_s the implicit route's "
            "end-of-step contact chatters and gains energy")
     if automatic:
-        nu = model.soil.poisson_ratio
+        nu = soil.poisson_ratio
         raise InputError(
             f"soil.poisson_ratio = {nu:g}: the implicit step follows the P wave (dt = {dt:.4g} "
             f"s ≤ {limit:.4g} s, V_p/V_s = {vp / vs:.3g}) and {why}; valid range for "

@@ -12,12 +12,13 @@ wave). :data:`COURANT_LIMIT` bounds the implicit route's step (its module docstr
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import skfem
 
 __all__ = ["COURANT_LIMIT", "wave_speeds", "smallest_element", "time_step_limit", "full_basis",
-           "mass_data", "dashpot_data", "incident_load"]
+           "mass_data", "dashpot_data", "incident_load", "DomainWaves", "domain_waves"]
 
 #: Largest P-wave Courant number V_p dt / h_min (:mod:`~upliftlab.continuum.dynamics.implicit`).
 COURANT_LIMIT = 2.0
@@ -98,3 +99,28 @@ def incident_load(model, wave: str = "S") -> np.ndarray:
     k, speed = (0, vs) if wave == "S" else (1, vp)
     scale = 2.0 * model.soil.density * speed
     return skfem.LinearForm(lambda v, w: scale * v[k]).assemble(fb)
+
+
+@dataclass(frozen=True, eq=False)
+class DomainWaves:
+    """What the soil's waves make of a run's domain, computed once for either route:
+    ``speeds`` (V_p, V_s) (length/s), the mesh's ``smallest_element`` h_min (length), the
+    P-wave ``step_limit`` (s, :func:`time_step_limit`), the ``dashpots`` on the run's
+    absorbing boundaries (CSR data in the model's pattern, :func:`dashpot_data`) and the
+    ``incident`` load per unit incident velocity (:func:`incident_load`; None without a
+    compliant base)."""
+
+    speeds: tuple[float, float]
+    smallest_element: float
+    step_limit: float
+    dashpots: np.ndarray
+    incident: np.ndarray | None
+
+
+def domain_waves(model, dashpots, wave: str | None) -> DomainWaves:
+    """The :class:`DomainWaves` of ``model`` with dashpots on the boundaries ``dashpots`` and
+    a vertically incident ``wave`` (``"S"`` or ``"P"``) through a compliant base (None: a rigid
+    base, no incident wave)."""
+    return DomainWaves(wave_speeds(model.soil), smallest_element(model), time_step_limit(model),
+                       dashpot_data(model, dashpots),
+                       None if wave is None else incident_load(model, wave))
