@@ -22,6 +22,18 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 
 from upliftlab.version import __version__  # noqa: E402
 
+# ``upliftlab/__main__.py`` runs the command line when it is imported (``python -m upliftlab``),
+# and the recursive API listing imports every module: it finds this one imported already, a
+# module with the file's docstring and nothing run.
+import ast  # noqa: E402
+import types  # noqa: E402
+
+import upliftlab  # noqa: E402
+
+_MAIN = Path(upliftlab.__file__).with_name("__main__.py")
+sys.modules.setdefault("upliftlab.__main__", types.ModuleType(
+    "upliftlab.__main__", ast.get_docstring(ast.parse(_MAIN.read_text(encoding="utf-8")))))
+
 # The API pages are written by this build (autosummary, docs/.gitignore): start them afresh, so
 # that the page of a module since moved or removed does not outlive it and fail the strict build.
 _API_PAGES = HERE / "api"
