@@ -136,10 +136,16 @@ def test_rocking_pushover_of_a_huge_capacity_bed_is_the_elastic_beds():
     assert weak.vertical[-1] < elastic.vertical[-1]
 
 
-def test_the_opensees_bridge_refuses_the_qz_law():
-    from upliftlab.comparisons.opensees.spec import check_representable
-    with pytest.raises(InputError, match="foundation.law = 'qz'"):
-        check_representable(_scene(0.6))
+def test_the_opensees_bridge_takes_the_qz_law_with_a_qzsimple2_exponent_only():
+    """A q–z bed exports to QzSimple2 springs (tests/test_opensees_qz.py), whose exponents are
+    1.2 (clay, type 1) and 5.5 (sand, type 2), from OpenSees' QzSimple2.cpp: the soil's own
+    exponent is taken; a fitted one (2.0) has no QzSimple2 type and is refused in one line
+    naming the field."""
+    from upliftlab.comparisons.opensees.spec import opensees_spec
+
+    assert len(opensees_spec(_scene(0.6)).qz) == 6
+    with pytest.raises(InputError, match="foundation.qz_exponent = 2"):
+        opensees_spec(_scene(0.6, qz_exponent=2.0))
 
 
 def test_an_end_stiffened_bed_carries_half_its_capacity_at_z50():
