@@ -162,6 +162,13 @@ def _tagged(tag: str) -> list[int]:
     return found
 
 
+def _as_from_a_terminal() -> None:
+    """The command starts with Ctrl-C's default disposition, as from a user's terminal: a test
+    run started in the background of a non-interactive shell ignores SIGINT (POSIX), and the
+    command would inherit that and, rightly, not stop on Ctrl-C."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _interrupt(argv, cwd, when, how: str, timeout: float = 600):
     """Start ``upliftlab argv`` in a session of its own; when ``when(child pids, stderr so
     far)`` is true, signal it (``how``: ``ctrl-c`` SIGINT to the process group, ``term``
@@ -170,7 +177,7 @@ def _interrupt(argv, cwd, when, how: str, timeout: float = 600):
     tag = uuid.uuid4().hex
     proc = subprocess.Popen([sys.executable, "-m", "upliftlab", *argv], cwd=cwd,
                             env=_env(tag), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                            text=True, start_new_session=True)
+                            text=True, start_new_session=True, preexec_fn=_as_from_a_terminal)
     lines: list[str] = []
     reader = threading.Thread(target=lambda: lines.extend(proc.stderr), daemon=True)
     reader.start()  # the lines as they come (the pipe closes only when every holder ends)
