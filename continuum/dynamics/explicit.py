@@ -67,7 +67,7 @@ from ..contact.step import footing_schur, frictionless_step, tangential_step
 from .result import DynamicResult, Recorder
 from .explicit_loop import run_steps
 from .explicit_step import (COURANT_ESTIMATE, STABILITY_FRACTION, ExplicitSettings, critical_step,
-                            explicit_settings, explicit_setup, lumped_dashpots, lumped_mass,
+                            explicit_settings, explicit_setup, lumped_mass,
                             recorded_steps)
 from ..contact.footing import OPEN, STICK
 from .ground import free_field_motion, ground_velocity
@@ -79,7 +79,7 @@ from .soil_force import SoilForce
 from .superstructure import (MIN_ROTARY_INERTIA, central_difference_form, check_footing_mass,
                              structure_matrices, structure_work)
 
-__all__ = ["STABILITY_FRACTION", "ExplicitSettings", "lumped_mass", "lumped_dashpots",
+__all__ = ["STABILITY_FRACTION", "ExplicitSettings", "lumped_mass",
            "critical_step", "check_footing_mass", "MIN_ROTARY_INERTIA", "explicit_settings",
            "ExplicitRoute", "COURANT_ESTIMATE", "recorded_steps"]
 

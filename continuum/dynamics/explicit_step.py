@@ -27,7 +27,7 @@ from .superstructure import check_footing_mass, check_superstructure
 from .waves import dashpot_data, full_basis
 
 __all__ = ["STABILITY_FRACTION", "COURANT_ESTIMATE", "ExplicitSettings", "lumped_mass",
-           "lumped_dashpots", "critical_step", "stable_limit", "recorded_steps",
+           "critical_step", "stable_limit", "recorded_steps",
            "explicit_settings", "explicit_setup"]
 
 #: The admissible step as a fraction of the central-difference limit 2/ω_max.
@@ -60,11 +60,6 @@ def lumped_mass(model) -> np.ndarray:
     """Row sums of the consistent soil mass, ∫ ρ φ_i (mass per length, per DOF)."""
     rho = model.soil.density
     return skfem.LinearForm(lambda v, w: rho * (v[0] + v[1])).assemble(full_basis(model))
-
-
-def lumped_dashpots(model, names) -> np.ndarray:
-    """Row sums of the Lysmer–Kuhlemeyer dashpot matrix on the boundaries ``names``."""
-    return row_sums(model, dashpot_data(model, names))
 
 
 def row_sums(model, data: np.ndarray) -> np.ndarray:

@@ -41,6 +41,7 @@ from ..materials import State
 from ..model import evaluated
 from ..statics.newton import ContinuumState, Control, follow
 from ..statics.analyses import geostatic
+from .waves import DomainWaves, domain_waves, wave_speeds
 
 __all__ = ["Ground", "dynamic_ground", "boundaries", "free_field_motion", "held_horizontally", "dynamic_fixed",
            "static_fixed", "x_dofs", "ground_velocity", "gravity_state", "state_arrays",
@@ -64,13 +65,12 @@ class Ground:
     released: np.ndarray
     x: np.ndarray
     prescribe_u: bool
-    waves: object
+    waves: DomainWaves
 
 
 def dynamic_ground(model, options) -> Ground:
     """The :class:`Ground` of a dynamic run of ``model`` with ``options`` (a
     :class:`~upliftlab.continuum.dynamics.options.DynamicOptions`), checked before any work."""
-    from .waves import domain_waves
 
     base, sides = boundaries(model, options)
     fixed = dynamic_fixed(model, base, sides)
@@ -117,7 +117,6 @@ def free_field_motion(model, velocity: np.ndarray, dt: float) -> tuple[np.ndarra
     D/V_s from the base at depth D: v_ff(t) = v(t − D/V_s), u_ff(t) = ∫₀^{t − D/V_s} v dt
     (trapezoidal rule on the step; 0 before the wave arrives). Exact while the free field
     stays elastic."""
-    from .waves import wave_speeds
 
     y = model.mesh.p[1]
     delay = float(y.max() - y.min()) / wave_speeds(model.soil)[1]

@@ -121,6 +121,7 @@ def domain_waves(model, dashpots, wave: str | None) -> DomainWaves:
     """The :class:`DomainWaves` of ``model`` with dashpots on the boundaries ``dashpots`` and
     a vertically incident ``wave`` (``"S"`` or ``"P"``) through a compliant base (None: a rigid
     base, no incident wave)."""
-    return DomainWaves(wave_speeds(model.soil), smallest_element(model), time_step_limit(model),
+    speeds, h_min = wave_speeds(model.soil), smallest_element(model)
+    return DomainWaves(speeds, h_min, COURANT_LIMIT * h_min / speeds[0],
                        dashpot_data(model, dashpots),
                        None if wave is None else incident_load(model, wave))
