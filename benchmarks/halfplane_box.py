@@ -3,6 +3,7 @@ on the old boundaries (a rigid base) and on the half-plane ones (a compliant bas
 
     python benchmarks/halfplane_box.py --out DIR [--cases a,b,...] [--boxes 10,20] [--across 8]
                                        [--point clay-pulse,clay-record,sand-record]
+                                       [--tail SECONDS] [--soil KEY=VALUE ...]
 
 Writes ``HALFPLANE_BOX.md`` and ``halfplane_box.json`` to ``--out`` (default
 ``results/bench/halfplane_box``), rewritten as each run ends; it never touches a committed
@@ -30,7 +31,10 @@ studies.winkler_map.points`) with the clay scene's N = 171.4 kN/m (FS_v = 3 on t
 Prandtl capacity; more on the sand), h/B = 1.5, T = 0.5 s, under the first ``--record-seconds``
 (default 10) of El Centro at 1.5 a_up (0.167 g), on the map's clay or sand. ``--elastic``: the
 same points on elastic soil (the uplift stays), which separates the boundaries from the soil's
-yielding.
+yielding. ``--tail``: the motion padded with that many seconds of still ground after it ends
+(free vibration), so that the settlement is read once the rocking has died out (radiation damps
+it on the half-plane; nothing does in the closed box). ``--soil KEY=VALUE``: a ``[soil]`` field
+set on every run (e.g. ``undrained_strength_gradient=2.0``, kPa/m), a number or a word.
 
 **Measures** (the map's, :func:`~upliftlab.comparisons.studies.winkler_map.points.
 continuum_measures`): peak |θ|, peak edge uplift, residual settlement (when flattest in the last
@@ -103,7 +107,7 @@ def point_data(point: str, across: int, record_seconds: float) -> dict:
 
 
 def run(point: str, case: str, box: str, across: int, record_seconds: float,
-        elastic: bool = False) -> dict:
+        elastic: bool = False, tail: float = 0.0, soil: dict | None = None) -> dict:
     """One run: the map's measures, the run's size and time."""
     from upliftlab.comparisons.studies.winkler_map.points import continuum_measures
     from upliftlab.continuum import build_model
@@ -119,6 +123,9 @@ def run(point: str, case: str, box: str, across: int, record_seconds: float,
         data["soil"] = {k: v for k, v in data["soil"].items()
                         if k in ("youngs_modulus", "poisson_ratio", "density", "interface")}
         data["soil"]["model"] = "elastic"
+    data["soil"] = {**data["soil"], **(soil or {})}
+    if tail > 0.0:
+        data = with_tail(data, tail)
     scene = scene_from_dict(data, merged=True)
     if tie:
         K_h, C_h = handbook_sway(scene.soil, scene.foundation.width)
@@ -139,6 +146,18 @@ def run(point: str, case: str, box: str, across: int, record_seconds: float,
             "energy": float(result.energy_balance_error),
             "max_plastic_strain": float(result.metadata.get("max_plastic_strain", math.nan)),
             "tie": scene.continuum.horizontal_tie, "wall": wall}
+
+
+def with_tail(data: dict, tail: float) -> dict:
+    """The scene table ``data`` with ``tail`` s of still ground after its motion: the motion's
+    and the analysis' durations lengthened (a record or pulse is padded with zeros)."""
+    from upliftlab.scenes import scene_from_dict
+
+    motion = scene_from_dict(data, merged=True).build_motion()
+    analysis = data.get("analysis", {})
+    length = min(motion.duration, analysis.get("duration", math.inf)) + float(tail)
+    return {**data, "motion": {**data["motion"], "duration": length},
+            "analysis": {**analysis, "duration": length}}
 
 
 def tail_mean(result) -> float:
@@ -186,6 +205,10 @@ def main(argv=None) -> int:
                         help="boxes (× B): a width = depth, or WxD (width x depth)")
     parser.add_argument("--across", type=int, default=8)
     parser.add_argument("--record-seconds", type=float, default=10.0)
+    parser.add_argument("--tail", type=float, default=0.0,
+                        help="seconds of still ground after the motion (free vibration)")
+    parser.add_argument("--soil", action="append", default=[], metavar="KEY=VALUE",
+                        help="a [soil] field set on every run (repeatable)")
     parser.add_argument("--elastic", action="store_true",
                         help="the soil elastic (its Young's modulus, ν, ρ and interface kept): "
                              "the boundaries without the soil's yielding")
@@ -204,6 +227,17 @@ def main(argv=None) -> int:
             [float(x) for x in b.split("x")]
         except ValueError:
             parser.error(f"--boxes: {b!r}; valid: a number or WxD")
+    if not (0.0 <= args.tail <= 60.0):
+        parser.error(f"--tail: {args.tail!r}; valid: 0 to 60 s")
+    soil = {}
+    for item in args.soil:
+        key, sep, value = item.partition("=")
+        if not sep or not key.isidentifier():
+            parser.error(f"--soil: {item!r}; valid: KEY=VALUE, KEY a [soil] field name")
+        try:
+            soil[key] = float(value)
+        except ValueError:
+            soil[key] = value
     folder = output_folder(args, NAME)
     rows = []
     for p in points:
@@ -211,7 +245,8 @@ def main(argv=None) -> int:
             for b in boxes:
                 say(f"{NAME}: {p}, {c}, box {b} B, {args.across} across ...")
                 try:
-                    rows.append(run(p, c, b, args.across, args.record_seconds, args.elastic))
+                    rows.append(run(p, c, b, args.across, args.record_seconds, args.elastic,
+                                    args.tail, soil))
                 except Exception as exc:  # a failed run is reported, the others go on
                     say(f"{NAME}: {p}, {c}, box {b}: {type(exc).__name__}: {exc}")
                     continue

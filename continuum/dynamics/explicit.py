@@ -360,13 +360,14 @@ class _Explicit:
             yield
         except (np.linalg.LinAlgError, RuntimeError, FloatingPointError, ZeroDivisionError) as exc:
             why = f"{type(exc).__name__}: {exc}"
+        top = math.nan if why is not None else float(np.max(np.abs(u)))  # NaN if any entry is
+        if top <= self.model.width:
+            return
         when = f"explicit steps {k0}…{k1} (t = {k0 * st.dt:.6g}…{k1 * st.dt:.6g} s)"
         limit = (f"dt = {st.dt:.4g} s is {st.dt / st.critical:.3g} of the stability limit "
                  f"2/ω_max = {st.critical:.4g} s")
         if why is None:
-            top = float(np.max(np.abs(u))) if np.isfinite(u).all() else math.inf
-            if top <= self.model.width:
-                return
+            top = top if math.isfinite(top) else math.inf
             why = f"a displacement of {top:.3g} (the footing is {self.model.width:g} wide)"
             if math.isfinite(top):
                 where, growth = self._where(u, u_prev, footing)
