@@ -40,7 +40,8 @@ from collections.abc import Callable, Iterator, Mapping
 from .paths import remove_live_temporaries
 
 __all__ = ["SINGLE_THREAD_ENVIRONMENT", "PARENT_POLL", "TERMINATE_GRACE",
-           "inherited_environment", "signals_deferred", "process_pool", "watch_parent"]
+           "inherited_environment", "signals_deferred", "process_pool", "watch_parent",
+           "single_threaded"]
 
 #: One thread for OpenMP, MKL, OpenBLAS and numba.
 SINGLE_THREAD_ENVIRONMENT = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
@@ -53,6 +54,23 @@ TERMINATE_GRACE = 2.0
 EXIT_WAIT = 10.0
 
 _INTERRUPTS = (signal.SIGINT, signal.SIGTERM)
+
+
+def single_threaded():
+    """A context that limits the loaded BLAS and OpenMP pools to one thread for its block
+    (``threadpoolctl``; nothing if it is not installed), and restores them after. The
+    continuum's dense algebra is small (a footing's 4 × 4 forms, a row's dot products over the
+    soil's DOFs), and a multi-threaded BLAS wakes its threads for each call: on a loaded
+    machine a thread that must wait for a core turns a microsecond's call into milliseconds.
+    The command line starts with one BLAS thread for the same reason
+    (:mod:`upliftlab.cli`); this is for the API, as in a notebook."""
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:
+        return contextlib.nullcontext()
+    import scipy.linalg  # noqa: F401  (load scipy's own BLAS first: limits apply to loaded
+    import scipy.sparse.linalg  # noqa: F401  libraries only)
+    return threadpool_limits(limits=1)
 
 
 @contextlib.contextmanager

@@ -47,7 +47,7 @@ resumes the continuum runs kept with the repository (:attr:`.protocol.Study.kept
 only the runs not kept count; a fast build never touches them.
 
 **Threads.** The studies run one after another in this process with BLAS limited to one thread
-(:func:`.verification.single_threaded`), as the sweeps' worker processes are: on a loaded
+(:func:`upliftlab.workers.single_threaded`), as the sweeps' worker processes are: on a loaded
 two-core machine a two-thread BLAS under the continuum's small dense kernels ran the fast
 Prandtl check 3–6 times slower.
 
@@ -87,7 +87,7 @@ from .markdown import markdown_to_html
 from ..framework.store import Store, point_key
 from ..framework.study import StudyResult, json_default
 from ..studies.uplift_zone import continuum_pushover
-from ..studies.verification import single_threaded
+from ...workers import single_threaded
 
 __all__ = ["STUDIES", "Section", "Report", "build_report", "markdown_to_html", "study_digest",
            "continuum_pushover", "SectionEstimate", "ReportEstimate", "estimate_report",

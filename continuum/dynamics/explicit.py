@@ -62,6 +62,7 @@ import numpy as np
 
 from ...checks import InputError
 from ...log import announce_compilation
+from ...workers import single_threaded
 from . import explicit_step
 from ..contact.step import footing_schur, frictionless_step, tangential_step
 from .result import DynamicResult, Recorder
@@ -150,7 +151,8 @@ class ExplicitRoute:
         try:
             run = _Explicit(self.model, self.scene, self.motion, self.options, self.settings,
                             static, self.mass, self.dashpots, self.ground)
-            return run.loop(progress)
+            with single_threaded():  # the loop's small BLAS calls (upliftlab.workers)
+                return run.loop(progress)
         finally:
             numba.set_num_threads(threads)
 

@@ -50,11 +50,11 @@ from .records import (CheckContext, FAIL, Order, PASS, Row, SKIP, STUDY, absolut
                       bound_row, order_row, relative_row, skipped_row)
 from .reduced_statics import drop_mass
 from .summary import error_text, fmt, key_numbers, summarise
-from .workflow import (CHECKS, DEFINITION, compute, compute_or_read, run, single_threaded,
+from .workflow import (CHECKS, DEFINITION, compute, compute_or_read, run,
                        source_digest, write)
 
 __all__ = ["STUDY", "Row", "Order", "DEFINITION", "compute_or_read", "write", "run",
            "source_digest", "drop_mass", "PASS", "FAIL", "SKIP", "CHECKS", "relative_row",
-           "absolute_row", "bound_row", "skipped_row", "order_row", "single_threaded",
+           "absolute_row", "bound_row", "skipped_row", "order_row",
            "compute", "fmt", "error_text", "summarise", "key_numbers", "CheckContext",
            "verification_dataset", "rows_of", "orders_of", "failures", "status_counts"]

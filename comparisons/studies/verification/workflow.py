@@ -12,6 +12,7 @@ from .... import __version__
 from ....checks import InputError
 from ....motions import ELCENTRO, find_motion, load_motion
 from ....provenance import MODEL_SOURCES, code_digest, provenance
+from ....workers import single_threaded
 from ...framework.protocol import Context, Study, StudyRun, run_study
 from ...framework.store import Store, point_key
 from ...framework.study import StudyResult, file_sha256, write_study
@@ -70,22 +71,6 @@ def source_digest() -> str:
     (:data:`upliftlab.provenance.MODEL_SOURCES`) and this package's checks
     (:data:`OWN_SOURCES`)."""
     return code_digest(MODEL_SOURCES + (OWN_SOURCES,))
-
-
-def single_threaded():
-    """A context that limits BLAS/OpenMP pools to one thread (``threadpoolctl``, if installed;
-    else nothing). On a shared or loaded machine a two-thread BLAS under the continuum's small
-    dense kernels oversubscribes the cores and runs several times slower; the sweeps' workers
-    are single-threaded for the same reason (:data:`.sweep.SINGLE_THREAD_ENVIRONMENT`)."""
-    import contextlib
-
-    try:
-        from threadpoolctl import threadpool_limits
-    except ImportError:
-        return contextlib.nullcontext()
-    import scipy.linalg  # noqa: F401  (load scipy's own BLAS first: limits apply to loaded
-    import scipy.sparse.linalg  # noqa: F401  libraries only)
-    return threadpool_limits(limits=1)
 
 
 def compute(fast: bool, progress=None) -> dict:
