@@ -65,8 +65,9 @@ def dynamic_summary(result, width: float | None = None) -> dict:
     for a result that did not record it) and the run's ``validity`` against the small-strain
     limit (:mod:`~upliftlab.continuum.dynamics.validity`; None: not judged), the far field's
     response (``far_field``: peak shear strain and where, peak plastic strain, ``yielded``
-    "elastic" or "from z1 to z2", :meth:`~upliftlab.continuum.dynamics.far_field.
-    FarFieldResponse.summary`; None for a result without it) and ``far_field_yielded``, the
+    "elastic" or "from z1 to z2",
+    :meth:`~upliftlab.continuum.dynamics.far_field.FarFieldResponse.summary`; None for a
+    result without it) and ``far_field_yielded``, the
     time integration (``method``, ``dt``) and, for an interrupted run, ``completed_until``."""
     time = np.asarray(result.time)
     footing = np.asarray(result.footing)
