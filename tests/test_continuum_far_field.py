@@ -14,7 +14,9 @@ References, one per test:
   carries at most c_u and caps the acceleration it passes up near a_y (Newmark's sliding block,
   Géotechnique 15, 1965), so the yielded range is the bottom layer of cells only;
 - the validity flag: the limit ε̄p = 0.10 stated in continuum/dynamics/validity.py, on a run far
-  below it (elastic, ε̄p = 0) and one far above it (the yielding base, ε̄p ≈ 0.24).
+  below it (elastic, ε̄p = 0) and one far above it (the yielding base, ε̄p ≈ 0.24);
+- the map's use of it: the rule stated in comparisons/studies/winkler_map/assemble.py (a
+  stored verdict "beyond" leaves the point out; a record without one reads as before).
 
 Routes: the elastic column on both (explicit, implicit); the Tresca column on the explicit one.
 """
@@ -194,3 +196,30 @@ def test_the_limit_is_strictly_above_ten_percent(value, beyond):
     assert beyond_small_strain(value) is beyond
     assert validity(value if value is not None else math.nan)["validity"] == (
         BEYOND if beyond else WITHIN)
+
+
+def _stored_run(**extra) -> dict:
+    """A finished continuum record of the map (comparisons/studies/winkler_map/points.py)."""
+    from upliftlab.comparisons.studies.winkler_map.grid import MEASURES
+
+    return {"measures": {q: 0.01 * (i + 1) for i, q in enumerate(MEASURES)},
+            "wall_time_s": 1.0, "steps": 10, "energy_balance_error": 0.0, "dofs": 100,
+            "max_plastic_strain": 0.5, **extra}
+
+
+@pytest.mark.parametrize("extra, kept", [({"validity": BEYOND}, False),
+                                         ({"validity": WITHIN}, True), ({}, True)])
+def test_the_map_leaves_out_a_run_that_stored_beyond_and_reads_old_records_as_before(extra,
+                                                                                       kept):
+    # Reference: the rule stated in comparisons/studies/winkler_map/assemble.py: a record whose
+    # stored verdict is BEYOND is left out (a refusal, flagged, its measures NaN); a record
+    # without the verdict (the kept store's, made before it) is used whatever its ε̄p (0.5).
+    from upliftlab.comparisons.studies.winkler_map.assemble import _continuum_into
+    from upliftlab.comparisons.studies.winkler_map.dataset import PointArrays
+
+    a, refusals, at = PointArrays.empty((1, 1, 1, 1, 1, 1), 2), [], (0,) * 6
+    assert _continuum_into(a, at, _stored_run(**extra), None, "here", refusals) is kept
+    assert bool(a.beyond[at]) is not kept and bool(a.bearing[at]) is False
+    assert bool(np.isfinite(a.continuum[at]).all()) is kept
+    assert bool(np.isnan(a.continuum[at]).all()) is not kept
+    assert (len(refusals) == 1 and BEYOND in refusals[0]) is not kept
