@@ -116,6 +116,10 @@ class _Row:
         return self._soil.peak_plastic_strain
 
     @property
+    def equivalent_plastic_strain(self):
+        return self._soil.equivalent_plastic_strain
+
+    @property
     def stress(self):
         return self._soil.stress_tensor
 

@@ -20,6 +20,8 @@ from ..output.views import NotebookViews
 from ..output.fields import (element_average, field_coordinates, max_shear_stress,
                              result_metadata)
 from ..contact.footing import OPEN
+from .far_field import FarFieldRecorder
+from .validity import validity
 
 __all__ = ["ENERGY", "DynamicResult", "Recorder"]
 
@@ -49,7 +51,11 @@ class DynamicResult(NotebookViews):
     ``max_shear_stress`` (nk, nelems) element averages, where they live: ``dof_xy``,
     ``dof_direction``, ``element_xy``
     (:func:`~upliftlab.continuum.output.fields.field_coordinates`). ``width`` B; ``metadata``
-    provenance.
+    provenance, with the run's ``validity`` against the small-strain limit
+    (:mod:`~upliftlab.continuum.dynamics.validity`). ``far_field``: the response of the soil
+    columns at the box's sides, peak shear strain and plastic strain by depth
+    (:class:`~upliftlab.continuum.dynamics.far_field.FarFieldResponse`; None for a result made
+    before it was recorded).
     """
 
     #: The names of the energy account's columns (:data:`ENERGY`).
@@ -81,6 +87,7 @@ class DynamicResult(NotebookViews):
     dof_xy: np.ndarray | None = field(default=None, repr=False)
     dof_direction: np.ndarray | None = field(default=None, repr=False)
     element_xy: np.ndarray | None = field(default=None, repr=False)
+    far_field: object = field(default=None, repr=False)
 
     @property
     def snapshot_time(self) -> np.ndarray:
@@ -143,7 +150,9 @@ class DynamicResult(NotebookViews):
 class Recorder:
     """Per-step histories and the snapshots, and the largest equivalent plastic strain ε̄p at
     any quadrature point of the soil (``peak_plastic_strain``; ε̄p only accumulates, so it is
-    the last row's): where the soil left small strain, whatever its footing does."""
+    the last row's): where the soil left small strain, whatever its footing does; and the far
+    field's peaks by depth (``far``, :mod:`~upliftlab.continuum.dynamics.far_field`), read
+    from the same rows."""
 
     def __init__(self, model, steps: int, snapshots: int):
         f = model.footing
@@ -168,6 +177,7 @@ class Recorder:
         self.disp = np.zeros((chosen.size, model.disc.ndofs))
         self.eps = np.zeros((chosen.size, ne))
         self.shear = np.zeros((chosen.size, ne))
+        self.far = FarFieldRecorder(model)
 
     def record(self, k, t, state, zk, ag, energy, iterations, refactored, kinetic=0.0):
         f = self.f
@@ -183,10 +193,13 @@ class Recorder:
         self.energy[k] = energy
         self.energy[k, 0] = kinetic
         peak = getattr(state, "peak_plastic_strain", None)
-        if peak is None:
+        ebar = getattr(state, "equivalent_plastic_strain", None)
+        if ebar is None:
             ebar = state.material.equivalent_plastic_strain
+        if peak is None:
             peak = float(np.max(ebar)) if np.size(ebar) else 0.0
         self.peak_plastic_strain = max(self.peak_plastic_strain, float(peak))
+        self.far.record(state.u, ebar)
         i = self.snap_index.get(int(k))
         if i is not None:
             self.disp[i] = state.u
@@ -197,8 +210,11 @@ class Recorder:
         """The :class:`DynamicResult` with ``extra`` metadata; ``rows``: only the first rows
         were recorded (an interrupted run), marked ``incomplete`` with ``completed_until``."""
         n = self.time.size if rows is None else rows
+        far = self.far.response()
         extra = {**extra, "motion": motion.name, "motion_source": motion.source,
-                 "width": model.width, "max_plastic_strain": self.peak_plastic_strain}
+                 "width": model.width, "max_plastic_strain": self.peak_plastic_strain,
+                 **validity(self.peak_plastic_strain),
+                 "far_field": far.summary()["yielded"]}
         if n < self.time.size:
             extra.update(incomplete=True, completed_until=float(self.time[n - 1]))
         snaps = self.snap_steps < n
@@ -211,4 +227,5 @@ class Recorder:
             refactored=self.refactored[:n], energy=self.energy[:n], width=model.width,
             snapshot_step=self.snap_steps[snaps], displacement=self.disp[snaps],
             plastic_strain=self.eps[snaps], max_shear_stress=self.shear[snaps],
-            metadata=result_metadata(model, "dynamic", extra), **field_coordinates(model))
+            metadata=result_metadata(model, "dynamic", extra), far_field=far,
+            **field_coordinates(model))

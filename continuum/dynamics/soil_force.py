@@ -78,6 +78,11 @@ class SoilForce:
                      np.zeros(shape, dtype=np.int8))
 
     @property
+    def equivalent_plastic_strain(self) -> np.ndarray:
+        """The committed ε̄p (nel, nqp), not a copy: read it before the next call."""
+        return self.ebar if self.compiled else self._material.equivalent_plastic_strain
+
+    @property
     def peak_plastic_strain(self) -> float:
         """The largest committed equivalent plastic strain ε̄p at a quadrature point."""
         ebar = self.ebar if self.compiled else self._material.equivalent_plastic_strain

@@ -8,7 +8,9 @@ contact nodes, with their ``x``) and ``component`` (of the energy account); ``un
 fields of the snapshots are here too, as the model's DOF vector and element averages along
 ``snapshot``, located by the coordinates ``dof_x``, ``dof_y``, ``dof_direction`` and
 ``element_x``, ``element_y`` (the XDMF output draws them on the mesh); the run's metadata
-and provenance are attributes, one per key (:func:`~upliftlab.results.cf_attributes`). This
+and provenance are attributes, one per key (:func:`~upliftlab.results.cf_attributes`). A
+dynamic run's far field (the soil columns at the box's sides) is along ``side`` and ``layer``
+(:func:`_far_field`). This
 dataset is what the results' ``save`` writes (on disk as :mod:`upliftlab.cf` says; read back
 by :func:`upliftlab.open_result`). Nothing here computes: every value is one the result holds.
 """
@@ -133,7 +135,39 @@ def to_dataset(result):
                    "component": ("component", list(result.energy_names),
                                  {"long_name": "energy account"})})
     _snapshots(result, data, coords, "s", "time of the snapshot")
+    _far_field(result, data, coords, length)
     return _dataset(result, data, coords)
+
+
+def _far_field(result, data: dict, coords: dict, length: str) -> None:
+    """Add the far field's peaks per ``side`` (left, right) and ``layer`` of cells, located by
+    ``layer_top`` and ``layer_bottom`` (depth, down from the surface)
+    (:class:`~upliftlab.continuum.dynamics.far_field.FarFieldResponse`); nothing for a result
+    without them."""
+    far = getattr(result, "far_field", None)
+    if far is None:
+        return
+    dims = ("side", "layer")
+    coords.update({
+        "side": ("side", ["left", "right"], {"long_name": "side of the box"}),
+        "layer": ("layer", np.arange(far.top.size),
+                  {"units": "1", "long_name": "layer of cells of the far-field column"}),
+        "layer_top": ("layer", far.top, {"units": length, "positive": "down",
+                                         "long_name": "depth of the layer's top"}),
+        "layer_bottom": ("layer", far.bottom, {"units": length, "positive": "down",
+                                               "long_name": "depth of the layer's bottom"})})
+    data.update({
+        "far_field_shear_strain": (dims, far.shear_strain, {
+            "units": "1", "long_name": "peak engineering shear strain |gamma_xy - gamma_xy(0)| "
+                                       "of the far-field column"}),
+        "far_field_plastic_strain": (dims, far.plastic_strain, {
+            "units": "1", "long_name": "peak equivalent plastic strain of the far-field column"}),
+        "far_field_plastic_strain_static": (dims, far.plastic_strain_static, {
+            "units": "1", "long_name": "equivalent plastic strain of the far-field column at "
+                                       "t = 0"}),
+        "far_field_yielded": ("layer", far.yielded.astype(np.int8), {
+            "long_name": "the layer yielded under the motion on either side",
+            "flag_values": np.array([0, 1], np.int8), "flag_meanings": "elastic yielded"})})
 
 
 def path_to_dataset(path):

@@ -10,7 +10,8 @@ import numpy as np
 
 from ...checks import InputError
 
-__all__ = ["rotation_schedule", "pushover_summary", "dynamic_summary", "summary_line"]
+__all__ = ["rotation_schedule", "pushover_summary", "dynamic_summary", "summary_line",
+           "dynamic_warnings"]
 
 
 def rotation_schedule(theta_max: float, steps: int, theta_on: float) -> np.ndarray:
@@ -61,8 +62,13 @@ def dynamic_summary(result, width: float | None = None) -> dict:
     (``peak_edge_uplift``), the settlement the motion left (``residual_settlement``, v at
     t = 0 less v at the end, down positive), the energy balance error and its tolerance, the
     largest equivalent plastic strain ε̄p at a quadrature point (``max_plastic_strain``; None
-    for a result that did not record it), the time integration (``method``, ``dt``) and, for
-    an interrupted run, ``completed_until``."""
+    for a result that did not record it) and the run's ``validity`` against the small-strain
+    limit (:mod:`~upliftlab.continuum.dynamics.validity`; None: not judged), the far field's
+    response (``far_field``: peak shear strain and where, peak plastic strain, ``yielded``
+    "elastic" or "from z1 to z2",
+    :meth:`~upliftlab.continuum.dynamics.far_field.FarFieldResponse.summary`; None for a
+    result without it) and ``far_field_yielded``, the
+    time integration (``method``, ``dt``) and, for an interrupted run, ``completed_until``."""
     time = np.asarray(result.time)
     footing = np.asarray(result.footing)
     theta = footing[:, 2]
@@ -83,11 +89,21 @@ def dynamic_summary(result, width: float | None = None) -> dict:
         "energy_balance_error": _energy_error(result),
         "energy_tolerance": result.metadata.get("energy_tolerance"),
         "max_plastic_strain": _finite_or_none(result.metadata.get("max_plastic_strain")),
+        "validity": result.metadata.get("validity"),
+        **_far_field(result),
         "method": result.metadata.get("method"), "dt": result.metadata.get("dt"),
     }
     if result.metadata.get("incomplete"):
         out["completed_until"] = result.metadata.get("completed_until")
     return out
+
+
+def _far_field(result) -> dict:
+    far = getattr(result, "far_field", None)
+    if far is None:
+        return {"far_field": None, "far_field_yielded": None}
+    summary = far.summary()
+    return {"far_field": summary, "far_field_yielded": summary["yield_top"] is not None}
 
 
 def _finite_or_none(value) -> float | None:
@@ -135,7 +151,37 @@ def summary_line(summary: dict, units: dict | None = None) -> str:
             f"{summary['time_of_peak_u']:.2f} s"
             + ("" if loss is None else f"; max contact loss {loss:.0%} of B")
             + ("" if energy is None else f"; energy balance error {energy:.2g} of the input")
-            + _strain_words(summary.get("max_plastic_strain")))
+            + _strain_words(summary.get("max_plastic_strain"))
+            + _far_field_words(summary.get("far_field"), length))
+
+
+def _far_field_words(far: dict | None, length: str) -> str:
+    if far is None:
+        return ""
+    where = ("stayed elastic" if far["yield_top"] is None else
+             f"yielded from {far['yield_top']:.3g} to {far['yield_bottom']:.3g} {length} deep")
+    return (f"; far field: peak shear strain {far['peak_shear_strain']:.3g} at "
+            f"{far['depth_of_peak']:.3g} {length} deep, {where}")
+
+
+def dynamic_warnings(summary: dict, units: dict | None = None) -> list[str]:
+    """The warnings a :func:`dynamic_summary` carries (not errors: a site may yield): the far
+    field yielded under the motion (the box's sides are then no longer the elastic free field
+    the ground motion was meant to enter through), the run passed the small-strain limit."""
+    from ..dynamics.validity import BEYOND, SMALL_STRAIN_LIMIT
+
+    length = (units or {}).get("length", "")
+    out = []
+    far = summary.get("far_field")
+    if far is not None and far["yield_top"] is not None:
+        out.append(f"the far field yielded under the motion from {far['yield_top']:.3g} to "
+                   f"{far['yield_bottom']:.3g} {length} deep (peak plastic strain "
+                   f"{far['peak_plastic_strain']:.3g}): the free field at the box's sides is "
+                   "not elastic")
+    if summary.get("validity") == BEYOND:
+        out.append(f"the largest plastic strain {summary['max_plastic_strain']:.3g} passes "
+                   f"the small-strain limit {SMALL_STRAIN_LIMIT:g}: the run is {BEYOND}")
+    return out
 
 
 #: The equivalent plastic strain from which the soil at a point has left small strain. A

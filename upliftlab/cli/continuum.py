@@ -234,10 +234,14 @@ def continuum(args) -> int:
         say(f"solved in {time.perf_counter() - started:.1f} s")
         from ..continuum.output.series import (dynamic_summary, pushover_summary, summary_line,
                                                write_outputs)
+        from ..continuum.output.summaries import dynamic_warnings
 
         summary = (pushover_summary(result) if args.analysis == "pushover"
                    else dynamic_summary(result, width=model.width))
         _admissible(summary, args.analysis)
+        if args.analysis != "pushover":
+            for words in dynamic_warnings(summary, {"length": scene.units.length}):
+                print(f"upliftlab: warning: {words}", file=sys.stderr)
         out.start_writing()
         written = write_outputs(out.path, model, result, scene=scene,
                                 renders=not args.no_render, scale=options["scale"],

@@ -11,6 +11,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from ....continuum.dynamics.validity import BEYOND, SMALL_STRAIN_LIMIT
 from ....scenes import scene_from_dict
 from ...beds import bed_foundation
 from ...beds.fitted import FITTED, fit_capacity_profile
@@ -83,13 +84,22 @@ def _continuum_into(a: PointArrays, at: tuple, run: Mapping, erun, where: str,
                     refusals: list) -> bool:
     """The continuum's run (and energy run) of point ``at`` into ``a``; False where its solver
     gave up (the point is left out, with a refusal); a bearing failure is marked, and its
-    beds are still run (each is held to the outcome)."""
+    beds are still run (each is held to the outcome). A run beyond the small-strain reference
+    (its record's ``validity``, :mod:`~upliftlab.continuum.dynamics.validity`) is marked and
+    left out like a refused one: no bed error, and no outcome a bed is held to. Records made
+    before the verdict was stored carry none and read as before, whatever their
+    ``max_plastic_strain``."""
     if "error" in run:  # the continuum's run failed: nothing to compare a bed with
         refusals.append(f"{where}, the continuum: {run['error']}")
         if run.get("failure") != "bearing":  # the solver gave up: the point is left out
             return False
         a.bearing[at] = True  # its wall time is a part run's: not in the speed
         return True
+    if run.get("validity") == BEYOND:  # only records that carry the verdict (module docstring)
+        refusals.append(f"{where}, the continuum: {BEYOND} (largest plastic strain "
+                        f"{run['max_plastic_strain']:.3g} > {SMALL_STRAIN_LIMIT:g})")
+        a.beyond[at] = True
+        return False
     a.continuum[at] = [run["measures"][q] for q in MEASURES]
     a.continuum_wall[at], a.steps[at], a.balance[at] = (run["wall_time_s"], run["steps"],
                                                         run["energy_balance_error"])

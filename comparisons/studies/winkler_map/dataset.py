@@ -43,7 +43,8 @@ class PointArrays:
     (…), ``bed_wall`` and ``bed_bearing`` (…, calibration), ``N`` (soil, fs_v), ``bed_K_r``
     and ``bed_K_v`` (soil, fs_v, calibration), ``continuum_energy`` (…, energy),
     ``bed_energy`` and ``energy_errors`` (…, calibration, energy), ``energy_scale`` (soil,
-    fs_v, h_over_B, period) and ``energy_left`` (…)."""
+    fs_v, h_over_B, period), ``energy_left`` (…) and ``beyond`` (…) the continuum's run
+    passed the small-strain limit (:mod:`upliftlab.continuum.dynamics.validity`)."""
 
     continuum: np.ndarray
     beds: np.ndarray
@@ -64,6 +65,7 @@ class PointArrays:
     energy_errors: np.ndarray
     energy_scale: np.ndarray
     energy_left: np.ndarray
+    beyond: np.ndarray
 
     @classmethod
     def empty(cls, shape: tuple[int, ...], beds: int) -> PointArrays:
@@ -78,7 +80,7 @@ class PointArrays:
                    nan(*shape, beds), np.zeros(shape, bool), np.zeros(shape + (beds,), bool),
                    nan(*shape[:2]), nan(*shape[:2], beds), nan(*shape[:2], beds),
                    nan(*shape, ne), nan(*shape, beds, ne), nan(*shape, beds, ne),
-                   nan(*shape[:4]), nan(*shape))
+                   nan(*shape[:4]), nan(*shape), np.zeros(shape, bool))
 
 
 def _coords(grid, motions, calibrations) -> dict:
@@ -140,6 +142,10 @@ def _variables(a: PointArrays) -> dict:
         "continuum_bearing_failure": (d, a.bearing.astype("i1"), {
             "units": "1", "long_name": "1: the continuum's run ended in a bearing failure of "
                                        "the soil (its measures NaN)"}),
+        "continuum_beyond_small_strain": (d, a.beyond.astype("i1"), {
+            "units": "1", "long_name": "1: the continuum's run passed the small-strain limit "
+                                       "of plastic strain (left out like a refused run, its "
+                                       "measures NaN; only runs that stored the verdict)"}),
         "bed_bearing_failure": (db, a.bed_bearing.astype("i1"), {
             "units": "1", "long_name": "1: at a bearing failure of the continuum, the bed's "
                                        "base settled by the failure settlement too"}),
