@@ -31,7 +31,8 @@ from .materials import (State, material_from_soil, plane_strain, plane_strain_st
                         plane_strain_tangent)
 
 __all__ = ["ContinuumModel", "Blocks", "Condensation", "Response", "build_model", "make_model",
-           "default_k0", "validate", "make_blocks", "node_groups", "evaluated"]
+           "default_k0", "validate", "make_blocks", "node_groups", "evaluated",
+           "depth_below_surface"]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -53,6 +54,7 @@ def validate(soil: Soil, options: ContinuumOptions, footing_width: float) -> Non
     checks.nonnegative("soil.density", soil.density)
     if soil.undrained and soil.undrained_strength is not None:
         checks.positive("soil.undrained_strength", soil.undrained_strength)
+    checks.nonnegative("soil.undrained_strength_gradient", soil.undrained_strength_gradient)
     checks.in_range("soil.friction_angle", soil.friction_angle, 0.0, 60.0, high_open=True)
     if soil.k0 is not None:
         checks.in_range("soil.k0", soil.k0, 0.0, 10.0, low_open=True)
@@ -125,7 +127,8 @@ class ContinuumModel:
 
     ``mesh`` (the linear skfem mesh with its named boundaries), ``mesh_parameters`` (what
     built it, for provenance), ``disc`` (B-matrices and pattern),
-    ``material`` (callable record of :mod:`~upliftlab.continuum.materials`), ``footing``,
+    ``material`` (callable record of :mod:`~upliftlab.continuum.materials`, at the quadrature
+    points' depths: :meth:`~upliftlab.continuum.materials.Elasticity.at_points`), ``footing``,
     ``blocks``, ``body_force`` (the soil's weight as nodal forces), ``gravity`` g, ``k0``.
     """
 
@@ -186,7 +189,8 @@ class ContinuumModel:
         if cached is None or cached[0] is not extra:
             if len(self._cache) > 4:
                 self._cache.clear()
-            D = plane_strain_tangent(self.material(np.zeros((3, 3, 1)))[1])[..., 0]
+            elastic = self.material.at_surface()(np.zeros((3, 3, 1)))[1]
+            D = plane_strain_tangent(elastic)[..., 0]
             cached = self._cache[key] = (extra, self._condense(D, extra, reused=True))
         return cached[1]
 
@@ -243,11 +247,18 @@ def make_model(soil: Soil, footing_width: float, options: ContinuumOptions | Non
     contact = footing.contact_dofs
     interior = np.setdiff1d(np.arange(disc.ndofs), np.union1d(fixed, contact))
     body = assembly.body_force(disc, (0.0, -soil.density * gravity))
+    material = material_from_soil(soil).at_points(depth_below_surface(disc))
     return ContinuumModel(soil=soil, options=options, mesh=skmesh, mesh_parameters=parameters,
-                          disc=disc, material=material_from_soil(soil), footing=footing,
+                          disc=disc, material=material, footing=footing,
                           blocks=make_blocks(disc.pattern, interior, contact, fixed,
                                          node_groups(disc.basis)),
                           body_force=body, gravity=gravity, k0=default_k0(soil), scene=scene)
+
+
+def depth_below_surface(disc: assembly.Discretisation) -> np.ndarray:
+    """The depth z (length) of every quadrature point below the ground surface, the footing's
+    base level y = 0 of the mesh (nelems, nqp): −y, as the geostatic stress's."""
+    return -np.minimum(disc.qp_coordinates[1], 0.0)
 
 
 def _check_footing(footing: Footing, width: float, mesh: skfem.Mesh) -> None:

@@ -300,8 +300,8 @@ for record in (mat.Tresca(5e4, 0.3, 50.0), mat.MohrCoulomb(5e4, 0.3, 5.0, 30.0, 
     one = np.ones((1, 1, 1))
     kernels._elements_serial(np.zeros((1, 2)), np.zeros((1, 1), np.int64), one, one,
                              np.ones((1, 1)), np.zeros((1, 1, 4)), np.zeros((1, 1, 4)),
-                             np.zeros((1, 1)), record.kernel_constants(), np.zeros((1, 1, 4)),
-                             np.zeros((1, 1, 2)))
+                             np.zeros((1, 1)), record.kernel_constants(), np.zeros((1, 1)),
+                             np.zeros((1, 1, 4)), np.zeros((1, 1, 2)))
 stats = kernels._elements_serial.stats
 print(sum(stats.cache_hits.values()), sum(stats.cache_misses.values()))
 """

@@ -25,7 +25,8 @@ __all__ = ["Tolerance", "TOLERANCES", "rocking_restitution_rectangle", "HOUSNER_
            "winkler_moment_ratio", "winkler_contact_ratio",
            "ultimate_moment_ratio", "first_yield_rotation_ratio", "HALF_PLANE_ONSET_ECCENTRICITY",
            "half_plane_rocking_stiffness", "half_plane_onset_rotation", "half_plane_rocking",
-           "flamant_compliance_slope", "prandtl_capacity", "vm_envelope_moment_ratio",
+           "flamant_compliance_slope", "prandtl_capacity", "davis_booker_factor",
+           "undrained_capacity", "vm_envelope_moment_ratio",
            "drop_mass_stroke"]
 
 
@@ -187,6 +188,28 @@ def prandtl_capacity(undrained_strength: float, B: float) -> float:
     """N_ult = (2 + π) c_u B: Prandtl's bearing capacity of a strip of width B on Tresca soil
     (per unit length, §4)."""
     return (2.0 + math.pi) * undrained_strength * B
+
+
+def davis_booker_factor(x: float, rough: bool = False) -> float:
+    """Davis & Booker's (1973) F at x = k B/c_u0 (a strength c_u0 + k z growing linearly with
+    depth; smooth or ``rough`` strip), by the curve fit of their chart in API RP 2GEO (2011)
+    and ISO 19901-4 (F(0) = 1.007, the fit's own error); F grows with x, and x beyond the fit's
+    range [0, 25] is taken as 25 (F then errs low)."""
+    x = min(max(float(x), 0.0), 25.0)
+    if rough:
+        return 2.56 + 0.457 * x - math.sqrt((0.713 + 0.457 * x) ** 2 + 1.38 ** 2)
+    return 1.372 + 0.07 * x - math.sqrt((0.07 * x - 0.128) ** 2 + 0.342 ** 2)
+
+
+def undrained_capacity(undrained_strength: float, gradient: float, B: float,
+                       rough: bool = False) -> float:
+    """N_ult of a strip of width B on Tresca soil whose strength is c_u0 + k z (per unit
+    length): Prandtl's (2 + π) c_u0 B when k = 0, else Davis & Booker's (1973)
+    F [(2 + π) c_u0 + k B/4] B (:func:`davis_booker_factor`, smooth or ``rough``)."""
+    if gradient == 0.0:
+        return prandtl_capacity(undrained_strength, B)
+    F = davis_booker_factor(gradient * B / undrained_strength, rough)
+    return F * ((2.0 + math.pi) * undrained_strength + gradient * B / 4.0) * B
 
 
 def vm_envelope_moment_ratio(v: float) -> float:

@@ -56,6 +56,7 @@ KINDS: dict[str, Kind] = {
     "rotary_inertia": Kind(1, 1, "{F}*{L}*s^2", "kg*m^2", 0.0, 1e18, tiny=1e-9),
     "modulus": Kind(1, -2, "{F}/{L}^2", "Pa", 1e3, 1e13),
     "strength": Kind(1, -2, "{F}/{L}^2", "Pa", 0.0, 1e10),
+    "strength_gradient": Kind(1, -3, "{F}/{L}^3", "Pa/m", 0.0, 1e10),
     "hardening": Kind(1, -2, "{F}/{L}^2", "Pa", 0.0, 1e13),
     "density": Kind(1, -4, "{F}*s^2/{L}^4", "kg/m^3", 0.0, 1e5),
     "velocity": Kind(0, 1, "{L}/s", "m/s", -1e3, 1e3),

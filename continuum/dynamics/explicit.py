@@ -335,7 +335,7 @@ class _Explicit:
         done, Fz_prev = -1, np.zeros(4)
         rings, carry = (U, V, Z, VZ, FC, ST), (R_prev, F_prev, Fz_prev, energy, counters)
         soil_data = (lay.nodes, lay.dNdx, lay.dNdy, lay.dx, soil.eigenstrain, soil.plastic,
-                     soil.ebar, soil.constants, soil.stress, soil.work, fint,
+                     soil.ebar, soil.constants, soil.gain, soil.stress, soil.work, fint,
                      lay.ptr, lay.entries)
         loads = (self.datum, self.keep, self.ground_soil, self.incident, ag_all, vinc_all,
                  self.mass, self.c, m_step)

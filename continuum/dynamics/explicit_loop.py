@@ -116,7 +116,7 @@ def _steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure, c
     (:func:`_serial`, :func:`_parallel`) into which numba inlines this body."""
     U, V, Z, VZ, FC, ST = rings
     R_prev, F_prev, Fz_prev, energy, counters = carry
-    (nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, stress, work, fint, ptr,
+    (nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, gain, stress, work, fint, ptr,
      entries) = soil
     datum, keep, ground, incident, ag_all, vinc_all, mass, damping, m_step = loads
     Mz, Cz, Kz, Kz_next, gravity_z, ground_all = structure
@@ -131,8 +131,8 @@ def _steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure, c
         v, v_next = V[k % 2], V[(k + 1) % 2]
         z, z_prev = Z[k % 3], Z[(k + 2) % 3]
         vz = VZ[k % 2]
-        elements(u.reshape(-1, 2), nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, stress,
-                 work)
+        elements(u.reshape(-1, 2), nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, gain,
+                 stress, work)
         gather(work, nodes, ptr, entries, fint)
         ag = ag_all[k]
         strain, work_in, dissipated = soil_predict(

@@ -97,7 +97,7 @@ class FrozenTangent(ContinuumModel):
 def elastic_plane_tangent(model) -> np.ndarray:
     """The plane-strain elastic tangent (3, 3, nelems, nqp) of the model's material at zero
     strain, at every quadrature point."""
-    D = plane_strain_tangent(model.material(np.zeros((3, 3, 1)))[1])[..., 0]
+    D = plane_strain_tangent(model.material.at_surface()(np.zeros((3, 3, 1)))[1])[..., 0]
     return np.ascontiguousarray(np.broadcast_to(D[..., None, None], (3, 3) + model.disc.qp_shape))
 
 

@@ -38,6 +38,7 @@ class KernelResponse:
 
     def __init__(self, model, constants):
         self.model, self.constants = model, constants
+        self.gain = np.ascontiguousarray(model.material.strength_gain(model.disc.qp_shape))
         self.layout = kernels.layout(model.disc)
         self.work = np.zeros(self.layout.shape[::2] + (2,))
         self.force = np.zeros(model.disc.ndofs)
@@ -57,7 +58,8 @@ class KernelResponse:
         nel, nqp = self.model.disc.qp_shape
         stress = np.empty((nel, nqp, 4))
         kernels.internal_force(self.layout, u, self._eigenstrain(eigenstrain), plastic, ebar,
-                               self.constants, stress, self.work, self.force, parallel=False)
+                               self.constants, self.gain, stress, self.work, self.force,
+                               parallel=False)
         material = State(tensor_of(plastic), ebar, np.zeros((nel, nqp), dtype=np.int8))
         return tensor_of(stress), material, self.force - self.model.body_force
 

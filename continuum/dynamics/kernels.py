@@ -17,7 +17,9 @@ kernels take the scalar gradients ``dNdx``, ``dNdy`` (nel, nqp, nnode), the quad
 return (:mod:`~upliftlab.continuum.materials.compiled`), found by the type of the constants the
 kernels are given (the record's ``kernel_constants()``, a named tuple whose class names the
 return): numba compiles and caches one element loop per soil model, with the model's return
-inlined. Each is the same return map as the model's vectorised one (plane strain: the strain's zz
+inlined; a strength that grows with depth enters as a per-point gain (nel, nqp) added to the
+constants' c_u (:mod:`~upliftlab.continuum.materials.undrained`). Each is the same return map
+as the model's vectorised one (plane strain: the strain's zz
 component is the geostatic eigenstrain's, xz = yz = 0), written for one point and without the
 tangent; a model without one (its record's ``Constants`` None) does not run here.
 
@@ -88,7 +90,8 @@ def layout(disc) -> Layout:
 
 
 @nb.njit(cache=True, fastmath=_FAST)
-def _elements(lo, hi, u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, stress, fe):
+def _elements(lo, hi, u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, gain, stress,
+              fe):
     """Elements lo:hi of :func:`internal_force`."""
     nel, nqp, nn = dNdx.shape
     ue = np.empty((nn, 2))
@@ -107,7 +110,7 @@ def _elements(lo, hi, u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, 
             sxx, syy, szz, sxy, d0, d1, d2, d3, db = point_return(
                 constants, exx + eig[e, p, 0], eyy + eig[e, p, 1], eig[e, p, 2],
                 0.5 * gxy + eig[e, p, 3], plastic[e, p, 0], plastic[e, p, 1],
-                plastic[e, p, 2], plastic[e, p, 3], ebar[e, p])
+                plastic[e, p, 2], plastic[e, p, 3], ebar[e, p], gain[e, p])
             if db != 0.0:
                 plastic[e, p, 0] += d0
                 plastic[e, p, 1] += d1
@@ -125,18 +128,20 @@ def _elements(lo, hi, u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, 
 
 
 @nb.njit(cache=True, parallel=True)
-def _elements_parallel(u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, stress, fe):
+def _elements_parallel(u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, gain, stress,
+                       fe):
     nel = dNdx.shape[0]
     blocks = min(nel, _BLOCKS)
     for b in nb.prange(blocks):
         _elements(b * nel // blocks, (b + 1) * nel // blocks, u2, nodes, dNdx, dNdy, dx, eig,
-                  plastic, ebar, constants, stress, fe)
+                  plastic, ebar, constants, gain, stress, fe)
 
 
 @nb.njit(cache=True)
-def _elements_serial(u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, stress, fe):
-    _elements(0, dNdx.shape[0], u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, stress,
-              fe)
+def _elements_serial(u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, gain, stress,
+                     fe):
+    _elements(0, dNdx.shape[0], u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, gain,
+              stress, fe)
 
 
 @nb.njit(cache=True)
@@ -168,13 +173,14 @@ def _gather_serial(fe, nodes, out2):
             out2[k, 1] += fe[e, a, 1]
 
 
-def internal_force(lay: Layout, u, eigenstrain, plastic, ebar, constants, stress, work, out,
-                   parallel: bool | None = None) -> np.ndarray:
+def internal_force(lay: Layout, u, eigenstrain, plastic, ebar, constants, gain, stress, work,
+                   out, parallel: bool | None = None) -> np.ndarray:
     """∫ Bᵀ σ (ndofs) into ``out`` for the displacement ``u``: the return map of the soil model
     whose ``constants`` these are (its record's ``kernel_constants()``) at every quadrature
-    point from the state (``plastic`` (nel, nqp, 4), ``ebar`` (nel, nqp)), which is **updated
-    in place** (an explicit step commits every evaluation), the stress written to ``stress``
-    (nel, nqp, 4).
+    point, with the point's strength ``gain`` (nel, nqp; the record's ``strength_gain``, zeros
+    for a uniform soil), from the state (``plastic`` (nel, nqp, 4), ``ebar`` (nel, nqp)),
+    which is **updated in place** (an explicit step commits every evaluation), the stress
+    written to ``stress`` (nel, nqp, 4).
     ``eigenstrain`` (nel, nqp, 4) is added to the strain of u (the geostatic stress); ``work``
     (nel, nnode, 2) is scratch. With more than one numba thread (``numba.get_num_threads()``)
     the elements and the DOFs are split among the threads, unless ``parallel`` is False."""
@@ -182,7 +188,7 @@ def internal_force(lay: Layout, u, eigenstrain, plastic, ebar, constants, stress
         parallel = nb.get_num_threads() > 1
     elements, gather = compiled_pair(parallel)
     elements(u.reshape(-1, 2), lay.nodes, lay.dNdx, lay.dNdy, lay.dx, eigenstrain, plastic, ebar,
-             constants, stress, work)
+             constants, gain, stress, work)
     gather(work, lay.nodes, lay.ptr, lay.entries, out)
     return out
 

@@ -46,6 +46,8 @@ class SoilForce:
         self.eigenstrain = np.zeros((nel, nqp, 4)) if eig is None else four_components(eig)
         self.constants = model.material.kernel_constants()
         self.compiled = self.constants is not None
+        #: the per-point strength gain of the compiled return (zeros: a uniform strength)
+        self.gain = np.ascontiguousarray(model.material.strength_gain((nel, nqp)))
         self.out = np.zeros(model.disc.ndofs)
         if self.compiled:
             self.layout = kernels.layout(model.disc)
@@ -61,8 +63,8 @@ class SoilForce:
         """∫ Bᵀ σ(u) (ndofs; a buffer reused by the next call) and commit the state."""
         if self.compiled:
             return kernels.internal_force(self.layout, u, self.eigenstrain, self.plastic,
-                                          self.ebar, self.constants, self.stress, self.work,
-                                          self.out)
+                                          self.ebar, self.constants, self.gain, self.stress,
+                                          self.work, self.out)
         response = self.model.respond(u, self._material, self._eigen)
         self._material, self._stress = response.material, response.stress
         np.add(response.residual, self.model.body_force, out=self.out)

@@ -50,7 +50,8 @@ return map and, for the explicit route, its compiled point return with the const
 
 Shared pieces: :mod:`.base` (the records' base and input checks), :mod:`.returns` (state,
 regions, tensor layouts), :mod:`.principal` (the principal-space return of Tresca and
-Mohr–Coulomb), :mod:`.compiled` (the point returns' shared helpers and dispatch) and
+Mohr–Coulomb), :mod:`.undrained` (Tresca's and von Mises' strength, which may grow with depth,
+c_u + k z), :mod:`.compiled` (the point returns' shared helpers and dispatch) and
 :mod:`.registry` (:data:`SOIL_MODELS`). Every name is importable from here.
 """
 
@@ -61,16 +62,19 @@ from .compiled import point_return
 from .drucker_prager import DruckerPrager, drucker_prager
 from .elastic import Elastic, linear_elastic
 from .mohr_coulomb import MohrCoulomb, mohr_coulomb
-from .registry import SOIL_MODELS, compiled_models, hardening_models, material_from_soil
+from .registry import (SOIL_MODELS, compiled_models, graded_models, hardening_models,
+                       material_from_soil)
 from .returns import (VOIGT, Region, State, initial_state, plane_strain, plane_strain_stress,
                       plane_strain_tangent)
 from .tresca import Tresca, tresca
+from .undrained import Undrained
 from .von_mises import VonMises, von_mises
 
 __all__ = [
     "SOIL_MODELS",
     "compiled_models",
     "hardening_models",
+    "graded_models",
     "material_from_soil",
     "point_return",
     "Region",
@@ -78,6 +82,7 @@ __all__ = [
     "initial_state",
     "Elasticity",
     "Frictional",
+    "Undrained",
     "Elastic",
     "VonMises",
     "Tresca",

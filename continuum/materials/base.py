@@ -14,6 +14,8 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
+import numpy as np
+
 from ... import checks
 from ...checks import InputError
 from .returns import State, initial_state
@@ -105,6 +107,22 @@ class Elasticity:
 
     def initial_state(self, batch_shape=()) -> State:
         return initial_state(batch_shape)
+
+    def at_points(self, depth):
+        """This record at points of the given depths below the surface (length, shape
+        (nelems, nqp)): itself, unless its strength grows with depth
+        (:mod:`~upliftlab.continuum.materials.undrained`)."""
+        return self
+
+    def at_surface(self):
+        """This record with its strength at the surface, uniform: itself unless its
+        strength grows with depth."""
+        return self
+
+    def strength_gain(self, batch) -> np.ndarray:
+        """The per-point strength added to the constants' by the compiled return, shape
+        ``batch``: zeros unless the strength grows with depth."""
+        return np.zeros(tuple(batch))
 
     def kernel_constants(self):
         """The :attr:`Constants` of this record, each field the record's attribute of that

@@ -7,12 +7,14 @@ return has, beside its vectorised map, a point return for one plane-strain point
 tangent (an explicit step needs none), and a :class:`typing.NamedTuple` of the floats it reads
 (its record's ``Constants``), which names that return as ``Constants.point``:
 
-    point(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar)
+    point(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar[, gain])
         -> (stress xx, yy, zz, xy, plastic strain increment xx, yy, zz, xy, Δε̄p)
 
 from the total strain (xx, yy, zz, xy; tensorial shear: the strain's zz component is the
-geostatic eigenstrain's, xz = yz = 0), the converged plastic strain and ε̄p. Stresses in the
-constants' unit (kPa). The element loop calls :func:`point_return`, which numba resolves by
+geostatic eigenstrain's, xz = yz = 0), the converged plastic strain and ε̄p; a model whose
+``Constants`` are ``graded`` (Tresca, von Mises: a strength that grows with depth,
+:mod:`.undrained`) also takes the point's strength ``gain`` k z, added to the constants'.
+Stresses in the constants' unit (kPa). The element loop calls :func:`point_return`, which numba resolves by
 the constants' type when it compiles the loop and inlines: one compiled loop per model, with
 no branch on the model inside it, cached by numba like any other kernel (the constants' type,
 a named tuple class, is part of the cached signature).
@@ -37,21 +39,36 @@ RTOL = 1e-12
 SQRT23 = math.sqrt(2.0 / 3.0)
 
 
-def point_return(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar):
+def point_return(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar, gain=0.0):
     """The return map of the soil model whose ``constants`` these are, at one plane-strain
-    point (module docstring): ``type(constants).point`` of the arguments. Called from Python
-    it runs that compiled return; compiled, it is resolved by the constants' type and inlined."""
-    return type(constants).point(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar)
+    point (module docstring): ``type(constants).point`` of the arguments, with the point's
+    strength ``gain`` (kPa) for a model whose constants are ``graded`` (a strength that grows
+    with depth, :mod:`.undrained`; a model without one refuses a gain). Called from Python it
+    runs that compiled return; compiled, it is resolved by the constants' type and inlined."""
+    cls = type(constants)
+    if getattr(cls, "graded", False):
+        return cls.point(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar, gain)
+    if gain != 0.0:
+        raise ValueError(f"gain = {gain!r}: the {cls.__name__} of this model take no strength "
+                         "gain; valid: 0")
+    return cls.point(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar)
 
 
 @overload(point_return, inline="always")
-def _point_return_of_type(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar):
-    """Resolve :func:`point_return` at compile time by the constants' named tuple class."""
-    point = getattr(getattr(constants, "instance_class", None), "point", None)
+def _point_return_of_type(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar, gain=0.0):
+    """Resolve :func:`point_return` at compile time by the constants' named tuple class: a
+    ``graded`` model's return gets the gain, another's does not (it is always zero there: the
+    record's :meth:`~.base.Elasticity.strength_gain`)."""
+    cls = getattr(constants, "instance_class", None)
+    point = getattr(cls, "point", None)
     if point is None:
         return None
+    if getattr(cls, "graded", False):
+        def graded(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar, gain=0.0):
+            return point(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar, gain)
+        return graded
 
-    def resolved(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar):
+    def resolved(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar, gain=0.0):
         return point(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar)
     return resolved
 

@@ -22,7 +22,8 @@ __all__ = ["principal_return"]
 def principal_return(strain, state, params, sin_phi, cos_phi, sin_psi, cohesion):
     """(stress, tangent, new state) of the principal-space return (module docstring) of
     ``strain`` from ``state`` with the elastic constants of ``params`` and the strength
-    ``cohesion`` (kPa), sin φ, cos φ and sin ψ."""
+    ``cohesion`` (kPa; a float, or one per point (N,) of the flattened batch), sin φ, cos φ
+    and sin ψ."""
     eps, eps_p, ebar, batch = prepare(strain, state)
     n = len(eps)
     sig_trial = elastic_stress(eps - eps_p, params)
@@ -37,7 +38,8 @@ def principal_return(strain, state, params, sin_phi, cos_phi, sin_psi, cohesion)
     if plastic.any():
         values, vectors = np.linalg.eigh(sig_trial[plastic])
         values, vectors = values[:, ::-1], vectors[:, :, ::-1]  # σ1 >= σ2 >= σ3
-        sig, d3, spin, reg = _mc_principal(values, params, sin_phi, cos_phi, sin_psi, cohesion)
+        sig, d3, spin, reg = _mc_principal(values, params, sin_phi, cos_phi, sin_psi,
+                                           _at(cohesion, plastic))
         d_eps_p = (values - sig) @ np.linalg.inv(_principal_elasticity(params))
         stress[plastic] = np.einsum("nia,na,nja->nij", vectors, sig, vectors)
         eps_p_new[plastic] += np.einsum("nia,na,nja->nij", vectors, d_eps_p, vectors)
@@ -45,6 +47,11 @@ def principal_return(strain, state, params, sin_phi, cos_phi, sin_psi, cohesion)
         tangent = Piecewise(tangent.constant, plastic, _spectral_tangent(vectors, d3, spin))
         region[plastic] = reg
     return finish(batch, stress, tangent, eps_p_new, ebar_new, region)
+
+
+def _at(value, mask):
+    """A per-point ``value`` (float, or an array over the points) at the points of ``mask``."""
+    return value if np.ndim(value) == 0 else value[mask]
 
 
 def _extreme_principal(sig):
@@ -77,6 +84,7 @@ def _return_to_planes(trial, ce, grads, flows, k):
     Returns the principal stresses (n, 3) and the principal tangent D3 (3, 3), which maps
     principal strain increments to principal stress increments."""
     grads, flows = np.atleast_2d(grads), np.atleast_2d(flows)
+    k = k if np.ndim(k) == 0 else k[:, None]  # one strength per point: one per row
     c_flow, c_grad = flows @ ce, grads @ ce  # rows: Ce·N (Ce is symmetric)
     m_inv = np.linalg.inv(grads @ ce @ flows.T)
     dgamma = (trial @ grads.T - k) @ m_inv.T
@@ -116,7 +124,7 @@ def _mc_principal(trial, params, sin_phi, cos_phi, sin_psi, cohesion):
     d3 = np.where(main_ok[:, None, None], main_d,
                   np.where(extension[:, None, None], ext_d, comp_d))
     if apex.any():
-        sig[apex] = cohesion * cos_phi / sin_phi
+        sig[apex] = np.reshape(_at(cohesion * cos_phi / sin_phi, apex), (-1, 1))
         d3[apex] = 0.0
     spin = np.empty((n, 3))
     scale = k + np.abs(trial).max(axis=1)

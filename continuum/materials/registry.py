@@ -25,7 +25,8 @@ from .von_mises import VonMises
 if TYPE_CHECKING:  # pragma: no cover
     from ...scenes import Soil
 
-__all__ = ["SOIL_MODELS", "material_from_soil", "hardening_models", "compiled_models"]
+__all__ = ["SOIL_MODELS", "material_from_soil", "hardening_models", "graded_models",
+           "compiled_models"]
 
 #: Every soil model's parameter record by its name, in the scene's order.
 SOIL_MODELS: dict[str, type[Elasticity]] = {
@@ -36,6 +37,13 @@ def hardening_models() -> tuple[str, ...]:
     """The names of the models that read ``soil.hardening_modulus`` (a field of the record)."""
     return tuple(name for name, record in SOIL_MODELS.items()
                  if "hardening_modulus" in record.__dataclass_fields__)
+
+
+def graded_models() -> tuple[str, ...]:
+    """The names of the models whose undrained strength may grow with depth (a field
+    ``undrained_strength_gradient`` of the record)."""
+    return tuple(name for name, record in SOIL_MODELS.items()
+                 if "undrained_strength_gradient" in record.__dataclass_fields__)
 
 
 def compiled_models() -> tuple[str, ...]:
@@ -58,4 +66,11 @@ def material_from_soil(soil: Soil) -> Elasticity:
         raise InputError(f"soil.hardening_modulus = {hardening:g}: model {model!r} is perfectly "
                          "plastic here, valid range is [0, 0] (hardening is implemented for "
                          f"{' and '.join(hardens)} only)")
+    gradient = checks.nonnegative("soil.undrained_strength_gradient",
+                                  getattr(soil, "undrained_strength_gradient", 0.0))
+    graded = graded_models()
+    if gradient > 0.0 and model not in graded:
+        raise InputError(f"soil.undrained_strength_gradient = {gradient:g}: model {model!r} "
+                         "reads no undrained strength, valid range is [0, 0] (a strength that "
+                         f"grows with depth is implemented for {' and '.join(graded)} only)")
     return SOIL_MODELS[model].from_soil(soil)

@@ -11,23 +11,27 @@ in the xy plane.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numba as nb
+import numpy as np
 
 from .base import Elasticity, check_elastic, check_undrained
 from .compiled import RTOL, SQRT23, elastic_trial, rotate_back, sorted_principal
 from .principal import principal_return
 from .returns import State
+from .undrained import Undrained, check_gradient
 
 __all__ = ["Tresca", "TrescaConstants", "tresca", "tresca_point"]
 
 
 def tresca(strain, state: State | None, params: Tresca):
     """Tresca (perfectly plastic): principal-space return to the main plane or an edge, spectral
-    consistent tangent. Mohr–Coulomb with φ = ψ = 0 and c = c_u."""
-    return principal_return(strain, state, params, 0.0, 1.0, 0.0, params.undrained_strength)
+    consistent tangent. Mohr–Coulomb with φ = ψ = 0 and c = c_u (at each point's depth:
+    :mod:`.undrained`)."""
+    return principal_return(strain, state, params, 0.0, 1.0, 0.0,
+                            params.strength(np.shape(strain)[2:]))
 
 
 @nb.njit(cache=True, inline="always")
@@ -56,14 +60,15 @@ def _principal_tresca(sxx, syy, szz, sxy, k):
 
 
 @nb.njit(cache=True, inline="always")
-def tresca_point(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar):
-    """The Tresca return at one point (:mod:`.compiled`); the plastic strain increment is
-    (σ_trial − σ)/(2G), deviatoric (Tresca's flow is isochoric)."""
+def tresca_point(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar, gain=0.0):
+    """The Tresca return at one point (:mod:`.compiled`) with c_u + ``gain`` (kPa: the
+    point's k z, :mod:`.undrained`); the plastic strain increment is (σ_trial − σ)/(2G),
+    deviatoric (Tresca's flow is isochoric)."""
     G = constants.shear_modulus
     _, _, _, _, _, sxx, syy, szz, sxy = elastic_trial(
         constants.lame, G, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy)
     nxx, nyy, nzz, nxy = _principal_tresca(sxx, syy, szz, sxy,
-                                           2.0 * constants.undrained_strength)
+                                           2.0 * (constants.undrained_strength + gain))
     a, b, c, d = (sxx - nxx) / (2.0 * G), (syy - nyy) / (2.0 * G), \
         (szz - nzz) / (2.0 * G), (sxy - nxy) / (2.0 * G)
     dbar = SQRT23 * math.sqrt(a * a + b * b + c * c + 2.0 * d * d)
@@ -71,21 +76,27 @@ def tresca_point(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar):
 
 
 class TrescaConstants(NamedTuple):
-    """What :func:`tresca_point` reads: λ, G and c_u (kPa)."""
+    """What :func:`tresca_point` reads: λ, G and c_u (kPa) at the surface (``graded``: the
+    point return takes the point's strength gain)."""
 
     lame: float
     shear_modulus: float
     undrained_strength: float
     point = tresca_point
+    graded = True
 
 
 @dataclass(frozen=True)
-class Tresca(Elasticity):
-    """Tresca plasticity (perfectly plastic): σ1 − σ3 ≤ 2 c_u."""
+class Tresca(Undrained, Elasticity):
+    """Tresca plasticity (perfectly plastic): σ1 − σ3 ≤ 2 c_u, c_u = ``undrained_strength`` +
+    ``undrained_strength_gradient`` × depth (:mod:`.undrained`; ``depth`` set by
+    :meth:`~.undrained.Undrained.at_points`)."""
 
     youngs_modulus: float
     poisson_ratio: float
     undrained_strength: float
+    undrained_strength_gradient: float = 0.0
+    depth: np.ndarray | None = field(default=None, repr=False, compare=False)
     name = "tresca"
     update = staticmethod(tresca)
     Constants = TrescaConstants
@@ -93,10 +104,12 @@ class Tresca(Elasticity):
     def __post_init__(self):
         check_elastic("Tresca.", self.youngs_modulus, self.poisson_ratio)
         check_undrained("Tresca.", "tresca", self.undrained_strength)
+        check_gradient("Tresca.", self.undrained_strength_gradient)
 
     @classmethod
     def from_soil(cls, soil):
         check_undrained("soil.", cls.name, soil.undrained_strength)
         return cls(youngs_modulus=float(soil.youngs_modulus),
                    poisson_ratio=float(soil.poisson_ratio),
-                   undrained_strength=float(soil.undrained_strength))
+                   undrained_strength=float(soil.undrained_strength),
+                   undrained_strength_gradient=float(soil.undrained_strength_gradient))

@@ -11,7 +11,7 @@ in-plane shear strength is c_u (Tresca's, in plane strain).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numba as nb
@@ -23,6 +23,7 @@ from .compiled import RTOL as POINT_RTOL
 from .compiled import elastic_trial
 from .returns import (EYE3, IDEV6, ONE_ONE6, RTOL, Region, State, deviator, finish,
                       frobenius_norm, mandel, prepare)
+from .undrained import Undrained, check_gradient
 
 __all__ = ["VonMises", "VonMisesConstants", "von_mises", "von_mises_point"]
 
@@ -38,7 +39,7 @@ def von_mises(strain, state: State | None, params: VonMises):
     s_trial = 2.0 * G * dev
     norm = frobenius_norm(s_trial)
     q_trial = math.sqrt(1.5) * norm
-    yield_stress = math.sqrt(3.0) * params.undrained_strength + H * ebar
+    yield_stress = math.sqrt(3.0) * params.strength(batch) + H * ebar
     f_trial = q_trial - yield_stress
     plastic = f_trial > RTOL * yield_stress
     q_safe = np.where(plastic, q_trial, 1.0)
@@ -56,9 +57,9 @@ def von_mises(strain, state: State | None, params: VonMises):
 
 
 @nb.njit(cache=True, inline="always")
-def von_mises_point(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar):
-    """The radial return at one point (:mod:`.compiled`), the same closed form as
-    :func:`von_mises`."""
+def von_mises_point(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar, gain=0.0):
+    """The radial return at one point (:mod:`.compiled`) with c_u + ``gain`` (kPa: the
+    point's k z, :mod:`.undrained`), the same closed form as :func:`von_mises`."""
     lam, G = constants.lame, constants.shear_modulus
     exx, eyy, ezz, exy, tr, sxx, syy, szz, sxy = elastic_trial(
         lam, G, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy)
@@ -67,7 +68,7 @@ def von_mises_point(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar):
     norm = math.sqrt(dxx * dxx + dyy * dyy + dzz * dzz + 2.0 * sxy * sxy)
     q = _SQRT32 * norm
     H = constants.hardening_modulus
-    sy = math.sqrt(3.0) * constants.undrained_strength + H * ebar
+    sy = math.sqrt(3.0) * (constants.undrained_strength + gain) + H * ebar
     f = q - sy
     if not f > POINT_RTOL * sy:
         return sxx, syy, szz, sxy, 0.0, 0.0, 0.0, 0.0, 0.0
@@ -81,28 +82,33 @@ def von_mises_point(constants, exx, eyy, ezz, exy, pxx, pyy, pzz, pxy, ebar):
 
 
 class VonMisesConstants(NamedTuple):
-    """What :func:`von_mises_point` reads: λ, G, c_u (kPa) and H (kPa)."""
+    """What :func:`von_mises_point` reads: λ, G, c_u (kPa) at the surface and H (kPa)
+    (``graded``: the point return takes the point's strength gain)."""
 
     lame: float
     shear_modulus: float
     undrained_strength: float
     hardening_modulus: float
     point = von_mises_point
+    graded = True
 
 
 @dataclass(frozen=True)
-class VonMises(Elasticity):
+class VonMises(Undrained, Elasticity):
     """von Mises (J2) plasticity for undrained clay: q = √(3 J2) ≤ σ_y = √3 c_u + H ε̄p.
 
     σ_y = √3 c_u is the plane-strain match: at the plane-strain limit s_zz = 0, so the in-plane
     shear strength is c_u (Tresca's, in plane strain). H is dσ_y/dε̄p with ε̄p = ∫√(2/3)‖dεp‖;
-    in plane-strain simple shear τ = c_u + H γp/3.
+    in plane-strain simple shear τ = c_u + H γp/3. c_u = ``undrained_strength`` +
+    ``undrained_strength_gradient`` × depth (:mod:`.undrained`).
     """
 
     youngs_modulus: float
     poisson_ratio: float
     undrained_strength: float
     hardening_modulus: float = 0.0
+    undrained_strength_gradient: float = 0.0
+    depth: np.ndarray | None = field(default=None, repr=False, compare=False)
     name = "von_mises"
     update = staticmethod(von_mises)
     Constants = VonMisesConstants
@@ -111,6 +117,7 @@ class VonMises(Elasticity):
         check_elastic("VonMises.", self.youngs_modulus, self.poisson_ratio)
         check_undrained("VonMises.", "von_mises", self.undrained_strength)
         checks.nonnegative("VonMises.hardening_modulus", self.hardening_modulus)
+        check_gradient("VonMises.", self.undrained_strength_gradient)
 
     @classmethod
     def from_soil(cls, soil):
@@ -118,4 +125,5 @@ class VonMises(Elasticity):
         return cls(youngs_modulus=float(soil.youngs_modulus),
                    poisson_ratio=float(soil.poisson_ratio),
                    undrained_strength=float(soil.undrained_strength),
-                   hardening_modulus=float(soil.hardening_modulus))
+                   hardening_modulus=float(soil.hardening_modulus),
+                   undrained_strength_gradient=float(soil.undrained_strength_gradient))

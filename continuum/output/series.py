@@ -87,7 +87,8 @@ def moment_rotation_figure(path, scene=None):
         ax_c.plot(fine, ref["c"] / B, "--", color="tab:red", lw=1.5, label=label)
         ax_s.plot(fine, ref["settlement"], "--", color="tab:red", lw=1.5, label=label)
     cu = soil.get("undrained_strength")
-    if SOIL_MODELS.get(soil.get("model")) == UNDRAINED and cu:
+    uniform = not soil.get("undrained_strength_gradient")  # Prandtl's V–M envelope: uniform c_u
+    if SOIL_MODELS.get(soil.get("model")) == UNDRAINED and cu and uniform:
         V_ult = prandtl_capacity(float(cu), B)
         v = N / V_ult
         if 0.0 < v < 1.0:

@@ -24,7 +24,7 @@ import sys
 import time
 
 from .. import bounds
-from ..anchors import prandtl_capacity
+from ..anchors import undrained_capacity
 from ..budget import check as check_budget
 from ..budget import (CONTINUUM_BUDGET_SECONDS, MAX_BUDGET_SECONDS, continuum_cost,
                       time_budget)
@@ -135,10 +135,13 @@ def _physics(scene, analysis: str) -> None:
     """What the continuum can carry, checked on the scene before meshing."""
     soil, N, B = scene.soil, scene.structure.vertical_weight, scene.foundation.width
     if soil.undrained:
-        capacity = prandtl_capacity(soil.undrained_strength, B)
+        k = soil.undrained_strength_gradient
+        capacity = undrained_capacity(soil.undrained_strength, k, B,
+                                      rough=soil.interface == "bonded")
+        rule = "(2 + π) c_u B" if k == 0.0 else "F [(2 + π) c_u + k B/4] B, Davis & Booker"
         if N >= capacity:
             raise InputError(f"structure.vertical_weight = {N:g}: at or above the strip's "
-                             f"bearing capacity (2 + π) c_u B = {capacity:.4g} (FS_v = "
+                             f"bearing capacity {rule} = {capacity:.4g} (FS_v = "
                              f"{capacity / N:.3g}); the footing cannot stand on this soil; "
                              f"valid range is (0, {capacity:.4g})")
     if N < MIN_LOAD_RATIO * soil.youngs_modulus * B:

@@ -35,8 +35,15 @@ class Soil:
     ``youngs_modulus`` E (force/length²), ``poisson_ratio`` ν, ``density`` ρ (mass/length³).
     ``model``: one of :data:`SOIL_MODELS`, with the strength it reads (:attr:`strength`):
     none, undrained (``undrained_strength`` c_u, force/length²) or frictional (``cohesion`` c,
-    ``friction_angle`` φ and ``dilation_angle`` ψ in degrees). ``layer_depth`` (length) puts a
-    rigid base at that depth (None: the box bottom).
+    ``friction_angle`` φ and ``dilation_angle`` ψ in degrees).
+    ``undrained_strength_gradient`` k (force/length² per length, kPa/m in kN-m-s; default 0,
+    a uniform soil): an undrained model's strength grows with the depth z below the ground
+    surface (the footing's base level, y = 0 of the mesh), c_u(z) = c_u + k z, as a normally
+    consolidated clay's does (c_u/σ'v ≈ 0.22, Mesri 1975: k ≈ 0.22 γ' ≈ 1.7–2.2 kPa/m for
+    γ' = 8–10 kN/m³). A free-field column of density ρ and height H under a uniform
+    acceleration a stays elastic if ρ a H ≤ c_u + k H (docs/continuum.md, "Strength that grows
+    with depth"). Only for the undrained models (Tresca, von Mises).
+    ``layer_depth`` (length) puts a rigid base at that depth (None: the box bottom).
     ``interface`` under the footing: frictionless, bonded, or coulomb with ``interface_friction``.
     ``k0`` the geostatic ratio σh/σv (None: the continuum model's default for ``model``).
     """
@@ -46,6 +53,7 @@ class Soil:
     density: float = 0.0
     model: str = "elastic"
     undrained_strength: float | None = None
+    undrained_strength_gradient: float = 0.0
     cohesion: float = 0.0
     friction_angle: float = 0.0
     dilation_angle: float = 0.0
@@ -76,6 +84,11 @@ class Soil:
         return self.strength == FRICTIONAL
 
 
+def undrained_models() -> tuple[str, ...]:
+    """The names of the models that read an undrained strength (and its gradient)."""
+    return tuple(name for name, strength in SOIL_MODELS.items() if strength == UNDRAINED)
+
+
 def _positive_strength(units: UnitSystem):
     def check(name, value):
         return bounds.check(name, checks.positive(name, value), "strength", units)
@@ -95,6 +108,8 @@ def read_soil(data, units: UnitSystem) -> Soil:
         model=model,
         undrained_strength=table.get("undrained_strength", _positive_strength(units),
                                      MISSING if SOIL_MODELS[model] == UNDRAINED else None),
+        undrained_strength_gradient=table.get(
+            "undrained_strength_gradient", bounds.checker("strength_gradient", units), 0.0),
         cohesion=table.get("cohesion", strength, 0.0),
         friction_angle=table.get("friction_angle", in_range(0.0, 60.0, high_open=True), 0.0),
         dilation_angle=table.get("dilation_angle", in_range(0.0, 60.0, high_open=True), 0.0),
@@ -105,6 +120,10 @@ def read_soil(data, units: UnitSystem) -> Soil:
         interface_friction=table.get("interface_friction", in_range(0.0, 10.0), 0.0),
         k0=table.get("k0", in_range(0.0, 10.0, low_open=True), None),
     )
+    if soil.undrained_strength_gradient != 0.0 and SOIL_MODELS[model] != UNDRAINED:
+        raise InputError(f"soil.undrained_strength_gradient = {soil.undrained_strength_gradient:g}"
+                         f": model {model!r} reads no undrained strength; valid range is [0, 0] "
+                         f"(a gradient is for {', '.join(undrained_models())})")
     if soil.dilation_angle > soil.friction_angle:
         raise InputError(f"soil.dilation_angle = {soil.dilation_angle:g}: valid range is "
                          f"[0, friction_angle = {soil.friction_angle:g}]")

@@ -5,7 +5,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ....anchors import HALF_PLANE_ONSET_ECCENTRICITY, WINKLER_ONSET_ECCENTRICITY, prandtl_capacity
+from ....anchors import (HALF_PLANE_ONSET_ECCENTRICITY, WINKLER_ONSET_ECCENTRICITY,
+                         undrained_capacity)
 from .... import checks
 from ....checks import InputError
 from ....scenes import Scene
@@ -120,10 +121,13 @@ def check_scene(scene: Scene) -> None:
                          f"{scene.foundation.support!r}; the study needs 'uplift'")
     soil, N, B = scene.soil, scene.structure.vertical_weight, scene.foundation.width
     if soil.undrained and soil.undrained_strength is not None:
-        prandtl = prandtl_capacity(soil.undrained_strength, B)
-        if not N < prandtl:
+        capacity = undrained_capacity(soil.undrained_strength, soil.undrained_strength_gradient,
+                                      B, rough=soil.interface == "bonded")
+        if not N < capacity:
+            rule = "Prandtl (2 + π) c_u B" if soil.undrained_strength_gradient == 0.0 else \
+                "Davis & Booker F [(2 + π) c_u + k B/4] B"
             raise InputError(f"structure.vertical_weight = {N:g}: the footing cannot carry it; "
-                             f"valid range is (0, {prandtl:g}) (Prandtl (2 + π) c_u B)")
+                             f"valid range is (0, {capacity:g}) ({rule})")
 
 
 def finite_or_none(value: float):
