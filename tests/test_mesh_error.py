@@ -227,3 +227,34 @@ def test_the_command_writes_the_estimate(tmp_path, capsys, cf_failures):
     assert "error_estimate/2_across/result.nc" in files and "error_estimate.nc" in files
     required, errors = cf_failures(out / "error_estimate.nc")
     assert not required and not errors, (required, errors)
+
+
+@pytest.mark.parametrize("failure", ["interrupted", "energy"])
+def test_a_coarser_run_that_stops_leaves_the_folder_incomplete(tmp_path, capsys, monkeypatch,
+                                                                failure):
+    # The coarser run (the second call of run_dynamic) made to stop as a Ctrl-C or a failed
+    # energy check would: exit 130 or 3 (upliftlab/cli/__init__.py), one line, the finest
+    # run's files kept, no estimate and no completion marker.
+    from upliftlab.continuum.dynamics import run as run_module
+    from upliftlab.continuum.dynamics.run_control import EnergyBalanceError, Interrupted
+    from upliftlab.outdir import read_marker
+
+    real, calls = run_module.run_dynamic, []
+
+    def stand_in(model, scene, motion, options=DynamicOptions(), *, progress=None):
+        result = real(model, scene, motion, options, progress=progress)
+        calls.append(model.options.elements_across)
+        if len(calls) == 2:
+            raise (Interrupted(result) if failure == "interrupted"
+                   else EnergyBalanceError(result, 0.5, 0.05))
+        return result
+
+    monkeypatch.setattr(run_module, "run_dynamic", stand_in)
+    code, out = _cli(tmp_path, "--set", "continuum.elements_across=4", "--set",
+                     "analysis.duration=0.1", "--error-estimate")
+    err = capsys.readouterr().err
+    assert code == (130 if failure == "interrupted" else 3) and calls == [4, 2]
+    assert "error estimate's run on 2 across" in err
+    assert (out / "result.nc").is_file() and not (out / "error_estimate.nc").exists()
+    assert read_marker(out) is None
+    assert (out / "error_estimate" / "2_across" / "result.nc").is_file() == (failure == "energy")
