@@ -17,7 +17,9 @@ Analyses (results are frozen records with ``save()`` to NetCDF)
     :func:`vm_envelope` -> :class:`Envelope`; :func:`run_dynamic` (gravity, then a ground
     motion; explicit central differences by default, or HHT-α / Newmark with Newton
     (``continuum.dynamics``); Lysmer boundaries, rigid or compliant base, SDOF superstructure)
-    with :class:`DynamicOptions` -> :class:`DynamicResult`;
+    with :class:`DynamicOptions` -> :class:`DynamicResult`; :func:`estimate_error` (the same
+    run on the next coarser mesh or two, each peak with its estimated discretisation error)
+    -> :class:`MeshErrorEstimate`;
     :func:`.impedance.analysis.impedance` (the footing's complex impedance per unit length in
     the frequency domain, PML or Lysmer box) with :class:`ImpedanceOptions` on
     :func:`impedance_model` -> :class:`Impedance`.
@@ -59,6 +61,8 @@ from .model import ContinuumModel, build_model, default_k0, make_model
 from .statics.newton import (ContinuumState, Control, ConvergenceError, FootingTerm, NewtonOptions,
                              SoilTerm, equilibrium, follow, footing_tangent)
 from .dynamics.run_control import BearingFailure
+from .dynamics.error_estimate import estimate_error
+from .dynamics.mesh_error import MeshErrorEstimate
 from .statics.analyses import (Envelope, FootingStiffness, StaticPath, UpliftOnset,
                                elastic_gravity_stress, footing_stiffness, geostatic, k0_stress,
                                moment_pushover, rotation_pushover, uplift_onset, vertical_pushover,
@@ -75,6 +79,6 @@ __all__ = [
     "FootingStiffness", "footing_stiffness",
     "StaticPath", "vertical_pushover", "rotation_pushover", "moment_pushover",
     "UpliftOnset", "uplift_onset", "Envelope", "vm_envelope",
-    "DynamicOptions", "DynamicResult", "run_dynamic",
+    "DynamicOptions", "DynamicResult", "run_dynamic", "estimate_error", "MeshErrorEstimate",
     "Impedance", "ImpedanceOptions", "impedance_model",
 ]

@@ -145,6 +145,14 @@ EXERCISED = {
         ("slow", ("results/opensees-B/comparison.md",)),
     "upliftlab opensees three_story_frame --set foundation.restitution=1 --run --json":
         ("slow", ()),
+    "upliftlab continuum strip_footing_clay --analysis dynamic --error-estimate --out "
+    "results/clay-estimate":
+        ("slow", ("results/clay-estimate/error_estimate.nc",
+                  "results/clay-estimate/error_estimate.json")),
+    "upliftlab continuum strip_footing_clay --analysis dynamic --error-estimate=3 --out "
+    "results/clay-estimate-3":
+        ("slow", ("results/clay-estimate-3/error_estimate.nc",
+                  "results/clay-estimate-3/error_estimate.json")),
 }
 
 

@@ -29,7 +29,8 @@ from dataclasses import dataclass
 from .checks import InputError
 from .log import logger
 
-__all__ = ["Cost", "check", "reduced_cost", "continuum_cost", "GIB", "time_budget",
+__all__ = ["Cost", "check", "reduced_cost", "continuum_cost", "in_sequence", "GIB",
+           "time_budget",
            "REDUCED_BUDGET_SECONDS", "CONTINUUM_BUDGET_SECONDS", "MAX_BUDGET_SECONDS"]
 
 GIB = 2.0 ** 30
@@ -166,3 +167,14 @@ def continuum_cost(*, analysis: str, steps: int, step: float, dofs: int,
     return Cost(f"the continuum {analysis}", int(steps), float(step), memory,
                 rate * steps * dofs, f"{dofs} DOFs", "a coarser mesh or a shorter duration"
                 if analysis == "dynamic" else "a coarser mesh or fewer steps")
+
+
+def in_sequence(costs, what: str) -> Cost:
+    """Runs done one after another as one cost: their times add up; the steps and the memory
+    are the largest run's (each run is held to ``analysis.max_steps`` and ``max_memory`` on
+    its own, and frees its memory before the next starts)."""
+    costs = list(costs)
+    largest = max(costs, key=lambda c: c.steps)
+    return Cost(what, largest.steps, largest.step, max(c.memory for c in costs),
+                sum(c.seconds for c in costs), ", then ".join(c.sizes for c in costs),
+                costs[0].smaller)

@@ -27,11 +27,12 @@ from .. import bounds
 from ..anchors import undrained_capacity
 from ..budget import check as check_budget
 from ..budget import (CONTINUUM_BUDGET_SECONDS, MAX_BUDGET_SECONDS, continuum_cost,
-                      time_budget)
+                      in_sequence, time_budget)
 from ..checks import InputError
 from ..extras import need_extra
 from .common import (MESH_KEYS, default_out, eta, mesh_overrides, number,
                      refuse_without_effect, say, say_if_rounded)
+from . import error_estimate as estimate_cli
 from .exits import EXIT_INTERRUPTED, EXIT_NUMERICS
 from ..outdir import claim
 from .stop import stop_flag
@@ -93,6 +94,7 @@ def add_continuum(sub) -> None:
     c.add_argument("--threads", help="dynamic, explicit route: threads of the compiled soil "
                                      "kernels (default 1; more pays only on an otherwise idle "
                                      "machine)")
+    estimate_cli.add_argument(c)
     c.add_argument("--out", help="output directory (default results/<scene>-continuum-"
                                  "<analysis>, with a digest of the overrides when there are "
                                  "any)")
@@ -128,7 +130,8 @@ def _options(args) -> dict:
     return {"theta_max": number("--theta-max", args.theta_max, high=MAX_ROTATION),
             "steps": number("--steps", args.steps, integer=True, low=2, high=10**9),
             "scale": number("--scale", args.scale, high=1e9),
-            "threads": number("--threads", args.threads, integer=True, low=1, high=256)}
+            "threads": number("--threads", args.threads, integer=True, low=1, high=256),
+            "error_estimate": estimate_cli.meshes(args)}
 
 
 def _physics(scene, analysis: str) -> None:
@@ -191,23 +194,36 @@ def continuum(args) -> int:
     _physics(scene, args.analysis)
     if args.analysis == "dynamic":
         motion = scene.build_motion()  # reads and checks the record before any meshing
-    given = {k: v for k, v in options.items() if k != "threads"}  # name the default folder
-    cont = scene.continuum or ContinuumOptions()
+    # name the default folder (the error estimate only where it is asked for)
+    given = {k: v for k, v in options.items() if k != "threads"
+             and not (k == "error_estimate" and v is None)}
     budget = scene.analysis
-    dofs, h_min = _grid(scene, cont)  # from the grid lines: nothing is meshed yet
-    if args.analysis == "pushover":
-        options["theta_max"] = _theta_max(scene, options["theta_max"])
-        steps, dt, snapshots = (options["steps"] or 40) + 3, 0.0, (options["steps"] or 40) + 3
-    else:
-        (steps, dt), snapshots = _dynamic_steps(scene, motion, h_min), 41
-    check_budget(continuum_cost(analysis=args.analysis, steps=steps, step=dt, dofs=dofs,
-                                snapshots=snapshots), budget.max_steps, budget.max_memory,
+    coarser = estimate_cli.coarser(scene, options["error_estimate"])  # checked before work
+    costs = []
+    for run_scene in (scene, *coarser):  # from the grid lines: nothing is meshed yet
+        dofs, h_min = _grid(run_scene, run_scene.continuum or ContinuumOptions())
+        if args.analysis == "pushover":
+            options["theta_max"] = _theta_max(scene, options["theta_max"])
+            steps = snapshots = (options["steps"] or 40) + 3
+            dt = 0.0
+        else:
+            (steps, dt), snapshots = _dynamic_steps(run_scene, motion, h_min), 41
+        costs.append(continuum_cost(analysis=args.analysis, steps=steps, step=dt, dofs=dofs,
+                                    snapshots=snapshots))
+    cost = costs[0] if not coarser else in_sequence(
+        costs, "the continuum dynamic with its " + ("coarser run" if len(coarser) == 1
+                                                    else f"{len(coarser)} coarser runs")
+        + " of --error-estimate")
+    check_budget(cost, budget.max_steps, budget.max_memory,
                  time_budget(seconds, CONTINUUM_BUDGET_SECONDS))
+    steps, dt = costs[0].steps, costs[0].step
     variant = {"overrides": overrides, "motion": args.motion, **given}
     settings = {"command": f"continuum {args.analysis}", "scene": scene.name,
                 "scene_digest": scene.digest, "overrides": list(scene.overrides),
                 "motion": args.motion, "theta_max": given["theta_max"],
                 "steps": given["steps"]}
+    if coarser:
+        settings["error_estimate"] = options["error_estimate"]
     default = default_out(f"{scene.name}-continuum-{args.analysis}", variant)
     with claim(args.out, default, settings=settings, force=args.force) as out, \
             stop_flag() as flag:
@@ -261,7 +277,16 @@ def continuum(args) -> int:
                   f"{out.path}{'' if args.no_render else ' (pictures skipped)'}, not marked "
                   f"complete; resume with: {_command(args)}", file=sys.stderr)
             return EXIT_INTERRUPTED
-        out.complete(written.values() if isinstance(written, dict) else written)
+        files = list(written.values() if isinstance(written, dict) else written)
+        if coarser:
+            done = estimate_cli.run_coarser(coarser, motion, options["threads"] or 1, out, flag,
+                                            _dynamic_progress, _command(args))
+            if isinstance(done, int):
+                return done
+            estimate, more = estimate_cli.write_estimate(out, scene, model, result, done)
+            summary["error_estimate"] = estimate.to_dict()
+            files += more
+        out.complete(files)
     if args.json:
         import json
         print(json.dumps(summary))
@@ -269,6 +294,11 @@ def continuum(args) -> int:
         units = {"length": scene.units.length,
                  "moment/length": f"{scene.units.force}*{scene.units.length}/{scene.units.length}"}
         print(summary_line(summary, units))
+        if coarser:
+            print(f"discretisation error estimate ({estimate.across[0]} across against "
+                  f"{', '.join(map(str, estimate.across[1:]))}; {estimate.time_note()}):")
+            for line in estimate.lines():
+                print(f"  {line}")
     return 0
 
 

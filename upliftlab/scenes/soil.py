@@ -11,7 +11,8 @@ from .table import MISSING, Table, bounded_integer, choice, in_range
 from ..units import UnitSystem
 
 __all__ = ["SOIL_MODELS", "UNDRAINED", "FRICTIONAL", "INTERFACES", "ELEMENTS", "DYNAMICS",
-           "MAX_ELEMENTS_ACROSS", "Soil", "ContinuumOptions", "read_soil", "read_continuum"]
+           "MAX_ELEMENTS_ACROSS", "MIN_ELEMENTS_ACROSS", "Soil", "ContinuumOptions", "read_soil",
+           "read_continuum"]
 
 #: The strengths a soil model reads from ``[soil]``: ``undrained_strength`` c_u (UNDRAINED) or
 #: ``cohesion``, ``friction_angle`` and ``dilation_angle`` (FRICTIONAL); None: no strength.
@@ -169,6 +170,8 @@ class ContinuumOptions:
 #: Most elements across the footing: 1024 gives about 10⁸ DOFs (the run's memory is estimated
 #: and refused above its budget well before that; this bound keeps the estimate itself cheap).
 MAX_ELEMENTS_ACROSS = 1024
+#: Fewest elements across the footing a mesh has (its two edges and its centre).
+MIN_ELEMENTS_ACROSS = 2
 
 
 def read_continuum(data) -> ContinuumOptions:
@@ -178,7 +181,7 @@ def read_continuum(data) -> ContinuumOptions:
         domain_width=table.get("domain_width", in_range(1.0, 1e4, low_open=True), 10.0),
         domain_depth=table.get("domain_depth", in_range(0.25, 1e4), 10.0),
         element=table.get("element", choice(ELEMENTS), "Q2"),
-        elements_across=table.get("elements_across", bounded_integer(2, MAX_ELEMENTS_ACROSS), 16),
+        elements_across=table.get("elements_across", bounded_integer(MIN_ELEMENTS_ACROSS, MAX_ELEMENTS_ACROSS), 16),
         grading=table.get("grading", in_range(1.0, 100.0), 1.0),
         base=table.get("base", choice(("rigid", "compliant")), "rigid"),
         boundary=table.get("boundary", choice(("fixed", "shear", "lysmer")), "fixed"),
