@@ -92,8 +92,15 @@ def _motion_table(motion) -> dict:
     return _plain(motion, keys)
 
 
+#: Fields added after results were kept, left out of the table at the value that means what
+#: their absence meant, so that every scene written before them keeps its table and digest
+#: (and the results keyed on it stay reachable): (table, field): that value.
+NEUTRAL_DEFAULTS = {("soil", "undrained_strength_gradient"): 0.0}
+
+
 def scene_table(scene) -> dict:
-    """The table of ``scene``'s fields, as a scene file would hold it (module docstring)."""
+    """The table of ``scene``'s fields, as a scene file would hold it (module docstring);
+    a field of :data:`NEUTRAL_DEFAULTS` at its neutral value is left out."""
     table = {"schema": SCHEMA_VERSION, "units": scene.units.name}
     for key in ("title", "description", "reference"):
         if getattr(scene, key):
@@ -105,6 +112,9 @@ def scene_table(scene) -> dict:
     for key in ("soil", "continuum"):
         if getattr(scene, key) is not None:
             table[key] = _plain(getattr(scene, key))
+    for (key, name), neutral in NEUTRAL_DEFAULTS.items():
+        if key in table and table[key].get(name, neutral) == neutral:
+            table[key].pop(name, None)
     return table
 
 
