@@ -4,6 +4,7 @@ on the old boundaries (a rigid base) and on the half-plane ones (a compliant bas
     python benchmarks/halfplane_box.py --out DIR [--cases a,b,...] [--boxes 10,20] [--across 8]
                                        [--point clay-pulse,clay-record,sand-record]
                                        [--tail SECONDS] [--soil KEY=VALUE ...]
+                                       [--input-scales 0.99,1.01]
 
 Writes ``HALFPLANE_BOX.md`` and ``halfplane_box.json`` to ``--out`` (default
 ``results/bench/halfplane_box``), rewritten as each run ends; it never touches a committed
@@ -35,6 +36,11 @@ yielding. ``--tail``: the motion padded with that many seconds of still ground a
 (free vibration), so that the settlement is read once the rocking has died out (radiation damps
 it on the half-plane; nothing does in the closed box). ``--soil KEY=VALUE``: a ``[soil]`` field
 set on every run (e.g. ``undrained_strength_gradient=2.0``, kPa/m), a number or a word.
+``--input-scales``: the first box of each case and point again with the motion's amplitude
+(a record's PGA, a pulse's amplitude) scaled by each factor, reported against the unscaled run
+like a larger box: how far the answer moves when what reaches the footing moves by 1 %, the
+yardstick for the box's own effect (a box that changes the motion under the footing by 1 % can
+move an ill-conditioned point by more than the targets, whatever its boundaries).
 
 **Measures** (the map's, :func:`~upliftlab.comparisons.studies.winkler_map.points.
 continuum_measures`): peak |θ|, peak edge uplift, residual settlement (when flattest in the last
@@ -107,7 +113,8 @@ def point_data(point: str, across: int, record_seconds: float) -> dict:
 
 
 def run(point: str, case: str, box: str, across: int, record_seconds: float,
-        elastic: bool = False, tail: float = 0.0, soil: dict | None = None) -> dict:
+        elastic: bool = False, tail: float = 0.0, soil: dict | None = None,
+        input_scale: float = 1.0) -> dict:
     """One run: the map's measures, the run's size and time."""
     from upliftlab.comparisons.studies.winkler_map.points import continuum_measures
     from upliftlab.continuum import build_model
@@ -124,6 +131,8 @@ def run(point: str, case: str, box: str, across: int, record_seconds: float,
                         if k in ("youngs_modulus", "poisson_ratio", "density", "interface")}
         data["soil"]["model"] = "elastic"
     data["soil"] = {**data["soil"], **(soil or {})}
+    if input_scale != 1.0:
+        data = scaled_input(data, input_scale)
     if tail > 0.0:
         data = with_tail(data, tail)
     scene = scene_from_dict(data, merged=True)
@@ -136,7 +145,8 @@ def run(point: str, case: str, box: str, across: int, record_seconds: float,
     result = run_dynamic(model, scene, scene.build_motion(), DynamicOptions(snapshots=0))
     wall = time.perf_counter() - started
     *_, measures = continuum_measures(scene, result)
-    return {"point": point + (" (elastic)" if elastic else ""), "case": case, "box": box,
+    label = box if input_scale == 1.0 else f"{box}, input ×{input_scale:g}"
+    return {"point": point + (" (elastic)" if elastic else ""), "case": case, "box": label,
             "across": across,
             "theta": measures["theta"], "uplift": measures["uplift"],
             "residual_settlement": measures["residual_settlement"],
@@ -158,6 +168,17 @@ def with_tail(data: dict, tail: float) -> dict:
     length = min(motion.duration, analysis.get("duration", math.inf)) + float(tail)
     return {**data, "motion": {**data["motion"], "duration": length},
             "analysis": {**analysis, "duration": length}}
+
+
+def scaled_input(data: dict, factor: float) -> dict:
+    """The scene table ``data`` with its motion's amplitude (``pga`` or ``amplitude``) times
+    ``factor``."""
+    motion = dict(data["motion"])
+    key = "pga" if "pga" in motion else "amplitude"
+    if key not in motion:
+        raise ValueError(f"motion {motion.get('type')!r} has neither a pga nor an amplitude")
+    motion[key] = float(motion[key]) * factor
+    return {**data, "motion": motion}
 
 
 def tail_mean(result) -> float:
@@ -209,6 +230,9 @@ def main(argv=None) -> int:
                         help="seconds of still ground after the motion (free vibration)")
     parser.add_argument("--soil", action="append", default=[], metavar="KEY=VALUE",
                         help="a [soil] field set on every run (repeatable)")
+    parser.add_argument("--input-scales", default="",
+                        help="factors on the motion's amplitude, comma separated, run on the "
+                             "first box (e.g. 0.99,1.01): the point's own sensitivity")
     parser.add_argument("--elastic", action="store_true",
                         help="the soil elastic (its Young's modulus, ν, ρ and interface kept): "
                              "the boundaries without the soil's yielding")
@@ -238,15 +262,22 @@ def main(argv=None) -> int:
             soil[key] = float(value)
         except ValueError:
             soil[key] = value
+    try:
+        scales = [float(x) for x in args.input_scales.split(",") if x]
+    except ValueError:
+        parser.error(f"--input-scales: {args.input_scales!r}; valid: numbers, comma separated")
+    for f in scales:
+        if not (0.5 <= f <= 2.0):
+            parser.error(f"--input-scales: {f:g}; valid: 0.5 to 2")
     folder = output_folder(args, NAME)
     rows = []
     for p in points:
         for c in cases:
-            for b in boxes:
-                say(f"{NAME}: {p}, {c}, box {b} B, {args.across} across ...")
+            for b, f in [(b, 1.0) for b in boxes] + [(boxes[0], f) for f in scales]:
+                say(f"{NAME}: {p}, {c}, box {b} B, input ×{f:g}, {args.across} across ...")
                 try:
                     rows.append(run(p, c, b, args.across, args.record_seconds, args.elastic,
-                                    args.tail, soil))
+                                    args.tail, soil, f))
                 except Exception as exc:  # a failed run is reported, the others go on
                     say(f"{NAME}: {p}, {c}, box {b}: {type(exc).__name__}: {exc}")
                     continue
