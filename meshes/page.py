@@ -7,8 +7,9 @@ every artist of a frame once (matplotlib only, outside pyplot): the soil's sub-c
 bar cannot disagree), the element outlines as one ``LineCollection``, the footing and the
 contact pressure as polygons, the gap as a line, the title as a text. Sub-cells that no frame
 can bring into the window (the window grown by the largest magnified displacement ``reach``)
-are left out. :meth:`Page.show` moves and recolours those artists for a frame (``set_verts``,
-``set_array``, ``set_xy``, ``set_data``, ``set_text``); axes are never re-created.
+are left out. :meth:`Page.show` moves and recolours those artists for a frame (``set_array``,
+``set_xy``, ``set_data``, ``set_text``; the cells' and outlines' paths are views of one array
+each, rewritten in place); axes are never re-created.
 
 **Animated pages** (``animated=True``, for the frames of an animation) draw the unchanging part
 of the page once, keep its pixels, and per frame restore them and draw only the artists that
@@ -88,6 +89,24 @@ def visible_cells(points: np.ndarray, cells: np.ndarray, window, reach: float) -
     return np.flatnonzero(meets)
 
 
+def _shared_paths(collection, polygons: np.ndarray, closed: bool) -> np.ndarray:
+    """Give ``collection`` one path per polygon of ``polygons`` (n, k, 2), each a view of one
+    array (n, k + closed, 2) that is returned: writing into it moves every path at once."""
+    from matplotlib.collections import Collection
+    from matplotlib.path import Path
+
+    n, k, _ = polygons.shape
+    xy = np.empty((n, k + int(closed), 2))
+    xy[:, :k] = polygons
+    codes = None
+    if closed:
+        xy[:, k] = polygons[:, 0]
+        codes = np.full(k + 1, Path.LINETO, dtype=Path.code_type)
+        codes[0], codes[-1] = Path.MOVETO, Path.CLOSEPOLY
+    Collection.set_paths(collection, [Path(row, codes) for row in xy])  # the paths as given
+    return xy
+
+
 class Page:
     """The page of a run's frames (module docstring): ``sub`` the drawn sub-mesh, ``view`` the
     run's fixed view, ``reach`` the largest magnified nodal displacement of any frame (length),
@@ -119,12 +138,14 @@ class Page:
         self.floor = floor
         norm = (matplotlib.colors.LogNorm(floor, top) if floor > 0.0
                 else matplotlib.colors.Normalize(floor, top))
-        self.faces = PolyCollection(sub.points[self.cells], cmap=CMAP, norm=norm,
-                                    edgecolors="none", linewidths=0.0, antialiaseds=False)
+        self.faces = PolyCollection([], cmap=CMAP, norm=norm, edgecolors="none",
+                                    linewidths=0.0, antialiaseds=False)
+        self._cell_xy = _shared_paths(self.faces, sub.points[self.cells], closed=True)
         self.faces.set_array(np.full(len(self.cells), max(floor, 0.0)))
         soil.add_collection(self.faces)
-        self.outlines = LineCollection(sub.points[edges], colors=[(OUTLINE_GREY,) * 3],
+        self.outlines = LineCollection([], colors=[(OUTLINE_GREY,) * 3],
                                        linewidths=OUTLINE_WIDTH)
+        self._edge_xy = _shared_paths(self.outlines, sub.points[edges], closed=False)
         soil.add_collection(self.outlines)
         self.footing = Polygon(np.zeros((5, 2)), closed=True, facecolor=(0.55, 0.6, 0.7),
                                edgecolor="black", linewidth=1.5, alpha=0.9, zorder=3)
@@ -185,10 +206,14 @@ class Page:
         """Move and recolour the page's artists to ``frame``."""
         view = self.view
         moved = self.sub.points + view.scale * frame.displacement
-        self.faces.set_verts(moved[self.cells])
+        k = self.cells.shape[1]
+        self._cell_xy[:, :k] = moved[self.cells]
+        self._cell_xy[:, k] = self._cell_xy[:, 0]
+        self.faces.stale = True
         values = self.sub.cell_values(frame.plastic_strain)[self.rows]
         self.faces.set_array(np.maximum(values, self.floor) if self.floor > 0.0 else values)
-        self.outlines.set_segments(moved[self.edge_points])
+        self._edge_xy[...] = moved[self.edge_points]
+        self.outlines.stale = True
         self.footing.set_xy(footing_outline(frame, view))
         x, p = np.asarray(frame.x, dtype=float), np.asarray(frame.pressure, dtype=float)
         self.pressure_fill.set_xy(np.vstack(([x[0], 0.0], np.column_stack((x, p)),
