@@ -36,7 +36,6 @@ from upliftlab.meshes.render import (animate_uplift, linear_submesh, render_upli
 from upliftlab.scenes import ContinuumOptions, Soil, load_scene
 from upliftlab.anchors import prandtl_capacity
 
-import pyvista  # noqa: F401  (the test extra installs it: upliftlab[render])
 import imageio.v3 as imageio
 
 SCENE = "strip_footing_clay"

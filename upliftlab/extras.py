@@ -16,7 +16,7 @@ __all__ = ["EXTRAS", "need_extra"]
 
 #: The optional dependencies: import name -> the extra that installs it.
 EXTRAS = {"matplotlib": "plot", "skfem": "continuum", "meshio": "continuum",
-          "pyvista": "render", "imageio": "render", "openseespy": "opensees",
+          "PIL": "render", "openseespy": "opensees",
           "distributed": "dask"}
 
 

@@ -21,7 +21,7 @@ MAX_FRAMES = 16
 
 
 def write_figures(out: Path, scene, model, path, renders: bool = True) -> list[Path]:
-    """The M–θ figure and (``renders``: pyvista is needed) the slider's frames with their
+    """The M–θ figure and (``renders``: matplotlib and Pillow are needed) the slider's frames with their
     record, into ``out``; the files."""
     files = save(out / "m_theta.png", *moment_rotation(scene, path))
     if renders:

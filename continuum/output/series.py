@@ -126,15 +126,21 @@ def save_figure(fig, path) -> Path:
 
 
 def write_outputs(directory, model, result, *, scene=None, renders: bool = True,
-                  scale: float | None = None, progress=None, stop=None) -> dict[str, Path]:
+                  scale: float | None = None, progress=None, stop=None,
+                  picture_budget: float | None = None) -> dict[str, Path]:
     """Write a run's files into ``directory``: ``result.nc`` (``result.save``), ``fields.xdmf``
     and ``fields.h5`` (the soil), ``footing.xdmf`` and ``footing.h5`` (the contact along the
     base; both time series at the same time values: :mod:`~upliftlab.continuum.output.xdmf`),
-    ``uplift.png`` (the snapshot of largest |θ|) and ``uplift.gif`` (every snapshot; skipped if
+    ``uplift.png`` (the snapshot of largest |θ|) and ``uplift.gif`` (the snapshots; skipped if
     not ``renders``, or once ``stop()`` is true: the user asked the run to stop while its data
-    were written), and for a pushover ``moment_rotation.png``.
+    were written), and for a pushover ``moment_rotation.png``. ``picture_budget`` (CPU
+    seconds, default none) bounds the two pictures together: the GIF gets what the PNG left
+    (:func:`~upliftlab.meshes.render.write_pictures`' rule: evenly spaced snapshots, at least
+    :data:`~upliftlab.meshes.render.MIN_FRAMES`); without it every snapshot is a frame.
     ``progress(message)`` reports each file. Returns {name: path}."""
-    from ...meshes.render import animate_uplift, render_uplift
+    import time
+
+    from ...meshes.render import write_pictures
 
     check_history(result, model)
     axis = time_axis(result)  # refuses a result of unknown kind before any file is written
@@ -156,16 +162,18 @@ def write_outputs(directory, model, result, *, scene=None, renders: bool = True,
         written["moment_rotation.png"] = save_figure(fig, directory / "moment_rotation.png")
         say(f"wrote {written['moment_rotation.png']}")
     if renders and not (stop is not None and stop()):
+        start = time.process_time()
         title = figure_title(result, scene)
         rows = snapshot_rows(result)
         peak = int(np.argmax(np.abs(np.asarray(result.footing)[rows, 2])))
-        written["uplift.png"] = Path(render_uplift(directory / "uplift.png", result,
-                                                   model.disc.basis, model.width,
-                                                   snapshot=peak, scale=scale, title=title))
-        say(f"wrote {written['uplift.png']}")
-        written["uplift.gif"] = Path(animate_uplift(directory / "uplift.gif", result,
-                                                    model.disc.basis, model.width, scale=scale,
-                                                    title=title))
-        say(f"wrote {written['uplift.gif']} ({np.size(result.snapshot_time)} frames)")
+        png, gif = directory / "uplift.png", directory / "uplift.gif"
+        count = write_pictures(png, gif, result, model.disc.basis, model.width, snapshot=peak,
+                               scale=scale, title=title, budget=picture_budget)
+        written["uplift.png"], written["uplift.gif"] = png, gif
+        snapshots = np.size(result.snapshot_time)
+        say(f"wrote {png} and {gif} ({count} frames"
+            + ("" if count == snapshots else
+               f" of {snapshots} snapshots, evenly spaced: the pictures' budget is "
+               f"{picture_budget:.2g} s CPU, spent {time.process_time() - start:.2g} s")
+            + ")")
     return written
-

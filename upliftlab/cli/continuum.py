@@ -14,6 +14,12 @@ An interruption (Ctrl-C, SIGTERM) of a dynamic run is a flag its time loop check
 so far, marked incomplete; after the loop every data file is still written (the pictures are
 skipped) and the folder is left without its completion marker; either way the exit code is 130
 with one line saying what was written.
+
+The pictures of a dynamic run (``uplift.png`` at the largest |θ|, ``uplift.gif`` over the
+snapshots) may cost at most :data:`PICTURE_SHARE` of the solve's CPU time (from the model
+built to the time loop's end): the GIF takes as many evenly spaced snapshots as fit in what
+the PNG left, at least :data:`~upliftlab.meshes.render.MIN_FRAMES`
+(:func:`~upliftlab.meshes.render.write_pictures`); the line reporting the GIF says how many.
 """
 
 from __future__ import annotations
@@ -50,6 +56,8 @@ MAX_ROTATION = 0.1
 MIN_LOAD_RATIO = 1e-12
 #: Least soil density of a dynamic run (kg/m³; air is 1.2).
 MIN_DENSITY = 1.0
+#: The share of a dynamic run's solve (CPU time) its pictures may cost (module docstring).
+PICTURE_SHARE = 0.10
 _META = ("schema", "units", "title", "description", "reference")
 #: What each analysis reads of a scene.
 USED = {
@@ -98,7 +106,10 @@ def add_continuum(sub) -> None:
     c.add_argument("--out", help="output directory (default results/<scene>-continuum-"
                                  "<analysis>, with a digest of the overrides when there are "
                                  "any)")
-    c.add_argument("--no-render", action="store_true", help="skip the PNG and GIF renders")
+    c.add_argument("--no-render", action="store_true",
+                   help="skip the PNG and GIF renders (dynamic: the pictures cost at most "
+                        f"{PICTURE_SHARE:.0%} of the solve's CPU time, the GIF taking as many "
+                        "evenly spaced snapshots as fit, at least 9)")
     c.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     c.add_argument("--force", action="store_true", help="replace a different run in --out")
     c.add_argument("--budget", metavar="SECONDS",
@@ -179,7 +190,7 @@ def continuum(args) -> int:
     if args.analysis == "pushover":  # the M-θ figure
         need_extra("upliftlab continuum", "matplotlib")
     if not args.no_render:
-        need_extra("upliftlab continuum", "matplotlib", "pyvista", "imageio",
+        need_extra("upliftlab continuum", "matplotlib", "PIL",
                    why="or add --no-render")
     overrides = list(args.overrides) + mesh_overrides(args.mesh)
     scene = load_scene(args.scene, case=args.case, overrides=overrides,
@@ -231,6 +242,7 @@ def continuum(args) -> int:
 
         started = time.perf_counter()
         model = build_model(scene)
+        built = time.process_time()
         say(f"{scene.name}: {model.disc.element}, {model.mesh.nelements} elements, "
              f"{model.dofs} DOFs, soil {scene.soil.model}")
         failed = None  # a bearing failure: its rows and snapshots are written, then exit 3
@@ -262,7 +274,9 @@ def continuum(args) -> int:
             for words in dynamic_warnings(summary, {"length": scene.units.length}):
                 print(f"upliftlab: warning: {words}", file=sys.stderr)
         out.start_writing()
-        written = write_outputs(out.path, model, result, scene=scene,
+        pictures = (PICTURE_SHARE * (time.process_time() - built)
+                  if args.analysis == "dynamic" else None)
+        written = write_outputs(out.path, model, result, scene=scene, picture_budget=pictures,
                                 renders=not args.no_render, scale=options["scale"],
                                 progress=say, stop=lambda: flag.stopped)
         if failed is not None:  # no completion marker: the folder holds a failed run

@@ -35,7 +35,7 @@ def add_report(sub) -> None:
 
 def report_command(args) -> int:
     """Build the report; the exit code of the module docstring."""
-    need_extra("upliftlab report", "matplotlib", "skfem", "meshio", "pyvista", "imageio")
+    need_extra("upliftlab report", "matplotlib", "skfem", "meshio", "PIL")
     if args.scheduler is not None:
         checks.scheduler_address("--scheduler", args.scheduler, in_process=False)
         need_extra("upliftlab report --scheduler", "distributed")
