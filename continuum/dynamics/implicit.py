@@ -48,7 +48,7 @@ import numpy as np
 from ...time_schemes import NewmarkCoefficients, hht
 from .result import DynamicResult, Recorder
 from ..contact.footing import ContactError
-from .ground import ground_velocity
+from .ground import free_field_motion, ground_velocity
 from .iteration_matrix import FrozenTangent, dynamic_model, soil_residual
 from ..statics.newton import Anderson, Control, ConvergenceError, FootingTerm, SoilTerm, equilibrium
 from .run_control import BearingFailure, keeping_what_ran, settled_to_failure
@@ -139,6 +139,15 @@ class ImplicitRun:
         self.ground_z = -(self.z.M @ self.z.r) if settings.base == "rigid" else np.zeros(4)
         self.g = scene.g
         self.vg = ground_velocity(motion, settings.dt, settings.steps)
+        #: the horizontal tie's ground load at every step (ground.py; None: no tie)
+        self.tie_load = None
+        tie = dyn.options.horizontal_tie
+        if tie is not None and settings.base == "compliant":
+            c_tie = dyn.options.horizontal_tie_damping or 0.0
+            self.z = replace(self.z, K=self.z.K + np.diag([tie, 0.0, 0.0, 0.0]),
+                             C=self.z.C + np.diag([c_tie, 0.0, 0.0, 0.0]))
+            u_ff, v_ff = free_field_motion(dyn, self.vg * scene.g, settings.dt)
+            self.tie_load = tie * u_ff + c_tie * v_ff
         self.static = static
         self.need_R = alpha != 0.0 or options.energy
         self.anderson = Anderson(options.newton.anderson)  # its pairs serve the whole run
@@ -148,7 +157,10 @@ class ImplicitRun:
         t = k * self.settings.dt
         ag = float(self.motion.acceleration_at(t)) * self.g
         soil = self.ground_soil * ag + self.incident * (0.5 * self.vg[k] * self.g)
-        return soil, self.ground_z * ag + self.z.gravity, ag
+        footing = self.ground_z * ag + self.z.gravity
+        if self.tie_load is not None:
+            footing = footing + np.array([self.tie_load[k], 0.0, 0.0, 0.0])
+        return soil, footing, ag
 
     def contact_vector(self, state) -> np.ndarray:
         f = np.zeros(self.dyn.disc.ndofs)

@@ -58,11 +58,6 @@ def implicit_settings(model, scene, motion, options, ground) -> ImplicitSettings
     :class:`~upliftlab.continuum.dynamics.ground.Ground`), checked before any work."""
     check_superstructure(scene, motion)
     base, sides = ground.base, ground.sides
-    tangential = model.footing.interface.tangential
-    if model.options.horizontal_tie is not None:
-        raise InputError(f"continuum.horizontal_tie = {model.options.horizontal_tie:g}: the "
-                         "horizontal tie is in the explicit route only; valid with the implicit "
-                         "route: no horizontal_tie (or continuum.dynamics = 'explicit')")
     alpha = 0.0 if options.scheme == "newmark" else (
         scene.analysis.hht_alpha if options.alpha is None else options.alpha)
     if not -1.0 / 3.0 <= alpha <= 0.0:
@@ -84,7 +79,7 @@ def implicit_settings(model, scene, motion, options, ground) -> ImplicitSettings
     duration = options.duration or scene.analysis.duration or motion.duration
     steps = max(1, int(round(duration / dt)))
     return ImplicitSettings(alpha=alpha, dt=dt, steps=steps, base=base, sides=sides,
-                     prescribe_u=not tangential, limit=limit)
+                            prescribe_u=ground.prescribe_u, limit=limit)
 
 
 def check_smallest_step(soil, waves, dt: float, automatic: bool) -> None:

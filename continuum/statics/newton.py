@@ -194,7 +194,7 @@ def equilibrium(model, state: ContinuumState, control: Control,
     """
     prescribed = np.asarray(control.prescribed, dtype=bool)
     target = np.asarray(control.target, dtype=float)
-    _check_control(model, prescribed, target)
+    _check_control(model, prescribed, target, footing_term)
     blocks, L = model.blocks, model.footing.kinematics
     slip0 = model.footing.slip(state.u, state.q)
     u, q, force, status = state.u, state.q, state.force, state.status
@@ -271,11 +271,14 @@ def _contact(problem, status, frozen, options):
         return solve_contact(problem, status, frozen=True), False
 
 
-def _check_control(model, prescribed, target) -> None:
+def _check_control(model, prescribed, target, footing_term=None) -> None:
+    """Refuse a control the step cannot solve: a free u on a frictionless interface needs a
+    horizontal stiffness of the footing term (a dynamic step's inertia, a tie), not the soil's."""
     if prescribed.shape != (3,) or target.shape != (3,) or not np.isfinite(target).all():
         raise InputError(f"control = {prescribed}, {target}: expected three flags and three "
                          "finite targets for (u, v, θ)")
-    if not model.footing.interface.tangential and not prescribed[0]:
+    held = footing_term is not None and footing_term.K[0, 0] > 0.0
+    if not model.footing.interface.tangential and not prescribed[0] and not held:
         raise InputError(f"control: H = {target[0]:g} on a frictionless interface: the footing "
                          "has no horizontal stiffness; prescribe u instead (H is then 0)")
 
