@@ -199,8 +199,8 @@ def test_the_pushover_refuses_the_estimate(tmp_path, capsys):
 def test_the_budget_counts_the_coarser_runs(tmp_path, capsys):
     times = []
     for extra in ([], ["--error-estimate"]):
-        code, out = _cli(tmp_path, "--set", "continuum.elements_across=8", "--budget", "0.001",
-                         *extra)
+        code, out = _cli(tmp_path, "--set", "continuum.elements_across=16", "--budget", "0.001",
+                         *extra)  # refused before meshing; 16 across: seconds, not rounded away
         err = capsys.readouterr().err
         assert code == 2 and not out.exists()
         times.append(float(re.search(r"raise it \(--budget ([0-9.e+]+)\)", err).group(1)))

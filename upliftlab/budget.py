@@ -17,8 +17,9 @@ it changes no number, so neither a scene's digest nor a store key.
 
 The memory is that of the arrays the run keeps (histories, snapshots, a factorisation's fill,
 estimated); the time is a rough figure from per-step rates measured on the project's 2-core
-machine (``benchmarks/REDUCED.md``, ``benchmarks/CONTINUUM.md``), given to make the message
-useful, never used to refuse.
+machine (``benchmarks/REDUCED.md``, ``benchmarks/CONTINUUM.md``,
+``benchmarks/CONTINUUM_STARTUP.md``), by route, erring on the long side; the time budget is
+held against it.
 """
 
 from __future__ import annotations
@@ -46,9 +47,13 @@ EVENTS_PER_SPRING_SECOND = 20
 #: A run estimated to take longer than this (s) is announced with its estimate (a warning on
 #: stderr) before it starts.
 LONG_RUN_SECONDS = 600.0
-#: Seconds per step and DOF of the continuum (dynamics: 509 s for 8000 steps on 20 160 DOFs;
-#: a pushover step takes several Newton iterations: 31.5 s for 42 steps on 20 160 DOFs).
-CONTINUUM_SECONDS_PER_DOF_STEP = {"dynamic": 3.2e-6, "pushover": 3.7e-5}
+#: Seconds per step and DOF of the continuum, by route: the implicit dynamics (HHT, Newton:
+#: 509 s for 8000 steps on 20 160 DOFs; benchmarks/CONTINUUM_STARTUP.md, 3 s of El Centro:
+#: 2.6e-6), the explicit dynamics' compiled loop (the same table: a 9.8 s CPU solve of 12 766
+#: steps on 20 160 DOFs, 3.8e-8, taken with a 1.6x margin for a loaded machine's wall clock)
+#: and a pushover, whose step takes several Newton iterations (31.5 s for 42 steps on 20 160
+#: DOFs).
+CONTINUUM_SECONDS_PER_DOF_STEP = {"implicit": 3.2e-6, "explicit": 6.0e-8, "pushover": 3.7e-5}
 #: Default time budget (s, estimated) of a reduced run: the model takes milliseconds to
 #: seconds per earthquake; a run estimated above an hour asks for more springs than resolve
 #: anything (``--budget`` raises it).
@@ -158,12 +163,13 @@ def reduced_cost(*, steps: int, step: float, stride: int, dofs: int, springs: in
 
 
 def continuum_cost(*, analysis: str, steps: int, step: float, dofs: int,
-                   snapshots: int) -> Cost:
-    """The continuum's run (``analysis`` pushover or dynamic): ``steps`` on ``dofs`` DOFs,
-    ``snapshots`` of the soil fields kept. A factorisation's fill is taken as 150 numbers per
-    DOF and a kept state as 12 per DOF (stresses and plastic state at the quadrature points)."""
+                   snapshots: int, route: str = "implicit") -> Cost:
+    """The continuum's run (``analysis`` pushover or dynamic, a dynamic one by ``route``,
+    explicit or implicit): ``steps`` on ``dofs`` DOFs, ``snapshots`` of the soil fields kept.
+    A factorisation's fill is taken as 150 numbers per DOF and a kept state as 12 per DOF
+    (stresses and plastic state at the quadrature points)."""
     memory = 8.0 * dofs * (150 + 12 * snapshots) + 400.0 * steps
-    rate = CONTINUUM_SECONDS_PER_DOF_STEP[analysis]
+    rate = CONTINUUM_SECONDS_PER_DOF_STEP[route if analysis == "dynamic" else analysis]
     return Cost(f"the continuum {analysis}", int(steps), float(step), memory,
                 rate * steps * dofs, f"{dofs} DOFs", "a coarser mesh or a shorter duration"
                 if analysis == "dynamic" else "a coarser mesh or fewer steps")

@@ -219,8 +219,9 @@ def continuum(args) -> int:
             dt = 0.0
         else:
             (steps, dt), snapshots = _dynamic_steps(run_scene, motion, h_min), 41
+        route = run_scene.continuum.dynamics if run_scene.continuum else "explicit"
         costs.append(continuum_cost(analysis=args.analysis, steps=steps, step=dt, dofs=dofs,
-                                    snapshots=snapshots))
+                                    snapshots=snapshots, route=route))
     cost = costs[0] if not coarser else in_sequence(
         costs, "the continuum dynamic with its " + ("coarser run" if len(coarser) == 1
                                                     else f"{len(coarser)} coarser runs")
