@@ -4,6 +4,7 @@ on the old boundaries (a rigid base) and on the half-plane ones (a compliant bas
     python benchmarks/halfplane_box.py [--out DIR] [--write] [--cases a,b,...] [--boxes 10,20] [--across 8]
                                        [--point clay-pulse,clay-record,sand-record]
                                        [--tail SECONDS] [--soil KEY=VALUE ...]
+                                       [--continuum KEY=VALUE ...]
                                        [--input-scales 0.99,1.01]
 
 Writes ``HALFPLANE_BOX.md`` and ``halfplane_box.json`` to ``--out`` (default
@@ -39,6 +40,9 @@ yielding. ``--tail``: the motion padded with that many seconds of still ground a
 it on the half-plane; nothing does in the closed box). ``--soil [SOIL:]KEY=VALUE``: a ``[soil]``
 field set on every run, or with ``SOIL:`` (clay or sand) on that soil's points only (e.g.
 ``clay:undrained_strength_gradient=1.7``, kPa/m); a number or a word.
+``--continuum KEY=VALUE``: a ``[continuum]`` field set on every run, its value read as TOML
+would (a number, a word, a list: ``damping_ratio=0.02``, ``damping_frequencies=[1.0,5.0]``);
+the box, base and sides stay the case's.
 ``--input-scales``: the first box of each case and point again with the motion's amplitude
 (a record's PGA, a pulse's amplitude) scaled by each factor, reported against the unscaled run
 like a larger box: how far the answer moves when what reaches the footing moves by 1 %, the
@@ -65,6 +69,7 @@ import json  # noqa: E402
 import math  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
+import tomllib  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -117,7 +122,7 @@ def point_data(point: str, across: int, record_seconds: float) -> dict:
 
 def run(point: str, case: str, box: str, across: int, record_seconds: float,
         elastic: bool = False, tail: float = 0.0, soil: dict | None = None,
-        input_scale: float = 1.0) -> dict:
+        input_scale: float = 1.0, continuum: dict | None = None) -> dict:
     """One run: the map's measures, the run's size and time."""
     from upliftlab.comparisons.studies.winkler_map.points import continuum_measures
     from upliftlab.continuum import build_model
@@ -127,7 +132,7 @@ def run(point: str, case: str, box: str, across: int, record_seconds: float,
     base, sides, tie, damped = CASES[case]
     data = point_data(point, across, record_seconds)
     width, _, depth = box.partition("x")
-    data["continuum"] = {**data["continuum"], "domain_width": float(width),
+    data["continuum"] = {**data["continuum"], **(continuum or {}), "domain_width": float(width),
                          "domain_depth": float(depth or width), "base": base, "boundary": sides}
     if elastic:
         data["soil"] = {k: v for k, v in data["soil"].items()
@@ -145,10 +150,10 @@ def run(point: str, case: str, box: str, across: int, record_seconds: float,
         K_h, C_h = handbook_sway(scene.soil, scene.foundation.width)
         scene = scene.replace("continuum", horizontal_tie=K_h,
                               horizontal_tie_damping=C_h if damped else None)
-    started = time.perf_counter()
+    started, cpu = time.perf_counter(), time.process_time()
     model = build_model(scene)
     result = run_dynamic(model, scene, scene.build_motion(), DynamicOptions(snapshots=0))
-    wall = time.perf_counter() - started
+    wall, cpu = time.perf_counter() - started, time.process_time() - cpu
     *_, measures = continuum_measures(scene, result)
     label = box if input_scale == 1.0 else f"{box}, input ×{input_scale:g}"
     return {"point": point + (" (elastic)" if elastic else ""), "case": case, "box": label,
@@ -160,7 +165,9 @@ def run(point: str, case: str, box: str, across: int, record_seconds: float,
             "dofs": int(model.dofs), "steps": int(result.metadata["steps"]),
             "energy": float(result.energy_balance_error),
             "max_plastic_strain": float(result.metadata.get("max_plastic_strain", math.nan)),
-            "tie": scene.continuum.horizontal_tie, "wall": wall}
+            "tie": scene.continuum.horizontal_tie, "wall": wall, "cpu": cpu,
+            "dt": float(result.metadata["dt"]),
+            "damping_ratio": scene.continuum.damping_ratio}
 
 
 def with_tail(data: dict, tail: float) -> dict:
@@ -236,6 +243,9 @@ def main(argv=None) -> int:
                         help="seconds of still ground after the motion (free vibration)")
     parser.add_argument("--soil", action="append", default=[], metavar="KEY=VALUE",
                         help="a [soil] field set on every run (repeatable)")
+    parser.add_argument("--continuum", action="append", default=[], metavar="KEY=VALUE",
+                        help="a [continuum] field set on every run (repeatable), e.g. "
+                             "damping_ratio=0.02")
     parser.add_argument("--input-scales", default="",
                         help="factors on the motion's amplitude, comma separated, run on the "
                              "first box (e.g. 0.99,1.01): the point's own sensitivity")
@@ -269,6 +279,18 @@ def main(argv=None) -> int:
             soil[(only, key)] = float(value)
         except ValueError:
             soil[(only, key)] = value
+    continuum = {}
+    for item in args.continuum:
+        key, sep, value = item.partition("=")
+        if not sep or not key.isidentifier() or key in ("domain_width", "domain_depth", "base",
+                                                         "boundary"):
+            parser.error(f"--continuum: {item!r}; valid: KEY=VALUE, KEY a [continuum] field "
+                         "name other than the box's and the case's (domain_width, "
+                         "domain_depth, base, boundary)")
+        try:
+            continuum[key] = tomllib.loads(f"v = {value}")["v"]
+        except tomllib.TOMLDecodeError:
+            continuum[key] = value
     try:
         scales = [float(x) for x in args.input_scales.split(",") if x]
     except ValueError:
@@ -284,7 +306,7 @@ def main(argv=None) -> int:
                 say(f"{NAME}: {p}, {c}, box {b} B, input ×{f:g}, {args.across} across ...")
                 try:
                     rows.append(run(p, c, b, args.across, args.record_seconds, args.elastic,
-                                    args.tail, soil, f))
+                                    args.tail, soil, f, continuum))
                 except Exception as exc:  # a failed run is reported, the others go on
                     say(f"{NAME}: {p}, {c}, box {b}: {type(exc).__name__}: {exc}")
                     continue

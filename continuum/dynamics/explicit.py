@@ -42,7 +42,8 @@ sides) is 6.1e-3 of the input with the tie at the default step and 3.1e-3 at hal
 
 **Energy.** Kinetic energy ½ v̄ᵀ M v̄ at whole steps (v̄_n the mean of the half-step velocities);
 the work of the soil's internal force less its weight, the story spring and the footing weight
-(``strain``), of the dashpots (``damping``), of the ground loads (``input``) and of the contact
+(``strain``), of the dashpots and the soil's Rayleigh damping (``damping``,
+:mod:`~upliftlab.continuum.dynamics.rayleigh`), of the ground loads (``input``) and of the contact
 forces (``contact``, the energy they take out) by the trapezoidal rule over each step, as in
 the implicit route. For a stable central-difference run the balance closes to O(dt²).
 
@@ -61,7 +62,7 @@ import numba
 import numpy as np
 
 from ...checks import InputError
-from ...log import announce_compilation
+from ...log import announce_compilation, logger
 from ...workers import single_threaded
 from . import explicit_step
 from ..contact.step import footing_schur, frictionless_step, tangential_step
@@ -73,7 +74,10 @@ from .explicit_step import (COURANT_ESTIMATE, STABILITY_FRACTION, ExplicitSettin
 from ..contact.footing import OPEN, STICK
 from .ground import free_field_motion, ground_velocity
 from .iteration_matrix import soil_residual
+from . import kernels
 from .kernels import soil_predict
+from . import rayleigh
+from .rayleigh import describe, viscous_tangent
 from ..statics.newton import ConvergenceError
 from .run_control import MECHANISM_GROWTH, BearingFailure, keeping_what_ran, settled_to_failure
 from .soil_force import SoilForce
@@ -146,6 +150,9 @@ class ExplicitRoute:
         self.ground = ground
         self.settings, self.mass, self.dashpots = explicit_setup(model, scene, motion, options,
                                                                  ground)
+        if self.settings.damping is not None:  # its cost, before any work
+            logger("continuum").info("upliftlab: " + describe(self.settings.damping,
+                                                              self.settings.reduction))
 
     def run(self, static, progress=None) -> DynamicResult:
         """The time histories from the gravity state ``static`` (``progress`` as
@@ -208,6 +215,14 @@ class _Explicit:
         self.L = f.kinematics
         self.free_q = np.array([not settings.prescribe_u, True, True])
         self.soil = SoilForce(model, static)
+        #: the Rayleigh β K₀ v as a Kelvin–Voigt stress β D₀ ε̇ (None without it), its force
+        #: and the element scratch of :func:`~.kernels.viscous_force`
+        self.viscous_D, self.viscous = None, np.zeros(n)
+        if settings.damping is not None and settings.damping.beta > 0.0:
+            self.viscous_D = viscous_tangent(model, settings.damping)
+            self.viscous_layout = self.soil.layout if self.soil.compiled else \
+                kernels.layout(model.disc)
+            self.viscous_work = np.zeros(self.viscous_layout.shape[::2] + (2,))
         #: the compiled loop serves every interface with a compiled material
         self.compiled = COMPILED_LOOP and self.soil.compiled
 
@@ -256,7 +271,10 @@ class _Explicit:
                 fint = self.soil(u)
             ag = ag_all[k]
             Fz = self.ground_all[k] + z.gravity
-            increments = soil_predict(u, u_prev, v, fint, self.datum, self.keep,
+            if self.viscous_D is not None:
+                kernels.viscous_force(self.viscous_layout, v, self.viscous_D,
+                                      self.viscous_work, self.viscous)
+            increments = soil_predict(u, u_prev, v, fint, self.viscous, self.datum, self.keep,
                                       self.ground_soil, self.incident, ag, vinc_all[k],
                                       self.mass, self.c, dt, first, R_prev, F_prev, u_next,
                                       v_next)
@@ -337,8 +355,11 @@ class _Explicit:
         soil_data = (lay.nodes, lay.dNdx, lay.dNdy, lay.dx, soil.eigenstrain, soil.plastic,
                      soil.ebar, soil.constants, soil.gain, soil.stress, soil.work, fint,
                      lay.ptr, lay.entries)
+        damped = self.viscous_D is not None
+        D, work_v = (self.viscous_D, self.viscous_work) if damped else \
+            (np.zeros((3, 3)), np.zeros((0, 0, 2)))
         loads = (self.datum, self.keep, self.ground_soil, self.incident, ag_all, vinc_all,
-                 self.mass, self.c, m_step)
+                 self.mass, self.c, m_step, damped, D, work_v, self.viscous)
         structure = (z.M, z.C, z.K, self.K_next, z.gravity, self.ground_all)
         contact = (free, Lf, f.uy.astype(np.int64), f.ux.astype(np.int64), f.x,
                    f.interface.mu, f.width, f.interface.tangential)
@@ -455,4 +476,6 @@ class _Explicit:
                 "sides": st.sides, "wave": self.options.wave, "mass": "lumped",
                 "dt_limit": st.limit, "dt_critical": st.critical,
                 "stability_fraction": explicit_step.STABILITY_FRACTION, "omega_max": st.omega_max,
-                "compiled": self.soil.compiled, "threads": numba.get_num_threads()}
+                "compiled": self.soil.compiled, "threads": numba.get_num_threads(),
+                **rayleigh.metadata(st.damping, st.reduction)}
+

@@ -39,7 +39,7 @@ import numpy as np
 
 from ..contact.step import frictionless_step, tangential_step
 from ..contact.footing import OPEN, STICK
-from .kernels import compiled_pair, soil_predict
+from .kernels import compiled_pair, soil_predict, viscous_pair
 
 __all__ = ["run_steps"]
 
@@ -47,6 +47,7 @@ __all__ = ["run_steps"]
 #: docstring: a loop that took them as arguments could not be cached).
 _ELEMENTS_SERIAL, _GATHER_SERIAL = compiled_pair(False)
 _ELEMENTS_PARALLEL, _GATHER_PARALLEL = compiled_pair(True)
+_VISCOUS_SERIAL, _VISCOUS_PARALLEL = viscous_pair(False), viscous_pair(True)
 
 
 @nb.njit(cache=True)
@@ -103,22 +104,27 @@ def _tangential(A, b, prescribed, z, u, u_next, v_next, m_eff, h, dt, uy, ux, x,
 
 
 @nb.njit(inline="always")
-def _steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure, contact):
+def _steps(k0, k1, dt, rings, carry, soil, elements, gather, viscous_elements, loads, structure,
+           contact):
     """Steps k0…k1 (module docstring); returns nothing, the rings hold the state. The arrays
     travel in tuples: ``rings`` (U, V, Z, VZ, FC, ST) and ``carry`` (R_prev, F_prev, Fz_prev,
     energy, counters), both updated in place; ``soil`` the compiled soil force's layout, state
     and workspace (:class:`~upliftlab.continuum.dynamics.soil_force.SoilForce`); ``loads``
-    (datum, keep, ground, incident, ag_all, vinc_all, mass, damping, m_step); ``structure``
+    (datum, keep, ground, incident, ag_all, vinc_all, mass, damping, m_step, damped, and the
+    Rayleigh β K₀ v's Kelvin–Voigt tangent β D₀ (3, 3), element scratch and force: used if
+    ``damped``, :mod:`~upliftlab.continuum.dynamics.rayleigh`); ``structure``
     (M, C, K, the part of K taken at n+1, gravity, the footing's and story's ground loads at
     every step, rows); ``contact`` (free, Lf, uy,
-    ux, x, μ, width, tangential). ``elements`` and ``gather``: the serial or parallel kernels
-    (:func:`~upliftlab.continuum.dynamics.kernels.compiled_pair`), named by the caller
+    ux, x, μ, width, tangential). ``elements``, ``gather`` and ``viscous_elements``: the serial
+    or parallel kernels (:func:`~upliftlab.continuum.dynamics.kernels.compiled_pair`,
+    :func:`~upliftlab.continuum.dynamics.kernels.viscous_pair`), named by the caller
     (:func:`_serial`, :func:`_parallel`) into which numba inlines this body."""
     U, V, Z, VZ, FC, ST = rings
     R_prev, F_prev, Fz_prev, energy, counters = carry
     (nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, gain, stress, work, fint, ptr,
      entries) = soil
-    datum, keep, ground, incident, ag_all, vinc_all, mass, damping, m_step = loads
+    (datum, keep, ground, incident, ag_all, vinc_all, mass, damping, m_step, damped, Dv,
+     work_v, viscous) = loads
     Mz, Cz, Kz, Kz_next, gravity_z, ground_all = structure
     free, Lf, uy, ux, x, mu, width, tangential = contact
     nc = uy.size
@@ -135,9 +141,12 @@ def _steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure, c
                  stress, work)
         gather(work, nodes, ptr, entries, fint)
         ag = ag_all[k]
+        if damped:  # the Rayleigh β K₀ v_{k−½}, element by element
+            viscous_elements(v.reshape(-1, 2), nodes, dNdx, dNdy, dx, Dv, work_v)
+            gather(work_v, nodes, ptr, entries, viscous)
         strain, work_in, dissipated = soil_predict(
-            u, u_prev, v, fint, datum, keep, ground, incident, ag, vinc_all[k], mass, damping,
-            dt, first, R_prev, F_prev, u_next, v_next)
+            u, u_prev, v, fint, viscous, datum, keep, ground, incident, ag, vinc_all[k], mass,
+            damping, dt, first, R_prev, F_prev, u_next, v_next)
         Fz = ground_all[k] + gravity_z
         A, b = _structure_form(Mz, Cz, Kz, Kz_next, z, vz, Fz, dt, first)
         h = dt * (0.5 * dt if first else dt)
@@ -185,15 +194,15 @@ def _steps(k0, k1, dt, rings, carry, soil, elements, gather, loads, structure, c
 @nb.njit(cache=True)
 def _serial(k0, k1, dt, rings, carry, soil, loads, structure, contact):
     """:func:`_steps` with the serial kernels."""
-    _steps(k0, k1, dt, rings, carry, soil, _ELEMENTS_SERIAL, _GATHER_SERIAL, loads, structure,
-           contact)
+    _steps(k0, k1, dt, rings, carry, soil, _ELEMENTS_SERIAL, _GATHER_SERIAL, _VISCOUS_SERIAL,
+           loads, structure, contact)
 
 
 @nb.njit(cache=True)
 def _parallel(k0, k1, dt, rings, carry, soil, loads, structure, contact):
     """:func:`_steps` with the parallel kernels."""
-    _steps(k0, k1, dt, rings, carry, soil, _ELEMENTS_PARALLEL, _GATHER_PARALLEL, loads,
-           structure, contact)
+    _steps(k0, k1, dt, rings, carry, soil, _ELEMENTS_PARALLEL, _GATHER_PARALLEL,
+           _VISCOUS_PARALLEL, loads, structure, contact)
 
 
 def run_steps(parallel: bool):

@@ -10,6 +10,12 @@ default dt is the largest divisor of the record's step below it, and a larger dt
 with the limit in the message. A fresh process reads the limit of a mesh, mass and set of free
 DOFs from the set-up cache (:mod:`~upliftlab.continuum.setup_cache`) when an earlier one has
 computed it (:func:`stable_limit`).
+
+**With Rayleigh damping** (``continuum.damping_ratio``,
+:mod:`~upliftlab.continuum.dynamics.rayleigh`): the stiffness-proportional part acts at the
+last half-step velocity, and the limit 2/ω_max becomes (2/ω_max)(√(1 + ξ²) − ξ),
+ξ = βω_max/2 + α/(2ω_max) (:func:`~upliftlab.continuum.dynamics.rayleigh.damped_critical`);
+the settings' ``reduction`` is that factor, the damping's extra cost in steps (1/reduction).
 """
 
 from __future__ import annotations
@@ -23,6 +29,7 @@ import skfem
 from ...checks import InputError
 from .. import setup_cache
 from .iteration_matrix import elastic_plane_tangent
+from .rayleigh import Rayleigh, damped_critical, rayleigh
 from .superstructure import check_footing_mass, check_superstructure
 from .waves import dashpot_data, full_basis
 
@@ -42,8 +49,10 @@ COURANT_ESTIMATE = 0.3
 class ExplicitSettings:
     """``dt`` (s), ``steps``, ``record_every`` (steps per recorded row), ``base``, ``sides``,
     ``prescribe_u`` (frictionless without a tie: the footing's u follows the base), the
-    admissible step ``limit`` = :data:`STABILITY_FRACTION` × ``critical`` = 2/``omega_max``
-    (s, rad/s)."""
+    admissible step ``limit`` = :data:`STABILITY_FRACTION` × ``critical`` (s), the
+    central-difference limit of the mesh's highest frequency ``omega_max`` (rad/s): 2/ω_max,
+    times ``reduction`` = √(1 + ξ²) − ξ with the soil's Rayleigh ``damping`` (None: none;
+    module docstring)."""
 
     dt: float
     steps: int
@@ -54,6 +63,8 @@ class ExplicitSettings:
     limit: float
     critical: float
     omega_max: float
+    damping: Rayleigh | None = None
+    reduction: float = 1.0
 
 
 def lumped_mass(model) -> np.ndarray:
@@ -114,11 +125,15 @@ def explicit_setup(model, scene, motion, options, ground) -> tuple[ExplicitSetti
     """(settings, mass, dashpots) of an explicit run on ``ground`` (a
     :class:`~upliftlab.continuum.dynamics.ground.Ground`): :func:`explicit_settings`, the
     soil's lumped mass scaled by ``options.soil_mass_scale`` and the row sums of the dashpots
-    of ``ground.waves`` (per DOF), all made here, each once."""
+    of ``ground.waves`` (per DOF) plus the Rayleigh α M (:mod:`~.rayleigh`), all made here,
+    each once."""
     mass = options.soil_mass_scale * lumped_mass(model)
     dashpots = row_sums(model, ground.waves.dashpots)
     free = np.setdiff1d(np.arange(model.disc.ndofs), ground.fixed)
-    return explicit_settings(model, scene, motion, options, ground, mass, free), mass, dashpots
+    settings = explicit_settings(model, scene, motion, options, ground, mass, free)
+    if settings.damping is not None:
+        dashpots = dashpots + settings.damping.alpha * mass
+    return settings, mass, dashpots
 
 
 def explicit_settings(model, scene, motion, options, ground, mass, free) -> ExplicitSettings:
@@ -134,17 +149,22 @@ def explicit_settings(model, scene, motion, options, ground, mass, free) -> Expl
                          f"is not positive at {bad.size} DOFs; the explicit route needs Q2, Q1 or "
                          "P1 (or continuum.dynamics = 'implicit')")
     check_footing_mass(scene)
-    critical, omega = stable_limit(model, mass, free)
+    undamped, omega = stable_limit(model, mass, free)
+    damping = rayleigh(model)
+    critical = undamped if damping is None else damped_critical(omega, damping)
     limit = STABILITY_FRACTION * critical
     if options.dt is None:
         dt = motion.dt / max(1, math.ceil(motion.dt / limit * (1.0 - 1e-12)))
     else:
         dt = options.dt
         if dt > limit:
+            what = (f"2/ω_max = {critical:.4g} s" if damping is None else
+                    f"(2/ω_max)(√(1 + ξ²) − ξ) = {critical:.4g} s with the Rayleigh damping's "
+                    f"ξ(ω_max) = {damping.ratio_at(omega):.3g}")
             raise InputError(
                 f"DynamicOptions.dt = {dt:g} s: beyond the explicit stability limit of the mesh "
-                f"(2/ω_max = {critical:.4g} s, ω_max = {omega:.4g} rad/s); valid range is "
-                f"(0, {limit:.4g}] s ({STABILITY_FRACTION:g} of 2/ω_max)")
+                f"({what}, ω_max = {omega:.4g} rad/s); valid range is "
+                f"(0, {limit:.4g}] s ({STABILITY_FRACTION:g} of that limit)")
     duration = options.duration or scene.analysis.duration or motion.duration
     steps = max(1, int(round(duration / dt)))
     if options.record_every is not None:
@@ -155,4 +175,5 @@ def explicit_settings(model, scene, motion, options, ground, mass, free) -> Expl
         every = max(1, int(math.floor(implicit / dt * (1.0 + 1e-9))))
     return ExplicitSettings(dt=dt, steps=steps, record_every=min(every, steps), base=ground.base,
                             sides=ground.sides, prescribe_u=ground.prescribe_u,
-                            limit=limit, critical=critical, omega_max=omega)
+                            limit=limit, critical=critical, omega_max=omega, damping=damping,
+                            reduction=critical / undamped)

@@ -8,7 +8,8 @@ linear undamped system exactly. Stiffness, damping, contact and external forces 
 :func:`~upliftlab.continuum.statics.newton.equilibrium`: the inertia, the dashpots and the α terms
 of the
 soil enter as a :class:`~upliftlab.continuum.statics.newton.SoilTerm` (a0 M/(1+α) + c0 C and an
-offset),
+offset; C the boundaries' dashpots plus the soil's Rayleigh damping α M + β K₀ where
+``continuum.damping_ratio`` is given, :mod:`~upliftlab.continuum.dynamics.rayleigh`),
 the superstructure and the footing's inertia as a
 :class:`~upliftlab.continuum.statics.newton.FootingTerm`
 (the story DOF s is eliminated exactly: its equation is linear), so the existing exact contact
@@ -46,6 +47,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...time_schemes import NewmarkCoefficients, hht
+from ...log import logger
+from .rayleigh import describe, metadata, rayleigh, stiffness_data
 from .result import DynamicResult, Recorder
 from ..contact.footing import ContactError
 from .ground import free_field_motion, ground_velocity
@@ -97,6 +100,9 @@ class ImplicitRoute:
         self.model, self.scene, self.motion, self.options = model, scene, motion, options
         self.ground = ground
         self.settings = implicit_settings(model, scene, motion, options, ground)
+        damping = rayleigh(model)
+        if damping is not None:
+            logger("continuum").info("upliftlab: " + describe(damping))
 
     def run(self, static, progress=None) -> DynamicResult:
         """The time histories from the gravity state ``static`` (``progress`` as
@@ -119,7 +125,12 @@ class ImplicitRun:
         c, alpha = self.c, settings.alpha
         pattern = dyn.disc.pattern
         self.M = pattern.matrix(mass_data(dyn, options.mass or "consistent"))
-        self.C = pattern.matrix(ground.waves.dashpots)
+        self.rayleigh = rayleigh(dyn)
+        damping = ground.waves.dashpots
+        if self.rayleigh is not None:  # C = the boundaries' dashpots + α M + β K₀
+            damping = damping + self.rayleigh.alpha * self.M.data \
+                + self.rayleigh.beta * stiffness_data(dyn)
+        self.C = pattern.matrix(damping)
         self.soil_data = c.a0 / (1.0 + alpha) * self.M.data + c.c0 * self.C.data
         self.soil_matrix = pattern.matrix(self.soil_data)
         self.C = self.C.copy()  # its own index arrays: the pattern's are shared
@@ -197,7 +208,7 @@ class ImplicitRun:
                 "dt": st.dt, "steps": st.steps, "base": st.base, "sides": st.sides,
                 "wave": options.wave, "mass": options.mass or "consistent",
                 "dt_limit": st.limit, "courant_limit": COURANT_LIMIT,
-                "newton_rtol": options.newton.rtol}
+                "newton_rtol": options.newton.rtol, **metadata(self.rayleigh)}
 
     def steps(self, rec, state, soil, zk, R, energy, soil_term_data, control, progress):
         """Steps 1…n, recorded into ``rec``."""

@@ -35,7 +35,8 @@ import numpy as np
 from ...checks import InputError
 from ..materials.compiled import point_return
 
-__all__ = ["Layout", "layout", "internal_force", "compiled_pair", "soil_predict"]
+__all__ = ["Layout", "layout", "internal_force", "compiled_pair", "soil_predict",
+           "viscous_pair", "viscous_force"]
 
 #: Element blocks of the parallel loop (each thread takes whole blocks; a scratch array each).
 _BLOCKS = 64
@@ -193,6 +194,68 @@ def internal_force(lay: Layout, u, eigenstrain, plastic, ebar, constants, gain, 
     return out
 
 
+@nb.njit(cache=True, fastmath=_FAST)
+def _viscous(lo, hi, v2, nodes, dNdx, dNdy, dx, D, fe):
+    """Elements lo:hi of :func:`viscous_pair`'s kernels: ∫ Bᵀ D ε̇ into ``fe``."""
+    nel, nqp, nn = dNdx.shape
+    ve = np.empty((nn, 2))
+    d00, d01, d02, d10, d11, d12, d20, d21, d22 = (D[0, 0], D[0, 1], D[0, 2], D[1, 0], D[1, 1],
+                                                   D[1, 2], D[2, 0], D[2, 1], D[2, 2])
+    for e in range(lo, hi):
+        for a in range(nn):
+            ve[a, 0], ve[a, 1] = v2[nodes[e, a], 0], v2[nodes[e, a], 1]
+            fe[e, a, 0] = 0.0
+            fe[e, a, 1] = 0.0
+        for p in range(nqp):
+            rxx = ryy = rxy = 0.0
+            for a in range(nn):
+                bx, by = dNdx[e, p, a], dNdy[e, p, a]
+                rxx += bx * ve[a, 0]
+                ryy += by * ve[a, 1]
+                rxy += by * ve[a, 0] + bx * ve[a, 1]
+            w = dx[e, p]
+            sxx = (d00 * rxx + d01 * ryy + d02 * rxy) * w
+            syy = (d10 * rxx + d11 * ryy + d12 * rxy) * w
+            sxy = (d20 * rxx + d21 * ryy + d22 * rxy) * w
+            for a in range(nn):
+                bx, by = dNdx[e, p, a], dNdy[e, p, a]
+                fe[e, a, 0] += bx * sxx + by * sxy
+                fe[e, a, 1] += by * syy + bx * sxy
+
+
+@nb.njit(cache=True, parallel=True)
+def _viscous_parallel(v2, nodes, dNdx, dNdy, dx, D, fe):
+    nel = dNdx.shape[0]
+    blocks = min(nel, _BLOCKS)
+    for b in nb.prange(blocks):
+        _viscous(b * nel // blocks, (b + 1) * nel // blocks, v2, nodes, dNdx, dNdy, dx, D, fe)
+
+
+@nb.njit(cache=True)
+def _viscous_serial(v2, nodes, dNdx, dNdy, dx, D, fe):
+    _viscous(0, dNdx.shape[0], v2, nodes, dNdx, dNdy, dx, D, fe)
+
+
+def viscous_pair(parallel: bool):
+    """The element kernel of a viscous stress D ε̇ (Kelvin–Voigt: the Rayleigh β K₀ v with
+    D = β D₀, :mod:`~upliftlab.continuum.dynamics.rayleigh`), serial or parallel:
+    ``kernel(v2, nodes, dNdx, dNdy, dx, D, fe)`` writes ∫ Bᵀ D ε̇(v) dx per element into ``fe``
+    (nel, nnode, 2), D the (3, 3) plane tangent on (ε̇xx, ε̇yy, γ̇xy); the gather of
+    :func:`compiled_pair` sums it. The same numbers as (β K₀) v, element by element."""
+    return _viscous_parallel if parallel else _viscous_serial
+
+
+def viscous_force(lay: Layout, v, D, work, out, parallel: bool | None = None) -> np.ndarray:
+    """∫ Bᵀ D ε̇(v) (ndofs) into ``out`` (:func:`viscous_pair`; ``work`` (nel, nnode, 2)
+    scratch), split among the threads as :func:`internal_force`."""
+    if parallel is None:
+        parallel = nb.get_num_threads() > 1
+    _, gather = compiled_pair(parallel)
+    viscous_pair(parallel)(v.reshape(-1, 2), lay.nodes, lay.dNdx, lay.dNdy, lay.dx, D, work)
+    gather(work, lay.nodes, lay.ptr, lay.entries, out)
+    return out
+
+
 def compiled_pair(parallel: bool):
     """(element forces, gather) kernels, serial or parallel; both pairs share a signature, so
     that a caller compiled for one never compiles the other."""
@@ -206,14 +269,16 @@ def compiled_pair(parallel: bool):
 
 
 @nb.njit(cache=True)
-def soil_predict(u, u_prev, v, fint, datum, keep, ground, incident, ag, incident_velocity,
-                 mass, damping, dt, first, R_prev, F_prev, u_out, v_out):
+def soil_predict(u, u_prev, v, fint, viscous, datum, keep, ground, incident, ag,
+                 incident_velocity, mass, damping, dt, first, R_prev, F_prev, u_out, v_out):
     """One step of the soil without contact forces (:mod:`~upliftlab.continuum.dynamics.explicit`):
     R = f_int − datum, F = ground a_g + incident v_inc, v_out = v_{n+½}, u_out = u_{n+1};
-    a held DOF (``keep`` 0) stays put. Returns the increments of the strain work
-    ½(R_{n−1} + R_n)·Δu, the input ½(F_{n−1} + F_n)·Δu and the dashpot work c v_{n−½}·Δu over
-    the last step (Δu = u_n − u_{n−1}; zero on the ``first`` step), and stores R and F in
-    ``R_prev`` and ``F_prev`` for the next step."""
+    a held DOF (``keep`` 0) stays put. ``damping`` the diagonal dashpots (the boundaries' and
+    the Rayleigh α M) at the mean of v_{n±½}; ``viscous`` a force at v_{n−½} (the Rayleigh
+    β K₀ v, :mod:`~upliftlab.continuum.dynamics.rayleigh`; zeros without it). Returns the
+    increments of the strain work ½(R_{n−1} + R_n)·Δu, the input ½(F_{n−1} + F_n)·Δu and the
+    damping work (c v_{n−½} + viscous)·Δu over the last step (Δu = u_n − u_{n−1}; zero on the
+    ``first`` step), and stores R and F in ``R_prev`` and ``F_prev`` for the next step."""
     strain = work = dissipated = 0.0
     half = 0.5 * dt
     for i in range(u.size):
@@ -223,13 +288,14 @@ def soil_predict(u, u_prev, v, fint, datum, keep, ground, incident, ag, incident
         R = fint[i] - datum[i]
         F = ground[i] * ag + incident[i] * incident_velocity
         if first:
-            vs = v[i] + half * (F - R - damping[i] * v[i]) / mass[i]
+            vs = v[i] + half * (F - R - viscous[i] - damping[i] * v[i]) / mass[i]
         else:
             du = u[i] - u_prev[i]
             strain += 0.5 * (R_prev[i] + R) * du
             work += 0.5 * (F_prev[i] + F) * du
             dissipated += damping[i] * v[i] * du
-            vs = ((mass[i] - half * damping[i]) * v[i] + dt * (F - R)) \
+            dissipated += viscous[i] * du
+            vs = ((mass[i] - half * damping[i]) * v[i] + dt * (F - R - viscous[i])) \
                 / (mass[i] + half * damping[i])
         v_out[i] = vs
         u_out[i] = u[i] + dt * vs

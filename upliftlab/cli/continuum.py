@@ -334,13 +334,20 @@ def _dynamic_steps(scene, motion, h_min: float) -> tuple[int, float]:
     record step divided down to the route's limit (as :func:`run_dynamic` does; the explicit
     route's exact limit needs the mesh,
     :data:`~upliftlab.continuum.dynamics.explicit.COURANT_ESTIMATE`
-    estimates it from below)."""
+    estimates it from below, and the soil's Rayleigh damping shortens it by
+    √(1 + ξ²) − ξ at the mesh's highest frequency, estimated from the same step,
+    ω_max ≈ 2 × STABILITY_FRACTION/dt, :mod:`~upliftlab.continuum.dynamics.rayleigh`)."""
     from ..continuum.dynamics.run import COURANT_LIMIT, wave_speeds
-    from ..continuum.dynamics.explicit import COURANT_ESTIMATE
+    from ..continuum.dynamics.explicit import COURANT_ESTIMATE, STABILITY_FRACTION
+    from ..continuum.dynamics.rayleigh import damped_critical, scene_rayleigh
 
     explicit = (scene.continuum.dynamics if scene.continuum else "explicit") == "explicit"
     courant = COURANT_ESTIMATE if explicit else COURANT_LIMIT
     limit = courant * h_min / wave_speeds(scene.soil)[0]
+    damping = scene_rayleigh(scene) if explicit else None
+    if damping is not None:
+        omega_max = 2.0 * STABILITY_FRACTION / limit
+        limit *= damped_critical(omega_max, damping) * omega_max / 2.0
     dt = motion.dt / max(1, math.ceil(motion.dt / limit * (1.0 - 1e-12)))
     duration = scene.analysis.duration or motion.duration
     if duration < 0.5 * dt:

@@ -151,6 +151,15 @@ class ContinuumOptions:
     lumped mass; the default) or ``implicit`` (HHT-α with Newton). ``energy_tolerance``: the
     largest energy balance error (fraction of the input energy) a dynamic run may have before
     it counts as failed, in (0, 1].
+    ``damping_ratio`` ξ (None: no material damping, the soil's only losses its yielding and
+    the boundaries' radiation): Rayleigh damping C = α M + β K₀ of the soil (K₀ its initial
+    elastic stiffness), with the damping ratio ξ at the two frequencies
+    ``damping_frequencies`` = (f₁, f₂) (Hz, f₁ < f₂), α = 2ξω₁ω₂/(ω₁ + ω₂),
+    β = 2ξ/(ω₁ + ω₂), and less than ξ between them. Without ``damping_frequencies`` the usual
+    pair: f₁ the soil column's fundamental frequency V_s/(4H) (H the box depth, or
+    ``soil.layer_depth``) and f₂ = 5 f₁ (Hudson, Idriss & Beikae 1994; Kwok et al. 2007,
+    J. Geotech. Geoenviron. Eng. 133(11)). In both dynamic routes
+    (:mod:`~upliftlab.continuum.dynamics.rayleigh`); 0 ≤ ξ < 0.3.
     """
 
     domain_width: float = 10.0
@@ -165,6 +174,8 @@ class ContinuumOptions:
     horizontal_tie_damping: float | None = None
     dynamics: str = "explicit"
     energy_tolerance: float = 0.05
+    damping_ratio: float | None = None
+    damping_frequencies: tuple[float, float] | None = None
 
 
 #: Most elements across the footing: 1024 gives about 10⁸ DOFs (the run's memory is estimated
@@ -172,6 +183,17 @@ class ContinuumOptions:
 MAX_ELEMENTS_ACROSS = 1024
 #: Fewest elements across the footing a mesh has (its two edges and its centre).
 MIN_ELEMENTS_ACROSS = 2
+
+
+def _frequency_pair(name, value) -> tuple[float, float]:
+    """[f₁, f₂] (Hz), 0 < f₁ < f₂ (:attr:`ContinuumOptions.damping_frequencies`)."""
+    if not isinstance(value, (list, tuple)) or len(value) != 2:
+        raise InputError(f"{name} = {value!r}: expected two frequencies [f1, f2] in Hz, "
+                         "0 < f1 < f2")
+    f1, f2 = (checks.positive(f"{name}[{i}]", v) for i, v in enumerate(value))
+    if not f1 < f2:
+        raise InputError(f"{name} = {list(value)}: valid range is 0 < f1 < f2 (Hz)")
+    return float(f1), float(f2)
 
 
 def read_continuum(data) -> ContinuumOptions:
@@ -190,8 +212,14 @@ def read_continuum(data) -> ContinuumOptions:
         horizontal_tie_damping=table.get("horizontal_tie_damping", in_range(0.0, 1e12), None),
         dynamics=table.get("dynamics", choice(DYNAMICS), "explicit"),
         energy_tolerance=table.get("energy_tolerance", in_range(0.0, 1.0, low_open=True), 0.05),
+        damping_ratio=table.get("damping_ratio", in_range(0.0, 0.3, high_open=True), None),
+        damping_frequencies=table.get("damping_frequencies", _frequency_pair, None),
     )
     table.done()
+    if options.damping_frequencies is not None and options.damping_ratio is None:
+        raise InputError(f"continuum.damping_frequencies = {list(options.damping_frequencies)}"
+                         ": the frequencies are the damping's; valid: with "
+                         "continuum.damping_ratio")
     if options.horizontal_tie_damping is not None and options.horizontal_tie is None:
         raise InputError(f"continuum.horizontal_tie_damping = {options.horizontal_tie_damping:g}"
                          ": the dashpot is the tie's; valid: with continuum.horizontal_tie")
