@@ -39,6 +39,7 @@ from .dashpots import build_uniform_plastic_impedance, impedance_dashpots_of
 from .fitted import build_end_stiffened_fitted_impedance
 from .qz.bed import build_qz
 from .radiation import distribute, gazetas_dashpots
+from .soil_damping import with_soil_damping
 
 __all__ = ["BedReference", "BedEntry", "BEDS", "bed_names", "bed_foundation"]
 
@@ -149,10 +150,13 @@ def bed_names(options) -> tuple[str, ...]:
     return tuple(options.beds) or tuple(BEDS)
 
 
-def bed_foundation(name: str, reference: BedReference, options) -> dict:
+def bed_foundation(name: str, reference: BedReference, options,
+                   soil_beta: float | None = None) -> dict:
     """The ``[foundation]`` table of calibration ``name`` at ``reference``: the uplifting
-    support, its half-width and whatever the builder sets."""
+    support, its half-width and whatever the builder sets; with ``soil_beta`` β (s; None: off,
+    the default) the soil's Rayleigh dashpots β k_i beside its springs
+    (:mod:`.soil_damping`)."""
     table = dict(BEDS[name].build(reference, options))
     table.setdefault("support", "uplift")
     table.setdefault("half_width", 0.5 * reference.B)
-    return table
+    return with_soil_damping(table, soil_beta)

@@ -1,0 +1,53 @@
+"""The soil's Rayleigh damping carried into a bed: a dashpot β k_i beside every spring.
+
+What it is: the continuum's soil damping C = α M + β K₀ (``continuum.damping_ratio``,
+:mod:`~upliftlab.continuum.dynamics.rayleigh`) as the reduced model's bed sees it. A soil whose
+every stiffness carries the viscous part β (a Kelvin–Voigt solid, modulus E (1 + iωβ)) has, by
+the correspondence principle, every static stiffness of its footing scaled by (1 + iωβ): K_v and
+K_r gain the dashpots β K_v and β K_r. A bed whose springs k_i match K_v = Σ k_i and
+K_r = Σ k_i x_i² matches them with a dashpot c_i = β k_i beside each spring. The mass part α M
+acts on the soil's own inertia, which a massless bed does not have, and the continuum gives the
+footing and the structure no Rayleigh damping: so the bed gets no α m.
+
+Off unless asked for (:func:`with_soil_damping` on a bed's ``[foundation]`` table, or
+``bed_foundation(..., soil_beta=β)`` of :mod:`.registry`): every bed's numbers stay what they
+were. The dashpots are added to a bed's own (a radiation bed's); a bed with a
+``damping_ratio`` of its own (a stiffness-proportional dashpot already) is refused, since the
+scene takes one or the other.
+"""
+
+from __future__ import annotations
+
+from ...checks import InputError
+from ...reduced.compatibility import layout_for
+from ...scenes.structure import read_foundation
+from ...units import UnitSystem, unit_system
+
+__all__ = ["soil_dashpots", "with_soil_damping"]
+
+
+def soil_dashpots(table: dict, beta: float, units: UnitSystem | None = None) -> tuple[float, ...]:
+    """β k_i (force·time/length per length) of the springs of the ``[foundation]`` ``table``,
+    from −b to +b (the order of its ``dashpots``)."""
+    units = units or unit_system("kN-m-s")
+    layout = layout_for(read_foundation(dict(table), 1.0, units))
+    return tuple(float(beta * k) for k in layout.stiffnesses)
+
+
+def with_soil_damping(table: dict, beta: float | None,
+                      units: UnitSystem | None = None) -> dict:
+    """The ``[foundation]`` ``table`` with the soil's β k_i added to its springs' dashpots
+    (module docstring); ``table`` itself when ``beta`` is None. β ≥ 0 (s)."""
+    if beta is None:
+        return table
+    if not beta >= 0.0:
+        raise InputError(f"soil_beta = {beta!r}: the soil's Rayleigh β (s); valid range is "
+                         "β ≥ 0")
+    if table.get("damping_ratio", 0.0):
+        raise InputError(f"foundation.damping_ratio = {table['damping_ratio']:g} with the "
+                         "soil's Rayleigh dashpots: a bed takes one or the other; valid: 0")
+    added = soil_dashpots(table, beta, units)
+    own = table.get("dashpots") or [0.0] * len(added)
+    if len(own) != len(added):
+        raise InputError(f"foundation.dashpots has {len(own)} entries for {len(added)} springs")
+    return {**table, "dashpots": [float(c + d) for c, d in zip(own, added)]}
