@@ -5,7 +5,7 @@ References, one per test:
 - the free vibration of a uniform elastic column (shear sides, rigid base, the light footing of
   tests/test_continuum_far_field.py) rung by one sine period of base acceleration at its first
   mode: the closed form ω₁ = πV_s/(2H) and, for Rayleigh damping, the first mode's damping
-  ratio ξ₁ = α/(2ω₁) + βω₁/2 (Chopra, Dynamics of Structures, §11.4), read from the
+  ratio ξ₁ = α/(2ω₁) + βω₁/2 (Chopra, Dynamics of Structures, ch. 11), read from the
   logarithmic decrement of the surface's free vibration; with the pair (2, 12) Hz, not
   bracketing f₁ = 5.17 Hz, so that ξ₁ = 3.5 % is not the ξ = 5 % given; the default pair
   (f₁ = V_s/(4H), 5 f₁) gives ξ₁ = ξ. Without damping the decrement is below 0.1 %.
