@@ -76,9 +76,7 @@ def uplift_figure(result, basis, footing_width: float, *, snapshot: int = -1,
     """The matplotlib figure of one snapshot (default the last) of a result on ``basis`` (the
     module docstring's picture), nothing written; ``make(width, height, dpi)`` makes the
     figure (default: a Figure outside pyplot)."""
-    count = np.size(result.snapshot_time)
-    if not -count <= snapshot < count:
-        raise InputError(f"snapshot = {snapshot}: valid range is [{-count}, {count - 1}]")
+    _check_snapshot(result, snapshot)
     page, all_frames = _page(result, basis, footing_width, scale=scale, title=title, dpi=dpi,
                              make=make)
     page.show(all_frames[snapshot])
@@ -92,6 +90,13 @@ def render_uplift(path, result, basis, footing_width: float, *, snapshot: int = 
                         title=title, dpi=dpi)
     fig.canvas.draw()
     return _write_png(path, np.asarray(fig.canvas.buffer_rgba())[..., :3], dpi)
+
+
+def _check_snapshot(result, snapshot: int) -> None:
+    """Refuse a ``snapshot`` index the result does not have, naming the valid range."""
+    count = np.size(result.snapshot_time)
+    if not -count <= snapshot < count:
+        raise InputError(f"snapshot = {snapshot}: valid range is [{-count}, {count - 1}]")
 
 
 def frames_within(budget: float, spent: float, per_frame: float, count: int) -> int:
@@ -151,9 +156,7 @@ def write_pictures(png, gif, result, basis, footing_width: float, *, snapshot: i
     ``dpi``) at ``gif``; ``budget`` (CPU seconds) bounds both together (module docstring).
     Returns the number of GIF frames."""
     start = time.process_time()
-    count = np.size(result.snapshot_time)
-    if not -count <= snapshot < count:
-        raise InputError(f"snapshot = {snapshot}: valid range is [{-count}, {count - 1}]")
+    _check_snapshot(result, snapshot)
     page, all_frames = _page(result, basis, footing_width, scale=scale, title=title, dpi=dpi,
                              animated=True)
     page.show(all_frames[snapshot])

@@ -90,6 +90,36 @@ def layout(disc) -> Layout:
 # ---------------------------------------------------------------------------------------------
 
 
+@nb.njit(cache=True, inline="always")
+def _element_values(e, values2, nodes, out, fe):
+    """Element ``e``'s nodal values (nn, 2) of ``values2`` into ``out``; its forces zeroed."""
+    for a in range(out.shape[0]):
+        out[a, 0], out[a, 1] = values2[nodes[e, a], 0], values2[nodes[e, a], 1]
+        fe[e, a, 0] = 0.0
+        fe[e, a, 1] = 0.0
+
+
+@nb.njit(cache=True, inline="always")
+def _point_strain(e, p, dNdx, dNdy, ue):
+    """(ε_xx, ε_yy, γ_xy) at point ``p`` of element ``e`` from its nodal values ``ue``."""
+    exx = eyy = gxy = 0.0
+    for a in range(ue.shape[0]):
+        bx, by = dNdx[e, p, a], dNdy[e, p, a]
+        exx += bx * ue[a, 0]
+        eyy += by * ue[a, 1]
+        gxy += by * ue[a, 0] + bx * ue[a, 1]
+    return exx, eyy, gxy
+
+
+@nb.njit(cache=True, inline="always")
+def _add_point_force(e, p, dNdx, dNdy, sxx, syy, sxy, fe):
+    """Bᵀ σ of point ``p`` (the stress already times its weight) added to element ``e``."""
+    for a in range(fe.shape[1]):
+        bx, by = dNdx[e, p, a], dNdy[e, p, a]
+        fe[e, a, 0] += bx * sxx + by * sxy
+        fe[e, a, 1] += by * syy + bx * sxy
+
+
 @nb.njit(cache=True, fastmath=_FAST)
 def _elements(lo, hi, u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, gain, stress,
               fe):
@@ -97,17 +127,9 @@ def _elements(lo, hi, u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, 
     nel, nqp, nn = dNdx.shape
     ue = np.empty((nn, 2))
     for e in range(lo, hi):
-        for a in range(nn):
-            ue[a, 0], ue[a, 1] = u2[nodes[e, a], 0], u2[nodes[e, a], 1]
-            fe[e, a, 0] = 0.0
-            fe[e, a, 1] = 0.0
+        _element_values(e, u2, nodes, ue, fe)
         for p in range(nqp):
-            exx = eyy = gxy = 0.0
-            for a in range(nn):
-                bx, by = dNdx[e, p, a], dNdy[e, p, a]
-                exx += bx * ue[a, 0]
-                eyy += by * ue[a, 1]
-                gxy += by * ue[a, 0] + bx * ue[a, 1]
+            exx, eyy, gxy = _point_strain(e, p, dNdx, dNdy, ue)
             sxx, syy, szz, sxy, d0, d1, d2, d3, db = point_return(
                 constants, exx + eig[e, p, 0], eyy + eig[e, p, 1], eig[e, p, 2],
                 0.5 * gxy + eig[e, p, 3], plastic[e, p, 0], plastic[e, p, 1],
@@ -121,11 +143,7 @@ def _elements(lo, hi, u2, nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, 
             stress[e, p, 0], stress[e, p, 1] = sxx, syy
             stress[e, p, 2], stress[e, p, 3] = szz, sxy
             w = dx[e, p]
-            sxx, syy, sxy = sxx * w, syy * w, sxy * w
-            for a in range(nn):
-                bx, by = dNdx[e, p, a], dNdy[e, p, a]
-                fe[e, a, 0] += bx * sxx + by * sxy
-                fe[e, a, 1] += by * syy + bx * sxy
+            _add_point_force(e, p, dNdx, dNdy, sxx * w, syy * w, sxy * w, fe)
 
 
 @nb.njit(cache=True, parallel=True)
@@ -202,25 +220,13 @@ def _viscous(lo, hi, v2, nodes, dNdx, dNdy, dx, D, fe):
     d00, d01, d02, d10, d11, d12, d20, d21, d22 = (D[0, 0], D[0, 1], D[0, 2], D[1, 0], D[1, 1],
                                                    D[1, 2], D[2, 0], D[2, 1], D[2, 2])
     for e in range(lo, hi):
-        for a in range(nn):
-            ve[a, 0], ve[a, 1] = v2[nodes[e, a], 0], v2[nodes[e, a], 1]
-            fe[e, a, 0] = 0.0
-            fe[e, a, 1] = 0.0
+        _element_values(e, v2, nodes, ve, fe)
         for p in range(nqp):
-            rxx = ryy = rxy = 0.0
-            for a in range(nn):
-                bx, by = dNdx[e, p, a], dNdy[e, p, a]
-                rxx += bx * ve[a, 0]
-                ryy += by * ve[a, 1]
-                rxy += by * ve[a, 0] + bx * ve[a, 1]
+            rxx, ryy, rxy = _point_strain(e, p, dNdx, dNdy, ve)
             w = dx[e, p]
-            sxx = (d00 * rxx + d01 * ryy + d02 * rxy) * w
-            syy = (d10 * rxx + d11 * ryy + d12 * rxy) * w
-            sxy = (d20 * rxx + d21 * ryy + d22 * rxy) * w
-            for a in range(nn):
-                bx, by = dNdx[e, p, a], dNdy[e, p, a]
-                fe[e, a, 0] += bx * sxx + by * sxy
-                fe[e, a, 1] += by * syy + bx * sxy
+            _add_point_force(e, p, dNdx, dNdy, (d00 * rxx + d01 * ryy + d02 * rxy) * w,
+                             (d10 * rxx + d11 * ryy + d12 * rxy) * w,
+                             (d20 * rxx + d21 * ryy + d22 * rxy) * w, fe)
 
 
 @nb.njit(cache=True, parallel=True)
