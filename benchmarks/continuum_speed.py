@@ -23,8 +23,10 @@ the error against the reference:
 - ``elcentro``: El Centro 1940 N-S on the clay scene, the explicit and the implicit route in
   the same invocation (``benchmarks/continuum_elcentro.py``: runtime, speed-up, and the errors
   of peak θ, peak edge uplift, residual settlement and the θ and v histories against the
-  implicit route at rtol 1e-6 on the same mesh). It needs the record on ``UPLIFTLAB_MOTIONS``;
-  without it the section is skipped with a message.
+  converged reference kept by ``benchmarks/continuum_reference.py``, ``--reference DIR``,
+  default ``results/bench/continuum_reference/rows``; without it against the implicit route at
+  rtol 1e-6 on the same mesh, and the section's text says which). It needs the record on
+  ``UPLIFTLAB_MOTIONS``; without it the section is skipped with a message.
 
 Soil: E = 50 MPa, ν = 0.3, ρ = 1.8 t/m³, c_u = 50 kPa, B = 2 m (the clay scene). The timers wrap
 the solver's functions for the duration of a run and change no result. One thread per solve
@@ -378,9 +380,11 @@ def document(args, repeats: int, statics: list[dict], dynamic: list[dict], skipp
         if skipped:
             parts.append(f"## El Centro\n\nskipped: {skipped}")
         elif dynamic:
-            done = ec.finish(dynamic)
+            converged = ec.converged_reference(args.reference)
+            done = ec.finish(dynamic, converged)
             parts.append("## El Centro: explicit and implicit dynamics\n\n" + ec.description()
-                         + "\n\n" + ec.table(done) + "\n\n### Targets: 8x faster at the "
+                         + "\n\n" + ec.reference_note(converged, args.reference) + "\n\n"
+                         + ec.table(done) + "\n\n### Targets: 8x faster at the "
                          "same accuracy\n\n" + ec.targets(done))
         else:
             key = [k for k in missing if k.startswith("elcentro")][0]
@@ -395,6 +399,11 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--only", choices=("static", "elcentro"),
                         help="run only the static cases or only El Centro")
     add_output_arguments(parser, NAME)
+    parser.add_argument("--reference", default=str(Path("results") / "bench" /
+                                                   "continuum_reference" / "rows"),
+                        help="the rows kept by benchmarks/continuum_reference.py: El Centro's "
+                             "errors against its converged reference (absent: against the "
+                             "implicit route at rtol 1e-6)")
     parser.add_argument("--repeats", type=int, default=None,
                         help="repeats of the cheap runs (default 3; 1 with --quick)")
     args = parser.parse_args(argv)
