@@ -129,6 +129,17 @@ def test_record_change_compares_field_by_field():
     assert fr.record_change({"x": math.nan}, {"x": math.nan}) == (0.0, "")
 
 
+def test_a_field_only_the_new_record_has_is_an_addition_not_a_change():
+    """A field today's code adds (the run's validity verdict) changes no stored number: it is
+    listed, not counted; a field today's code no longer makes is a change (inf)."""
+    old = {"m": {"theta": 0.002}, "dofs": 10}
+    new = {"m": {"theta": 0.002, "uplift": 0.1}, "dofs": 10, "validity": "within"}
+    assert fr.record_change(old, new) == (0.0, "")
+    assert fr.added_fields(old, new) == ["validity", "m.uplift"]
+    assert fr.record_change(new, old)[0] == math.inf
+    assert fr.record_change({**old, "dofs": 11}, new)[0] == pytest.approx(1 / 11)
+
+
 def test_a_pack_holds_the_records_and_reads_them_back(code, tmp_path):
     store = Store(tmp_path / "store")
     points = [{"x": float(i)} for i in range(4)]

@@ -45,30 +45,37 @@ class StaleStoreError(RuntimeError):
 @dataclass(frozen=True)
 class Check:
     """The outcome of a check: the ``function``, how many records were ``stale``, the keys
-    made again (``sample``), the largest relative change and where (``field``)."""
+    made again (``sample``), the largest relative change and where (``field``), and the
+    fields today's code records that the kept records lack (``added``)."""
 
     function: str
     stale: int
     sample: tuple[str, ...]
     largest: float
     field: str
+    added: tuple[str, ...] = ()
 
     def sentence(self) -> str:
         return (f"{self.function}: {self.stale} records made by earlier code, {len(self.sample)} "
                 f"made again, largest relative change {self.largest:.2g}"
-                + (f" ({self.field})" if self.field else ""))
+                + (f" ({self.field})" if self.field else "")
+                + (f"; fields today's code adds, absent from the kept records: "
+                   f"{', '.join(self.added)}" if self.added else ""))
 
 
 def record_change(old, new, ignore: Sequence[str] = (), where: str = "") -> tuple[float, str]:
     """The largest relative change between two records, and where: numbers by
     |a − b| / max(|a|, |b|) (none below :data:`ABSOLUTE_FLOOR`; NaN equals NaN), text and
     flags by equality (inf when they differ), tables key by key and lists element by element
-    (inf when their shapes differ). Fields named in ``ignore`` (timings) are skipped."""
+    (inf when their shapes differ). Fields named in ``ignore`` (timings) are skipped, and so
+    are fields only the new record has (:func:`added_fields`: today's code records more, which
+    changes none of the stored numbers; the readers take a record without them as before); a
+    field only the old record has is a change (inf): today's code no longer makes it."""
     if isinstance(old, Mapping) and isinstance(new, Mapping):
-        keys = (set(old) | set(new)) - set(ignore)
+        keys = set(old) - set(ignore)
         worst = (0.0, "")
         for k in sorted(keys):
-            if k not in old or k not in new:
+            if k not in new:
                 return math.inf, f"{where}.{k}".lstrip(".")
             worst = max(worst, record_change(old[k], new[k], ignore, f"{where}.{k}"),
                         key=lambda w: w[0])
@@ -87,6 +94,16 @@ def record_change(old, new, ignore: Sequence[str] = (), where: str = "") -> tupl
         scale = max(abs(a), abs(b))
         return (abs(a - b) / scale if math.isfinite(scale) else math.inf), where.lstrip(".")
     return (0.0, "") if old == new else (math.inf, where.lstrip("."))
+
+
+def added_fields(old, new, where: str = "") -> list[str]:
+    """The fields (dotted names) that ``new`` has and ``old`` has not, at any depth of tables."""
+    if not (isinstance(old, Mapping) and isinstance(new, Mapping)):
+        return []
+    out = [f"{where}.{k}".lstrip(".") for k in sorted(set(new) - set(old))]
+    for k in sorted(set(new) & set(old)):
+        out += added_fields(old[k], new[k], f"{where}.{k}")
+    return out
 
 
 def _number(value) -> bool:
@@ -112,9 +129,10 @@ def check_stale(store: Store, function: Callable, stale: Mapping[str, Mapping], 
     ignore = declared.ignore if declared else ()
     keys = seeded_sample(list(stale), sample)
     made = (evaluate or _here)(function, [(k, stale[k]) for k in keys])
-    changes = {}
+    changes, added = {}, set()
     for key, record in made:
         changes[key] = record_change(store.get(key), record, ignore)
+        added.update(added_fields(store.get(key), record))
     moved = {k: c for k, c in changes.items() if not c[0] <= tolerance}
     if moved:
         lines = "; ".join(f"{k[:12]} by {c[0]:.3g} in {c[1] or 'the record'}"
@@ -128,8 +146,9 @@ def check_stale(store: Store, function: Callable, stale: Mapping[str, Mapping], 
     codes = {entry_code(store.entry(k) or {}) for k in stale} - {None}
     store.stamp(name, sorted(codes), {
         "sample": keys, "largest_change": largest, "field": field, "tolerance": tolerance,
+        "added_fields": sorted(added),
         "utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")})
-    return Check(name, len(stale), tuple(keys), largest, field)
+    return Check(name, len(stale), tuple(keys), largest, field, tuple(sorted(added)))
 
 
 def _here(function, items):
