@@ -28,23 +28,14 @@ from pathlib import Path
 
 import pytest
 
+# benchmarks/ is on the tests' path (pyproject.toml: pythonpath)
+import bench_output
+
 ROOT = Path(__file__).resolve().parents[1]
 BENCH = ROOT / "benchmarks"
 #: A fast path may take this long before the test gives up on it (s).
 TIMEOUT = 900.0
 
-
-def _load(name: str):
-    """A module of ``benchmarks/`` (not a package), imported by path under its own name (so
-    that the benchmarks' ``from bench_output import ...`` finds this same module)."""
-    spec = importlib.util.spec_from_file_location(name, BENCH / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    spec.loader.exec_module(module)
-    return module
-
-
-bench_output = _load("bench_output")
 
 
 @pytest.fixture(scope="module")
@@ -331,7 +322,7 @@ def test_a_benchmark_whose_second_level_fails_keeps_the_first(tmp_path, monkeypa
     wrote (K_r +0.763 %, as benchmarks/CONTINUUM.md's rocking row on 4 across) stays in
     CONTACT_CASES.md under the note that the 8-across section failed; exit status 1."""
     monkeypatch.syspath_prepend(str(BENCH))
-    contact = _load("contact_cases")
+    import contact_cases as contact
     level = contact.level
 
     def failing(across, cases, repeats):
@@ -363,7 +354,7 @@ def test_map_cluster_schedule_and_table(tmp_path):
     """The longest-first list schedule against a hand-worked case (Graham 1969's tight example
     for three machines: 5, 5, 4, 4, 3, 3, 3 gives 11 by LPT, 9 at best), and the table read
     from the kept store (seconds; nothing is run)."""
-    map_cluster = _load("map_cluster")
+    import map_cluster
 
     assert map_cluster.lpt_makespan([5, 5, 4, 4, 3, 3, 3], 3) == 11
     assert map_cluster.lpt_makespan([2.0, 1.0, 1.0], 2) == 2.0

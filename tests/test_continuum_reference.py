@@ -9,7 +9,6 @@ f₀ exactly (to rounding), so the estimated error of each mesh must equal c h^p
 
 from __future__ import annotations
 
-import importlib.util
 import math
 import os
 import subprocess
@@ -19,23 +18,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+# benchmarks/ is on the tests' path (pyproject.toml: pythonpath)
+import bench_output
+import continuum_elcentro as ec
+import continuum_reference as cr
+
 BENCH = Path(__file__).resolve().parents[1] / "benchmarks"
 
-
-def _load(name: str):
-    """A module of ``benchmarks/`` imported by path under its own name."""
-    if str(BENCH) not in sys.path:
-        sys.path.insert(0, str(BENCH))
-    spec = importlib.util.spec_from_file_location(name, BENCH / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    spec.loader.exec_module(module)
-    return module
-
-
-bench_output = _load("bench_output")
-ec = _load("continuum_elcentro")
-cr = _load("continuum_reference")
 
 #: The closed form's limits f₀ (peak θ [rad], peak edge uplift [m], residual settlement [m])
 #: and coefficients c of h^p, one order for all.

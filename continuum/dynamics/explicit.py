@@ -74,10 +74,8 @@ from .explicit_step import (COURANT_ESTIMATE, STABILITY_FRACTION, ExplicitSettin
 from ..contact.footing import OPEN, STICK
 from .ground import free_field_motion, ground_velocity
 from .iteration_matrix import soil_residual
-from . import kernels
-from .kernels import soil_predict
-from . import rayleigh
-from .rayleigh import describe, viscous_tangent
+from .kernels import layout, soil_predict, viscous_force
+from .rayleigh import describe, metadata as damping_metadata, viscous_tangent
 from ..statics.newton import ConvergenceError
 from .run_control import MECHANISM_GROWTH, BearingFailure, keeping_what_ran, settled_to_failure
 from .soil_force import SoilForce
@@ -221,7 +219,7 @@ class _Explicit:
         if settings.damping is not None and settings.damping.beta > 0.0:
             self.viscous_D = viscous_tangent(model, settings.damping)
             self.viscous_layout = self.soil.layout if self.soil.compiled else \
-                kernels.layout(model.disc)
+                layout(model.disc)
             self.viscous_work = np.zeros(self.viscous_layout.shape[::2] + (2,))
         #: the compiled loop serves every interface with a compiled material
         self.compiled = COMPILED_LOOP and self.soil.compiled
@@ -272,8 +270,8 @@ class _Explicit:
             ag = ag_all[k]
             Fz = self.ground_all[k] + z.gravity
             if self.viscous_D is not None:
-                kernels.viscous_force(self.viscous_layout, v, self.viscous_D,
-                                      self.viscous_work, self.viscous)
+                viscous_force(self.viscous_layout, v, self.viscous_D,
+                              self.viscous_work, self.viscous)
             increments = soil_predict(u, u_prev, v, fint, self.viscous, self.datum, self.keep,
                                       self.ground_soil, self.incident, ag, vinc_all[k],
                                       self.mass, self.c, dt, first, R_prev, F_prev, u_next,
@@ -477,5 +475,5 @@ class _Explicit:
                 "dt_limit": st.limit, "dt_critical": st.critical,
                 "stability_fraction": explicit_step.STABILITY_FRACTION, "omega_max": st.omega_max,
                 "compiled": self.soil.compiled, "threads": numba.get_num_threads(),
-                **rayleigh.metadata(st.damping, st.reduction)}
+                **damping_metadata(st.damping, st.reduction)}
 
