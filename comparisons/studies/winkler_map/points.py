@@ -24,7 +24,7 @@ from ...framework.measures import (continuum_peak_edge_gap, peak_story_shear, re
 from ...framework.sources import point_sources
 from ...framework.store import point_function
 from .motions import locate
-from .soils import SOILS
+from .reference import reference_continuum, reference_soil
 
 __all__ = ["point_table", "motion_table", "evaluate_dynamic",
            "scales", "story_constants"]
@@ -41,15 +41,18 @@ SIDES = "shear"
 
 
 def point_table(base: Mapping, soil: str, elements_across: int, N: float, h_over_B: float,
-                period: float, g: float) -> dict:
+                period: float, g: float, reference: str = "box") -> dict:
     """The scene table of a point (no motion): the base scene with the map's soil, mesh and
-    structure (module docstring)."""
+    structure (module docstring) on the continuum ``reference`` (:mod:`.reference`; the
+    default ``box`` adds nothing, so that its tables, and the keys of its stored runs, are
+    those the kept store was made of)."""
     data = copy.deepcopy(dict(base))
     B = 2.0 * data["foundation"]["half_width"]
     h = h_over_B * B
-    data["soil"] = copy.deepcopy(SOILS[soil])
+    data["soil"] = reference_soil(soil, reference)
     data["continuum"] = {**data.get("continuum", {}), "elements_across": int(elements_across),
-                         "boundary": SIDES}
+                         "boundary": SIDES,
+                         **reference_continuum(data["soil"], B, reference)}
     data["structure"] = {"weight": float(N), "height": h, "period": float(period),
                          "damping_ratio": STORY_DAMPING,
                          "rotary_inertia": N / g * (B * B + h * h) / 12.0}
