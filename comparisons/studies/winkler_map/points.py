@@ -155,8 +155,10 @@ def evaluate_dynamic(point: Mapping) -> dict:
     whether its return map was compiled and its soil model (for the cost estimate,
     :mod:`.cost`), its energy balance error, its largest plastic strain ε̄p at a quadrature
     point (``max_plastic_strain``) with the run's ``validity`` against the small-strain limit
-    (:mod:`upliftlab.continuum.dynamics.validity`; records made before it have none) and its
-    own wall time ``wall_time_s`` (model,
+    (:mod:`upliftlab.continuum.dynamics.validity`; records made before it have none), whether
+    the far field (the box's side columns) yielded under the motion, ``far_field``: "elastic"
+    or "from z1 to z2" (m, :mod:`upliftlab.continuum.dynamics.far_field`; records made before
+    it have none) and its own wall time ``wall_time_s`` (model,
     gravity and time loop, s; the kernels are compiled before, :func:`_warm_kernels`). Units
     of the scene. A run the solver gives up on (it diverged, its contact failed or its energy
     does not balance) is a stored result too: ``{"error": kind and message, "soil_model",
@@ -192,6 +194,7 @@ def evaluate_dynamic(point: Mapping) -> dict:
             "energy_balance_error": float(result.metadata.get("energy_balance_error", math.nan)),
             "max_plastic_strain": float(result.metadata.get("max_plastic_strain", math.nan)),
             "validity": str(result.metadata.get("validity", "")),
+            "far_field": str(result.metadata.get("far_field", "")),
             "wall_time_s": wall}
 
 
