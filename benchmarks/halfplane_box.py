@@ -89,12 +89,12 @@ TARGETS = {"theta": 0.02, "uplift": 0.02, "residual_settlement": 0.05}
 
 
 def handbook_sway(soil, width: float) -> tuple[float, float]:
-    """(K_h, C_h) per unit length of a strip of ``width`` B: 2G/(2 − ν) and ρ V_s B."""
-    from upliftlab.continuum.impedance.gazetas import handbook_strip
+    """(K_h, C_h) per unit length of a strip of ``width`` B on ``soil`` (a scene's soil):
+    2G/(2 − ν) and ρ V_s B (the map's half-plane reference's tie,
+    :func:`upliftlab.comparisons.studies.winkler_map.reference.handbook_sway`)."""
+    from upliftlab.comparisons.studies.winkler_map.reference import handbook_sway as sway
 
-    strip = handbook_strip([0.0], shear_modulus=soil.shear_modulus, poisson=soil.poisson_ratio,
-                           density=soil.density, width=width)
-    return float(strip.K_h), float(strip.C_h)
+    return sway(soil.shear_modulus, soil.poisson_ratio, soil.density, width)
 
 
 def point_data(point: str, across: int, record_seconds: float) -> dict:

@@ -214,6 +214,8 @@ def test_map_evidence_holds_each_bed_to_a_bearing_failure(fast_map, tmp_path):
     ("soil.undrained_strength=40.0", ["soil.undrained_strength = 40.0",
                                       "the map's clay: 50.0"]),
     ("continuum.boundary=fixed", ["continuum.boundary = 'fixed'", "sides 'shear'"]),
+    ("continuum.base=compliant", ["continuum.base = 'compliant'",
+                                  "the 'rigid' base (its 'box' reference)"]),
 ])
 def test_scene_outside_the_map_says_which_parameter(fast_map, override, words):
     """Outside the map's box: the reason names the parameter, its value and the map's range."""
@@ -222,6 +224,30 @@ def test_scene_outside_the_map_says_which_parameter(fast_map, override, words):
     assert not e.inside and e.beds == ()
     for w in words:
         assert w in e.outside
+
+
+def test_a_half_plane_map_is_evidence_only_for_a_half_plane_scene(fast_map, tmp_path):
+    """The fast map marked as made on the half-plane reference (its ``options_reference``):
+    the clay scene as it is (uniform c_u, rigid base) is outside, by its soil's strength
+    gradient (the half-plane's clay: 1.7 kPa/m); with that gradient, by its base; with the
+    compliant base too, inside."""
+    import shutil
+
+    ds = read_dataset(fast_map)
+    ds.attrs["options_reference"] = "half_plane"
+    ds.to_netcdf(tmp_path / "map.nc")
+    shutil.copyfile(fast_map.with_name("statics.nc"), tmp_path / "statics.nc")
+    cases = [([], "soil.undrained_strength_gradient = 0.0 (the map's clay: 1.7)"),
+             (["soil.undrained_strength_gradient=1.7"],
+              "continuum.base = 'rigid': the map's runs have the 'compliant' base (its "
+              "'half_plane' reference)"),
+             (["soil.undrained_strength_gradient=1.7", "continuum.base=compliant"], None)]
+    for extra, words in cases:
+        e = am.map_evidence(tmp_path / "map.nc", load_scene(SCENE, overrides=ON_MAP + extra),
+                            "theta", TOL)
+        assert e.inside is (words is None)
+        if words is not None:
+            assert words in e.outside and e.beds == ()
 
 
 def _no_runs(monkeypatch):

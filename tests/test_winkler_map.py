@@ -875,3 +875,39 @@ def test_its_files_pass_the_cf_checker(study, m, cf_failures):
     assert back.intensity.attrs["units"] == "1" and "a_up" in back.intensity.attrs["long_name"]
     assert back.intensity.values.tolist() == list(wm.FAST_GRID.intensities)
     np.testing.assert_array_equal(back.error.values, m.error.values)
+
+
+def test_the_maps_verdicts_are_its_stored_runs_counted_apart(study, written):
+    """The far field and the small-strain verdict of every point in ``map.nc`` and
+    ``summary.json``, against the fast map's stored dynamic records read here from its store
+    (their ``far_field``: "elastic" or "from z1 to z2"; their ``validity``)."""
+    from upliftlab.comparisons.beds import BASE_SCENE, base_table
+    from upliftlab.comparisons.studies.winkler_map.plan import dynamic_points, point_key_of
+    from upliftlab.continuum.dynamics.validity import BEYOND
+
+    store = Store(study.study.directory / "store")
+    statics, _, _ = calibration_inputs(wm.FAST_GRID, wm.FAST_OPTIONS, tuple(BEDS), store)
+    motions = wm.study_motions(wm.FAST_GRID, wm.FAST_OPTIONS, study.study.directory)
+    points = dynamic_points(wm.FAST_GRID, wm.FAST_OPTIONS, motions, base_table(),
+                            load_scene(BASE_SCENE).g, {"clay": statics["clay"].V_ult})
+    records = [store.get(point_key_of(p, wm.evaluate_dynamic)) for p in points]
+    assert all(r["far_field"] == "elastic" or r["far_field"].startswith("from ")
+               for r in records)
+    yielded = [int(r["far_field"] != "elastic") for r in records]
+    beyond = [int(r["validity"] == BEYOND) for r in records]
+    m = written[0]
+    assert m.continuum_far_field_yielded.values.ravel().tolist() == yielded  # one motion
+    assert m.continuum_beyond_small_strain.values.ravel().tolist() == beyond
+    assert (int(m.attrs["count_far_field_yielded"]), int(m.attrs["count_beyond_small_strain"]),
+            str(m.attrs["continuum_reference"])) == (sum(yielded), sum(beyond), "box")
+    counts = json.loads((study.study.directory / "summary.json").read_text())["numbers"][
+        "continuum_verdicts"]
+    assert counts == {"reference": "box", "points": len(records),
+                      "beyond_small_strain": sum(beyond), "far_field_yielded": sum(yielded),
+                      "far_field_yielded_compared": sum(
+                          y and not b for y, b in zip(yielded, beyond)),
+                      "far_field_elastic": len(records) - sum(yielded),
+                      "far_field_not_recorded": 0}
+    text = (study.study.directory / "summary.md").read_text()
+    assert f"Of its {len(records)} runs, {sum(beyond)} went beyond the small-strain" in text
+    assert f"yielded under the motion in {sum(yielded)} runs" in text

@@ -5,7 +5,9 @@ The map (``map.nc`` of :mod:`.winkler_map`, with its ``statics.nc`` beside it) s
 FS_v × h/B × period × intensity × motion. A scene falls inside it when its soil is one of the
 map's soils (the same validated ``[soil]`` record), its box has the map's sides
 (``continuum.boundary``, the map's ``continuum_boundary``; a map without it had a rigid
-container, ``fixed``), and its FS_v (on the map's own continuum
+container, ``fixed``) and base (``continuum.base``: ``rigid`` on the map's ``box`` reference,
+``compliant`` on its ``half_plane`` one, whose clay's strength grows with depth, the map's
+``options_reference``), and its FS_v (on the map's own continuum
 capacity V_ult of that soil, ``statics.nc``), h/B, fixed-base period and intensity (PGA over
 a_up = g B/(6h); a Ricker pulse's amplitude, as the map sets it) lie within the ranges of the
 map's axes. The nearest cells are, per axis, the grid value the scene sits on or the two that
@@ -24,7 +26,7 @@ import numpy as np
 
 from ...checks import InputError
 from ...scenes import Scene, scene_from_dict
-from ..studies.winkler_map import SOILS
+from ..studies.winkler_map import reference_soil
 
 __all__ = ["DEFAULT_MAP", "BedEvidence", "MapEvidence", "scene_coordinates", "map_evidence",
            "find_map", "format_evidence"]
@@ -118,12 +120,14 @@ def scene_coordinates(scene: Scene, V_ult: float) -> dict:
             "period": _period(scene), "intensity": _intensity(scene)}
 
 
-def _soil_match(scene: Scene, soils) -> tuple[str, str]:
-    """(map soil name, "") when the scene's soil record equals one of ``soils``, else ("", the
-    differences from the map's soil of the same model, or the models the map has)."""
+def _soil_match(scene: Scene, soils, reference: str = "box") -> tuple[str, str]:
+    """(map soil name, "") when the scene's soil record equals one of ``soils`` (as the map's
+    continuum ``reference`` has them), else ("", the differences from the map's soil of the
+    same model, or the models the map has)."""
     differences = []
     for name in soils:
-        mapped = scene_from_dict({**scene.data, "soil": dict(SOILS[name])}, merged=True).soil
+        mapped = scene_from_dict({**scene.data, "soil": reference_soil(name, reference)},
+                                 merged=True).soil
         if mapped == scene.soil:
             return name, ""
         if mapped.model == scene.soil.model:
@@ -133,7 +137,7 @@ def _soil_match(scene: Scene, soils) -> tuple[str, str]:
             differences.append("; ".join(diff))
     if differences:
         return "", "soil: " + " / ".join(differences)
-    models = ", ".join(f"{n} ({SOILS[n]['model']})" for n in soils)
+    models = ", ".join(f"{n} ({reference_soil(n)['model']})" for n in soils)
     return "", f"soil.model = {scene.soil.model!r}: the map's soils are {models}"
 
 
@@ -177,7 +181,8 @@ def map_evidence(path: str | Path, scene: Scene, measure: str, tol: float,
     soils = [str(s) for s in ds["soil"].values]
     motions = tuple(str(m) for m in ds["motion"].values)
     mesh = int(ds.attrs.get("elements_across", 0))
-    soil, why = _soil_match(scene, soils)
+    reference = str(ds.attrs.get("options_reference", "box"))
+    soil, why = _soil_match(scene, soils, reference)
     statics = path.with_name("statics.nc")
     if soil and statics.is_file():
         st = read_dataset(statics)
@@ -191,6 +196,12 @@ def map_evidence(path: str | Path, scene: Scene, measure: str, tol: float,
         return MapEvidence(str(path), False, f"continuum.boundary = {boundary!r}: the map's "
                            f"runs have the box's sides {sides!r}", soil, {}, {}, (), mesh,
                            motions)
+    base = "compliant" if reference == "half_plane" else "rigid"
+    mine = scene.continuum.base if scene.continuum is not None else "rigid"
+    if mine != base:
+        return MapEvidence(str(path), False, f"continuum.base = {mine!r}: the map's runs have "
+                           f"the {base!r} base (its {reference!r} reference)", soil, {}, {}, (),
+                           mesh, motions)
     coords = scene_coordinates(scene, V_ult)
     axes = {a: np.asarray(ds[a].values, dtype=float) for a in AXES}
     reasons = [r for r in (_outside(a, coords[a], axes[a]) for a in AXES) if r]

@@ -88,7 +88,11 @@ def _continuum_into(a: PointArrays, at: tuple, run: Mapping, erun, where: str,
     (its record's ``validity``, :mod:`~upliftlab.continuum.dynamics.validity`) is marked and
     left out like a refused one: no bed error, and no outcome a bed is held to. Records made
     before the verdict was stored carry none and read as before, whatever their
-    ``max_plastic_strain``."""
+    ``max_plastic_strain``. Whether the run's far field yielded (its record's ``far_field``)
+    is marked for every run that stored it; the point is compared all the same."""
+    far = run.get("far_field")
+    if far:  # "elastic" or "from z1 to z2"; records made before it carry none
+        a.far_yield[at] = far != "elastic"
     if "error" in run:  # the continuum's run failed: nothing to compare a bed with
         refusals.append(f"{where}, the continuum: {run['error']}")
         if run.get("failure") != "bearing":  # the solver gave up: the point is left out

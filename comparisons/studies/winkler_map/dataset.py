@@ -43,8 +43,10 @@ class PointArrays:
     (…), ``bed_wall`` and ``bed_bearing`` (…, calibration), ``N`` (soil, fs_v), ``bed_K_r``
     and ``bed_K_v`` (soil, fs_v, calibration), ``continuum_energy`` (…, energy),
     ``bed_energy`` and ``energy_errors`` (…, calibration, energy), ``energy_scale`` (soil,
-    fs_v, h_over_B, period), ``energy_left`` (…) and ``beyond`` (…) the continuum's run
-    passed the small-strain limit (:mod:`upliftlab.continuum.dynamics.validity`)."""
+    fs_v, h_over_B, period), ``energy_left`` (…), ``beyond`` (…) the continuum's run
+    passed the small-strain limit (:mod:`upliftlab.continuum.dynamics.validity`) and
+    ``far_yield`` (…) its far field yielded under the motion: 1 yes, 0 no, -1 not recorded
+    (a run that failed, or a record made before the far field was stored)."""
 
     continuum: np.ndarray
     beds: np.ndarray
@@ -66,6 +68,7 @@ class PointArrays:
     energy_scale: np.ndarray
     energy_left: np.ndarray
     beyond: np.ndarray
+    far_yield: np.ndarray
 
     @classmethod
     def empty(cls, shape: tuple[int, ...], beds: int) -> PointArrays:
@@ -80,7 +83,8 @@ class PointArrays:
                    nan(*shape, beds), np.zeros(shape, bool), np.zeros(shape + (beds,), bool),
                    nan(*shape[:2]), nan(*shape[:2], beds), nan(*shape[:2], beds),
                    nan(*shape, ne), nan(*shape, beds, ne), nan(*shape, beds, ne),
-                   nan(*shape[:4]), nan(*shape), np.zeros(shape, bool))
+                   nan(*shape[:4]), nan(*shape), np.zeros(shape, bool),
+                   np.full(shape, -1, dtype="i1"))
 
 
 def _coords(grid, motions, calibrations) -> dict:
@@ -146,6 +150,11 @@ def _variables(a: PointArrays) -> dict:
             "units": "1", "long_name": "1: the continuum's run passed the small-strain limit "
                                        "of plastic strain (left out like a refused run, its "
                                        "measures NaN; only runs that stored the verdict)"}),
+        "continuum_far_field_yielded": (d, a.far_yield.astype("i1"), {
+            "units": "1", "long_name": "1: the far field (the box's side columns) of the "
+                                       "continuum's run yielded under the motion, 0: it stayed "
+                                       "elastic, -1: not recorded (a failed run, or a record "
+                                       "made before the far field was stored)"}),
         "bed_bearing_failure": (db, a.bed_bearing.astype("i1"), {
             "units": "1", "long_name": "1: at a bearing failure of the continuum, the bed's "
                                        "base settled by the failure settlement too"}),
@@ -201,6 +210,10 @@ def map_dataset(a: PointArrays, grid, options, motions, calibrations, refusals,
              "elements_across": options.elements_across, "continuum_boundary": SIDES,
              "floor_fraction": FLOOR_FRACTION, "refusals": list(refusals),
              "fast": bool(fast), "grid": asdict(grid), "options": asdict(options),
-             "estimate": asdict(estimate), "computed": int(computed), "workers": workers}
+             "estimate": asdict(estimate), "computed": int(computed), "workers": workers,
+             "continuum_reference": options.reference,
+             "count_beyond_small_strain": int(np.sum(a.beyond)),
+             "count_far_field_yielded": int(np.sum(a.far_yield == 1)),
+             "count_far_field_not_recorded": int(np.sum(a.far_yield == -1))}
     return xr.Dataset(_variables(a), coords=_coords(grid, motions, calibrations),
                       attrs=cf_attributes(attrs))

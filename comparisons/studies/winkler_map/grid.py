@@ -11,6 +11,7 @@ from dataclasses import dataclass, replace
 
 from .... import checks
 from ....checks import InputError
+from .reference import REFERENCES
 from .soils import SOIL_LABELS, SOILS  # noqa: F401  (re-exported: the map's soils)
 
 STUDY = "winkler_map"
@@ -71,7 +72,10 @@ class Options:
     settlement); ``energy``: make the continuum's foundation-energy run of every point
     (:mod:`.energy_points`, one more continuum run each, stored; off: the map compares E_F where
     the store holds those runs); ``budget`` (s): refuse a run whose estimated continuum cost
-    exceeds it (None: no limit); ``figures``: write PNGs.
+    exceeds it (None: no limit); ``figures``: write PNGs; ``reference`` the continuum
+    reference (:mod:`.reference`): ``box`` (the closed box on a rigid base, the kept store's) or
+    ``half_plane`` (a compliant base, the footing's horizontal tie, the clay's strength growing
+    with depth).
     """
 
     elements_across: int = 16
@@ -91,6 +95,7 @@ class Options:
     energy: bool = False
     budget: float | None = None
     figures: bool = True
+    reference: str = "box"
 
 
 FULL_GRID = Grid()
@@ -200,4 +205,5 @@ def check_options(options: Options, beds: Sequence[str]) -> Options:
         checks.in_range("options.budget", options.budget, 0.0, 1e9, low_open=True)
     checks.boolean("options.energy", options.energy)
     checks.boolean("options.figures", options.figures)
+    checks.one_of("options.reference", options.reference, REFERENCES)
     return options

@@ -181,7 +181,7 @@ def _rocking(grid, options, calibrations, statics, base, g, records, impedances,
     beds = []
     for i, (soil, fs) in enumerate((s, f) for s in grid.soils for f in grid.fs_v):
         table = point_table(base, soil, options.elements_across, by_soil[soil].V_ult / fs,
-                            grid.h_over_B[0], grid.periods[0], g)
+                            grid.h_over_B[0], grid.periods[0], g, options.reference)
         ref = reference(by_soil[soil], scene_of(table), table["structure"],
                          impedances.get(soil), pushovers[soil, fs])
         if "error" in records[2 * i] or "error" in records[2 * i + 1]:

@@ -136,7 +136,8 @@ def options_of(ds) -> dict:
             "cycle_ratios": _numbers(a["options_cycle_ratios"]),
             "theta_tolerance": float(a["options_theta_tolerance"]),
             "settlement_tolerance": float(a["options_settlement_tolerance"]),
-            "figures": bool(a["options_figures"])}
+            "figures": bool(a["options_figures"]),
+            "reference": str(a.get("options_reference", "box"))}
 
 
 def estimate_of(ds) -> Estimate:

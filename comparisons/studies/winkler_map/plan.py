@@ -37,7 +37,8 @@ def dynamic_points(grid, options, motions, base, g, loads) -> list[dict]:
     placeholder before the statics are known: the points then serve only for the estimate)."""
     points = []
     for _, (soil, fs, hb, period, intensity) in cells(grid):
-        table = point_table(base, soil, options.elements_across, loads[soil] / fs, hb, period, g)
+        table = point_table(base, soil, options.elements_across, loads[soil] / fs, hb, period, g,
+                            options.reference)
         for motion in motions:
             points.append({"scene": table, "motion": motion, "intensity": float(intensity)})
     return points

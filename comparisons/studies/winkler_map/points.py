@@ -24,7 +24,7 @@ from ...framework.measures import (continuum_peak_edge_gap, peak_story_shear, re
 from ...framework.sources import point_sources
 from ...framework.store import point_function
 from .motions import locate
-from .soils import SOILS
+from .reference import reference_continuum, reference_soil
 
 __all__ = ["point_table", "motion_table", "evaluate_dynamic",
            "scales", "story_constants"]
@@ -41,15 +41,18 @@ SIDES = "shear"
 
 
 def point_table(base: Mapping, soil: str, elements_across: int, N: float, h_over_B: float,
-                period: float, g: float) -> dict:
+                period: float, g: float, reference: str = "box") -> dict:
     """The scene table of a point (no motion): the base scene with the map's soil, mesh and
-    structure (module docstring)."""
+    structure (module docstring) on the continuum ``reference`` (:mod:`.reference`; the
+    default ``box`` adds nothing, so that its tables, and the keys of its stored runs, are
+    those the kept store was made of)."""
     data = copy.deepcopy(dict(base))
     B = 2.0 * data["foundation"]["half_width"]
     h = h_over_B * B
-    data["soil"] = copy.deepcopy(SOILS[soil])
+    data["soil"] = reference_soil(soil, reference)
     data["continuum"] = {**data.get("continuum", {}), "elements_across": int(elements_across),
-                         "boundary": SIDES}
+                         "boundary": SIDES,
+                         **reference_continuum(data["soil"], B, reference)}
     data["structure"] = {"weight": float(N), "height": h, "period": float(period),
                          "damping_ratio": STORY_DAMPING,
                          "rotary_inertia": N / g * (B * B + h * h) / 12.0}
@@ -152,8 +155,10 @@ def evaluate_dynamic(point: Mapping) -> dict:
     whether its return map was compiled and its soil model (for the cost estimate,
     :mod:`.cost`), its energy balance error, its largest plastic strain ε̄p at a quadrature
     point (``max_plastic_strain``) with the run's ``validity`` against the small-strain limit
-    (:mod:`upliftlab.continuum.dynamics.validity`; records made before it have none) and its
-    own wall time ``wall_time_s`` (model,
+    (:mod:`upliftlab.continuum.dynamics.validity`; records made before it have none), whether
+    the far field (the box's side columns) yielded under the motion, ``far_field``: "elastic"
+    or "from z1 to z2" (m, :mod:`upliftlab.continuum.dynamics.far_field`; records made before
+    it have none) and its own wall time ``wall_time_s`` (model,
     gravity and time loop, s; the kernels are compiled before, :func:`_warm_kernels`). Units
     of the scene. A run the solver gives up on (it diverged, its contact failed or its energy
     does not balance) is a stored result too: ``{"error": kind and message, "soil_model",
@@ -189,6 +194,7 @@ def evaluate_dynamic(point: Mapping) -> dict:
             "energy_balance_error": float(result.metadata.get("energy_balance_error", math.nan)),
             "max_plastic_strain": float(result.metadata.get("max_plastic_strain", math.nan)),
             "validity": str(result.metadata.get("validity", "")),
+            "far_field": str(result.metadata.get("far_field", "")),
             "wall_time_s": wall}
 
 

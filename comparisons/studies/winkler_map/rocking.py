@@ -27,6 +27,7 @@ from ...framework.study import relative_error
 from ...beds.continuum_points import floats
 from ...beds.pushover import FLOORS, cyclic_path, path_values, rotation_path
 from .grid import SOILS, Options
+from .reference import reference_soil
 
 __all__ = ["QUANTITY_GROUPS", "RockingData", "group_worst", "rocking_points",
            "pushover_points",
@@ -52,7 +53,7 @@ def theta_onset(N: float, soil: str, B: float) -> float:
 
 def _scene_table(base: Mapping, soil: str, options: Options, N: float) -> dict:
     data = copy.deepcopy(dict(base))
-    data["soil"] = copy.deepcopy(SOILS[soil])
+    data["soil"] = reference_soil(soil, options.reference)
     data["continuum"] = {**data.get("continuum", {}),
                          "elements_across": int(options.elements_across)}
     data["structure"] = {**data["structure"], "weight": float(N)}

@@ -79,7 +79,10 @@ def input_text(m) -> str:
         t = SOILS[soil]
         vs = math.sqrt(t["youngs_modulus"] / (2.0 * (1.0 + t["poisson_ratio"])) / t["density"])
         parts.append(f"{soil}: V_s = {vs:.0f} m/s, T_1 = 4H/V_s = {4.0 * depth / vs:.2f} s")
-    return ("The motion enters the continuum at the rigid base of its box, "
+    where = ("as an incident S wave through the compliant base of its box (Lysmer–Kuhlemeyer "
+             "dashpots)" if options_of(m)["reference"] == "half_plane"
+             else "at the rigid base of its box")
+    return (f"The motion enters the continuum {where}, "
             f"{depth:g} m below the footing (its sides a free-field column: u_x free, u_y "
             "held; a rigid container instead squeezes the soil against its sides and makes it "
             "yield where a site would not), and "

@@ -19,7 +19,7 @@ from ....scenes import scene_from_dict
 from ...beds.base import base_table
 from ...framework.sources import point_sources
 from ...framework.store import point_function
-from .soils import SOILS
+from .reference import reference_soil
 
 if TYPE_CHECKING:  # annotations only: the stored runs do not depend on the grid
     from .grid import Options
@@ -30,9 +30,10 @@ _NOMINAL_MOTION = {"type": "free", "velocity": 1.0, "duration": 1.0}  # unused b
 
 
 def static_points(soil: str, options: Options, half_width: float) -> list[dict]:
-    """The two static analyses of ``soil`` on the options' mesh: ``stiffness`` and
-    ``vertical`` (to ``settlement_ratio`` × B in ``vertical_steps``)."""
-    base = {"soil": copy.deepcopy(SOILS[soil]),
+    """The two static analyses of ``soil`` (on the options' continuum reference,
+    :func:`.reference.reference_soil`) on the options' mesh: ``stiffness`` and ``vertical``
+    (to ``settlement_ratio`` × B in ``vertical_steps``)."""
+    base = {"soil": reference_soil(soil, options.reference),
             "continuum": {"elements_across": int(options.elements_across)},
             "half_width": float(half_width)}
     B = 2.0 * half_width

@@ -16,9 +16,10 @@ from .grid import FLOOR_FRACTION, SOIL_LABELS
 from .parts import (capacity_fits_of, estimate_of, impedances_of, labels, map_of,
                     options_of, soil_statics_of, statics_of, texts, worst_statics)
 from .rocking import QUANTITY_GROUPS
-from .sections import (SOIL_NOTE, SWAY_NOTE, bias_lines, capacity_fit_text, f4, finite,
+from .sections import (SOIL_NOTE, bias_lines, capacity_fit_text, f4, finite,
                        impedance_text, input_text, mesh_text, pct, pick_table, pick_text,
                        rocking_lines, speed_of_soils, statics_table)
+from .verdicts import sway_note, verdict_counts, verdict_lines
 
 __all__ = ["key_numbers", "summarise", "share_text", "speed_text", "cost_text", "wall_total"]
 
@@ -92,6 +93,7 @@ def key_numbers(tree) -> dict:
                                      if np.isfinite(balance).any() else None),
         "foundation_energy": energy_numbers(a.energy),
         "refusals": list(texts(m.attrs.get("refusals", ""))),
+        "continuum_verdicts": verdict_counts(m),
         "elapsed_s": _elapsed(m),
     }
 
@@ -131,7 +133,7 @@ def summarise(tree) -> str:
              f"full): {', '.join(labels(m, 'motion'))}. Beds of {o['springs']} springs: "
              + "; ".join(f"`{c}` {BEDS[c].label}" for c in calibrations if c in BEDS) + ".",
              "", mesh_text(m), "", SOIL_NOTE + speed_of_soils(m), "", input_text(m),
-             "", SWAY_NOTE, "",
+             "", sway_note(m), "",
              "Errors are (bed − continuum)/max(|continuum|, floor), the floor "
              f"{FLOOR_FRACTION:g} × the measure at a uniform bed's uplift threshold (θ_up = "
              "N B/(6 K_r), the settlement N/K_v, the shear N B/(6h) and the story deformation "
@@ -141,6 +143,7 @@ def summarise(tree) -> str:
              "θ over the last quarter), peak |u| and peak story shear |k u + c u̇|; and the "
              "foundation energy E_F where the continuum's energy run is stored (below).", "",
              f"Wall time {_elapsed(m):.1f} s.", "",
+             *verdict_lines(m),
              "## The continuum statics", "",
              "K_v and K_r (every contact node tied to the footing, elastic soil) and V_ult (the "
              f"largest load of a vertical pushover to {o['settlement_ratio']:g} B) do not "

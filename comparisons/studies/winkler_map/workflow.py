@@ -10,7 +10,7 @@ from pathlib import Path
 from ....checks import InputError
 from ....provenance import provenance
 from ...beds import BEDS, bed_names
-from ...framework.protocol import Context, Study, StudyRun, run_study
+from ...framework.protocol import CHECKOUT, Context, Study, StudyRun, run_study
 from ...framework.store import Store
 from ...framework.study import StudyResult, require_matplotlib, write_study
 from .analysis import analyse
@@ -24,6 +24,9 @@ from .summary import key_numbers, summarise
 #: Where the full grid's continuum runs are kept with the repository (relative to the checkout):
 #: the report's full build and the README's map commands resume from it.
 KEPT_STORE = "benchmarks/winkler_map_store"
+#: Each continuum reference's own kept store (:mod:`.reference`), beside the box's: the two
+#: references share no folder, so that neither's records can be taken for the other's.
+KEPT_STORES = {"box": KEPT_STORE, "half_plane": "benchmarks/winkler_map_halfplane_store"}
 
 
 def compute(scene, ctx: Context):
@@ -39,6 +42,7 @@ def compute(scene, ctx: Context):
     if isinstance(options, Options) and options.budget is None and ctx.budget is not None:
         options = replace(options, budget=ctx.budget)
     options = check_options(options, tuple(BEDS))
+    _check_store_reference(ctx.store, options.reference)
     if options.figures:
         require_matplotlib(STUDY)
     out = Path(ctx.out)
@@ -53,6 +57,20 @@ def compute(scene, ctx: Context):
             _remove_empty_folders(out)
         raise
     return tree
+
+
+def _check_store_reference(store, reference: str) -> None:
+    """Refuse (one :class:`InputError` line) a store that is another reference's kept store
+    (:data:`KEPT_STORES`)."""
+    root = store.root if isinstance(store, Store) else store
+    if root is None:
+        return
+    here = Path(root).resolve()
+    for other, folder in KEPT_STORES.items():
+        if other != reference and here == (CHECKOUT / folder).resolve():
+            raise InputError(f"store = {str(root)!r}: the kept store of the {other!r} reference; "
+                             f"valid for options.reference = {reference!r}: another folder, "
+                             f"e.g. {KEPT_STORES[reference]}")
 
 
 def write(tree, ctx: Context) -> StudyResult:
@@ -117,6 +135,11 @@ def _arguments(parser) -> None:
                              "(one more continuum run each, stored), so that the map compares "
                              "E_F everywhere; without it, E_F is compared where the store "
                              "holds those runs (the fast map always makes them)")
+    parser.add_argument("--reference", default=None, metavar="NAME",
+                        help="the continuum reference: box (default; the closed box on a rigid "
+                             "base, the kept store's) or half_plane (a compliant base, the "
+                             "footing's horizontal tie, the clay's strength growing with depth; "
+                             f"kept in {KEPT_STORES['half_plane']})")
     parser.add_argument("--beds", default=None, metavar="NAME,NAME",
                         help="compare only these calibrations (names of the bed registry, "
                              "e.g. end_stiffened_plastic,qz; default: every one)")
@@ -126,6 +149,9 @@ def _context_from(args, ctx: Context, say) -> Context:
     base = FAST_OPTIONS if args.fast else FULL_OPTIONS
     options = replace(base, budget=args.budget, figures=not args.no_figures,
                       energy=bool(args.energy) or base.energy)
+    if args.reference is not None:
+        options = replace(options, reference=args.reference)
+    check_options(options, tuple(BEDS))
     if args.beds is not None:
         options = replace(options, beds=tuple(b.strip() for b in args.beds.split(",")
                                               if b.strip()))

@@ -1,0 +1,70 @@
+"""The map's continuum reference (``Options.reference``): the closed box or the half-plane.
+
+``box`` (the default, the kept store's): the base scene's box (10 B wide and deep) on a rigid
+base with free-field shear sides (:data:`.points.SIDES`), the map's soils as they are
+(:data:`.soils.SOILS`). A point's scene table is exactly the one the kept store was made of.
+
+``half_plane`` (issue 35; checked in ``benchmarks/halfplane_box.py``, case
+``compliant-shear``): the same box with a compliant base (Lysmer–Kuhlemeyer dashpots, the motion
+entering as the incident S wave), the same shear sides, and the footing held horizontally by a
+tie to the free field's surface, ``continuum.horizontal_tie`` = K_h = 2G/(2 − ν) with its
+dashpot ``continuum.horizontal_tie_damping`` = C_h = ρ V_s B (:func:`handbook_sway`: the sway
+spring and dashpot of the handbook strip, Gazetas 1991, that a bed would carry). The clay's
+undrained strength grows with depth, :data:`CLAY_STRENGTH_GRADIENT` = 1.7 kPa/m from its 50 kPa
+at the surface (a normally consolidated clay, c_u/σ'v ≈ 0.22 on its buoyant unit weight, Mesri
+1975); the frictional soil is unchanged (its strength grows with its own confinement). The
+statics a bed is calibrated from (K_v, K_r, V_ult and the rotation pushovers) are of the
+reference's soil in the box on its rigid base: the plane-strain half-plane has no static
+vertical stiffness, so the box's statics stay the calibration's basis; the impedance is of the
+elastic half-plane either way (:mod:`.impedance_points`).
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Mapping
+
+from .soils import SOILS
+
+__all__ = ["REFERENCES", "CLAY_STRENGTH_GRADIENT", "reference_soil", "reference_continuum",
+           "handbook_sway"]
+
+#: The continuum references (module docstring), the default first.
+REFERENCES = ("box", "half_plane")
+#: The clay's undrained-strength gradient on the half-plane reference (kPa/m).
+CLAY_STRENGTH_GRADIENT = 1.7
+#: What the half-plane reference adds to each soil's ``[soil]`` table.
+_HALF_PLANE_SOIL = {"clay": {"undrained_strength_gradient": CLAY_STRENGTH_GRADIENT},
+                    "sand": {}}
+
+
+def handbook_sway(shear_modulus: float, poisson: float, density: float,
+                  width: float) -> tuple[float, float]:
+    """(K_h, C_h) per unit length of a rigid strip of ``width`` B on the elastic half-plane:
+    the static sway stiffness 2G/(2 − ν) (force/length per length) and the high-frequency
+    dashpot ρ V_s B (force·time/length per length), V_s = √(G/ρ)
+    (:func:`upliftlab.continuum.impedance.gazetas.handbook_strip`)."""
+    from ....continuum.impedance.gazetas import handbook_strip
+
+    strip = handbook_strip([0.0], shear_modulus=shear_modulus, poisson=poisson, density=density,
+                           width=width)
+    return float(strip.K_h), float(strip.C_h)
+
+
+def reference_soil(soil: str, reference: str = "box") -> dict:
+    """The ``[soil]`` table of the map's ``soil`` on ``reference`` (a fresh copy)."""
+    table = copy.deepcopy(SOILS[soil])
+    if reference == "half_plane":
+        table.update(_HALF_PLANE_SOIL[soil])
+    return table
+
+
+def reference_continuum(soil_table: Mapping, width: float, reference: str = "box") -> dict:
+    """The ``[continuum]`` fields ``reference`` adds to a dynamic point's scene on
+    ``soil_table`` under a footing of ``width`` B (m): none for the box; the compliant base and
+    the tie with its dashpot for the half-plane."""
+    if reference == "box":
+        return {}
+    E, nu = float(soil_table["youngs_modulus"]), float(soil_table["poisson_ratio"])
+    K_h, C_h = handbook_sway(E / (2.0 * (1.0 + nu)), nu, float(soil_table["density"]), width)
+    return {"base": "compliant", "horizontal_tie": K_h, "horizontal_tie_damping": C_h}

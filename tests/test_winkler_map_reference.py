@@ -1,0 +1,186 @@
+"""The Winkler map's continuum reference (``Options.reference``, comparisons/studies/winkler_map/
+reference.py) and the verdicts on its runs counted apart (verdicts.py).
+
+References:
+- the kept store ``benchmarks/winkler_map_store``, made by earlier code: the default ``box``
+  reference's points of a slice of the grid are all in it (their keys unchanged), and none of
+  the half-plane's dynamic or clay statics points is (read only; nothing is written there);
+- the handbook strip's sway (Gazetas 1991, Table 1, strip): K_h = 2G/(2 − ν) and C_h = ρ V_s B,
+  evaluated here by hand for the map's soils (E = 50 MPa, ν = 0.3, ρ = 1.8 t/m³, B = 2 m):
+  G = 19,230.769 kPa, K_h = 22,624.434 kN/m/m, V_s = 103.362 m/s, C_h = 372.104 kN s/m/m;
+- the counts of the verdicts by hand from four stand-in records whose outcomes are known.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from upliftlab.checks import InputError
+from upliftlab.cli import main as cli_main
+from upliftlab.comparisons.beds import BEDS, base_table, bed_names
+from upliftlab.comparisons.beds.continuum_points import evaluate_continuum
+from upliftlab.comparisons.framework.protocol import CHECKOUT, Context
+from upliftlab.comparisons.framework.store import Store
+from upliftlab.comparisons.studies import winkler_map as wm
+from upliftlab.comparisons.studies.winkler_map.assemble import _continuum_into
+from upliftlab.comparisons.studies.winkler_map.dataset import PointArrays
+from upliftlab.comparisons.studies.winkler_map.plan import (dynamic_points, map_rocking_points,
+                                                            plan_map, point_key_of, scene_of)
+from upliftlab.comparisons.studies.winkler_map.points import evaluate_dynamic, point_table
+from upliftlab.comparisons.studies.winkler_map.reference import reference_soil
+from upliftlab.comparisons.studies.winkler_map.statics import evaluate_static, static_points
+from upliftlab.comparisons.studies.winkler_map.verdicts import verdict_counts, verdict_lines
+from upliftlab.comparisons.studies.winkler_map.workflow import (KEPT_STORES, _arguments,
+                                                                _check_store_reference,
+                                                                _context_from)
+from upliftlab.continuum.dynamics.validity import BEYOND, WITHIN
+
+KEPT = Path(__file__).resolve().parents[1] / "benchmarks" / "winkler_map_store"
+#: A slice of the full grid the kept store holds: the clay's pulses at h/B 1.5, T 0.5 s.
+SLICE = replace(wm.FULL_GRID, soils=("clay",), fs_v=(3.0, 5.0, 10.0), h_over_B=(1.5,),
+                periods=(0.5,), intensities=(1.5, 3.0), pulse_periods=(0.25, 0.6),
+                elcentro=False, fema_components=0)
+G = 50.0e3 / (2.0 * 1.3)  # kPa
+K_H, C_H = 2.0 * G / 1.7, 1.8 * math.sqrt(G / 1.8) * 2.0  # 22624.434..., 372.104...
+
+
+def _points(reference: str, tmp_path):
+    options = replace(wm.FULL_OPTIONS, reference=reference)
+    store = Store(KEPT)
+    motions = wm.study_motions(SLICE, options, tmp_path)
+    base, g, statics, records, _, _ = plan_map(SLICE, options, bed_names(options), motions,
+                                               store)
+    V_ult = Store(KEPT).get(point_key_of(static_points("clay", wm.FULL_OPTIONS, 1.0)[1],
+                                         evaluate_static))["capacity"]
+    dynamic = dynamic_points(SLICE, options, motions, base, g, {"clay": V_ult})
+    rocking = map_rocking_points(SLICE, options, base, {"clay": V_ult})
+    return store, statics, dynamic, rocking
+
+
+def test_the_box_reference_finds_every_kept_run_and_the_half_plane_none(tmp_path):
+    store, statics, dynamic, rocking = _points("box", tmp_path)
+    assert len(dynamic) == 12 and len(rocking) == 6
+    assert all(store.has(point_key_of(p, evaluate_static)) for p in statics)
+    assert all(store.has(point_key_of(p, evaluate_dynamic)) for p in dynamic)
+    assert all(store.has(point_key_of(p, evaluate_continuum)) for p in rocking)
+    store, statics, dynamic, rocking = _points("half_plane", tmp_path)
+    assert not any(store.has(point_key_of(p, evaluate_static)) for p in statics)
+    assert not any(store.has(point_key_of(p, evaluate_dynamic)) for p in dynamic)
+    assert not any(store.has(point_key_of(p, evaluate_continuum)) for p in rocking)
+
+
+@pytest.mark.parametrize("soil", ["clay", "sand"])
+def test_the_half_plane_point_is_the_compliant_base_the_shear_sides_and_the_handbook_tie(soil):
+    table = point_table(base_table(), soil, 16, 150.0, 1.5, 0.5, 9.80665, "half_plane")
+    scene = scene_of(table)
+    c = scene.continuum
+    assert (c.base, c.boundary) == ("compliant", "shear")
+    assert c.horizontal_tie == pytest.approx(K_H, rel=1e-12)
+    assert c.horizontal_tie_damping == pytest.approx(C_H, rel=1e-12)
+    assert (c.horizontal_tie, c.horizontal_tie_damping) == pytest.approx((22624.434, 372.104),
+                                                                         abs=1e-3)
+    gradient = {"clay": 1.7, "sand": 0.0}[soil]
+    assert scene.soil.undrained_strength_gradient == gradient
+    box = point_table(base_table(), soil, 16, 150.0, 1.5, 0.5, 9.80665)
+    assert box["soil"] == wm.SOILS[soil] and scene_of(box).continuum.base == "rigid"
+    assert scene_of(box).continuum.horizontal_tie is None
+    # the sand's table is the map's as it is; the clay's only adds its gradient
+    assert {k: v for k, v in table["soil"].items()
+            if k != "undrained_strength_gradient"} == wm.SOILS[soil]
+    assert reference_soil(soil, "half_plane") == table["soil"]
+
+
+def test_a_bad_reference_is_refused_in_one_line(tmp_path, capsys):
+    with pytest.raises(InputError) as info:
+        wm.check_options(replace(wm.FULL_OPTIONS, reference="halfplane"), tuple(BEDS))
+    assert str(info.value) == ("options.reference = 'halfplane': must be one of 'box', "
+                               "'half_plane'")
+    code = cli_main(["study", "winkler_map", "--fast", "--out", str(tmp_path / "o"),
+                     "--reference", "plane", "--no-figures"])
+    assert code == 2 and not (tmp_path / "o").exists()
+    assert "options.reference = 'plane': must be one of 'box', 'half_plane'" in \
+        capsys.readouterr().err
+    parser = argparse.ArgumentParser()
+    _arguments(parser)
+    parser.add_argument("--fast", action="store_true")
+    parser.add_argument("--no-figures", action="store_true")
+    for argv, expected in ((["--no-figures"], "box"),
+                           (["--no-figures", "--reference", "half_plane"], "half_plane")):
+        ctx = _context_from(parser.parse_args(argv), Context(), print)
+        assert ctx.options.reference == expected
+
+
+def test_a_reference_refuses_the_other_references_kept_store(tmp_path):
+    box, half = (CHECKOUT / KEPT_STORES[r] for r in ("box", "half_plane"))
+    assert box.resolve() == KEPT.resolve() and box.parent == half.parent and box != half
+    with pytest.raises(InputError, match=r"^store = '.*winkler_map_store': the kept store of "
+                                         r"the 'box' reference; valid for options\.reference "
+                                         r"= 'half_plane'"):
+        _check_store_reference(Store(box), "half_plane")
+    with pytest.raises(InputError, match="the kept store of the 'half_plane' reference"):
+        _check_store_reference(half, "box")
+    for reference in ("box", "half_plane"):
+        _check_store_reference(Store(tmp_path / "store"), reference)  # any other folder
+    _check_store_reference(Store(box), "box")
+    _check_store_reference(None, "half_plane")
+
+
+def _arrays_of_four_runs():
+    """The arrays of a 2 × 2 point grid filled from four stand-in runs: compared with an
+    elastic far field; compared with a yielded one; beyond the small-strain reference with a
+    yielded far field; a run the solver gave up on (nothing recorded)."""
+    measures = {q: 1.0 for q in wm.MEASURES}
+    done = {"measures": measures, "wall_time_s": 1.0, "steps": 10, "energy_balance_error": 0.0,
+            "dofs": 100, "validity": WITHIN, "max_plastic_strain": 0.01}
+    runs = [{**done, "far_field": "elastic"}, {**done, "far_field": "from 0 to 3.5"},
+            {**done, "validity": BEYOND, "max_plastic_strain": 0.3,
+             "far_field": "from 0 to 20"},
+            {"error": "ConvergenceError: stand-in", "soil_model": "tresca", "wall_time_s": 1.0}]
+    shape = (1, 1, 1, 1, 2, 2)
+    a, refusals = PointArrays.empty(shape, 1), []
+    kept = [_continuum_into(a, (0, 0, 0, 0, i // 2, i % 2), run, None, f"point {i}", refusals)
+            for i, run in enumerate(runs)]
+    return a, refusals, kept
+
+
+def test_the_far_field_and_the_small_strain_verdict_are_marked_point_by_point():
+    a, refusals, kept = _arrays_of_four_runs()
+    assert kept == [True, True, False, False]
+    np.testing.assert_array_equal(a.far_yield.reshape(-1), [0, 1, 1, -1])
+    np.testing.assert_array_equal(a.beyond.reshape(-1), [False, False, True, False])
+    assert len(refusals) == 2 and BEYOND in refusals[0]
+
+
+def test_the_summary_counts_the_verdicts_apart():
+    a, _, _ = _arrays_of_four_runs()
+    dims = ("soil", "fs_v", "h_over_B", "period", "intensity", "motion")
+    m = xr.Dataset({"continuum_wall_time": (dims, a.continuum_wall),
+                    "continuum_beyond_small_strain": (dims, a.beyond.astype("i1")),
+                    "continuum_far_field_yielded": (dims, a.far_yield)},
+                   attrs={"options_reference": "half_plane", "options_elements_across": 16,
+                          "options_springs": 48, "options_settlement_ratio": 0.05,
+                          "options_theta_ratios": [2.0], "options_cycle_ratios": [2.0],
+                          "options_theta_tolerance": 0.1, "options_settlement_tolerance": 0.2,
+                          "options_figures": 0})
+    assert verdict_counts(m) == {"reference": "half_plane", "points": 4,
+                                 "beyond_small_strain": 1, "far_field_yielded": 2,
+                                 "far_field_yielded_compared": 1, "far_field_elastic": 1,
+                                 "far_field_not_recorded": 1}
+    text = " ".join(verdict_lines(m))
+    assert "the half-plane" in text and "Of its 4 runs, 1 went beyond" in text
+    assert "yielded under the motion in 2 runs (1 of them compared" in text
+    assert "elastic in 1, and was not recorded in 1" in text
+    # a map written before the far field was stored: every run not recorded
+    old = m.drop_vars("continuum_far_field_yielded")
+    old.attrs.pop("options_reference")
+    counts = verdict_counts(old)
+    assert counts["reference"] == "box" and counts["far_field_not_recorded"] == 4
+    assert counts["far_field_yielded"] == 0 and counts["beyond_small_strain"] == 1
+
