@@ -86,15 +86,38 @@ def test_the_half_plane_point_is_the_compliant_base_the_shear_sides_and_the_hand
     assert c.horizontal_tie_damping == pytest.approx(C_H, rel=1e-12)
     assert (c.horizontal_tie, c.horizontal_tie_damping) == pytest.approx((22624.434, 372.104),
                                                                          abs=1e-3)
+    # the footing carries 1 % of N on the half-plane (a swaying base's mass), the story the rest
+    assert (scene.structure.vertical_weight, scene.structure.weight) == pytest.approx(
+        (150.0, 148.5), rel=1e-12)
     gradient = {"clay": 1.7, "sand": 0.0}[soil]
     assert scene.soil.undrained_strength_gradient == gradient
     box = point_table(base_table(), soil, 16, 150.0, 1.5, 0.5, 9.80665)
     assert box["soil"] == wm.SOILS[soil] and scene_of(box).continuum.base == "rigid"
     assert scene_of(box).continuum.horizontal_tie is None
+    assert scene_of(box).structure.vertical_weight == scene_of(box).structure.weight == 150.0
     # the sand's table is the map's as it is; the clay's only adds its gradient
     assert {k: v for k, v in table["soil"].items()
             if k != "undrained_strength_gradient"} == wm.SOILS[soil]
     assert reference_soil(soil, "half_plane") == table["soil"]
+
+
+@pytest.mark.parametrize("reference", ["box", "half_plane"])
+def test_a_bed_sways_on_the_half_planes_tie_and_not_in_the_box(reference):
+    """A bed on a half-plane point sways on the continuum's tie (K_h, C_h by hand above); in
+    the box, whose footing does not sway, it has no sway spring (Ewing's fixed base)."""
+    from upliftlab.comparisons.studies.winkler_map.bed_runs import bed_scene
+
+    table = point_table(base_table(), "clay", 16, 150.0, 1.5, 0.5, 9.80665, reference)
+    point = {"scene": table, "motion": {"type": "ricker", "period": 0.25, "duration": 0.75},
+             "intensity": 1.5}
+    foundation = dict(table["foundation"])
+    scene = bed_scene(point, foundation)
+    f = scene.foundation
+    if reference == "half_plane":
+        assert (f.sway_stiffness, f.sway_damping) == pytest.approx((K_H, C_H), rel=1e-12)
+    else:
+        assert (f.sway_stiffness, f.sway_damping) == (None, None)
+    assert scene.motion.amplitude == pytest.approx(1.5 * 2.0 / (6.0 * 3.0), rel=1e-12)
 
 
 def test_a_bad_reference_is_refused_in_one_line(tmp_path, capsys):

@@ -17,7 +17,23 @@ from ...framework.measures import edge_uplift_history, reduced_edge_gap_history
 from .grid import MEASURES
 from .points import measured, motion_table
 
-__all__ = ["run_bed", "reduced_measures", "reduced_energy_terms"]
+__all__ = ["run_bed", "bed_scene", "bed_sway", "reduced_measures", "reduced_energy_terms"]
+
+
+def bed_sway(continuum: Mapping) -> dict:
+    """The ``[foundation]`` sway fields of a bed on a point whose continuum ``[continuum]``
+    table is ``continuum``: the half-plane reference holds its footing to the free field by a
+    tie (``horizontal_tie``, force/length per length, and ``horizontal_tie_damping``,
+    force·time/length per length: :func:`.reference.reference_continuum`), and a bed then
+    sways on the same spring and dashpot (``sway_stiffness``, ``sway_damping``) so that both
+    models let the footing move against the ground alike; none on the box, whose footing
+    does not sway."""
+    tie = continuum.get("horizontal_tie")
+    if tie is None:
+        return {}
+    damping = continuum.get("horizontal_tie_damping")
+    return {"sway_stiffness": float(tie),
+            **({"sway_damping": float(damping)} if damping else {})}
 
 
 def run_bed(point: Mapping, foundation: Mapping) -> dict:
@@ -29,14 +45,7 @@ def run_bed(point: Mapping, foundation: Mapping) -> dict:
     reason."""
     from ....reduced import IntegrationError, run as run_reduced
 
-    data = copy.deepcopy(point["scene"])
-    data["foundation"] = dict(foundation)
-    B = 2.0 * data["foundation"]["half_width"]
-    data["motion"] = motion_table(point["motion"], point["intensity"], B,
-                                  data["structure"]["height"])
-    for table in ("soil", "continuum"):
-        data.pop(table, None)
-    scene = scene_from_dict(data, merged=True)
+    scene = bed_scene(point, foundation)
     started = time.perf_counter()
     try:
         response = run_reduced(scene)
@@ -48,6 +57,20 @@ def run_bed(point: Mapping, foundation: Mapping) -> dict:
             "energy": reduced_energy_terms(response),
             "peak_settlement": float(np.max(response.settlement)),
             "energy_balance_error": float(response.peaks["energy_balance_error"])}
+
+
+def bed_scene(point: Mapping, foundation: Mapping):
+    """The reduced model's scene of a bed (its ``[foundation]`` table ``foundation``) on a
+    point: the point's structure and motion, the bed's foundation with the sway of
+    :func:`bed_sway`, no soil or continuum tables."""
+    data = copy.deepcopy(point["scene"])
+    data["foundation"] = {**dict(foundation), **bed_sway(data.get("continuum", {}))}
+    B = 2.0 * data["foundation"]["half_width"]
+    data["motion"] = motion_table(point["motion"], point["intensity"], B,
+                                  data["structure"]["height"])
+    for table in ("soil", "continuum"):
+        data.pop(table, None)
+    return scene_from_dict(data, merged=True)
 
 
 def reduced_measures(response) -> dict:

@@ -24,7 +24,7 @@ from ...framework.measures import (continuum_peak_edge_gap, peak_story_shear, re
 from ...framework.sources import point_sources
 from ...framework.store import point_function
 from .motions import locate
-from .reference import reference_continuum, reference_soil
+from .reference import reference_continuum, reference_soil, reference_weights
 
 __all__ = ["point_table", "motion_table", "evaluate_dynamic",
            "scales", "story_constants"]
@@ -53,7 +53,7 @@ def point_table(base: Mapping, soil: str, elements_across: int, N: float, h_over
     data["continuum"] = {**data.get("continuum", {}), "elements_across": int(elements_across),
                          "boundary": SIDES,
                          **reference_continuum(data["soil"], B, reference)}
-    data["structure"] = {"weight": float(N), "height": h, "period": float(period),
+    data["structure"] = {**reference_weights(N, reference), "height": h, "period": float(period),
                          "damping_ratio": STORY_DAMPING,
                          "rotary_inertia": N / g * (B * B + h * h) / 12.0}
     return data

@@ -26,13 +26,20 @@ from collections.abc import Mapping
 
 from .soils import SOILS
 
-__all__ = ["REFERENCES", "CLAY_STRENGTH_GRADIENT", "reference_soil", "reference_continuum",
-           "handbook_sway"]
+__all__ = ["REFERENCES", "CLAY_STRENGTH_GRADIENT", "FOOTING_WEIGHT_FRACTION", "reference_soil",
+           "reference_continuum", "reference_weights", "handbook_sway"]
 
 #: The continuum references (module docstring), the default first.
 REFERENCES = ("box", "half_plane")
 #: The clay's undrained-strength gradient on the half-plane reference (kPa/m).
 CLAY_STRENGTH_GRADIENT = 1.7
+#: The footing's own share of the weight N on the half-plane reference: a footing that sways on
+#: its tie needs a horizontal mass of its own in the reduced model (a flexible structure's
+#: swaying base; the beds sway on the same spring, :func:`.bed_runs.bed_sway`), and the
+#: continuum's footing is given the same, so that both carry one structure. 1 % is the least
+#: that keeps the base's sway mode (√(K_h/m_b) ≈ 60 Hz at FS_v = 3 on the map's soils) apart
+#: from the story's; N on the footing, and so FS_v, is unchanged.
+FOOTING_WEIGHT_FRACTION = 0.01
 #: What the half-plane reference adds to each soil's ``[soil]`` table.
 _HALF_PLANE_SOIL = {"clay": {"undrained_strength_gradient": CLAY_STRENGTH_GRADIENT},
                     "sand": {}}
@@ -57,6 +64,16 @@ def reference_soil(soil: str, reference: str = "box") -> dict:
     if reference == "half_plane":
         table.update(_HALF_PLANE_SOIL[soil])
     return table
+
+
+def reference_weights(N: float, reference: str = "box") -> dict:
+    """The ``[structure]`` weights of a point of weight ``N`` on the footing (force/length):
+    on the box the story carries all of it (``weight`` = N, Ewing's massless base); on the
+    half-plane the footing carries :data:`FOOTING_WEIGHT_FRACTION` of it (``weight`` the
+    story's, ``vertical_weight`` = N)."""
+    if reference == "box":
+        return {"weight": float(N)}
+    return {"weight": float(N) * (1.0 - FOOTING_WEIGHT_FRACTION), "vertical_weight": float(N)}
 
 
 def reference_continuum(soil_table: Mapping, width: float, reference: str = "box") -> dict:

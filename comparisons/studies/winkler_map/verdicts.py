@@ -24,11 +24,11 @@ REFERENCE_TEXTS = {
 
 #: The half-plane's footing sways: what the beds leave out (the box's note is
 #: :data:`.sections.SWAY_NOTE`).
-HALF_PLANE_SWAY_NOTE = ("No bed has a sway spring or a horizontal dashpot. On the half-plane "
-                        "reference the continuum's footing is held to the free field's surface "
-                        "by the handbook strip's sway spring and dashpot (the tie), so it "
-                        "sways against the ground by what the tie lets it; a bed moves with the "
-                        "ground horizontally and leaves that sway out, part of every error.")
+HALF_PLANE_SWAY_NOTE = ("On the half-plane reference the continuum's footing is held to the "
+                        "free field's surface by the handbook strip's sway spring and dashpot "
+                        "(the tie, K_h = 2G/(2 − ν), C_h = ρ V_s B), and every bed sways on the "
+                        "same spring and dashpot (its foundation's sway_stiffness and "
+                        "sway_damping), so both let the footing move against the ground alike.")
 
 
 def sway_note(m) -> str:
