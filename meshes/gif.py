@@ -1,12 +1,12 @@
 """An animated GIF written frame by frame against one fixed palette.
 
 **The palette** (:func:`palette`, 256 colours) is fixed before the first frame, from what the
-pages of :mod:`~upliftlab.meshes.page` are drawn with: the plastic-strain colour map (80
-samples), 40 greys (text, ticks, outlines, grid), ramps from white to each accent colour
-(pressure blue, its translucent fill on white and on the footing band's grey, gap red,
-footing blue-grey: 16 each), and 8 samples of the colour map covered by the outline grey at
-1/8, 2/8, … 7/8 (the anti-aliased outlines over the soil: 56). Every frame maps each pixel to its nearest palette
-colour, without dithering (no per-frame palette search, and the colours of a frame do not
+raster pages of :mod:`~upliftlab.meshes.sheet` are drawn with: the plastic-strain colour table
+(:data:`~upliftlab.meshes.colours.TABLE`, 136 of its 256 entries, evenly spaced), 40 greys
+(text, ticks, outlines, grid), and ramps from white to each accent colour (pressure blue, its
+translucent fill on the footing band's grey, gap red, footing blue-grey, and the fill on white:
+16 each; text in colour is anti-aliased on white). Every frame maps each pixel to its nearest
+palette colour, without dithering (no per-frame palette search, and the colours of a frame do not
 flicker between frames). Pillow finds the nearest colour of a pixel's value rounded down to a
 multiple of 4; it is given the palette rounded down alike (so that a pixel of a palette
 colour keeps that colour exactly, white stays white), and the file gets the true palette.
@@ -23,33 +23,22 @@ import contextlib
 import numpy as np
 
 from ..results import atomic_path
-from .page import CMAP, OUTLINE_GREY
+from .colours import TABLE
+from .sheet import BLUE as _BLUE, FILL as _FILL, FILL_ON_WHITE as _ON_WHITE, FOOTING as _FOOTING
+from .sheet import RED as _RED
 
 __all__ = ["palette", "GifWriter", "write_gif"]
 
-#: Accent colours of a page (RGB in [0, 1]): pressure blue, gap red, footing blue-grey, and
-#: the translucent pressure fill (α 0.35) over white and over the footing band's grey 0.93.
-_BLUE, _RED, _FOOTING = (0.122, 0.467, 0.706), (0.839, 0.153, 0.157), (0.55, 0.6, 0.7)
-
-
-def _over(colour, alpha: float, under) -> np.ndarray:
-    return alpha * np.asarray(colour) + (1.0 - alpha) * np.asarray(under)
 
 
 def palette() -> np.ndarray:
     """The fixed palette (256, 3) uint8 (module docstring)."""
-    from matplotlib import colormaps
-
-    cmap = colormaps[CMAP]
     ramp = np.linspace(0.0, 1.0, 16)[:, None]
     white = np.ones(3)
-    accents = [_BLUE, _RED, _FOOTING, _over(_BLUE, 0.35, white),
-               _over(_BLUE, 0.35, np.full(3, 0.93))]
-    parts = [cmap(np.linspace(0.0, 1.0, 80))[:, :3],
-             np.repeat(np.linspace(0.0, 1.0, 40)[:, None], 3, axis=1)]
+    accents = [_BLUE, _RED, _FOOTING, _FILL, _ON_WHITE]
+    table = TABLE[np.rint(np.linspace(0, len(TABLE) - 1, 136)).astype(int)]
+    parts = [table, np.repeat(np.linspace(0.0, 1.0, 40)[:, None], 3, axis=1)]
     parts += [white + ramp * (np.asarray(c) - white) for c in accents]
-    soil = cmap(np.linspace(0.0, 1.0, 8))[:, :3]
-    parts += [_over(np.full(3, OUTLINE_GREY), k / 8.0, soil) for k in range(1, 8)]
     colours = np.vstack(parts)
     assert colours.shape == (256, 3)
     return np.clip(np.rint(255.0 * colours), 0, 255).astype(np.uint8)
@@ -68,11 +57,13 @@ class GifWriter:
         self._search = Image.new("P", (1, 1))
         self._search.putpalette([c & 0xFC for c in self._colours])
 
-    def add(self, rgb: np.ndarray) -> None:
+    def add(self, rgb) -> None:
+        """Append a frame: a Pillow RGB image or an RGB array (h, w, 3)."""
         from PIL import GifImagePlugin, Image
 
-        image = Image.fromarray(np.ascontiguousarray(rgb, dtype=np.uint8), "RGB").quantize(
-            palette=self._search, dither=Image.Dither.NONE)
+        if not isinstance(rgb, Image.Image):
+            rgb = Image.fromarray(np.ascontiguousarray(rgb, dtype=np.uint8), "RGB")
+        image = rgb.quantize(palette=self._search, dither=Image.Dither.NONE)
         image.putpalette(self._colours)
         if self.count == 0:
             header, _ = GifImagePlugin.getheader(image, info={"loop": 0,

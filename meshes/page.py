@@ -11,12 +11,9 @@ are left out. :meth:`Page.show` moves and recolours those artists for a frame (`
 ``set_xy``, ``set_data``, ``set_text``; the cells' and outlines' paths are views of one array
 each, rewritten in place); axes are never re-created.
 
-**Animated pages** (``animated=True``, for the frames of an animation) draw the unchanging part
-of the page once, keep its pixels, and per frame restore them and draw only the artists that
-change (matplotlib's blitting); the two boxes drawn over changing artists (the magnification
-note, opaque, over the far field; the contact panel's legend, where no curve passes: the
-pressure and the gap lie under the footing) are drawn once and their pixels put back on top.
-The figure is then only good for :meth:`Page.pixels`, not for ``savefig``.
+The files a run writes are drawn by the raster :class:`~upliftlab.meshes.sheet.Sheet` (same
+:func:`layout`, colour table and norm); this page is the notebook's figure
+(:func:`~upliftlab.meshes.render.uplift_figure`).
 """
 
 from __future__ import annotations
@@ -114,14 +111,14 @@ class Page:
     (default a Figure outside pyplot)."""
 
     def __init__(self, sub: SubMesh, view: View, reach: float, *, dpi: int = 100,
-                 width_in: float = FIGURE_WIDTH_IN, make=None, animated: bool = False):
+                 width_in: float = FIGURE_WIDTH_IN, make=None):
         import matplotlib
         from matplotlib.backends.backend_agg import FigureCanvasAgg
         from matplotlib.collections import LineCollection, PolyCollection
         from matplotlib.figure import Figure
         from matplotlib.patches import Polygon
 
-        self.sub, self.view, self.animated = sub, view, animated
+        self.sub, self.view = sub, view
         height, soil_rect, contact_rect, bar_rect = layout(width_in, view)
         fig = (Figure(figsize=(width_in, height), dpi=dpi) if make is None
                else make(width_in, height, dpi))
@@ -165,16 +162,6 @@ class Page:
                       fontsize=9)
         self._contact_panel(fig.add_axes(contact_rect))
         self.title = fig.suptitle("", fontsize=11, y=1.0 - 0.12 / height)
-        self.changing = [(soil, self.faces), (soil, self.outlines), (soil, self.footing),
-                         (self.contact_axes, self.pressure_fill),
-                         (self.contact_axes, self.pressure_line),
-                         (self.gap_axes, self.gap_line), (fig, self.title)]
-        self.boxes = [(soil, self.note), (self.gap_axes, self.legend)]
-        self.frame_lines = [(soil, s) for s in soil.spines.values()]  # over the soil and boxes
-        self._background, self._boxes = None, []
-        if animated:
-            for _, artist in self.changing + self.boxes + self.frame_lines:
-                artist.set_animated(True)
 
     def _contact_panel(self, ax) -> None:
         from matplotlib.patches import Polygon
@@ -226,35 +213,8 @@ class Page:
             f"{_unit(view.moment_unit)},  N = {frame.N:.4g}{_unit(view.force_unit)},  "
             f"contact {frame.contact_length / view.footing_width:.0%} of B")
 
-    def prepare(self) -> None:
-        """Draw the unchanging part of an animated page once and keep its pixels."""
-        from matplotlib.transforms import Bbox
-
-        if self.animated and self._background is None:
-            canvas = self.figure.canvas
-            canvas.draw()
-            self._background = canvas.copy_from_bbox(self.figure.bbox)
-            renderer = canvas.get_renderer()
-            for owner, artist in self.boxes:
-                owner.draw_artist(artist)
-                patch = (self.note.get_bbox_patch() if artist is self.note
-                         else self.legend.get_frame())
-                box = Bbox.union([artist.get_window_extent(renderer),
-                                  patch.get_window_extent(renderer)])
-                self._boxes.append(canvas.copy_from_bbox(box.padded(2.0)))
-
     def pixels(self) -> np.ndarray:
         """The RGB page (h, w, 3) as :meth:`show` left it (a copy)."""
         canvas = self.figure.canvas
-        if not self.animated:
-            canvas.draw()
-        else:
-            self.prepare()
-            canvas.restore_region(self._background)
-            for owner, artist in self.changing:
-                owner.draw_artist(artist)
-            for box in self._boxes:
-                canvas.restore_region(box)
-            for owner, artist in self.frame_lines:
-                owner.draw_artist(artist)
+        canvas.draw()
         return np.asarray(canvas.buffer_rgba())[..., :3].copy()

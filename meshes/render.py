@@ -13,9 +13,13 @@ the gap opens. The title names the scene, the step (static) or the time (dynamic
 the contact length. Axis limits and colour limits are fixed over all frames of a run, so an
 animation does not jump.
 
-**How.** matplotlib alone (Agg, outside pyplot): the page is built once per picture set and
-redrawn per frame (:mod:`~upliftlab.meshes.page`); the GIF is written frame by frame against
-one fixed palette (:mod:`~upliftlab.meshes.gif`). Files appear complete or not at all.
+**How.** The files (PNG, GIF frames, the report's frame pages) are drawn with Pillow alone,
+without importing matplotlib (whose import and first draw cost a run more than its frames): the
+raster page is built once per picture set and redrawn per frame
+(:mod:`~upliftlab.meshes.sheet`); the GIF is written frame by frame against one fixed palette
+(:mod:`~upliftlab.meshes.gif`). Files appear complete or not at all. :func:`uplift_figure`
+(a notebook's picture) draws the same page as a matplotlib figure
+(:mod:`~upliftlab.meshes.page`, same layout, colour table and norm).
 
 **A budget for the animation.** :func:`animate_uplift` with ``budget`` (CPU seconds) writes
 as many of the snapshots, evenly spaced with the first and the last, as fit in that budget:
@@ -52,44 +56,48 @@ MIN_FRAMES = 9
 
 
 def _page(result, basis, footing_width: float, *, scale, title, dpi, width_in=FIGURE_WIDTH_IN,
-          make=None, animated=False):
-    """(page, frames) of a result: the view and the page built once."""
+          make=None, figure=False):
+    """(page, frames) of a result: the view and the page built once; the raster
+    :class:`~upliftlab.meshes.sheet.Sheet`, or with ``figure`` the matplotlib :class:`Page`."""
     sub = linear_submesh(basis)
     all_frames = frames(result, sub)
     view = uplift_view(result, sub, footing_width, scale=scale, title=title)
     largest = max(float(np.max(np.abs(f.displacement), initial=0.0)) for f in all_frames)
-    page = Page(sub, view, view.scale * largest, dpi=dpi, width_in=width_in, make=make,
-                animated=animated)
-    return page, all_frames
+    if figure:
+        return Page(sub, view, view.scale * largest, dpi=dpi, width_in=width_in,
+                    make=make), all_frames
+    from .sheet import Sheet
+
+    return Sheet(sub, view, view.scale * largest, dpi=dpi, width_in=width_in), all_frames
 
 
-def _write_png(path, rgb: np.ndarray, dpi: int):
-    from PIL import Image
-
+def _write_png(path, picture, dpi: int):
+    """Write a Pillow RGB ``picture`` to ``path`` as a PNG stamped with ``dpi``."""
     with atomic_path(path) as tmp:
-        Image.fromarray(rgb).save(tmp, format="PNG", dpi=(dpi, dpi))
+        picture.save(tmp, format="PNG", dpi=(dpi, dpi))
     return path
 
 
 def uplift_figure(result, basis, footing_width: float, *, snapshot: int = -1,
                   scale: float | None = None, title: str = "", dpi: int = 100, make=None):
     """The matplotlib figure of one snapshot (default the last) of a result on ``basis`` (the
-    module docstring's picture), nothing written; ``make(width, height, dpi)`` makes the
-    figure (default: a Figure outside pyplot)."""
+    module docstring's picture, drawn by matplotlib), nothing written; ``make(width, height,
+    dpi)`` makes the figure (default: a Figure outside pyplot)."""
     _check_snapshot(result, snapshot)
     page, all_frames = _page(result, basis, footing_width, scale=scale, title=title, dpi=dpi,
-                             make=make)
+                             make=make, figure=True)
     page.show(all_frames[snapshot])
     return page.figure
 
 
 def render_uplift(path, result, basis, footing_width: float, *, snapshot: int = -1,
                   scale: float | None = None, title: str = "", dpi: int = 100):
-    """Write the PNG of :func:`uplift_figure` to ``path``. Returns the path."""
-    fig = uplift_figure(result, basis, footing_width, snapshot=snapshot, scale=scale,
-                        title=title, dpi=dpi)
-    fig.canvas.draw()
-    return _write_png(path, np.asarray(fig.canvas.buffer_rgba())[..., :3], dpi)
+    """Write the PNG of one snapshot (default the last; the module docstring's picture, the
+    raster page) to ``path``. Returns the path."""
+    _check_snapshot(result, snapshot)
+    page, all_frames = _page(result, basis, footing_width, scale=scale, title=title, dpi=dpi)
+    page.show(all_frames[snapshot])
+    return _write_png(path, page.picture(), dpi)
 
 
 def _check_snapshot(result, snapshot: int) -> None:
@@ -107,18 +115,17 @@ def frames_within(budget: float, spent: float, per_frame: float, count: int) -> 
     return max(min(MIN_FRAMES, count), min(count, fits))
 
 
-def _animate(page: Page, all_frames, path, *, seconds_per_frame: float, budget, start: float,
+def _animate(page, all_frames, path, *, seconds_per_frame: float, budget, start: float,
              progress) -> int:
-    """Write the GIF of ``all_frames`` on an animated ``page`` (module docstring's budget rule,
+    """Write the GIF of ``all_frames`` on a raster ``page`` (module docstring's budget rule,
     ``start`` the CPU time the budget counts from). Returns the number of frames."""
     from .gif import write_gif
 
     chosen = list(range(len(all_frames)))
     with write_gif(path, seconds_per_frame) as gif:
-        page.prepare()
         ready = time.process_time()
         page.show(all_frames[0])
-        gif.add(page.pixels())
+        gif.add(page.picture())
         if budget is not None and len(all_frames) > 1:
             now = time.process_time()
             count = frames_within(budget, now - start, now - ready, len(all_frames))
@@ -126,7 +133,7 @@ def _animate(page: Page, all_frames, path, *, seconds_per_frame: float, budget, 
         for k, index in enumerate(chosen):
             if k:
                 page.show(all_frames[index])
-                gif.add(page.pixels())
+                gif.add(page.picture())
             if progress is not None:
                 progress(k, len(chosen))
     return len(chosen)
@@ -140,8 +147,7 @@ def animate_uplift(path, result, basis, footing_width: float, *, scale: float | 
     the module docstring's rule gives. ``progress(k, n)`` is called after each of the ``n``
     frames. Returns the path."""
     start = time.process_time()
-    page, all_frames = _page(result, basis, footing_width, scale=scale, title=title, dpi=dpi,
-                             animated=True)
+    page, all_frames = _page(result, basis, footing_width, scale=scale, title=title, dpi=dpi)
     _animate(page, all_frames, path, seconds_per_frame=seconds_per_frame, budget=budget,
              start=start, progress=progress)
     return path
@@ -157,10 +163,9 @@ def write_pictures(png, gif, result, basis, footing_width: float, *, snapshot: i
     Returns the number of GIF frames."""
     start = time.process_time()
     _check_snapshot(result, snapshot)
-    page, all_frames = _page(result, basis, footing_width, scale=scale, title=title, dpi=dpi,
-                             animated=True)
+    page, all_frames = _page(result, basis, footing_width, scale=scale, title=title, dpi=dpi)
     page.show(all_frames[snapshot])
-    _write_png(png, page.pixels(), dpi)
+    _write_png(png, page.picture(), dpi)
     return _animate(page, all_frames, gif, seconds_per_frame=seconds_per_frame, budget=budget,
                     start=start, progress=progress)
 
@@ -187,12 +192,12 @@ def render_frames(directory, result, basis, footing_width: float, *, limit: int 
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     page, all_frames = _page(result, basis, footing_width, scale=scale, title=title, dpi=dpi,
-                             width_in=width_in, animated=True)
+                             width_in=width_in)
     chosen = frame_subset(len(all_frames), limit)
     written = []
     for k, index in enumerate(chosen):
         page.show(all_frames[index])
-        path = _write_png(directory / f"frame_{k:03d}.png", page.pixels(), dpi)
+        path = _write_png(directory / f"frame_{k:03d}.png", page.picture(), dpi)
         written.append((path, all_frames[index]))
         if progress is not None:
             progress(k, len(chosen))

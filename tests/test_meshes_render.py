@@ -1,17 +1,23 @@
 """The pictures of a footing on a soil mesh drawn right, checked by numbers
-(upliftlab.meshes.page, upliftlab.meshes.gif, upliftlab.meshes.render).
+(upliftlab.meshes.colours, .sheet, .raster, .page, .gif, .render).
 
 References: a made-up run on a small Q2 mesh whose fields are closed forms chosen here — a
 displacement u = (a y, −b x) at every node, a plastic strain in two named elements only, a
 contact pressure p = p0 (c − x) for x < c and zero beyond (the footing lifted off beyond c,
-where the gap opens as g = g0 (x − c)). What must follow, independently of the renderer:
-- the drawn soil cells are the mesh's cells at (x, y) + scale × u(x, y) (to 1e-12 of B);
-- the pixel at an element's drawn centre has the colour map's colour of its plastic strain
-  (the top for the largest, the palest for none), within 6 of 255 per channel;
+where the gap opens as g = g0 (x − c)) — and matplotlib, an independent drawing library: its
+``YlOrRd`` colour map and ``LogNorm``, and the axes transforms of the matplotlib page (the
+notebook's figure, same layout) for where a data point lands on the raster. What must follow:
+- the colour table is matplotlib's YlOrRd through its norm (to one table step, 1.4 of 255);
+- the drawn soil cells of the figure are the mesh's cells at (x, y) + scale × u (to 1e-12 B);
+- the pixel at an element's drawn centre in the PNG has the colour map's colour of its plastic
+  strain (the top for the largest, the palest for none), within 6 of 255 per channel, and the
+  colour bar's pixel at that strain (from the layout: log scale over 3 decades) the same;
+- the footing block's pixels lie inside its corners moved by (u + θ y, v − θ x) × scale;
 - the pressure fill's colour appears above the base where p > 0 and not where the gap opened;
 - a GIF frame, decoded, is its page within the fixed palette's error (mean < 2 of 255);
 - the budget rule of :func:`~upliftlab.meshes.render.frames_within` (its docstring's formula);
-- the picture set's PNG, drawn on the animated page, is the page drawn whole.
+- the picture set's PNG is :func:`~upliftlab.meshes.render.render_uplift`'s, pixel for pixel;
+- writing the pictures never imports matplotlib (a fresh interpreter's ``sys.modules``).
 """
 
 from __future__ import annotations
@@ -22,10 +28,13 @@ import numpy as np
 import pytest
 import skfem
 from matplotlib import colormaps
+from matplotlib.colors import LogNorm
 from PIL import Image
 
 from upliftlab.meshes import soil_mesh
-from upliftlab.meshes.page import CMAP, Page
+from upliftlab.meshes.colours import colours_of
+from upliftlab.meshes.page import CMAP, FOOTING_HEIGHT, Page, layout
+from upliftlab.meshes.sheet import FOOTING, Sheet
 from upliftlab.meshes.render import (MIN_FRAMES, animate_uplift, frames, frames_within,
                                      linear_submesh, render_uplift, uplift_view,
                                      write_pictures)
@@ -115,13 +124,95 @@ def test_pixels_show_the_plastic_zone_and_the_lift_off(case, tmp_path):
         assert blue[min(rows):max(rows) + 1, col].all() == (x < C), x
 
 
+def test_the_colour_table_is_matplotlibs_colour_map():
+    # Reference: matplotlib's YlOrRd, linear and through LogNorm over 3 decades
+    cmap = colormaps[CMAP]
+    s = np.linspace(-0.1, 1.1, 2001)
+    assert np.max(np.abs(colours_of(s, 0.0, 1.0) - cmap(s)[:, :3])) <= 1e-12
+    strain = np.logspace(-6.0, -1.0, 2001)
+    logged = cmap(LogNorm(1e-5, 1e-2)(strain))[:, :3]
+    assert np.max(np.abs(colours_of(strain, 1e-5, 1e-2) - logged)) <= 1.4 / 255
+
+
+def test_the_colour_bar_agrees_with_the_cells(case, tmp_path):
+    target = render_uplift(tmp_path / "u.png", case.result, case.basis, B, snapshot=1)
+    image = np.asarray(Image.open(target).convert("RGB")).astype(int)
+    page = _page(case)  # the matplotlib page: the axes' transforms
+    height, _, _, bar = layout(9.0, case.view)
+    h, w = image.shape[:2]
+    assert (h, w) == (int(round(100 * height)), 900)
+    col = int(round((bar[0] + 0.5 * bar[2]) * w))
+    s = case.view.scale
+    for element, level in ((case.hot, 1.0), (case.warm, 1.0 / 3.0)):  # 1e-2, 1e-4 of 1e-5..1e-2
+        cx, cy = case.centres[:, element]
+        cell = image[_pixel(page, page.soil_axes, cx + s * A * cy, cy - s * BB * cx)]
+        row = int(round((1.0 - bar[1] - min(level, 0.99) * bar[3]) * h))
+        assert np.max(np.abs(cell - image[row, col])) <= 6, (element, cell, image[row, col])
+
+
+def test_the_footing_block_is_drawn_where_it_moved(case, tmp_path):
+    # Reference: the block's corners (±B/2, 0), (±B/2, B/5) moved by (u + θ y, v − θ x) ×
+    # scale (a rigid footing's small motion), with u, v, θ set here large enough (θ = 0.02:
+    # 0.4 rad drawn) that the block leaves where it stood; the matplotlib page's transform
+    moved = SimpleNamespace(**vars(case.result))
+    moved.footing = np.array([[0.0, 0.0, 0.0], [0.0, -2e-3, 2e-2]])
+    target = render_uplift(tmp_path / "f.png", moved, case.basis, B, snapshot=1)
+    image = np.asarray(Image.open(target).convert("RGB")).astype(int)
+    page = _page(case)
+    s, (u, v, theta) = case.view.scale, moved.footing[1]
+    colour = np.rint(255 * np.asarray(FOOTING))
+    h = FOOTING_HEIGHT * B
+    for fx, fy in ((-0.4, 0.5), (0.0, 0.5), (0.4, 0.5), (0.4, 0.15), (-0.4, 0.85)):
+        x, y = fx * B, fy * h
+        inside = _pixel(page, page.soil_axes, x + s * (u + theta * y), y + s * (v - theta * x))
+        assert np.max(np.abs(image[inside] - colour)) <= 1, (fx, fy, image[inside])
+    for x, y in ((0.0, 1.3 * h), (0.4 * B, 0.5 * h), (0.62 * B, -0.5 * h)):  # it stood there
+        outside = _pixel(page, page.soil_axes, x, y)
+        assert np.max(np.abs(image[outside] - colour)) > 20, (x, y)
+
+
+def test_writing_the_pictures_never_imports_matplotlib(tmp_path):
+    # Reference: a fresh interpreter's sys.modules after render_uplift and animate_uplift
+    import subprocess
+    import sys
+    import textwrap
+
+    script = textwrap.dedent(f"""
+        import sys
+        import numpy as np
+        import skfem
+        from types import SimpleNamespace
+        from upliftlab.meshes import soil_mesh
+        from upliftlab.meshes.render import animate_uplift, render_uplift
+        mesh = soil_mesh(2.0, element="Q2", elements_across=2, domain_width=4, domain_depth=3)
+        basis = skfem.Basis(mesh.mesh, skfem.ElementVector(mesh.skfem_element))
+        x = np.linspace(-1.0, 1.0, 5)
+        result = SimpleNamespace(
+            kind="dynamic", time=np.array([0.0, 1.0]), snapshot_time=np.array([0.0, 1.0]),
+            footing=np.zeros((2, 3)), x=x, pressure=np.ones((2, 5)), gap=np.zeros((2, 5)),
+            M=np.zeros(2), N=np.ones(2), contact_length=np.full(2, 2.0),
+            displacement=np.full((2, basis.N), 1e-3), metadata={{}},
+            plastic_strain=np.zeros((2, mesh.mesh.nelements)))
+        render_uplift(r"{tmp_path / 'a.png'}", result, basis, 2.0)
+        animate_uplift(r"{tmp_path / 'a.gif'}", result, basis, 2.0, dpi=30)
+        print(sorted(m for m in sys.modules if m.split(".")[0] == "matplotlib"))
+    """)
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "[]"
+    assert Image.open(tmp_path / "a.gif").n_frames == 2
+
+
 def test_gif_frames_are_their_pages(case, tmp_path):
     target = animate_uplift(tmp_path / "u.gif", case.result, case.basis, B, dpi=60)
     gif = Image.open(target)
     assert gif.n_frames == 2
     gif.seek(1)
     decoded = np.asarray(gif.convert("RGB")).astype(int)
-    page = _page(case, dpi=60)
+    reach = case.view.scale * float(np.max(np.abs(case.frame.displacement)))
+    page = Sheet(case.sub, case.view, reach, dpi=60)
+    page.show(case.frame)
     expected = page.pixels().astype(int)
     assert decoded.shape == expected.shape
     assert np.mean(np.abs(decoded - expected)) < 2.0
@@ -150,17 +241,16 @@ def test_a_budget_limits_the_gif(case, tmp_path):
     assert Image.open(tmp_path / "b.gif").n_frames == MIN_FRAMES == counts[-1]
 
 
-def test_the_picture_set_draws_the_png_as_a_whole_page_would(case, tmp_path):
-    # Reference: the PNG of a page drawn whole (render_uplift, no blitting); the picture set
-    # draws its PNG on the GIF's page (background once, changing artists over it): the same
-    # picture but for the magnification note's opaque box (mean difference < 0.5 of 255).
+def test_the_picture_set_draws_the_png_as_render_uplift_does(case, tmp_path):
+    # Reference: render_uplift's PNG of the same snapshot, a page of its own; the picture set
+    # draws its PNG on the page that then draws the GIF's frames: pixel for pixel the same
     whole = render_uplift(tmp_path / "whole.png", case.result, case.basis, B, snapshot=1)
     count = write_pictures(tmp_path / "set.png", tmp_path / "set.gif", case.result, case.basis,
                            B, snapshot=1)
     a = np.asarray(Image.open(whole).convert("RGB")).astype(int)
     b = np.asarray(Image.open(tmp_path / "set.png").convert("RGB")).astype(int)
     assert count == 2 == Image.open(tmp_path / "set.gif").n_frames
-    assert a.shape == b.shape and np.mean(np.abs(a - b)) < 0.5
+    assert a.shape == b.shape and np.array_equal(a, b)
 
 
 def test_the_command_line_states_the_rule():
