@@ -59,8 +59,10 @@ class Options:
 
     ``elements_across`` the continuum mesh (elements across B; the reference mesh is 16);
     ``springs`` of every bed; ``end_length`` R_e (fraction of b) and ``max_end_stiffness_ratio``
-    of the end-stiffened beds; ``beds`` the calibrations compared (names of :data:`...beds.BEDS`;
-    empty: all); ``pulse_tail`` (s) of free vibration after a pulse (a pulse run lasts 3 T plus
+    of the end-stiffened beds; ``bed_stiffness`` what the beds' K_v and K_r are (``static``
+    the box's statics, ``rocking`` the half-plane's at each structure's rocking frequency:
+    :mod:`...beds.rocking_stiffness`); ``beds`` the calibrations compared (names of
+    :data:`...beds.BEDS`; empty: all); ``pulse_tail`` (s) of free vibration after a pulse (a pulse run lasts 3 T plus
     this); ``settlement_ratio`` the depth of the vertical pushover (× B) in ``vertical_steps``;
     ``theta_ratios`` the rotations θ/θ_on at which the statics rows compare M, contact length
     and settlement (θ_on the elastic half-plane's uplift rotation), reached in
@@ -78,6 +80,7 @@ class Options:
     springs: int = 48
     end_length: float = 1.0 / 3.0
     max_end_stiffness_ratio: float = 10.0
+    bed_stiffness: str = "static"
     beds: tuple[str, ...] = ()
     pulse_tail: float = 2.0
     settlement_ratio: float = 0.05
@@ -183,6 +186,7 @@ def check_options(options: Options, beds: Sequence[str]) -> Options:
                     high_open=True)
     checks.in_range("options.max_end_stiffness_ratio", options.max_end_stiffness_ratio, 1.0,
                     1e4, low_open=True)
+    checks.one_of("options.bed_stiffness", options.bed_stiffness, ("static", "rocking"))
     _choices("options.beds", options.beds, tuple(beds), empty=True)
     checks.in_range("options.pulse_tail", options.pulse_tail, 0.0, 60.0)
     checks.in_range("options.settlement_ratio", options.settlement_ratio, 0.0, 0.5,
