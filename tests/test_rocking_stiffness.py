@@ -6,9 +6,11 @@ the fixed point ω = ω̃(K(ω)) with a prescribed K_r(ω) = K₀ − sω, whose
 polynomial found by numpy's companion-matrix eigenvalues (an independent algorithm, not the
 iteration); Veletsos & Meek's (1974) T̃ = T √(1 + k/K_h + k h²/K_r) written out here; the
 reduced model's own bonded eigenproblem (radiation.rocking_frequency) for the structure on the
-bed calibrated to K_r(ω̃); and the closed-form low-frequency behaviour of the strip's vertical
+bed calibrated to K_r(ω̃); the closed-form low-frequency behaviour of the strip's vertical
 compliance on the half-plane, Re(1/K_v) growing as ((1 − ν)/(πG)) ln(1/a0) (the Flamant
-kernel (1 − ν)/(G|k|) integrated against the punch's pressure J₀(kb)², cut off at k_s).
+kernel (1 − ν)/(G|k|) integrated against the punch's pressure J₀(kb)², cut off at k_s); the
+exact half-plane (continuum.impedance.halfplane, no FE) for the FE impedance at the map's
+frequencies; and Gazetas' (1991) strip factors k_r = 1 − 0.20 a0 and chart of k_z.
 """
 
 from __future__ import annotations
@@ -128,7 +130,8 @@ def test_refusals_before_and_during_the_iteration():
     soft = _record(A0_LINE, np.full(6, 1e5 + 0j), np.full(6, 1e3 + 0j))
     with pytest.raises(InputError, match=r"outside the impedance's frequencies \[50, 100\]"):
         rocking_stiffness(soft, mass=M, period=T, height=H)
-    with pytest.raises(InputError, match="did not converge to 1e-10 in 2 iterations"):
+    with pytest.raises(InputError, match=r"did not converge to 1e-10 in 2 iterations .*"
+                                         r"relative change 0\.0213"):
         rocking_stiffness(_line_record(), mass=M, period=T, height=H, max_iterations=2)
     with pytest.raises(InputError, match="structure.period"):
         rocking_stiffness(_line_record(), mass=M, period=-1.0, height=H)
@@ -224,6 +227,28 @@ def test_fe_impedance_at_the_maps_rocking_frequencies_matches_the_half_plane():
     exact = strip_impedance(a0, shear_modulus=soil.shear_modulus, poisson=0.3, width=2.0)
     np.testing.assert_allclose(fe.K_v.real, exact.vertical.real, rtol=0.005)
     np.testing.assert_allclose(fe.K_r.real, exact.rocking.real, rtol=0.01)
+    # Gazetas (1991), Table 1, strip rocking: k_r = 1 − 0.20 a0 on the static π G B²/(8(1 − ν)):
+    # the FE within 2 % (measured +0.8, +1.5, +1.5 % at a0 = 0.02, 0.1, 0.25 on 8 across)
+    static = math.pi * soil.shear_modulus * 4.0 / (8.0 * 0.7)
+    np.testing.assert_allclose(fe.K_r.real / static, 1.0 - 0.2 * np.asarray(a0), rtol=0.02)
+
+
+def test_half_plane_dynamic_factors_against_gazetas_1991():
+    """Published solutions for the strip (Gazetas 1991, J. Geotech. Eng. 117(9)): the rocking
+    factor k_r = 1 − 0.20 a0 of Table 1, against the exact half-plane's Re K_r(a0)/K_r(0)
+    (frictionless, ν = 1/3): within 1.5 % for a0 ≤ 1.5 (measured +1.1 % at 0.25, −0.1 % at 1);
+    and the chart of k_z for L/B → ∞ (ν ≤ 0.4; read at a0 = 0.069, 0.256, 0.489, 0.747, 1.014
+    as 1.057, 1.269, 1.367, 1.351, 1.272, geofound 1.1.4's digitisation of the chart,
+    ``_raw_data/kz_gazetas_v_lte_0p4.csv``, column L/B = 1000) against Re K_v/(0.73 G/(1 − ν)):
+    within 10 % (measured +1.7 … +8.2 %: a handbook chart, the same rise and fall)."""
+    nu = 1.0 / 3.0
+    a0 = np.array([1e-3, 0.25, 0.5, 1.0, 1.5])
+    rocking = strip_impedance(a0, shear_modulus=1.0, poisson=nu, width=2.0).rocking.real
+    np.testing.assert_allclose(rocking[1:] / rocking[0], 1.0 - 0.2 * a0[1:], rtol=0.015)
+    a0 = np.array([0.069, 0.256, 0.489, 0.747, 1.014])
+    chart = np.array([1.057, 1.269, 1.367, 1.351, 1.272])
+    vertical = strip_impedance(a0, shear_modulus=1.0, poisson=nu, width=2.0).vertical.real
+    np.testing.assert_allclose(vertical / (0.73 / (1.0 - nu)), chart, rtol=0.10)
 
 
 def test_the_maps_beds_build_on_the_rocking_basis_from_the_kept_store():

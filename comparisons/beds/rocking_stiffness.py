@@ -131,15 +131,16 @@ def rocking_stiffness(impedance, *, mass: float, period: float, height: float,
                              "a positive stiffness)")
         new = flexible_base_omega(mass=m, stiffness=k, height=h, K_r=K_r, rotary_inertia=I,
                                   K_h=K_h if sway else math.inf)
-        if abs(new - omega) <= tol * new:
+        change = abs(new - omega) / new
+        if change <= tol:
             K_v, K_h, K_r = impedance_stiffness(impedance, new)
             C_v, _, C_r = impedance_dashpots(impedance, new)
             return RockingStiffness(new, _a0(impedance, new), 2.0 * math.pi / new, K_v,
                                     K_h if sway else 0.0, K_r, C_v, C_r, n, bool(sway))
         omega = new
     raise InputError(f"rocking frequency: the fixed point ω = ω̃(K(ω)) did not converge to "
-                     f"{tol:g} in {n_max} iterations (last ω = {omega:.6g} rad/s, change "
-                     f"{abs(new - omega) / new:.3g}); valid: an impedance whose K_r(ω) varies "
+                     f"{tol:g} in {n_max} iterations (last ω = {omega:.6g} rad/s, relative change "
+                     f"{change:.3g}); valid: an impedance whose K_r(ω) varies "
                      "slowly enough, or more iterations")
 
 
