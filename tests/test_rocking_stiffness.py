@@ -292,3 +292,23 @@ def test_the_maps_beds_build_on_the_rocking_basis_from_the_kept_store():
     uniform = next(c for c in calibrate(ref, options) if c.name == "uniform")
     assert uniform.rocking_stiffness == pytest.approx(at.K_r, rel=1e-12)
     assert impedance_dashpots_of(ref, options).omega == pytest.approx(at.omega, rel=1e-8)
+
+
+def test_the_command_lines_bed_stiffness_is_the_options():
+    """``--bed-stiffness rocking`` sets ``options.bed_stiffness``; without it the default
+    (``static``) stays; another word is refused by the parser (exit 2)."""
+    import argparse
+
+    from upliftlab.comparisons.studies.winkler_map.workflow import _arguments, _context_from
+
+    parser = argparse.ArgumentParser()
+    _arguments(parser)
+    parser.add_argument("--fast", action="store_true")
+    parser.add_argument("--no-figures", action="store_true")
+    for argv, expected in ((["--bed-stiffness", "rocking"], "rocking"), ([], "static")):
+        args = parser.parse_args(["--fast", "--no-figures", *argv])
+        ctx = _context_from(args, wm.workflow.Context(fast=True), print)
+        assert ctx.options.bed_stiffness == expected
+    with pytest.raises(SystemExit) as exit_:
+        parser.parse_args(["--bed-stiffness", "dynamic"])
+    assert exit_.value.code == 2
