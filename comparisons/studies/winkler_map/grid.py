@@ -59,10 +59,8 @@ class Options:
 
     ``elements_across`` the continuum mesh (elements across B; the reference mesh is 16);
     ``springs`` of every bed; ``end_length`` R_e (fraction of b) and ``max_end_stiffness_ratio``
-    of the end-stiffened beds; ``bed_stiffness`` what the beds' K_v and K_r are (``static``
-    the box's statics, ``rocking`` the half-plane's at each structure's rocking frequency:
-    :mod:`...beds.rocking_stiffness`); ``beds`` the calibrations compared (names of
-    :data:`...beds.BEDS`; empty: all); ``pulse_tail`` (s) of free vibration after a pulse (a pulse run lasts 3 T plus
+    of the end-stiffened beds; ``beds`` the calibrations compared (names of :data:`...beds.BEDS`;
+    empty: all); ``pulse_tail`` (s) of free vibration after a pulse (a pulse run lasts 3 T plus
     this); ``settlement_ratio`` the depth of the vertical pushover (× B) in ``vertical_steps``;
     ``theta_ratios`` the rotations θ/θ_on at which the statics rows compare M, contact length
     and settlement (θ_on the elastic half-plane's uplift rotation), reached in
@@ -73,7 +71,9 @@ class Options:
     settlement); ``energy``: make the continuum's foundation-energy run of every point
     (:mod:`.energy_points`, one more continuum run each, stored; off: the map compares E_F where
     the store holds those runs); ``budget`` (s): refuse a run whose estimated continuum cost
-    exceeds it (None: no limit); ``figures``: write PNGs.
+    exceeds it (None: no limit); ``figures``: write PNGs. ``bed_stiffness``: what the beds' K_v
+    and K_r are, ``static`` the box's statics (the default) or ``rocking`` the half-plane
+    impedance's at each structure's rocking frequency (:mod:`...beds.rocking_stiffness`).
     """
 
     elements_across: int = 16
