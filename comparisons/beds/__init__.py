@@ -7,7 +7,8 @@ the vertical pushover or the dynamic impedance) and returns the reduced model's
 says what it is, its short code, what it matches and what it needs (:mod:`.registry`).
 
 The calibrations, one idea each: the four base beds' stiffness (:mod:`.stiffness`, built by
-:mod:`.base`), their radiation dashpots (:mod:`.radiation`, :mod:`.dashpots`), the q–z bed's
+:mod:`.base`; to the box's statics, or to the half-plane's stiffness at the structure's rocking
+frequency, :mod:`.rocking_stiffness`), their radiation dashpots (:mod:`.radiation`, :mod:`.dashpots`), the q–z bed's
 springs and backbone (:mod:`.qz`), the capacity profile fitted to the continuum's rocking
 (:mod:`.fitted`); the rotation paths on which beds and continuum are pushed over and the values
 they are compared in (:mod:`.pushover`); and the continuum runs they are calibrated from and

@@ -52,7 +52,7 @@ def assemble(grid, options, calibrations, motions, statics, points, runs, impeda
             where = _where(soil, fs, hb, period, intensity, motions[m])
             scene = scene_of(point["scene"])
             ref = reference(st, scene, point["scene"]["structure"], impedances.get(soil),
-                            pushovers[soil, fs])
+                            pushovers[soil, fs], options.bed_stiffness)
             k_story, _ = story_constants(scene)
             scl = scales(ref.N, scene.foundation.width, scene.structure.height, st.K_v, st.K_r,
                          k_story)
@@ -146,7 +146,7 @@ def _fits(grid, options, calibrations, motions, by_soil, points, impedances,
         return {}
     fits = (((soil, fs), fit_capacity_profile(reference(
         by_soil[soil], scene_of(point["scene"]), point["scene"]["structure"],
-        impedances.get(soil), pushovers[soil, fs]), options))
+        impedances.get(soil), pushovers[soil, fs], options.bed_stiffness), options))
         for (_, (soil, fs, *_)), point in zip(cells(grid), points[::len(motions)]))
     return dict(fits)
 

@@ -76,12 +76,16 @@ class Options:
     reference (:mod:`.reference`): ``box`` (the closed box on a rigid base, the kept store's) or
     ``half_plane`` (a compliant base, the footing's horizontal tie, the clay's strength growing
     with depth).
+    ``bed_stiffness``: what the beds' K_v
+    and K_r are, ``static`` the box's statics (the default) or ``rocking`` the half-plane
+    impedance's at each structure's rocking frequency (:mod:`...beds.rocking_stiffness`).
     """
 
     elements_across: int = 16
     springs: int = 48
     end_length: float = 1.0 / 3.0
     max_end_stiffness_ratio: float = 10.0
+    bed_stiffness: str = "static"
     beds: tuple[str, ...] = ()
     pulse_tail: float = 2.0
     settlement_ratio: float = 0.05
@@ -188,6 +192,7 @@ def check_options(options: Options, beds: Sequence[str]) -> Options:
                     high_open=True)
     checks.in_range("options.max_end_stiffness_ratio", options.max_end_stiffness_ratio, 1.0,
                     1e4, low_open=True)
+    checks.one_of("options.bed_stiffness", options.bed_stiffness, ("static", "rocking"))
     _choices("options.beds", options.beds, tuple(beds), empty=True)
     checks.in_range("options.pulse_tail", options.pulse_tail, 0.0, 60.0)
     checks.in_range("options.settlement_ratio", options.settlement_ratio, 0.0, 0.5,

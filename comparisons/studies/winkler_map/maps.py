@@ -13,7 +13,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from ....log import logger
-from ...beds import BEDS, base_table, bed_foundation, bed_rocking
+from ...beds import base_table, bed_foundation, bed_rocking
 from ...beds.continuum_points import evaluate_continuum
 from ...framework.sweep import DASK_ENV, run_sweep, sweep_executor
 from .assemble import assemble
@@ -22,8 +22,8 @@ from .dataset import map_dataset
 from .energy_points import evaluate_energy
 from .grid import STUDY, Grid, Options
 from .impedance_points import evaluate_impedance, impedance_point, soil_impedance
-from .plan import (cells, dynamic_points, estimate_map, map_rocking_points, plan_map,
-                   point_key_of, reference, scene_of)
+from .plan import (bed_needs, cells, dynamic_points, estimate_map, map_rocking_points,
+                   plan_map, point_key_of, reference, scene_of)
 from .points import evaluate_dynamic, point_table
 from .rocking import RockingData, rocking_data, theta_onset
 from .statics import evaluate_static, soil_statics, static_points
@@ -129,7 +129,7 @@ def calibration_inputs(grid: Grid, options: Options, calibrations: Sequence[str]
                                          for p in static_points(soil, options, b)])
                for soil in grid.soils}
     loads = {soil: st.V_ult for soil, st in statics.items()}
-    needs = {n for c in calibrations for n in BEDS[c].needs}
+    needs = bed_needs(calibrations, options)
     impedances = {}
     if "impedance" in needs:
         for soil in grid.soils:
@@ -166,7 +166,7 @@ def _build_every_bed(grid, options, calibrations, motions, statics, points, impe
     for k, (_, (soil, fs, *_)) in enumerate(cells(grid)):
         table = points[k * len(motions)]["scene"]
         ref = reference(by_soil[soil], scene_of(table), table["structure"], impedances.get(soil),
-                         pushovers[soil, fs])
+                         pushovers[soil, fs], options.bed_stiffness)
         for name in calibrations:
             bed_foundation(name, ref, options)
 
@@ -183,7 +183,7 @@ def _rocking(grid, options, calibrations, statics, base, g, records, impedances,
         table = point_table(base, soil, options.elements_across, by_soil[soil].V_ult / fs,
                             grid.h_over_B[0], grid.periods[0], g, options.reference)
         ref = reference(by_soil[soil], scene_of(table), table["structure"],
-                         impedances.get(soil), pushovers[soil, fs])
+                         impedances.get(soil), pushovers[soil, fs], options.bed_stiffness)
         if "error" in records[2 * i] or "error" in records[2 * i + 1]:
             beds.append([])  # the continuum's path stopped: nothing to push the beds over on
             continue

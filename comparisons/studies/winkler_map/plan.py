@@ -11,6 +11,7 @@ from collections.abc import Mapping, Sequence
 from ....scenes import load_scene, scene_from_dict
 from ...beds import BASE_SCENE, BEDS, BedReference, base_table
 from ...beds.continuum_points import evaluate_continuum
+from ...beds.rocking_stiffness import stiffness_reference
 from ...framework.store import point_key
 from .cost import Estimate, estimate_cost, impedance_dofs, timed_dynamic_runs, with_checks
 from .energy_points import evaluate_energy
@@ -22,7 +23,7 @@ from .rocking import rocking_points
 from .statics import SoilStatics, evaluate_static, static_points
 
 __all__ = ["cells", "dynamic_points", "point_key_of", "scene_of", "map_rocking_points",
-           "reference", "estimate_map", "plan_map", "FREE_MOTION"]
+           "reference", "bed_needs", "estimate_map", "plan_map", "FREE_MOTION"]
 
 
 def cells(grid: Grid):
@@ -130,7 +131,7 @@ def plan_map(grid, options, calibrations, motions, store) -> tuple:
     static_records = [store.get(point_key_of(p, evaluate_static)) for p in statics_points]
     loads = {soil: static_records[2 * i + 1]["capacity"] for i, soil in enumerate(grid.soils)
              if static_records[2 * i] is not None and static_records[2 * i + 1] is not None}
-    needs = {n for c in calibrations for n in BEDS[c].needs}
+    needs = bed_needs(calibrations, options)
     impedance_points = ([impedance_point(soil, options, b) for soil in grid.soils]
                         if "impedance" in needs else [])
     estimate = _estimate(grid, options, motions, base, g, store, statics_points, loads,
@@ -138,18 +139,32 @@ def plan_map(grid, options, calibrations, motions, store) -> tuple:
     return base, g, statics_points, static_records, impedance_points, estimate
 
 
+def bed_needs(calibrations, options) -> set:
+    """The stored continuum quantities beyond the statics that the beds ``calibrations`` need
+    (their registry entries' ``needs``), and the impedance when ``options.bed_stiffness`` is
+    not ``static`` (:mod:`...beds.rocking_stiffness`)."""
+    needs = {n for c in calibrations for n in BEDS[c].needs}
+    if options.bed_stiffness != "static":
+        needs.add("impedance")
+    return needs
+
+
 def reference(st: SoilStatics, scene, structure: Mapping, impedance=None,
-              rocking=None) -> BedReference:
+              rocking=None, bed_stiffness: str = "static") -> BedReference:
     """The continuum numbers a bed is calibrated from, at a point's scene: its numbers, the
     soil's statics, and in ``extra`` the soil's density, the point's ``[structure]`` table,
     the soil's impedance (when a bed needs it) and the continuum's rotation pushovers at the
-    point's N (``rocking``, where they ran to their end)."""
+    point's N (``rocking``, where they ran to their end). ``bed_stiffness`` (``options.
+    bed_stiffness``) ``static``: K_v and K_r are the soil's statics (the box's); ``rocking``:
+    the half-plane impedance's at the structure's rocking frequency
+    (:func:`...beds.rocking_stiffness.stiffness_reference`)."""
     extra = {"density": scene.soil.density, "structure": dict(structure),
              "settlement": st.settlement, "load": st.load}
     if impedance is not None:
         extra["impedance"] = impedance
     if rocking is not None:
         extra["rocking"] = rocking
-    return BedReference(st.soil, scene.structure.weight, scene.foundation.width,
-                        scene.structure.height, st.K_v, st.K_r, st.V_ult,
-                        scene.soil.shear_modulus, scene.soil.poisson_ratio, extra=extra)
+    ref = BedReference(st.soil, scene.structure.weight, scene.foundation.width,
+                       scene.structure.height, st.K_v, st.K_r, st.V_ult,
+                       scene.soil.shear_modulus, scene.soil.poisson_ratio, extra=extra)
+    return stiffness_reference(ref, bed_stiffness, scene.g)

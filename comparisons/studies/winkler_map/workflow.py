@@ -143,6 +143,10 @@ def _arguments(parser) -> None:
     parser.add_argument("--beds", default=None, metavar="NAME,NAME",
                         help="compare only these calibrations (names of the bed registry, "
                              "e.g. end_stiffened_plastic,qz; default: every one)")
+    parser.add_argument("--bed-stiffness", choices=("static", "rocking"), default=None,
+                        help="what the beds' K_v and K_r are calibrated to: the continuum box's "
+                             "statics (static, the default) or the half-plane impedance's at "
+                             "each structure's rocking frequency (rocking)")
 
 
 def _context_from(args, ctx: Context, say) -> Context:
@@ -155,6 +159,8 @@ def _context_from(args, ctx: Context, say) -> Context:
     if args.beds is not None:
         options = replace(options, beds=tuple(b.strip() for b in args.beds.split(",")
                                               if b.strip()))
+    if args.bed_stiffness is not None:
+        options = replace(options, bed_stiffness=args.bed_stiffness)
     if options.figures:
         from ....extras import need_extra
         need_extra(f"upliftlab study {STUDY}", "matplotlib",
