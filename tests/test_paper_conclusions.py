@@ -13,6 +13,7 @@ import math
 
 import numpy as np
 import pytest
+from pathlib import Path
 
 from upliftlab.comparisons.studies import paper
 from upliftlab.comparisons.studies.paper import (Conclusion, Evidence, apparent_period,
@@ -149,11 +150,13 @@ def test_dataset_round_trip_keeps_every_value():
     assert math.isnan(back[0].evidence[0].values["B"]) and "record" not in ds.attrs
 
 
-def test_without_the_record_el_centro_conclusions_say_what_to_supply(tmp_path, monkeypatch):
+def test_without_the_record_el_centro_conclusions_say_what_to_supply(run, tmp_path,
+                                                                     monkeypatch):
     """No record on UPLIFTLAB_MOTIONS: free-vibration conclusions are still decided; El Centro
-    ones are not tested and name the file and the variable."""
+    ones are not tested and name the file and the variable. Written beside the module's run,
+    so that the two-spring study it reads comes from that run's store."""
     monkeypatch.setenv("UPLIFTLAB_MOTIONS", str(tmp_path))
-    result = paper.run(fast=True, out=tmp_path / "p")
+    result = paper.run(fast=True, out=Path(run.study.directory).parent / "no-record")
     by_number = {c.number: c for c in conclusions_of(result.data)}
     assert by_number[3].evidence and by_number[1].evidence  # free vibration
     assert by_number[6].verdict == "not tested"

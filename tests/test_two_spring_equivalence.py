@@ -23,8 +23,10 @@ from upliftlab.comparisons.framework.store import Store
 
 @pytest.fixture(scope="module")
 def study(tmp_path_factory):
+    """The fast study without its figures (most of its time: their drawing is tested where
+    they are used, by tests/test_report.py, whose fast report embeds every one of them)."""
     out = tmp_path_factory.mktemp("two_spring")
-    return tse.run(fast=True, out=out, progress=False)
+    return tse.run(fast=True, out=out, progress=False, options=tse.Options(figures=False))
 
 
 @pytest.fixture(scope="module")
@@ -181,12 +183,13 @@ def test_ewing_shares_come_from_the_data(study, maps):
 
 
 def test_outputs_and_rerun_from_the_store(study, statics, tmp_path):
-    """The study writes data, figures and the summary; running it again with another threshold
-    re-runs nothing (the store holds the same number of records) and the summary follows the
-    new threshold."""
+    """The study writes data and the summary (and no figure when asked for none); running it
+    again with another threshold re-runs nothing (the store holds the same number of records)
+    and the summary follows the new threshold."""
     names = {p.name for p in study.study.files}
     assert {"summary.md", "summary.json", "statics.csv", "statics.nc", "convergence.nc",
-            "map_aspect.nc", "backbones.png", "aspect_A.png"} <= names
+            "map_aspect.nc"} <= names
+    assert not any(name.endswith((".png", ".svg")) for name in names)
     store = Store(study.study.directory / "store")
     before = len(store)
     again = tse.run(fast=True, out=tmp_path, store=store, progress=False,

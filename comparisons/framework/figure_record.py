@@ -165,6 +165,9 @@ def save(path, fig, caption: Caption, *, png_dpi: int = 110) -> list[Path]:
             with atomic_path(svg) as tmp:
                 fig.savefig(tmp, format="svg", metadata={"Date": None,
                                                          "Description": caption.title})
+            # the layout the SVG's draw found is kept for the PNG (a figure's constrained
+            # layout is most of its drawing time: its text extents, measured again)
+            fig.set_layout_engine("none")
             with atomic_path(png) as tmp:
                 fig.savefig(tmp, format="png", dpi=png_dpi)
     finally:

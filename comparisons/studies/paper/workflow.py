@@ -37,7 +37,8 @@ def compute(scene: None, ctx: Context):
     as the study's dataset (:func:`.dataset.conclusions_dataset`). The two-spring
     conclusion reads the two-spring equivalence study's written folder
     (:func:`upliftlab.open_study`): the one of ``ctx.results["two_spring_equivalence"]`` when
-    the report ran it, else that study is run (from its store) beside ``ctx.out`` by its
+    the report ran it, else that study is run (from its store, without its figures) beside
+    ``ctx.out`` by its
     registered name (:func:`..registry.definition`), since a study imports no other study's
     code, only reads its written result."""
     if scene is not None:
@@ -54,8 +55,12 @@ def compute(scene: None, ctx: Context):
         from ..registry import definition
         say("two-spring equivalence maps")
         name = "two_spring_equivalence"
-        equivalence = run_study(definition(name), None, Context(
-            fast=fast, out=out.parent / (name + ("-fast" if fast else ""))))
+        study = definition(name)
+        # its data is what the conclusion reads: its figures (most of its time) are left to
+        # its own run
+        equivalence = run_study(study, None, Context(
+            fast=fast, out=out.parent / (name + ("-fast" if fast else "")),
+            options=study.options(figures=False)))
     equivalence = open_study(equivalence.study.directory)
     conclusions = (
         conclusion_peak_u(responses, record), conclusion_long_period_peak(responses, record),

@@ -66,8 +66,8 @@ def assemble(grid, options, calibrations, motions, statics, points, runs, impeda
                 if name not in warmed:  # the first run compiles the kernels: not timed
                     run_bed(point, foundation)
                     warmed.add(name)
-                if np.isnan(a.bed_K_r[idx[:2] + (c,)]):
-                    a.bed_K_r[idx[:2] + (c,)], a.bed_K_v[idx[:2] + (c,)] = _bed_stiffness(
+                if np.isnan(a.bed_K_r[idx[:4] + (c,)]):
+                    a.bed_K_r[idx[:4] + (c,)], a.bed_K_v[idx[:4] + (c,)] = _bed_stiffness(
                         point, foundation)
                 bed = run_bed(point, foundation)
                 a.bed_wall[at + (c,)] = bed["wall_time_s"]

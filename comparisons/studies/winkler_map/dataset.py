@@ -29,6 +29,9 @@ from .cost import Estimate
 from .energy import ENERGIES
 from .grid import FLOOR_FRACTION, MEASURE_LABELS, MEASURE_UNITS, MEASURES
 from .parts import POINT_DIMS
+
+#: The dimensions of a structure on a soil (a bed is built once for each).
+STRUCTURE_DIMS = POINT_DIMS[:4]
 from .points import SIDES
 
 __all__ = ["POINT_DIMS", "PointArrays", "map_dataset"]
@@ -41,7 +44,8 @@ class PointArrays:
     ``errors`` (…, calibration, measure), ``scale`` (soil, fs_v, h_over_B, period, measure)
     the floors' basis, ``continuum_wall``, ``steps``, ``balance``, ``dofs`` and ``bearing``
     (…), ``bed_wall`` and ``bed_bearing`` (…, calibration), ``N`` (soil, fs_v), ``bed_K_r``
-    and ``bed_K_v`` (soil, fs_v, calibration), ``continuum_energy`` (…, energy),
+    and ``bed_K_v`` (soil, fs_v, h_over_B, period, calibration: a bed calibrated at the
+    structure's rocking frequency differs by structure), ``continuum_energy`` (…, energy),
     ``bed_energy`` and ``energy_errors`` (…, calibration, energy), ``energy_scale`` (soil,
     fs_v, h_over_B, period), ``energy_left`` (…), ``beyond`` (…) the continuum's run
     passed the small-strain limit (:mod:`upliftlab.continuum.dynamics.validity`) and
@@ -81,7 +85,7 @@ class PointArrays:
         return cls(nan(*shape, nq), nan(*shape, beds, nq), nan(*shape, beds, nq),
                    nan(*shape[:4], nq), nan(*shape), nan(*shape), nan(*shape), nan(*shape),
                    nan(*shape, beds), np.zeros(shape, bool), np.zeros(shape + (beds,), bool),
-                   nan(*shape[:2]), nan(*shape[:2], beds), nan(*shape[:2], beds),
+                   nan(*shape[:2]), nan(*shape[:4], beds), nan(*shape[:4], beds),
                    nan(*shape, ne), nan(*shape, beds, ne), nan(*shape, beds, ne),
                    nan(*shape[:4]), nan(*shape), np.zeros(shape, bool),
                    np.full(shape, -1, dtype="i1"))
@@ -138,10 +142,10 @@ def _variables(a: PointArrays) -> dict:
                                        "of its input)"}),
         "vertical_load": (("soil", "fs_v"), a.N, {
             "units": "kN/m", "long_name": "vertical load N = V_ult/FS_v"}),
-        "bed_rocking_stiffness": (("soil", "fs_v", "calibration"), a.bed_K_r, {
+        "bed_rocking_stiffness": (STRUCTURE_DIMS + ("calibration",), a.bed_K_r, {
             "units": "kN m/rad/m", "long_name": "rocking stiffness of the built bed, "
                                                 "sum k_i x_i^2"}),
-        "bed_vertical_stiffness": (("soil", "fs_v", "calibration"), a.bed_K_v, {
+        "bed_vertical_stiffness": (STRUCTURE_DIMS + ("calibration",), a.bed_K_v, {
             "units": "kN/m/m", "long_name": "vertical stiffness of the built bed, sum k_i"}),
         "continuum_bearing_failure": (d, a.bearing.astype("i1"), {
             "units": "1", "long_name": "1: the continuum's run ended in a bearing failure of "
