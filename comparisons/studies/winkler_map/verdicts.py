@@ -1,8 +1,8 @@
 """The continuum reference a map was made on and the verdicts on its runs, counted apart: the
-points left out as beyond the small-strain reference (:mod:`upliftlab.continuum.dynamics.
-validity`) and the runs whose far field (the box's side columns, :mod:`upliftlab.continuum.
-dynamics.far_field`) yielded under the motion. Read from the map dataset alone (maps written
-before a variable existed count it as not recorded)."""
+points left out as beyond the small-strain reference
+(:mod:`upliftlab.continuum.dynamics.validity`) and the runs whose far field (the box's side
+columns, :mod:`upliftlab.continuum.dynamics.far_field`) yielded under the motion. Read from
+the map dataset alone (maps written before a variable existed count it as not recorded)."""
 
 from __future__ import annotations
 
