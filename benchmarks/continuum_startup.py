@@ -59,6 +59,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_output import (HERE, Section, add_output_arguments, committed_tables,  # noqa: E402
                           incomplete_note, number, output_folder, run_sections, say,
                           write_text)
+from upliftlab.continuum.output.series import PICTURES_SPENT  # noqa: E402
 
 NAME = "continuum_startup"
 SCENE = "strip_footing_clay"
@@ -71,7 +72,7 @@ TARGET_FIRST, TARGET_SPEEDUP, TARGET_PICTURES = 2.0, 8.0, 0.10
 FIRST_ROW = re.compile(r" t = \d+\.\d+ of ")
 SOLVED = "solved in "
 #: The run's own report of its pictures' CPU time (continuum/output/series.py).
-PICTURES = re.compile(r"the pictures took ([0-9.]+) s CPU")
+PICTURES = re.compile(re.escape(PICTURES_SPENT) + r"([0-9.]+) s CPU")
 
 
 def _cpu_of(pid: int) -> float:

@@ -212,9 +212,3 @@ class Page:
             f"{view.title}: {frame.label}\nθ = {theta:.3g} rad,  M = {frame.M:.4g}"
             f"{_unit(view.moment_unit)},  N = {frame.N:.4g}{_unit(view.force_unit)},  "
             f"contact {frame.contact_length / view.footing_width:.0%} of B")
-
-    def pixels(self) -> np.ndarray:
-        """The RGB page (h, w, 3) as :meth:`show` left it (a copy)."""
-        canvas = self.figure.canvas
-        canvas.draw()
-        return np.asarray(canvas.buffer_rgba())[..., :3].copy()

@@ -51,8 +51,8 @@ from ...continuum.impedance.gazetas import handbook_strip
 from ...reduced import build_model
 from ...scenes import Scene
 
-__all__ = ["RadiationDashpots", "distribute", "impedance_dashpots", "gazetas_dashpots",
-           "rocking_frequency", "radiation_dashpots", "with_radiation"]
+__all__ = ["RadiationDashpots", "distribute", "impedance_at", "impedance_dashpots",
+           "gazetas_dashpots", "rocking_frequency", "radiation_dashpots", "with_radiation"]
 
 
 @dataclass(frozen=True)
@@ -143,19 +143,26 @@ def _pair(x: np.ndarray, C_v: float, C_r: float, ratio: float):
     return c, math.nan, math.nan, "pair"
 
 
+def impedance_at(impedance, omega: float, columns, what: str) -> tuple[float, ...]:
+    """Each of ``columns`` (arrays over the :class:`~upliftlab.continuum.impedance.analysis.
+    Impedance`'s frequencies) at ``omega`` (rad/s), linear in ω between them. A frequency
+    outside its grid is refused, naming ``what`` was asked for (no extrapolation)."""
+    grid = np.asarray(impedance.omega, dtype=float)
+    if not (math.isfinite(omega) and grid[0] <= omega <= grid[-1]):
+        a0 = omega * float(impedance.a0[0]) / float(grid[0])
+        raise InputError(f"{what}: ω = {omega:.6g} rad/s (a0 = {a0:.4g}) is outside the "
+                         f"impedance's frequencies [{grid[0]:.6g}, {grid[-1]:.6g}] rad/s (a0 "
+                         f"{impedance.a0[0]:g} to {impedance.a0[-1]:g}); compute it over a "
+                         "wider a0")
+    return tuple(float(np.interp(omega, grid, column)) for column in columns)
+
+
 def impedance_dashpots(impedance, omega: float) -> tuple[float, float, float]:
     """(C_v, C_h, C_r) of an :class:`~upliftlab.continuum.impedance.analysis.Impedance` at ``omega``
-    (rad/s): C_j = Im K_j/ω at each of its frequencies, linear in ω between them. A frequency
-    outside its grid is refused (no extrapolation)."""
-    grid = np.asarray(impedance.omega, dtype=float)
-    if not grid[0] <= omega <= grid[-1]:
-        b = 0.5 * impedance.width
-        vs = grid[0] * b / impedance.a0[0]
-        raise InputError(f"radiation dashpots: ω = {omega:.6g} rad/s (a0 = {omega * b / vs:.4g})"
-                         f" is outside the impedance's frequencies [{grid[0]:.6g}, "
-                         f"{grid[-1]:.6g}] rad/s (a0 {impedance.a0[0]:g} to "
-                         f"{impedance.a0[-1]:g}); compute it over a wider a0")
-    return tuple(float(np.interp(omega, grid, impedance.dashpot(mode))) for mode in "vhr")
+    (rad/s): C_j = Im K_j/ω at each of its frequencies, linear in ω between them
+    (:func:`impedance_at`)."""
+    return impedance_at(impedance, omega, [impedance.dashpot(mode) for mode in "vhr"],
+                        "radiation dashpots")
 
 
 def gazetas_dashpots(*, shear_modulus: float, poisson: float, density: float,

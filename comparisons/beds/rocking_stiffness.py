@@ -38,7 +38,7 @@ import numpy as np
 
 from ... import checks
 from ...checks import InputError
-from .radiation import impedance_dashpots
+from .radiation import impedance_at, impedance_dashpots
 
 __all__ = ["BED_STIFFNESS", "RockingStiffness", "impedance_stiffness", "flexible_base_omega",
            "rocking_stiffness", "stiffness_reference"]
@@ -72,21 +72,17 @@ def _grid(impedance) -> np.ndarray:
 
 
 def _a0(impedance, omega: float) -> float:
+    """a0 = ω b/V_s at ``omega``: proportional to ω, read off the impedance's first frequency."""
     return omega * float(impedance.a0[0]) / float(_grid(impedance)[0])
 
 
 def impedance_stiffness(impedance, omega: float) -> tuple[float, float, float]:
     """(Re K_v, Re K_h, Re K_r) of an :class:`~upliftlab.continuum.impedance.analysis.Impedance`
     at ``omega`` (rad/s), linear in ω between its frequencies; an :class:`InputError` outside
-    them."""
-    grid = _grid(impedance)
-    if not (math.isfinite(omega) and grid[0] <= omega <= grid[-1]):
-        raise InputError(f"half-plane stiffness: ω = {omega:.6g} rad/s (a0 = "
-                         f"{_a0(impedance, omega):.4g}) is outside the impedance's frequencies "
-                         f"[{grid[0]:.6g}, {grid[-1]:.6g}] rad/s (a0 {impedance.a0[0]:g} to "
-                         f"{impedance.a0[-1]:g}); compute it over a wider a0")
-    return tuple(float(np.interp(omega, grid, K.real))
-                 for K in (impedance.K_v, impedance.K_h, impedance.K_r))
+    them (:func:`.radiation.impedance_at`)."""
+    return impedance_at(impedance, omega,
+                        [K.real for K in (impedance.K_v, impedance.K_h, impedance.K_r)],
+                        "half-plane stiffness")
 
 
 def flexible_base_omega(*, mass: float, stiffness: float, height: float, K_r: float,
