@@ -320,20 +320,27 @@ def test_a_second_run_into_a_folder_a_live_run_holds_is_refused_in_one_line(tmp_
     interrupted, leaves its folder unlocked, and the next run completes there."""
     held = tmp_path / "held"
     tag = uuid.uuid4().hex
-    long = [*DYNAMIC, "--set", "analysis.duration=3"]  # minutes: it outlasts the checks
+    long = [*DYNAMIC, "--set", "analysis.duration=60"]  # about 10 s of solving
     first = subprocess.Popen([sys.executable, "-m", "upliftlab", *long, "--out", str(held)],
                              cwd=tmp_path, env=_env(tag), stdout=subprocess.DEVNULL,
                              stderr=subprocess.PIPE, text=True)
     for line in first.stderr:
         if "DOFs, soil" in line:
             break
-    for argv in (DYNAMIC, RUN):
-        refused = _cli([*argv, "--out", str(held)], tmp_path)
-        line = _final_line(refused.stderr, "upliftlab: error:")
-        assert refused.returncode == 2 and "another upliftlab run is writing to it" in line
-    beside = _cli([*RUN, "--out", "beside"], tmp_path)
-    assert beside.returncode == 0, beside.stderr[-2000:]
-    first.send_signal(signal.SIGTERM)
+    # Stopped, the first run stays alive and holds its lock however long the checks take:
+    # a faster machine cannot finish it before them (it did on CI, with 3 s of motion).
+    first.send_signal(signal.SIGSTOP)
+    try:
+        assert (held / ".upliftlab.lock").read_text().strip() == str(first.pid)
+        for argv in (DYNAMIC, RUN):
+            refused = _cli([*argv, "--out", str(held)], tmp_path)
+            line = _final_line(refused.stderr, "upliftlab: error:")
+            assert refused.returncode == 2 and "another upliftlab run is writing to it" in line
+        beside = _cli([*RUN, "--out", "beside"], tmp_path)
+        assert beside.returncode == 0, beside.stderr[-2000:]
+    finally:
+        first.send_signal(signal.SIGTERM)
+        first.send_signal(signal.SIGCONT)
     rest = first.communicate(timeout=300)[1]
     assert first.returncode in (0, 130), rest[-2000:]
     assert _gone(tag) == [] and _leftovers(held) == []

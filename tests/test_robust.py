@@ -342,6 +342,23 @@ def test_the_default_folder_carries_the_case_and_a_digest_of_the_overrides(tmp_p
     assert len(folders) == 2 and all(f.startswith("wall_free-e07-") for f in folders)
 
 
+def test_a_live_writer_is_named_before_the_folders_old_run_is_judged(tmp_path, capsys):
+    """A folder holding a finished run of other settings *and* a live writer's lock: the live
+    writer is the reason given (it is what the user must wait for), and its lock stays."""
+    out = tmp_path / "o"
+    args = ["run", "wall_free", "--no-figure", "--out", str(out), "--set"]
+    assert cli([*args, "analysis.duration=0.1"]) == 0
+    capsys.readouterr()
+    (out / LOCK).write_text(str(os.getpid()))
+    assert cli([*args, "analysis.duration=0.2"]) == 2
+    error = _error(capsys)
+    assert "another upliftlab run is writing to it" in error and "different run" not in error
+    assert (out / LOCK).read_text() == str(os.getpid())
+    (out / LOCK).unlink()
+    assert cli([*args, "analysis.duration=0.2"]) == 2
+    assert "holds a different run" in _error(capsys) and not (out / LOCK).exists()
+
+
 def test_stale_temporary_files_are_cleaned_and_live_locks_refused(tmp_path, capsys):
     out = tmp_path / "o"
     out.mkdir()

@@ -5,10 +5,10 @@ A command that writes results first calls :func:`claim`, before any computation:
 * the path is refused if it is empty, is a file, lies under a file, or cannot be written
   (a probe file is created and removed; folders created for the probe are removed again if
   the command then fails, so a refused command leaves nothing behind);
+* a folder another live process is writing to (its lock file names a running process) is
+  refused, whatever it holds;
 * a folder holding another run's results — its completion marker records different settings —
   is refused unless ``force`` (two runs into one folder must not silently mix);
-* a folder another live process is writing to (its lock file names a running process) is
-  refused;
 * the folder is locked (:data:`LOCK`, holding this process's id) until the command ends, and
   is the one place the command writes to until then (:func:`upliftlab.paths.check_target`).
   Nothing in it is removed but upliftlab's own files: the temporary files of a killed writer
@@ -199,6 +199,11 @@ def _claim(path: Path, settings: dict, force: bool, option: str) -> Claim:
                          f"({exc.strerror or exc})") from None
     if (path / LOCK).exists():
         _take_stale_lock(path / LOCK)
+    try:  # a live writer is named before the folder's old contents are judged
+        result._lock(option)
+    except (InputError, OSError):
+        result.abandon()
+        raise
     marker = read_marker(path)
     if marker is not None and not force:
         if marker.get("settings_digest") != settings_digest(settings):
@@ -208,9 +213,4 @@ def _claim(path: Path, settings: dict, force: bool, option: str) -> Claim:
                              if before.get(k) != settings.get(k)) or "other settings"
             raise InputError(f"{option} = {str(path)!r}: holds a different run ({what}); "
                              "choose another folder, or add --force to replace it")
-    try:
-        result._lock(option)
-    except (InputError, OSError):
-        result.abandon()
-        raise
     return result
