@@ -8,6 +8,9 @@ References:
 - the handbook strip's sway (Gazetas 1991, Table 1, strip): K_h = 2G/(2 − ν) and C_h = ρ V_s B,
   evaluated here by hand for the map's soils (E = 50 MPa, ν = 0.3, ρ = 1.8 t/m³, B = 2 m):
   G = 19,230.769 kPa, K_h = 22,624.434 kN/m/m, V_s = 103.362 m/s, C_h = 372.104 kN s/m/m;
+- the soil's Rayleigh β on the half-plane by hand: ξ = 1 % at f₁ = V_s/(4H), f₂ = 5 f₁ with
+  H = 10 B = 20 m: f₁ = 1.292 Hz, β = 2ξ/(2π · 6 f₁) = 4.1061e-4 s (Rayleigh's pair,
+  e.g. Chopra, Dynamics of Structures, §11.4);
 - the counts of the verdicts by hand from four stand-in records whose outcomes are known.
 """
 
@@ -117,6 +120,19 @@ def test_a_bed_sways_on_the_half_planes_tie_and_not_in_the_box(reference):
         assert (f.sway_stiffness, f.sway_damping) == pytest.approx((K_H, C_H), rel=1e-12)
     else:
         assert (f.sway_stiffness, f.sway_damping) == (None, None)
+    # the soil's small-strain damping: in the continuum's scene and, as β k_i, in the bed's
+    from upliftlab.reduced.compatibility import layout_for
+
+    stiffnesses = np.asarray(layout_for(f).stiffnesses)
+    if reference == "half_plane":
+        assert scene_of(table).continuum.damping_ratio == 0.01
+        f1 = math.sqrt(G / 1.8) / (4.0 * 20.0)
+        beta = 2.0 * 0.01 / (2.0 * math.pi * 6.0 * f1)
+        assert beta == pytest.approx(4.1061e-4, rel=1e-4)
+        assert np.asarray(f.dashpots) == pytest.approx(beta * stiffnesses, rel=1e-9)
+    else:
+        assert scene_of(table).continuum.damping_ratio is None
+        assert not np.any(np.asarray(f.dashpots or [0.0]))
     assert scene.motion.amplitude == pytest.approx(1.5 * 2.0 / (6.0 * 3.0), rel=1e-12)
 
 
@@ -207,3 +223,42 @@ def test_the_summary_counts_the_verdicts_apart():
     assert counts["reference"] == "box" and counts["far_field_not_recorded"] == 4
     assert counts["far_field_yielded"] == 0 and counts["beyond_small_strain"] == 1
 
+
+
+def test_the_cost_estimate_counts_the_soils_damping_in_its_steps():
+    """The map's cost estimate with the soil's Rayleigh damping (the half-plane reference's),
+    written out by hand: the Courant steps ⌈duration V_p/(0.3 h_min)⌉ of the 4-across clay
+    (V_p = 193.37 m/s, h_min = 0.5 m, 1406 DOFs: tests/test_explicit_mohr_coulomb.py) divided by
+    the central-difference factor √(1 + ξ²) − ξ, ξ = β ω/2 + α/(2ω) at ω = 2/dt (Belytschko, Liu
+    & Moran 2000, §6.3), with Rayleigh's α = 2ξ₀ω₁ω₂/(ω₁ + ω₂), β = 2ξ₀/(ω₁ + ω₂) at
+    f₁ = V_s/(4H), f₂ = 5 f₁; and a stored damped run's steps counted as its undamped ones."""
+    from upliftlab.comparisons.studies.winkler_map import cost
+    from upliftlab.scenes import load_scene
+
+    over = ["continuum.elements_across=4"]
+    plain = load_scene("strip_footing_clay", overrides=over)
+    damped = load_scene("strip_footing_clay", overrides=over + ["continuum.damping_ratio=0.01"])
+    vp, vs = math.sqrt(50e3 * 0.7 / (1.3 * 0.4) / 1.8), math.sqrt(G / 1.8)
+    H = damped.continuum.domain_depth * damped.foundation.width
+    w1 = 2.0 * math.pi * vs / (4.0 * H)
+    alpha, beta = 2.0 * 0.01 * w1 * 5.0 * w1 / (6.0 * w1), 2.0 * 0.01 / (6.0 * w1)
+    per_second = vp / (0.3 * 0.5)
+    omega = 2.0 * per_second
+    xi = beta * omega / 2.0 + alpha / (2.0 * omega)
+    factor = math.sqrt(1.0 + xi * xi) - xi
+    assert 0.3 < factor < 0.9  # the damping's real cost: the mesh's top mode is damped hard
+    for scene, steps in ((plain, math.ceil(2.0 * per_second)),
+                         (damped, math.ceil(2.0 * per_second / factor))):
+        estimate = cost.estimate_cost([], [("clay", scene, 2.0, False)], [], [])
+        assert estimate.per_run == pytest.approx(4.0e-4 * 1406 + 1.0e-7 * 1406 * steps,
+                                                 rel=1e-12)
+    # a stored run of 2000 steps in 1 s at half its undamped step: 1000 undamped steps a second
+    stored = {"dofs": 1406, "steps": 2000, "duration": 1.0, "compiled": True,
+              "soil_model": "tresca", "dt_reduction": 0.5,
+              "wall_time_s": 4.0e-4 * 1406 + 1.0e-7 * 1406 * 2000}
+    xi = beta * 1000.0 + alpha / 4000.0
+    factor = math.sqrt(1.0 + xi * xi) - xi
+    for scene, steps in ((plain, 1000), (damped, math.ceil(1000.0 / factor))):
+        estimate = cost.estimate_cost([], [("clay", scene, 1.0, False)], [], [stored])
+        assert estimate.per_run == pytest.approx(4.0e-4 * 1406 + 1.0e-7 * 1406 * steps,
+                                                 rel=1e-9)

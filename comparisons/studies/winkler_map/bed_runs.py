@@ -15,9 +15,10 @@ import numpy as np
 from ....scenes import scene_from_dict
 from ...framework.measures import edge_uplift_history, reduced_edge_gap_history
 from .grid import MEASURES
-from .points import measured, motion_table
+from .points import measured, motion_table, point_scene
 
-__all__ = ["run_bed", "bed_scene", "bed_sway", "reduced_measures", "reduced_energy_terms"]
+__all__ = ["run_bed", "bed_scene", "bed_sway", "bed_soil_damping", "reduced_measures",
+           "reduced_energy_terms"]
 
 
 def bed_sway(continuum: Mapping) -> dict:
@@ -34,6 +35,20 @@ def bed_sway(continuum: Mapping) -> dict:
     damping = continuum.get("horizontal_tie_damping")
     return {"sway_stiffness": float(tie),
             **({"sway_damping": float(damping)} if damping else {})}
+
+
+def bed_soil_damping(point: Mapping, foundation: Mapping) -> dict:
+    """The bed's ``[foundation]`` table ``foundation`` with the soil damping of ``point``:
+    where the continuum's soil has Rayleigh damping (``continuum.damping_ratio``, the
+    half-plane reference's), a dashpot β k_i beside each spring, β (s) the continuum's own
+    (:func:`~upliftlab.continuum.dynamics.rayleigh.scene_rayleigh` of the point's scene,
+    :mod:`comparisons.beds.soil_damping`); ``foundation`` unchanged otherwise."""
+    if point["scene"].get("continuum", {}).get("damping_ratio") is None:
+        return dict(foundation)
+    from ....continuum.dynamics.rayleigh import scene_rayleigh
+    from ...beds.soil_damping import with_soil_damping
+
+    return with_soil_damping(dict(foundation), scene_rayleigh(point_scene(point)).beta)
 
 
 def run_bed(point: Mapping, foundation: Mapping) -> dict:
@@ -62,9 +77,11 @@ def run_bed(point: Mapping, foundation: Mapping) -> dict:
 def bed_scene(point: Mapping, foundation: Mapping):
     """The reduced model's scene of a bed (its ``[foundation]`` table ``foundation``) on a
     point: the point's structure and motion, the bed's foundation with the sway of
-    :func:`bed_sway`, no soil or continuum tables."""
+    :func:`bed_sway` and the soil damping of :func:`bed_soil_damping`, no soil or continuum
+    tables."""
     data = copy.deepcopy(point["scene"])
-    data["foundation"] = {**dict(foundation), **bed_sway(data.get("continuum", {}))}
+    data["foundation"] = {**bed_soil_damping(point, foundation),
+                          **bed_sway(data.get("continuum", {}))}
     B = 2.0 * data["foundation"]["half_width"]
     data["motion"] = motion_table(point["motion"], point["intensity"], B,
                                   data["structure"]["height"])

@@ -6,8 +6,12 @@ eigenvalue, the gravity state) and a part per step, both about proportional to t
 counted: numba does not cache it, and each worker pays it once). ``steps`` = duration/dt, with
 dt the stable step of the mesh: from the runs of the same soil and mesh already stored, else
 from :data:`~upliftlab.continuum.dynamics.explicit.COURANT_ESTIMATE` (V_p dt/h_min, below the
-measured
-value, so that the estimate errs on the cost's side). F depends on the soil: the gravity state
+measured value, so that the estimate errs on the cost's side). The soil's Rayleigh damping
+(``continuum.damping_ratio``) shortens the step by its factor √(1 + ξ²) − ξ at the mesh's highest
+frequency (:func:`~upliftlab.continuum.dynamics.rayleigh.damped_critical`), taken here at
+ω_max = 2/dt of the undamped estimate (which errs high, so the factor errs low, on the cost's
+side); a stored run's steps are counted as its undamped ones (× its ``dt_reduction``) before
+they stand for another run's. F depends on the soil: the gravity state
 (Newton with the vectorised return map on either route) of a frictional soil (Mohr–Coulomb,
 Drucker–Prager) is slower than an undrained one's. R is the stored runs' median of
 (wall − F·dofs)/(dofs·steps) for the same kind of return map in the time loop (compiled:
@@ -40,7 +44,7 @@ from ....checks import InputError
 from ....scenes.soil import FRICTIONAL, SOIL_MODELS
 
 __all__ = ["Estimate", "estimate_cost", "mesh_size", "impedance_dofs", "refuse_over_budget",
-           "timed_dynamic_runs",
+           "timed_dynamic_runs", "damping_reduction",
            "FIXED_SECONDS_PER_DOF", "SECONDS_PER_DOF_STEP", "STATIC_SECONDS_PER_DOF",
            "compiled_soil_model", "IMPEDANCE_SECONDS_PER_DOF_FREQUENCY"]
 
@@ -142,9 +146,21 @@ def impedance_dofs(point: Mapping) -> int:
     return mesh_size(impedance_box_scene(point))[0]
 
 
+def damping_reduction(scene, omega_max: float) -> float:
+    """The factor by which the soil's Rayleigh damping of ``scene`` shortens the explicit
+    stable step of a mesh whose highest circular frequency is ``omega_max`` (rad/s): 1
+    without damping (module docstring)."""
+    from ....continuum.dynamics.rayleigh import damped_critical, scene_rayleigh
+
+    damping = scene_rayleigh(scene)
+    if damping is None:
+        return 1.0
+    return damped_critical(omega_max, damping) * omega_max / 2.0
+
+
 def _stored_rates(stored: Iterable[Mapping]) -> dict:
-    """Median per-step rates by compiled flag, and steps per second of simulated time by
-    dofs, from stored dynamic records. A record's soil is frictional by its ``soil_model``;
+    """Median per-step rates by compiled flag, and undamped steps per second of simulated
+    time by dofs (module docstring), from stored dynamic records. A record's soil is frictional by its ``soil_model``;
     a record stored before it had one was frictional exactly when its return map was not
     compiled (then only Mohr–Coulomb and Drucker–Prager were not)."""
     rates, density = {}, {}
@@ -156,7 +172,8 @@ def _stored_rates(stored: Iterable[Mapping]) -> dict:
         rest = max(0.0, rec["wall_time_s"] - FIXED_SECONDS_PER_DOF[frictional] * dofs)
         rates.setdefault(compiled, []).append(rest / (dofs * steps))
         if rec["duration"] > 0:
-            density.setdefault(dofs, []).append(steps / rec["duration"])
+            undamped = steps * rec.get("dt_reduction", 1.0)
+            density.setdefault(dofs, []).append(undamped / rec["duration"])
     return ({k: float(np.median(v)) for k, v in rates.items()},
             {k: float(np.median(v)) for k, v in density.items()})
 
@@ -224,7 +241,8 @@ def estimate_cost(static: Sequence[tuple[str, object, bool]],
         dofs, h_min = mesh_size(scene)
         compiled = compiled_soil_model(scene.soil.model)
         frictional = scene.soil.frictional
-        per_second = density.get(dofs) or wave_speeds(scene.soil)[0] / (COURANT_ESTIMATE * h_min)
+        undamped = density.get(dofs) or wave_speeds(scene.soil)[0] / (COURANT_ESTIMATE * h_min)
+        per_second = undamped / damping_reduction(scene, 2.0 * undamped)
         rate = rates.get(compiled, SECONDS_PER_DOF_STEP[compiled])
         cost = (FIXED_SECONDS_PER_DOF[frictional] * dofs
                 + rate * dofs * math.ceil(duration * per_second))

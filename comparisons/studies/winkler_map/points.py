@@ -151,7 +151,8 @@ def continuum_measures(scene, result):
                 sources=point_sources(__name__, __package__))
 def evaluate_dynamic(point: Mapping) -> dict:
     """One continuum dynamic run of a point (explicit route, no soil snapshots): the measures
-    of :func:`measured` from every recorded step, the run's steps, DOFs, step (s),
+    of :func:`measured` from every recorded step, the run's steps, DOFs, step (s) and the
+    factor ``dt_reduction`` by which the soil's Rayleigh damping shortened it (1 without),
     whether its return map was compiled and its soil model (for the cost estimate,
     :mod:`.cost`), its energy balance error, its largest plastic strain ε̄p at a quadrature
     point (``max_plastic_strain``) with the run's ``validity`` against the small-strain limit
@@ -189,6 +190,7 @@ def evaluate_dynamic(point: Mapping) -> dict:
     return {"measures": measures,
             "steps": int(result.metadata.get("steps", t.size - 1)), "dofs": int(model.dofs),
             "dt": float(result.metadata.get("dt", math.nan)),
+            "dt_reduction": float(result.metadata.get("dt_reduction", 1.0)),
             "duration": float(t[-1]), "compiled": bool(result.metadata.get("compiled", True)),
             "soil_model": scene.soil.model,
             "energy_balance_error": float(result.metadata.get("energy_balance_error", math.nan)),

@@ -13,6 +13,11 @@ spring and dashpot of the handbook strip, Gazetas 1991, that a bed would carry).
 undrained strength grows with depth, :data:`CLAY_STRENGTH_GRADIENT` = 1.7 kPa/m from its 50 kPa
 at the surface (a normally consolidated clay, c_u/σ'v ≈ 0.22 on its buoyant unit weight, Mesri
 1975); the frictional soil is unchanged (its strength grows with its own confinement). The
+soil has material damping at small strain: Rayleigh damping
+``continuum.damping_ratio`` = :data:`SMALL_STRAIN_DAMPING` at the default pair f₁ = V_s/(4H),
+f₂ = 5 f₁ (:mod:`upliftlab.continuum.dynamics.rayleigh`), and every bed carries the same soil's
+β as a dashpot β k_i beside each spring (:func:`.bed_runs.bed_soil_damping`,
+:mod:`comparisons.beds.soil_damping`). The
 statics a bed is calibrated from (K_v, K_r, V_ult and the rotation pushovers) are of the
 reference's soil in the box on its rigid base: the plane-strain half-plane has no static
 vertical stiffness, so the box's statics stay the calibration's basis; the impedance is of the
@@ -26,7 +31,8 @@ from collections.abc import Mapping
 
 from .soils import SOILS
 
-__all__ = ["REFERENCES", "CLAY_STRENGTH_GRADIENT", "FOOTING_WEIGHT_FRACTION", "reference_soil",
+__all__ = ["REFERENCES", "CLAY_STRENGTH_GRADIENT", "FOOTING_WEIGHT_FRACTION",
+           "SMALL_STRAIN_DAMPING", "reference_soil",
            "reference_continuum", "reference_weights", "handbook_sway"]
 
 #: The continuum references (module docstring), the default first.
@@ -40,6 +46,11 @@ CLAY_STRENGTH_GRADIENT = 1.7
 #: that keeps the base's sway mode (√(K_h/m_b) ≈ 60 Hz at FS_v = 3 on the map's soils) apart
 #: from the story's; N on the footing, and so FS_v, is unchanged.
 FOOTING_WEIGHT_FRACTION = 0.01
+#: The soil's damping ratio at small strain on the half-plane reference: Darendeli's (2001)
+#: D_min at the map's depths (mean effective stress about 0.5 atm, 1 Hz) is 0.7 % for a clean
+#: sand (PI 0) and 1.1 % for a clay of PI 30, normally consolidated; one value, 1 %, stands for
+#: both. Stated with every run (``continuum.damping_ratio`` in its scene and its metadata).
+SMALL_STRAIN_DAMPING = 0.01
 #: What the half-plane reference adds to each soil's ``[soil]`` table.
 _HALF_PLANE_SOIL = {"clay": {"undrained_strength_gradient": CLAY_STRENGTH_GRADIENT},
                     "sand": {}}
@@ -84,4 +95,5 @@ def reference_continuum(soil_table: Mapping, width: float, reference: str = "box
         return {}
     E, nu = float(soil_table["youngs_modulus"]), float(soil_table["poisson_ratio"])
     K_h, C_h = handbook_sway(E / (2.0 * (1.0 + nu)), nu, float(soil_table["density"]), width)
-    return {"base": "compliant", "horizontal_tie": K_h, "horizontal_tie_damping": C_h}
+    return {"base": "compliant", "horizontal_tie": K_h, "horizontal_tie_damping": C_h,
+            "damping_ratio": SMALL_STRAIN_DAMPING}

@@ -138,7 +138,8 @@ def _arguments(parser) -> None:
     parser.add_argument("--reference", default=None, metavar="NAME",
                         help="the continuum reference: box (default; the closed box on a rigid "
                              "base, the kept store's) or half_plane (a compliant base, the "
-                             "footing's horizontal tie, the clay's strength growing with depth; "
+                             "footing's horizontal tie, the clay's strength growing with depth, "
+                             "1 %% small-strain damping of the soil and in the beds; "
                              f"kept in {KEPT_STORES['half_plane']})")
     parser.add_argument("--beds", default=None, metavar="NAME,NAME",
                         help="compare only these calibrations (names of the bed registry, "
