@@ -262,3 +262,24 @@ def test_the_cost_estimate_counts_the_soils_damping_in_its_steps():
         estimate = cost.estimate_cost([], [("clay", scene, 1.0, False)], [], [stored])
         assert estimate.per_run == pytest.approx(4.0e-4 * 1406 + 1.0e-7 * 1406 * steps,
                                                  rel=1e-9)
+
+
+@pytest.mark.parametrize("reference", ["box", "half_plane"])
+def test_the_beds_are_calibrated_to_the_whole_weight_on_the_footing(reference):
+    """A bed's N is the whole weight on the footing (the point's N = 150 kN/m, by
+    construction of the point), not the story's share of it (148.5 kN/m on the half-plane,
+    where the footing carries 1 %): the elasto-plastic beds yield at V_ult/N times their
+    static force, so a 1 % low N made them 1 % too strong. On the half-plane the reference
+    carries the tie's K_h (by hand above) for the beds' rocking frequency; in the box none."""
+    from upliftlab.comparisons.studies.winkler_map.plan import reference as bed_reference
+    from upliftlab.comparisons.studies.winkler_map.statics import SoilStatics
+
+    table = point_table(base_table(), "clay", 16, 150.0, 1.5, 0.5, 9.80665, reference)
+    scene = scene_of(table)
+    st = SoilStatics("clay", 27513.1, 43146.1, 527.71, 0.0, (0.0,), (0.0,), 20160, 1.0)
+    ref = bed_reference(st, scene, table["structure"])
+    assert ref.N == 150.0 and ref.V_ult / ref.N == pytest.approx(527.71 / 150.0, rel=1e-12)
+    if reference == "half_plane":
+        assert ref.extra["sway_stiffness"] == pytest.approx(K_H, rel=1e-12)
+    else:
+        assert "sway_stiffness" not in ref.extra

@@ -22,11 +22,14 @@ inertia about the base (``structure.rotary_inertia``) and K_r = Σ k_i x_i² the
 stiffness (no P-Δ on the map): the fixed-base period lengthened by the rocking spring
 (Veletsos' 1/ω² = 1/ω_s² + m h²/K_r when I → 0), with the base's own rotary inertia.
 
-No sway spring and no horizontal dashpot: the map's soils have a frictionless interface, and
-with it the continuum's explicit route prescribes the footing's horizontal displacement to be
-the base's (``ExplicitSettings.prescribe_u``: the footing's u relative to the moving base is
-held at zero), so the continuum footing does not sway and there is nothing for a sway spring
-or C_h to match (the frictionless impedance's K_h and C_h are zero too).
+No sway spring of its own and no horizontal dashpot from the impedance: the map's soils have a
+frictionless interface, whose impedance's K_h and C_h are zero. In the closed box the
+continuum's explicit route prescribes the footing's horizontal displacement to be the base's
+(``ExplicitSettings.prescribe_u``), so the footing does not sway. On the half-plane reference
+it sways on a tie to the free field (``BedReference.extra["sway_stiffness"]``, the handbook
+strip's K_h), every bed sways on the same spring, and ω is then the mode's with the sway and
+the footing's own mass (``structure.vertical_weight`` − ``weight``) in it: u_story, u_base and
+θ, the flexible base of Veletsos and Meek with the base's inertia.
 
 Needs in ``BedReference.extra``: ``impedance`` (the soil's
 :class:`~upliftlab.continuum.impedance.analysis.Impedance`) and ``structure`` (the point's
@@ -84,10 +87,13 @@ def _extra(reference, name: str):
 
 def bed_rocking_frequency(reference, options) -> float:
     """The rocking frequency ω (rad/s) of the point's structure on the ``uniform_plastic`` bed
-    of ``reference``: its flexible-base fundamental bonded mode (module docstring)."""
+    of ``reference`` (swaying on ``extra["sway_stiffness"]`` when it is given): its
+    flexible-base fundamental bonded mode (module docstring)."""
     structure = _extra(reference, "structure")
     table = _base_bed(reference, options)
     foundation = {"support": "uplift", "half_width": 0.5 * reference.B, **table}
+    if reference.extra.get("sway_stiffness") is not None:
+        foundation["sway_stiffness"] = float(reference.extra["sway_stiffness"])
     data = {k: v for k, v in base_table().items() if k not in ("soil", "continuum")}
     data.update(structure=dict(structure), foundation=foundation, motion=dict(_FREE))
     return rocking_frequency(build_model(scene_from_dict(data, merged=True)))

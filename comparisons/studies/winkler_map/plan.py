@@ -152,7 +152,10 @@ def bed_needs(calibrations, options) -> set:
 def reference(st: SoilStatics, scene, structure: Mapping, impedance=None,
               rocking=None, bed_stiffness: str = "static") -> BedReference:
     """The continuum numbers a bed is calibrated from, at a point's scene: its numbers, the
-    soil's statics, and in ``extra`` the soil's density, the point's ``[structure]`` table,
+    soil's statics (N the whole weight on the footing, the structure's ``vertical_weight``:
+    on the half-plane the footing carries a share of it), and in ``extra`` the soil's density,
+    the footing's ``sway_stiffness`` where the reference's footing sways on a tie, the point's
+    ``[structure]`` table,
     the soil's impedance (when a bed needs it) and the continuum's rotation pushovers at the
     point's N (``rocking``, where they ran to their end). ``bed_stiffness`` (``options.
     bed_stiffness``) ``static``: K_v and K_r are the soil's statics (the box's); ``rocking``:
@@ -160,11 +163,14 @@ def reference(st: SoilStatics, scene, structure: Mapping, impedance=None,
     (:func:`...beds.rocking_stiffness.stiffness_reference`)."""
     extra = {"density": scene.soil.density, "structure": dict(structure),
              "settlement": st.settlement, "load": st.load}
+    tie = scene.continuum.horizontal_tie if scene.continuum is not None else None
+    if tie is not None:  # the half-plane's footing sways on its tie, and so do the beds
+        extra["sway_stiffness"] = float(tie)
     if impedance is not None:
         extra["impedance"] = impedance
     if rocking is not None:
         extra["rocking"] = rocking
-    ref = BedReference(st.soil, scene.structure.weight, scene.foundation.width,
+    ref = BedReference(st.soil, scene.structure.vertical_weight, scene.foundation.width,
                        scene.structure.height, st.K_v, st.K_r, st.V_ult,
                        scene.soil.shear_modulus, scene.soil.poisson_ratio, extra=extra)
     return stiffness_reference(ref, bed_stiffness, scene.g)
