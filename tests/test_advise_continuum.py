@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import copy
 import json
+import math
 from dataclasses import replace
 
 import numpy as np
@@ -215,7 +216,9 @@ def test_map_evidence_holds_each_bed_to_a_bearing_failure(fast_map, tmp_path):
                                       "the map's clay: 50.0"]),
     ("continuum.boundary=fixed", ["continuum.boundary = 'fixed'", "sides 'shear'"]),
     ("continuum.base=compliant", ["continuum.base = 'compliant'",
-                                  "the 'rigid' base (its 'box' reference)"]),
+                                  "the map's runs have 'rigid' (its 'box' reference)"]),
+    ("continuum.damping_ratio=0.01", ["continuum.damping_ratio = 0.01",
+                                      "the map's runs have None (its 'box' reference)"]),
 ])
 def test_scene_outside_the_map_says_which_parameter(fast_map, override, words):
     """Outside the map's box: the reason names the parameter, its value and the map's range."""
@@ -226,22 +229,34 @@ def test_scene_outside_the_map_says_which_parameter(fast_map, override, words):
         assert w in e.outside
 
 
+G_CLAY = 50.0e3 / 2.6  # kPa: the map's clay, E = 50 MPa, ν = 0.3
+
+
 def test_a_half_plane_map_is_evidence_only_for_a_half_plane_scene(fast_map, tmp_path):
     """The fast map marked as made on the half-plane reference (its ``options_reference``):
     the clay scene as it is (uniform c_u, rigid base) is outside, by its soil's strength
-    gradient (the half-plane's clay: 1.7 kPa/m); with that gradient, by its base; with the
-    compliant base too, inside."""
+    gradient (the half-plane's clay: 1.7 kPa/m); with that gradient, by its base; then by the
+    footing's tie (the handbook strip's K_h = 2G/(2 − ν) and C_h = ρ V_s B, by hand with
+    G = 50 MPa/2.6, ν = 0.3, ρ = 1.8 t/m³, B = 2 m) and by the soil's damping (1 %); with all
+    of the half-plane's, inside."""
     import shutil
 
     ds = read_dataset(fast_map)
     ds.attrs["options_reference"] = "half_plane"
     ds.to_netcdf(tmp_path / "map.nc")
     shutil.copyfile(fast_map.with_name("statics.nc"), tmp_path / "statics.nc")
+    hp = ["soil.undrained_strength_gradient=1.7", "continuum.base=compliant"]
+    tie = [f"continuum.horizontal_tie={2.0 * G_CLAY / 1.7!r}",
+           f"continuum.horizontal_tie_damping={1.8 * math.sqrt(G_CLAY / 1.8) * 2.0!r}"]
     cases = [([], "soil.undrained_strength_gradient = 0.0 (the map's clay: 1.7)"),
              (["soil.undrained_strength_gradient=1.7"],
-              "continuum.base = 'rigid': the map's runs have the 'compliant' base (its "
-              "'half_plane' reference)"),
-             (["soil.undrained_strength_gradient=1.7", "continuum.base=compliant"], None)]
+              "continuum.base = 'rigid': the map's runs have 'compliant' (its 'half_plane' "
+              "reference)"),
+             (hp, "continuum.horizontal_tie = None: the map's runs have 22624.43"),
+             (hp + tie, "continuum.damping_ratio = None: the map's runs have 0.01"),
+             (hp + tie + ["continuum.damping_ratio=0.02"],
+              "continuum.damping_ratio = 0.02: the map's runs have 0.01"),
+             (hp + tie + ["continuum.damping_ratio=0.01"], None)]
     for extra, words in cases:
         e = am.map_evidence(tmp_path / "map.nc", load_scene(SCENE, overrides=ON_MAP + extra),
                             "theta", TOL)
@@ -403,3 +418,15 @@ def test_a_file_that_is_not_a_map_is_refused(tmp_path):
     scene = load_scene(SCENE, overrides=ON_MAP)
     with pytest.raises(adv.InputError, match=r"--map = .*other.nc.*not a Winkler map \(no error"):
         am.map_evidence(path, scene, "theta", TOL)
+
+
+def test_the_scenes_fs_v_is_on_the_whole_weight_on_its_footing():
+    """FS_v = V_ult/N with N the whole weight the footing carries (``vertical_weight``), not
+    the story's share: a footing carrying 1 % of N itself (the half-plane map's points) sits
+    at the map's FS_v, by the definition FS_v = V_ult/N."""
+    scene = load_scene(SCENE, overrides=ON_MAP)
+    N = scene.structure.weight
+    shared = load_scene(SCENE, overrides=ON_MAP + [f"structure.weight={0.99 * N!r}",
+                                                   f"structure.vertical_weight={N!r}"])
+    for s in (scene, shared):
+        assert am.scene_coordinates(s, 3.0 * N)["fs_v"] == pytest.approx(3.0, rel=1e-12)

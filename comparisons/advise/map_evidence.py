@@ -6,7 +6,8 @@ FS_v × h/B × period × intensity × motion. A scene falls inside it when its s
 map's soils (the same validated ``[soil]`` record), its box has the map's sides
 (``continuum.boundary``, the map's ``continuum_boundary``; a map without it had a rigid
 container, ``fixed``) and base (``continuum.base``: ``rigid`` on the map's ``box`` reference,
-``compliant`` on its ``half_plane`` one, whose clay's strength grows with depth, the map's
+``compliant`` on its ``half_plane`` one, whose clay's strength grows with depth, with the
+footing's tie and its dashpot and the soil's small-strain damping of that reference, the map's
 ``options_reference``), and its FS_v (on the map's own continuum
 capacity V_ult of that soil, ``statics.nc``), h/B, fixed-base period and intensity (PGA over
 a_up = g B/(6h); a Ricker pulse's amplitude, as the map sets it) lie within the ranges of the
@@ -26,7 +27,7 @@ import numpy as np
 
 from ...checks import InputError
 from ...scenes import Scene, scene_from_dict
-from ..studies.winkler_map import reference_soil
+from ..studies.winkler_map import reference_continuum, reference_soil
 
 __all__ = ["DEFAULT_MAP", "BedEvidence", "MapEvidence", "scene_coordinates", "map_evidence",
            "find_map", "format_evidence"]
@@ -114,8 +115,9 @@ def _period(scene: Scene) -> float:
 
 
 def scene_coordinates(scene: Scene, V_ult: float) -> dict:
-    """The scene's place on the map's axes: FS_v = V_ult/N, h/B, period (s), intensity."""
-    return {"fs_v": V_ult / scene.structure.weight,
+    """The scene's place on the map's axes: FS_v = V_ult/N (N the whole weight on the footing,
+    ``structure.vertical_weight``), h/B, period (s), intensity."""
+    return {"fs_v": V_ult / scene.structure.vertical_weight,
             "h_over_B": scene.structure.height / scene.foundation.width,
             "period": _period(scene), "intensity": _intensity(scene)}
 
@@ -139,6 +141,28 @@ def _soil_match(scene: Scene, soils, reference: str = "box") -> tuple[str, str]:
         return "", "soil: " + " / ".join(differences)
     models = ", ".join(f"{n} ({reference_soil(n)['model']})" for n in soils)
     return "", f"soil.model = {scene.soil.model!r}: the map's soils are {models}"
+
+
+def _reference_mismatch(scene: Scene, soil: str, reference: str) -> str:
+    """Where the scene's ``[continuum]`` differs from the map's ``reference`` for its ``soil``
+    (the base, the footing's tie and its dashpot, the soil's damping: the fields
+    :func:`~..studies.winkler_map.reference_continuum` sets; on the box none of them but the
+    rigid base), as one reason, or "" where it does not."""
+    expected = {"base": "rigid", "horizontal_tie": None, "horizontal_tie_damping": None,
+                "damping_ratio": None}
+    expected.update(reference_continuum(reference_soil(soil, reference),
+                                        scene.foundation.width, reference))
+    options = scene.continuum
+    for name, value in expected.items():
+        mine = getattr(options, name, None) if options is not None else None
+        if name == "base" and mine is None:
+            mine = "rigid"
+        same = (mine == value if value is None or isinstance(value, str)
+                else mine is not None and math.isclose(mine, value, rel_tol=1e-9))
+        if not same:
+            return (f"continuum.{name} = {mine!r}: the map's runs have {value!r} (its "
+                    f"{reference!r} reference)")
+    return ""
 
 
 def _outside(name: str, value: float, axis: np.ndarray) -> str:
@@ -196,12 +220,9 @@ def map_evidence(path: str | Path, scene: Scene, measure: str, tol: float,
         return MapEvidence(str(path), False, f"continuum.boundary = {boundary!r}: the map's "
                            f"runs have the box's sides {sides!r}", soil, {}, {}, (), mesh,
                            motions)
-    base = "compliant" if reference == "half_plane" else "rigid"
-    mine = scene.continuum.base if scene.continuum is not None else "rigid"
-    if mine != base:
-        return MapEvidence(str(path), False, f"continuum.base = {mine!r}: the map's runs have "
-                           f"the {base!r} base (its {reference!r} reference)", soil, {}, {}, (),
-                           mesh, motions)
+    why = _reference_mismatch(scene, soil, reference)
+    if why:
+        return MapEvidence(str(path), False, why, soil, {}, {}, (), mesh, motions)
     coords = scene_coordinates(scene, V_ult)
     axes = {a: np.asarray(ds[a].values, dtype=float) for a in AXES}
     reasons = [r for r in (_outside(a, coords[a], axes[a]) for a in AXES) if r]

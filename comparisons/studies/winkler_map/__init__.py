@@ -60,7 +60,7 @@ from .bed_runs import reduced_measures, run_bed
 from .energy_points import evaluate_energy
 from .motions import study_motions
 from .points import continuum_measures, evaluate_dynamic, scales, story_constants
-from .reference import REFERENCES, handbook_sway, reference_soil
+from .reference import REFERENCES, handbook_sway, reference_continuum, reference_soil
 from .rocking import pushover_points
 from .statics import SoilStatics, evaluate_static
 from .summary import key_numbers, summarise
@@ -77,5 +77,5 @@ __all__ = ["STUDY", "SOILS", "MEASURES", "Grid", "Options", "FULL_GRID", "FAST_G
            "write", "run", "main", "KEPT_STORE", "FLOOR_FRACTION", "impedance_dofs",
            "timed_dynamic_runs", "evaluate_impedance", "impedance_point_of", "soil_impedance",
            "reduced_measures", "continuum_measures", "scales", "story_constants",
-           "pushover_points", "study_motions", "REFERENCES", "handbook_sway", "reference_soil",
+           "pushover_points", "study_motions", "REFERENCES", "handbook_sway", "reference_soil", "reference_continuum",
            "KEPT_STORES"]
