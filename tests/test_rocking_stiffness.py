@@ -109,8 +109,8 @@ def test_fixed_point_with_rotary_inertia_is_the_root_of_its_quintic():
 
 def test_sway_gives_veletsos_and_meeks_period():
     """Frequency-independent K_h = 3e5, K_r = 4e5 on a bonded footing: T̃ = T √(1 + k/K_h +
-    k h²/K_r) by hand, to 1e-10; on a frictionless footing, or with a rotary inertia, sway is
-    refused."""
+    k h²/K_r) by hand, to 1e-10; on a frictionless footing, or with a tie as well, sway on the
+    impedance's K_h is refused."""
     k = M * (2.0 * math.pi / T) ** 2
     record = _record(A0_LINE, 1e5 + 0j, 4e5 + 0j, K_h=3e5 + 0j, interface="bonded")
     got = rocking_stiffness(record, mass=M, period=T, height=H, sway=True)
@@ -120,8 +120,37 @@ def test_sway_gives_veletsos_and_meeks_period():
         2.0 * math.pi / (T * math.sqrt(1 + k * H * H / 4e5)), rel=1e-12)
     with pytest.raises(InputError, match="'bonded' footing"):
         rocking_stiffness(_line_record(), mass=M, period=T, height=H, sway=True)
-    with pytest.raises(InputError, match="rotary_inertia = 0.5"):
-        rocking_stiffness(record, mass=M, period=T, height=H, rotary_inertia=0.5, sway=True)
+    with pytest.raises(InputError, match="tie = 300000.0"):
+        rocking_stiffness(record, mass=M, period=T, height=H, sway=True, tie=3e5)
+
+
+def _three_dof(k, K_h, K_r, m, m_b, I, h):
+    """The lowest root of the swaying, rocking flexible base on (u_story, u_base, θ), by
+    numpy's general eigenvalues of M⁻¹K (not the code's symmetric, condensed solve)."""
+    K = np.array([[k, -k, -k * h], [-k, k + K_h, k * h], [-k * h, k * h, k * h * h + K_r]])
+    w2 = np.linalg.eigvals(np.linalg.solve(np.diag([m, m_b, I]), K)).real
+    return math.sqrt(float(np.min(w2)))
+
+
+def test_a_tied_footing_with_its_mass_and_inertia_sways_as_the_three_dof_base():
+    """The half-plane reference's footing: a tie of constant K_h = 3e5 with a footing mass
+    1 % of the story's and a rotary inertia, on a frictionless impedance (K_r = 4e5): ω̃ is the
+    3-DOF base's lowest root, to 1e-9; with the mass and inertia going to zero it tends to
+    Veletsos & Meek's T̃ = T √(1 + k/K_h + k h²/K_r) (a massless DOF condensed, to 1e-9)."""
+    k = M * (2.0 * math.pi / T) ** 2
+    record = _record(A0_LINE, 1e5 + 0j, 4e5 + 0j)
+    I = 0.5
+    got = rocking_stiffness(record, mass=M, period=T, height=H, rotary_inertia=I, tie=3e5,
+                            base_mass=0.01 * M)
+    assert got.omega == pytest.approx(_three_dof(k, 3e5, 4e5, M, 0.01 * M, I, H), rel=1e-9)
+    vm = 2.0 * math.pi / (T * math.sqrt(1 + k / 3e5 + k * H * H / 4e5))
+    assert flexible_base_omega(mass=M, stiffness=k, height=H, K_r=4e5, K_h=3e5,
+                               rotary_inertia=1e-9 * I, base_mass=0.0) == pytest.approx(
+        vm, rel=1e-9)
+    assert got.omega < rocking_stiffness(record, mass=M, period=T, height=H,
+                                         rotary_inertia=I).omega
+    with pytest.raises(InputError, match="footing mass"):
+        rocking_stiffness(record, mass=M, period=T, height=H, tie=3e5, base_mass=-1.0)
 
 
 def test_refusals_before_and_during_the_iteration():
@@ -172,6 +201,26 @@ def test_the_reference_at_the_rocking_frequency_and_the_beds_calibrated_to_it():
         stiffness_reference(ref, "dynamic", 9.80665)
     with pytest.raises(InputError, match="impedance"):
         stiffness_reference(_reference(None), "rocking", 9.80665)
+
+
+def test_the_half_planes_tied_footing_rocks_at_the_swaying_bases_frequency():
+    """A reference whose footing sways on a tie (``extra["sway_stiffness"]``) and carries 1 %
+    of the weight itself (``vertical_weight``), on a frequency-independent impedance: the
+    beds are calibrated at the 3-DOF base's ω̃ (numpy, written out above), to 1e-9, and the
+    structure on the uniform bed calibrated there, swaying on the same tie, rocks at that ω̃
+    by the reduced model's own eigenproblem, to 1e-8."""
+    record = _record(A0_LINE, np.full(6, 1e5 + 0j), np.full(6, 4e5 + 0j))
+    ref = _reference(record, weight=0.99 * M * 9.80665)
+    ref.extra["structure"]["vertical_weight"] = M * 9.80665
+    ref.extra["sway_stiffness"] = 3e5
+    at = stiffness_reference(ref, "rocking", 9.80665)
+    s = ref.extra["structure"]
+    k = 0.99 * M * (2.0 * math.pi / T) ** 2
+    omega = _three_dof(k, 3e5, 4e5, 0.99 * M, 0.01 * M, s["rotary_inertia"], H)
+    assert at.extra["stiffness"]["rocking"].omega == pytest.approx(omega, rel=1e-9)
+    bed_omega = bed_rocking_frequency(at, SimpleNamespace(
+        springs=48, end_length=1 / 3, max_end_stiffness_ratio=10.0))
+    assert bed_omega == pytest.approx(omega, rel=1e-8)
 
 
 def test_the_map_keeps_the_box_statics_by_default():

@@ -18,8 +18,13 @@ root of
 
 the same equation :func:`.radiation.rocking_frequency` solves on a bed of rocking stiffness K_r
 (so the radiation dashpots of a bed calibrated here are taken at this ω̃). With I = 0 it is
-Veletsos & Meek's (1974) flexible-base period T̃ = T √(1 + k h²/K_r); with ``sway`` (I = 0
-only, a bonded footing) their T̃ = T √(1 + k/K_h + k h²/K_r), K_h = Re K_h(ω̃). Because K_r
+Veletsos & Meek's (1974) flexible-base period T̃ = T √(1 + k h²/K_r). A footing that sways,
+on the impedance's K_h = Re K_h(ω̃) (``sway``, a bonded footing) or on a ``tie`` of constant
+K_h (the Winkler map's half-plane reference holds its frictionless footing so), adds the base's
+horizontal DOF with its own ``base_mass`` m_b: ω̃² is then the lowest eigenvalue of
+K = [[k, −k, −k h], [−k, k + K_h, k h], [−k h, k h, k h² + K_r]] against
+M = diag(m, m_b, I) on (u_story, u_base, θ), massless DOFs condensed out; with I = m_b = 0 it
+is their T̃ = T √(1 + k/K_h + k h²/K_r). Because K_r
 depends on ω̃, it is solved by fixed-point iteration ω_{n+1} = ω̃(K(ω_n)) from the fixed-base
 frequency 2π/T (brought into the impedance's frequencies), until
 |ω_{n+1} − ω_n| ≤ ``tolerance`` ω_{n+1}; not converged in ``max_iterations`` is refused.
@@ -35,6 +40,7 @@ import math
 from dataclasses import dataclass, replace
 
 import numpy as np
+import scipy.linalg
 
 from ... import checks
 from ...checks import InputError
@@ -86,36 +92,51 @@ def impedance_stiffness(impedance, omega: float) -> tuple[float, float, float]:
 
 
 def flexible_base_omega(*, mass: float, stiffness: float, height: float, K_r: float,
-                        rotary_inertia: float = 0.0, K_h: float = math.inf) -> float:
-    """ω̃ (rad/s): the lower root of the module docstring's equation for a story of ``mass`` m,
-    ``stiffness`` k and ``height`` h on a rocking spring K_r (base ``rotary_inertia`` I), and,
-    if ``K_h`` is finite (I = 0 only), a sway spring in series (Veletsos & Meek)."""
+                        rotary_inertia: float = 0.0, K_h: float = math.inf,
+                        base_mass: float = 0.0) -> float:
+    """ω̃ (rad/s): the lowest flexible-base frequency (module docstring) of a story of
+    ``mass`` m, ``stiffness`` k and ``height`` h on a rocking spring K_r (base
+    ``rotary_inertia`` I) and, if ``K_h`` is finite, a sway spring with the base's own
+    ``base_mass`` m_b."""
     m, k, h, I = mass, stiffness, height, rotary_inertia
-    if math.isfinite(K_h):
+    if not math.isfinite(K_h):
+        b = k * I + m * (k * h * h + K_r)
+        c = k * K_r
+        return math.sqrt(2.0 * c / (b + math.sqrt(b * b - 4.0 * m * I * c)))
+    if I == 0.0 and base_mass == 0.0:
         return 1.0 / math.sqrt(m / k + m / K_h + m * h * h / K_r)
-    b = k * I + m * (k * h * h + K_r)
-    c = k * K_r
-    return math.sqrt(2.0 * c / (b + math.sqrt(b * b - 4.0 * m * I * c)))
+    K = np.array([[k, -k, -k * h], [-k, k + K_h, k * h], [-k * h, k * h, k * h * h + K_r]])
+    M = np.array([m, base_mass, I])
+    kept, gone = np.flatnonzero(M > 0.0), np.flatnonzero(M == 0.0)
+    condensed = K[np.ix_(kept, kept)] - K[np.ix_(kept, gone)] @ np.linalg.solve(
+        K[np.ix_(gone, gone)], K[np.ix_(gone, kept)]) if gone.size else K
+    w2 = scipy.linalg.eigh(condensed, np.diag(M[kept]), eigvals_only=True)
+    return math.sqrt(float(w2[0]))
 
 
 def rocking_stiffness(impedance, *, mass: float, period: float, height: float,
                       rotary_inertia: float = 0.0, sway: bool = False,
+                      tie: float | None = None, base_mass: float = 0.0,
                       tolerance: float = 1e-10, max_iterations: int = 50) -> RockingStiffness:
     """The :class:`RockingStiffness` of ``impedance`` at the rocking frequency ω̃ of a story
     of ``mass`` (force·s²/length per length), fixed-base ``period`` T (s), ``height`` h
-    (length) and base ``rotary_inertia`` (mass·length² per length), solved as the module
-    docstring says. InputError for bad input, a frequency outside the impedance's, or no
-    convergence."""
+    (length) and base ``rotary_inertia`` (mass·length² per length), the footing swaying on
+    the impedance's K_h (``sway``) or on a ``tie`` of constant K_h (force/length²) with its
+    ``base_mass`` (force·s²/length per length), solved as the module docstring says.
+    InputError for bad input, a frequency outside the impedance's, or no convergence."""
     m = checks.positive("structure mass", mass)
     T = checks.positive("structure.period", period)
     h = checks.positive("structure.height", height)
     I = checks.nonnegative("structure.rotary_inertia", rotary_inertia)
+    m_b = checks.nonnegative("footing mass", base_mass)
     tol = checks.in_range("rocking frequency tolerance", tolerance, 0.0, 0.1, low_open=True)
     n_max = checks.integer_at_least("rocking frequency max_iterations", max_iterations, 1)
-    if sway and (I > 0.0 or impedance.interface != "bonded"):
-        raise InputError(f"rocking frequency with sway: rotary_inertia = {I:g} and interface = "
-                         f"{impedance.interface!r}; valid: rotary_inertia 0 (Veletsos & Meek's "
-                         "formula) on a 'bonded' footing (a frictionless one has no K_h)")
+    if sway and (tie is not None or impedance.interface != "bonded"):
+        raise InputError(f"rocking frequency with sway: tie = {tie!r} and interface = "
+                         f"{impedance.interface!r}; valid: no tie, on a 'bonded' footing (a "
+                         "frictionless one has no K_h; a tied one sways on its tie)")
+    if tie is not None:
+        tie = checks.positive("continuum.horizontal_tie", tie)
     k = m * (2.0 * math.pi / T) ** 2
     grid = _grid(impedance)
     omega = min(max(2.0 * math.pi / T, grid[0]), grid[-1])
@@ -125,8 +146,9 @@ def rocking_stiffness(impedance, *, mass: float, period: float, height: float,
             raise InputError(f"half-plane stiffness: Re K_r = {K_r:.6g}, Re K_h = {K_h:.6g} at "
                              f"ω = {omega:.6g} rad/s; valid: > 0 (a rocking frequency needs "
                              "a positive stiffness)")
+        sway_K = K_h if sway else (tie if tie is not None else math.inf)
         new = flexible_base_omega(mass=m, stiffness=k, height=h, K_r=K_r, rotary_inertia=I,
-                                  K_h=K_h if sway else math.inf)
+                                  K_h=sway_K, base_mass=m_b)
         change = abs(new - omega) / new
         if change <= tol:
             K_v, K_h, K_r = impedance_stiffness(impedance, new)
@@ -145,7 +167,9 @@ def stiffness_reference(reference, basis: str, g: float):
     ``basis`` (one of :data:`BED_STIFFNESS`): unchanged for ``static``; for ``rocking`` its
     ``K_v`` and ``K_r`` replaced by the half-plane's Re K_v(ω̃) and Re K_r(ω̃) at the rocking
     frequency of its structure (``extra["structure"]``: weight, period, height, rotary
-    inertia; g the scene's gravity), on its ``extra["impedance"]``, with
+    inertia, and the footing's share of ``vertical_weight``; g the scene's gravity; swaying on
+    ``extra["sway_stiffness"]`` where the reference's footing has a tie), on its
+    ``extra["impedance"]``, with
     ``extra["stiffness"]`` the :class:`RockingStiffness` and the statics it replaced."""
     checks.one_of("options.bed_stiffness", basis, BED_STIFFNESS)
     if basis == "static":
@@ -155,9 +179,11 @@ def stiffness_reference(reference, basis: str, g: float):
         raise InputError("options.bed_stiffness = 'rocking': the beds need the soil's continuum "
                          "impedance and the point's [structure] table; valid: a reference "
                          "with both (the map computes the impedance for it)")
+    footing = structure.get("vertical_weight", structure["weight"]) - structure["weight"]
     at = rocking_stiffness(impedance, mass=structure["weight"] / g, period=structure["period"],
                            height=structure["height"],
-                           rotary_inertia=structure.get("rotary_inertia", 0.0))
+                           rotary_inertia=structure.get("rotary_inertia", 0.0),
+                           tie=reference.extra.get("sway_stiffness"), base_mass=footing / g)
     extra = {**reference.extra, "stiffness": {"basis": basis, "rocking": at,
                                               "K_v_static": reference.K_v,
                                               "K_r_static": reference.K_r}}
