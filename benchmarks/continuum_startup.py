@@ -8,21 +8,30 @@ frictionless unilateral contact, Q2 with 2×2 reduced integration, 10B × 10B bo
 across B; ``--quick``: 4 across), with ``-v``, one numba thread and a private cache folder
 (``XDG_CACHE_HOME`` = ``<out>/cache``: numba's compiled kernels and the set-up cache,
 :mod:`upliftlab.continuum.setup_cache`), so that the user's own cache is neither used nor
-changed. What is timed, from the moment the process is started:
+changed. ``PYTHONDONTWRITEBYTECODE`` is taken out of the processes' environment: an installed
+package has its bytecode (pip compiles it), so the package's modules are read as bytecode, not
+compiled afresh in every process (the first, cold, run writes it beside an editable checkout's
+sources, in ``__pycache__``, which git ignores). Every row is the **median of ``--repeats``
+runs** (default 3; ``--quick``: 1), each run's value listed beside it, and every ratio is
+formed from the medians of this one invocation. What is timed, from the moment the process is
+started:
 
 - **first step**: until the process reports its first row (the first progress line
   ``t = ... of``, written after the first time step): wall clock, and the process's CPU time then (read from
   ``/proc``: Linux). ``cold``: an empty cache folder (every kernel compiled, the set-up built);
-  ``kernels cached``: the set-up cache emptied, numba's kept; ``warm``: both kept (the median of
-  ``--repeats`` runs, default 3). The run itself: the Ricker pulse of the scene for 0.01 s,
-  ``--no-render``.
+  ``kernels cached``: the set-up cache emptied, numba's kept; ``warm``: both kept. The run
+  itself: the Ricker pulse of the scene for 0.01 s, ``--no-render``.
 - **El Centro**: the first 3 s of El Centro 1940 N-S (``--quick``: 0.5 s) by the explicit route
   (the default) and by the implicit one, the cache warm, each a whole process (wall clock, and
   CPU time of the process and its threads from ``getrusage``), ``--no-render``; the speed-up is
-  implicit over explicit, both measured in this invocation. The explicit run again with its
-  default pictures (PNG and GIF) gives their cost: the CPU time the run itself reports for
-  them (``the pictures took ... s CPU``, timed around the drawing in the process: the
-  difference of two whole processes varies by more than the pictures cost), against the
+  implicit over explicit, from their medians. Before the timed runs each route runs once
+  untimed: the pulse does not reach every kernel a record does (the separation point of a
+  footing that uplifts; the implicit route's), and a run that compiles one is a cold run, not a
+  warm one. The repeats go round the three runs in turn (explicit, implicit, explicit with
+  pictures), so that a change in the machine's load falls on all three alike. The explicit run
+  again with its default pictures (PNG and GIF) gives their cost: the CPU time the run itself
+  reports for them (``the pictures took ... s CPU``, timed around the drawing in the process:
+  the difference of two whole processes varies by more than the pictures cost), against the
   explicit solve's CPU time (from the first step to ``solved in``).
 
 The machine may be shared: wall times then carry the other jobs' load, CPU times much less,
@@ -31,9 +40,9 @@ and the ratios of one invocation are what to compare. The tables go to
 as each section ends; ``--write`` also rewrites the committed
 ``benchmarks/CONTINUUM_STARTUP.md`` once every section has completed (never with ``--quick``).
 
-Cost model (the estimate printed before any work): each section costs the wall time the
-committed ``benchmarks/CONTINUUM_STARTUP.md`` records for it (its ``wall [s]`` cells); a
-section it does not record has no estimate.
+Cost model (the estimate printed before any work): each run (a section) costs the wall time the
+committed ``benchmarks/CONTINUUM_STARTUP.md`` records for its row (its ``wall [s]`` cells, a
+median); a row it does not record has no estimate.
 """
 
 from __future__ import annotations
@@ -90,7 +99,8 @@ def timed(args: list[str], cache: Path, out: Path) -> dict:
     """One fresh ``upliftlab continuum`` process with ``args``: wall and CPU time to the first
     step and to the line ``solved in``, and of the whole process; raises on a failure."""
     env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR",
-                                                            "NUMBA_DISABLE_JIT")}
+                                                            "NUMBA_DISABLE_JIT",
+                                                            "PYTHONDONTWRITEBYTECODE")}
     env.update(XDG_CACHE_HOME=str(cache), MPLBACKEND="Agg")
     command = [sys.executable, "-m", "upliftlab", "continuum", SCENE, "--analysis", "dynamic",
                "-v", "--threads", "1", "--force", "--out", str(out), *args]
@@ -141,31 +151,57 @@ def elcentro(route: str, render: bool, folder: Path, n: int, span: float) -> dic
     return {"route": route, "render": render, "span": span, **row}
 
 
+#: The times a row reports: the median over its runs, each run's value listed beside it.
+TIMES = ("first_wall", "first_cpu", "solved_cpu", "pictures_cpu", "wall", "cpu")
+
+
 def _median(rows: list[dict]) -> dict:
-    keys = ("first_wall", "first_cpu", "wall", "cpu")
-    return {**rows[0], **{k: statistics.median(r[k] for r in rows) for k in keys},
-            "runs": len(rows)}
+    """The first of ``rows`` with every time of :data:`TIMES` replaced by its median over them,
+    ``runs`` their number and ``<time>_all`` the values of each run, in order."""
+    return {**rows[0], **{k: statistics.median(r[k] for r in rows) for k in TIMES},
+            **{f"{k}_all": [r[k] for r in rows] for k in TIMES}, "runs": len(rows)}
+
+
+def _each(values: list[float], digits: int) -> str:
+    return ", ".join(f"{v:.{digits}f}" for v in values)
 
 
 def first_table(starts: list[dict]) -> list[str]:
     lines = ["| start | runs | first step wall [s] | first step CPU [s] | whole process wall [s] | "
-             "whole process CPU [s] |", "|---|---|---|---|---|---|"]
+             "whole process CPU [s] | first step CPU of each run [s] |",
+             "|---|---|---|---|---|---|---|"]
     for kind in ("cold", "kernels cached", "warm"):
         rows = [r for r in starts if r["kind"] == kind]
         if rows:
             r = _median(rows)
             lines.append(f"| {kind} | {r['runs']} | {r['first_wall']:.2f} | "
-                         f"{r['first_cpu']:.2f} | {r['wall']:.2f} | {r['cpu']:.2f} |")
+                         f"{r['first_cpu']:.2f} | {r['wall']:.2f} | {r['cpu']:.2f} | "
+                         f"{_each(r['first_cpu_all'], 2)} |")
     return lines
 
 
+ROUTES = (("explicit", False), ("implicit", False), ("explicit", True))
+
+
+def _medians(runs: dict) -> dict:
+    """{(route, render): the median row} of the timed runs ``runs`` {(route, render, i): row}."""
+    out = {}
+    for key in ROUTES:
+        rows = [r for (route, render, _), r in sorted(runs.items()) if (route, render) == key]
+        if rows:
+            out[key] = _median(rows)
+    return out
+
+
 def elcentro_table(runs: dict) -> list[str]:
-    lines = ["| route | pictures | simulated [s] | first step wall [s] | first step CPU [s] | "
-             "wall [s] | CPU [s] |", "|---|---|---|---|---|---|---|"]
-    for r in runs.values():
+    lines = ["| route | pictures | simulated [s] | runs | first step wall [s] | "
+             "first step CPU [s] | wall [s] | CPU [s] | CPU of each run [s] |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for r in _medians(runs).values():
         lines.append(f"| {r['route']} | {'default' if r['render'] else 'none'} | "
-                     f"{r['span']:g} | {r['first_wall']:.2f} | {r['first_cpu']:.2f} | "
-                     f"{r['wall']:.1f} | {r['cpu']:.1f} |")
+                     f"{r['span']:g} | {r['runs']} | {r['first_wall']:.2f} | "
+                     f"{r['first_cpu']:.2f} | {r['wall']:.1f} | {r['cpu']:.1f} | "
+                     f"{_each(r['cpu_all'], 1)} |")
     return lines
 
 
@@ -178,7 +214,8 @@ def targets(starts: list[dict], runs: dict) -> list[str]:
                      f"{'yes' if r['first_cpu'] <= TARGET_FIRST else 'no'} (CPU); "
                      f"{'yes' if r['first_wall'] <= TARGET_FIRST else 'no'} (wall) | "
                      f"CPU {r['first_cpu']:.2f} s, wall {r['first_wall']:.2f} s |")
-    ex, im = runs.get(("explicit", False)), runs.get(("implicit", False))
+    medians = _medians(runs)
+    ex, im = medians.get(("explicit", False)), medians.get(("implicit", False))
     if ex and im:
         wall, cpu = im["wall"] / ex["wall"], im["cpu"] / ex["cpu"]
         lines.append(f"| El Centro {ex['span']:g} s explicit at least {TARGET_SPEEDUP:g}× "
@@ -186,9 +223,10 @@ def targets(starts: list[dict], runs: dict) -> list[str]:
                      f"{'yes' if cpu >= TARGET_SPEEDUP else 'no'} (CPU); "
                      f"{'yes' if wall >= TARGET_SPEEDUP else 'no'} (wall) | "
                      f"CPU {cpu:.1f}×, wall {wall:.1f}× |")
-    pictures = runs.get(("explicit", True))
+    pictures = medians.get(("explicit", True))
     if ex and pictures:
-        solve = pictures["solved_cpu"] - pictures["first_cpu"]  # the same process's solve
+        solve = statistics.median(s - f for s, f in zip(pictures["solved_cpu_all"],
+                                                        pictures["first_cpu_all"]))
         cost = pictures["pictures_cpu"]
         share = cost / solve
         lines.append(f"| default pictures at most {100 * TARGET_PICTURES:g} % of the solve | "
@@ -205,8 +243,10 @@ def document(args, starts: list[dict], runs: dict, missing: dict) -> str:
             f"({os.cpu_count()} cores, shared with other jobs: compare CPU times and ratios), "
             f"Python {platform.python_version()}; command `python benchmarks/"
             f"continuum_startup.py{' --quick' if args.quick else ''} --repeats "
-            f"{args.repeats}`; the clay scene on {n} across. What is timed: the script's "
-            "docstring.", ""]
+            f"{args.repeats}`; the clay scene on {n} across. Every time is the median of "
+            f"{args.repeats} run{'s' if args.repeats > 1 else ''} (each run's CPU time listed "
+            "beside it), every ratio one of medians; the El Centro routes each ran once "
+            "untimed first. What is timed: the script's docstring.", ""]
     if missing:
         text += [incomplete_note(missing).strip(), ""]
     if starts:
@@ -219,13 +259,14 @@ def document(args, starts: list[dict], runs: dict, missing: dict) -> str:
 
 
 def cost(key: str) -> float | None:
-    """The wall time (s) the committed table records for the section ``key``, or None."""
+    """The wall time (s) the committed table records for the row of the run ``key`` (its
+    median), or None."""
     tables = committed_tables("CONTINUUM_STARTUP.md")
     for row in tables.get("First step", []):
-        if key == f"start: {row['start']}":
+        if key.startswith(f"start: {row['start']} "):
             return number(row["whole process wall [s]"])
     for row in tables.get("El Centro", []):
-        if key == f"elcentro: {row['route']}, pictures {row['pictures']}":
+        if key.startswith(f"elcentro: {row['route']}, pictures {row['pictures']} "):
             return number(row["wall [s]"])
     return None
 
@@ -233,9 +274,10 @@ def cost(key: str) -> float | None:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true",
-                        help="4 across, 0.5 s of El Centro, one warm start (a smoke check)")
+                        help="4 across, 0.5 s of El Centro, one run of each row (a smoke check)")
     parser.add_argument("--repeats", type=int, default=None,
-                        help="warm starts (default 3; 1 with --quick)")
+                        help="runs of each row, their median reported (default 3; 1 with "
+                             "--quick)")
     add_output_arguments(parser, NAME)
     args = parser.parse_args(argv)
     args.repeats = args.repeats or (1 if args.quick else 3)
@@ -253,27 +295,44 @@ def main(argv=None) -> int:
     starts: list[dict] = []
     runs: dict = {}
 
-    def start(kind):
+    def start(kind, i):
         starts.append(first_step(kind, folder, n))
         r = starts[-1]
-        say(f"{kind}: first step after {r['first_wall']:.2f} s wall, {r['first_cpu']:.2f} s CPU")
+        say(f"{kind} {i + 1}: first step after {r['first_wall']:.2f} s wall, "
+            f"{r['first_cpu']:.2f} s CPU")
         return r
 
-    def one(route, render):
-        r = runs[route, render] = elcentro(route, render, folder, n, span)
-        say(f"El Centro {route}{' with pictures' if render else ''}: {r['wall']:.1f} s wall, "
+    def one(route, render, i):
+        r = elcentro(route, render, folder, n, span)
+        if i is not None:  # None: the untimed run before the timed ones
+            runs[route, render, i] = r
+        say(f"El Centro {route}{' with pictures' if render else ''} "
+            f"{'(untimed, first)' if i is None else i + 1}: {r['wall']:.1f} s wall, "
             f"{r['cpu']:.1f} s CPU")
         return r
 
-    kinds = ["cold", "kernels cached"] + ["warm"] * args.repeats
-    keys = [f"start: {kind}" for kind in kinds[:2]] + [f"start: warm {i + 1}"
-                                                       for i in range(args.repeats)]
-    sections = [Section(key, lambda kind=kind: start(kind),
-                        cost(key if "warm" not in key else "start: warm"))
-                for key, kind in zip(keys, kinds)]
-    for route, render in (("explicit", False), ("implicit", False), ("explicit", True)):
-        key = f"elcentro: {route}, pictures {'default' if render else 'none'}"
-        sections.append(Section(key, lambda r=route, p=render: one(r, p), cost(key)))
+    # cold and kernels cached alternate, so that each cold run starts from an empty cache and
+    # each kernels-cached run from the kernels the cold run before it compiled
+    sections = []
+    for i in range(args.repeats):
+        for kind in ("cold", "kernels cached"):
+            key = f"start: {kind} {i + 1}"
+            sections.append(Section(key, lambda kind=kind, i=i: start(kind, i), cost(key)))
+    for i in range(args.repeats):
+        key = f"start: warm {i + 1}"
+        sections.append(Section(key, lambda i=i: start("warm", i), cost(key)))
+
+    def label(route, render):
+        return f"elcentro: {route}, pictures {'default' if render else 'none'}"
+
+    for route, render in ROUTES[:2]:
+        key = f"{label(route, render)} untimed"
+        sections.append(Section(key, lambda r=route, p=render: one(r, p, None), cost(key)))
+    for i in range(args.repeats):
+        for route, render in ROUTES:
+            key = f"{label(route, render)} {i + 1}"
+            sections.append(Section(key, lambda r=route, p=render, i=i: one(r, p, i),
+                                    cost(key)))
 
     def publish(target: Path, done: dict, missing: dict) -> None:
         write_text(target / "CONTINUUM_STARTUP.md", document(args, starts, runs, missing))

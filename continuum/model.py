@@ -23,7 +23,7 @@ from .. import checks
 from ..checks import InputError
 from ..meshes import BOUNDARIES, SoilMesh, from_options
 from ..scenes import ELEMENTS, ContinuumOptions, Scene, Soil
-from . import assembly
+from . import assembly, setup_cache
 from .condensation import (Blocks, Condensation, condensation, fill_reducing_order,  # noqa: F401
                            make_blocks, node_groups)
 from .contact.footing import Footing, Interface, footing_on
@@ -233,7 +233,9 @@ def make_model(soil: Soil, footing_width: float, options: ContinuumOptions | Non
     validate(soil, options, footing_width)
     checks.nonnegative("gravity", gravity)
     if mesh is None:
-        mesh = from_options(footing_width, options, layer_depth=soil.layer_depth)
+        mesh = from_options(footing_width, options, layer_depth=soil.layer_depth,
+                            lines=setup_cache.grid_lines(footing_width, options,
+                                                         soil.layer_depth))
     if isinstance(mesh, SoilMesh):
         skmesh, element, parameters = mesh.mesh, mesh.element, mesh.parameters
     else:

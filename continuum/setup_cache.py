@@ -1,10 +1,13 @@
 """A content-addressed cache on disk of what a continuum run computes before its first step and
-computes the same way every time: the gravity state and the explicit route's stable step.
+computes the same way every time: the gravity state, the explicit route's stable step and the
+mesh's grid lines.
 
 A fresh process spent seconds of CPU on them (a dozen sparse factorisations for the gravity
-state, a Lanczos run for the stable step) for results that depend only on the model and a few
-options. :func:`cached` keeps them in ``$XDG_CACHE_HOME/upliftlab/setup/<kind>/<key>.npz``
-(``~/.cache/...``), where
+state, a Lanczos run for the stable step; for the grid lines, whose growth ratios are roots
+from ``scipy.optimize.brentq``, the import of all of ``scipy.optimize``, about 0.15 s) for
+results that depend only on the model and a few options (the grid lines: on the footing's
+width and the mesh's options alone). :func:`cached` keeps them in
+``$XDG_CACHE_HOME/upliftlab/setup/<kind>/<key>.npz`` (``~/.cache/...``), where
 
 - ``key`` is the SHA-256 of exactly the inputs, written as canonical JSON: the model's
   (:func:`model_inputs`: the soil's fields, the footing width, g, the element, its quadrature
@@ -37,8 +40,8 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["MODEL_SOURCES", "model_inputs", "array_digest", "entry_key", "read", "write",
-           "cached"]
+__all__ = ["MODEL_SOURCES", "GRID_SOURCES", "model_inputs", "array_digest", "entry_key", "read",
+           "write", "cached", "grid_lines"]
 
 _UMASK = os.umask(0o022)  # read the process's umask once (setting it back at once)
 os.umask(_UMASK)
@@ -48,6 +51,8 @@ os.umask(_UMASK)
 MODEL_SOURCES = ("upliftlab.continuum/model.py", "upliftlab.continuum/assembly.py",
                  "upliftlab.continuum/condensation.py", "upliftlab.continuum/contact/",
                  "upliftlab.continuum/materials/", "upliftlab.meshes/")
+#: The source of a mesh's grid lines (:func:`upliftlab.meshes.soil.grid_lines`).
+GRID_SOURCES = ("upliftlab.meshes/soil.py",)
 
 
 def array_digest(arrays: dict[str, np.ndarray]) -> str:
@@ -137,3 +142,20 @@ def cached(kind: str, inputs: dict, sources: tuple[str, ...],
     arrays = build()
     write(kind, key, arrays)
     return arrays, False
+
+
+def grid_lines(footing_width: float, options, layer_depth: float | None = None
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`upliftlab.meshes.soil.grid_lines` of a footing ``footing_width`` wide (length),
+    the scene's ``[continuum]`` ``options`` and ``layer_depth`` (length, or None), read from
+    the entry of these inputs when an earlier process made them (the same arrays, bit for
+    bit), else computed and written."""
+    from ..meshes.soil import grid_lines as lines
+
+    inputs = {"footing_width": footing_width, "layer_depth": layer_depth,
+              **{name: getattr(options, name) for name in ("domain_width", "domain_depth",
+                                                           "element", "elements_across",
+                                                           "grading")}}
+    arrays, _ = cached("grid_lines", inputs, GRID_SOURCES,
+                       lambda: dict(zip("xy", lines(footing_width, options, layer_depth))))
+    return arrays["x"], arrays["y"]

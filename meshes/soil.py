@@ -137,23 +137,36 @@ def soil_mesh(footing_width: float, *, domain_width: float = 10.0, domain_depth:
     """
     params = _checked(footing_width, domain_width, domain_depth, element, elements_across,
                       grading, layer_depth)
+    return _soil_mesh(params, *_lines(params))
+
+
+def _lines(params: dict) -> tuple[np.ndarray, np.ndarray]:
+    """(x, y) of the grid lines of the checked ``params`` (module docstring)."""
     b, n = params["footing_width"], params["elements_across"]
     depth = params["layer_depth"] or params["domain_depth"] * b
     x = _x_lines(b, params["domain_width"] * b, n, params["grading"])
-    y = _y_lines(b, depth, n, first=float(np.diff(x).min()))
+    return x, _y_lines(b, depth, n, first=float(np.diff(x).min()))
+
+
+def _soil_mesh(params: dict, x: np.ndarray, y: np.ndarray) -> SoilMesh:
+    """The mesh of the checked ``params`` on the grid lines ``x``, ``y``."""
+    b = params["footing_width"]
+    depth = params["layer_depth"] or params["domain_depth"] * b
     mesh = _mesh(params["element"], x, y)
     mesh = mesh.with_boundaries(_boundaries(mesh, 0.5 * b, x[-1], depth))
     return SoilMesh(mesh=mesh, **params)
 
 
 def from_options(footing_width: float, options: ContinuumOptions,
-                 layer_depth: float | None = None) -> SoilMesh:
+                 layer_depth: float | None = None,
+                 lines: tuple[np.ndarray, np.ndarray] | None = None) -> SoilMesh:
     """:func:`soil_mesh` from a scene's ``[continuum]`` options (``base``/``boundary`` are the
-    solver's business and do not change the mesh)."""
-    return soil_mesh(footing_width, domain_width=options.domain_width,
-                     domain_depth=options.domain_depth, element=options.element,
-                     elements_across=options.elements_across, grading=options.grading,
-                     layer_depth=layer_depth)
+    solver's business and do not change the mesh). ``lines``: the (x, y) that
+    :func:`grid_lines` gives for the same arguments, when the caller has them already (the
+    continuum keeps them in its set-up cache); None: computed here."""
+    params = _checked(footing_width, options.domain_width, options.domain_depth,
+                      options.element, options.elements_across, options.grading, layer_depth)
+    return _soil_mesh(params, *(_lines(params) if lines is None else lines))
 
 
 def grid_lines(footing_width: float, options: ContinuumOptions,
@@ -161,12 +174,9 @@ def grid_lines(footing_width: float, options: ContinuumOptions,
     """(x, y) of the grid lines of the mesh :func:`from_options` would build, without building
     it (for estimating a run's size and time step before meshing): the mesh has
     ``(x.size - 1)(y.size - 1)`` quads, and its shortest edge is the smallest spacing."""
-    params = _checked(footing_width, options.domain_width, options.domain_depth,
-                      options.element, options.elements_across, options.grading, layer_depth)
-    b, n = params["footing_width"], params["elements_across"]
-    depth = params["layer_depth"] or params["domain_depth"] * b
-    x = _x_lines(b, params["domain_width"] * b, n, params["grading"])
-    return x, _y_lines(b, depth, n, first=float(np.diff(x).min()))
+    return _lines(_checked(footing_width, options.domain_width, options.domain_depth,
+                           options.element, options.elements_across, options.grading,
+                           layer_depth))
 
 
 def footing_dofs(basis: skfem.Basis, boundary: str = "footing") -> FootingDofs:

@@ -3,8 +3,9 @@ the explicit time loop in numba's cache.
 
 References: the set-up built afresh in the same process (the cache must give it back bit for
 bit: ``np.array_equal``, no tolerance), a run without the cache (the same histories, bit for
-bit), and numba's own cache counters and index files (a loop loaded from the cache is not
-compiled: ``cache_hits`` 1, ``cache_misses`` 0).
+bit), numba's own cache counters and index files (a loop loaded from the cache is not
+compiled: ``cache_hits`` 1, ``cache_misses`` 0), and a fresh interpreter's ``sys.modules`` at
+the first step of a warm run (what it has not imported it has not paid for).
 """
 
 from __future__ import annotations
@@ -132,7 +133,8 @@ def test_a_run_with_the_cache_gives_the_numbers_of_a_run_without_it(cache_home):
         return run_dynamic(model, scene, scene.build_motion(), DynamicOptions(snapshots=1))
 
     cold = run()
-    assert len(list(cache_home.rglob("*.npz"))) == 2  # the gravity state and the stable step
+    # the gravity state, the stable step and the mesh's grid lines
+    assert len(list(cache_home.rglob("*.npz"))) == 3
     warm = run()
     for name in ("time", "footing", "gap", "energy"):
         assert np.array_equal(np.asarray(getattr(cold, name)), np.asarray(getattr(warm, name)))
@@ -167,3 +169,79 @@ def test_the_explicit_loop_is_read_from_numbas_cache_in_a_fresh_process(tmp_path
             for _ in range(2)]
     assert runs == [["0", "1"], ["1", "0"]]
     assert log.kernels_cached(tmp_path / "numba", run_steps(False))
+
+
+@pytest.mark.parametrize("overrides", [(), ("continuum.grading=3",),
+                                       ("soil.layer_depth=7", "continuum.elements_across=6")])
+def test_the_cached_grid_lines_are_the_computed_ones(cache_home, overrides):
+    # Reference: upliftlab.meshes.soil.grid_lines in this process, without the cache: the
+    # entry written by the first call and read by the second give its arrays bit for bit
+    from upliftlab.meshes.soil import grid_lines
+    from upliftlab.scenes import ContinuumOptions
+
+    scene = load_scene("strip_footing_clay", overrides=["continuum.elements_across=4",
+                                                        *overrides])
+    args = (scene.foundation.width, scene.continuum or ContinuumOptions(),
+            scene.soil.layer_depth)
+    x, y = grid_lines(*args)
+    built = setup_cache.grid_lines(*args)
+    assert len(list((cache_home / "grid_lines").glob("*.npz"))) == 1
+    read = setup_cache.grid_lines(*args)
+    for lines in (built, read):
+        assert np.array_equal(lines[0], x) and np.array_equal(lines[1], y)
+        assert lines[0].dtype == x.dtype and lines[1].dtype == y.dtype
+    mesh = build_model(scene).mesh  # the model's mesh stands on the same lines
+    assert np.array_equal(np.unique(mesh.p[0]), x) and np.array_equal(np.unique(mesh.p[1]), y)
+
+
+#: A fresh ``upliftlab continuum`` process that prints, at its first progress row (written
+#: after the first time step), which of the libraries below it has imported by then.
+_FIRST_STEP_PROBE = """
+import re, sys
+from upliftlab import cli
+
+LATER = ("scipy.optimize", "meshio", "xarray", "dask", "matplotlib", "PIL", "pyvista",
+         "h5netcdf", "h5py")
+FIRST = re.compile(r" t = [0-9.]+ of ")
+
+
+class Tap:
+    seen = None
+
+    def __init__(self, stream):
+        self.stream = stream
+
+    def write(self, text):
+        if Tap.seen is None and FIRST.search(text):
+            Tap.seen = sorted(m for m in LATER if m in sys.modules)
+        return self.stream.write(text)
+
+    def flush(self):
+        self.stream.flush()
+
+
+sys.stderr = Tap(sys.stderr)
+code = cli.main(sys.argv[1:])
+print(code, Tap.seen)
+"""
+
+
+def test_a_warm_process_takes_its_first_step_without_the_libraries_of_its_output(tmp_path):
+    # Reason: a fresh process pays the import of every library it loads before its first step
+    # (issue 35: the first step within 2 s of the process start). The mesh's grid lines need
+    # scipy.optimize (brentq, 0.13-0.19 s of CPU to import on the shared 2-core machine) only
+    # when they are not in the set-up cache; meshio (0.04 s) only for mesh files; xarray,
+    # h5netcdf/h5py, dask (which xarray's array checks import) and the pictures' libraries only
+    # for the output, after the last step. Reference: the fresh interpreter's sys.modules at
+    # the first progress row of the second of two runs with one cache folder.
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_DISABLE_JIT"}
+    env["XDG_CACHE_HOME"] = str(tmp_path / "cache")  # numba's cache: NUMBA_CACHE_DIR, as set
+    command = [sys.executable, "-c", _FIRST_STEP_PROBE, "continuum", "strip_footing_clay",
+               "--analysis", "dynamic", "-v", "--no-render", "--force", "--out",
+               str(tmp_path / "run"), "--set", "continuum.elements_across=4", "--set",
+               "analysis.duration=0.004"]
+    runs = [subprocess.run(command, env=env, capture_output=True, text=True, timeout=1200,
+                           check=False)
+            for _ in range(2)]
+    assert all(run.returncode == 0 for run in runs), runs[-1].stderr
+    assert runs[1].stdout.split("\n")[-2] == "0 []", runs[1].stdout

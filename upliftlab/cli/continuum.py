@@ -325,7 +325,7 @@ def _grid(scene, options) -> tuple[int, float]:
     """(DOFs, shortest element edge) of the mesh the scene asks for, from its grid lines."""
     import numpy as np
 
-    from ..meshes.soil import grid_lines
+    from ..continuum.setup_cache import grid_lines
 
     x, y = grid_lines(scene.foundation.width, options, scene.soil.layer_depth)
     order = 2 if options.element in ("P2", "Q2") else 1
