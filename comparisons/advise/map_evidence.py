@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from ...checks import InputError
-from ...scenes import Scene, scene_from_dict
+from ...scenes import ContinuumOptions, Scene, scene_from_dict
 from ..studies.winkler_map import reference_continuum, reference_soil
 
 __all__ = ["DEFAULT_MAP", "BedEvidence", "MapEvidence", "scene_coordinates", "map_evidence",
@@ -152,11 +152,9 @@ def _reference_mismatch(scene: Scene, soil: str, reference: str) -> str:
                 "damping_ratio": None}
     expected.update(reference_continuum(reference_soil(soil, reference),
                                         scene.foundation.width, reference))
-    options = scene.continuum
+    options = scene.continuum or ContinuumOptions()
     for name, value in expected.items():
-        mine = getattr(options, name, None) if options is not None else None
-        if name == "base" and mine is None:
-            mine = "rigid"
+        mine = getattr(options, name)
         same = (mine == value if value is None or isinstance(value, str)
                 else mine is not None and math.isclose(mine, value, rel_tol=1e-9))
         if not same:

@@ -97,19 +97,17 @@ def flexible_base_omega(*, mass: float, stiffness: float, height: float, K_r: fl
     """ω̃ (rad/s): the lowest flexible-base frequency (module docstring) of a story of
     ``mass`` m, ``stiffness`` k and ``height`` h on a rocking spring K_r (base
     ``rotary_inertia`` I) and, if ``K_h`` is finite, a sway spring with the base's own
-    ``base_mass`` m_b."""
-    m, k, h, I = mass, stiffness, height, rotary_inertia
-    if not math.isfinite(K_h):
-        b = k * I + m * (k * h * h + K_r)
-        c = k * K_r
-        return math.sqrt(2.0 * c / (b + math.sqrt(b * b - 4.0 * m * I * c)))
-    if I == 0.0 and base_mass == 0.0:
-        return 1.0 / math.sqrt(m / k + m / K_h + m * h * h / K_r)
+    ``base_mass`` m_b. One eigenproblem on (u_story, u_base, θ), u_base dropped when the
+    footing is held (K_h infinite) and massless DOFs condensed out; the closed forms of the
+    module docstring are its cases."""
+    m, k, h = mass, stiffness, height
     K = np.array([[k, -k, -k * h], [-k, k + K_h, k * h], [-k * h, k * h, k * h * h + K_r]])
-    M = np.array([m, base_mass, I])
+    M = np.array([m, base_mass, rotary_inertia])
+    dofs = [0, 1, 2] if math.isfinite(K_h) else [0, 2]
+    K, M = K[np.ix_(dofs, dofs)], M[dofs]
     kept, gone = np.flatnonzero(M > 0.0), np.flatnonzero(M == 0.0)
     condensed = K[np.ix_(kept, kept)] - K[np.ix_(kept, gone)] @ np.linalg.solve(
-        K[np.ix_(gone, gone)], K[np.ix_(gone, kept)]) if gone.size else K
+        K[np.ix_(gone, gone)], K[np.ix_(gone, kept)])
     w2 = scipy.linalg.eigh(condensed, np.diag(M[kept]), eigvals_only=True)
     return math.sqrt(float(w2[0]))
 
@@ -137,6 +135,7 @@ def rocking_stiffness(impedance, *, mass: float, period: float, height: float,
                          "frictionless one has no K_h; a tied one sways on its tie)")
     if tie is not None:
         tie = checks.positive("continuum.horizontal_tie", tie)
+    held = tie if tie is not None else math.inf  # K_h of a footing not swaying on K(ω)
     k = m * (2.0 * math.pi / T) ** 2
     grid = _grid(impedance)
     omega = min(max(2.0 * math.pi / T, grid[0]), grid[-1])
@@ -146,9 +145,8 @@ def rocking_stiffness(impedance, *, mass: float, period: float, height: float,
             raise InputError(f"half-plane stiffness: Re K_r = {K_r:.6g}, Re K_h = {K_h:.6g} at "
                              f"ω = {omega:.6g} rad/s; valid: > 0 (a rocking frequency needs "
                              "a positive stiffness)")
-        sway_K = K_h if sway else (tie if tie is not None else math.inf)
         new = flexible_base_omega(mass=m, stiffness=k, height=h, K_r=K_r, rotary_inertia=I,
-                                  K_h=sway_K, base_mass=m_b)
+                                  K_h=K_h if sway else held, base_mass=m_b)
         change = abs(new - omega) / new
         if change <= tol:
             K_v, K_h, K_r = impedance_stiffness(impedance, new)

@@ -160,9 +160,10 @@ def damping_reduction(scene, omega_max: float) -> float:
 
 def _stored_rates(stored: Iterable[Mapping]) -> dict:
     """Median per-step rates by compiled flag, and undamped steps per second of simulated
-    time by dofs (module docstring), from stored dynamic records. A record's soil is frictional by its ``soil_model``;
-    a record stored before it had one was frictional exactly when its return map was not
-    compiled (then only Mohr–Coulomb and Drucker–Prager were not)."""
+    time by dofs (module docstring), from stored dynamic records. A record's soil is
+    frictional by its ``soil_model``; a record stored before it had one was frictional exactly
+    when its return map was not compiled (then only Mohr–Coulomb and Drucker–Prager were
+    not)."""
     rates, density = {}, {}
     for rec in stored:
         dofs, steps = rec["dofs"], max(1, rec["steps"])
