@@ -111,6 +111,43 @@ def test_contact_length_is_measured_where_the_contact_ends(n):
     assert np.sqrt(np.mean(error ** 2)) < np.sqrt(np.mean(old ** 2))
 
 
+def _patches_by_walking(footing, closed, pressure, gap):
+    """The reference for :meth:`Footing.contact_lengths`: walk one row node by node, open a
+    patch at a closed node after an open one (or at the left edge) and close it at a closed
+    node before an open one (or at the right edge), each inner end placed by the scalar
+    separation fraction of its own pair of nodes."""
+    x, n, total, left = footing.x, footing.nodes, 0.0, None
+
+    def end(i, j):
+        t = separation_fraction(np.array([pressure[i]]), np.array([gap[j]]),
+                                abs(x[j] - x[i]), footing.modulus)[0]
+        return x[i] + t * (x[j] - x[i])
+
+    for i in range(n):
+        if closed[i] and (i == 0 or not closed[i - 1]):
+            left = x[0] if i == 0 else end(i, i - 1)
+        if closed[i] and (i == n - 1 or not closed[i + 1]):
+            total += (x[-1] if i == n - 1 else end(i, i + 1)) - left
+    return total
+
+
+def test_contact_lengths_of_many_rows_are_each_rows_own_patches():
+    # Reference: the node-by-node walk above, one row at a time, on 400 random rows of open
+    # and closed nodes (several patches a row, patches at both edges, rows all open or all
+    # closed) with random pressures and gaps. Asserted to 1e-12 of B.
+    footing = model_for(8).footing
+    rng = np.random.default_rng(35)
+    closed = rng.random((400, footing.nodes)) < rng.random((400, 1))
+    closed[0], closed[1] = False, True
+    pressure = rng.random(closed.shape) * 50.0
+    gap = rng.random(closed.shape) * 1e-3
+    lengths = footing.contact_lengths(closed, pressure, gap)
+    walked = [_patches_by_walking(footing, c, p, g) for c, p, g in zip(closed, pressure, gap)]
+    assert np.max(np.abs(lengths - walked)) <= 1e-12 * B
+    assert lengths[0] == 0.0 and lengths[1] == pytest.approx(B, abs=1e-12)
+    assert footing.contact_length(closed[7], pressure[7], gap[7]) == lengths[7]
+
+
 def test_separation_point_inverts_the_half_plane_edge_asymptotics():
     # Reference: p = α√d inside and g = 4α e^{3/2}/(3E*) outside a smooth separation point
     # (footing.separation_fraction): nodal values built from a known end t recover it to the

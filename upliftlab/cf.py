@@ -3,7 +3,8 @@
 Checked by the IOOS compliance checker (``compliance-checker --test cf:1.10``, which ships the
 CF standard-name table and UDUNITS): ``tests/test_cf.py`` writes every kind of result file and
 finds no failing required check. :func:`encode` is applied by
-:func:`upliftlab.results.write_dataset` to every dataset, :func:`decode` by
+:func:`upliftlab.results.write_dataset` to every dataset (as a
+:class:`~upliftlab.labelled_data.LabelledData`), :func:`decode` by
 :func:`upliftlab.results.read_dataset` to every file it opens:
 
 - **Time.** A run's time axis is seconds from its start, held in memory in ``s``. CF (section
@@ -12,8 +13,8 @@ finds no failing required check. :func:`encode` is applied by
   (the start of the run), the numbers are the same seconds. :func:`decode` reads them back as
   ``s``; ``xarray.open_dataset`` decodes them into dates from 1970-01-01 unless given
   ``decode_times=False``.
-- **No fill value on a coordinate** (section 2.5.1): xarray would give every floating-point
-  variable ``_FillValue = NaN``; coordinates get none.
+- **No fill value on a coordinate** (section 2.5.1): every other floating-point variable has
+  ``_FillValue = NaN``, as xarray gives it (:mod:`upliftlab.netcdf_file`).
 - **Flags typed like their variable** (section 3.5): ``flag_values``, ``flag_masks`` and the
   ``valid_*`` attributes are cast to the variable's type (int8 state codes, not int64).
 - **Labels are not coordinate variables.** A coordinate variable is numeric and strictly
@@ -69,37 +70,40 @@ def _typed(attrs: dict, dtype) -> dict:
 LABELS = ("{}_label", "{}_key")
 
 
-def _labels(dataset) -> list[str]:
-    """The dimensions of ``dataset`` whose coordinate variable holds text."""
-    return [str(d) for d in dataset.dims
-            if d in dataset.coords and dataset[d].dtype.kind in "USO"]
+def _labels(data) -> list[str]:
+    """The dimensions of ``data`` (a LabelledData) whose coordinate variable holds text."""
+    return [d for d in data.sizes if d in data.coords and data.variables[d][0] == (d,)
+            and data.variables[d][1].dtype.kind in "USO"]
 
 
-def encode(dataset) -> tuple[object, dict[str, dict]]:
-    """``dataset`` (an :class:`xarray.Dataset` with CF attributes) as it goes to disk, and the
-    encoding each of its variables needs (no ``_FillValue`` on a coordinate). Values are not
-    touched: attributes change, and text labels move to ``<dimension>_label``. Raises
-    ValueError if such a name is taken."""
-    dataset = dataset.copy()
-    dataset.attrs.setdefault("Conventions", CONVENTIONS)
-    encoding: dict[str, dict] = {}
-    for name, var in dataset.variables.items():
-        attrs = _typed(var.attrs, var.dtype)
-        if is_time(str(name), attrs) and attrs.get("units") == "s":
-            attrs = _time_attributes(attrs)
-        if name in dataset.dims and var.dtype.kind in "iuf" and "units" not in attrs:
-            attrs["units"] = "1"
-        var.attrs = attrs
-        if name in dataset.coords and var.dtype.kind in "fc":
-            encoding[str(name)] = {"_FillValue": None}
+def encode(data) -> tuple[object, frozenset[str]]:
+    """``data`` (a :class:`~upliftlab.labelled_data.LabelledData` with CF attributes) as it goes
+    to disk, and the variables that must have no ``_FillValue`` (the floating-point
+    coordinates). Values are not touched: attributes change, and text labels move to
+    ``<dimension>_label``. Raises ValueError if such a name is taken."""
+    attrs = dict(data.attrs)
+    attrs.setdefault("Conventions", CONVENTIONS)
+    sizes = data.sizes
+    variables, no_fill = {}, set()
+    for name, (dims, values, var_attrs) in data.variables.items():
+        var_attrs = _typed(var_attrs, values.dtype)
+        if is_time(name, var_attrs) and var_attrs.get("units") == "s":
+            var_attrs = _time_attributes(var_attrs)
+        if name in sizes and values.dtype.kind in "iuf" and "units" not in var_attrs:
+            var_attrs["units"] = "1"
+        variables[name] = (dims, values, var_attrs)
+        if name in data.coords and values.dtype.kind in "fc":
+            no_fill.add(name)
     labels = {}
-    for d in _labels(dataset):
-        free = [f.format(d) for f in LABELS if f.format(d) not in dataset.variables]
+    for d in _labels(data):
+        free = [f.format(d) for f in LABELS if f.format(d) not in data.variables]
         if not free:
             raise ValueError(f"cannot write the labels of {d!r}: "
                              f"{[f.format(d) for f in LABELS]} are taken")
         labels[d] = free[0]
-    return dataset.rename_vars(labels), encoding
+    variables = {labels.get(n, n): v for n, v in variables.items()}
+    coords = frozenset(labels.get(n, n) for n in data.coords)
+    return data.replace(variables=variables, coords=coords, attrs=attrs), frozenset(no_fill)
 
 
 def _label_of(dataset, dim: str) -> str | None:

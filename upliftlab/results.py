@@ -1,15 +1,19 @@
 """Result files: self-describing NetCDF, CSV and text, all written atomically, with provenance.
 
-NetCDF files are NetCDF-4 (HDF5 underneath), written by xarray through h5netcdf with every
-array compressed (zlib, level 4, byte shuffle): a labelled :class:`xarray.Dataset` goes to disk
-as it is (:func:`write_dataset`), and :func:`read_dataset` gives back the same coordinates,
-units and attributes; ParaView, ncdump, netCDF4 and ``xarray.open_dataset`` read the files too.
-The files follow the CF-1.10 conventions (:mod:`upliftlab.cf` says what that changes on disk:
-the time axis, text labels, fill values, flag types) and open as tables split by dimension
-with :func:`upliftlab.open_result`. Attributes follow the CF conventions: numbers, text and flat lists only; a mapping of scalars becomes one
-attribute per key (``provenance_numpy``), and only a nested record that no coordinate or
-variable could hold (the scene as loaded) stays JSON text (:func:`cf_attributes`). Every writer
-goes through :func:`atomic_path`: the file appears complete or not at all.
+NetCDF files are NetCDF-4 (HDF5 underneath), written through h5netcdf with every array
+compressed (zlib, level 4, byte shuffle): a labelled :class:`xarray.Dataset`, or the same data
+as a :class:`~upliftlab.labelled_data.LabelledData` (which a result's ``save`` writes without
+importing xarray), goes to disk as it is (:func:`write_dataset`; the file is the one xarray's
+own ``to_netcdf`` writes: :mod:`upliftlab.netcdf_file`), and :func:`read_dataset` gives back
+the same coordinates, units and attributes; ParaView, ncdump, netCDF4 and
+``xarray.open_dataset`` read the files too. The files follow the CF-1.10 conventions
+(:mod:`upliftlab.cf` says what that changes on disk: the time axis, text labels, fill values,
+flag types) and open as tables split by dimension with :func:`upliftlab.open_result`.
+Attributes follow the CF conventions: numbers, text and flat lists only; a mapping of scalars
+becomes one attribute per key (``provenance_numpy``), and only a nested record that no
+coordinate or variable could hold (the scene as loaded) stays JSON text
+(:func:`cf_attributes`). Every writer goes through :func:`atomic_path`: the file appears
+complete or not at all.
 
 **A full disk.** HDF5 does not survive a write that fails for want of space (it ends the
 process with a segmentation fault, leaving its part file and the folder's lock), so no HDF5
@@ -22,7 +26,6 @@ written with Python's own I/O (:func:`write_bytes`), where a full disk (ENOSPC),
 from __future__ import annotations
 
 import contextlib
-import io
 import json
 import os
 import shutil
@@ -32,6 +35,8 @@ from pathlib import Path
 import numpy as np
 
 from . import cf
+from .labelled_data import LabelledData
+from .netcdf_file import netcdf_bytes
 from .paths import (DISK_FULL, check_target, disk_full, forget_temporary,
                     temporary_sibling)
 
@@ -165,50 +170,30 @@ def cf_attributes(attrs: Mapping[str, object] | None, prefix: str = "") -> dict[
 
 
 def write_dataset(path: str | os.PathLike, dataset) -> Path:
-    """Write an :class:`xarray.Dataset` to ``path`` as compressed NetCDF-4 (module docstring);
-    atomic. Booleans are stored as int8 (NetCDF has no boolean type); the time axis, the
-    coordinates' fill values and the flags' types as CF-1.10 wants them (:mod:`upliftlab.cf`)."""
-    dataset = dataset.copy()
-    for name in [n for n, var in dataset.variables.items() if var.dtype == bool]:
-        dataset[name] = dataset[name].astype(np.int8)
-    dataset.attrs = cf_attributes(dataset.attrs)
-    for var in dataset.variables.values():
-        var.attrs = cf_attributes(var.attrs)
-    dataset, cf_encoding = cf.encode(dataset)
-    encoding = {name: {"zlib": True, "complevel": 4, "shuffle": True}
-                for name, var in dataset.variables.items()
-                if var.ndim and var.dtype.kind in "fiu"}
-    for name, extra in cf_encoding.items():
-        encoding[name] = {**encoding.get(name, {}), **extra}
-    return write_bytes(path, netcdf_bytes(dataset, encoding))
-
-
-def netcdf_bytes(dataset, encoding: Mapping | None = None) -> bytes:
-    """``dataset`` as the bytes of a NetCDF-4 file, made in memory (module docstring)."""
-    buffer = io.BytesIO()
-    dataset.to_netcdf(buffer, engine="h5netcdf", format="NETCDF4", encoding=dict(encoding or {}))
-    return buffer.getvalue()
+    """Write ``dataset`` (an :class:`xarray.Dataset` or a
+    :class:`~upliftlab.labelled_data.LabelledData`) to ``path`` as compressed NetCDF-4 (module
+    docstring); atomic. Booleans are stored as int8 (NetCDF has no boolean type); the time
+    axis, the coordinates' fill values and the flags' types as CF-1.10 wants them
+    (:mod:`upliftlab.cf`). A Dataset's ``encoding`` is not used."""
+    data = dataset if isinstance(dataset, LabelledData) else LabelledData.from_xarray(dataset)
+    variables = {name: (dims, values.astype(np.int8) if values.dtype == bool else values,
+                        cf_attributes(attrs))
+                 for name, (dims, values, attrs) in data.variables.items()}
+    data, no_fill = cf.encode(data.replace(variables=variables,
+                                           attrs=cf_attributes(data.attrs)))
+    return write_bytes(path, netcdf_bytes(data, no_fill))
 
 
 def write_netcdf(path: str | os.PathLike, variables: Mapping[str, Variable],
                  attrs: Mapping[str, object] | None = None) -> Path:
     """Write ``variables`` {name: (dims, values, attrs)} and global ``attrs`` as a dataset
     (:func:`write_dataset`): a variable named as its one dimension is that dimension's
-    coordinate. Raises ValueError, before anything is written, if two variables disagree on the
-    length of a dimension."""
-    import xarray as xr
-
-    sizes: dict[str, int] = {}
-    for name, (dims, values, _) in variables.items():
-        shape = np.shape(values)
-        if len(shape) != len(dims):
-            raise ValueError(f"variable {name!r}: {len(dims)} dims for shape {shape}")
-        for dim, n in zip(dims, shape):
-            if sizes.setdefault(dim, n) != n:
-                raise ValueError(f"dimension {dim!r} is {sizes[dim]} and {n}")
+    coordinate; integers are stored as int32, other numbers as float64. Raises ValueError,
+    before anything is written, if two variables disagree on the length of a dimension."""
     data = {name: (tuple(dims), _netcdf_array(values), dict(var_attrs or {}))
             for name, (dims, values, var_attrs) in variables.items()}
-    return write_dataset(path, xr.Dataset(data, attrs=dict(attrs or {})))
+    coords = frozenset(n for n, (dims, _, _) in data.items() if tuple(dims) == (n,))
+    return write_dataset(path, LabelledData(data, coords, dict(attrs or {})))
 
 
 def read_dataset(path: str | os.PathLike):

@@ -138,34 +138,44 @@ class Footing:
 
     def contact_length(self, closed: np.ndarray, pressure: np.ndarray | None = None,
                        gap: np.ndarray | None = None) -> float:
-        """Length of the base in contact (length): the sum over the contact patches (runs of
-        ``closed`` nodes) of the distance between their two ends. A patch ending at a footing
-        edge ends there; elsewhere it ends at the separation point between its last closed
-        node i and the first open one j, :func:`separation_fraction` of the way from x_i to
-        x_j, interpolated from the closed node's ``pressure`` p_i and the open node's ``gap``
-        g_j. Without ``pressure`` and ``gap`` each patch ends half-way (the midpoint rule: off
-        by up to about one node spacing however fine the mesh)."""
+        """Length of the base in contact (length) of one state: :meth:`contact_lengths` of one
+        row."""
+        rows = [None if a is None else np.asarray(a)[None, :] for a in (pressure, gap)]
+        return float(self.contact_lengths(np.asarray(closed)[None, :], *rows)[0])
+
+    def contact_lengths(self, closed: np.ndarray, pressure: np.ndarray | None = None,
+                        gap: np.ndarray | None = None) -> np.ndarray:
+        """Length of the base in contact (length) of each row of ``closed`` (rows, nodes): the
+        sum over the row's contact patches (runs of closed nodes) of the distance between their
+        two ends. A patch ending at a footing edge ends there; elsewhere it ends at the
+        separation point between its last closed node i and the first open one j,
+        :func:`separation_fraction` of the way from x_i to x_j, interpolated from the closed
+        node's ``pressure`` p_i and the open node's ``gap`` g_j (rows, nodes). Without
+        ``pressure`` and ``gap`` each patch ends half-way (the midpoint rule: off by up to about
+        one node spacing however fine the mesh). All rows at once: a dynamic run measures its
+        recorded rows when it ends, not one by one."""
         closed = np.asarray(closed, dtype=bool)
-        if not closed.any():
-            return 0.0
         x, n = self.x, self.nodes
-        starts = np.flatnonzero(closed & ~np.concatenate(([False], closed[:-1])))
-        ends = np.flatnonzero(closed & ~np.concatenate((closed[1:], [False])))
+        before = np.zeros_like(closed)
+        before[:, 1:] = closed[:, :-1]
+        after = np.zeros_like(closed)
+        after[:, :-1] = closed[:, 1:]
+        row, starts = np.nonzero(closed & ~before)  # row-major: the k-th start and the
+        ends = np.nonzero(closed & ~after)[1]  # k-th end bound one patch of one row
         left = np.where(starts == 0, x[0], x[np.maximum(starts, 1)])
         right = np.where(ends == n - 1, x[-1], x[np.minimum(ends, n - 2)])
-        inner_l, inner_r = starts > 0, ends < n - 1
-        for inner, i, j, side in ((inner_l, starts, starts - 1, left),
-                                  (inner_r, ends, ends + 1, right)):
+        for inner, i, j, side in ((starts > 0, starts, starts - 1, left),
+                                  (ends < n - 1, ends, ends + 1, right)):
             if not inner.any():
                 continue
-            i, j = i[inner], j[inner]
+            r, i, j = row[inner], i[inner], j[inner]
             if pressure is None or gap is None:
                 t = np.full(i.size, 0.5)
             else:
-                t = separation_fraction(np.asarray(pressure)[i], np.asarray(gap)[j],
+                t = separation_fraction(np.asarray(pressure)[r, i], np.asarray(gap)[r, j],
                                         np.abs(x[j] - x[i]), self.modulus)
             side[inner] = x[i] + t * (x[j] - x[i])
-        return float(np.sum(right - left))
+        return np.bincount(row, weights=right - left, minlength=closed.shape[0])
 
 
 def separation_fraction(pressure, gap, spacing, modulus) -> np.ndarray:
@@ -178,8 +188,9 @@ def separation_fraction(pressure, gap, spacing, modulus) -> np.ndarray:
     outside (the surface displacement's second derivative is the Hilbert transform of p″,
     α/(E*√e)). With d = t h and e = (1 − t) h the two nodal values give
     (1 − t)^{3/2}/√t = 3E* g/(4 p h), monotonic in t ∈ [0, 1]: solved by bisection (60
-    halvings, to the last bit), compiled (:func:`_fraction`): a dynamic run calls this at every
-    recorded row. p = 0 puts the end at the closed node (t = 0), g = 0 at the open one (t = 1)."""
+    halvings, to the last bit), compiled (:func:`_fraction`): a dynamic run calls this on all
+    its recorded rows at once. p = 0 puts the end at the closed node (t = 0), g = 0 at the open
+    one (t = 1)."""
     p, g, h = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (pressure, gap, spacing)))
     out = np.empty(p.shape)
     _fractions(p.ravel(), g.ravel(), h.ravel(), float(modulus), out.reshape(-1))

@@ -143,8 +143,10 @@ class DynamicResult(NotebookViews):
 
     def save(self, path) -> Path:
         """Write the labelled dataset of :meth:`to_xarray` (histories, contact, soil fields at the
-        snapshots, provenance) to NetCDF-4, atomically."""
-        return write_dataset(path, self.to_xarray())
+        snapshots, provenance) to NetCDF-4, atomically (without importing xarray)."""
+        from ..output.labelled import labelled_data
+
+        return write_dataset(path, labelled_data(self))
 
 
 class Recorder:
@@ -152,7 +154,8 @@ class Recorder:
     any quadrature point of the soil (``peak_plastic_strain``; ε̄p only accumulates, so it is
     the last row's): where the soil left small strain, whatever its footing does; and the far
     field's peaks by depth (``far``, :mod:`~upliftlab.continuum.dynamics.far_field`), read
-    from the same rows."""
+    from the same rows. The contact length of every row is measured once, when the result is
+    made (:meth:`~upliftlab.continuum.contact.footing.Footing.contact_lengths`)."""
 
     def __init__(self, model, steps: int, snapshots: int):
         f = model.footing
@@ -163,7 +166,6 @@ class Recorder:
         self.reaction = np.zeros((nt, 3))
         self.pressure, self.gap = np.zeros((nt, nc)), np.zeros((nt, nc))
         self.status = np.zeros((nt, nc), dtype=np.int8)
-        self.length = np.zeros(nt)
         self.iterations = np.zeros(nt, dtype=np.int64)
         self.refactored = np.zeros(nt, dtype=bool)
         self.energy = np.zeros((nt, len(ENERGY)))
@@ -188,7 +190,6 @@ class Recorder:
         self.pressure[k] = -state.force[:f.nodes] / f.weight
         self.gap[k] = f.gap(state.u, state.q)
         self.status[k] = state.status
-        self.length[k] = f.contact_length(state.status != OPEN, self.pressure[k], self.gap[k])
         self.iterations[k], self.refactored[k] = iterations, refactored
         self.energy[k] = energy
         self.energy[k, 0] = kinetic
@@ -218,11 +219,12 @@ class Recorder:
         if n < self.time.size:
             extra.update(incomplete=True, completed_until=float(self.time[n - 1]))
         snaps = self.snap_steps < n
+        length = self.f.contact_lengths(self.status[:n] != OPEN, self.pressure[:n], self.gap[:n])
         return DynamicResult(
             time=self.time[:n], footing=self.q[:n], structure_u=self.s[:n],
             structure_velocity=self.sv[:n], ground_acceleration=self.ag[:n],
             H=self.reaction[:n, 0], N=-self.reaction[:n, 1], M=self.reaction[:n, 2],
-            contact_length=self.length[:n], x=self.f.x, pressure=self.pressure[:n],
+            contact_length=length, x=self.f.x, pressure=self.pressure[:n],
             gap=self.gap[:n], status=self.status[:n], iterations=self.iterations[:n],
             refactored=self.refactored[:n], energy=self.energy[:n], width=model.width,
             snapshot_step=self.snap_steps[snaps], displacement=self.disp[snaps],

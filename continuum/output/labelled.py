@@ -8,7 +8,9 @@ contact nodes, with their ``x``) and ``component`` (of the energy account); ``un
 fields of the snapshots are here too, as the model's DOF vector and element averages along
 ``snapshot``, located by the coordinates ``dof_x``, ``dof_y``, ``dof_direction`` and
 ``element_x``, ``element_y`` (the XDMF output draws them on the mesh); the run's metadata
-and provenance are attributes, one per key (:func:`~upliftlab.results.cf_attributes`). A
+and provenance are attributes, one per key (:func:`~upliftlab.results.cf_attributes`).
+The data are built as a :class:`~upliftlab.labelled_data.LabelledData`, which the result's
+``save`` writes without importing xarray. A
 dynamic run's far field (the soil columns at the box's sides) is along ``side`` and ``layer``
 (:func:`_far_field`). This
 dataset is what the results' ``save`` writes (on disk as :mod:`upliftlab.cf` says; read back
@@ -19,10 +21,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...labelled_data import LabelledData
 from ...results import cf_attributes
 from ..contact.footing import OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK
 
-__all__ = ["to_dataset", "path_to_dataset", "to_frame"]
+__all__ = ["to_dataset", "labelled_data", "path_to_dataset", "path_labelled_data",
+           "to_frame"]
 
 
 def _footing_and_contact(result, dim: str) -> tuple[dict, dict]:
@@ -98,19 +102,23 @@ def _field_coordinates(result, length: str) -> dict:
     }
 
 
-def _dataset(result, data: dict, coords: dict):
-    import xarray as xr
-
+def _labelled(result, data: dict, coords: dict) -> LabelledData:
     scene = result.metadata.get("scene") or "a footing"
     attrs = cf_attributes({
         "Conventions": "CF-1.10", "title": f"{result.kind} of {scene} (upliftlab continuum)",
         "source": "upliftlab continuum model (plane strain)",
         "kind": result.kind, "width": result.width, **result.metadata})
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    return LabelledData.build(data, coords, attrs)
 
 
 def to_dataset(result):
     """The histories of ``result`` (a DynamicResult) as an :class:`xarray.Dataset`."""
+    return labelled_data(result).to_xarray()
+
+
+def labelled_data(result) -> LabelledData:
+    """The histories of ``result`` (a DynamicResult) as the
+    :class:`~upliftlab.labelled_data.LabelledData` that :func:`to_dataset` and the file hold."""
     data, coords = _footing_and_contact(result, "time")
     units = result.metadata["units"]
     length, force = units["length"], units["force/length"]
@@ -136,7 +144,7 @@ def to_dataset(result):
                                  {"long_name": "energy account"})})
     _snapshots(result, data, coords, "s", "time of the snapshot")
     _far_field(result, data, coords, length)
-    return _dataset(result, data, coords)
+    return _labelled(result, data, coords)
 
 
 def _far_field(result, data: dict, coords: dict, length: str) -> None:
@@ -171,6 +179,11 @@ def _far_field(result, data: dict, coords: dict, length: str) -> None:
 
 
 def path_to_dataset(path):
+    """:func:`path_labelled_data` as an :class:`xarray.Dataset`."""
+    return path_labelled_data(path).to_xarray()
+
+
+def path_labelled_data(path) -> LabelledData:
     """A static path (a StaticPath: a pushover) as an :class:`xarray.Dataset` over its load
     ``step``, with the footing's rotation, settlement and loads as variables and the contact per
     base node; ``ds.swap_dims(step="theta")`` makes a rotation pushover selectable by θ."""
@@ -187,7 +200,7 @@ def path_to_dataset(path):
                                                   "long_name": "footing rotation"})})
     if path.has_fields:
         _snapshots(path, data, coords, "1", "load-step number of the snapshot")
-    return _dataset(path, data, coords)
+    return _labelled(path, data, coords)
 
 
 def to_frame(dataset, index: str):

@@ -152,8 +152,11 @@ class StaticPath(NotebookViews):
 
     def save(self, path) -> Path:
         """Write the labelled dataset of :meth:`to_xarray` (the path, the contact along the
-        base, the soil fields at the snapshots, provenance) to NetCDF-4, atomically."""
-        return write_dataset(path, self.to_xarray())
+        base, the soil fields at the snapshots, provenance) to NetCDF-4, atomically (without
+        importing xarray)."""
+        from ..output.labelled import path_labelled_data
+
+        return write_dataset(path, path_labelled_data(self))
 
 
 @dataclass(frozen=True)
