@@ -18,10 +18,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..labelled_data import LabelledData
 from ..results import cf_attributes
 from . import springs as sp
 
-__all__ = ["to_dataset", "to_frame", "SCALAR_HISTORIES", "PEAK_UNITS"]
+__all__ = ["to_dataset", "labelled_data", "to_frame", "SCALAR_HISTORIES", "PEAK_UNITS"]
 
 #: The scalar histories of a response: name -> (long name, unit kind); ``sway`` only for a
 #: base on a sway spring.
@@ -87,8 +88,13 @@ def _histories(response) -> dict:
 
 def to_dataset(response):
     """The response as an :class:`xarray.Dataset` (module docstring)."""
-    import xarray as xr
+    return labelled_data(response).to_xarray()
 
+
+def labelled_data(response) -> LabelledData:
+    """The response as the :class:`~upliftlab.labelled_data.LabelledData` that
+    :func:`to_dataset` and the file hold (a response's ``save`` writes it without importing
+    xarray)."""
 
     units, model = _units(response), response.model
     units["acceleration"] = f"{units['length']}/s^2"
@@ -146,7 +152,7 @@ def to_dataset(response):
         "units": model.scene.units.name, "gravity": model.scene.units.gravity,
         "source": "upliftlab reduced model (compatibility-matrix formulation)",
         "info": response.info, "provenance": response.provenance})
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    return LabelledData.build(data, coords, attrs)
 
 
 def _peaks(response, units) -> dict:

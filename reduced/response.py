@@ -375,12 +375,14 @@ class Response:
     # ---- files ------------------------------------------------------------------------------
     def save(self, path: str | Path, *, csv: bool = False) -> list[Path]:
         """Write one NetCDF-4 file, the labelled dataset of :meth:`to_xarray` (and a CSV of the
-        scalar histories if ``csv``); atomic."""
+        scalar histories if ``csv``); atomic, without importing xarray."""
         path = Path(path)
         for target in (path, path.with_suffix(".csv")) if csv else (path,):
             check_target(target)  # both refused before either is written
         u = self.model.scene.units
-        written = [write_dataset(path, self.to_xarray())]
+        from .labelled import labelled_data
+
+        written = [write_dataset(path, labelled_data(self))]
         if csv:
             cols = {"time": self.time, "u": self.u, "x": self.x, "theta": self.theta,
                     "V": self.V, "base_shear": self.base_shear,

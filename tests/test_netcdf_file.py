@@ -10,7 +10,8 @@ show: the HDF5 type, the fill value, the compression filter and level, the shuff
 variable's dimensions. The data: a continuum dynamic run's labelled data (histories, text
 labels, soil fields along ``dof`` and ``element``, the far field's 2-D peaks, flags), and a
 hand-made set with what the run lacks (a scalar, a 2-D coordinate, a coordinate no variable
-names, text data, a boolean and int64).
+names, text data, a boolean and int64, a dimension's coordinate given among the data as the
+reduced model's ``story`` is).
 """
 
 from __future__ import annotations
@@ -103,7 +104,9 @@ def test_what_a_run_lacks_is_written_as_xarray_writes_it():
          "field": (("row", "col"), np.arange(6.0).reshape(2, 3), {"units": "Pa"}),
          "note": ("row", np.array(["a", "bé"]), {"long_name": "text data"}),
          "flag": ("col", np.array([True, False, True]), {}),
-         "count": ("col", np.array([1, 2, 3], np.int64), {"units": "1"})},
+         "count": ("col", np.array([1, 2, 3], np.int64), {"units": "1"}),
+         "level": ("level", np.arange(1, 3), {"units": "1"}),
+         "drift": ("level", [0.1, 0.2], {"units": "1"})},
         coords={"row": ("row", [0.5, 1.5], {"units": "m"}),
                 "grid": (("row", "col"), np.ones((2, 3)), {"units": "m"}),
                 "case": ("case", ["x", "y", "z", "w"], {"long_name": "cases"}),

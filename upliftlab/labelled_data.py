@@ -55,11 +55,12 @@ class LabelledData:
                 if sizes.setdefault(dim, n) != n:
                     raise ValueError(f"dimension {dim!r} is {sizes[dim]} and {n}")
             variables[str(name)] = (dims, array, dict(attrs or {}))
-        unknown = set(self.coords) - set(variables)
+        coords = set(self.coords) | {n for n, (dims, _, _) in variables.items() if dims == (n,)}
+        unknown = coords - set(variables)
         if unknown:
             raise ValueError(f"coordinates {sorted(unknown)} are not variables")
         object.__setattr__(self, "variables", MappingProxyType(variables))
-        object.__setattr__(self, "coords", frozenset(self.coords))
+        object.__setattr__(self, "coords", frozenset(coords))
         object.__setattr__(self, "attrs", dict(self.attrs or {}))
 
     @property
