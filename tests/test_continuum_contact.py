@@ -115,10 +115,12 @@ def _patches_by_walking(footing, closed, pressure, gap):
     """The reference for :meth:`Footing.contact_lengths`: walk one row node by node, open a
     patch at a closed node after an open one (or at the left edge) and close it at a closed
     node before an open one (or at the right edge), each inner end placed by the scalar
-    separation fraction of its own pair of nodes."""
+    separation fraction of its own pair of nodes (without ``pressure``: half-way)."""
     x, n, total, left = footing.x, footing.nodes, 0.0, None
 
     def end(i, j):
+        if pressure is None:
+            return 0.5 * (x[i] + x[j])  # the midpoint rule
         t = separation_fraction(np.array([pressure[i]]), np.array([gap[j]]),
                                 abs(x[j] - x[i]), footing.modulus)[0]
         return x[i] + t * (x[j] - x[i])
@@ -146,6 +148,9 @@ def test_contact_lengths_of_many_rows_are_each_rows_own_patches():
     assert np.max(np.abs(lengths - walked)) <= 1e-12 * B
     assert lengths[0] == 0.0 and lengths[1] == pytest.approx(B, abs=1e-12)
     assert footing.contact_length(closed[7], pressure[7], gap[7]) == lengths[7]
+    midpoint = footing.contact_lengths(closed)
+    walked = [_patches_by_walking(footing, c, None, None) for c in closed]
+    assert np.max(np.abs(midpoint - walked)) <= 1e-12 * B
 
 
 def test_separation_point_inverts_the_half_plane_edge_asymptotics():

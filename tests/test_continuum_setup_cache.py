@@ -195,7 +195,8 @@ def test_the_cached_grid_lines_are_the_computed_ones(cache_home, overrides):
 
 
 #: A fresh ``upliftlab continuum`` process that prints, at its first progress row (written
-#: after the first time step), which of the libraries below it has imported by then.
+#: after the first time step), which of the libraries below it has imported by then, and at
+#: its end (its result.nc written) whether it has imported xarray, dask or pandas at all.
 _FIRST_STEP_PROBE = """
 import re, sys
 from upliftlab import cli
@@ -222,7 +223,7 @@ class Tap:
 
 sys.stderr = Tap(sys.stderr)
 code = cli.main(sys.argv[1:])
-print(code, Tap.seen)
+print(code, Tap.seen, sorted(m for m in ("xarray", "dask", "pandas") if m in sys.modules))
 """
 
 
@@ -232,8 +233,11 @@ def test_a_warm_process_takes_its_first_step_without_the_libraries_of_its_output
     # scipy.optimize (brentq, 0.13-0.19 s of CPU to import on the shared 2-core machine) only
     # when they are not in the set-up cache; meshio (0.04 s) only for mesh files; xarray,
     # h5netcdf/h5py, dask (which xarray's array checks import) and the pictures' libraries only
-    # for the output, after the last step. Reference: the fresh interpreter's sys.modules at
-    # the first progress row of the second of two runs with one cache folder.
+    # for the output, after the last step; and xarray, dask and pandas not at all: the result
+    # file is written from a LabelledData (upliftlab.netcdf_file), and importing xarray, which
+    # imports dask and dask.distributed when they are installed, cost about 1 s. Reference: the
+    # fresh interpreter's sys.modules at the first progress row, and at the end, of the second
+    # of two runs with one cache folder.
     env = {k: v for k, v in os.environ.items() if k != "NUMBA_DISABLE_JIT"}
     env["XDG_CACHE_HOME"] = str(tmp_path / "cache")  # numba's cache: NUMBA_CACHE_DIR, as set
     command = [sys.executable, "-c", _FIRST_STEP_PROBE, "continuum", "strip_footing_clay",
@@ -244,4 +248,4 @@ def test_a_warm_process_takes_its_first_step_without_the_libraries_of_its_output
                            check=False)
             for _ in range(2)]
     assert all(run.returncode == 0 for run in runs), runs[-1].stderr
-    assert runs[1].stdout.split("\n")[-2] == "0 []", runs[1].stdout
+    assert runs[1].stdout.split("\n")[-2] == "0 [] []", runs[1].stdout

@@ -72,9 +72,12 @@ def _hdf5(blob: bytes) -> dict:
     return out
 
 
-def _same_file(data: LabelledData) -> None:
+def _same_file(data: LabelledData, folder) -> None:
+    """upliftlab's file of ``data`` (through write_dataset) against xarray's."""
     encoded, no_fill = _encoded(data)
-    ours, theirs = netcdf_bytes(encoded, no_fill), _xarray_bytes(encoded, no_fill)
+    ours = write_dataset(folder / "ours.nc", data).read_bytes()
+    assert ours == netcdf_bytes(encoded, no_fill)
+    theirs = _xarray_bytes(encoded, no_fill)
     opened = [xr.load_dataset(io.BytesIO(b), engine="h5netcdf", decode_cf=False)
               for b in (ours, theirs)]
     xr.testing.assert_identical(*opened)
@@ -92,13 +95,13 @@ def dynamic_data() -> LabelledData:
     return labelled_data(result)
 
 
-def test_a_continuum_runs_file_is_the_file_xarray_writes(dynamic_data):
+def test_a_continuum_runs_file_is_the_file_xarray_writes(dynamic_data, tmp_path):
     assert {"time", "component", "far_field_shear_strain", "displacement"} <= set(
         dynamic_data.variables)
-    _same_file(dynamic_data)
+    _same_file(dynamic_data, tmp_path)
 
 
-def test_what_a_run_lacks_is_written_as_xarray_writes_it():
+def test_what_a_run_lacks_is_written_as_xarray_writes_it(tmp_path):
     data = LabelledData.build(
         {"peak": ((), 2.5, {"units": "m"}),
          "field": (("row", "col"), np.arange(6.0).reshape(2, 3), {"units": "Pa"}),
@@ -112,17 +115,20 @@ def test_what_a_run_lacks_is_written_as_xarray_writes_it():
                 "case": ("case", ["x", "y", "z", "w"], {"long_name": "cases"}),
                 "lonely": ("other", [1.0, 2.0], {"units": "s"})},
         attrs={"title": "hand-made", "numbers": [1.0, 2.0], "names": ["a", "b"]})
-    _same_file(data)
+    _same_file(data, tmp_path)
+    back = read_dataset(tmp_path / "ours.nc")
+    assert back["flag"].dtype == np.int8 and back["count"].dtype == np.int64  # NetCDF: no bool
 
 
 def test_a_saved_run_reads_back_as_its_dataset(tmp_path, dynamic_data):
-    """Round trip through the file (the reading side is xarray's): the values and units of
-    every variable come back as the labelled data held them."""
+    """Round trip through the file (the reading side is xarray's): the values, types and units
+    of every variable come back as the labelled data held them (its flags already int8)."""
     path = write_dataset(tmp_path / "result.nc", dynamic_data)
     back = read_dataset(path)
     for name, (dims, values, attrs) in dynamic_data.variables.items():
         assert back[name].dims == dims
         np.testing.assert_array_equal(back[name].values, values)
+        assert back[name].dtype == values.dtype or values.dtype.kind == "U"
         assert back[name].attrs.get("units") == attrs.get("units")
 
 
@@ -133,5 +139,7 @@ def test_a_saved_run_reads_back_as_its_dataset(tmp_path, dynamic_data):
     ({"a": (("n",), np.array([1 + 2j]), {})}, "variable 'a': values of type complex128"),
     ({"a": (("n",), np.array([object()]), {})}, "variable 'a': objects other than text")])
 def test_data_a_netcdf_file_cannot_hold_is_refused_before_writing(variables, message):
+    # Reference: the record's own rules (LabelledData's docstring): one length per dimension,
+    # as many dimensions as the values have, numbers, booleans or text only.
     with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
         LabelledData(variables)

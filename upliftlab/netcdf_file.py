@@ -48,7 +48,9 @@ def _coordinates(data: LabelledData) -> tuple[dict[str, str], str]:
 
 def netcdf_bytes(data: LabelledData, no_fill=frozenset(), complevel: int = 4) -> bytes:
     """``data`` as the bytes of a NetCDF-4 file made in memory (module docstring); ``no_fill``:
-    the floating-point variables without a ``_FillValue``."""
+    the floating-point variables without a ``_FillValue``. ``data`` is written as it is: already
+    CF-encoded (:func:`upliftlab.cf.encode`), its booleans already int8, as
+    :func:`upliftlab.results.write_dataset` makes it."""
     import h5netcdf
     import h5py
 

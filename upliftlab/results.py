@@ -174,7 +174,9 @@ def write_dataset(path: str | os.PathLike, dataset) -> Path:
     :class:`~upliftlab.labelled_data.LabelledData`) to ``path`` as compressed NetCDF-4 (module
     docstring); atomic. Booleans are stored as int8 (NetCDF has no boolean type); the time
     axis, the coordinates' fill values and the flags' types as CF-1.10 wants them
-    (:mod:`upliftlab.cf`). A Dataset's ``encoding`` is not used."""
+    (:mod:`upliftlab.cf`). A Dataset's ``encoding`` is not used. Values must be numbers,
+    booleans or text (:class:`~upliftlab.labelled_data.LabelledData`): bytes, dates, complex
+    numbers and missing text (None) raise ValueError before anything is written."""
     data = dataset if isinstance(dataset, LabelledData) else LabelledData.from_xarray(dataset)
     variables = {name: (dims, values.astype(np.int8) if values.dtype == bool else values,
                         cf_attributes(attrs))

@@ -179,14 +179,15 @@ def _far_field(result, data: dict, coords: dict, length: str) -> None:
 
 
 def path_to_dataset(path):
-    """:func:`path_labelled_data` as an :class:`xarray.Dataset`."""
+    """:func:`path_labelled_data` as an :class:`xarray.Dataset`;
+    ``ds.swap_dims(step="theta")`` makes a rotation pushover selectable by θ."""
     return path_labelled_data(path).to_xarray()
 
 
 def path_labelled_data(path) -> LabelledData:
-    """A static path (a StaticPath: a pushover) as an :class:`xarray.Dataset` over its load
-    ``step``, with the footing's rotation, settlement and loads as variables and the contact per
-    base node; ``ds.swap_dims(step="theta")`` makes a rotation pushover selectable by θ."""
+    """A static path (a StaticPath: a pushover) as a
+    :class:`~upliftlab.labelled_data.LabelledData` over its load ``step``, with the footing's
+    rotation, settlement and loads as variables and the contact per base node."""
     data, coords = _footing_and_contact(path, "step")
     data.update({
         "shear": (("step", "node"), path.shear, {"units": path.metadata["units"]["stress"],
