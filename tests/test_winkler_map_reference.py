@@ -229,9 +229,12 @@ def test_the_cost_estimate_counts_the_soils_damping_in_its_steps():
     """The map's cost estimate with the soil's Rayleigh damping (the half-plane reference's),
     written out by hand: the Courant steps ⌈duration V_p/(0.3 h_min)⌉ of the 4-across clay
     (V_p = 193.37 m/s, h_min = 0.5 m, 1406 DOFs: tests/test_explicit_mohr_coulomb.py) divided by
-    the central-difference factor √(1 + ξ²) − ξ, ξ = β ω/2 + α/(2ω) at ω = 2/dt (Belytschko, Liu
-    & Moran 2000, §6.3), with Rayleigh's α = 2ξ₀ω₁ω₂/(ω₁ + ω₂), β = 2ξ₀/(ω₁ + ω₂) at
-    f₁ = V_s/(4H), f₂ = 5 f₁; and a stored damped run's steps counted as its undamped ones."""
+    the explicit route's factor at ω = 2/dt, that of its Maxwell arm (``damped_critical``, held
+    to the scheme in tests/test_continuum_damping.py; within 1 % of the closed form
+    1/√(1 + β ω_c) of its spring), with Rayleigh's α = 2ξ₀ω₁ω₂/(ω₁ + ω₂), β = 2ξ₀/(ω₁ + ω₂) at
+    f₁ = V_s/(4H), f₂ = 5 f₁, ω_c = 10 ω₂; and a stored damped run's steps counted as its
+    undamped ones."""
+    from upliftlab.continuum.dynamics.rayleigh import Rayleigh, damped_critical
     from upliftlab.comparisons.studies.winkler_map import cost
     from upliftlab.scenes import load_scene
 
@@ -244,9 +247,14 @@ def test_the_cost_estimate_counts_the_soils_damping_in_its_steps():
     alpha, beta = 2.0 * 0.01 * w1 * 5.0 * w1 / (6.0 * w1), 2.0 * 0.01 / (6.0 * w1)
     per_second = vp / (0.3 * 0.5)
     omega = 2.0 * per_second
-    xi = beta * omega / 2.0 + alpha / (2.0 * omega)
-    factor = math.sqrt(1.0 + xi * xi) - xi
-    assert 0.3 < factor < 0.9  # the damping's real cost: the mesh's top mode is damped hard
+    damping = Rayleigh(0.01, (w1 / (2 * math.pi), 5 * w1 / (2 * math.pi)), alpha, beta)
+
+    def factor_at(w):
+        return damped_critical(w, damping) * w / 2.0
+
+    factor = factor_at(omega)
+    spring = 1.0 / math.sqrt(1.0 + beta * 10.0 * 5.0 * w1)
+    assert factor == pytest.approx(spring, rel=0.01) and 0.8 < factor < 1.0
     for scene, steps in ((plain, math.ceil(2.0 * per_second)),
                          (damped, math.ceil(2.0 * per_second / factor))):
         estimate = cost.estimate_cost([], [("clay", scene, 2.0, False)], [], [])
@@ -256,8 +264,7 @@ def test_the_cost_estimate_counts_the_soils_damping_in_its_steps():
     stored = {"dofs": 1406, "steps": 2000, "duration": 1.0, "compiled": True,
               "soil_model": "tresca", "dt_reduction": 0.5,
               "wall_time_s": 4.0e-4 * 1406 + 1.0e-7 * 1406 * 2000}
-    xi = beta * 1000.0 + alpha / 4000.0
-    factor = math.sqrt(1.0 + xi * xi) - xi
+    factor = factor_at(2000.0)
     for scene, steps in ((plain, 1000), (damped, math.ceil(1000.0 / factor))):
         estimate = cost.estimate_cost([], [("clay", scene, 1.0, False)], [], [stored])
         assert estimate.per_run == pytest.approx(4.0e-4 * 1406 + 1.0e-7 * 1406 * steps,

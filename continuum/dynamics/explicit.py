@@ -213,13 +213,18 @@ class _Explicit:
         self.L = f.kinematics
         self.free_q = np.array([not settings.prescribe_u, True, True])
         self.soil = SoilForce(model, static)
-        #: the Rayleigh β K₀ v as a Kelvin–Voigt stress β D₀ ε̇ (None without it), its force
-        #: and the element scratch of :func:`~.kernels.viscous_force`
+        #: the Rayleigh β K₀ v through a Maxwell arm of tangent β D₀ (None without it), the
+        #: arm's stress at each point and decay per step (:mod:`~.rayleigh`), its force and
+        #: the element scratch of :func:`~.kernels.viscous_force`
         self.viscous_D, self.viscous = None, np.zeros(n)
+        self.arm, self.arm_decay = np.zeros((0, 0, 3)), 0.0
         if settings.damping is not None and settings.damping.beta > 0.0:
             self.viscous_D = viscous_tangent(model, settings.damping)
             self.viscous_layout = self.soil.layout if self.soil.compiled else \
                 layout(model.disc)
+            nel, nqp, _ = self.viscous_layout.shape
+            self.arm = np.zeros((nel, nqp, 3))
+            self.arm_decay = settings.damping.arm_decay(settings.dt)
             self.viscous_work = np.zeros(self.viscous_layout.shape[::2] + (2,))
         #: the compiled loop serves every interface with a compiled material
         self.compiled = COMPILED_LOOP and self.soil.compiled
@@ -270,8 +275,8 @@ class _Explicit:
             ag = ag_all[k]
             Fz = self.ground_all[k] + z.gravity
             if self.viscous_D is not None:
-                viscous_force(self.viscous_layout, v, self.viscous_D,
-                              self.viscous_work, self.viscous)
+                viscous_force(self.viscous_layout, v, self.viscous_D, self.arm,
+                              self.arm_decay, self.viscous_work, self.viscous)
             increments = soil_predict(u, u_prev, v, fint, self.viscous, self.datum, self.keep,
                                       self.ground_soil, self.incident, ag, vinc_all[k],
                                       self.mass, self.c, dt, first, R_prev, F_prev, u_next,
@@ -357,7 +362,8 @@ class _Explicit:
         D, work_v = (self.viscous_D, self.viscous_work) if damped else \
             (np.zeros((3, 3)), np.zeros((0, 0, 2)))
         loads = (self.datum, self.keep, self.ground_soil, self.incident, ag_all, vinc_all,
-                 self.mass, self.c, m_step, damped, D, work_v, self.viscous)
+                 self.mass, self.c, m_step, damped, D, self.arm, self.arm_decay, work_v,
+                 self.viscous)
         structure = (z.M, z.C, z.K, self.K_next, z.gravity, self.ground_all)
         contact = (free, Lf, f.uy.astype(np.int64), f.ux.astype(np.int64), f.x,
                    f.interface.mu, f.width, f.interface.tangential)

@@ -111,8 +111,9 @@ def _steps(k0, k1, dt, rings, carry, soil, elements, gather, viscous_elements, l
     energy, counters), both updated in place; ``soil`` the compiled soil force's layout, state
     and workspace (:class:`~upliftlab.continuum.dynamics.soil_force.SoilForce`); ``loads``
     (datum, keep, ground, incident, ag_all, vinc_all, mass, damping, m_step, damped, and the
-    Rayleigh β K₀ v's Kelvin–Voigt tangent β D₀ (3, 3), element scratch and force: used if
-    ``damped``, :mod:`~upliftlab.continuum.dynamics.rayleigh`); ``structure``
+    Rayleigh β K₀ v's tangent β D₀ (3, 3), its Maxwell arm's stress (nel, nqp, 3) and decay a
+    per step, element scratch and force: used if ``damped``,
+    :mod:`~upliftlab.continuum.dynamics.rayleigh`); ``structure``
     (M, C, K, the part of K taken at n+1, gravity, the footing's and story's ground loads at
     every step, rows); ``contact`` (free, Lf, uy,
     ux, x, μ, width, tangential). ``elements``, ``gather`` and ``viscous_elements``: the serial
@@ -124,7 +125,7 @@ def _steps(k0, k1, dt, rings, carry, soil, elements, gather, viscous_elements, l
     (nodes, dNdx, dNdy, dx, eig, plastic, ebar, constants, gain, stress, work, fint, ptr,
      entries) = soil
     (datum, keep, ground, incident, ag_all, vinc_all, mass, damping, m_step, damped, Dv,
-     work_v, viscous) = loads
+     arm, decay, work_v, viscous) = loads
     Mz, Cz, Kz, Kz_next, gravity_z, ground_all = structure
     free, Lf, uy, ux, x, mu, width, tangential = contact
     nc = uy.size
@@ -141,8 +142,8 @@ def _steps(k0, k1, dt, rings, carry, soil, elements, gather, viscous_elements, l
                  stress, work)
         gather(work, nodes, ptr, entries, fint)
         ag = ag_all[k]
-        if damped:  # the Rayleigh β K₀ v_{k−½}, element by element
-            viscous_elements(v.reshape(-1, 2), nodes, dNdx, dNdy, dx, Dv, work_v)
+        if damped:  # the Rayleigh β K₀ v_{k−½} through its Maxwell arm, element by element
+            viscous_elements(v.reshape(-1, 2), nodes, dNdx, dNdy, dx, Dv, arm, decay, work_v)
             gather(work_v, nodes, ptr, entries, viscous)
         strain, work_in, dissipated = soil_predict(
             u, u_prev, v, fint, viscous, datum, keep, ground, incident, ag, vinc_all[k], mass,

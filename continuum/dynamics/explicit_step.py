@@ -13,8 +13,9 @@ computed it (:func:`stable_limit`).
 
 **With Rayleigh damping** (``continuum.damping_ratio``,
 :mod:`~upliftlab.continuum.dynamics.rayleigh`): the stiffness-proportional part acts at the
-last half-step velocity, and the limit 2/ω_max becomes (2/ω_max)(√(1 + ξ²) − ξ),
-ξ = βω_max/2 + α/(2ω_max) (:func:`~upliftlab.continuum.dynamics.rayleigh.damped_critical`);
+last half-step velocity through a Maxwell arm, and the limit 2/ω_max becomes that of one step
+of the mode at ω_max with the arm and α M
+(:func:`~upliftlab.continuum.dynamics.rayleigh.damped_critical`, about 2/(ω_max √(1 + β ω_c)));
 the settings' ``reduction`` is that factor, the damping's extra cost in steps (1/reduction).
 """
 
@@ -51,8 +52,7 @@ class ExplicitSettings:
     ``prescribe_u`` (frictionless without a tie: the footing's u follows the base), the
     admissible step ``limit`` = :data:`STABILITY_FRACTION` × ``critical`` (s), the
     central-difference limit of the mesh's highest frequency ``omega_max`` (rad/s): 2/ω_max,
-    times ``reduction`` = √(1 + ξ²) − ξ with the soil's Rayleigh ``damping`` (None: none;
-    module docstring)."""
+    times ``reduction`` with the soil's Rayleigh ``damping`` (None: none; module docstring)."""
 
     dt: float
     steps: int
@@ -159,8 +159,9 @@ def explicit_settings(model, scene, motion, options, ground, mass, free) -> Expl
         dt = options.dt
         if dt > limit:
             what = (f"2/ω_max = {critical:.4g} s" if damping is None else
-                    f"(2/ω_max)(√(1 + ξ²) − ξ) = {critical:.4g} s with the Rayleigh damping's "
-                    f"ξ(ω_max) = {damping.ratio_at(omega):.3g}")
+                    f"{critical:.4g} s = 2/ω_max × {critical * omega / 2.0:.4g} with the "
+                    f"Rayleigh damping's Maxwell arm relaxing at "
+                    f"ω_c = {damping.relaxation:.4g} rad/s")
             raise InputError(
                 f"DynamicOptions.dt = {dt:g} s: beyond the explicit stability limit of the mesh "
                 f"({what}, ω_max = {omega:.4g} rad/s); valid range is "

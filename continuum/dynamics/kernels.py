@@ -213,51 +213,61 @@ def internal_force(lay: Layout, u, eigenstrain, plastic, ebar, constants, gain, 
 
 
 @nb.njit(cache=True, fastmath=_FAST)
-def _viscous(lo, hi, v2, nodes, dNdx, dNdy, dx, D, fe):
-    """Elements lo:hi of :func:`viscous_pair`'s kernels: ∫ Bᵀ D ε̇ into ``fe``."""
+def _viscous(lo, hi, v2, nodes, dNdx, dNdy, dx, D, arm, decay, fe):
+    """Elements lo:hi of :func:`viscous_pair`'s kernels: the arm's stress
+    σ_m ← a σ_m + (1 − a) D ε̇ at each point, ∫ Bᵀ σ_m into ``fe``."""
     nel, nqp, nn = dNdx.shape
     ve = np.empty((nn, 2))
     d00, d01, d02, d10, d11, d12, d20, d21, d22 = (D[0, 0], D[0, 1], D[0, 2], D[1, 0], D[1, 1],
                                                    D[1, 2], D[2, 0], D[2, 1], D[2, 2])
+    fresh = 1.0 - decay
     for e in range(lo, hi):
         _element_values(e, v2, nodes, ve, fe)
         for p in range(nqp):
             rxx, ryy, rxy = _point_strain(e, p, dNdx, dNdy, ve)
+            sxx = decay * arm[e, p, 0] + fresh * (d00 * rxx + d01 * ryy + d02 * rxy)
+            syy = decay * arm[e, p, 1] + fresh * (d10 * rxx + d11 * ryy + d12 * rxy)
+            sxy = decay * arm[e, p, 2] + fresh * (d20 * rxx + d21 * ryy + d22 * rxy)
+            arm[e, p, 0], arm[e, p, 1], arm[e, p, 2] = sxx, syy, sxy
             w = dx[e, p]
-            _add_point_force(e, p, dNdx, dNdy, (d00 * rxx + d01 * ryy + d02 * rxy) * w,
-                             (d10 * rxx + d11 * ryy + d12 * rxy) * w,
-                             (d20 * rxx + d21 * ryy + d22 * rxy) * w, fe)
+            _add_point_force(e, p, dNdx, dNdy, sxx * w, syy * w, sxy * w, fe)
 
 
 @nb.njit(cache=True, parallel=True)
-def _viscous_parallel(v2, nodes, dNdx, dNdy, dx, D, fe):
+def _viscous_parallel(v2, nodes, dNdx, dNdy, dx, D, arm, decay, fe):
     nel = dNdx.shape[0]
     blocks = min(nel, _BLOCKS)
     for b in nb.prange(blocks):
-        _viscous(b * nel // blocks, (b + 1) * nel // blocks, v2, nodes, dNdx, dNdy, dx, D, fe)
+        _viscous(b * nel // blocks, (b + 1) * nel // blocks, v2, nodes, dNdx, dNdy, dx, D, arm,
+                 decay, fe)
 
 
 @nb.njit(cache=True)
-def _viscous_serial(v2, nodes, dNdx, dNdy, dx, D, fe):
-    _viscous(0, dNdx.shape[0], v2, nodes, dNdx, dNdy, dx, D, fe)
+def _viscous_serial(v2, nodes, dNdx, dNdy, dx, D, arm, decay, fe):
+    _viscous(0, dNdx.shape[0], v2, nodes, dNdx, dNdy, dx, D, arm, decay, fe)
 
 
 def viscous_pair(parallel: bool):
-    """The element kernel of a viscous stress D ε̇ (Kelvin–Voigt: the Rayleigh β K₀ v with
+    """The element kernel of a viscous stress through a Maxwell arm (the Rayleigh β K₀ v with
     D = β D₀, :mod:`~upliftlab.continuum.dynamics.rayleigh`), serial or parallel:
-    ``kernel(v2, nodes, dNdx, dNdy, dx, D, fe)`` writes ∫ Bᵀ D ε̇(v) dx per element into ``fe``
-    (nel, nnode, 2), D the (3, 3) plane tangent on (ε̇xx, ε̇yy, γ̇xy); the gather of
-    :func:`compiled_pair` sums it. The same numbers as (β K₀) v, element by element."""
+    ``kernel(v2, nodes, dNdx, dNdy, dx, D, arm, decay, fe)`` updates the arm's stress ``arm``
+    (nel, nqp, 3) on (xx, yy, xy) to a σ_m + (1 − a) D ε̇(v), a = ``decay``, and writes
+    ∫ Bᵀ σ_m dx per element into ``fe`` (nel, nnode, 2), D the (3, 3) plane tangent on
+    (ε̇xx, ε̇yy, γ̇xy); the gather of :func:`compiled_pair` sums it. With a = 0 the
+    Kelvin–Voigt stress D ε̇: the same numbers as (β K₀) v, element by element."""
     return _viscous_parallel if parallel else _viscous_serial
 
 
-def viscous_force(lay: Layout, v, D, work, out, parallel: bool | None = None) -> np.ndarray:
-    """∫ Bᵀ D ε̇(v) (ndofs) into ``out`` (:func:`viscous_pair`; ``work`` (nel, nnode, 2)
-    scratch), split among the threads as :func:`internal_force`."""
+def viscous_force(lay: Layout, v, D, arm, decay: float, work, out,
+                  parallel: bool | None = None) -> np.ndarray:
+    """∫ Bᵀ σ_m (ndofs) into ``out`` after one update of the arm's stress ``arm`` by
+    ``decay`` (:func:`viscous_pair`; ``work`` (nel, nnode, 2) scratch), split among the threads
+    as :func:`internal_force`."""
     if parallel is None:
         parallel = nb.get_num_threads() > 1
     _, gather = compiled_pair(parallel)
-    viscous_pair(parallel)(v.reshape(-1, 2), lay.nodes, lay.dNdx, lay.dNdy, lay.dx, D, work)
+    viscous_pair(parallel)(v.reshape(-1, 2), lay.nodes, lay.dNdx, lay.dNdy, lay.dx, D, arm,
+                           float(decay), work)
     gather(work, lay.nodes, lay.ptr, lay.entries, out)
     return out
 

@@ -338,8 +338,8 @@ def _dynamic_steps(scene, motion, h_min: float) -> tuple[int, float]:
     record step divided down to the route's limit (as :func:`run_dynamic` does; the explicit
     route's exact limit needs the mesh,
     :data:`~upliftlab.continuum.dynamics.explicit.COURANT_ESTIMATE`
-    estimates it from below, and the soil's Rayleigh damping shortens it by
-    √(1 + ξ²) − ξ at the mesh's highest frequency, estimated from the same step,
+    estimates it from below, and the soil's Rayleigh damping shortens it by its Maxwell
+    arm's factor at the mesh's highest frequency, estimated from the same step,
     ω_max ≈ 2 × STABILITY_FRACTION/dt, :mod:`~upliftlab.continuum.dynamics.rayleigh`)."""
     from ..continuum.dynamics.run import COURANT_LIMIT, wave_speeds
     from ..continuum.dynamics.explicit import COURANT_ESTIMATE, STABILITY_FRACTION

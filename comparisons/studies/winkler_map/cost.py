@@ -7,13 +7,13 @@ counted: numba does not cache it, and each worker pays it once). ``steps`` = dur
 dt the stable step of the mesh: from the runs of the same soil and mesh already stored, else
 from :data:`~upliftlab.continuum.dynamics.explicit.COURANT_ESTIMATE` (V_p dt/h_min, below the
 measured value, so that the estimate errs on the cost's side). The soil's Rayleigh damping
-(``continuum.damping_ratio``) shortens the step by its factor √(1 + ξ²) − ξ at the mesh's highest
-frequency (:func:`~upliftlab.continuum.dynamics.rayleigh.damped_critical`), taken here at
-ω_max = 2/dt of the undamped estimate (which errs high, so the factor errs low, on the cost's
-side); a stored run's steps are counted as its undamped ones (× its ``dt_reduction``) before
-they stand for another run's. F depends on the soil: the gravity state
-(Newton with the vectorised return map on either route) of a frictional soil (Mohr–Coulomb,
-Drucker–Prager) is slower than an undrained one's. R is the stored runs' median of
+(``continuum.damping_ratio``) shortens the step by the factor of its Maxwell arm at the mesh's
+highest frequency (:func:`~upliftlab.continuum.dynamics.rayleigh.damped_critical`, about
+1/√(1 + β ω_c)), taken here at ω_max = 2/dt of the undamped estimate (which errs high, so the
+factor errs low, on the cost's side); a stored run's steps are counted as its undamped ones
+(× its ``dt_reduction``) before they stand for another run's. F depends on the soil: the
+gravity state (Newton with the vectorised return map on either route) of a frictional soil
+(Mohr–Coulomb, Drucker–Prager) is slower than an undrained one's. R is the stored runs' median of
 (wall − F·dofs)/(dofs·steps) for the same kind of return map in the time loop (compiled:
 elastic, Tresca, von Mises, Mohr–Coulomb; or the vectorised fallback: Drucker–Prager), else
 the default below. A static point (stiffness plus vertical pushover) costs S·dofs, S from the
