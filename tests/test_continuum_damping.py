@@ -20,7 +20,8 @@ References, one per test:
   a spring β ω_c k beside k, 2/(ω √(1 + β ω_c)); the route's step is the limit at the mesh's
   ω_max (an independent eigenvalue solve, ``critical_step``), and a run at it stays bounded;
 - the Maxwell arm's stress under a constant strain rate: the closed form of its exponential
-  update, σ_m = (1 − aⁿ) β D₀ ε̇ after n steps;
+  update, σ_m = (1 − aⁿ) β D₀ ε̇ after n steps; with a = 0 its force is β K₀ v, K₀ assembled
+  by scikit-fem;
 - the refusals: the valid ranges stated in upliftlab/scenes/soil.py.
 """
 
@@ -196,6 +197,25 @@ def test_the_maxwell_arm_keeps_the_step_and_its_limit_is_the_schemes(omega):
     assert damped_critical(omega, damping) == pytest.approx(spring, rel=2e-3)
     gain = damped_critical(omega, damping) / kelvin_voigt_critical(omega, damping)
     assert gain > {2000.0: 1.38, 7600.0: 3.16, 30000.0: 11.4}[omega]  # 1.383, 3.165, 11.50
+
+
+def test_an_arm_that_does_not_remember_is_the_kelvin_voigt_force_beta_k0_v():
+    # Reference: the assembled initial stiffness K₀ (scikit-fem's assembly of the elastic
+    # tangent, continuum/assembly.py) times β and a random velocity: the arm with a = 0 gives
+    # the same force to 1e-12 of its largest entry, and its stress is β D₀ ε̇ itself.
+    from upliftlab.continuum import assembly
+    from upliftlab.continuum.dynamics.iteration_matrix import elastic_plane_tangent
+
+    scene = _scene(DAMPED)
+    model = build_model(scene)
+    damping = rayleigh(model)
+    lay = layout(model.disc)
+    v = np.random.default_rng(36).standard_normal(model.disc.ndofs)
+    arm = np.full(lay.shape[:2] + (3,), 7.0)  # what a = 0 must forget
+    work, out = np.zeros(lay.shape[::2] + (2,)), np.zeros(model.disc.ndofs)
+    viscous_force(lay, v, viscous_tangent(model, damping), arm, 0.0, work, out)
+    expected = damping.beta * (assembly.stiffness(model.disc, elastic_plane_tangent(model)) @ v)
+    assert np.abs(out - expected).max() <= 1e-12 * np.abs(expected).max()
 
 
 def test_the_arms_stress_relaxes_toward_the_kelvin_voigt_stress():

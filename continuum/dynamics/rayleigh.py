@@ -38,10 +38,13 @@ and at the mesh's highest frequency ξ = βω_max/2 is large (about 1.5 on the m
 the step × 0.29, 3.4 × the steps). Above ω_c the arm is a spring of β ω_c D₀ with little loss,
 so the step is only shortened by about 1/√(1 + β ω_c) (0.93 on the map's half-plane): the
 idea of the "Maxwell damping" of explicit codes that want a damping without its step (Huang,
-Sturt & Willford 2019, Computers & Structures). :func:`damped_critical` finds the limit
+Sturt & Willford 2019, "A damping model for nonlinear dynamic analysis providing uniform damping
+over a frequency range", Computers & Structures 212, which sums several arms; here one arm
+stands for β). :func:`damped_critical` finds the limit
 exactly for the mode at ω_max, with α M, from the spectral radius of one step of the scheme.
 The damping account counts the arm's work, which includes its stored energy
-½ σ_m : (β ω_c D₀)⁻¹ : σ_m (returned as it relaxes).
+½ σ_m : (β ω_c D₀)⁻¹ : σ_m, dissipated in turn as the arm relaxes (given back only if the
+strain reverses first), so the damping column may dip within a step.
 """
 
 from __future__ import annotations
