@@ -95,7 +95,6 @@ def labelled_data(response) -> LabelledData:
     """The response as the :class:`~upliftlab.labelled_data.LabelledData` that
     :func:`to_dataset` and the file hold (a response's ``save`` writes it without importing
     xarray)."""
-
     units, model = _units(response), response.model
     units["acceleration"] = f"{units['length']}/s^2"
     names = list(response.dofs.names)

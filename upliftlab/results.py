@@ -194,8 +194,7 @@ def write_netcdf(path: str | os.PathLike, variables: Mapping[str, Variable],
     before anything is written, if two variables disagree on the length of a dimension."""
     data = {name: (tuple(dims), _netcdf_array(values), dict(var_attrs or {}))
             for name, (dims, values, var_attrs) in variables.items()}
-    coords = frozenset(n for n, (dims, _, _) in data.items() if tuple(dims) == (n,))
-    return write_dataset(path, LabelledData(data, coords, dict(attrs or {})))
+    return write_dataset(path, LabelledData(data, attrs=dict(attrs or {})))
 
 
 def read_dataset(path: str | os.PathLike):

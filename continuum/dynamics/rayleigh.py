@@ -58,7 +58,7 @@ from .waves import wave_speeds
 
 __all__ = ["UPPER_FREQUENCY_FACTOR", "RELAXATION_FACTOR", "Rayleigh", "rayleigh_pair",
            "rayleigh_of", "rayleigh", "scene_rayleigh", "describe", "metadata", "damped_critical",
-           "kelvin_voigt_critical", "step_radius", "stiffness_data", "viscous_tangent"]
+           "step_radius", "stiffness_data", "viscous_tangent"]
 
 #: f₂ = this × f₁ when only ξ is given (module docstring).
 UPPER_FREQUENCY_FACTOR = 5.0
@@ -75,10 +75,6 @@ class Rayleigh:
     frequencies: tuple[float, float]
     alpha: float
     beta: float
-
-    def ratio_at(self, omega: float) -> float:
-        """ξ(ω) = α/(2ω) + βω/2 of a mode of circular frequency ``omega`` (rad/s)."""
-        return self.alpha / (2.0 * omega) + 0.5 * self.beta * omega
 
     @property
     def relaxation(self) -> float:
@@ -155,20 +151,13 @@ def metadata(damping: Rayleigh | None, reduction: float | None = None) -> dict:
     return entries
 
 
-def kelvin_voigt_critical(omega_max: float, damping: Rayleigh) -> float:
-    """(2/ω)(√(1 + ξ²) − ξ), ξ = βω/2 + α/(2ω) (s): the limit if β K₀ acted as a Kelvin–Voigt
-    stress (module docstring), the cost the Maxwell arm avoids."""
-    xi = damping.ratio_at(omega_max)
-    return 2.0 / omega_max * (math.sqrt(1.0 + xi * xi) - xi)
-
-
-def step_radius(dt: float, omega: float, damping: Rayleigh, decay: float | None = None) -> float:
+def step_radius(dt: float, omega: float, damping: Rayleigh) -> float:
     """The spectral radius of one explicit step of a mode of circular frequency ``omega``
     (rad/s) with the ``damping``: on (x_n, v_{n−½}, s_{n−1}), the arm's force
-    s_n = a s_{n−1} + (1 − a) β ω² v_{n−½}, v_{n+½} = ((1 − α dt/2) v_{n−½} − dt (ω² x_n + s_n))
-    / (1 + α dt/2), x_{n+1} = x_n + dt v_{n+½}; a = ``decay`` (default exp(−ω_c dt); 0 is the
-    Kelvin–Voigt stress). Above 1 the mode grows."""
-    a = damping.arm_decay(dt) if decay is None else decay
+    s_n = a s_{n−1} + (1 − a) β ω² v_{n−½} (a = exp(−ω_c dt)),
+    v_{n+½} = ((1 − α dt/2) v_{n−½} − dt (ω² x_n + s_n)) / (1 + α dt/2),
+    x_{n+1} = x_n + dt v_{n+½}. Above 1 the mode grows."""
+    a = damping.arm_decay(dt)
     k, c = omega * omega, 0.5 * damping.alpha * dt
     s = np.array([0.0, (1.0 - a) * damping.beta * k, a])
     v = (np.array([0.0, 1.0 - c, 0.0]) - dt * (np.array([k, 0.0, 0.0]) + s)) / (1.0 + c)

@@ -8,12 +8,11 @@ contact nodes, with their ``x``) and ``component`` (of the energy account); ``un
 fields of the snapshots are here too, as the model's DOF vector and element averages along
 ``snapshot``, located by the coordinates ``dof_x``, ``dof_y``, ``dof_direction`` and
 ``element_x``, ``element_y`` (the XDMF output draws them on the mesh); the run's metadata
-and provenance are attributes, one per key (:func:`~upliftlab.results.cf_attributes`).
-The data are built as a :class:`~upliftlab.labelled_data.LabelledData`, which the result's
-``save`` writes without importing xarray. A
+and provenance are attributes, one per key (:func:`~upliftlab.results.cf_attributes`). A
 dynamic run's far field (the soil columns at the box's sides) is along ``side`` and ``layer``
-(:func:`_far_field`). This
-dataset is what the results' ``save`` writes (on disk as :mod:`upliftlab.cf` says; read back
+(:func:`_far_field`). The data are built as a
+:class:`~upliftlab.labelled_data.LabelledData` (:func:`labelled_data`), which the results'
+``save`` writes without importing xarray (on disk as :mod:`upliftlab.cf` says; read back
 by :func:`upliftlab.open_result`). Nothing here computes: every value is one the result holds.
 """
 

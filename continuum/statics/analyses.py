@@ -116,8 +116,7 @@ def _path(model, kind: str, states, extra=None, snapshots=None) -> StaticPath:
     return StaticPath(
         kind=kind, u=q[:, 0], v=q[:, 1], theta=q[:, 2], H=reaction[:, 0], N=-reaction[:, 1],
         M=reaction[:, 2],
-        contact_length=np.array([f.contact_length(st != OPEN, p, g)
-                                 for st, p, g in zip(status, pressure, gap)]),
+        contact_length=f.contact_lengths(status != OPEN, pressure, gap),
         x=f.x, pressure=pressure, shear=shear / f.weight,
         gap=gap, status=status,
         iterations=np.array([s.iterations for s in states]),
