@@ -12,6 +12,7 @@ from ...beds import BEDS
 from .analysis import BIAS_MEASURES, RECORD_KINDS, analyse, signed_bias
 from .energy import energy_lines, energy_numbers
 from .goal import goal_text
+from .holdout import holdout_lines, holdout_numbers, out_of_sample
 from .grid import FLOOR_FRACTION, SOIL_LABELS
 from .parts import (capacity_fits_of, estimate_of, impedances_of, labels, map_of,
                     options_of, soil_statics_of, statics_of, texts, worst_statics)
@@ -75,6 +76,7 @@ def key_numbers(tree) -> dict:
                                         for (soil, fs), v in a.goal.by_soil_fs_v.items()},
                  "misses": a.goal.misses, "misses_over": finite(a.goal.over),
                  "misses_under": finite(a.goal.under)},
+        "out_of_sample": holdout_numbers(out_of_sample(m)),
         "speed": {"median": _clean(a.speed.median), "minimum": _clean(a.speed.minimum),
                   "continuum_median_s": finite(a.speed.continuum_median),
                   "bed_median_s": _clean(a.speed.bed_median)},
@@ -164,6 +166,7 @@ def summarise(tree) -> str:
               "## Where the beds miss", "", *bias_lines(m), "",
               "## How much of the map a calibrated bed covers", "", share_text(a), "",
               goal_text(a.goal), "",
+              "## Out of sample", "", *holdout_lines(m, out_of_sample(m)),
               "## Speed", "", speed_text(a), "", "## Cost", "", cost_text(m, st), ""]
     if refusals:
         lines += [f"Runs that failed: {len(refusals)} (a bed refused by its integrator, a "
