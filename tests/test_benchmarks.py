@@ -384,3 +384,30 @@ def test_map_cluster_schedule_and_table(tmp_path):
     assert map_cluster.main(["--out", str(tmp_path), "--workers", "8"]) == 0
     text = (tmp_path / "MAP_CLUSTER.md").read_text()
     assert "`evaluate_dynamic`: 1248 runs" in text and "| 8 |" in text
+
+
+def test_map_references_fast_path(tmp_path):
+    """One clay pulse point on both references, from the kept stores (no continuum run): each
+    bed's share in the table is its map's own share (``summary.json``, the map's analysis,
+    which counts every point: here the table's one cell), and the continuum's move is the two
+    maps' peak θ read from their ``map.nc`` (1e-3 of a percent, the table's rounding)."""
+    from upliftlab.comparisons.studies.winkler_map.sections import short
+    from upliftlab.results import read_dataset
+
+    out = tmp_path / "refs"
+    run_fast_path("map_references.py", out)
+    complete(out, "map_references")
+    table = tables(out / "MAP_REFERENCES.md")
+    shares = {r: json.loads((out / r / "summary.json").read_text())["share"]["by_calibration"]
+              for r in ("box", "half_plane")}
+    rows = {row["bed"]: row for row in table["Each bed within 10 % in peak θ and edge uplift, "
+                                               "box → half-plane"]}
+    cell = next(k for k in next(iter(rows.values())) if k != "bed")
+    for bed in shares["box"]:
+        box, hp = rows[short(bed)][cell].split(" → ")
+        assert num(box) == pytest.approx(100 * shares["box"][bed], abs=0.5)
+        assert num(hp) == pytest.approx(100 * shares["half_plane"][bed], abs=0.5)
+    theta = [float(read_dataset(out / r / "map.nc").continuum_theta.values.ravel()[0])
+             for r in ("box", "half_plane")]
+    move = table["The continuum itself, half-plane over box"][0]["theta"]
+    assert num(move.split(" (")[0]) == pytest.approx(100 * (theta[1] / theta[0] - 1), abs=0.06)
