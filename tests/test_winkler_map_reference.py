@@ -271,6 +271,30 @@ def test_the_cost_estimate_counts_the_soils_damping_in_its_steps():
                                                  rel=1e-9)
 
 
+def test_the_fixed_and_per_step_costs_are_fitted_to_stored_runs_of_two_lengths():
+    """Stored runs made by hand from a fixed cost F = 1e-4 s/DOF and a per-step cost
+    R = 4e-8 s/(DOF step), neither the default, at two lengths (pulses of 1 and 2 s on 1406
+    DOFs, and one on 2000): the fit recovers both (1e-9), and a record of 30 s is estimated at
+    F·dofs + R·dofs·steps with the steps of the stored runs' density (1000 undamped a second),
+    by hand. Runs of one length leave F unknown: the default F stays, and R is the median of
+    (wall − F·dofs)/(dofs·steps) as before (the test above). Reference: the cost model's own
+    equation, evaluated by hand."""
+    from upliftlab.comparisons.studies.winkler_map import cost
+    from upliftlab.scenes import load_scene
+
+    F, R = 1.0e-4, 4.0e-8
+    runs = [(1406, 1000, F * 1406 + R * 1406 * 1000), (1406, 2000, F * 1406 + R * 1406 * 2000),
+            (2000, 1000, F * 2000 + R * 2000 * 1000)]
+    assert cost.fit_rates(runs) == pytest.approx((F, R), rel=1e-9)
+    assert cost.fit_rates(runs[:1] * 3) is None
+    stored = [{"dofs": d, "steps": s, "duration": s / 1000.0, "compiled": True,
+               "soil_model": "tresca", "wall_time_s": w} for d, s, w in runs[:2]]
+    scene = load_scene("strip_footing_clay", overrides=["continuum.elements_across=4"])
+    estimate = cost.estimate_cost([], [("clay", scene, 30.0, False)], [], stored)
+    assert estimate.per_run == pytest.approx(F * 1406 + R * 1406 * 30000, rel=1e-9)
+    assert "compiled return map: the stored runs' (fixed part fitted)" in estimate.text()
+
+
 @pytest.mark.parametrize("reference", ["box", "half_plane"])
 def test_the_beds_are_calibrated_to_the_whole_weight_on_the_footing(reference):
     """A bed's N is the whole weight on the footing (the point's N = 150 kN/m, by

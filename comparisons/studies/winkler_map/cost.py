@@ -13,10 +13,15 @@ highest frequency (:func:`~upliftlab.continuum.dynamics.rayleigh.damped_critical
 factor errs low, on the cost's side); a stored run's steps are counted as its undamped ones
 (× its ``dt_reduction``) before they stand for another run's. F depends on the soil: the
 gravity state (Newton with the vectorised return map on either route) of a frictional soil
-(Mohr–Coulomb, Drucker–Prager) is slower than an undrained one's. R is the stored runs' median of
-(wall − F·dofs)/(dofs·steps) for the same kind of return map in the time loop (compiled:
-elastic, Tresca, von Mises, Mohr–Coulomb; or the vectorised fallback: Drucker–Prager), else
-the default below. A static point (stiffness plus vertical pushover) costs S·dofs, S from the
+(Mohr–Coulomb, Drucker–Prager) is slower than an undrained one's. Where the stored runs of the
+same kind of return map in the time loop (compiled: elastic, Tresca, von Mises, Mohr–Coulomb;
+or the vectorised fallback: Drucker–Prager) and the same kind of soil are of two lengths or
+more, F and R are both fitted to them (:func:`fit_rates`: a pulse's few seconds of motion
+carry a fixed part that a record's minute does not, and a fixed part taken from the defaults
+instead, larger than today's cached start-up, left the pulses' per-step rate near zero and
+estimated the half-plane's records at 26 s against the 2–4 min they took); otherwise R is the
+stored runs' median of (wall − F·dofs)/(dofs·steps) with the default F, else the default
+below. A static point (stiffness plus vertical pushover) costs S·dofs, S from the
 stored statics when there are any.
 A soil's impedance (when a bed needs it, :mod:`.impedance_points`) costs P·dofs·frequencies
 on the impedance's own mesh (one complex factorisation per frequency), P from the stored
@@ -43,8 +48,8 @@ import numpy as np
 from ....checks import InputError
 from ....scenes.soil import FRICTIONAL, SOIL_MODELS
 
-__all__ = ["Estimate", "estimate_cost", "mesh_size", "impedance_dofs", "refuse_over_budget",
-           "timed_dynamic_runs", "damping_reduction",
+__all__ = ["Estimate", "estimate_cost", "fit_rates", "mesh_size", "impedance_dofs",
+           "refuse_over_budget", "timed_dynamic_runs", "damping_reduction",
            "FIXED_SECONDS_PER_DOF", "SECONDS_PER_DOF_STEP", "STATIC_SECONDS_PER_DOF",
            "compiled_soil_model", "IMPEDANCE_SECONDS_PER_DOF_FREQUENCY"]
 
@@ -158,13 +163,29 @@ def damping_reduction(scene, omega_max: float) -> float:
     return damped_critical(omega_max, damping) * omega_max / 2.0
 
 
-def _stored_rates(stored: Iterable[Mapping]) -> dict:
-    """Median per-step rates by compiled flag, and undamped steps per second of simulated
-    time by dofs (module docstring), from stored dynamic records. A record's soil is
-    frictional by its ``soil_model``; a record stored before it had one was frictional exactly
-    when its return map was not compiled (then only Mohr–Coulomb and Drucker–Prager were
-    not)."""
-    rates, density = {}, {}
+def fit_rates(runs: Sequence[tuple[int, int, float]]) -> tuple[float, float] | None:
+    """(F, R): the fixed cost per DOF (s) and the cost per DOF and step (s) fitted to
+    ``runs`` (dofs, steps, wall time in s) as wall = F·dofs + R·dofs·steps, by non-negative
+    least squares on the relative residuals (each run weighs alike, long or short); None when
+    the runs are of fewer than two lengths (dofs·steps), or the fit gives no per-step cost."""
+    from scipy.optimize import nnls
+
+    a = np.asarray(runs, dtype=float).reshape(-1, 3)
+    work = a[:, 0] * a[:, 1]
+    if np.unique(work).size < 2:
+        return None
+    (F, R), _ = nnls(np.column_stack([a[:, 0], work]) / a[:, 2:3], np.ones(len(a)))
+    return (float(F), float(R)) if R > 0.0 else None
+
+
+def _stored_rates(stored: Iterable[Mapping]) -> tuple[dict, dict, dict]:
+    """From stored dynamic records: (F, R) fitted per (compiled, frictional) where
+    :func:`fit_rates` can, the median per-step rates by compiled flag at the default fixed
+    cost, and the undamped steps per second of simulated time by dofs (module docstring). A
+    record's soil is frictional by its ``soil_model``; a record stored before it had one was
+    frictional exactly when its return map was not compiled (then only Mohr–Coulomb and
+    Drucker–Prager were not)."""
+    rates, density, runs = {}, {}, {}
     for rec in stored:
         dofs, steps = rec["dofs"], max(1, rec["steps"])
         compiled = bool(rec["compiled"])
@@ -172,10 +193,12 @@ def _stored_rates(stored: Iterable[Mapping]) -> dict:
                       else not compiled)
         rest = max(0.0, rec["wall_time_s"] - FIXED_SECONDS_PER_DOF[frictional] * dofs)
         rates.setdefault(compiled, []).append(rest / (dofs * steps))
+        runs.setdefault((compiled, frictional), []).append((dofs, steps, rec["wall_time_s"]))
         if rec["duration"] > 0:
             undamped = steps * rec.get("dt_reduction", 1.0)
             density.setdefault(dofs, []).append(undamped / rec["duration"])
-    return ({k: float(np.median(v)) for k, v in rates.items()},
+    fits = {k: fit for k, v in runs.items() if (fit := fit_rates(v)) is not None}
+    return (fits, {k: float(np.median(v)) for k, v in rates.items()},
             {k: float(np.median(v)) for k, v in density.items()})
 
 
@@ -213,7 +236,7 @@ def estimate_cost(static: Sequence[tuple[str, object, bool]],
     from ....continuum.dynamics.run import wave_speeds
     from ....continuum.dynamics.explicit import COURANT_ESTIMATE
 
-    rates, density = _stored_rates(stored_dynamic)
+    fits, rates, density = _stored_rates(stored_dynamic)
     static_rate = (float(np.median([r["wall_time_s"] / r["dofs"] for r in stored_static]))
                    if stored_static else STATIC_SECONDS_PER_DOF)
     impedance_rate = (float(np.median([r["wall_time_s"] / (r["dofs"] * len(r["a0"]))
@@ -244,15 +267,18 @@ def estimate_cost(static: Sequence[tuple[str, object, bool]],
         frictional = scene.soil.frictional
         undamped = density.get(dofs) or wave_speeds(scene.soil)[0] / (COURANT_ESTIMATE * h_min)
         per_second = undamped / damping_reduction(scene, 2.0 * undamped)
-        rate = rates.get(compiled, SECONDS_PER_DOF_STEP[compiled])
-        cost = (FIXED_SECONDS_PER_DOF[frictional] * dofs
-                + rate * dofs * math.ceil(duration * per_second))
+        default = rates.get(compiled, SECONDS_PER_DOF_STEP[compiled])
+        fixed, rate = fits.get((compiled, frictional),
+                               (FIXED_SECONDS_PER_DOF[frictional], default))
+        cost = fixed * dofs + rate * dofs * math.ceil(duration * per_second)
         per_run.append(cost)
         by_soil[soil] += cost
         n_dynamic += 1
     kinds = {True: "compiled", False: "fallback"}
+    fitted = {k for k, _ in fits}
     source = ", ".join(f"{kinds[k]} return map: "
-                       + ("the stored runs'" if k in rates else "default") for k in kinds)
+                       + ("the stored runs' (fixed part fitted)" if k in fitted
+                          else "the stored runs'" if k in rates else "default") for k in kinds)
     return Estimate(n_static + n_dynamic, n_static, n_dynamic, stored, sum(by_soil.values()),
                     by_soil, float(np.median(per_run)) if per_run else 0.0, source)
 
