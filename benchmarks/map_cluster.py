@@ -13,8 +13,8 @@ makespan is what is reported, beside that bound. Not counted: starting each work
 process loads the compiled kernels from the on-disk cache in about 4 s,
 ``benchmarks/CONTINUUM_STARTUP.md``, or compiles them in about 50 s when its node has no
 cache), the reduced model's beds (milliseconds per run) and the map's assembly. ``--slowdown``
-scales every run's time (a reference whose runs cost more: a damped half-plane's explicit
-runs take about 4.3 times the undamped box's, ``docs/continuum.md``).
+scales every run's time (a reference whose runs cost more than the store's: ``--store``
+the half-plane's kept store reads that reference's own times).
 
 Writes ``MAP_CLUSTER.md`` to ``--out`` (default ``results/bench/map_cluster``); ``--write``
 also rewrites the committed ``benchmarks/MAP_CLUSTER.md``. It runs nothing but reads the store
