@@ -113,9 +113,10 @@ def _pct(value: float) -> str:
     return "n/a" if not math.isfinite(value) else f"{100 * value:.0f} %"
 
 
-def continuum_moves(box, hp) -> dict:
-    """{soil: {measure: (median half-plane/box − 1, points)}} over the points both count with
-    a box value above 1e-12 (peak θ, edge uplift, residual settlement)."""
+def continuum_moves(box, hp, common: np.ndarray) -> dict:
+    """{soil: {measure: (median half-plane/box − 1, points)}} over the points of ``common``
+    (both count them) with a finite value on both and a box value above 1e-12 (peak θ, edge
+    uplift, residual settlement)."""
     from upliftlab.comparisons.studies.winkler_map.parts import labels, point_values
 
     out = {}
@@ -124,7 +125,7 @@ def continuum_moves(box, hp) -> dict:
         for q in COMPARED:
             a = point_values(box, f"continuum_{q}")[s].ravel()
             b = point_values(hp, f"continuum_{q}")[s].ravel()
-            ok = np.isfinite(a) & np.isfinite(b) & (np.abs(a) > 1e-12)
+            ok = common[s].ravel() & np.isfinite(a) & np.isfinite(b) & (np.abs(a) > 1e-12)
             out[soil][q] = (_median(b[ok] / a[ok] - 1.0), int(ok.sum()))
     return out
 
@@ -146,7 +147,8 @@ def compare(maps: dict) -> dict:
               for f, fs in enumerate(box.fs_v.values.tolist())}
     return {"beds": labels(box, "calibration"), "counted": points,
             "shares": {r: _shares(maps[r], common) for r in REFERENCES},
-            "moves": continuum_moves(box, hp),
+            "moves": continuum_moves(box, hp, common),
+            "tolerance": float(box.attrs["options_theta_tolerance"]),
             "verdicts": {r: verdict_counts(maps[r]) for r in REFERENCES},
             "holdout": {r: out_of_sample(maps[r]) for r in REFERENCES},
             "motions": labels(box, "motion"), "points": int(box.continuum_wall_time.size)}
@@ -192,7 +194,8 @@ def table(c: dict, command: str) -> str:
              f"{v['half_plane']['beyond_small_strain']}; far fields that yielded: box "
              f"{v['box']['far_field_yielded']}, half-plane "
              f"{v['half_plane']['far_field_yielded']}.",
-             "", "## Each bed within 10 % in peak θ and edge uplift, box → half-plane", "",
+             "", f"## Each bed within {100 * c['tolerance']:g} % in peak θ and edge uplift, "
+             "box → half-plane", "",
              "Columns: soil, FS_v. On the points both references count (the first row: "
              "how many each counts, and both).", "",
              *_bed_table(c), "", "## The continuum itself, half-plane over box", "",

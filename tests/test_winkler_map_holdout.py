@@ -32,13 +32,17 @@ ATTRS = {"options_elements_across": 4, "options_springs": 8, "options_settlement
          "options_figures": 0}
 
 
-def _map(errors, kinds, theta=None, failed=None, bed_failed=None, soils=("clay",), fs_v=(2.0,)):
+def _map(errors, kinds, theta=None, failed=None, bed_failed=None, soils=("clay",), fs_v=(2.0,),
+         uplift=None):
     """A map dataset with the variables the analysis reads: ``errors`` (soil, fs_v, motion,
-    bed), the same in every measure; one h/B, period and intensity."""
+    bed), the same in every measure but edge uplift where ``uplift`` (the same shape) is given;
+    one h/B, period and intensity."""
     errors = np.asarray(errors, dtype=float)
     ns, nf, nm, nb = errors.shape
     shape = (ns, nf, 1, 1, 1, nm)
     e = np.repeat(errors.reshape(shape + (nb, 1)), len(MEASURES), axis=-1)
+    if uplift is not None:
+        e[..., MEASURES.index("uplift")] = np.asarray(uplift, float).reshape(shape + (nb,))
     theta = np.ones(shape) if theta is None else np.asarray(theta, float).reshape(shape)
     failed = np.zeros(shape, int) if failed is None else np.asarray(failed, int).reshape(shape)
     bed_failed = (np.zeros(shape + (nb,), int) if bed_failed is None
@@ -77,6 +81,17 @@ def test_nothing_to_hold_out_with_fewer_than_two_records():
     assert out_of_sample(_map(e, ["ricker", "elcentro"])) == ()
 
 
+def test_a_map_whose_every_run_was_refused_has_no_pick_and_no_share():
+    """Nothing counts: no pick is made, so no share and no kept pick (NaN), every held-out
+    point unscored."""
+    e = np.full((1, 1, 3, 2), np.nan)
+    scores = out_of_sample(_map(e, ["ricker", "elcentro", "fema_p695"],
+                                theta=np.full((1, 1, 3), np.nan)))
+    for s in scores:
+        assert math.isnan(s.in_sample) and math.isnan(s.out_of_sample) and math.isnan(s.kept)
+        assert (s.points, s.unpicked) == (0, 0)
+
+
 def test_a_tie_goes_to_the_smaller_median_error_then_to_the_first_bed():
     """Reference by hand: both beds hit one of two points; medians 0.3 and 0.2, then equal."""
     hit = np.array([[True, False], [False, True]])
@@ -88,7 +103,7 @@ def test_a_tie_goes_to_the_smaller_median_error_then_to_the_first_bed():
 
 def _naive(ds, level):
     """Leave one record out, by plain loops (the module docstring's rule): {soil or 'all':
-    (in-sample share, out-of-sample share, further share)}."""
+    (in-sample share, out-of-sample share, further share, scored points, kept share)}."""
     soils = [str(s) for s in ds.soil.values]
     kinds = [str(k) for k in ds.motion_kind.values]
     fema = 0
@@ -142,12 +157,18 @@ def _naive(ds, level):
             got = [point(c, m)[1][b] for c, m, b in pairs if b is not None and point(c, m)[0]]
             return sum(got) / len(got) if got else math.nan
 
-        inside = share([(c, r, full[unit(c)]) for c in mine for r in records])
-        outside = share([(c, r, pick(unit(c), [m for m in usable if m != r]))
-                         for c in mine for r in records])
+        held = {(unit(c), r): pick(unit(c), [m for m in usable if m != r])
+                for c in mine for r in records}
+        both = [(c, r) for c in mine for r in records
+                if full[unit(c)] is not None and held[unit(c), r] is not None]
+        inside = share([(c, r, full[unit(c)]) for c, r in both])
+        outside = share([(c, r, held[unit(c), r]) for c, r in both])
         fresh = share([(c, m, full[unit(c)]) for c in mine for m in range(len(kinds))
                        if further[m]])
-        out[soil] = (inside, outside, fresh)
+        scored = sum(1 for c, r in both if point(c, r)[0])
+        kept = [held[u, r] == full[u] for u, r in held if full[u] is not None]
+        out[soil] = (inside, outside, fresh, scored,
+                     sum(kept) / len(kept) if kept else math.nan)
     return out
 
 
@@ -155,28 +176,37 @@ def test_leave_one_record_out_agrees_with_plain_loops_on_a_random_map():
     rng = np.random.default_rng(35)
     kinds = ["ricker", "elcentro"] + ["fema_p695"] * 11
     ns, nf, nm, nb = 2, 6, len(kinds), 4
-    errors = rng.choice([0.0, 0.04, 0.08, 0.2, 0.6, -0.09, -0.3], size=(ns, nf, nm, nb))
+    values = [0.0, 0.04, 0.08, 0.2, 0.6, -0.09, -0.3]
+    errors = rng.choice(values, size=(ns, nf, nm, nb))
+    uplift = np.where(rng.random((ns, nf, nm, nb)) < 0.7, errors,
+                      rng.choice(values, size=(ns, nf, nm, nb)))
+    uplift[0, 3, 4, 1] = np.nan  # one measure missing: a miss, its worst error infinite
     theta = np.ones((ns, nf, nm))
     theta[0, 1, 3] = np.nan  # a refused run
     errors[0, 1, 3] = np.nan
     theta[1, 2] = np.nan  # a cell whose every run was refused: no pick there
     errors[1, 2] = np.nan
+    refused = [m for m in range(nm) if m != 3]  # a cell with one run: no pick without it
+    theta[0, 5, refused] = np.nan
+    errors[0, 5, refused] = np.nan
     failed = np.zeros((ns, nf, nm), int)
     failed[1, 4, [2, 5, 9]] = 1  # bearing failures: errors NaN, called by beds 0 and 2
     errors[1, 4, [2, 5, 9]] = np.nan
     bed_failed = np.zeros((ns, nf, nm, nb), int)
     bed_failed[1, 4, [2, 5, 9]] = [1, 0, 1, 0]
+    uplift[np.isnan(errors)] = np.nan
     ds = _map(errors, kinds, theta, failed, bed_failed, soils=("clay", "sand"),
-              fs_v=tuple(float(v) for v in range(2, 2 + nf)))
+              fs_v=tuple(float(v) for v in range(2, 2 + nf)), uplift=uplift)
     assert further_records(ds).tolist() == [False] * 12 + [True]
     scores = {(s.level, s.soil): s for s in out_of_sample(ds)}
     for level in ("map", "soil", "cell"):
-        for soil, (inside, outside, fresh) in _naive(ds, level).items():
+        for soil, (inside, outside, fresh, scored, kept) in _naive(ds, level).items():
             s = scores[level, soil]
             assert s.in_sample == pytest.approx(inside, abs=1e-12)
             assert s.out_of_sample == pytest.approx(outside, abs=1e-12)
             assert s.further == pytest.approx(fresh, abs=1e-12)
+            assert (s.points - s.unpicked, s.kept) == (scored, pytest.approx(kept, abs=1e-12))
     clay, sand = scores["cell", "clay"], scores["cell", "sand"]
-    assert (clay.points, clay.unpicked) == (6 * 11 - 1, 0)
+    assert (clay.points, clay.unpicked) == (5 * 11 - 1 + 1, 1)  # its one run, unscored
     assert (sand.points, sand.unpicked) == (5 * 11, 0)  # the refused cell counts nothing
-    assert scores["cell", "all"].further_points == 12 - 1
+    assert scores["cell", "all"].further_points == 12 - 2  # two cells refused it

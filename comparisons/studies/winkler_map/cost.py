@@ -2,30 +2,33 @@
 
 A dynamic run of the explicit route costs a fixed part (the mesh, the stable step's Lanczos
 eigenvalue, the gravity state) and a part per step, both about proportional to the DOFs:
-``seconds = F·dofs + R·dofs·steps`` (the explicit loop's compilation, once per process, is not
-counted: numba does not cache it, and each worker pays it once). ``steps`` = duration/dt, with
-dt the stable step of the mesh: from the runs of the same soil and mesh already stored, else
-from :data:`~upliftlab.continuum.dynamics.explicit.COURANT_ESTIMATE` (V_p dt/h_min, below the
-measured value, so that the estimate errs on the cost's side). The soil's Rayleigh damping
-(``continuum.damping_ratio``) shortens the step by the factor of its Maxwell arm at the mesh's
-highest frequency (:func:`~upliftlab.continuum.dynamics.rayleigh.damped_critical`, about
-1/√(1 + β ω_c)), taken here at ω_max = 2/dt of the undamped estimate (which errs high, so the
-factor errs low, on the cost's side); a stored run's steps are counted as its undamped ones
-(× its ``dt_reduction``) before they stand for another run's. F depends on the soil: the
-gravity state (Newton with the vectorised return map on either route) of a frictional soil
-(Mohr–Coulomb, Drucker–Prager) is slower than an undrained one's. Where the stored runs of the
-same kind of return map in the time loop (compiled: elastic, Tresca, von Mises, Mohr–Coulomb;
-or the vectorised fallback: Drucker–Prager) and the same kind of soil are of two lengths or
-more, F and R are both fitted to them (:func:`fit_rates`: a pulse's few seconds of motion
-carry a fixed part that a record's minute does not, and a fixed part taken from the defaults
-instead, larger than today's cached start-up, left the pulses' per-step rate near zero and
-estimated the half-plane's records at 26 s against the 2–4 min they took); otherwise R is the
-stored runs' median of (wall − F·dofs)/(dofs·steps) with the default F, else the default
-below. A static point (stiffness plus vertical pushover) costs S·dofs, S from the
-stored statics when there are any.
-A soil's impedance (when a bed needs it, :mod:`.impedance_points`) costs P·dofs·frequencies
-on the impedance's own mesh (one complex factorisation per frequency), P from the stored
-impedances when there are any; it is one static run.
+``seconds = F·dofs + R·dofs·steps`` (not counted: a worker's first run loads the compiled
+kernels from numba's on-disk cache, or compiles them, once per process). ``steps`` =
+duration/dt, with dt the stable step of the mesh: from the runs of the same soil and mesh
+already stored, else from :data:`~upliftlab.continuum.dynamics.explicit.COURANT_ESTIMATE` (V_p
+dt/h_min, below the measured value, so that the estimate errs on the cost's side). The soil's
+Rayleigh damping (``continuum.damping_ratio``) shortens the step by the factor of its Maxwell
+arm at the mesh's highest frequency
+(:func:`~upliftlab.continuum.dynamics.rayleigh.damped_critical`, about 1/√(1 + β ω_c)), taken
+here at ω_max = 2/dt of the undamped estimate (which errs high, so the factor errs low, on the
+cost's side); a stored run's steps are counted as its undamped ones (× its ``dt_reduction``)
+before they stand for another run's. F depends on the soil: the gravity state (Newton with the
+vectorised return map on either route) of a frictional soil (Mohr–Coulomb, Drucker–Prager) is
+slower than an undrained one's. Where the stored runs of the same kind of return map in the
+time loop (compiled: elastic, Tresca, von Mises, Mohr–Coulomb; or the vectorised fallback:
+Drucker–Prager) and the same kind of soil are of two lengths or more, F and R are both fitted
+to them (:func:`fit_rates`: a pulse's few seconds of motion carry a fixed part that a record's
+minute does not, and a fixed part taken from the defaults instead, larger than today's cached
+start-up, left the pulses' per-step rate near zero and estimated the half-plane's records at 26
+s against the 1–5 min they took), and a run is estimated at no less than its steps at the
+stored runs' median of wall/(dofs·steps), every second counted as the steps' (a record far
+longer than the pulses it is estimated from is then estimated high rather than low); otherwise
+R is the stored runs' median of (wall − F·dofs)/(dofs·steps) with the default F, else the
+default below. A static point (stiffness plus vertical pushover) costs S·dofs, S from the
+stored statics when there are any. A soil's impedance (when a bed needs it,
+:mod:`.impedance_points`) costs P·dofs·frequencies on the impedance's own mesh (one complex
+factorisation per frequency), P from the stored impedances when there are any; it is one static
+run.
 
 The defaults were measured on the project's loaded 2-core machine with kernels compiled
 (runs of 0.01 s and 0.3–1 s of a Ricker pulse on 4 and 16 across, the clay's compiled Tresca
@@ -59,6 +62,9 @@ __all__ = ["Estimate", "estimate_cost", "fit_rates", "mesh_size", "impedance_dof
 FIXED_SECONDS_PER_DOF = {False: 4.0e-4, True: 1.1e-3}
 #: Cost per step and DOF (s): compiled return maps, and the vectorised fallback.
 SECONDS_PER_DOF_STEP = {True: 1.0e-7, False: 6.1e-6}
+#: The least ratio of the longest stored run's steps to the shortest's for the fixed and
+#: per-step costs to be fitted apart (:func:`fit_rates`).
+FIT_STEP_SPAN = 1.2
 #: Cost of a soil's statics (stiffness and vertical pushover) per DOF (s).
 STATIC_SECONDS_PER_DOF = 3.0e-3
 
@@ -166,21 +172,27 @@ def damping_reduction(scene, omega_max: float) -> float:
 def fit_rates(runs: Sequence[tuple[int, int, float]]) -> tuple[float, float] | None:
     """(F, R): the fixed cost per DOF (s) and the cost per DOF and step (s) fitted to
     ``runs`` (dofs, steps, wall time in s) as wall = F·dofs + R·dofs·steps, by non-negative
-    least squares on the relative residuals (each run weighs alike, long or short); None when
-    the runs are of fewer than two lengths (dofs·steps), or the fit gives no per-step cost."""
+    least squares (on the wall times themselves: a fit on relative residuals pulls the
+    estimate low); None when the runs' steps do not span a factor of
+    :data:`FIT_STEP_SPAN` (F and R cannot be told apart), a wall time is not positive, or the
+    fit gives no per-step cost."""
     from scipy.optimize import nnls
 
     a = np.asarray(runs, dtype=float).reshape(-1, 3)
-    work = a[:, 0] * a[:, 1]
-    if np.unique(work).size < 2:
+    if a.shape[0] < 2 or not (a[:, 2] > 0).all() or not (a[:, 1] > 0).all() \
+            or a[:, 1].max() < FIT_STEP_SPAN * a[:, 1].min():
         return None
-    (F, R), _ = nnls(np.column_stack([a[:, 0], work]) / a[:, 2:3], np.ones(len(a)))
+    columns = np.column_stack([a[:, 0], a[:, 0] * a[:, 1]])
+    scale = np.linalg.norm(columns, axis=0)
+    (F, R), _ = nnls(columns / scale, a[:, 2])
+    F, R = F / scale[0], R / scale[1]
     return (float(F), float(R)) if R > 0.0 else None
 
 
 def _stored_rates(stored: Iterable[Mapping]) -> tuple[dict, dict, dict]:
-    """From stored dynamic records: (F, R) fitted per (compiled, frictional) where
-    :func:`fit_rates` can, the median per-step rates by compiled flag at the default fixed
+    """From stored dynamic records: (F, R, R_all) per (compiled, frictional) where
+    :func:`fit_rates` can fit F and R, R_all the median of wall/(dofs·steps) (every second
+    counted as the steps'), the median per-step rates by compiled flag at the default fixed
     cost, and the undamped steps per second of simulated time by dofs (module docstring). A
     record's soil is frictional by its ``soil_model``; a record stored before it had one was
     frictional exactly when its return map was not compiled (then only Mohr–Coulomb and
@@ -197,7 +209,8 @@ def _stored_rates(stored: Iterable[Mapping]) -> tuple[dict, dict, dict]:
         if rec["duration"] > 0:
             undamped = steps * rec.get("dt_reduction", 1.0)
             density.setdefault(dofs, []).append(undamped / rec["duration"])
-    fits = {k: fit for k, v in runs.items() if (fit := fit_rates(v)) is not None}
+    fits = {k: (*fit, float(np.median([w / (d * s) for d, s, w in v])))
+            for k, v in runs.items() if (fit := fit_rates(v)) is not None}
     return (fits, {k: float(np.median(v)) for k, v in rates.items()},
             {k: float(np.median(v)) for k, v in density.items()})
 
@@ -267,10 +280,13 @@ def estimate_cost(static: Sequence[tuple[str, object, bool]],
         frictional = scene.soil.frictional
         undamped = density.get(dofs) or wave_speeds(scene.soil)[0] / (COURANT_ESTIMATE * h_min)
         per_second = undamped / damping_reduction(scene, 2.0 * undamped)
-        default = rates.get(compiled, SECONDS_PER_DOF_STEP[compiled])
-        fixed, rate = fits.get((compiled, frictional),
-                               (FIXED_SECONDS_PER_DOF[frictional], default))
-        cost = fixed * dofs + rate * dofs * math.ceil(duration * per_second)
+        steps = math.ceil(duration * per_second)
+        if (compiled, frictional) in fits:  # never below every second counted as steps'
+            fixed, rate, whole = fits[compiled, frictional]
+            cost = max(fixed * dofs + rate * dofs * steps, whole * dofs * steps)
+        else:
+            rate = rates.get(compiled, SECONDS_PER_DOF_STEP[compiled])
+            cost = FIXED_SECONDS_PER_DOF[frictional] * dofs + rate * dofs * steps
         per_run.append(cost)
         by_soil[soil] += cost
         n_dynamic += 1

@@ -6,23 +6,24 @@ fails too (:func:`.goal.hits`). A share counted on the motions a pick was made f
 the pick. So each record of the map is held out in turn (leave one record out): the picks are
 made on every other motion of the map, the pulses included, and scored on the held-out record's
 points alone; the out-of-sample share pools every record's held-out points. The in-sample
-share is the same count on the same record points for the picks made on every motion (the
-map's own). Records the map's picks never used at all (:func:`further_records`: FEMA P695
-components beyond the full map's :data:`.grid.FULL_GRID` count) are never in a pick's
-motions, and are scored apart, for the picks made on every other motion.
+share is the same count on the same points (those that have both picks) for the picks made on
+every motion. FEMA P695 components beyond the full map's ten (:func:`further_records`,
+:data:`.grid.FULL_GRID`), which the full map never ran, are never in a pick's motions here:
+they are scored apart, for the picks made on every other motion.
 
 Three levels of pick, coarse to fine (:data:`LEVELS`):
 
-- ``map``: one bed for the whole map (as the goal picks it, :mod:`.goal`);
+- ``map``: one bed for the whole map (among every bed: :mod:`.goal`'s verdict picks among the
+  beds at least 1000 times faster than the continuum, and breaks a tie by the beds' order);
 - ``soil``: one bed per soil;
 - ``cell``: one bed per cell (soil, FS_v, h/B, period, intensity), the cell's evidence that
   ``upliftlab advise`` reads for a scene on it.
 
-A pick is the bed of the largest share of hits on its points, a tie broken by the smaller
-median over those points of the larger of its |error| in peak θ and edge uplift, then by the
-beds' order. A cell none of whose points counts (every continuum run there refused) has no
-pick, and its held-out points are left unscored (``unpicked``).
-"""
+A pick is the bed of the largest share of hits on its points, a tie broken by the smaller median
+over those points of the larger of its |error| in peak θ and edge uplift (a missing one counting as
+infinite, as it counts as a miss), then by the beds' order. A cell none of whose points counts
+(every continuum run there refused) has no pick, and its held-out points are left unscored
+(``unpicked``). """
 
 from __future__ import annotations
 
@@ -31,6 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .analysis import RECORD_KINDS
 from .goal import hits
 from .grid import FULL_GRID, MEASURES
 from .parts import errors_of, labels
@@ -40,7 +42,6 @@ __all__ = ["LEVELS", "Score", "further_records", "record_motions", "out_of_sampl
 
 #: The levels a bed is picked at, coarse to fine (module docstring).
 LEVELS = ("map", "soil", "cell")
-_RECORD_KINDS = ("elcentro", "fema_p695")
 
 
 @dataclass(frozen=True)
@@ -50,8 +51,8 @@ class Score:
     picks made without the record scored (``out_of_sample``, leave one record out, over
     ``points`` held-out points, ``unpicked`` of them left unscored for want of a pick) and on
     the further records (``further``, over ``further_points``; NaN without them);
-    ``kept`` the share of the held-out picks (one per record and unit) that are the in-sample
-    pick of their unit."""
+    ``kept`` the share of the held-out picks (one per record and unit that has an in-sample
+    pick) that are the in-sample pick of their unit (NaN: no unit has one)."""
 
     level: str
     soil: str
@@ -66,7 +67,7 @@ class Score:
 
 def record_motions(ds) -> np.ndarray:
     """(motion,) booleans: the motion is a record (El Centro or a FEMA P695 component)."""
-    return np.array([str(k) in _RECORD_KINDS for k in ds["motion_kind"].values])
+    return np.array([str(k) in RECORD_KINDS for k in ds["motion_kind"].values])
 
 
 def further_records(ds) -> np.ndarray:
@@ -92,14 +93,14 @@ def pick_bed(hit: np.ndarray, counted: np.ndarray, worst: np.ndarray) -> int:
     return int(order[0])
 
 
-def _worst(ds, hit: np.ndarray) -> np.ndarray:
-    """(…, motion, bed) the larger |error| in peak θ and edge uplift; where the continuum
-    failed in bearing (errors NaN), 0 for a bed that failed too and inf for the others."""
-    e = np.abs(errors_of(ds))
+def _worst(ds, hit: np.ndarray, failed: np.ndarray) -> np.ndarray:
+    """(…, motion, bed) the larger |error| in peak θ and edge uplift, a missing one infinite;
+    where the continuum failed in bearing (``failed``, …, motion), 0 for a bed that failed too
+    (a hit) and inf for the others."""
+    e = np.nan_to_num(np.abs(errors_of(ds)), nan=np.inf)
     q = MEASURES.index
-    with np.errstate(invalid="ignore"):
-        worst = np.fmax(e[..., q("theta")], e[..., q("uplift")])
-    return np.where(np.isnan(worst), np.where(hit, 0.0, np.inf), worst)
+    worst = np.maximum(e[..., q("theta")], e[..., q("uplift")])
+    return np.where(failed[..., None], np.where(hit, 0.0, np.inf), worst)
 
 
 def _units(level: str, cells: int, soils: int) -> np.ndarray:
@@ -139,8 +140,8 @@ def _share(got: np.ndarray, scored: np.ndarray) -> float:
 def out_of_sample(ds) -> tuple[Score, ...]:
     """Every level's :class:`Score`, per soil of the map dataset ``ds`` and over ``all``
     (empty when the map has fewer than two records: nothing to hold out)."""
-    hit, counted, _, _ = hits(ds)
-    worst = _worst(ds, hit)
+    hit, counted, failed, _ = hits(ds)
+    worst = _worst(ds, hit, failed)
     motions, beds = hit.shape[-2], hit.shape[-1]
     hit, worst = hit.reshape(-1, motions, beds), worst.reshape(-1, motions, beds)
     counted = counted.reshape(-1, motions)
@@ -154,18 +155,21 @@ def out_of_sample(ds) -> tuple[Score, ...]:
     for level in LEVELS:
         units = _units(level, counted.shape[0], len(soils))
         full = _picks(units, hit, counted, worst, ~further)
-        inside = [_scored(units, full, hit, counted, r) for r in held]
-        outside, kept = [], []  # kept: (unit, the held-out pick is the in-sample one)
+        inside, outside, kept = [], [], []  # kept: (unit, the held-out pick is the full one)
         for r in held:
             picks = _picks(units, hit, counted, worst, ~further & (np.arange(motions) != r))
-            outside.append(_scored(units, picks, hit, counted, r))
-            kept += [(u, picks[u] == full[u]) for u in picks]
+            (s_in, g_in), (s_out, g_out) = (_scored(units, full, hit, counted, r),
+                                            _scored(units, picks, hit, counted, r))
+            both = s_in & s_out  # in and out of sample on the same points
+            inside.append((both, g_in))
+            outside.append((both, g_out))
+            kept += [(u, picks[u] == full[u]) for u in picks if full[u] >= 0]
         fresh = [_scored(units, full, hit, counted, r) for r in np.flatnonzero(further)]
         for s, soil in [(None, "all"), *enumerate(soils)]:
             at = np.ones(soil_of.size, dtype=bool) if s is None else soil_of == s
             mine = [same for u, same in kept if at[units == u].any()]
             out.append(_score(level, soil, at, counted[:, held], inside, outside, fresh,
-                              float(np.mean(mine))))
+                              float(np.mean(mine)) if mine else math.nan))
     return tuple(out)
 
 
