@@ -55,28 +55,34 @@ K_H, C_H = 2.0 * G / 1.7, 1.8 * math.sqrt(G / 1.8) * 2.0  # 22624.434..., 372.10
 
 
 def _points(reference: str, tmp_path):
+    """The slice's static, dynamic and rocking points on ``reference``, N from the capacity in
+    that reference's kept store."""
     options = replace(wm.FULL_OPTIONS, reference=reference)
-    store = Store(KEPT)
+    store = Store(CHECKOUT / KEPT_STORES[reference])
     motions = wm.study_motions(SLICE, options, tmp_path)
     base, g, statics, records, _, _ = plan_map(SLICE, options, bed_names(options), motions,
                                                store)
-    V_ult = Store(KEPT).get(point_key_of(static_points("clay", wm.FULL_OPTIONS, 1.0)[1],
-                                         evaluate_static))["capacity"]
+    V_ult = store.get(point_key_of(static_points("clay", options, 1.0)[1],
+                                   evaluate_static))["capacity"]
     dynamic = dynamic_points(SLICE, options, motions, base, g, {"clay": V_ult})
     rocking = map_rocking_points(SLICE, options, base, {"clay": V_ult})
-    return store, statics, dynamic, rocking
+    return statics, dynamic, rocking
 
 
-def test_the_box_reference_finds_every_kept_run_and_the_half_plane_none(tmp_path):
-    store, statics, dynamic, rocking = _points("box", tmp_path)
+@pytest.mark.parametrize("reference, other", [("box", "half_plane"), ("half_plane", "box")])
+def test_each_reference_finds_its_slice_in_its_kept_store_and_none_in_the_others(
+        tmp_path, reference, other):
+    """The slice's runs (the clay's pulses at h/B 1.5, T 0.5 s; both kept stores hold them)
+    are found in the reference's own kept store, every one, and none in the other's: the two
+    references' keys differ (their soils, bases, ties and damping are in the points)."""
+    statics, dynamic, rocking = _points(reference, tmp_path)
     assert len(dynamic) == 12 and len(rocking) == 6
-    assert all(store.has(point_key_of(p, evaluate_static)) for p in statics)
-    assert all(store.has(point_key_of(p, evaluate_dynamic)) for p in dynamic)
-    assert all(store.has(point_key_of(p, evaluate_continuum)) for p in rocking)
-    store, statics, dynamic, rocking = _points("half_plane", tmp_path)
-    assert not any(store.has(point_key_of(p, evaluate_static)) for p in statics)
-    assert not any(store.has(point_key_of(p, evaluate_dynamic)) for p in dynamic)
-    assert not any(store.has(point_key_of(p, evaluate_continuum)) for p in rocking)
+    mine, theirs = (Store(CHECKOUT / KEPT_STORES[r]) for r in (reference, other))
+    for points, function in ((statics, evaluate_static), (dynamic, evaluate_dynamic),
+                             (rocking, evaluate_continuum)):
+        keys = [point_key_of(p, function) for p in points]
+        assert all(mine.has(k) for k in keys)
+        assert not any(theirs.has(k) for k in keys)
 
 
 @pytest.mark.parametrize("soil", ["clay", "sand"])
