@@ -795,6 +795,34 @@ def test_a_continuum_run_that_fails_is_reported_and_left_out_or_held_to(tmp_path
     assert m.continuum_bearing_failure.sel(fs_v=2.0).all()
 
 
+def test_a_bed_run_above_the_reduced_models_budget_is_that_beds_refusal(study, inputs,
+                                                                          tmp_path):
+    """A bed's run that the reduced model refuses before it starts (its cost check: here the
+    fast map's first point with ``analysis.max_steps`` = 10, as a one-minute record refuses
+    the q–z bed on the half-plane) comes back as that bed's refusal, its measures NaN and the
+    reduced model's one-line reason kept, and does not stop the map; the same point with the
+    default budget runs. Reference: the reduced model's own refusal message."""
+    from upliftlab.comparisons.beds import BASE_SCENE, base_table, bed_foundation
+    from upliftlab.comparisons.studies.winkler_map.plan import dynamic_points, reference, scene_of
+    from upliftlab.scenes import load_scene
+
+    statics, impedances, pushovers = inputs
+    st = statics["clay"]
+    motions = wm.study_motions(wm.FAST_GRID, wm.FAST_OPTIONS, tmp_path)
+    point = dynamic_points(wm.FAST_GRID, wm.FAST_OPTIONS, motions, base_table(),
+                           load_scene(BASE_SCENE).g, {"clay": st.V_ult})[0]
+    ref = reference(st, scene_of(point["scene"]), point["scene"]["structure"],
+                    impedances.get("clay"), pushovers["clay", 2.0])
+    table = bed_foundation("uniform", ref, wm.FAST_OPTIONS)
+    ran = wm.run_bed(point, table)
+    assert "refused" not in ran and np.isfinite(list(ran["measures"].values())).all()
+    tight = {**point, "scene": {**point["scene"], "analysis": {
+        **point["scene"].get("analysis", {}), "max_steps": 10}}}
+    refused = wm.run_bed(tight, table)
+    assert refused["refused"].startswith("analysis.max_steps = 10: the reduced run would take")
+    assert all(math.isnan(v) for v in refused["measures"].values())
+
+
 def test_the_summary_states_the_workers_the_map_ran_on(study, m):
     """The summary's cost line divides the estimate by the workers of the run that made it, as
     the line logged before the work does (reference: :meth:`Estimate.text` of the same

@@ -56,15 +56,19 @@ def run_bed(point: Mapping, foundation: Mapping) -> dict:
     :func:`measured`, its ``peak_settlement`` (the base centre's largest settlement, down),
     its wall time ``wall_time_s`` (the run alone, s), its foundation energy E_F and the
     work of gravity in it (``energy``, :func:`reduced_energy_terms`), or ``refused`` with the
-    integrator's
-    reason."""
+    reason: the integrator's, or the reduced model's own cost check (a run above its
+    ``analysis.max_steps`` is refused before it starts, as it would be for a user: on the
+    half-plane a bed whose footing carries its own mass has a stiff mode the error-controlled
+    integrator's first step resolves, and the q–z bed's on a record of a minute is above it).
+    One bed's refusal leaves its error NaN at that point and the map goes on."""
+    from ....checks import InputError
     from ....reduced import IntegrationError, run as run_reduced
 
     scene = bed_scene(point, foundation)
     started = time.perf_counter()
     try:
         response = run_reduced(scene)
-    except IntegrationError as exc:
+    except (IntegrationError, InputError) as exc:
         return {"refused": str(exc), "measures": dict.fromkeys(MEASURES, math.nan),
                 "wall_time_s": time.perf_counter() - started}
     wall = time.perf_counter() - started
