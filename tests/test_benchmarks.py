@@ -398,7 +398,8 @@ def test_map_references_fast_path(tmp_path):
     run_fast_path("map_references.py", out)
     complete(out, "map_references")
     table = tables(out / "MAP_REFERENCES.md")
-    shares = {r: json.loads((out / r / "summary.json").read_text())["share"]["by_calibration"]
+    shares = {r: json.loads((out / r / "summary.json").read_text())["numbers"]["share"][
+                  "by_calibration"]
               for r in ("box", "half_plane")}
     rows = {row["bed"]: row for row in table["Each bed within 10 % in peak θ and edge uplift, "
                                                "box → half-plane"]}
