@@ -20,12 +20,17 @@ from .grid import MEASURES, SOIL_LABELS
 
 __all__ = ["BedRegion", "Pick", "Share", "Speed", "Analysis", "analyse", "cell_passes",
            "missed_failures", "bearing_failures", "errors_of", "names",
-           "median_over_motions", "signed_bias", "BIAS_MEASURES", "subject"]
+           "median_over_motions", "signed_bias", "BIAS_MEASURES", "subject", "record_motions"]
 
 #: The measures whose signed error is summarised by FS_v (:func:`signed_bias`).
 BIAS_MEASURES = ("theta", "uplift", "residual_settlement")
 
 RECORD_KINDS = ("elcentro", "fema_p695")
+
+
+def record_motions(ds) -> np.ndarray:
+    """(motion,) booleans: the motion is a record (El Centro or a FEMA P695 component)."""
+    return np.array([str(k) in RECORD_KINDS for k in ds["motion_kind"].values])
 
 
 def median_over_motions(ds) -> np.ndarray:
@@ -176,7 +181,7 @@ def _stats(values: np.ndarray) -> tuple[float, float]:
 
 def picks(ds) -> list[Pick]:
     """Per measure: each calibration's error distribution and the one to pick."""
-    records = np.array([str(k) in RECORD_KINDS for k in ds["motion_kind"].values])
+    records = record_motions(ds)
     calibrations = names(ds, "calibration")
     out = []
     for measure in MEASURES:

@@ -32,10 +32,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .analysis import RECORD_KINDS
+from .analysis import record_motions
 from .goal import hits
 from .grid import FULL_GRID, MEASURES
 from .parts import errors_of, labels
+from .sections import finite, pct
 
 __all__ = ["LEVELS", "Score", "further_records", "record_motions", "out_of_sample",
            "pick_bed", "holdout_lines", "holdout_numbers"]
@@ -63,11 +64,6 @@ class Score:
     further: float
     further_points: int
     kept: float
-
-
-def record_motions(ds) -> np.ndarray:
-    """(motion,) booleans: the motion is a record (El Centro or a FEMA P695 component)."""
-    return np.array([str(k) in RECORD_KINDS for k in ds["motion_kind"].values])
 
 
 def further_records(ds) -> np.ndarray:
@@ -193,10 +189,8 @@ _LEVEL_TEXT = {"map": "one bed for the map", "soil": "one bed per soil",
 
 def holdout_numbers(scores: tuple[Score, ...]) -> list[dict]:
     """The scores as ``summary.json`` keeps them (NaN as None)."""
-    def plain(v):
-        return v if not isinstance(v, float) or math.isfinite(v) else None
-
-    return [{k: plain(v) for k, v in vars(s).items()} for s in scores]
+    return [{k: finite(v) if isinstance(v, float) else v for k, v in vars(s).items()}
+            for s in scores]
 
 
 def holdout_lines(ds, scores: tuple[Score, ...]) -> list[str]:
@@ -224,12 +218,8 @@ def holdout_lines(ds, scores: tuple[Score, ...]) -> list[str]:
               f"|{' further records |' if further else ''} pick kept |",
               f"|---|---|---|---|---|{'---|' if further else ''}---|"]
     for s in scores:
-        extra = f" {_pct(s.further)} of {s.further_points} |" if further else ""
-        lines.append(f"| {_LEVEL_TEXT[s.level]} | {s.soil} | {_pct(s.in_sample)} | "
-                     f"**{_pct(s.out_of_sample)}** | {s.points} ({s.unpicked}) |{extra} "
-                     f"{_pct(s.kept)} |")
+        extra = f" {pct(s.further)} of {s.further_points} |" if further else ""
+        lines.append(f"| {_LEVEL_TEXT[s.level]} | {s.soil} | {pct(s.in_sample)} | "
+                     f"**{pct(s.out_of_sample)}** | {s.points} ({s.unpicked}) |{extra} "
+                     f"{pct(s.kept)} |")
     return lines + [""]
-
-
-def _pct(value: float) -> str:
-    return "n/a" if not math.isfinite(value) else f"{100 * value:.1f} %"
