@@ -21,85 +21,49 @@ function
 the distance in V, so that F is continuous everywhere and closes the surface at its two apexes.
 The bounding surface of :mod:`.plastic` is this surface with V_ult scaled by its size ζ.
 
-F takes complex arguments, and its gradient is the complex step's (Squire and Trapp 1998):
-exact to round-off, with no step to choose. Its ridges at H = M = 0 (the apexes' cones) are
-rounded over :data:`RIDGE`.
+F (:mod:`.compiled`) takes complex arguments, and its gradient is the complex step's (Squire
+and Trapp 1998): exact to round-off, with no step to choose. Its ridges at H = M = 0 (the
+apexes' cones) are rounded over :data:`RIDGE`.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from . import compiled as cc
+from .compiled import RIDGE
 from .params import MacroElement
 
 __all__ = ["RIDGE", "failure_function", "failure_gradient", "failure_size_derivative",
            "moment_capacity", "horizontal_capacity"]
 
-#: The rounding of the surface's cone at H = M = 0, as a fraction of B V_ult: the normal there
-#: is along V (no sway or rotation flows from a vertical load alone), and the capacity moves
-#: by a part in 10¹².
-RIDGE = 1e-12
 
-_STEP = 1e-30  # the complex step: far below round-off of any force
-
-
-def moment_capacity(law: MacroElement, V, size: float = 1.0):
+def moment_capacity(law: MacroElement, V: float, size: float = 1.0) -> float:
     """M_max(V) (kN·m/m) with H = 0 and the capacity scaled by ``size`` ζ: V (B − B′)/2 with
-    V = ζ (B′ c N_c + B′² ½ γ N_γ); 0 outside 0 < V < ζ V_ult. Complex V passes through."""
-    if V.real <= 0.0 or V.real >= np.real(size) * law.ultimate_load:
-        return 0.0 * V * size
-    a1, a2 = size * law.cohesive_pressure, size * law.frictional_modulus
-    if law.frictional_modulus > 0.0:
-        width = 2.0 * V / (a1 + np.sqrt(a1 * a1 + 4.0 * a2 * V))
-    else:
-        width = V / a1
-    return 0.5 * V * (law.width - width)
+    V = ζ (B′ c N_c + B′² ½ γ N_γ); 0 outside 0 < V < ζ V_ult."""
+    return cc.moment_capacity(cc.pack(law), complex(V), complex(size)).real
 
 
-def horizontal_capacity(law: MacroElement, V, size: float = 1.0):
+def horizontal_capacity(law: MacroElement, V: float, size: float = 1.0) -> float:
     """H_max(V) = t_h V (1 − V/(ζ V_ult)) (kN/m); 0 outside 0 < V < ζ V_ult."""
-    if V.real <= 0.0 or V.real >= np.real(size) * law.ultimate_load:
-        return 0.0 * V * size
-    return law.sliding_ratio * V * (1.0 - V / (size * law.ultimate_load))
+    return cc.horizontal_capacity(cc.pack(law), complex(V), complex(size)).real
 
 
-def _ratio(law: MacroElement, V, size: float):
-    """r(V) = M_max/H_max (m), continued by its limits at the apexes."""
-    top = np.real(size) * law.ultimate_load
-    v = min(max(V.real, 1e-9 * top), (1.0 - 1e-9) * top) + (V - V.real)
-    return moment_capacity(law, v, size) / horizontal_capacity(law, v, size)
-
-
-def failure_function(law: MacroElement, Q, size: float = 1.0):
+def failure_function(law: MacroElement, Q, size: float = 1.0) -> float:
     """F at forces Q = (V, H, M) (kN/m, kN/m, kN·m/m) with the capacity scaled by ``size`` ζ:
-    < 0 inside, 0 on the surface, > 0 beyond it (dimensionless, a moment over B V_ult)."""
-    V, H, M = Q
-    scale = law.width * law.ultimate_load
-    ridge = RIDGE * scale
-    radius = np.sqrt((_ratio(law, V, size) * H) ** 2 + M * M + ridge * ridge) - ridge
-    top = size * law.ultimate_load
-    if V.real <= 0.0:
-        beyond = -V * law.width
-    elif V.real >= np.real(top):
-        beyond = (V - top) * law.width
-    else:
-        beyond = -moment_capacity(law, V, size)
-    return (radius + beyond) / scale
+    < 0 inside, 0 on the surface (and at Q = 0, a footing lifted off), > 0 beyond it
+    (dimensionless, a moment over B V_ult)."""
+    return cc.failure_value(cc.pack(law), np.asarray(Q, dtype=float), float(size))
 
 
 def failure_gradient(law: MacroElement, Q, size: float = 1.0) -> np.ndarray:
     """∂F/∂Q at Q (1/kN, 1/kN, 1/(kN·m)), by the complex step."""
-    Q = np.asarray(Q, dtype=float)
-    grad = np.empty(3)
-    for i in range(3):
-        z = Q.astype(complex)
-        z[i] += 1j * _STEP
-        grad[i] = np.imag(failure_function(law, z, size)) / _STEP
-    return grad
+    n = np.empty(3)
+    cc.failure_gradient(cc.pack(law), np.asarray(Q, dtype=float), float(size), n)
+    return n
 
 
 def failure_size_derivative(law: MacroElement, Q, size: float) -> float:
     """∂F/∂ζ at Q (< 0 on the surface: a larger surface leaves the load inside), by the
     complex step."""
-    Q = np.asarray(Q, dtype=complex)
-    return float(np.imag(failure_function(law, Q, size + 1j * _STEP)) / _STEP)
+    return cc.failure_size_derivative(cc.pack(law), np.asarray(Q, dtype=float), float(size))

@@ -25,53 +25,29 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import compiled as cc
 from .params import MacroElement, MacroStepError
 
 __all__ = ["bed_forces", "bed_energy", "bed_displacement", "remainder_compliance",
            "vertical_rocking_forces", "vertical_rocking_displacement"]
 
-MAX_NEWTON = 60
-
 
 def bed_forces(k: float, b: float, v: float, theta: float):
     """The tensionless bed's (N, M) and tangent ∂(N, M)/∂(v, θ) (2×2) at (v, θ)."""
-    sign = 1.0 if theta >= 0.0 else -1.0
-    t = abs(theta)
-    if v - t * b >= 0.0:  # full contact
-        return (np.array([2.0 * k * b * v, 2.0 / 3.0 * k * b ** 3 * theta]),
-                np.array([[2.0 * k * b, 0.0], [0.0, 2.0 / 3.0 * k * b ** 3]]))
-    if v + t * b <= 0.0:  # lifted off
-        return np.zeros(2), np.zeros((2, 2))
-    a = b + v / t
-    n = 0.5 * k * t * a * a
-    m = n * (b - a / 3.0)
-    cross = k * a * (b - 0.5 * a)
-    tangent = np.array([[k * a, sign * cross],
-                        [sign * cross, k * (a ** 3 / 3.0 - a * a * b + a * b * b)]])
-    return np.array([n, sign * m]), tangent
+    n, m, k11, k12, k22 = cc.bed(k, b, v, theta)
+    return np.array([n, m]), np.array([[k11, k12], [k12, k22]])
 
 
 def bed_energy(k: float, b: float, v: float, theta: float) -> float:
     """The bed's stored energy ∫ ½ k ⟨v + θ x⟩² dx (kN·m/m)."""
-    t = abs(theta)
-    if v - t * b >= 0.0:
-        return k * b * v * v + k * b ** 3 * theta * theta / 3.0
-    if v + t * b <= 0.0:
-        return 0.0
-    a = b + v / t
-    return k * t * t * a ** 3 / 6.0
+    return cc.bed_energy(k, b, v, theta)
 
 
 def bed_displacement(k: float, b: float, n: float, m: float) -> np.ndarray:
     """The bed's (v, θ) under (N, M), N > 0 and |M| < N b: the inverse of
     :func:`bed_forces` (full contact while e = |M|/N ≤ b/3, else a = 3 (b − e),
     θ = 2N/(k a²), v = θ (a − b))."""
-    e = abs(m) / n
-    if e <= b / 3.0:
-        return np.array([n / (2.0 * k * b), 1.5 * m / (k * b ** 3)])
-    a = 3.0 * (b - e)
-    t = 2.0 * n / (k * a * a)
-    return np.array([t * (a - b), t if m >= 0.0 else -t])
+    return np.array(cc.bed_displacement(k, b, n, m))
 
 
 def remainder_compliance(law: MacroElement) -> np.ndarray:
@@ -93,22 +69,10 @@ def vertical_rocking_forces(law: MacroElement, v: float, theta: float, guess=Non
     """(N, M), their tangent ∂(N, M)/∂(v, θ) (2×2) and the stored energy of the bed and its
     remainder, at the elastic settlement v (m) and rotation θ (rad). ``guess``: a starting
     (N, M) (the last step's)."""
-    k, b = law.winkler_modulus, 0.5 * law.width
-    cx = remainder_compliance(law)
-    q = np.zeros(2) if guess is None else np.array(guess, dtype=float)
-    scale = law.vertical_stiffness * (abs(v) + b * abs(theta)) + 1e-300
-    for _ in range(MAX_NEWTON):
-        f, kb = bed_forces(k, b, v - cx[0] * q[0], theta - cx[1] * q[1])
-        residual = q - f
-        if np.max(np.abs(residual)) <= 1e-13 * scale:
-            break
-        jac = np.eye(2) + kb * cx[None, :]
-        q = q - np.linalg.solve(jac, residual)
-    else:
+    T = np.empty((2, 2))
+    g = (0.0, 0.0) if guess is None else guess
+    n, m, energy, ok = cc.vertical_rocking(cc.pack(law), v, theta, g[0], g[1], T)
+    if not ok:
         raise MacroStepError(f"macro uplift: the contact did not converge at v = {v:g}, "
-                         f"θ = {theta:g} in {MAX_NEWTON} iterations")
-    f, kb = bed_forces(k, b, v - cx[0] * q[0], theta - cx[1] * q[1])
-    tangent = np.linalg.solve(np.eye(2) + kb * cx[None, :], kb)
-    energy = (bed_energy(k, b, v - cx[0] * q[0], theta - cx[1] * q[1])
-              + 0.5 * (cx[0] * q[0] ** 2 + cx[1] * q[1] ** 2))
-    return f, tangent, energy
+                             f"θ = {theta:g} in {cc.MAX_NEWTON} iterations")
+    return np.array([n, m]), T, energy
