@@ -216,3 +216,37 @@ def test_substep_converges_at_first_order():
     order = math.log2(np.linalg.norm(ends[0] - ends[1]) / np.linalg.norm(ends[1] - ends[2]))
     assert order == pytest.approx(1.0, abs=0.2)
     assert np.linalg.norm(ends[1] - ends[2]) <= 1e-2 * np.linalg.norm(ends[2])
+
+
+_ALLOCATIONS = """
+import re, sys
+import numpy as np
+from upliftlab.reduced.laws.macro import MacroElement, at_rest, compiled as cc
+law = MacroElement(width=2.0, vertical_stiffness=27513.0, horizontal_stiffness=20000.0,
+                   rocking_stiffness=43150.0, cohesion=50.0)
+S, D = at_rest(law, 100.0).packed(), np.empty((3, 3))
+cc.step_into(cc.pack(law), S, S[:3] + [1e-3, 0, 1e-3], 2e-3, 0, D, np.empty(cc.W_COUNT))
+cc.step(cc.pack(law), S, S[:3] + [1e-3, 0, 1e-3], 2e-3, D)
+for f in (cc.step_into, cc.step):
+    ir = "".join(f.inspect_llvm().values())
+    print(f.__name__, len(ir), " ".join(sorted(set(re.findall(r"NRT_\\w+", ir)))))
+"""
+
+
+def test_the_update_allocates_nothing(tmp_path):
+    """Reference: the compiled code itself. In a fresh process with an empty numba cache (code
+    loaded from a cache cannot be inspected), the LLVM IR of :func:`step_into`, with every law
+    function it calls, names none of numba's runtime (``NRT_…``: allocation, reference
+    counts), so that the reduced model's hot loops, compiled without that runtime, can call
+    it; the allocating entry point :func:`step` does name it (the check can fail)."""
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
+    out = subprocess.run([sys.executable, "-c", _ALLOCATIONS], env=env, capture_output=True,
+                         text=True, timeout=600, check=True).stdout.split("\n")
+    found = {line.split()[0]: line.split()[2:] for line in out if line.strip()}
+    assert int(out[0].split()[1]) > 100_000  # the callees' IR is there
+    assert found["step_into"] == []
+    assert "NRT_MemInfo_alloc_aligned" in found["step"]

@@ -7,6 +7,10 @@ The parameters are one float array (:func:`pack`, slots ``P_…``), the state an
 (``S_…``): displacement (v, u, θ), plastic displacement, forces (V, H, M), projection centre,
 accumulated plastic settlement κ and dissipated energy. The equations are those of the modules
 named above. A step that cannot be completed returns a status (``STEP_…``), never a number.
+
+The update (:func:`step_into`) allocates nothing: its vectors are slots of a scratch array
+(``W_COUNT`` floats), so that the reduced model's compiled loops, which never allocate, can
+call it. :func:`step` is the allocating entry point for everything else.
 """
 
 from __future__ import annotations
@@ -17,14 +21,20 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["pack", "P_COUNT", "S_COUNT", "STEP_OK", "STEP_CONTACT", "STEP_SURFACE",
-           "STEP_SUBSTEPS", "RIDGE", "MAX_NEWTON", "MAX_SUBSTEPS"]
+from ..spring import HOT
+
+__all__ = ["pack", "P_COUNT", "S_COUNT", "W_COUNT", "STEP_OK", "STEP_CONTACT", "STEP_SURFACE",
+           "STEP_SUBSTEPS", "RIDGE", "MAX_NEWTON", "MAX_SUBSTEPS", "step", "step_into"]
 
 (P_B, P_KV, P_KH, P_KR, P_KW, P_CXV, P_CXT, P_A1, P_A2, P_VU, P_TH, P_Z0, P_KREF, P_H0,
  P_GEXP, P_CHI) = range(16)
 P_COUNT = 16
 S_D, S_P, S_Q, S_C, S_KAPPA, S_W = 0, 3, 6, 9, 12, 13
 S_COUNT = 14
+# the scratch array: the update's vectors, three floats each
+W_Q0, W_TRIAL, W_CENTRE, W_DIR, W_NORMAL, W_FLOW, W_PLASTIC, W_Q, W_START, W_TARGET, W_DE = \
+    range(0, 33, 3)
+W_COUNT = 33
 STEP_OK, STEP_CONTACT, STEP_SURFACE, STEP_SUBSTEPS = 0, 1, 2, 3
 
 #: The rounding of the surface's cone at H = M = 0, as a fraction of B V_ult (:mod:`.capacity`).
@@ -54,7 +64,7 @@ def pack(law) -> np.ndarray:
 # -- the uplift mechanism -----------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def bed(k, b, v, theta):
     """The tensionless bed's (N, M) and tangent (k11, k12, k22) at (v, θ) (:mod:`.uplift`)."""
     sign = 1.0 if theta >= 0.0 else -1.0
@@ -70,7 +80,7 @@ def bed(k, b, v, theta):
         k * (a ** 3 / 3.0 - a * a * b + a * b * b)
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def bed_energy(k, b, v, theta):
     """The bed's stored energy ∫ ½ k ⟨v + θ x⟩² dx."""
     t = abs(theta)
@@ -82,7 +92,7 @@ def bed_energy(k, b, v, theta):
     return k * t * t * a ** 3 / 6.0
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def bed_displacement(k, b, n, m):
     """The bed's (v, θ) under (N, M), N > 0, |M| < N b."""
     e = abs(m) / n
@@ -93,10 +103,19 @@ def bed_displacement(k, b, n, m):
     return t * (a - b), (t if m >= 0.0 else -t)
 
 
-@njit(cache=True)
-def vertical_rocking(P, v, theta, n, m, T):
-    """(N, M, energy, converged) at elastic (v, θ), from the guess (n, m); T (2×2) is set
-    to ∂(N, M)/∂(v, θ). The bed in series with the remainder C_x (:mod:`.uplift`)."""
+@njit(cache=True, **HOT)
+def _series_tangent(k11, k12, k22, cv, ct):
+    """(I + K_b C_x)⁻¹ K_b: the bed in series with the remainder, and det(I + K_b C_x)."""
+    j11, j12, j21, j22 = 1.0 + k11 * cv, k12 * ct, k12 * cv, 1.0 + k22 * ct
+    det = j11 * j22 - j12 * j21
+    return ((j22 * k11 - j12 * k12) / det, (j22 * k12 - j12 * k22) / det,
+            (j11 * k12 - j21 * k11) / det, (j11 * k22 - j21 * k12) / det)
+
+
+@njit(cache=True, **HOT)
+def vertical_rocking(P, v, theta, n, m):
+    """(N, M, ∂N/∂v, ∂N/∂θ, ∂M/∂v, ∂M/∂θ, energy, converged) at elastic (v, θ), from the guess
+    (n, m): the bed in series with the remainder C_x (:mod:`.uplift`), by Newton's method."""
     k, b, cv, ct = P[P_KW], 0.5 * P[P_B], P[P_CXV], P[P_CXT]
     scale = P[P_KV] * (abs(v) + b * abs(theta)) + 1e-300
     ok = False
@@ -111,25 +130,22 @@ def vertical_rocking(P, v, theta, n, m, T):
         n -= (j22 * r0 - j12 * r1) / det
         m -= (j11 * r1 - j21 * r0) / det
     f0, f1, k11, k12, k22 = bed(k, b, v - cv * n, theta - ct * m)
-    j11, j12, j21, j22 = 1.0 + k11 * cv, k12 * ct, k12 * cv, 1.0 + k22 * ct
-    det = j11 * j22 - j12 * j21
-    T[0, 0] = (j22 * k11 - j12 * k12) / det
-    T[0, 1] = (j22 * k12 - j12 * k22) / det
-    T[1, 0] = (j11 * k12 - j21 * k11) / det
-    T[1, 1] = (j11 * k22 - j21 * k12) / det
+    t00, t01, t10, t11 = _series_tangent(k11, k12, k22, cv, ct)
     energy = bed_energy(k, b, v - cv * f0, theta - ct * f1) + 0.5 * (cv * f0 * f0 + ct * f1 * f1)
-    return f0, f1, energy, ok
+    return f0, f1, t00, t01, t10, t11, energy, ok
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def elastic(P, de, guess, Q, D):
-    """Forces Q and tangent D (3×3) of the elastic-and-uplift mechanism at elastic
-    displacement ``de`` (v, u, θ), from the forces ``guess``; returns (energy, converged)."""
-    T = np.empty((2, 2))
-    n, m, energy, ok = vertical_rocking(P, de[0], de[2], guess[0], guess[2], T)
+    """Forces Q (3) and tangent D (3×3) of the elastic-and-uplift mechanism at elastic
+    displacement ``de`` (v, u, θ), from the forces ``guess`` (Q may be ``guess``); returns
+    (energy, converged)."""
+    n, m, t00, t01, t10, t11, energy, ok = vertical_rocking(P, de[0], de[2], guess[0], guess[2])
     Q[0], Q[1], Q[2] = n, P[P_KH] * de[1], m
-    D[:, :] = 0.0
-    D[0, 0], D[0, 2], D[2, 0], D[2, 2] = T[0, 0], T[0, 1], T[1, 0], T[1, 1]
+    for i in range(3):
+        for j in range(3):
+            D[i, j] = 0.0
+    D[0, 0], D[0, 2], D[2, 0], D[2, 2] = t00, t01, t10, t11
     D[1, 1] = P[P_KH]
     return energy + 0.5 * P[P_KH] * de[1] * de[1], ok
 
@@ -137,7 +153,7 @@ def elastic(P, de, guess, Q, D):
 # -- the failure surface ------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def moment_capacity(P, V, zeta):
     """M_max(V) with H = 0 and size ζ (complex V and ζ pass through) (:mod:`.capacity`)."""
     if V.real <= 0.0 or V.real >= zeta.real * P[P_VU]:
@@ -150,7 +166,7 @@ def moment_capacity(P, V, zeta):
     return 0.5 * V * (P[P_B] - width)
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def horizontal_capacity(P, V, zeta):
     """H_max(V) = t_h V (1 − V/(ζ V_ult)); 0 outside 0 < V < ζ V_ult."""
     if V.real <= 0.0 or V.real >= zeta.real * P[P_VU]:
@@ -158,7 +174,7 @@ def horizontal_capacity(P, V, zeta):
     return P[P_TH] * V * (1.0 - V / (zeta * P[P_VU]))
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def failure(P, V, H, M, zeta):
     """F at (V, H, M) with size ζ, complex (:mod:`.capacity`)."""
     scale = P[P_B] * P[P_VU]
@@ -176,13 +192,19 @@ def failure(P, V, H, M, zeta):
     return (radius + beyond) / scale
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
+def failure_at(P, V, H, M, zeta):
+    """F at real forces (V, H, M)."""
+    return failure(P, V + 0j, H + 0j, M + 0j, zeta + 0j).real
+
+
+@njit(cache=True, **HOT)
 def failure_value(P, Q, zeta):
-    """F at forces Q (real)."""
-    return failure(P, Q[0] + 0j, Q[1] + 0j, Q[2] + 0j, zeta + 0j).real
+    """F at forces Q (3, real)."""
+    return failure_at(P, Q[0], Q[1], Q[2], zeta)
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def failure_gradient(P, Q, zeta, n):
     """∂F/∂Q at Q into ``n``, by the complex step."""
     z = zeta + 0j
@@ -191,7 +213,7 @@ def failure_gradient(P, Q, zeta, n):
     n[2] = failure(P, Q[0] + 0j, Q[1] + 0j, Q[2] + 1j * _STEP, z).imag / _STEP
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def failure_size_derivative(P, Q, zeta):
     """∂F/∂ζ at Q, by the complex step."""
     return failure(P, Q[0] + 0j, Q[1] + 0j, Q[2] + 0j, zeta + 1j * _STEP).imag / _STEP
@@ -200,35 +222,40 @@ def failure_size_derivative(P, Q, zeta):
 # -- the bounding-surface update ----------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def size(P, kappa):
     """ζ(κ) = 1 − (1 − ζ0) exp(−κ/κ_ref)."""
     return 1.0 - (1.0 - P[P_Z0]) * math.exp(-kappa / P[P_KREF])
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
+def _dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+@njit(cache=True, **HOT)
+def _scaled_norm(P, x):
+    vu = P[P_VU]
+    return math.sqrt((x[0] / vu) ** 2 + (x[1] / vu) ** 2 + (x[2] / (P[P_B] * vu)) ** 2)
+
+
+@njit(cache=True, **HOT)
 def image(P, centre, direction, zeta):
     """(t, found): the distance in units of ``direction`` from ``centre`` to the surface."""
-    far = 0.0
-    far = max(far, abs(direction[0]) / P[P_VU], abs(direction[1]) / P[P_VU],
+    far = max(abs(direction[0]) / P[P_VU], abs(direction[1]) / P[P_VU],
               abs(direction[2]) / (P[P_B] * P[P_VU]))
     reach = 10.0 / max(far, 1e-300)
-    probe = np.empty(3)
     high = min(1.0, reach)
-    while True:
-        for i in range(3):
-            probe[i] = centre[i] + high * direction[i]
-        if failure_value(P, probe, zeta) > 0.0:
-            break
+    while failure_at(P, centre[0] + high * direction[0], centre[1] + high * direction[1],
+                     centre[2] + high * direction[2], zeta) <= 0.0:
         high *= 2.0
         if high > reach:
             return 0.0, False
     low = 0.0
     for _ in range(200):
         mid = 0.5 * (low + high)
-        for i in range(3):
-            probe[i] = centre[i] + mid * direction[i]
-        if failure_value(P, probe, zeta) <= 0.0:
+        if failure_at(P, centre[0] + mid * direction[0], centre[1] + mid * direction[1],
+                      centre[2] + mid * direction[2], zeta) <= 0.0:
             low = mid
         else:
             high = mid
@@ -237,7 +264,7 @@ def image(P, centre, direction, zeta):
     return low, True
 
 
-@njit(cache=True)
+@njit(cache=True, **HOT)
 def plastic_modulus(P, kappa, image_point, flow_v, s, zeta):
     """K_p at distance ratio s: the bounding surface's K_b plus the interior term."""
     grow = (1.0 - P[P_Z0]) / P[P_KREF] * math.exp(-kappa / P[P_KREF])
@@ -250,109 +277,190 @@ def plastic_modulus(P, kappa, image_point, flow_v, s, zeta):
     return bound + interior * ((1.0 - s) / s) ** P[P_GEXP]
 
 
-@njit(cache=True)
-def _scaled_norm(P, x):
-    vu = P[P_VU]
-    return math.sqrt((x[0] / vu) ** 2 + (x[1] / vu) ** 2 + (x[2] / (P[P_B] * vu)) ** 2)
+@njit(cache=True, **HOT)
+def _image_normal(P, W, zeta):
+    """The image along W_DIR from W_CENTRE and the normal there (into W_NORMAL, the image
+    point into W_Q): (t, found)."""
+    centre, direction = W[W_CENTRE:W_CENTRE + 3], W[W_DIR:W_DIR + 3]
+    t, found = image(P, centre, direction, zeta)
+    for i in range(3):
+        W[W_Q + i] = centre[i] + t * direction[i]
+    failure_gradient(P, W[W_Q:W_Q + 3], zeta, W[W_NORMAL:W_NORMAL + 3])
+    return t, found
 
 
-@njit(cache=True)
-def substep(P, S, target, D):
+@njit(cache=True, **HOT)
+def _return_to_surface(P, W, target, zeta, D):
+    """The forces W_Q beyond the surface returned radially towards (ζ V_ult/2, 0, 0), and the
+    plastic displacement W_PLASTIC that leaves the elastic part carrying them. Returns the
+    status."""
+    inner = 0.5 * zeta * P[P_VU]
+    for i in range(3):
+        W[W_DIR + i] = W[W_Q + i] - (inner if i == 0 else 0.0)
+        W[W_TRIAL + i] = inner if i == 0 else 0.0  # W_TRIAL holds the inner point here
+    t, found = image(P, W[W_TRIAL:W_TRIAL + 3], W[W_DIR:W_DIR + 3], zeta)
+    if not found:
+        return STEP_SURFACE
+    for i in range(3):
+        W[W_Q + i] = W[W_TRIAL + i] + t * W[W_DIR + i]
+    v, theta = bed_displacement(P[P_KW], 0.5 * P[P_B], W[W_Q], W[W_Q + 2])
+    W[W_PLASTIC] = target[0] - (v + P[P_CXV] * W[W_Q])
+    W[W_PLASTIC + 1] = target[1] - W[W_Q + 1] / P[P_KH]
+    W[W_PLASTIC + 2] = target[2] - (theta + P[P_CXT] * W[W_Q + 2])
+    for i in range(3):
+        W[W_DE + i] = target[i] - W[W_PLASTIC + i]
+    _, ok = elastic(P, W[W_DE:W_DE + 3], W[W_Q:W_Q + 3], W[W_Q:W_Q + 3], D)
+    return STEP_OK if ok else STEP_CONTACT
+
+
+@njit(cache=True, **HOT)
+def substep(P, S, target, D, W):
     """One sub-step of state S (in place) to total displacement ``target``; D is set to the
-    tangent. Returns a status."""
-    Q0 = S[S_Q:S_Q + 3].copy()
-    de = target - S[S_P:S_P + 3]
-    trial = np.empty(3)
+    tangent; W is scratch (``W_COUNT``). Returns a status."""
+    Q0, trial = W[W_Q0:W_Q0 + 3], W[W_TRIAL:W_TRIAL + 3]
+    centre, direction = W[W_CENTRE:W_CENTRE + 3], W[W_DIR:W_DIR + 3]
+    normal, flow = W[W_NORMAL:W_NORMAL + 3], W[W_FLOW:W_FLOW + 3]
+    plastic, Q, de = W[W_PLASTIC:W_PLASTIC + 3], W[W_Q:W_Q + 3], W[W_DE:W_DE + 3]
+    for i in range(3):
+        Q0[i] = S[S_Q + i]
+        de[i] = target[i] - S[S_P + i]
     _, ok = elastic(P, de, Q0, trial, D)
     if not ok:
         return STEP_CONTACT
-    S[S_D:S_D + 3] = target
+    for i in range(3):
+        S[S_D + i] = target[i]
     if trial[0] <= 0.0:  # lifted off: no load, and the footing's sway is free
         S[S_P + 1] = target[1]
-        S[S_Q:S_Q + 3] = 0.0
-        D[:, :] = 0.0
+        for i in range(3):
+            S[S_Q + i] = 0.0
+            for j in range(3):
+                D[i, j] = 0.0
         return STEP_OK
     zeta = size(P, S[S_KAPPA])
-    centre = S[S_C:S_C + 3].copy()
-    direction = trial - centre
+    for i in range(3):
+        centre[i] = S[S_C + i]
+        direction[i] = trial[i] - centre[i]
     if _scaled_norm(P, direction) <= 1e-13:
-        S[S_Q:S_Q + 3] = trial
+        for i in range(3):
+            S[S_Q + i] = trial[i]
         return STEP_OK
-    t, found = image(P, centre, direction, zeta)
+    t, found = _image_normal(P, W, zeta)
     if not found:
         return STEP_SURFACE
-    normal = np.empty(3)
-    failure_gradient(P, centre + t * direction, zeta, normal)
-    if normal @ (trial - Q0) < 0.0:  # a reversal: the centre moves to the present load
-        centre = Q0.copy()
-        direction = trial - centre
-        t, found = image(P, centre, direction, zeta)
+    if normal[0] * (trial[0] - Q0[0]) + normal[1] * (trial[1] - Q0[1]) \
+            + normal[2] * (trial[2] - Q0[2]) < 0.0:  # a reversal: the centre moves here
+        for i in range(3):
+            centre[i] = Q0[i]
+            direction[i] = trial[i] - centre[i]
+        t, found = _image_normal(P, W, zeta)
         if not found:
             return STEP_SURFACE
-        failure_gradient(P, centre + t * direction, zeta, normal)
-    image_point = centre + t * direction
-    S[S_C:S_C + 3] = centre
-    s = min(_scaled_norm(P, Q0 - centre) / max(t * _scaled_norm(P, direction), 1e-300), 1.0)
-    flow = normal.copy()  # χ |(n_H, n_M)| added to n_V, in V_ult-scaled forces
+    for i in range(3):
+        S[S_C + i] = centre[i]
+        Q[i] = Q0[i] - centre[i]  # Q holds Q0 − centre for the distance ratio
+    s = min(_scaled_norm(P, Q) / max(t * _scaled_norm(P, direction), 1e-300), 1.0)
+    for i in range(3):
+        Q[i] = centre[i] + t * direction[i]  # the image point
+        flow[i] = normal[i]
     flow[0] += P[P_CHI] * math.hypot(normal[1], normal[2] * P[P_B])
-    modulus = plastic_modulus(P, S[S_KAPPA], image_point, flow[0], s, zeta)
-    loading = normal @ (trial - Q0)
+    modulus = plastic_modulus(P, S[S_KAPPA], Q, flow[0], s, zeta)
+    loading = normal[0] * (trial[0] - Q0[0]) + normal[1] * (trial[1] - Q0[1]) \
+        + normal[2] * (trial[2] - Q0[2])
     if not math.isfinite(modulus) or loading <= 0.0:
-        S[S_Q:S_Q + 3] = trial
+        for i in range(3):
+            S[S_Q + i] = trial[i]
         return STEP_OK
-    lam = loading / (modulus + normal @ (D @ flow))
-    plastic = S[S_P:S_P + 3] + lam * flow
-    Q = np.empty(3)
-    _, ok = elastic(P, target - plastic, trial, Q, D)
+    nDm = 0.0
+    for i in range(3):
+        for j in range(3):
+            nDm += normal[i] * D[i, j] * flow[j]
+    lam = loading / (modulus + nDm)
+    for i in range(3):
+        plastic[i] = S[S_P + i] + lam * flow[i]
+        de[i] = target[i] - plastic[i]
+    _, ok = elastic(P, de, trial, Q, D)
     if not ok:
         return STEP_CONTACT
     kappa = S[S_KAPPA] + max(lam * flow[0], 0.0)
     zeta1 = size(P, kappa)
     if failure_value(P, Q, zeta1) > 0.0:  # drift: returned radially onto the surface
-        inner = np.array([0.5 * zeta1 * P[P_VU], 0.0, 0.0])
-        t, found = image(P, inner, Q - inner, zeta1)
-        if not found:
-            return STEP_SURFACE
-        Q = inner + t * (Q - inner)
-        v, theta = bed_displacement(P[P_KW], 0.5 * P[P_B], Q[0], Q[2])
         before = plastic[0]
-        plastic = target - np.array([v + P[P_CXV] * Q[0], Q[1] / P[P_KH],
-                                     theta + P[P_CXT] * Q[2]])
+        status = _return_to_surface(P, W, target, zeta1, D)
+        if status != STEP_OK:
+            return status
         kappa += max(plastic[0] - before, 0.0)
-        _, ok = elastic(P, target - plastic, Q, Q, D)
-        if not ok:
-            return STEP_CONTACT
-    S[S_W] += 0.5 * (Q0 + Q) @ (plastic - S[S_P:S_P + 3])
-    S[S_P:S_P + 3] = plastic
-    S[S_Q:S_Q + 3] = Q
-    S[S_KAPPA] = kappa
-    Dm = D @ flow
-    nD = normal @ D
-    denominator = modulus + normal @ Dm
+    work = 0.0
     for i in range(3):
-        for j in range(3):
-            D[i, j] -= Dm[i] * nD[j] / denominator
+        work += 0.5 * (Q0[i] + Q[i]) * (plastic[i] - S[S_P + i])
+    S[S_W] += work
+    for i in range(3):
+        S[S_P + i] = plastic[i]
+        S[S_Q + i] = Q[i]
+    S[S_KAPPA] = kappa
+    _plastic_tangent(D, normal, flow, modulus)
+    return STEP_OK
+
+
+@njit(cache=True, **HOT)
+def _plastic_tangent(D, normal, flow, modulus):
+    """D − D m nᵀ D / (K_p + nᵀ D m), in place."""
+    Dm0 = D[0, 0] * flow[0] + D[0, 1] * flow[1] + D[0, 2] * flow[2]
+    Dm1 = D[1, 0] * flow[0] + D[1, 1] * flow[1] + D[1, 2] * flow[2]
+    Dm2 = D[2, 0] * flow[0] + D[2, 1] * flow[1] + D[2, 2] * flow[2]
+    nD0 = normal[0] * D[0, 0] + normal[1] * D[1, 0] + normal[2] * D[2, 0]
+    nD1 = normal[0] * D[0, 1] + normal[1] * D[1, 1] + normal[2] * D[2, 1]
+    nD2 = normal[0] * D[0, 2] + normal[1] * D[1, 2] + normal[2] * D[2, 2]
+    denominator = modulus + normal[0] * Dm0 + normal[1] * Dm1 + normal[2] * Dm2
+    D[0, 0] -= Dm0 * nD0 / denominator
+    D[0, 1] -= Dm0 * nD1 / denominator
+    D[0, 2] -= Dm0 * nD2 / denominator
+    D[1, 0] -= Dm1 * nD0 / denominator
+    D[1, 1] -= Dm1 * nD1 / denominator
+    D[1, 2] -= Dm1 * nD2 / denominator
+    D[2, 0] -= Dm2 * nD0 / denominator
+    D[2, 1] -= Dm2 * nD1 / denominator
+    D[2, 2] -= Dm2 * nD2 / denominator
+
+
+@njit(cache=True, **HOT)
+def substeps(P, S, target, max_force_step, D, W):
+    """How many sub-steps a step of S to ``target`` takes (≥ 1; 0 if its elastic trial
+    fails), so that none changes the trial force by more than ``max_force_step``
+    (V_ult-scaled)."""
+    for i in range(3):
+        W[W_DE + i] = target[i] - S[S_P + i]
+    _, ok = elastic(P, W[W_DE:W_DE + 3], S[S_Q:S_Q + 3], W[W_TRIAL:W_TRIAL + 3], D)
+    if not ok:
+        return 0
+    vu = P[P_VU]
+    largest = max(abs(W[W_TRIAL] - S[S_Q]) / vu, abs(W[W_TRIAL + 1] - S[S_Q + 1]) / vu,
+                  abs(W[W_TRIAL + 2] - S[S_Q + 2]) / (P[P_B] * vu))
+    return max(1, int(math.ceil(min(largest / max_force_step, 1e18))))
+
+
+@njit(cache=True, **HOT)
+def step_into(P, S, target, max_force_step, count, D, W):
+    """State S (in place) moved to total displacement ``target`` in ``count`` equal sub-steps
+    (0: as many as keep each within ``max_force_step`` of trial force, V_ult-scaled); D is
+    set to the tangent; W is scratch (``W_COUNT``). Returns a status. Allocates nothing."""
+    if count <= 0:
+        count = substeps(P, S, target, max_force_step, D, W)
+        if count == 0:
+            return STEP_CONTACT
+    if count > MAX_SUBSTEPS:
+        return STEP_SUBSTEPS
+    for i in range(3):
+        W[W_START + i] = S[S_D + i]
+    for k in range(1, count + 1):
+        for i in range(3):
+            W[W_TARGET + i] = W[W_START + i] + (target[i] - W[W_START + i]) * (k / count)
+        status = substep(P, S, W[W_TARGET:W_TARGET + 3], D, W)
+        if status != STEP_OK:
+            return status
     return STEP_OK
 
 
 @njit(cache=True)
 def step(P, S, target, max_force_step, D):
-    """State S (in place) moved to total displacement ``target`` in sub-steps of at most
-    ``max_force_step`` trial force (V_ult-scaled); D is set to the tangent. Returns a
-    status."""
-    trial = np.empty(3)
-    _, ok = elastic(P, target - S[S_P:S_P + 3], S[S_Q:S_Q + 3], trial, D)
-    if not ok:
-        return STEP_CONTACT
-    change = trial - S[S_Q:S_Q + 3]
-    largest = max(abs(change[0]) / P[P_VU], abs(change[1]) / P[P_VU],
-                  abs(change[2]) / (P[P_B] * P[P_VU]))
-    count = max(1, int(math.ceil(largest / max_force_step)))
-    if count > MAX_SUBSTEPS:
-        return STEP_SUBSTEPS
-    start = S[S_D:S_D + 3].copy()
-    for i in range(1, count + 1):
-        status = substep(P, S, start + (target - start) * (i / count), D)
-        if status != STEP_OK:
-            return status
-    return STEP_OK
+    """:func:`step_into` with its own scratch and the automatic sub-step count."""
+    return step_into(P, S, target, max_force_step, 0, D, np.empty(W_COUNT))

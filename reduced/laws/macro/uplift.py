@@ -69,9 +69,10 @@ def vertical_rocking_forces(law: MacroElement, v: float, theta: float, guess=Non
     """(N, M), their tangent ∂(N, M)/∂(v, θ) (2×2) and the stored energy of the bed and its
     remainder, at the elastic settlement v (m) and rotation θ (rad). ``guess``: a starting
     (N, M) (the last step's)."""
-    T = np.empty((2, 2))
     g = (0.0, 0.0) if guess is None else guess
-    n, m, energy, ok = cc.vertical_rocking(cc.pack(law), v, theta, g[0], g[1], T)
+    n, m, t00, t01, t10, t11, energy, ok = cc.vertical_rocking(cc.pack(law), v, theta,
+                                                               g[0], g[1])
+    T = np.array([[t00, t01], [t10, t11]])
     if not ok:
         raise MacroStepError(f"macro uplift: the contact did not converge at v = {v:g}, "
                              f"θ = {theta:g} in {cc.MAX_NEWTON} iterations")
