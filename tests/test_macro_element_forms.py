@@ -15,7 +15,7 @@ from upliftlab.reduced.laws.macro import (MacroElement, at_rest, bed_energy, bed
                                           elastic_forces, failure_function,
                                           failure_gradient, horizontal_capacity,
                                           moment_capacity, remainder_compliance,
-                                          vertical_rocking_forces)
+                                          rounding_force, vertical_rocking_forces)
 
 CLAY = dict(width=2.0, vertical_stiffness=27513.0, horizontal_stiffness=30000.0,
             rocking_stiffness=43150.0, cohesion=50.0)
@@ -79,23 +79,45 @@ def test_failure_gradient_is_the_derivative():
                                    atol=1e-6 * np.abs(fd).max())
 
 
-def _sum_of_springs(k, b, v, theta, count=20000):
-    """An independent tensionless bed: ``count`` springs at strip centres (midpoint rule)."""
+def _sum_of_springs(k, b, v, theta, rho=0.0, count=20000):
+    """An independent tensionless bed: ``count`` springs at strip centres (midpoint rule), on
+    a surface ρ (x²/b² − 1/3) below the footing."""
     x = (np.arange(count) + 0.5) / count * 2 * b - b
-    p = k * np.maximum(v + theta * x, 0.0) * (2 * b / count)
+    p = k * np.maximum(v + theta * x - rho * (x * x / b / b - 1 / 3), 0.0) * (2 * b / count)
     return np.array([p.sum(), (p * x).sum()]), 0.5 / k * (p * p).sum() / (2 * b / count)
 
 
+@pytest.mark.parametrize("rho", [0.0, 1e-9, 0.004, 0.02])
 @pytest.mark.parametrize("v, theta", [(0.01, 0.002), (0.01, 0.01), (0.002, -0.004),
-                                      (-0.001, 0.003), (-0.01, 0.001)])
-def test_tensionless_bed_is_a_sum_of_springs(v, theta):
+                                      (-0.001, 0.003), (-0.01, 0.001), (0.0, 0.0)])
+def test_tensionless_bed_is_a_sum_of_springs(v, theta, rho):
     """Reference: 20,000 tensionless springs summed (midpoint rule, error O(1/n²) but for the
-    cell the contact edge crosses, O(1/n²) too): forces and energy to 1e-6."""
+    cells the contact's ends cross, O(1/n²) too), on a flat and on rounded surfaces (ρ down
+    to 1e-9, where the contact's far root runs off to infinity): forces and energy to 1e-6;
+    the rounding force F_ρ against central differences of the energy in ρ."""
     k, b = 1.0e4, 1.0
-    forces, _ = bed_forces(k, b, v, theta)
-    springs, energy = _sum_of_springs(k, b, v, theta)
-    np.testing.assert_allclose(forces, springs, rtol=1e-6, atol=1e-9)
-    assert bed_energy(k, b, v, theta) == pytest.approx(energy, rel=1e-6, abs=1e-12)
+    forces, _ = bed_forces(k, b, v, theta, rho)
+    springs, energy = _sum_of_springs(k, b, v, theta, rho)
+    np.testing.assert_allclose(forces, springs, rtol=1e-6, atol=1e-6 * (abs(springs).max()
+                                                                         + 1e-3))
+    assert bed_energy(k, b, v, theta, rho) == pytest.approx(energy, rel=1e-6, abs=1e-12)
+    h = 1e-7
+    fd = -(bed_energy(k, b, v, theta, rho + h) - bed_energy(k, b, v, theta, rho - h)) / (2 * h)
+    if rho > h:
+        assert rounding_force(k, b, v, theta, rho) == pytest.approx(fd, rel=1e-5, abs=1e-6)
+
+
+@pytest.mark.parametrize("v, theta, rho", [(0.005, 0.001, 0.003), (0.002, 0.004, 0.01),
+                                           (0.01, -0.002, 0.02)])
+def test_rounded_bed_tangent_is_the_derivative(v, theta, rho):
+    """Reference: central finite differences of the rounded bed's forces (steps 1e-8), to
+    1e-6: k times the contact's moments, by Leibniz's rule."""
+    k, b = 1.0e4, 1.0
+    _, tangent = bed_forces(k, b, v, theta, rho)
+    fd = np.column_stack([(bed_forces(k, b, *(np.array([v, theta]) + 1e-8 * e), rho)[0]
+                           - bed_forces(k, b, *(np.array([v, theta]) - 1e-8 * e), rho)[0])
+                          / 2e-8 for e in np.eye(2)])
+    np.testing.assert_allclose(tangent, fd, rtol=1e-6, atol=1e-6 * np.abs(fd).max())
 
 
 def test_uplift_at_constant_load_is_the_closed_form():

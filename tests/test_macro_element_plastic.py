@@ -26,12 +26,22 @@ def law_of(soil=CLAY, **changes):
     return MacroElement(**{**soil, **changes})
 
 
+def _trial(law, state, d, count, kw):
+    """A trial step of an iteration, in the most sub-steps any trial so far asked for (a
+    number that only grows, so that the iteration converges on one smooth function)."""
+    auto = step(law, state, d, **kw)
+    if auto.substeps >= count:
+        return auto, auto.substeps
+    return step(law, state, d, substeps=count, **kw), count
+
+
 def at_vertical_load(law, state, d, load, **kw):
     """Step to displacement ``d`` with v adjusted (Newton on the step's tangent) so that V
     ends at ``load``: a rotation or sway pushover at constant vertical load."""
     d = np.array(d, dtype=float)
+    count = 0  # the most sub-steps any trial asked for, kept through the iteration
     for _ in range(40):
-        out = step(law, state, d, **kw)
+        out, count = _trial(law, state, d, count, kw)
         residual = out.state.forces[0] - load
         if abs(residual) <= 1e-10 * load:
             return out
@@ -48,12 +58,14 @@ def random_walk(law, seed, count=150):
     return np.cumsum(rng.normal(0, 1, (count, 3)) * scale, axis=0) + [v0, 0, 0]
 
 
+@pytest.mark.parametrize("rounding", [0.0, 0.7])
 @pytest.mark.parametrize("soil", [CLAY, SAND], ids=["clay", "sand"])
 @pytest.mark.parametrize("seed", [0, 1])
-def test_bounding_surface_is_never_crossed(soil, seed):
+def test_bounding_surface_is_never_crossed(soil, seed, rounding):
     """Reference: the bounding surface itself, F(Q; ζ) ≤ 0, to 1e-9, at the end of every step
-    of random walks in (v, u, θ) that yield the footing again and again."""
-    law = law_of(soil)
+    of random walks in (v, u, θ) that yield the footing again and again (on a flat surface
+    and on one that rounds)."""
+    law = law_of(soil, rounding_ratio=rounding)
     state = at_rest(law, law.ultimate_load / 3)
     worst = -math.inf
     for d in random_walk(law, seed):
@@ -90,12 +102,14 @@ def _loaded_state(law, seed):
     return state, direction
 
 
+@pytest.mark.parametrize("rounding", [0.0, 0.7])
 @pytest.mark.parametrize("seed", range(4))
-def test_tangent_is_the_derivative_of_the_update(seed):
+def test_tangent_is_the_derivative_of_the_update(seed, rounding):
     """Reference: one-sided finite differences of the update (steps 1e-8 of the last step's
     size) along the loading direction and two others that load, to 1e-4 of the tangent's
-    norm; and after a reversal, the elastic tangent."""
-    law = law_of()
+    norm; and after a reversal, the elastic tangent (the rounding held: it moves with the
+    plastic rotation, a second-order change over the step)."""
+    law = law_of(rounding_ratio=rounding)
     state, direction = _loaded_state(law, seed)
     rng = np.random.default_rng(100 + seed)
     h = 1e-8
@@ -106,20 +120,22 @@ def test_tangent_is_the_derivative_of_the_update(seed):
         np.testing.assert_allclose(out.tangent @ e, fd, rtol=0,
                                    atol=1e-4 * np.abs(out.tangent).max() * np.abs(e).max())
         assert not np.allclose(out.tangent, elastic_forces(law, state.displacement
-                                                           - state.plastic)[1])
+                                                           - state.plastic, None,
+                                                           state.rounding)[1])
     back = step(law, state, state.displacement - h * direction)
-    elastic = elastic_forces(law, state.displacement - state.plastic)[1]
+    elastic = elastic_forces(law, state.displacement - state.plastic, None, state.rounding)[1]
     np.testing.assert_allclose(back.tangent, elastic, rtol=1e-6)
     np.testing.assert_allclose((back.state.forces - state.forces) / h, -elastic @ direction,
                                rtol=1e-4, atol=1e-4 * np.abs(elastic @ direction).max())
 
 
+@pytest.mark.parametrize("rounding", [0.0, 0.7])
 @pytest.mark.parametrize("soil", [CLAY, SAND], ids=["clay", "sand"])
-def test_energy_balance_closes(soil):
+def test_energy_balance_closes(soil, rounding):
     """Reference: the work done on the footing, ∫ Q·dd by the trapezoid rule over fine steps,
     equals the energy stored by the elastic-and-uplift mechanism plus the plastic work the
-    law books, to 0.1 % of the work done."""
-    law = law_of(soil)
+    law books (with the rounding's F_ρ dρ), to 0.1 % of the work done."""
+    law = law_of(soil, rounding_ratio=rounding)
     state = at_rest(law, law.ultimate_load / 3)
     start = stored_energy(law, state)
     path = random_walk(law, 7, count=60)
@@ -140,8 +156,9 @@ def to_forces(law, state, load, moment, **kw):
     with the step's tangent, every trial from ``state``)."""
     d = state.displacement.copy()
     target = np.array([load, moment])
+    count = 0
     for _ in range(40):
-        out = step(law, state, d, **kw)
+        out, count = _trial(law, state, d, count, kw)
         residual = out.state.forces[[0, 2]] - target
         if np.abs(residual).max() <= 1e-11 * load:
             return out.state
@@ -193,6 +210,43 @@ def test_settlement_coupling_settles_a_light_footing():
         for theta in np.linspace(0, 0.03, 31)[1:]:
             state = at_vertical_load(law, state, [state.displacement[0], 0, theta], load).state
         assert sign * state.plastic[0] > 1e-4
+
+
+def test_rounding_pinches_the_loops_and_not_a_vertical_load():
+    """Reference: the continuum's rocking on the clay at FS_v = 2 (the map's stored rotation
+    cycles): after cycles at growing amplitude its contact near M = 0 is 1.19–1.31 m of
+    B = 2 m (the footing rests on its middle). The law, with λ_ρ = 0.7: after cycles to
+    ±10 θ_up at V_ult/2, brought back to M = 0, the contact is less than 0.8 B; on a flat
+    surface (λ_ρ = 0) it is B, to 1e-9, whatever the plastic rotation. A vertical load to
+    20 times its elastic settlement and back rounds nothing."""
+    from upliftlab.reduced.laws.macro import remainder_compliance
+    from upliftlab.reduced.laws.macro.compiled import bed_length
+
+    lengths = {}
+    for rounding in (0.0, 0.7):
+        law = law_of(rounding_ratio=rounding, initial_size=0.8)
+        load = law.ultimate_load / 2
+        state = at_rest(law, load)
+        theta_up = 2 * load / (law.winkler_modulus * law.width ** 2)
+        for amplitude in (3, 6, 10):
+            for theta in np.concatenate([np.linspace(0, 1, 11), np.linspace(1, -1, 21),
+                                         np.linspace(-1, 0, 11)]) * amplitude * theta_up:
+                state = at_vertical_load(law, state, [state.displacement[0], 0, theta],
+                                         load).state
+        for m in np.linspace(state.forces[2], 0.0, 11)[1:]:
+            state = to_forces(law, state, load, m)
+        bed = (state.displacement - state.plastic)[[0, 2]] \
+            - remainder_compliance(law) * state.forces[[0, 2]]
+        lengths[rounding] = bed_length(law.winkler_modulus, law.width / 2, *bed, state.rounding)
+        assert (state.rounding > 0.0) == (rounding > 0.0)
+    assert lengths[0.0] == pytest.approx(2.0, abs=1e-9)
+    assert lengths[0.7] < 0.8 * 2.0
+    law = law_of(rounding_ratio=0.7, initial_size=0.8)
+    state = at_rest(law, 0.2 * law.ultimate_load)
+    for v in np.concatenate([np.linspace(1, 20, 20), np.linspace(20, 1, 20)]) * \
+            state.displacement[0]:
+        state = step(law, state, [v, 0, 0]).state
+    assert state.rounding == 0.0 and state.plastic[0] > 0.0
 
 
 def test_substep_converges_at_first_order():

@@ -12,9 +12,10 @@ function (state, displacement) → (forces, tangent, state).
 from .capacity import failure_function, failure_gradient, horizontal_capacity, moment_capacity
 from .params import MacroElement, MacroStepError, bearing_factors
 from .plastic import MacroState, MacroStep, at_rest, elastic_forces, size, step, stored_energy
-from .uplift import bed_energy, bed_forces, remainder_compliance, vertical_rocking_forces
+from .uplift import (bed_energy, bed_forces, remainder_compliance, rounding_force,
+                     vertical_rocking_forces)
 
 __all__ = ["MacroElement", "MacroStepError", "MacroState", "MacroStep", "at_rest", "step",
            "size", "elastic_forces", "stored_energy", "bearing_factors", "horizontal_capacity",
            "failure_function", "failure_gradient", "moment_capacity", "bed_forces",
-           "bed_energy", "remainder_compliance", "vertical_rocking_forces"]
+           "bed_energy", "remainder_compliance", "rounding_force", "vertical_rocking_forces"]

@@ -4,8 +4,9 @@ and :mod:`.plastic` are its readable entry points, and each function's ``.py_fun
 interpreted reference.
 
 The parameters are one float array (:func:`pack`, slots ``P_…``), the state another
-(``S_…``): displacement (v, u, θ), plastic displacement, forces (V, H, M), projection centre,
-accumulated plastic settlement κ and dissipated energy. The equations are those of the modules
+(``S_…``): displacement (v, u, θ), plastic displacement, forces (V, H, M), projection
+centre, accumulated plastic settlement κ, dissipated energy and the rounding ρ of the soil's
+surface. The equations are those of the modules
 named above. A step that cannot be completed returns a status (``STEP_…``), never a number.
 
 The update (:func:`step_into`) allocates nothing: its vectors are slots of a scratch array
@@ -27,10 +28,10 @@ __all__ = ["pack", "P_COUNT", "S_COUNT", "W_COUNT", "STEP_OK", "STEP_CONTACT", "
            "STEP_SUBSTEPS", "RIDGE", "MAX_NEWTON", "MAX_SUBSTEPS", "step", "step_into"]
 
 (P_B, P_KV, P_KH, P_KR, P_KW, P_CXV, P_CXT, P_A1, P_A2, P_VU, P_TH, P_Z0, P_KREF, P_H0,
- P_GEXP, P_CHI) = range(16)
-P_COUNT = 16
-S_D, S_P, S_Q, S_C, S_KAPPA, S_W = 0, 3, 6, 9, 12, 13
-S_COUNT = 14
+ P_GEXP, P_CHI, P_RHO) = range(17)
+P_COUNT = 17
+S_D, S_P, S_Q, S_C, S_KAPPA, S_W, S_ROUND = 0, 3, 6, 9, 12, 13, 14
+S_COUNT = 15
 # the scratch array: the update's vectors, three floats each
 W_Q0, W_TRIAL, W_CENTRE, W_DIR, W_NORMAL, W_FLOW, W_PLASTIC, W_Q, W_START, W_TARGET, W_DE = \
     range(0, 33, 3)
@@ -55,9 +56,9 @@ def pack(law) -> np.ndarray:
     P[[P_CXV, P_CXT]] = remainder_compliance(law)
     P[[P_A1, P_A2, P_VU, P_TH]] = (law.cohesive_pressure, law.frictional_modulus,
                                    law.ultimate_load, law.sliding_ratio)
-    P[[P_Z0, P_KREF, P_H0, P_GEXP, P_CHI]] = (law.initial_size, law.hardening_settlement,
-                                              law.interior_modulus, law.interior_exponent,
-                                              law.settlement_coupling)
+    P[[P_Z0, P_KREF, P_H0, P_GEXP, P_CHI, P_RHO]] = (
+        law.initial_size, law.hardening_settlement, law.interior_modulus,
+        law.interior_exponent, law.settlement_coupling, law.rounding_ratio)
     return P
 
 
@@ -65,42 +66,80 @@ def pack(law) -> np.ndarray:
 
 
 @njit(cache=True, **HOT)
-def bed(k, b, v, theta):
-    """The tensionless bed's (N, M) and tangent (k11, k12, k22) at (v, θ) (:mod:`.uplift`)."""
-    sign = 1.0 if theta >= 0.0 else -1.0
-    t = abs(theta)
-    if v - t * b >= 0.0:
-        return 2.0 * k * b * v, 2.0 / 3.0 * k * b ** 3 * theta, 2.0 * k * b, 0.0, \
-            2.0 / 3.0 * k * b ** 3
-    if v + t * b <= 0.0:
-        return 0.0, 0.0, 0.0, 0.0, 0.0
-    a = b + v / t
-    n = 0.5 * k * t * a * a
-    return n, sign * n * (b - a / 3.0), k * a, sign * k * a * (b - 0.5 * a), \
-        k * (a ** 3 / 3.0 - a * a * b + a * b * b)
+def contact(b, A, C, R):
+    """The contact interval [lo, hi] ⊂ [−b, b] where w(x) = A + C x − R x² > 0 (R ≥ 0), and
+    whether there is one; the roots in their stable form (no cancellation as R → 0)."""
+    if R <= 0.0:
+        if C == 0.0:
+            return -b, b, A > 0.0
+        root = -A / C
+        lo, hi = (max(-b, root), b) if C > 0.0 else (-b, min(b, root))
+        return lo, hi, hi > lo
+    disc = C * C + 4.0 * R * A
+    if disc <= 0.0:
+        return 0.0, 0.0, False
+    q = 0.5 * (C + math.copysign(math.sqrt(disc), C))
+    if q == 0.0:
+        return 0.0, 0.0, False
+    r1, r2 = q / R, -A / q
+    lo, hi = max(-b, min(r1, r2)), min(b, max(r1, r2))
+    return lo, hi, hi > lo
 
 
 @njit(cache=True, **HOT)
-def bed_energy(k, b, v, theta):
-    """The bed's stored energy ∫ ½ k ⟨v + θ x⟩² dx."""
-    t = abs(theta)
-    if v - t * b >= 0.0:
-        return k * b * v * v + k * b ** 3 * theta * theta / 3.0
-    if v + t * b <= 0.0:
-        return 0.0
-    a = b + v / t
-    return k * t * t * a ** 3 / 6.0
+def bed_moments(k, b, v, theta, rho):
+    """(w's coefficients A, C, R and the contact's moments I0…I4, ∫ xʲ dx over it) of the bed
+    at (v, θ) on a surface rounded by ρ: w(x) = v + θ x − ρ (x²/b² − 1/3) (:mod:`.uplift`)."""
+    A, C, R = v + rho / 3.0, theta, rho / (b * b)
+    lo, hi, found = contact(b, A, C, R)
+    if not found:
+        return A, C, R, 0.0, 0.0, 0.0, 0.0, 0.0
+    return (A, C, R, hi - lo, (hi ** 2 - lo ** 2) / 2.0, (hi ** 3 - lo ** 3) / 3.0,
+            (hi ** 4 - lo ** 4) / 4.0, (hi ** 5 - lo ** 5) / 5.0)
 
 
 @njit(cache=True, **HOT)
-def bed_displacement(k, b, n, m):
-    """The bed's (v, θ) under (N, M), N > 0, |M| < N b."""
+def bed(k, b, v, theta, rho):
+    """The tensionless bed's (N, M) and tangent (k11, k12, k22) at (v, θ) on a surface
+    rounded by ρ: k ∫ w, k ∫ x w, and k times the contact's moments (:mod:`.uplift`)."""
+    A, C, R, I0, I1, I2, I3, I4 = bed_moments(k, b, v, theta, rho)
+    return (k * (A * I0 + C * I1 - R * I2), k * (A * I1 + C * I2 - R * I3),
+            k * I0, k * I1, k * I2)
+
+
+@njit(cache=True, **HOT)
+def bed_energy(k, b, v, theta, rho):
+    """The bed's stored energy ½ k ∫ ⟨w⟩² dx."""
+    A, C, R, I0, I1, I2, I3, I4 = bed_moments(k, b, v, theta, rho)
+    return 0.5 * k * (A * A * I0 + 2.0 * A * C * I1 + (C * C - 2.0 * A * R) * I2
+                      - 2.0 * C * R * I3 + R * R * I4)
+
+
+@njit(cache=True, **HOT)
+def rounding_force(k, b, v, theta, rho):
+    """F_ρ = −∂U/∂ρ at fixed (v, θ) = k ∫ ⟨w⟩ (x²/b² − 1/3) dx: the work per unit rounding
+    (> 0 when the bed presses its edges more than its middle)."""
+    A, C, R, I0, I1, I2, I3, I4 = bed_moments(k, b, v, theta, rho)
+    n = k * (A * I0 + C * I1 - R * I2)
+    return k * (A * I2 + C * I3 - R * I4) / (b * b) - n / 3.0
+
+
+@njit(cache=True, **HOT)
+def flat_bed_displacement(k, b, n, m):
+    """The flat bed's (v, θ) under (N, M), N > 0, |M| < N b, in closed form: full contact
+    while e = |M|/N ≤ b/3, else a = 3 (b − e), θ = 2N/(k a²), v = θ (a − b)."""
     e = abs(m) / n
     if e <= b / 3.0:
         return n / (2.0 * k * b), 1.5 * m / (k * b ** 3)
     a = 3.0 * (b - e)
     t = 2.0 * n / (k * a * a)
     return t * (a - b), (t if m >= 0.0 else -t)
+
+
+@njit(cache=True, **HOT)
+def bed_length(k, b, v, theta, rho):
+    """The contact length (length)."""
+    return bed_moments(k, b, v, theta, rho)[3]
 
 
 @njit(cache=True, **HOT)
@@ -113,14 +152,15 @@ def _series_tangent(k11, k12, k22, cv, ct):
 
 
 @njit(cache=True, **HOT)
-def vertical_rocking(P, v, theta, n, m):
+def vertical_rocking(P, v, theta, n, m, rho):
     """(N, M, ∂N/∂v, ∂N/∂θ, ∂M/∂v, ∂M/∂θ, energy, converged) at elastic (v, θ), from the guess
-    (n, m): the bed in series with the remainder C_x (:mod:`.uplift`), by Newton's method."""
+    (n, m), on a surface rounded by ρ: the bed in series with the remainder C_x
+    (:mod:`.uplift`), by Newton's method."""
     k, b, cv, ct = P[P_KW], 0.5 * P[P_B], P[P_CXV], P[P_CXT]
     scale = P[P_KV] * (abs(v) + b * abs(theta)) + 1e-300
     ok = False
     for _ in range(MAX_NEWTON):
-        f0, f1, k11, k12, k22 = bed(k, b, v - cv * n, theta - ct * m)
+        f0, f1, k11, k12, k22 = bed(k, b, v - cv * n, theta - ct * m, rho)
         r0, r1 = n - f0, m - f1
         if max(abs(r0), abs(r1)) <= 1e-13 * scale:
             ok = True
@@ -129,18 +169,20 @@ def vertical_rocking(P, v, theta, n, m):
         det = j11 * j22 - j12 * j21
         n -= (j22 * r0 - j12 * r1) / det
         m -= (j11 * r1 - j21 * r0) / det
-    f0, f1, k11, k12, k22 = bed(k, b, v - cv * n, theta - ct * m)
+    f0, f1, k11, k12, k22 = bed(k, b, v - cv * n, theta - ct * m, rho)
     t00, t01, t10, t11 = _series_tangent(k11, k12, k22, cv, ct)
-    energy = bed_energy(k, b, v - cv * f0, theta - ct * f1) + 0.5 * (cv * f0 * f0 + ct * f1 * f1)
+    energy = (bed_energy(k, b, v - cv * f0, theta - ct * f1, rho)
+              + 0.5 * (cv * f0 * f0 + ct * f1 * f1))
     return f0, f1, t00, t01, t10, t11, energy, ok
 
 
 @njit(cache=True, **HOT)
-def elastic(P, de, guess, Q, D):
+def elastic(P, de, guess, Q, D, rho):
     """Forces Q (3) and tangent D (3×3) of the elastic-and-uplift mechanism at elastic
-    displacement ``de`` (v, u, θ), from the forces ``guess`` (Q may be ``guess``); returns
-    (energy, converged)."""
-    n, m, t00, t01, t10, t11, energy, ok = vertical_rocking(P, de[0], de[2], guess[0], guess[2])
+    displacement ``de`` (v, u, θ) on a surface rounded by ρ, from the forces ``guess`` (Q may
+    be ``guess``); returns (energy, converged)."""
+    n, m, t00, t01, t10, t11, energy, ok = vertical_rocking(P, de[0], de[2], guess[0], guess[2],
+                                                            rho)
     Q[0], Q[1], Q[2] = n, P[P_KH] * de[1], m
     for i in range(3):
         for j in range(3):
@@ -290,10 +332,47 @@ def _image_normal(P, W, zeta):
 
 
 @njit(cache=True, **HOT)
-def _return_to_surface(P, W, target, zeta, D):
+def _rounding_force(P, de, Q, rho):
+    """F_ρ of the bed at elastic displacement ``de`` carrying ``Q`` (the bed's own displacement
+    is de less the remainder's C_x Q)."""
+    return rounding_force(P[P_KW], 0.5 * P[P_B], de[0] - P[P_CXV] * Q[0],
+                          de[2] - P[P_CXT] * Q[2], rho)
+
+
+@njit(cache=True, **HOT)
+def _invert(P, W, de, rho):
+    """The elastic (v, θ) in ``de`` (from its value) at which the mechanism on a surface
+    rounded by ρ carries W_Q's (V, M): Newton's method, each step halved until the residual
+    falls. Returns whether it converged."""
+    target_n, target_m, scale = W[W_Q], W[W_Q + 2], P[P_VU]
+    n, m, t00, t01, t10, t11, _, ok = vertical_rocking(P, de[0], de[2], target_n, target_m, rho)
+    r0, r1 = n - target_n, (m - target_m) / P[P_B]
+    for _ in range(MAX_NEWTON):
+        size0 = abs(r0) + abs(r1)
+        if ok and size0 <= 1e-12 * scale:
+            return True
+        det = t00 * t11 - t01 * t10
+        if not ok or det <= 0.0:
+            return False
+        d0 = (t11 * r0 - t01 * r1 * P[P_B]) / det
+        d2 = (t00 * r1 * P[P_B] - t10 * r0) / det
+        v0, th0, step = de[0], de[2], 1.0
+        for _ in range(40):
+            de[0], de[2] = v0 - step * d0, th0 - step * d2
+            n, m, t00, t01, t10, t11, _, ok = vertical_rocking(P, de[0], de[2], n, m, rho)
+            r0, r1 = n - target_n, (m - target_m) / P[P_B]
+            if ok and abs(r0) + abs(r1) < size0:
+                break
+            step *= 0.5
+    return False
+
+
+@njit(cache=True, **HOT)
+def _return_to_surface(P, W, target, zeta, D, rho):
     """The forces W_Q beyond the surface returned radially towards (ζ V_ult/2, 0, 0), and the
-    plastic displacement W_PLASTIC that leaves the elastic part carrying them. Returns the
-    status."""
+    plastic displacement W_PLASTIC that leaves the elastic part carrying them (the mechanism
+    inverted in closed form on a flat surface, by :func:`_invert` on a rounded one). Returns
+    the status."""
     inner = 0.5 * zeta * P[P_VU]
     for i in range(3):
         W[W_DIR + i] = W[W_Q + i] - (inner if i == 0 else 0.0)
@@ -303,13 +382,16 @@ def _return_to_surface(P, W, target, zeta, D):
         return STEP_SURFACE
     for i in range(3):
         W[W_Q + i] = W[W_TRIAL + i] + t * W[W_DIR + i]
-    v, theta = bed_displacement(P[P_KW], 0.5 * P[P_B], W[W_Q], W[W_Q + 2])
-    W[W_PLASTIC] = target[0] - (v + P[P_CXV] * W[W_Q])
-    W[W_PLASTIC + 1] = target[1] - W[W_Q + 1] / P[P_KH]
-    W[W_PLASTIC + 2] = target[2] - (theta + P[P_CXT] * W[W_Q + 2])
+    de = W[W_DE:W_DE + 3]
+    de[1] = W[W_Q + 1] / P[P_KH]
+    k, b = P[P_KW], 0.5 * P[P_B]
+    v, theta = flat_bed_displacement(k, b, W[W_Q], W[W_Q + 2])  # exact for a flat surface
+    de[0], de[2] = v + P[P_CXV] * W[W_Q], theta + P[P_CXT] * W[W_Q + 2]
+    if rho > 0.0 and not _invert(P, W, de, rho):
+        return STEP_CONTACT
     for i in range(3):
-        W[W_DE + i] = target[i] - W[W_PLASTIC + i]
-    _, ok = elastic(P, W[W_DE:W_DE + 3], W[W_Q:W_Q + 3], W[W_Q:W_Q + 3], D)
+        W[W_PLASTIC + i] = target[i] - de[i]
+    _, ok = elastic(P, de, W[W_Q:W_Q + 3], W[W_Q:W_Q + 3], D, rho)
     return STEP_OK if ok else STEP_CONTACT
 
 
@@ -321,10 +403,11 @@ def substep(P, S, target, D, W):
     centre, direction = W[W_CENTRE:W_CENTRE + 3], W[W_DIR:W_DIR + 3]
     normal, flow = W[W_NORMAL:W_NORMAL + 3], W[W_FLOW:W_FLOW + 3]
     plastic, Q, de = W[W_PLASTIC:W_PLASTIC + 3], W[W_Q:W_Q + 3], W[W_DE:W_DE + 3]
+    rho = S[S_ROUND]
     for i in range(3):
         Q0[i] = S[S_Q + i]
         de[i] = target[i] - S[S_P + i]
-    _, ok = elastic(P, de, Q0, trial, D)
+    _, ok = elastic(P, de, Q0, trial, D, rho)
     if not ok:
         return STEP_CONTACT
     for i in range(3):
@@ -376,20 +459,25 @@ def substep(P, S, target, D, W):
             nDm += normal[i] * D[i, j] * flow[j]
     lam = loading / (modulus + nDm)
     for i in range(3):
+        de[i] = S[S_D + i] - S[S_P + i]  # the start's elastic displacement, for F_ρ
+    force0 = _rounding_force(P, de, Q0, rho)
+    for i in range(3):
         plastic[i] = S[S_P + i] + lam * flow[i]
         de[i] = target[i] - plastic[i]
-    _, ok = elastic(P, de, trial, Q, D)
+    if force0 > 0.0:  # the edges pressed harder than the middle: the surface rounds
+        rho += P[P_RHO] * 0.5 * P[P_B] * abs(lam * flow[2])
+    _, ok = elastic(P, de, trial, Q, D, rho)
     if not ok:
         return STEP_CONTACT
     kappa = S[S_KAPPA] + max(lam * flow[0], 0.0)
     zeta1 = size(P, kappa)
     if failure_value(P, Q, zeta1) > 0.0:  # drift: returned radially onto the surface
         before = plastic[0]
-        status = _return_to_surface(P, W, target, zeta1, D)
+        status = _return_to_surface(P, W, target, zeta1, D, rho)
         if status != STEP_OK:
             return status
         kappa += max(plastic[0] - before, 0.0)
-    work = 0.0
+    work = 0.5 * (force0 + _rounding_force(P, de, Q, rho)) * (rho - S[S_ROUND])
     for i in range(3):
         work += 0.5 * (Q0[i] + Q[i]) * (plastic[i] - S[S_P + i])
     S[S_W] += work
@@ -397,6 +485,7 @@ def substep(P, S, target, D, W):
         S[S_P + i] = plastic[i]
         S[S_Q + i] = Q[i]
     S[S_KAPPA] = kappa
+    S[S_ROUND] = rho
     _plastic_tangent(D, normal, flow, modulus)
     return STEP_OK
 
@@ -429,7 +518,8 @@ def substeps(P, S, target, max_force_step, D, W):
     (V_ult-scaled)."""
     for i in range(3):
         W[W_DE + i] = target[i] - S[S_P + i]
-    _, ok = elastic(P, W[W_DE:W_DE + 3], S[S_Q:S_Q + 3], W[W_TRIAL:W_TRIAL + 3], D)
+    _, ok = elastic(P, W[W_DE:W_DE + 3], S[S_Q:S_Q + 3], W[W_TRIAL:W_TRIAL + 3], D,
+                    S[S_ROUND])
     if not ok:
         return 0
     vu = P[P_VU]

@@ -59,7 +59,9 @@ class MacroElement:
     distance to the bounding surface along the line from the last reversal); and the flow
     direction the surface's normal with ``settlement_coupling`` χ times its moment-and-shear
     part added to the settlement: χ = 0 is associated flow, χ > 0 settles the footing while it
-    yields in rotation.
+    yields in rotation. ``rounding_ratio`` λ_ρ: the fraction of the edges' plastic travel
+    b |dθ_p| that rounds the soil's surface (:mod:`.uplift`), while the edges press harder than
+    the middle; 0: the surface stays flat.
     """
 
     width: float
@@ -77,6 +79,7 @@ class MacroElement:
     interior_modulus: float = 1.0
     interior_exponent: float = 1.0
     settlement_coupling: float = 0.0
+    rounding_ratio: float = 0.0
 
     def __post_init__(self):
         positive("macro.width", self.width)
@@ -94,6 +97,7 @@ class MacroElement:
         positive("macro.interior_modulus", self.interior_modulus)
         positive("macro.interior_exponent", self.interior_exponent)
         in_range("macro.settlement_coupling", self.settlement_coupling, 0.0, 10.0)
+        in_range("macro.rounding_ratio", self.rounding_ratio, 0.0, 1.0)
         if not self.ultimate_load > 0.0:
             raise InputError(f"macro: cohesion = {self.cohesion:g}, friction_angle = "
                              f"{self.friction_angle:g}, unit_weight = {self.unit_weight:g}: the "

@@ -20,7 +20,10 @@ follows a bounding-surface model (Dafalias 1986, as Cremer et al. 2001 and Chatz
   the image point: with χ > 0 the footing settles while it yields in rotation or shear, the
   coupling of settlement and rocking that springs yielding one by one lack;
 - a **reversal** (the trial load turns back, n·ΔQ < 0) moves the projection centre to the
-  present load, so that every unload-reload loop dissipates, a little less as it shrinks.
+  present load, so that every unload-reload loop dissipates, a little less as it shrinks;
+- the **rounding** ρ of the soil's surface grows by λ_ρ b |dθ_p| while the bed presses its
+  edges harder than its middle (F_ρ > 0, :mod:`.uplift`), and absorbs F_ρ dρ: rocking that
+  yields the soil under each edge in turn leaves the footing resting on its middle.
 
 The update is compiled (:mod:`.compiled`); here are its readable entry points. The step is
 integrated in sub-steps no larger than ``max_force_step`` (V_ult-scaled) of trial
@@ -57,7 +60,8 @@ class MacroState:
     """The macro-element's state: ``displacement`` (v, u, θ) (m, m, rad), its ``plastic``
     part, the ``forces`` (V, H, M) (kN/m, kN/m, kN·m/m), the projection ``centre`` (forces
     at the last reversal), ``settlement`` κ (m, the accumulated plastic settlement the size
-    grows with) and ``dissipated`` (kN·m/m, the plastic work so far)."""
+    grows with), ``dissipated`` (kN·m/m, the plastic work so far) and ``rounding`` ρ (m, of
+    the soil's surface under the footing, :mod:`.uplift`)."""
 
     displacement: np.ndarray
     plastic: np.ndarray
@@ -65,28 +69,31 @@ class MacroState:
     centre: np.ndarray
     settlement: float = 0.0
     dissipated: float = 0.0
+    rounding: float = 0.0
 
     def packed(self) -> np.ndarray:
         """The state as the compiled forms hold it."""
         S = np.empty(cc.S_COUNT)
         S[cc.S_D:cc.S_D + 3], S[cc.S_P:cc.S_P + 3] = self.displacement, self.plastic
         S[cc.S_Q:cc.S_Q + 3], S[cc.S_C:cc.S_C + 3] = self.forces, self.centre
-        S[cc.S_KAPPA], S[cc.S_W] = self.settlement, self.dissipated
+        S[cc.S_KAPPA], S[cc.S_W], S[cc.S_ROUND] = self.settlement, self.dissipated, self.rounding
         return S
 
     @classmethod
     def unpacked(cls, S) -> MacroState:
         return cls(S[cc.S_D:cc.S_D + 3].copy(), S[cc.S_P:cc.S_P + 3].copy(),
                    S[cc.S_Q:cc.S_Q + 3].copy(), S[cc.S_C:cc.S_C + 3].copy(),
-                   float(S[cc.S_KAPPA]), float(S[cc.S_W]))
+                   float(S[cc.S_KAPPA]), float(S[cc.S_W]), float(S[cc.S_ROUND]))
 
 
 @dataclass(frozen=True)
 class MacroStep:
-    """One step's outcome: the new ``state`` and the ``tangent`` ∂Q/∂d (3×3)."""
+    """One step's outcome: the new ``state``, the ``tangent`` ∂Q/∂d (3×3) and the number of
+    ``substeps`` it took."""
 
     state: MacroState
     tangent: np.ndarray
+    substeps: int = 1
 
 
 def size(law: MacroElement, settlement: float) -> float:
@@ -94,12 +101,13 @@ def size(law: MacroElement, settlement: float) -> float:
     return cc.size(cc.pack(law), settlement)
 
 
-def elastic_forces(law: MacroElement, elastic, guess=None):
+def elastic_forces(law: MacroElement, elastic, guess=None, rounding: float = 0.0):
     """(Q, ∂Q/∂d_e (3×3), stored energy) of the elastic-and-uplift mechanism at elastic
-    displacement (v_e, u_e, θ_e)."""
+    displacement (v_e, u_e, θ_e), the soil's surface rounded by ρ = ``rounding`` (m)."""
     Q, D = np.empty(3), np.empty((3, 3))
     g = np.zeros(3) if guess is None else np.asarray(guess, dtype=float)
-    energy, ok = cc.elastic(cc.pack(law), np.asarray(elastic, dtype=float), g, Q, D)
+    energy, ok = cc.elastic(cc.pack(law), np.asarray(elastic, dtype=float), g, Q, D,
+                            float(rounding))
     if not ok:
         raise MacroStepError(f"macro: {_FAILURES[cc.STEP_CONTACT]} at {list(elastic)}")
     return Q, D, energy
@@ -107,7 +115,8 @@ def elastic_forces(law: MacroElement, elastic, guess=None):
 
 def stored_energy(law: MacroElement, state: MacroState) -> float:
     """The energy the elastic-and-uplift mechanism stores in ``state`` (kN·m/m)."""
-    return elastic_forces(law, state.displacement - state.plastic, state.forces)[2]
+    return elastic_forces(law, state.displacement - state.plastic, state.forces,
+                          state.rounding)[2]
 
 
 def at_rest(law: MacroElement, vertical_load: float) -> MacroState:
@@ -123,14 +132,19 @@ def at_rest(law: MacroElement, vertical_load: float) -> MacroState:
 
 
 def step(law: MacroElement, state: MacroState, displacement,
-         max_force_step: float = MAX_FORCE_STEP) -> MacroStep:
+         max_force_step: float = MAX_FORCE_STEP, substeps: int = 0) -> MacroStep:
     """The macro-element moved from ``state`` to total ``displacement`` (v, u, θ): its new
-    state and tangent, in sub-steps of at most ``max_force_step`` trial force (V_ult-scaled).
-    A step that cannot be completed raises :class:`MacroStepError`."""
-    S, D = state.packed(), np.empty((3, 3))
-    status = cc.step(cc.pack(law), S, np.asarray(displacement, dtype=float),
-                     float(max_force_step), D)
+    state and tangent, in sub-steps of at most ``max_force_step`` trial force (V_ult-scaled),
+    or in exactly ``substeps`` of them (an iteration on one step keeps their number, so that
+    the update is a smooth function of the displacement). A step that cannot be completed
+    raises :class:`MacroStepError`."""
+    P, S, D = cc.pack(law), state.packed(), np.empty((3, 3))
+    target, W = np.asarray(displacement, dtype=float), np.empty(cc.W_COUNT)
+    count = int(substeps) if substeps > 0 else cc.substeps(P, S, target, float(max_force_step),
+                                                            D, W)
+    status = cc.step_into(P, S, target, float(max_force_step), count, D, W) if count else \
+        cc.STEP_CONTACT
     if status != cc.STEP_OK:
         raise MacroStepError(f"macro: {_FAILURES[status]} (from {state.forces.tolist()} to "
                              f"displacement {list(displacement)})")
-    return MacroStep(MacroState.unpacked(S), D)
+    return MacroStep(MacroState.unpacked(S), D, count)

@@ -19,6 +19,16 @@ C_x = diag(1/K_v − 1/(k B), 1/K_r − 12/(k B³)) ≥ 0 (k is the softest such
 as the contact narrows the bed softens the rotation as a tensionless contact does. Given the
 footing's elastic displacement (v_e, θ_e), the forces (N, M) solve N, M = bed(d_e − C_x (N, M)),
 found by Newton's method on that monotone system.
+
+**Rounding.** Rocking that yields the soil under the edges by turns leaves its surface rounded:
+the footing then rests on its middle and rocks on it, with a pinched M–θ loop (the continuum's
+contact at θ = 0 after three cycles at FS_v = 2 on the clay is 1.19 m of B = 2 m). The bed's
+surface is the parabola s(x) = ρ (x²/b² − 1/3) below the footing's plastic position (mean zero:
+ρ does not move the mean settlement), so that w(x) = v + θ x − s(x): the contact is where this
+quadratic is positive, and N, M, the tangent (k ∫ 1, x, x² over the contact: Leibniz's rule,
+w vanishing at the contact's ends) and the energy are polynomial integrals over it. ρ grows
+with the plastic rotation (:mod:`.plastic`); the work it absorbs is F_ρ dρ, with
+F_ρ = −∂U/∂ρ = k ∫ ⟨w⟩ (x²/b² − 1/3) dx.
 """
 
 from __future__ import annotations
@@ -28,26 +38,25 @@ import numpy as np
 from . import compiled as cc
 from .params import MacroElement, MacroStepError
 
-__all__ = ["bed_forces", "bed_energy", "bed_displacement", "remainder_compliance",
-           "vertical_rocking_forces", "vertical_rocking_displacement"]
+__all__ = ["bed_forces", "bed_energy", "rounding_force", "remainder_compliance",
+           "vertical_rocking_forces"]
 
 
-def bed_forces(k: float, b: float, v: float, theta: float):
-    """The tensionless bed's (N, M) and tangent ∂(N, M)/∂(v, θ) (2×2) at (v, θ)."""
-    n, m, k11, k12, k22 = cc.bed(k, b, v, theta)
+def bed_forces(k: float, b: float, v: float, theta: float, rho: float = 0.0):
+    """The tensionless bed's (N, M) and tangent ∂(N, M)/∂(v, θ) (2×2) at (v, θ), its surface
+    rounded by ρ (m)."""
+    n, m, k11, k12, k22 = cc.bed(k, b, v, theta, rho)
     return np.array([n, m]), np.array([[k11, k12], [k12, k22]])
 
 
-def bed_energy(k: float, b: float, v: float, theta: float) -> float:
-    """The bed's stored energy ∫ ½ k ⟨v + θ x⟩² dx (kN·m/m)."""
-    return cc.bed_energy(k, b, v, theta)
+def bed_energy(k: float, b: float, v: float, theta: float, rho: float = 0.0) -> float:
+    """The bed's stored energy ½ k ∫ ⟨w⟩² dx (kN·m/m)."""
+    return cc.bed_energy(k, b, v, theta, rho)
 
 
-def bed_displacement(k: float, b: float, n: float, m: float) -> np.ndarray:
-    """The bed's (v, θ) under (N, M), N > 0 and |M| < N b: the inverse of
-    :func:`bed_forces` (full contact while e = |M|/N ≤ b/3, else a = 3 (b − e),
-    θ = 2N/(k a²), v = θ (a − b))."""
-    return np.array(cc.bed_displacement(k, b, n, m))
+def rounding_force(k: float, b: float, v: float, theta: float, rho: float) -> float:
+    """F_ρ = −∂U/∂ρ at fixed (v, θ) (kN/m): the work per unit rounding."""
+    return cc.rounding_force(k, b, v, theta, rho)
 
 
 def remainder_compliance(law: MacroElement) -> np.ndarray:
@@ -59,19 +68,14 @@ def remainder_compliance(law: MacroElement) -> np.ndarray:
                      max(0.0, 1.0 / law.rocking_stiffness - 12.0 / (k * width ** 3))])
 
 
-def vertical_rocking_displacement(law: MacroElement, n: float, m: float) -> np.ndarray:
-    """The elastic (v, θ) at which the mechanism carries (N, M) (N > 0, |M| < N B/2)."""
-    return (bed_displacement(law.winkler_modulus, 0.5 * law.width, n, m)
-            + remainder_compliance(law) * [n, m])
-
-
-def vertical_rocking_forces(law: MacroElement, v: float, theta: float, guess=None):
+def vertical_rocking_forces(law: MacroElement, v: float, theta: float, guess=None,
+                            rounding: float = 0.0):
     """(N, M), their tangent ∂(N, M)/∂(v, θ) (2×2) and the stored energy of the bed and its
-    remainder, at the elastic settlement v (m) and rotation θ (rad). ``guess``: a starting
-    (N, M) (the last step's)."""
+    remainder, at the elastic settlement v (m) and rotation θ (rad), the surface rounded by
+    ``rounding`` ρ (m). ``guess``: a starting (N, M) (the last step's)."""
     g = (0.0, 0.0) if guess is None else guess
     n, m, t00, t01, t10, t11, energy, ok = cc.vertical_rocking(cc.pack(law), v, theta,
-                                                               g[0], g[1])
+                                                               g[0], g[1], rounding)
     T = np.array([[t00, t01], [t10, t11]])
     if not ok:
         raise MacroStepError(f"macro uplift: the contact did not converge at v = {v:g}, "
