@@ -1,0 +1,205 @@
+"""The macro-element calibrated from the continuum's statics, once per soil (issue 36 §2).
+
+What it is fitted to, in order, each step a check with its residuals kept:
+
+1. **Elastic part**: the continuum footing's K_v and K_r in full contact, as they are.
+2. **Capacity**: the effective-width rule V = B′ q(B′) with q(B′) = c N_c f_c + ½ γ N_γ f_γ B′
+   (:mod:`upliftlab.reduced.laws.macro.capacity`), a straight line in B′ through the
+   continuum's own V_ult/B at B′ = B, fitted by least squares to the largest moment of each
+   monotonic rotation pushover (B′ = B − 2 M_max/N). A line that would fall with B′ is held
+   flat (the cohesive term alone, as on the clay).
+3. **Plasticity**: ζ0, κ_ref, h0, γ, χ and λ_ρ by least squares (scipy's dogleg with box
+   bounds, finite differences of 1 % in the fitted variables: the trust-region reflective
+   method stalls on this objective, whose reversals make it piecewise smooth) to the moment
+   and the settlement along every stored
+   rotation pushover of the soil, monotonic and cyclic, at every FS_v: residuals M/M_max and
+   Δs/max(Δs, 2 mm), the settlement counted from θ = 0 (the law starts elastic under N, the
+   continuum has yielded under it).
+
+No dynamic run enters: the map is the test. :func:`macro_pushover` pushes the law over a
+rotation path at constant N (the continuum's pushover, with u held).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from ...checks import InputError
+from ...reduced.laws.macro import MacroElement, MacroStepError, at_rest, step
+from ...reduced.laws.macro.params import bearing_factors
+
+__all__ = ["RotationPushover", "MacroCalibration", "capacity_line", "macro_pushover",
+           "calibrate_macro", "PLASTIC_BOUNDS", "SETTLEMENT_FLOOR", "LOAD_TOLERANCE"]
+
+#: The fitted plastic parameters and their bounds: ζ0, log10 κ_ref (m), log10 h0, γ, χ, λ_ρ.
+PLASTIC_BOUNDS = (("initial_size", 0.2, 0.999), ("hardening_settlement", -4.0, 0.0),
+                  ("interior_modulus", -3.0, 3.0), ("interior_exponent", 0.2, 4.0),
+                  ("settlement_coupling", 0.0, 5.0), ("rounding_ratio", 0.0, 1.0))
+#: The settlement change below which a pushover's settlement residual is scaled by this (m).
+SETTLEMENT_FLOOR = 2e-3
+_LOGS = ("hardening_settlement", "interior_modulus")
+
+
+@dataclass(frozen=True)
+class RotationPushover:
+    """A continuum rotation pushover at constant ``N`` (kN/m): ``theta`` (rad), ``M``
+    (kN·m/m) and ``settlement`` (m, positive down) per step; ``source`` names the run."""
+
+    N: float
+    theta: np.ndarray
+    M: np.ndarray
+    settlement: np.ndarray
+    source: str = ""
+
+
+@dataclass(frozen=True)
+class MacroCalibration:
+    """A soil's macro-element (``law``) and its checks: ``capacity_residuals`` (the fitted
+    line's q(B′) against each pushover's, relative), ``moment_rms`` and ``settlement_rms``
+    (per pushover, in the residuals' scales), ``sources`` the runs it came from."""
+
+    law: MacroElement
+    capacity_residuals: np.ndarray
+    moment_rms: np.ndarray
+    settlement_rms: np.ndarray
+    sources: tuple[str, ...] = ()
+    cost: float = math.nan
+    evaluations: int = 0
+    details: Mapping = field(default_factory=dict, repr=False)
+
+
+def capacity_line(pushovers: Sequence[RotationPushover], V_ult: float, width: float,
+                  frictional: bool = True) -> tuple[float, float, np.ndarray]:
+    """(q₀ (kPa), q₁ (kN/m³), residuals): q(B′) = q₀ + q₁ B′ through V_ult/B at B′ = B,
+    fitted to each monotonic pushover's (B′, N/B′) at its largest moment (step 2); q₁ = 0
+    without a ``frictional`` term, or where the fit would make it negative."""
+    N = np.array([p.N for p in pushovers])
+    reduced = width - 2.0 * np.array([np.max(p.M) for p in pushovers]) / N
+    if np.any(reduced <= 0.0):
+        raise InputError("macro calibration: a pushover's moment exceeds N B/2 (B′ ≤ 0)")
+    q = N / reduced
+    top = V_ult / width
+    slope = float(np.sum((q - top) * (reduced - width)) / np.sum((reduced - width) ** 2))
+    slope = max(slope, 0.0) if frictional else 0.0
+    base = top - slope * width
+    return base, slope, (base + slope * reduced) / q - 1.0
+
+
+def _law(template: MacroElement, values) -> MacroElement:
+    changes = {name: (10.0 ** x if name in _LOGS else float(x))
+               for (name, _, _), x in zip(PLASTIC_BOUNDS, values)}
+    return replace(template, **changes)
+
+
+def macro_pushover(law: MacroElement, N: float, thetas) -> tuple[np.ndarray, np.ndarray]:
+    """(M, settlement) of the law along rotations ``thetas`` at constant N: each step's v the
+    root of V(v) = N (:func:`_at_load`)."""
+    state = at_rest(law, N)
+    moments, settlements = [], []
+    for theta in thetas:
+        state = _at_load(law, state, float(theta), N)
+        moments.append(state.forces[2])
+        settlements.append(state.displacement[0])
+    return np.array(moments), np.array(settlements)
+
+
+#: The vertical load's tolerance at a step of a pushover, relative to N. The update is
+#: discontinuous where a sub-step's load turns (a reversal moves the projection centre), by
+#: up to about 3e-5 N on the clay's cycles: an iteration that cannot reach 1e-10 N for that
+#: reason ends at the best v it found, if within this.
+LOAD_TOLERANCE = 1e-4
+
+
+def _at_load(law: MacroElement, state, theta: float, N: float):
+    """The state at rotation θ whose V is N: V(v), one step from ``state`` in the sub-steps
+    the first trial asked for (increasing in v), solved by Newton's method kept inside a
+    bracket that halves when a step leaves it or does not halve the residual."""
+    v = state.displacement[0]
+    count, low, high = 0, None, None
+    best, best_state = math.inf, None
+    for _ in range(100):
+        out = step(law, state, [v, 0.0, theta], substeps=count)
+        count = out.substeps
+        residual = out.state.forces[0] - N
+        if abs(residual) <= 1e-10 * N:
+            return out.state
+        if residual < 0.0:
+            low = v if low is None else max(low, v)
+        else:
+            high = v if high is None else min(high, v)
+        slope = out.tangent[0, 0]
+        guess = v - residual / slope if slope > 0.0 else math.nan
+        inside = (low is None or guess > low) and (high is None or guess < high)
+        if not (math.isfinite(guess) and inside and abs(residual) < 0.5 * best):
+            if low is not None and high is not None:
+                guess = 0.5 * (low + high)
+            elif not math.isfinite(guess) or not inside:
+                scale = max(abs(v), N / law.vertical_stiffness)
+                guess = v + (scale if residual < 0.0 else -scale)
+        if abs(residual) < best:
+            best, best_state = abs(residual), out.state
+        if low is not None and high is not None and high - low <= 1e-14 * abs(v):
+            break
+        v = guess
+    if best <= LOAD_TOLERANCE * N:
+        return best_state
+    raise MacroStepError(f"macro pushover: V did not settle at N = {N:g} at θ = {theta:g} "
+                         f"(closest {best:.3g} away)")
+
+
+def _residuals(law: MacroElement, pushovers: Sequence[RotationPushover]):
+    parts, moment_rms, settlement_rms = [], [], []
+    for p in pushovers:
+        scale_m = float(np.max(np.abs(p.M)))
+        change = p.settlement - p.settlement[0]
+        scale_s = max(float(np.max(np.abs(change))), SETTLEMENT_FLOOR)
+        try:
+            M, s = macro_pushover(law, p.N, p.theta)
+        except MacroStepError:
+            M, s = np.full(p.M.shape, 10.0 * scale_m), np.full(p.M.shape, 10.0 * scale_s)
+        rm, rs = (M - p.M) / scale_m, ((s - s[0]) - change) / scale_s
+        parts += [rm, 0.5 * rs]
+        moment_rms.append(math.sqrt(np.mean(rm ** 2)))
+        settlement_rms.append(math.sqrt(np.mean(rs ** 2)))
+    return np.concatenate(parts), np.array(moment_rms), np.array(settlement_rms)
+
+
+def calibrate_macro(pushovers: Sequence[RotationPushover], *, width: float, V_ult: float,
+                    K_v: float, K_r: float, cohesion: float, friction_angle: float = 0.0,
+                    unit_weight: float = 0.0, start=(0.7, -2.0, 0.0, 1.0, 0.5, 0.5),
+                    max_evaluations: int = 200) -> MacroCalibration:
+    """The macro-element of a soil from its continuum statics (module docstring): the
+    ``pushovers`` (monotonic ones give the capacity; all are fitted), the footing's ``width``,
+    the continuum's ``V_ult``, ``K_v``, ``K_r``, and the soil's c, φ, γ (the capacity's form).
+    """
+    monotonic = [p for p in pushovers if np.all(np.diff(p.theta) >= 0.0)]
+    if not monotonic:
+        raise InputError("macro calibration: no monotonic rotation pushover to fit the "
+                         "capacity to")
+    frictional = friction_angle > 0.0 and unit_weight > 0.0  # else no N_γ term in the form
+    base, slope, capacity_residuals = capacity_line(monotonic, V_ult, width, frictional)
+    n_c, _, n_gamma = bearing_factors(friction_angle)
+    template = MacroElement(
+        width=width, vertical_stiffness=K_v, horizontal_stiffness=K_v, rocking_stiffness=K_r,
+        cohesion=cohesion, friction_angle=friction_angle, unit_weight=unit_weight,
+        cohesive_factor=base / (cohesion * n_c), frictional_factor=(
+            slope / (0.5 * unit_weight * n_gamma) if slope > 0.0 else 1.0))
+    low = [b[1] for b in PLASTIC_BOUNDS]
+    high = [b[2] for b in PLASTIC_BOUNDS]
+    low[0] = max(low[0], 1.02 * max(p.N for p in pushovers) / template.ultimate_load)
+    x0 = np.clip(np.asarray(start, dtype=float), low, high)
+    fit = least_squares(lambda x: _residuals(_law(template, x), pushovers)[0], x0,
+                        bounds=(low, high), method="dogbox", diff_step=1e-2,
+                        max_nfev=max_evaluations)
+    law = _law(template, fit.x)
+    _, moment_rms, settlement_rms = _residuals(law, pushovers)
+    return MacroCalibration(law=law, capacity_residuals=capacity_residuals,
+                            moment_rms=moment_rms, settlement_rms=settlement_rms,
+                            sources=tuple(p.source for p in pushovers), cost=float(fit.cost),
+                            evaluations=int(fit.nfev),
+                            details={"capacity": {"q0": base, "q1": slope}})
