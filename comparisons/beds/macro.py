@@ -9,8 +9,9 @@ What it is fitted to, in order, each step a check with its residuals kept:
    monotonic rotation pushover (B′ = B − 2 M_max/N). A line that would fall with B′ is held
    flat (the cohesive term alone, as on the clay).
 3. **Plasticity**: ζ0, κ_ref, h0, γ, χ and λ_ρ by least squares (scipy's dogleg with box
-   bounds, finite differences of 1 % in the fitted variables: the trust-region reflective
-   method stalls on this objective, whose reversals make it piecewise smooth) to the moment
+   bounds, finite differences of 1 % in the fitted variables) from the two best points of a
+   seeded survey of the bounds: the objective is piecewise smooth, its kinks where a
+   sub-step's load turns, and a trust region stalls on one if it starts far) to the moment
    and the settlement along every stored
    rotation pushover of the soil, monotonic and cyclic, at every FS_v: residuals M/M_max and
    Δs/max(Δs, 2 mm), the settlement counted from θ = 0 (the law starts elastic under N, the
@@ -28,6 +29,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.optimize import least_squares
+from scipy.stats import qmc
 
 from ...checks import InputError
 from ...reduced.laws.macro import MacroElement, MacroStepError, at_rest, step
@@ -40,6 +42,11 @@ __all__ = ["RotationPushover", "MacroCalibration", "capacity_line", "macro_pusho
 PLASTIC_BOUNDS = (("initial_size", 0.2, 0.999), ("hardening_settlement", -4.0, 0.0),
                   ("interior_modulus", -3.0, 3.0), ("interior_exponent", 0.2, 4.0),
                   ("settlement_coupling", 0.0, 5.0), ("rounding_ratio", 0.0, 1.0))
+#: The survey of the plastic parameters before the fit: this many points of a seeded Latin
+#: hypercube in the bounds (and the start); the best ``POLISHED`` of them are polished by least
+#: squares and the better fit kept.
+SURVEY = 24
+POLISHED = 2
 #: The settlement change below which a pushover's settlement residual is scaled by this (m).
 SETTLEMENT_FLOOR = 2e-3
 _LOGS = ("hardening_settlement", "interior_modulus")
@@ -61,12 +68,14 @@ class RotationPushover:
 class MacroCalibration:
     """A soil's macro-element (``law``) and its checks: ``capacity_residuals`` (the fitted
     line's q(B′) against each pushover's, relative), ``moment_rms`` and ``settlement_rms``
-    (per pushover, in the residuals' scales), ``sources`` the runs it came from."""
+    (per pushover, in the residuals' scales), ``load_misses`` (per pushover, the largest
+    |V − N|/N the law was left with), ``sources`` the runs it came from."""
 
     law: MacroElement
     capacity_residuals: np.ndarray
     moment_rms: np.ndarray
     settlement_rms: np.ndarray
+    load_misses: np.ndarray
     sources: tuple[str, ...] = ()
     cost: float = math.nan
     evaluations: int = 0
@@ -96,16 +105,20 @@ def _law(template: MacroElement, values) -> MacroElement:
     return replace(template, **changes)
 
 
-def macro_pushover(law: MacroElement, N: float, thetas) -> tuple[np.ndarray, np.ndarray]:
+def macro_pushover(law: MacroElement, N: float, thetas, strict: bool = True):
     """(M, settlement) of the law along rotations ``thetas`` at constant N: each step's v the
-    root of V(v) = N (:func:`_at_load`)."""
+    root of V(v) = N (:func:`_at_load`). Not ``strict``: a step whose V cannot be brought
+    within :data:`LOAD_TOLERANCE` of N goes on from the closest state, and the largest
+    |V − N|/N along the path is returned as a third value."""
     state = at_rest(law, N)
-    moments, settlements = [], []
+    moments, settlements, worst = [], [], 0.0
     for theta in thetas:
-        state = _at_load(law, state, float(theta), N)
+        state, miss = _at_load(law, state, float(theta), N, strict)
+        worst = max(worst, miss)
         moments.append(state.forces[2])
         settlements.append(state.displacement[0])
-    return np.array(moments), np.array(settlements)
+    out = (np.array(moments), np.array(settlements))
+    return out if strict else (*out, worst)
 
 
 #: The vertical load's tolerance at a step of a pushover, relative to N. The update is
@@ -115,10 +128,10 @@ def macro_pushover(law: MacroElement, N: float, thetas) -> tuple[np.ndarray, np.
 LOAD_TOLERANCE = 1e-4
 
 
-def _at_load(law: MacroElement, state, theta: float, N: float):
-    """The state at rotation θ whose V is N: V(v), one step from ``state`` in the sub-steps
-    the first trial asked for (increasing in v), solved by Newton's method kept inside a
-    bracket that halves when a step leaves it or does not halve the residual."""
+def _at_load(law: MacroElement, state, theta: float, N: float, strict: bool = True):
+    """(the state at rotation θ whose V is N, its |V − N|/N): V(v), one step from ``state``
+    in the sub-steps the first trial asked for (increasing in v), solved by Newton's method
+    kept inside a bracket that halves when a step leaves it or does not halve the residual."""
     v = state.displacement[0]
     count, low, high = 0, None, None
     best, best_state = math.inf, None
@@ -127,7 +140,7 @@ def _at_load(law: MacroElement, state, theta: float, N: float):
         count = out.substeps
         residual = out.state.forces[0] - N
         if abs(residual) <= 1e-10 * N:
-            return out.state
+            return out.state, abs(residual) / N
         if residual < 0.0:
             low = v if low is None else max(low, v)
         else:
@@ -146,27 +159,32 @@ def _at_load(law: MacroElement, state, theta: float, N: float):
         if low is not None and high is not None and high - low <= 1e-14 * abs(v):
             break
         v = guess
-    if best <= LOAD_TOLERANCE * N:
-        return best_state
+    if best <= LOAD_TOLERANCE * N or not strict:
+        return best_state, best / N
     raise MacroStepError(f"macro pushover: V did not settle at N = {N:g} at θ = {theta:g} "
                          f"(closest {best:.3g} away)")
 
 
 def _residuals(law: MacroElement, pushovers: Sequence[RotationPushover]):
-    parts, moment_rms, settlement_rms = [], [], []
+    """(every residual, per pushover: moment rms, settlement rms, largest |V − N|/N). A
+    pushover the law cannot follow at constant N goes on from its closest states, its miss
+    a residual of its own (× 10), so that the objective has no cliff."""
+    parts, moment_rms, settlement_rms, misses = [], [], [], []
     for p in pushovers:
         scale_m = float(np.max(np.abs(p.M)))
         change = p.settlement - p.settlement[0]
         scale_s = max(float(np.max(np.abs(change))), SETTLEMENT_FLOOR)
         try:
-            M, s = macro_pushover(law, p.N, p.theta)
-        except MacroStepError:
-            M, s = np.full(p.M.shape, 10.0 * scale_m), np.full(p.M.shape, 10.0 * scale_s)
+            M, s, miss = macro_pushover(law, p.N, p.theta, strict=False)
+        except MacroStepError:  # a step the law itself refuses
+            M, s, miss = np.full(p.M.shape, 10.0 * scale_m), np.full(p.M.shape, 0.0), 1.0
         rm, rs = (M - p.M) / scale_m, ((s - s[0]) - change) / scale_s
-        parts += [rm, 0.5 * rs]
+        parts += [rm, 0.5 * rs, [10.0 * max(miss - LOAD_TOLERANCE, 0.0)]]
         moment_rms.append(math.sqrt(np.mean(rm ** 2)))
         settlement_rms.append(math.sqrt(np.mean(rs ** 2)))
-    return np.concatenate(parts), np.array(moment_rms), np.array(settlement_rms)
+        misses.append(miss)
+    return np.concatenate(parts), np.array(moment_rms), np.array(settlement_rms), \
+        np.array(misses)
 
 
 def calibrate_macro(pushovers: Sequence[RotationPushover], *, width: float, V_ult: float,
@@ -193,13 +211,22 @@ def calibrate_macro(pushovers: Sequence[RotationPushover], *, width: float, V_ul
     high = [b[2] for b in PLASTIC_BOUNDS]
     low[0] = max(low[0], 1.02 * max(p.N for p in pushovers) / template.ultimate_load)
     x0 = np.clip(np.asarray(start, dtype=float), low, high)
-    fit = least_squares(lambda x: _residuals(_law(template, x), pushovers)[0], x0,
-                        bounds=(low, high), method="dogbox", diff_step=1e-2,
-                        max_nfev=max_evaluations)
+    objective = lambda x: _residuals(_law(template, x), pushovers)[0]  # noqa: E731
+    candidates = [x0, *(low + (np.asarray(high) - low) * u for u in
+                        qmc.LatinHypercube(d=len(x0), seed=0).random(SURVEY))]
+    costs = [float(np.sum(objective(x) ** 2)) for x in candidates]
+    evaluations = len(candidates)
+    fit = None
+    for k in np.argsort(costs)[:POLISHED]:  # the survey's best, each polished
+        trial = least_squares(objective, candidates[k], bounds=(low, high), method="dogbox",
+                              diff_step=1e-2,
+                              max_nfev=max(1, (max_evaluations - evaluations) // POLISHED))
+        evaluations += trial.nfev
+        fit = trial if fit is None or trial.cost < fit.cost else fit
     law = _law(template, fit.x)
-    _, moment_rms, settlement_rms = _residuals(law, pushovers)
+    _, moment_rms, settlement_rms, misses = _residuals(law, pushovers)
     return MacroCalibration(law=law, capacity_residuals=capacity_residuals,
                             moment_rms=moment_rms, settlement_rms=settlement_rms,
-                            sources=tuple(p.source for p in pushovers), cost=float(fit.cost),
-                            evaluations=int(fit.nfev),
+                            load_misses=misses, sources=tuple(p.source for p in pushovers),
+                            cost=float(fit.cost), evaluations=int(evaluations),
                             details={"capacity": {"q0": base, "q1": slope}})
