@@ -25,7 +25,7 @@ from numba import njit
 from ..spring import HOT
 
 __all__ = ["pack", "P_COUNT", "S_COUNT", "W_COUNT", "STEP_OK", "STEP_CONTACT", "STEP_SURFACE",
-           "STEP_SUBSTEPS", "RIDGE", "MAX_NEWTON", "MAX_SUBSTEPS", "step", "step_into"]
+           "STEP_SUBSTEPS", "STEP_FLOW", "RIDGE", "MAX_NEWTON", "MAX_SUBSTEPS", "step", "step_into"]
 
 (P_B, P_KV, P_KH, P_KR, P_KW, P_CXV, P_CXT, P_A1, P_A2, P_VU, P_TH, P_Z0, P_KREF, P_H0,
  P_GEXP, P_CHI, P_RHO) = range(17)
@@ -36,7 +36,7 @@ S_COUNT = 15
 W_Q0, W_TRIAL, W_CENTRE, W_DIR, W_NORMAL, W_FLOW, W_PLASTIC, W_Q, W_START, W_TARGET, W_DE = \
     range(0, 33, 3)
 W_COUNT = 33
-STEP_OK, STEP_CONTACT, STEP_SURFACE, STEP_SUBSTEPS = 0, 1, 2, 3
+STEP_OK, STEP_CONTACT, STEP_SURFACE, STEP_SUBSTEPS, STEP_FLOW = 0, 1, 2, 3, 4
 
 #: The rounding of the surface's cone at H = M = 0, as a fraction of B V_ult (:mod:`.capacity`).
 RIDGE = 1e-12
@@ -457,6 +457,8 @@ def substep(P, S, target, D, W):
     for i in range(3):
         for j in range(3):
             nDm += normal[i] * D[i, j] * flow[j]
+    if not modulus + nDm > 0.0:  # no stiffness along the flow: the multiplier is undefined
+        return STEP_FLOW
     lam = loading / (modulus + nDm)
     for i in range(3):
         de[i] = S[S_D + i] - S[S_P + i]  # the start's elastic displacement, for F_ρ
@@ -492,7 +494,8 @@ def substep(P, S, target, D, W):
 
 @njit(cache=True, **HOT)
 def _plastic_tangent(D, normal, flow, modulus):
-    """D − D m nᵀ D / (K_p + nᵀ D m), in place."""
+    """D − D m nᵀ D / (K_p + nᵀ D m), in place (D left as it is where the denominator
+    vanishes: the contact lost, the load perfectly plastic)."""
     Dm0 = D[0, 0] * flow[0] + D[0, 1] * flow[1] + D[0, 2] * flow[2]
     Dm1 = D[1, 0] * flow[0] + D[1, 1] * flow[1] + D[1, 2] * flow[2]
     Dm2 = D[2, 0] * flow[0] + D[2, 1] * flow[1] + D[2, 2] * flow[2]
@@ -500,6 +503,8 @@ def _plastic_tangent(D, normal, flow, modulus):
     nD1 = normal[0] * D[0, 1] + normal[1] * D[1, 1] + normal[2] * D[2, 1]
     nD2 = normal[0] * D[0, 2] + normal[1] * D[1, 2] + normal[2] * D[2, 2]
     denominator = modulus + normal[0] * Dm0 + normal[1] * Dm1 + normal[2] * Dm2
+    if not denominator > 0.0:  # no stiffness along the flow at the step's end: D as it is
+        return
     D[0, 0] -= Dm0 * nD0 / denominator
     D[0, 1] -= Dm0 * nD1 / denominator
     D[0, 2] -= Dm0 * nD2 / denominator

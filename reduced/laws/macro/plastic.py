@@ -40,7 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ....checks import InputError
+from ....checks import InputError, positive
 from . import compiled as cc
 from .params import MacroElement, MacroStepError
 
@@ -52,7 +52,8 @@ MAX_FORCE_STEP = 2e-3
 
 _FAILURES = {cc.STEP_CONTACT: "the contact's iterations did not converge",
              cc.STEP_SURFACE: "the bounding surface is not closed along the load",
-             cc.STEP_SUBSTEPS: f"the step needs more than {cc.MAX_SUBSTEPS} sub-steps"}
+             cc.STEP_SUBSTEPS: f"the step needs more than {cc.MAX_SUBSTEPS} sub-steps",
+             cc.STEP_FLOW: "the load has no stiffness along its plastic flow"}
 
 
 @dataclass(frozen=True)
@@ -138,6 +139,7 @@ def step(law: MacroElement, state: MacroState, displacement,
     or in exactly ``substeps`` of them (an iteration on one step keeps their number, so that
     the update is a smooth function of the displacement). A step that cannot be completed
     raises :class:`MacroStepError`."""
+    positive("max_force_step", max_force_step)
     P, S, D = cc.pack(law), state.packed(), np.empty((3, 3))
     target, W = np.asarray(displacement, dtype=float), np.empty(cc.W_COUNT)
     count = int(substeps) if substeps > 0 else cc.substeps(P, S, target, float(max_force_step),
