@@ -24,8 +24,9 @@ from numba import njit
 
 from ..spring import HOT
 
-__all__ = ["pack", "P_COUNT", "S_COUNT", "W_COUNT", "STEP_OK", "STEP_CONTACT", "STEP_SURFACE",
-           "STEP_SUBSTEPS", "STEP_FLOW", "RIDGE", "MAX_NEWTON", "MAX_SUBSTEPS", "step", "step_into"]
+__all__ = ["pack", "P_COUNT", "S_COUNT", "W_COUNT", "STEP_OK", "STEP_CONTACT",
+           "STEP_SURFACE", "STEP_SUBSTEPS", "STEP_FLOW", "RIDGE", "MAX_NEWTON", "MAX_SUBSTEPS",
+           "step", "step_into"]
 
 (P_B, P_KV, P_KH, P_KR, P_KW, P_CXV, P_CXT, P_A1, P_A2, P_VU, P_TH, P_Z0, P_KREF, P_H0,
  P_GEXP, P_CHI, P_RHO) = range(17)
