@@ -27,7 +27,6 @@ import argparse
 import dataclasses
 import datetime
 import json
-import math
 import sys
 import time
 from pathlib import Path
@@ -129,15 +128,15 @@ def main(argv=None) -> int:
     add_output_arguments(parser, NAME)
     parser.add_argument("--store", default=str(HERE / "winkler_map_halfplane_store"))
     parser.add_argument("--soils", default="clay,sand")
-    parser.add_argument("--evaluations", type=int, default=300)
+    parser.add_argument("--evaluations", type=int, default=1500)
     parser.add_argument("--quick", action="store_true",
                         help="one soil, its FS_v = 3 pushovers, 30 evaluations")
     args = parser.parse_args(argv)
     soils_asked = [s.strip() for s in args.soils.split(",") if s.strip()]
     if not soils_asked or any(s not in MODELS.values() for s in soils_asked):
         parser.error(f"--soils: {args.soils!r}; valid: clay, sand (comma separated)")
-    if not 30 <= args.evaluations <= 5000:
-        parser.error(f"--evaluations: {args.evaluations!r}; valid: 30 to 5000")
+    if not 30 <= args.evaluations <= 20000:
+        parser.error(f"--evaluations: {args.evaluations!r}; valid: 30 to 20000")
     if not Path(args.store).is_dir():
         parser.error(f"--store: {args.store!r} is not a folder")
     folder = output_folder(args, NAME)
@@ -170,9 +169,7 @@ def main(argv=None) -> int:
     text = (f"# The macro-element calibrated from the continuum's statics\n\nFrom the store "
             f"`{Path(args.store).name}`, {datetime.date.today()}; command `{command}`. What "
             f"is fitted to what: the script's docstring.\n\n" + "\n".join(sections))
-    data = json.dumps({k: {**v, "law": {f: (float(x) if isinstance(x, float) and
-                                            math.isfinite(x) else x)
-                                        for f, x in v["law"].items()}}
+    data = json.dumps({k: {**v, "law": {f: float(x) for f, x in v["law"].items()}}
                        for k, v in laws.items()}, indent=1, sort_keys=True) + "\n"
     write_text(folder / "MACRO_CALIBRATION.md", text)
     write_text(folder / "macro_calibration.json", data)

@@ -418,8 +418,7 @@ def test_macro_calibration_fast_path(tmp_path):
     """The clay's FS_v = 3 pushovers from the half-plane map's kept store, fitted in 30
     evaluations. Reference: the law written to ``macro_calibration.json``, pushed over again
     here on the same stored rotations, gives the table's moment rms to 0.1 % (the table's
-    rounding), and the clay's capacity line is flat through the store's own V_ult/B (no N_γ
-    term on a Tresca soil)."""
+    rounding: the table says what the law does), and its capacity is the store's own V_ult."""
     import numpy as np
     from upliftlab.comparisons.beds.macro import macro_pushover
     from upliftlab.reduced.laws.macro import MacroElement

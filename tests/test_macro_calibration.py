@@ -80,7 +80,7 @@ def test_calibration_reproduces_a_law_of_known_parameters():
             pushes.append(RotationPushover(N, path, M, s, f"fs {fs}"))
     cal = calibrate_macro(pushes, width=B, V_ult=truth.ultimate_load,
                           K_v=ELASTIC["vertical_stiffness"], K_r=ELASTIC["rocking_stiffness"],
-                          cohesion=50.0, max_evaluations=150)
+                          cohesion=50.0, max_evaluations=700)
     for name in ("initial_size", "hardening_settlement", "interior_modulus",
                  "interior_exponent", "settlement_coupling", "rounding_ratio"):
         assert getattr(cal.law, name) == pytest.approx(getattr(truth, name), rel=1e-2), name

@@ -11,11 +11,13 @@ function (state, displacement) → (forces, tangent, state).
 
 from .capacity import failure_function, failure_gradient, horizontal_capacity, moment_capacity
 from .params import MacroElement, MacroStepError, bearing_factors
-from .plastic import MacroState, MacroStep, at_rest, elastic_forces, size, step, stored_energy
+from .plastic import (LOAD_TOLERANCE, MacroState, MacroStep, at_rest, at_vertical_load,
+                      elastic_forces, size, step, stored_energy)
 from .uplift import (bed_energy, bed_forces, remainder_compliance, rounding_force,
                      vertical_rocking_forces)
 
 __all__ = ["MacroElement", "MacroStepError", "MacroState", "MacroStep", "at_rest", "step",
+           "at_vertical_load", "LOAD_TOLERANCE",
            "size", "elastic_forces", "stored_energy", "bearing_factors", "horizontal_capacity",
            "failure_function", "failure_gradient", "moment_capacity", "bed_forces",
            "bed_energy", "remainder_compliance", "rounding_force", "vertical_rocking_forces"]

@@ -34,14 +34,14 @@ P_COUNT = 17
 S_D, S_P, S_Q, S_C, S_KAPPA, S_W, S_ROUND = 0, 3, 6, 9, 12, 13, 14
 S_COUNT = 15
 # the scratch array: the update's vectors, three floats each
-W_Q0, W_TRIAL, W_CENTRE, W_DIR, W_NORMAL, W_FLOW, W_PLASTIC, W_Q, W_START, W_TARGET, W_DE = \
-    range(0, 33, 3)
-W_COUNT = 33
+(W_Q0, W_TRIAL, W_CENTRE, W_DIR, W_NORMAL, W_FLOW, W_PLASTIC, W_Q, W_START, W_TARGET, W_DE,
+ W_DE0, W_G) = range(0, 39, 3)
+W_COUNT = 39
 STEP_OK, STEP_CONTACT, STEP_SURFACE, STEP_SUBSTEPS, STEP_FLOW = 0, 1, 2, 3, 4
 
 #: The rounding of the surface's cone at H = M = 0, as a fraction of B V_ult (:mod:`.capacity`).
 RIDGE = 1e-12
-MAX_NEWTON = 60
+MAX_NEWTON = 100
 MAX_SUBSTEPS = 200_000
 _STEP = 1e-30  # the complex step
 
@@ -126,6 +126,13 @@ def rounding_force(k, b, v, theta, rho):
 
 
 @njit(cache=True, **HOT)
+def rounding_sensitivity(k, b, v, theta, rho):
+    """∂(N, M)/∂ρ of the bed at fixed (v, θ): k ∫ (1/3 − x²/b²) (1, x) dx over the contact."""
+    A, C, R, I0, I1, I2, I3, I4 = bed_moments(k, b, v, theta, rho)
+    return k * (I0 / 3.0 - I2 / (b * b)), k * (I1 / 3.0 - I3 / (b * b))
+
+
+@njit(cache=True, **HOT)
 def flat_bed_displacement(k, b, n, m):
     """The flat bed's (v, θ) under (N, M), N > 0, |M| < N b, in closed form: full contact
     while e = |M|/N ≤ b/3, else a = 3 (b − e), θ = 2N/(k a²), v = θ (a − b)."""
@@ -158,18 +165,26 @@ def vertical_rocking(P, v, theta, n, m, rho):
     (n, m), on a surface rounded by ρ: the bed in series with the remainder C_x
     (:mod:`.uplift`), by Newton's method."""
     k, b, cv, ct = P[P_KW], 0.5 * P[P_B], P[P_CXV], P[P_CXT]
-    scale = P[P_KV] * (abs(v) + b * abs(theta)) + 1e-300
+    scale = P[P_KV] * (abs(v) + b * abs(theta) + rho) + 1e-300  # the forces' size
     ok = False
+    f0, f1, k11, k12, k22 = bed(k, b, v - cv * n, theta - ct * m, rho)
+    r0, r1 = n - f0, m - f1
     for _ in range(MAX_NEWTON):
-        f0, f1, k11, k12, k22 = bed(k, b, v - cv * n, theta - ct * m, rho)
-        r0, r1 = n - f0, m - f1
-        if max(abs(r0), abs(r1)) <= 1e-13 * scale:
+        size0 = max(abs(r0), abs(r1) / b)
+        if size0 <= 1e-13 * scale:
             ok = True
             break
         j11, j12, j21, j22 = 1.0 + k11 * cv, k12 * ct, k12 * cv, 1.0 + k22 * ct
         det = j11 * j22 - j12 * j21
-        n -= (j22 * r0 - j12 * r1) / det
-        m -= (j11 * r1 - j21 * r0) / det
+        d0, d1 = (j22 * r0 - j12 * r1) / det, (j11 * r1 - j21 * r0) / det
+        n0, m0, step = n, m, 1.0
+        for _ in range(40):  # halved while the residual does not fall
+            n, m = n0 - step * d0, m0 - step * d1
+            f0, f1, k11, k12, k22 = bed(k, b, v - cv * n, theta - ct * m, rho)
+            r0, r1 = n - f0, m - f1
+            if max(abs(r0), abs(r1) / b) < size0:
+                break
+            step *= 0.5
     f0, f1, k11, k12, k22 = bed(k, b, v - cv * n, theta - ct * m, rho)
     t00, t01, t10, t11 = _series_tangent(k11, k12, k22, cv, ct)
     energy = (bed_energy(k, b, v - cv * f0, theta - ct * f1, rho)
@@ -341,12 +356,30 @@ def _rounding_force(P, de, Q, rho):
 
 
 @njit(cache=True, **HOT)
+def _rounding_forces(P, de, Q, rho, g):
+    """∂Q/∂ρ at fixed elastic displacement ``de`` (carrying Q) into ``g``: the bed's own,
+    through the series with the remainder, (I + K_b C_x)⁻¹ ∂(N, M)_bed/∂ρ."""
+    k, b, cv, ct = P[P_KW], 0.5 * P[P_B], P[P_CXV], P[P_CXT]
+    v, theta = de[0] - cv * Q[0], de[2] - ct * Q[2]
+    _, _, k11, k12, k22 = bed(k, b, v, theta, rho)
+    h0, h2 = rounding_sensitivity(k, b, v, theta, rho)
+    j11, j12, j21, j22 = 1.0 + k11 * cv, k12 * ct, k12 * cv, 1.0 + k22 * ct
+    det = j11 * j22 - j12 * j21
+    g[0], g[1], g[2] = (j22 * h0 - j12 * h2) / det, 0.0, (j11 * h2 - j21 * h0) / det
+
+
+@njit(cache=True, **HOT)
 def _invert(P, W, de, rho):
     """The elastic (v, θ) in ``de`` (from its value) at which the mechanism on a surface
     rounded by ρ carries W_Q's (V, M): Newton's method, each step halved until the residual
-    falls. Returns whether it converged."""
+    falls with the bed still in contact. Returns whether it converged."""
     target_n, target_m, scale = W[W_Q], W[W_Q + 2], P[P_VU]
     n, m, t00, t01, t10, t11, _, ok = vertical_rocking(P, de[0], de[2], target_n, target_m, rho)
+    for _ in range(MAX_NEWTON):  # from the flat bed's answer, settle until the rounded one bears
+        if not ok or t00 * t11 - t01 * t10 > 0.0:
+            break
+        de[0] += rho
+        n, m, t00, t01, t10, t11, _, ok = vertical_rocking(P, de[0], de[2], n, m, rho)
     r0, r1 = n - target_n, (m - target_m) / P[P_B]
     for _ in range(MAX_NEWTON):
         size0 = abs(r0) + abs(r1)
@@ -362,8 +395,8 @@ def _invert(P, W, de, rho):
             de[0], de[2] = v0 - step * d0, th0 - step * d2
             n, m, t00, t01, t10, t11, _, ok = vertical_rocking(P, de[0], de[2], n, m, rho)
             r0, r1 = n - target_n, (m - target_m) / P[P_B]
-            if ok and abs(r0) + abs(r1) < size0:
-                break
+            if ok and abs(r0) + abs(r1) < size0 and t00 * t11 - t01 * t10 > 0.0:
+                break  # smaller, and still in contact (the load is carried somewhere)
             step *= 0.5
     return False
 
@@ -404,16 +437,24 @@ def substep(P, S, target, D, W):
     centre, direction = W[W_CENTRE:W_CENTRE + 3], W[W_DIR:W_DIR + 3]
     normal, flow = W[W_NORMAL:W_NORMAL + 3], W[W_FLOW:W_FLOW + 3]
     plastic, Q, de = W[W_PLASTIC:W_PLASTIC + 3], W[W_Q:W_Q + 3], W[W_DE:W_DE + 3]
+    de0, g = W[W_DE0:W_DE0 + 3], W[W_G:W_G + 3]
     rho = S[S_ROUND]
     for i in range(3):
         Q0[i] = S[S_Q + i]
+        de0[i] = S[S_D + i] - S[S_P + i]  # the start's elastic displacement
         de[i] = target[i] - S[S_P + i]
+        plastic[i] = S[S_P + i]
     _, ok = elastic(P, de, Q0, trial, D, rho)
     if not ok:
         return STEP_CONTACT
     for i in range(3):
         S[S_D + i] = target[i]
-    if trial[0] <= 0.0:  # lifted off: no load, and the footing's sway is free
+    if trial[0] <= 0.0:  # lifted off: no load, the sway free; what it stored is not returned
+        stored, _ = elastic(P, de0, Q0, g, D, rho)
+        work = stored
+        for i in range(3):  # the work done on it over the sub-step, its force falling to 0
+            work += 0.5 * Q0[i] * (target[i] - de0[i] - S[S_P + i])
+        S[S_W] += work
         S[S_P + 1] = target[1]
         for i in range(3):
             S[S_Q + i] = 0.0
@@ -421,66 +462,67 @@ def substep(P, S, target, D, W):
                 D[i, j] = 0.0
         return STEP_OK
     zeta = size(P, S[S_KAPPA])
+    kappa = S[S_KAPPA]
     for i in range(3):
         centre[i] = S[S_C + i]
         direction[i] = trial[i] - centre[i]
-    if _scaled_norm(P, direction) <= 1e-13:
-        for i in range(3):
-            S[S_Q + i] = trial[i]
-        return STEP_OK
-    t, found = _image_normal(P, W, zeta)
-    if not found:
-        return STEP_SURFACE
-    if normal[0] * (trial[0] - Q0[0]) + normal[1] * (trial[1] - Q0[1]) \
-            + normal[2] * (trial[2] - Q0[2]) < 0.0:  # a reversal: the centre moves here
-        for i in range(3):
-            centre[i] = Q0[i]
-            direction[i] = trial[i] - centre[i]
+        Q[i] = trial[i]
+    modulus, lam, rate = math.inf, 0.0, 0.0
+    if _scaled_norm(P, direction) > 1e-13:
         t, found = _image_normal(P, W, zeta)
         if not found:
             return STEP_SURFACE
-    for i in range(3):
-        S[S_C + i] = centre[i]
-        Q[i] = Q0[i] - centre[i]  # Q holds Q0 − centre for the distance ratio
-    s = min(_scaled_norm(P, Q) / max(t * _scaled_norm(P, direction), 1e-300), 1.0)
-    for i in range(3):
-        Q[i] = centre[i] + t * direction[i]  # the image point
-        flow[i] = normal[i]
-    flow[0] += P[P_CHI] * math.hypot(normal[1], normal[2] * P[P_B])
-    modulus = plastic_modulus(P, S[S_KAPPA], Q, flow[0], s, zeta)
-    loading = normal[0] * (trial[0] - Q0[0]) + normal[1] * (trial[1] - Q0[1]) \
-        + normal[2] * (trial[2] - Q0[2])
-    if not math.isfinite(modulus) or loading <= 0.0:
+        if normal[0] * (trial[0] - Q0[0]) + normal[1] * (trial[1] - Q0[1]) \
+                + normal[2] * (trial[2] - Q0[2]) < 0.0:  # a reversal: the centre moves here
+            for i in range(3):
+                centre[i] = Q0[i]
+                direction[i] = trial[i] - centre[i]
+            t, found = _image_normal(P, W, zeta)
+            if not found:
+                return STEP_SURFACE
         for i in range(3):
-            S[S_Q + i] = trial[i]
-        return STEP_OK
-    nDm = 0.0
-    for i in range(3):
-        for j in range(3):
-            nDm += normal[i] * D[i, j] * flow[j]
-    if not modulus + nDm > 0.0:  # no stiffness along the flow: the multiplier is undefined
-        return STEP_FLOW
-    lam = loading / (modulus + nDm)
-    for i in range(3):
-        de[i] = S[S_D + i] - S[S_P + i]  # the start's elastic displacement, for F_ρ
-    force0 = _rounding_force(P, de, Q0, rho)
-    for i in range(3):
-        plastic[i] = S[S_P + i] + lam * flow[i]
-        de[i] = target[i] - plastic[i]
-    if force0 > 0.0:  # the edges pressed harder than the middle: the surface rounds
-        rho += P[P_RHO] * 0.5 * P[P_B] * abs(lam * flow[2])
-    _, ok = elastic(P, de, trial, Q, D, rho)
-    if not ok:
-        return STEP_CONTACT
-    kappa = S[S_KAPPA] + max(lam * flow[0], 0.0)
-    zeta1 = size(P, kappa)
-    if failure_value(P, Q, zeta1) > 0.0:  # drift: returned radially onto the surface
+            S[S_C + i] = centre[i]
+            Q[i] = Q0[i] - centre[i]  # Q holds Q0 − centre for the distance ratio
+        s = min(_scaled_norm(P, Q) / max(t * _scaled_norm(P, direction), 1e-300), 1.0)
+        for i in range(3):
+            Q[i] = centre[i] + t * direction[i]  # the image point
+            flow[i] = normal[i]
+        flow[0] += P[P_CHI] * math.hypot(normal[1], normal[2] * P[P_B])
+        modulus = plastic_modulus(P, kappa, Q, flow[0], s, zeta)
+        loading = normal[0] * (trial[0] - Q0[0]) + normal[1] * (trial[1] - Q0[1]) \
+            + normal[2] * (trial[2] - Q0[2])
+        for i in range(3):
+            Q[i] = trial[i]
+        if math.isfinite(modulus) and loading > 0.0:
+            nDm = 0.0
+            for i in range(3):
+                for j in range(3):
+                    nDm += normal[i] * D[i, j] * flow[j]
+            if not modulus + nDm > 0.0:  # no stiffness along the flow: no multiplier
+                return STEP_FLOW
+            lam = loading / (modulus + nDm)
+            force0 = _rounding_force(P, de0, Q0, rho)
+            if force0 > 0.0:  # the edges pressed harder than the middle: the surface rounds
+                rate = P[P_RHO] * 0.5 * P[P_B] * abs(flow[2])
+            for i in range(3):
+                plastic[i] = S[S_P + i] + lam * flow[i]
+                de[i] = target[i] - plastic[i]
+            rho += rate * lam
+            _, ok = elastic(P, de, trial, Q, D, rho)
+            if not ok:
+                return STEP_CONTACT
+            kappa += max(lam * flow[0], 0.0)
+            zeta = size(P, kappa)
+    if failure_value(P, Q, zeta) > 0.0:  # beyond the surface: returned radially onto it
         before = plastic[0]
-        status = _return_to_surface(P, W, target, zeta1, D, rho)
+        status = _return_to_surface(P, W, target, zeta, D, rho)
         if status != STEP_OK:
             return status
         kappa += max(plastic[0] - before, 0.0)
-    work = 0.5 * (force0 + _rounding_force(P, de, Q, rho)) * (rho - S[S_ROUND])
+    work = 0.0
+    if rho != S[S_ROUND]:
+        work = 0.5 * (_rounding_force(P, de0, Q0, S[S_ROUND]) + _rounding_force(P, de, Q, rho)) \
+            * (rho - S[S_ROUND])
     for i in range(3):
         work += 0.5 * (Q0[i] + Q[i]) * (plastic[i] - S[S_P + i])
     S[S_W] += work
@@ -489,32 +531,36 @@ def substep(P, S, target, D, W):
         S[S_Q + i] = Q[i]
     S[S_KAPPA] = kappa
     S[S_ROUND] = rho
-    _plastic_tangent(D, normal, flow, modulus)
+    if lam > 0.0 and math.isfinite(modulus):
+        _rounding_forces(P, de, Q, rho, g)
+        _plastic_tangent(D, normal, flow, modulus, g, rate)
     return STEP_OK
 
 
 @njit(cache=True, **HOT)
-def _plastic_tangent(D, normal, flow, modulus):
-    """D − D m nᵀ D / (K_p + nᵀ D m), in place (D left as it is where the denominator
-    vanishes: the contact lost, the load perfectly plastic)."""
-    Dm0 = D[0, 0] * flow[0] + D[0, 1] * flow[1] + D[0, 2] * flow[2]
-    Dm1 = D[1, 0] * flow[0] + D[1, 1] * flow[1] + D[1, 2] * flow[2]
-    Dm2 = D[2, 0] * flow[0] + D[2, 1] * flow[1] + D[2, 2] * flow[2]
+def _plastic_tangent(D, normal, flow, modulus, g, rate):
+    """The update's tangent, in place: D − (D m − r g) nᵀ D / (K_p + nᵀ D m), r g the
+    rounding's share (dρ = r dλ, g = ∂Q/∂ρ at fixed elastic displacement); D left as it is
+    where the denominator vanishes (the contact lost, the load perfectly plastic)."""
+    a0 = D[0, 0] * flow[0] + D[0, 1] * flow[1] + D[0, 2] * flow[2]
+    a1 = D[1, 0] * flow[0] + D[1, 1] * flow[1] + D[1, 2] * flow[2]
+    a2 = D[2, 0] * flow[0] + D[2, 1] * flow[1] + D[2, 2] * flow[2]
+    denominator = modulus + normal[0] * a0 + normal[1] * a1 + normal[2] * a2
+    if not denominator > 0.0:
+        return
+    a0, a1, a2 = a0 - rate * g[0], a1 - rate * g[1], a2 - rate * g[2]
     nD0 = normal[0] * D[0, 0] + normal[1] * D[1, 0] + normal[2] * D[2, 0]
     nD1 = normal[0] * D[0, 1] + normal[1] * D[1, 1] + normal[2] * D[2, 1]
     nD2 = normal[0] * D[0, 2] + normal[1] * D[1, 2] + normal[2] * D[2, 2]
-    denominator = modulus + normal[0] * Dm0 + normal[1] * Dm1 + normal[2] * Dm2
-    if not denominator > 0.0:  # no stiffness along the flow at the step's end: D as it is
-        return
-    D[0, 0] -= Dm0 * nD0 / denominator
-    D[0, 1] -= Dm0 * nD1 / denominator
-    D[0, 2] -= Dm0 * nD2 / denominator
-    D[1, 0] -= Dm1 * nD0 / denominator
-    D[1, 1] -= Dm1 * nD1 / denominator
-    D[1, 2] -= Dm1 * nD2 / denominator
-    D[2, 0] -= Dm2 * nD0 / denominator
-    D[2, 1] -= Dm2 * nD1 / denominator
-    D[2, 2] -= Dm2 * nD2 / denominator
+    D[0, 0] -= a0 * nD0 / denominator
+    D[0, 1] -= a0 * nD1 / denominator
+    D[0, 2] -= a0 * nD2 / denominator
+    D[1, 0] -= a1 * nD0 / denominator
+    D[1, 1] -= a1 * nD1 / denominator
+    D[1, 2] -= a1 * nD2 / denominator
+    D[2, 0] -= a2 * nD0 / denominator
+    D[2, 1] -= a2 * nD1 / denominator
+    D[2, 2] -= a2 * nD2 / denominator
 
 
 @njit(cache=True, **HOT)

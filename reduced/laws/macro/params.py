@@ -20,8 +20,10 @@ __all__ = ["MacroElement", "MacroStepError", "bearing_factors"]
 
 
 class MacroStepError(RuntimeError):
-    """A step of the macro-element could not be completed to its tolerance (the contact's or
-    the plastic update's iterations did not converge): its numbers would not be trusted."""
+    """A step of the macro-element could not be completed: the contact's iterations did not
+    converge, the bounding surface was not found along the load, the step needed too many
+    sub-steps, or the load had no stiffness along its plastic flow; or a load could not be
+    held. Its numbers would not be trusted, so none are given."""
 
 
 def bearing_factors(friction_angle: float) -> tuple[float, float, float]:
@@ -42,7 +44,7 @@ class MacroElement:
     and ``rocking_stiffness`` K_r (kN·m/rad/m) of the footing in full contact.
 
     Uplift: the footing's contact is a tensionless Winkler bed of modulus
-    :attr:`winkler_modulus` (kN/m³ per unit length) whose full-contact stiffness is no softer
+    :attr:`winkler_modulus` (kN/m³) whose full-contact stiffness is no softer
     than K_v and K_r, in series with the elastic remainder (:mod:`.uplift`).
 
     Capacity (:mod:`.capacity`): the strip's effective-width capacity under V and M, from
@@ -122,7 +124,8 @@ class MacroElement:
 
     @property
     def winkler_modulus(self) -> float:
-        """k (kN/m² per m of width, per unit length): the tensionless bed's modulus, the
+        """k (kN/m³: force per unit length of strip, per metre of width, per metre of
+        compression): the tensionless bed's modulus, the
         softest whose full-contact stiffnesses k B and k B³/12 are at least K_v and K_r, so
         that the elastic remainder in series is a compliance ≥ 0 (zero in rotation or in
         settlement, whichever the bed matches)."""

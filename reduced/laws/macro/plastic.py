@@ -14,8 +14,8 @@ follows a bounding-surface model (Dafalias 1986, as Cremer et al. 2001 and Chatz
   s = |Q − Q_c| / |Q_I − Q_c| ∈ [0, 1] (in forces scaled by V_ult, V_ult, B V_ult) says how far
   the load has gone towards it;
 - the **plastic modulus** is K_p = K_b + h0 (K_v/V_ult²) ((1 − s)/s)^γ: infinite at the centre
-  (elastic reloading), the bounding surface's own hardening K_b = (ζ′/ζ) ⟨m_v⟩ on it (no
-  hardening: perfectly plastic at the capacity);
+  (elastic reloading), the bounding surface's own hardening K_b = −∂F/∂ζ ζ′(κ) ⟨m_v⟩ on it
+  (no hardening: perfectly plastic at the capacity);
 - the **flow** is along m = n + χ |(n_H, n_M)| e_V in the scaled forces, n the normal ∂F/∂Q at
   the image point: with χ > 0 the footing settles while it yields in rotation or shear, the
   coupling of settlement and rocking that springs yielding one by one lack;
@@ -26,16 +26,18 @@ follows a bounding-surface model (Dafalias 1986, as Cremer et al. 2001 and Chatz
   yields the soil under each edge in turn leaves the footing resting on its middle.
 
 The update is compiled (:mod:`.compiled`); here are its readable entry points. The step is
-integrated in sub-steps no larger than ``max_force_step`` (V_ult-scaled) of trial
-force each: the elastic part exact at every sub-step (no drift), the plastic multiplier
-explicit, and a load that ends beyond the bounding surface returned onto it along m (so F ≤ 0
-holds to round-off). The returned tangent is the continuum elasto-plastic tangent
-D_e − D_e m nᵀ D_e / (K_p + nᵀ D_e m) of the last sub-step (D_e, the elastic one, after a
-reversal), non-symmetric when χ > 0, as a non-associated flow makes it.
+integrated in sub-steps no larger than ``max_force_step`` (V_ult-scaled) of trial force each:
+the elastic part exact at every sub-step (no drift), the plastic multiplier explicit, and a load
+that ends beyond the bounding surface returned radially onto it, towards (ζ V_ult/2, 0, 0), with
+the plastic displacement that leaves the elastic part carrying it (so F ≤ 0 holds to
+round-off). The returned tangent is the update's own over the last sub-step,
+D − (D m − r g) nᵀ D / (K_p + nᵀ D m) (r g the rounding's share, r = λ_ρ b |m_θ|, g = ∂Q/∂ρ),
+non-symmetric when χ > 0 or the surface rounds; the elastic one after a reversal.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -45,7 +47,7 @@ from . import compiled as cc
 from .params import MacroElement, MacroStepError
 
 __all__ = ["MacroState", "MacroStep", "at_rest", "elastic_forces", "step", "size",
-           "stored_energy", "MAX_FORCE_STEP"]
+           "stored_energy", "at_vertical_load", "MAX_FORCE_STEP", "LOAD_TOLERANCE"]
 
 #: Largest trial force change per sub-step, scaled by V_ult (and B V_ult for M).
 MAX_FORCE_STEP = 2e-3
@@ -150,3 +152,52 @@ def step(law: MacroElement, state: MacroState, displacement,
         raise MacroStepError(f"macro: {_FAILURES[status]} (from {state.forces.tolist()} to "
                              f"displacement {list(displacement)})")
     return MacroStep(MacroState.unpacked(S), D, count)
+
+
+#: The vertical load's tolerance of :func:`at_vertical_load`, relative to it. The update is
+#: discontinuous where a sub-step's load turns (a reversal moves the projection centre), by
+#: up to about 3e-5 N on the clay's cycles: an iteration that cannot reach 1e-10 N for that
+#: reason ends at the best v it found, if within this.
+LOAD_TOLERANCE = 1e-4
+
+
+def at_vertical_load(law: MacroElement, state: MacroState, sway_rotation, load: float,
+                     strict: bool = True) -> tuple[MacroState, float]:
+    """(the state at horizontal displacement and rotation ``sway_rotation`` = (u, θ) whose V is
+    ``load``, its |V − load|/load): V(v), one step from ``state`` in the sub-steps the first
+    trial asked for, solved by Newton's method kept inside a bracket, halved when a step leaves
+    it, does not halve the residual or meets a falling V (a footing that softens as it
+    rounds). Not ``strict``: the closest state when none is within :data:`LOAD_TOLERANCE`
+    (else :class:`MacroStepError`)."""
+    u, theta = (float(x) for x in sway_rotation)
+    v = state.displacement[0]
+    count, low, high = 0, None, None
+    best, best_state = math.inf, None
+    for _ in range(100):
+        out = step(law, state, [v, u, theta], substeps=count)
+        count = out.substeps
+        residual = out.state.forces[0] - load
+        if abs(residual) <= 1e-10 * load:
+            return out.state, abs(residual) / load
+        if residual < 0.0:
+            low = v if low is None else max(low, v)
+        else:
+            high = v if high is None else min(high, v)
+        slope = out.tangent[0, 0]
+        guess = v - residual / slope if slope > 0.0 else math.nan
+        inside = (low is None or guess > low) and (high is None or guess < high)
+        if not (math.isfinite(guess) and inside and abs(residual) < 0.5 * best):
+            if low is not None and high is not None:
+                guess = 0.5 * (low + high)
+            elif not math.isfinite(guess) or not inside:
+                scale = max(abs(v), load / law.vertical_stiffness)
+                guess = v + (scale if residual < 0.0 else -scale)
+        if abs(residual) < best:
+            best, best_state = abs(residual), out.state
+        if low is not None and high is not None and high - low <= 1e-14 * abs(v):
+            break
+        v = guess
+    if best_state is not None and (best <= LOAD_TOLERANCE * load or not strict):
+        return best_state, best / load
+    raise MacroStepError(f"macro: V did not settle at {load:g} at (u, θ) = ({u:g}, {theta:g})"
+                         f" (closest {best:.3g} away)")
