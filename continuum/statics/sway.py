@@ -17,7 +17,7 @@ from ... import checks
 from ...checks import InputError
 from ...results import write_netcdf
 from ..output.fields import result_metadata
-from .analyses import _apply_n, _follow, _history, _path, vertical_pushover
+from .analyses import _apply_n, _follow, _history, _path, probe_loads
 from .geostatic import geostatic
 from .newton import Control, NewtonOptions
 from .results import StaticPath
@@ -92,15 +92,7 @@ def vh_envelope(model, v_ratios, displacements, *, V_ult: float | None = None,
     :func:`sway_pushover` at V = v V_ult through ``displacements``; H_ult(V) is the largest H
     reached. ``V_ult`` defaults to the capacity of a vertical pushover to ``settlements`` on
     the same model (the mesh's own overshoot cancels in v and h)."""
-    v_ratios = _history("v_ratios", v_ratios)
-    if not ((v_ratios > 0.0) & (v_ratios < 1.0)).all():
-        raise InputError(f"v_ratios = {v_ratios.tolist()}: valid range is (0, 1)")
-    if V_ult is None:
-        if settlements is None:
-            raise InputError("settlements = None: give V_ult or the settlements of the "
-                             "vertical pushover that finds it")
-        V_ult = vertical_pushover(model, settlements, options=options).capacity
-    checks.positive("V_ult", V_ult)
+    v_ratios, V_ult = probe_loads(model, v_ratios, V_ult, settlements, options)
     probes = tuple(sway_pushover(model, v * V_ult, displacements, load_steps=load_steps,
                                  hold_rotation=hold_rotation, options=options)
                    for v in v_ratios)
