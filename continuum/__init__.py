@@ -14,7 +14,9 @@ Analyses (results are frozen records with ``save()`` to NetCDF)
     :func:`footing_stiffness` -> :class:`FootingStiffness` (elastic, full contact);
     :func:`vertical_pushover`, :func:`rotation_pushover`, :func:`moment_pushover`
     -> :class:`StaticPath`; :func:`uplift_onset` -> :class:`UpliftOnset`;
-    :func:`vm_envelope` -> :class:`Envelope`; :func:`run_dynamic` (gravity, then a ground
+    :func:`vm_envelope` -> :class:`Envelope`; :func:`sway_pushover` -> :class:`StaticPath`
+    and :func:`vh_envelope` -> :class:`SwayEnvelope` (an interface that carries shear);
+    :func:`run_dynamic` (gravity, then a ground
     motion; explicit central differences by default, or HHT-α / Newmark with Newton
     (``continuum.dynamics``); Lysmer boundaries, rigid or compliant base, SDOF superstructure)
     with :class:`DynamicOptions` -> :class:`DynamicResult`; :func:`estimate_error` (the same
@@ -67,6 +69,7 @@ from .statics.analyses import (Envelope, FootingStiffness, StaticPath, UpliftOns
                                elastic_gravity_stress, footing_stiffness, geostatic, k0_stress,
                                moment_pushover, rotation_pushover, uplift_onset, vertical_pushover,
                                vm_envelope)
+from .statics.sway import SwayEnvelope, sway_pushover, vh_envelope
 
 __all__ = [
     "REVISION",
@@ -79,6 +82,7 @@ __all__ = [
     "FootingStiffness", "footing_stiffness",
     "StaticPath", "vertical_pushover", "rotation_pushover", "moment_pushover",
     "UpliftOnset", "uplift_onset", "Envelope", "vm_envelope",
+    "sway_pushover", "SwayEnvelope", "vh_envelope",
     "DynamicOptions", "DynamicResult", "run_dynamic", "estimate_error", "MeshErrorEstimate",
     "Impedance", "ImpedanceOptions", "impedance_model",
 ]

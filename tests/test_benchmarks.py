@@ -412,3 +412,30 @@ def test_map_references_fast_path(tmp_path):
              for r in ("box", "half_plane")]
     move = table["The continuum itself, half-plane over box"][0]["theta"]
     assert num(move.split(" (")[0]) == pytest.approx(100 * (theta[1] / theta[0] - 1), abs=0.06)
+
+
+def test_macro_calibration_fast_path(tmp_path):
+    """The clay's FS_v = 3 pushovers from the half-plane map's kept store, fitted in 30
+    evaluations. Reference: the law written to ``macro_calibration.json``, pushed over again
+    here on the same stored rotations, gives the table's moment rms to 0.1 % (the table's
+    rounding: the table says what the law does), and its capacity is the store's own V_ult."""
+    import numpy as np
+    from upliftlab.comparisons.beds.macro import macro_pushover
+    from upliftlab.reduced.laws.macro import MacroElement
+
+    out = tmp_path / "macro"
+    run_fast_path("macro_calibration.py", out)
+    table = tables(out / "MACRO_CALIBRATION.md")
+    data = json.loads((out / "macro_calibration.json").read_text())["clay"]
+    law = MacroElement(**data["law"])
+    sys.path.insert(0, str(BENCH))
+    from macro_calibration import store_statics
+    kept = store_statics(BENCH / "winkler_map_halfplane_store")["clay"]
+    assert law.ultimate_load == pytest.approx(kept["V_ult"], rel=1e-12)
+    rows = table["clay (2)"]
+    by_source = {p.source: p for p in kept["pushovers"]}
+    for row, source in zip(rows, data["sources"]):
+        p = by_source[source]
+        M, _ = macro_pushover(law, p.N, p.theta)
+        rms = np.sqrt(np.mean(((M - p.M) / np.max(np.abs(p.M))) ** 2))
+        assert num(row["moment rms (of its largest)"]) == pytest.approx(100 * rms, abs=0.1)

@@ -10,7 +10,8 @@ The calibrations, one idea each: the four base beds' stiffness (:mod:`.stiffness
 :mod:`.base`; to the box's statics, or to the half-plane's stiffness at the structure's rocking
 frequency, :mod:`.rocking_stiffness`), their radiation dashpots (:mod:`.radiation`, :mod:`.dashpots`), the q–z bed's
 springs and backbone (:mod:`.qz`), the capacity profile fitted to the continuum's rocking
-(:mod:`.fitted`); the rotation paths on which beds and continuum are pushed over and the values
+(:mod:`.fitted`), the macro-element's parameters fitted to the continuum's statics
+(:mod:`.macro`); the rotation paths on which beds and continuum are pushed over and the values
 they are compared in (:mod:`.pushover`); and the continuum runs they are calibrated from and
 compared against, one point function for both Winkler studies (:mod:`.continuum_points`).
 

@@ -227,14 +227,10 @@ def uplift_onset(path: StaticPath) -> UpliftOnset:
     return UpliftOnset(theta=float(theta), M=float(M), N=N, e=float(M / N))
 
 
-def vm_envelope(model, v_ratios, rotations, *, V_ult: float | None = None,
-                settlements=None, load_steps: int = 4,
-                options: NewtonOptions = NewtonOptions()) -> Envelope:
-    """V–M envelope by constant-V probes: for each v in ``v_ratios`` (in (0, 1)), apply
-    V = v V_ult, then rotate through ``rotations`` (rad, increasing) at constant V; M_ult(V) is
-    the largest moment reached. ``V_ult`` defaults to the capacity of a vertical pushover to
-    ``settlements`` on the same model (so the mesh's own overshoot cancels in v and m). A probe
-    whose V the soil cannot carry raises :class:`~upliftlab.continuum.ConvergenceError`."""
+def probe_loads(model, v_ratios, V_ult, settlements, options) -> tuple[np.ndarray, float]:
+    """(the ratios v in (0, 1), checked, and V_ult) of an envelope's constant-V probes:
+    ``V_ult`` given, or the capacity of a vertical pushover to ``settlements`` on the same
+    model (so the mesh's own overshoot cancels in the normalised envelope)."""
     v_ratios = _history("v_ratios", v_ratios)
     if not ((v_ratios > 0.0) & (v_ratios < 1.0)).all():
         raise InputError(f"v_ratios = {v_ratios.tolist()}: valid range is (0, 1)")
@@ -244,6 +240,18 @@ def vm_envelope(model, v_ratios, rotations, *, V_ult: float | None = None,
                              "vertical pushover that finds it")
         V_ult = vertical_pushover(model, settlements, options=options).capacity
     checks.positive("V_ult", V_ult)
+    return v_ratios, V_ult
+
+
+def vm_envelope(model, v_ratios, rotations, *, V_ult: float | None = None,
+                settlements=None, load_steps: int = 4,
+                options: NewtonOptions = NewtonOptions()) -> Envelope:
+    """V–M envelope by constant-V probes: for each v in ``v_ratios`` (in (0, 1)), apply
+    V = v V_ult, then rotate through ``rotations`` (rad, increasing) at constant V; M_ult(V) is
+    the largest moment reached. ``V_ult`` defaults to the capacity of a vertical pushover to
+    ``settlements`` on the same model (so the mesh's own overshoot cancels in v and m). A probe
+    whose V the soil cannot carry raises :class:`~upliftlab.continuum.ConvergenceError`."""
+    v_ratios, V_ult = probe_loads(model, v_ratios, V_ult, settlements, options)
     probes = tuple(rotation_pushover(model, v * V_ult, rotations, load_steps=load_steps,
                                      options=options) for v in v_ratios)
     return Envelope(V=v_ratios * V_ult, M=np.array([p.M.max() for p in probes]), V_ult=V_ult,
