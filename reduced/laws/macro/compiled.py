@@ -48,13 +48,11 @@ _STEP = 1e-30  # the complex step
 
 def pack(law) -> np.ndarray:
     """The parameter array of a :class:`~.params.MacroElement`."""
-    from .uplift import remainder_compliance
-
     P = np.zeros(P_COUNT)
     P[[P_B, P_KV, P_KH, P_KR, P_KW]] = (law.width, law.vertical_stiffness,
                                         law.horizontal_stiffness, law.rocking_stiffness,
                                         law.winkler_modulus)
-    P[[P_CXV, P_CXT]] = remainder_compliance(law)
+    P[[P_CXV, P_CXT]] = law.remainder_compliance
     P[[P_A1, P_A2, P_VU, P_TH]] = (law.cohesive_pressure, law.frictional_modulus,
                                    law.ultimate_load, law.sliding_ratio)
     P[[P_Z0, P_KREF, P_H0, P_GEXP, P_CHI, P_RHO]] = (

@@ -123,6 +123,15 @@ class MacroElement:
         return b * self.cohesive_pressure + b * b * self.frictional_modulus
 
     @property
+    def remainder_compliance(self) -> tuple[float, float]:
+        """C_x = (1/K_v − 1/(k B), 1/K_r − 12/(k B³)) (m/kN, rad/(kN·m)): the elastic
+        remainder in series with the bed, each ≥ 0 (:mod:`.uplift`)."""
+        k, b = self.winkler_modulus, self.width
+        # max(0, ·) only removes round-off: k is chosen so that both are ≥ 0
+        return (max(0.0, 1.0 / self.vertical_stiffness - 1.0 / (k * b)),
+                max(0.0, 1.0 / self.rocking_stiffness - 12.0 / (k * b ** 3)))
+
+    @property
     def winkler_modulus(self) -> float:
         """k (kN/m³: force per unit length of strip, per metre of width, per metre of
         compression): the tensionless bed's modulus, the

@@ -61,11 +61,8 @@ def rounding_force(k: float, b: float, v: float, theta: float, rho: float) -> fl
 
 def remainder_compliance(law: MacroElement) -> np.ndarray:
     """C_x = (1/K_v − 1/(k B), 1/K_r − 12/(k B³)), the elastic remainder in series with the
-    bed (m/kN, rad/(kN·m)), each ≥ 0."""
-    k, width = law.winkler_modulus, law.width
-    # max(0, ·) only removes round-off: k is chosen so that both are ≥ 0
-    return np.array([max(0.0, 1.0 / law.vertical_stiffness - 1.0 / (k * width)),
-                     max(0.0, 1.0 / law.rocking_stiffness - 12.0 / (k * width ** 3))])
+    bed (m/kN, rad/(kN·m)), each ≥ 0 (:attr:`~.params.MacroElement.remainder_compliance`)."""
+    return np.array(law.remainder_compliance)
 
 
 def vertical_rocking_forces(law: MacroElement, v: float, theta: float, guess=None,
