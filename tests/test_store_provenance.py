@@ -129,6 +129,21 @@ def test_record_change_compares_field_by_field():
     assert fr.record_change({"x": math.nan}, {"x": math.nan}) == (0.0, "")
 
 
+def test_round_off_of_a_field_is_no_change():
+    """Reference: the box store's impedance record, whose vertical–rocking coupling (zero by
+    symmetry) came out as −4.6e-11 and, in another environment, 7.3e-12, beside entries of
+    4.3e4 in the same field: below 1e-12 of the field's largest number it is round-off (no
+    change); the same difference in a field whose numbers are that small is a change (1.16,
+    by the definition), and so is a change of 1e-9 of the field's largest number."""
+    old = {"real": [[0.0, -1.22e-10, 43031.02941166112]], "imag": [[0.0, -4.64e-11, 82.9]]}
+    new = {"real": [[0.0, -1.91e-10, 43031.02941166109]], "imag": [[0.0, 7.28e-12, 82.9]]}
+    assert fr.record_change(old, new)[0] == pytest.approx(0.0, abs=1e-15)
+    alone = fr.record_change({"c": [-4.64e-11]}, {"c": [7.28e-12]})
+    assert alone[0] == pytest.approx((4.64e-11 + 7.28e-12) / 4.64e-11, rel=1e-12)
+    moved = {**new, "real": [[0.0, -1.22e-10 + 4.3e-5, 43031.02941166112]]}
+    assert fr.record_change(old, moved)[1] == "real[0][1]"
+
+
 def test_a_field_only_the_new_record_has_is_an_addition_not_a_change():
     """A field today's code adds (the run's validity verdict) changes no stored number: it is
     listed, not counted; a field today's code no longer makes is a change (inf)."""

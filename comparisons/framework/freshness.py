@@ -28,7 +28,7 @@ from ...checks import InputError
 from .store import POINT_FUNCTIONS, Store, entry_code, function_name
 
 __all__ = ["StaleStoreError", "Check", "record_change", "check_stale", "seeded_sample",
-           "DEFAULT_SAMPLE", "ABSOLUTE_FLOOR"]
+           "DEFAULT_SAMPLE", "ABSOLUTE_FLOOR", "FIELD_ROUNDOFF"]
 
 #: How many stale records of a function a study makes again before accepting the rest.
 DEFAULT_SAMPLE = 3
@@ -36,6 +36,11 @@ DEFAULT_SAMPLE = 3
 #: Below this absolute difference two numbers are the same (results are in SI or the scene's
 #: units; 1e-12 of a metre, a radian or a kilonewton is no physical difference).
 ABSOLUTE_FLOOR = 1e-12
+#: Below this fraction of the largest number of the same field (a top-level entry of the
+#: record: a matrix, a history) two numbers are the same: round-off of that field. A term that
+#: is zero by symmetry (the vertical–rocking coupling of a symmetric footing's impedance,
+#: 1e-11 beside entries of 1e4) comes out as noise whose sign the libraries' arithmetic sets.
+FIELD_ROUNDOFF = 1e-12
 
 
 class StaleStoreError(RuntimeError):
@@ -63,37 +68,54 @@ class Check:
                    f"{', '.join(self.added)}" if self.added else ""))
 
 
-def record_change(old, new, ignore: Sequence[str] = (), where: str = "") -> tuple[float, str]:
+def record_change(old, new, ignore: Sequence[str] = (), where: str = "",
+                  floor: float = ABSOLUTE_FLOOR) -> tuple[float, str]:
     """The largest relative change between two records, and where: numbers by
-    |a − b| / max(|a|, |b|) (none below :data:`ABSOLUTE_FLOOR`; NaN equals NaN), text and
-    flags by equality (inf when they differ), tables key by key and lists element by element
-    (inf when their shapes differ). Fields named in ``ignore`` (timings) are skipped, and so
-    are fields only the new record has (:func:`added_fields`: today's code records more, which
-    changes none of the stored numbers; the readers take a record without them as before); a
-    field only the old record has is a change (inf): today's code no longer makes it."""
+    |a − b| / max(|a|, |b|), none below ``floor`` (:data:`ABSOLUTE_FLOOR`, or
+    :data:`FIELD_ROUNDOFF` of the largest number of the same field, whichever is larger;
+    NaN equals NaN), text and flags by equality (inf when they differ), tables key by key
+    and lists element by element (inf when their shapes differ). Fields named in ``ignore``
+    (timings) are skipped, and so are fields only the new record has (:func:`added_fields`:
+    today's code records more, which changes none of the stored numbers; the readers take a
+    record without them as before); a field only the old record has is a change (inf):
+    today's code no longer makes it."""
     if isinstance(old, Mapping) and isinstance(new, Mapping):
         keys = set(old) - set(ignore)
         worst = (0.0, "")
         for k in sorted(keys):
             if k not in new:
                 return math.inf, f"{where}.{k}".lstrip(".")
-            worst = max(worst, record_change(old[k], new[k], ignore, f"{where}.{k}"),
-                        key=lambda w: w[0])
+            field_floor = max(floor, FIELD_ROUNDOFF * _magnitude(old[k])) if not where \
+                else floor
+            worst = max(worst, record_change(old[k], new[k], ignore, f"{where}.{k}",
+                                             field_floor), key=lambda w: w[0])
         return worst
     if isinstance(old, list) and isinstance(new, list):
         if len(old) != len(new):
             return math.inf, f"{where} (length {len(old)} → {len(new)})".lstrip(".")
         worst = (0.0, "")
         for i, (a, b) in enumerate(zip(old, new)):
-            worst = max(worst, record_change(a, b, ignore, f"{where}[{i}]"), key=lambda w: w[0])
+            worst = max(worst, record_change(a, b, ignore, f"{where}[{i}]", floor),
+                        key=lambda w: w[0])
         return worst
     if _number(old) and _number(new):
         a, b = float(old), float(new)
-        if (math.isnan(a) and math.isnan(b)) or a == b or abs(a - b) <= ABSOLUTE_FLOOR:
+        if (math.isnan(a) and math.isnan(b)) or a == b or abs(a - b) <= floor:
             return 0.0, ""
         scale = max(abs(a), abs(b))
         return (abs(a - b) / scale if math.isfinite(scale) else math.inf), where.lstrip(".")
     return (0.0, "") if old == new else (math.inf, where.lstrip("."))
+
+
+def _magnitude(value) -> float:
+    """The largest finite |number| in ``value`` (nested lists and tables), 0 if none."""
+    if isinstance(value, Mapping):
+        return max((_magnitude(v) for v in value.values()), default=0.0)
+    if isinstance(value, list):
+        return max((_magnitude(v) for v in value), default=0.0)
+    if _number(value) and math.isfinite(float(value)):
+        return abs(float(value))
+    return 0.0
 
 
 def added_fields(old, new, where: str = "") -> list[str]:
