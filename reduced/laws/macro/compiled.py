@@ -1,287 +1,40 @@
-"""The macro-element's compiled forms (numba, ``cache=True``): every function of the law on
-plain arrays, so that the reduced model's kernels can call it; :mod:`.capacity`, :mod:`.uplift`
-and :mod:`.plastic` are its readable entry points, and each function's ``.py_func`` is its
-interpreted reference.
+"""The macro-element's bounding-surface update, compiled (numba, ``cache=True``), on the
+forms of :mod:`.bed_forms` (uplift) and :mod:`.surface_forms` (failure surface), with the
+slots of :mod:`.slots`; :mod:`.plastic` is its readable entry point (the equations are
+there), and each function's ``.py_func`` is its interpreted reference. Every compiled form of
+the law is found here by name, so that the reduced model's kernels import one module.
 
-The parameters are one float array (:func:`pack`, slots ``P_…``), the state another
-(``S_…``): displacement (v, u, θ), plastic displacement, forces (V, H, M), projection
-centre, accumulated plastic settlement κ, dissipated energy and the rounding ρ of the soil's
-surface. The equations are those of the modules
-named above. A step that cannot be completed returns a status (``STEP_…``), never a number.
-
-The update (:func:`step_into`) allocates nothing: its vectors are slots of a scratch array
-(``W_COUNT`` floats), so that the reduced model's compiled loops, which never allocate, can
-call it. :func:`step` is the allocating entry point for everything else.
+A step that cannot be completed returns a status (``STEP_…``), never a number. The update
+(:func:`step_into`) allocates nothing: its vectors are slots of a scratch array (``W_COUNT``
+floats), so that the reduced model's compiled loops, which never allocate, can call it.
+:func:`step` is the allocating entry point for everything else.
 """
 
 from __future__ import annotations
 
-import cmath
 import math
 
 import numpy as np
 from numba import njit
 
 from ..spring import HOT
+from .bed_forms import (bed, bed_energy, bed_length, bed_moments, contact, elastic,  # noqa: F401
+                        flat_bed_displacement, rounding_force, rounding_sensitivity, solve2,
+                        vertical_rocking)
+from .slots import (MAX_NEWTON, P_B, P_CHI, P_COUNT, P_CXT, P_CXV, P_H0,  # noqa: F401
+                    P_GEXP, P_KH, P_KREF, P_KV, P_KW, P_RHO, P_VU, P_Z0, S_C, S_COUNT, S_D,
+                    S_KAPPA, S_P, S_Q, S_ROUND, S_W, STEP_CONTACT, STEP_FLOW, STEP_OK,
+                    STEP_SUBSTEPS, STEP_SURFACE, W_CENTRE, W_COUNT, W_DE, W_DE0, W_DIR, W_FLOW,
+                    W_G, W_NORMAL, W_PLASTIC, W_Q, W_Q0, W_START, W_TARGET, W_TRIAL, pack)
+from .surface_forms import (RIDGE, failure, failure_at, failure_gradient,  # noqa: F401
+                            failure_size_derivative, failure_value, horizontal_capacity,
+                            image, moment_capacity, size)
 
 __all__ = ["pack", "P_COUNT", "S_COUNT", "W_COUNT", "STEP_OK", "STEP_CONTACT",
            "STEP_SURFACE", "STEP_SUBSTEPS", "STEP_FLOW", "RIDGE", "MAX_NEWTON", "MAX_SUBSTEPS",
            "step", "step_into"]
 
-(P_B, P_KV, P_KH, P_KR, P_KW, P_CXV, P_CXT, P_A1, P_A2, P_VU, P_TH, P_Z0, P_KREF, P_H0,
- P_GEXP, P_CHI, P_RHO) = range(17)
-P_COUNT = 17
-S_D, S_P, S_Q, S_C, S_KAPPA, S_W, S_ROUND = 0, 3, 6, 9, 12, 13, 14
-S_COUNT = 15
-# the scratch array: the update's vectors, three floats each
-(W_Q0, W_TRIAL, W_CENTRE, W_DIR, W_NORMAL, W_FLOW, W_PLASTIC, W_Q, W_START, W_TARGET, W_DE,
- W_DE0, W_G) = range(0, 39, 3)
-W_COUNT = 39
-STEP_OK, STEP_CONTACT, STEP_SURFACE, STEP_SUBSTEPS, STEP_FLOW = 0, 1, 2, 3, 4
-
-#: The rounding of the surface's cone at H = M = 0, as a fraction of B V_ult (:mod:`.capacity`).
-RIDGE = 1e-12
-MAX_NEWTON = 100
 MAX_SUBSTEPS = 200_000
-_STEP = 1e-30  # the complex step
-
-
-def pack(law) -> np.ndarray:
-    """The parameter array of a :class:`~.params.MacroElement`."""
-    P = np.zeros(P_COUNT)
-    P[[P_B, P_KV, P_KH, P_KR, P_KW]] = (law.width, law.vertical_stiffness,
-                                        law.horizontal_stiffness, law.rocking_stiffness,
-                                        law.winkler_modulus)
-    P[[P_CXV, P_CXT]] = law.remainder_compliance
-    P[[P_A1, P_A2, P_VU, P_TH]] = (law.cohesive_pressure, law.frictional_modulus,
-                                   law.ultimate_load, law.sliding_ratio)
-    P[[P_Z0, P_KREF, P_H0, P_GEXP, P_CHI, P_RHO]] = (
-        law.initial_size, law.hardening_settlement, law.interior_modulus,
-        law.interior_exponent, law.settlement_coupling, law.rounding_ratio)
-    return P
-
-
-# -- the uplift mechanism -----------------------------------------------------------------
-
-
-@njit(cache=True, **HOT)
-def contact(b, A, C, R):
-    """The contact interval [lo, hi] ⊂ [−b, b] where w(x) = A + C x − R x² > 0 (R ≥ 0), and
-    whether there is one; the roots in their stable form (no cancellation as R → 0)."""
-    if R <= 0.0:
-        if C == 0.0:
-            return -b, b, A > 0.0
-        root = -A / C
-        lo, hi = (max(-b, root), b) if C > 0.0 else (-b, min(b, root))
-        return lo, hi, hi > lo
-    disc = C * C + 4.0 * R * A
-    if disc <= 0.0:
-        return 0.0, 0.0, False
-    q = 0.5 * (C + math.copysign(math.sqrt(disc), C))
-    if q == 0.0:
-        return 0.0, 0.0, False
-    r1, r2 = q / R, -A / q
-    lo, hi = max(-b, min(r1, r2)), min(b, max(r1, r2))
-    return lo, hi, hi > lo
-
-
-@njit(cache=True, **HOT)
-def bed_moments(k, b, v, theta, rho):
-    """(w's coefficients A, C, R and the contact's moments I0…I4, ∫ xʲ dx over it) of the bed
-    at (v, θ) on a surface rounded by ρ: w(x) = v + θ x − ρ (x²/b² − 1/3) (:mod:`.uplift`)."""
-    A, C, R = v + rho / 3.0, theta, rho / (b * b)
-    lo, hi, found = contact(b, A, C, R)
-    if not found:
-        return A, C, R, 0.0, 0.0, 0.0, 0.0, 0.0
-    return (A, C, R, hi - lo, (hi ** 2 - lo ** 2) / 2.0, (hi ** 3 - lo ** 3) / 3.0,
-            (hi ** 4 - lo ** 4) / 4.0, (hi ** 5 - lo ** 5) / 5.0)
-
-
-@njit(cache=True, **HOT)
-def bed(k, b, v, theta, rho):
-    """The tensionless bed's (N, M) and tangent (k11, k12, k22) at (v, θ) on a surface
-    rounded by ρ: k ∫ w, k ∫ x w, and k times the contact's moments (:mod:`.uplift`)."""
-    A, C, R, I0, I1, I2, I3, I4 = bed_moments(k, b, v, theta, rho)
-    return (k * (A * I0 + C * I1 - R * I2), k * (A * I1 + C * I2 - R * I3),
-            k * I0, k * I1, k * I2)
-
-
-@njit(cache=True, **HOT)
-def bed_energy(k, b, v, theta, rho):
-    """The bed's stored energy ½ k ∫ ⟨w⟩² dx."""
-    A, C, R, I0, I1, I2, I3, I4 = bed_moments(k, b, v, theta, rho)
-    return 0.5 * k * (A * A * I0 + 2.0 * A * C * I1 + (C * C - 2.0 * A * R) * I2
-                      - 2.0 * C * R * I3 + R * R * I4)
-
-
-@njit(cache=True, **HOT)
-def rounding_force(k, b, v, theta, rho):
-    """F_ρ = −∂U/∂ρ at fixed (v, θ) = k ∫ ⟨w⟩ (x²/b² − 1/3) dx: the work per unit rounding
-    (> 0 when the bed presses its edges more than its middle)."""
-    A, C, R, I0, I1, I2, I3, I4 = bed_moments(k, b, v, theta, rho)
-    n = k * (A * I0 + C * I1 - R * I2)
-    return k * (A * I2 + C * I3 - R * I4) / (b * b) - n / 3.0
-
-
-@njit(cache=True, **HOT)
-def rounding_sensitivity(k, b, v, theta, rho):
-    """∂(N, M)/∂ρ of the bed at fixed (v, θ): k ∫ (1/3 − x²/b²) (1, x) dx over the contact."""
-    A, C, R, I0, I1, I2, I3, I4 = bed_moments(k, b, v, theta, rho)
-    return k * (I0 / 3.0 - I2 / (b * b)), k * (I1 / 3.0 - I3 / (b * b))
-
-
-@njit(cache=True, **HOT)
-def flat_bed_displacement(k, b, n, m):
-    """The flat bed's (v, θ) under (N, M), N > 0, |M| < N b, in closed form: full contact
-    while e = |M|/N ≤ b/3, else a = 3 (b − e), θ = 2N/(k a²), v = θ (a − b)."""
-    e = abs(m) / n
-    if e <= b / 3.0:
-        return n / (2.0 * k * b), 1.5 * m / (k * b ** 3)
-    a = 3.0 * (b - e)
-    t = 2.0 * n / (k * a * a)
-    return t * (a - b), (t if m >= 0.0 else -t)
-
-
-@njit(cache=True, **HOT)
-def bed_length(k, b, v, theta, rho):
-    """The contact length (length)."""
-    return bed_moments(k, b, v, theta, rho)[3]
-
-
-@njit(cache=True, **HOT)
-def _series_tangent(k11, k12, k22, cv, ct):
-    """(I + K_b C_x)⁻¹ K_b: the bed in series with the remainder, and det(I + K_b C_x)."""
-    j11, j12, j21, j22 = 1.0 + k11 * cv, k12 * ct, k12 * cv, 1.0 + k22 * ct
-    det = j11 * j22 - j12 * j21
-    return ((j22 * k11 - j12 * k12) / det, (j22 * k12 - j12 * k22) / det,
-            (j11 * k12 - j21 * k11) / det, (j11 * k22 - j21 * k12) / det)
-
-
-@njit(cache=True, **HOT)
-def vertical_rocking(P, v, theta, n, m, rho):
-    """(N, M, ∂N/∂v, ∂N/∂θ, ∂M/∂v, ∂M/∂θ, energy, converged) at elastic (v, θ), from the guess
-    (n, m), on a surface rounded by ρ: the bed in series with the remainder C_x
-    (:mod:`.uplift`), by Newton's method."""
-    k, b, cv, ct = P[P_KW], 0.5 * P[P_B], P[P_CXV], P[P_CXT]
-    scale = P[P_KV] * (abs(v) + b * abs(theta) + rho) + 1e-300  # the forces' size
-    ok = False
-    f0, f1, k11, k12, k22 = bed(k, b, v - cv * n, theta - ct * m, rho)
-    r0, r1 = n - f0, m - f1
-    for _ in range(MAX_NEWTON):
-        size0 = max(abs(r0), abs(r1) / b)
-        if size0 <= 1e-13 * scale:
-            ok = True
-            break
-        j11, j12, j21, j22 = 1.0 + k11 * cv, k12 * ct, k12 * cv, 1.0 + k22 * ct
-        det = j11 * j22 - j12 * j21
-        d0, d1 = (j22 * r0 - j12 * r1) / det, (j11 * r1 - j21 * r0) / det
-        n0, m0, step = n, m, 1.0
-        for _ in range(40):  # halved while the residual does not fall
-            n, m = n0 - step * d0, m0 - step * d1
-            f0, f1, k11, k12, k22 = bed(k, b, v - cv * n, theta - ct * m, rho)
-            r0, r1 = n - f0, m - f1
-            if max(abs(r0), abs(r1) / b) < size0:
-                break
-            step *= 0.5
-    f0, f1, k11, k12, k22 = bed(k, b, v - cv * n, theta - ct * m, rho)
-    t00, t01, t10, t11 = _series_tangent(k11, k12, k22, cv, ct)
-    energy = (bed_energy(k, b, v - cv * f0, theta - ct * f1, rho)
-              + 0.5 * (cv * f0 * f0 + ct * f1 * f1))
-    return f0, f1, t00, t01, t10, t11, energy, ok
-
-
-@njit(cache=True, **HOT)
-def elastic(P, de, guess, Q, D, rho):
-    """Forces Q (3) and tangent D (3×3) of the elastic-and-uplift mechanism at elastic
-    displacement ``de`` (v, u, θ) on a surface rounded by ρ, from the forces ``guess`` (Q may
-    be ``guess``); returns (energy, converged)."""
-    n, m, t00, t01, t10, t11, energy, ok = vertical_rocking(P, de[0], de[2], guess[0], guess[2],
-                                                            rho)
-    Q[0], Q[1], Q[2] = n, P[P_KH] * de[1], m
-    for i in range(3):
-        for j in range(3):
-            D[i, j] = 0.0
-    D[0, 0], D[0, 2], D[2, 0], D[2, 2] = t00, t01, t10, t11
-    D[1, 1] = P[P_KH]
-    return energy + 0.5 * P[P_KH] * de[1] * de[1], ok
-
-
-# -- the failure surface ------------------------------------------------------------------
-
-
-@njit(cache=True, **HOT)
-def moment_capacity(P, V, zeta):
-    """M_max(V) with H = 0 and size ζ (complex V and ζ pass through) (:mod:`.capacity`)."""
-    if V.real <= 0.0 or V.real >= zeta.real * P[P_VU]:
-        return 0.0 * V * zeta
-    a1, a2 = zeta * P[P_A1], zeta * P[P_A2]
-    if P[P_A2] > 0.0:
-        width = 2.0 * V / (a1 + cmath.sqrt(a1 * a1 + 4.0 * a2 * V))
-    else:
-        width = V / a1
-    return 0.5 * V * (P[P_B] - width)
-
-
-@njit(cache=True, **HOT)
-def horizontal_capacity(P, V, zeta):
-    """H_max(V) = t_h V (1 − V/(ζ V_ult)); 0 outside 0 < V < ζ V_ult."""
-    if V.real <= 0.0 or V.real >= zeta.real * P[P_VU]:
-        return 0.0 * V * zeta
-    return P[P_TH] * V * (1.0 - V / (zeta * P[P_VU]))
-
-
-@njit(cache=True, **HOT)
-def failure(P, V, H, M, zeta):
-    """F at (V, H, M) with size ζ, complex (:mod:`.capacity`)."""
-    scale = P[P_B] * P[P_VU]
-    ridge = RIDGE * scale
-    top = zeta.real * P[P_VU]
-    vr = min(max(V.real, 1e-9 * top), (1.0 - 1e-9) * top) + 1j * V.imag
-    ratio = moment_capacity(P, vr, zeta) / horizontal_capacity(P, vr, zeta)
-    radius = cmath.sqrt((ratio * H) ** 2 + M * M + ridge * ridge) - ridge
-    if V.real <= 0.0:
-        beyond = -V * P[P_B]
-    elif V.real >= top:
-        beyond = (V - zeta * P[P_VU]) * P[P_B]
-    else:
-        beyond = -moment_capacity(P, V, zeta)
-    return (radius + beyond) / scale
-
-
-@njit(cache=True, **HOT)
-def failure_at(P, V, H, M, zeta):
-    """F at real forces (V, H, M)."""
-    return failure(P, V + 0j, H + 0j, M + 0j, zeta + 0j).real
-
-
-@njit(cache=True, **HOT)
-def failure_value(P, Q, zeta):
-    """F at forces Q (3, real)."""
-    return failure_at(P, Q[0], Q[1], Q[2], zeta)
-
-
-@njit(cache=True, **HOT)
-def failure_gradient(P, Q, zeta, n):
-    """∂F/∂Q at Q into ``n``, by the complex step."""
-    z = zeta + 0j
-    n[0] = failure(P, Q[0] + 1j * _STEP, Q[1] + 0j, Q[2] + 0j, z).imag / _STEP
-    n[1] = failure(P, Q[0] + 0j, Q[1] + 1j * _STEP, Q[2] + 0j, z).imag / _STEP
-    n[2] = failure(P, Q[0] + 0j, Q[1] + 0j, Q[2] + 1j * _STEP, z).imag / _STEP
-
-
-@njit(cache=True, **HOT)
-def failure_size_derivative(P, Q, zeta):
-    """∂F/∂ζ at Q, by the complex step."""
-    return failure(P, Q[0] + 0j, Q[1] + 0j, Q[2] + 0j, zeta + 1j * _STEP).imag / _STEP
-
-
-# -- the bounding-surface update ----------------------------------------------------------
-
-
-@njit(cache=True, **HOT)
-def size(P, kappa):
-    """ζ(κ) = 1 − (1 − ζ0) exp(−κ/κ_ref)."""
-    return 1.0 - (1.0 - P[P_Z0]) * math.exp(-kappa / P[P_KREF])
 
 
 @njit(cache=True, **HOT)
@@ -293,31 +46,6 @@ def _dot(a, b):
 def _scaled_norm(P, x):
     vu = P[P_VU]
     return math.sqrt((x[0] / vu) ** 2 + (x[1] / vu) ** 2 + (x[2] / (P[P_B] * vu)) ** 2)
-
-
-@njit(cache=True, **HOT)
-def image(P, centre, direction, zeta):
-    """(t, found): the distance in units of ``direction`` from ``centre`` to the surface."""
-    far = max(abs(direction[0]) / P[P_VU], abs(direction[1]) / P[P_VU],
-              abs(direction[2]) / (P[P_B] * P[P_VU]))
-    reach = 10.0 / max(far, 1e-300)
-    high = min(1.0, reach)
-    while failure_at(P, centre[0] + high * direction[0], centre[1] + high * direction[1],
-                     centre[2] + high * direction[2], zeta) <= 0.0:
-        high *= 2.0
-        if high > reach:
-            return 0.0, False
-    low = 0.0
-    for _ in range(200):
-        mid = 0.5 * (low + high)
-        if failure_at(P, centre[0] + mid * direction[0], centre[1] + mid * direction[1],
-                      centre[2] + mid * direction[2], zeta) <= 0.0:
-            low = mid
-        else:
-            high = mid
-        if high - low <= 1e-15 * high:
-            break
-    return low, True
 
 
 @njit(cache=True, **HOT)
@@ -361,9 +89,8 @@ def _rounding_forces(P, de, Q, rho, g):
     v, theta = de[0] - cv * Q[0], de[2] - ct * Q[2]
     _, _, k11, k12, k22 = bed(k, b, v, theta, rho)
     h0, h2 = rounding_sensitivity(k, b, v, theta, rho)
-    j11, j12, j21, j22 = 1.0 + k11 * cv, k12 * ct, k12 * cv, 1.0 + k22 * ct
-    det = j11 * j22 - j12 * j21
-    g[0], g[1], g[2] = (j22 * h0 - j12 * h2) / det, 0.0, (j11 * h2 - j21 * h0) / det
+    g[0], g[2] = solve2(1.0 + k11 * cv, k12 * ct, k12 * cv, 1.0 + k22 * ct, h0, h2)
+    g[1] = 0.0
 
 
 @njit(cache=True, **HOT)
@@ -386,8 +113,7 @@ def _invert(P, W, de, rho):
         det = t00 * t11 - t01 * t10
         if not ok or det <= 0.0:
             return False
-        d0 = (t11 * r0 - t01 * r1 * P[P_B]) / det
-        d2 = (t00 * r1 * P[P_B] - t10 * r0) / det
+        d0, d2 = solve2(t00, t01, t10, t11, r0, r1 * P[P_B])
         v0, th0, step = de[0], de[2], 1.0
         for _ in range(40):
             de[0], de[2] = v0 - step * d0, th0 - step * d2
