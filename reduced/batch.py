@@ -220,6 +220,10 @@ def _prepare(scenes, motion, integrator, dt):
 def _job(scene: Scene, motion, integrator, dt, bases, motions) -> _Job:
     """The run of one scene, as :func:`~.run.run_model` sets it up (histories off)."""
     model = build_model(scene)
+    if model.base is not None:
+        raise InputError("foundation.law = 'macro': the batch's table keeps the springs' peaks, "
+                         "and the macro-element has none; run such a scene alone "
+                         "(upliftlab.run, or upliftlab run SCENE)")
     index, factor, motion = _base_motion(scene, motion, bases, motions)
     a = scene.analysis
     name = integrator or a.integrator

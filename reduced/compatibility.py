@@ -35,6 +35,7 @@ __all__ = [
     "layout_for",
     "compatibility_matrix",
     "stiffness_matrix",
+    "base_transform",
     "DofMap",
 ]
 
@@ -176,7 +177,8 @@ class DofMap:
 
 
 def compatibility_matrix(dofs: DofMap, heights, layout: SpringLayout | None, *,
-                         exact: bool = False, sway_height: float = 0.0) -> np.ndarray:
+                         exact: bool = False, sway_height: float = 0.0,
+                         sway_spring: bool = True) -> np.ndarray:
     """A (n_dof × n_spring): story springs first, then the sway spring (if any), then the
     foundation springs (eqs. 3, 9).
 
@@ -184,11 +186,12 @@ def compatibility_matrix(dofs: DofMap, heights, layout: SpringLayout | None, *,
     spring: e = u_b (a rigid structure: u_G − h_G θ, ``sway_height`` h_G). Foundation spring i:
     e = x_i θ − V. With ``exact`` kinematics the story DOFs are the deflections w_j in the
     base's rotated frame and the rotation DOF is sin θ: story spring j is e = w_j − w_{j−1}
-    and foundation spring i e = x_i sin θ − V, still linear.
+    and foundation spring i e = x_i sin θ − V, still linear. Without ``sway_spring`` the sway
+    DOF has no spring (a base element carries the base's horizontal force instead).
     """
     heights = np.asarray(heights, dtype=float)
     n_story = len(dofs.stories)
-    n_sway = 1 if dofs.sway >= 0 else 0
+    n_sway = 1 if dofs.sway >= 0 and sway_spring else 0
     n_found = 0 if layout is None else layout.count
     A = np.zeros((dofs.size, n_story + n_sway + n_found))
     for j, dof in enumerate(dofs.stories):
@@ -197,17 +200,30 @@ def compatibility_matrix(dofs: DofMap, heights, layout: SpringLayout | None, *,
             A[dofs.stories[j - 1], j] = -1.0
         if dofs.theta >= 0 and not exact:
             A[dofs.theta, j] = -(heights[j] - (heights[j - 1] if j > 0 else 0.0))
+    if dofs.sway >= 0 and n_story:  # the first story's drift is taken from the base's sway
+        A[dofs.sway, 0] = -1.0
     if n_sway:
         A[dofs.sway, n_story] = 1.0
-        if n_story:
-            A[dofs.sway, 0] = -1.0
-        elif dofs.theta >= 0:
+        if not n_story and dofs.theta >= 0:
             A[dofs.theta, n_story] = -sway_height
     if layout is not None:
         first = n_story + n_sway
         A[dofs.theta, first:] = layout.positions
         A[dofs.v, first:] = -1.0
     return A
+
+
+def base_transform(dofs: DofMap, sway_height: float = 0.0) -> np.ndarray:
+    """T (3 × n): a base element's displacement from rest (v, u, θ) = T q, with v the settlement
+    of O (down, −V), u its sway (u_b; a rigid structure's u_G − h_G θ, ``sway_height`` h_G)
+    and θ the rotation."""
+    T = np.zeros((3, dofs.size))
+    T[0, dofs.v] = -1.0
+    T[1, dofs.sway] = 1.0
+    if not dofs.stories:
+        T[1, dofs.theta] = -sway_height
+    T[2, dofs.theta] = 1.0
+    return T
 
 
 def stiffness_matrix(A: np.ndarray, stiffnesses) -> np.ndarray:

@@ -49,7 +49,10 @@ PEAK_UNITS = {
     "overturning_moment": ("peak |overturning moment about O|", "moment"),
     "story_drift": ("peak |story drift|", "length"),
     "uplift_left": ("peak uplift of the left edge", "length"),
-    "uplift_max": ("peak uplift of any foundation spring", "length"),
+    "uplift_max": ("peak uplift of any foundation spring (macro-element: the larger gap under "
+                   "the base's two edges)", "length"),
+    "plastic_settlement": ("plastic settlement of the macro-element's centre at the end (down "
+                           "positive)", "length"),
     "spring_force_max": ("peak compression in a foundation spring", "force"),
     "residual_settlement": ("settlement of O at the end of a run that ended at rest (down "
                             "positive)", "length"),
@@ -61,7 +64,8 @@ PEAK_UNITS = {
     "plastic_settlement_mean": ("mean plastic settlement of the springs at the end", "length"),
     "min_contact_length": ("least length of the base in contact", "length"),
     "sway": ("peak |horizontal displacement of the base relative to the ground|", "length"),
-    "sway_force": ("peak |force of the sway spring and its dashpot|", "force"),
+    "sway_force": ("peak |force of the sway spring and its dashpot| (macro-element: its "
+                   "horizontal force, without its dashpot)", "force"),
     "residual_sway": ("horizontal displacement of the base at the end of the run", "length"),
     "sliding": ("sliding of the base at the end of the run", "length"),
     "energy_balance_error": ("energy balance error, relative to the input", "1"),
@@ -82,7 +86,7 @@ def _dof_unit(name: str, units: dict) -> str:
 
 def _histories(response) -> dict:
     """:data:`SCALAR_HISTORIES` of this response: the sway only when it has a sway spring."""
-    sways = response.model.sway_spring >= 0
+    sways = response.model.sway_spring >= 0 or response.model.base is not None
     return {k: v for k, v in SCALAR_HISTORIES.items() if k != "sway" or sways}
 
 
@@ -144,6 +148,8 @@ def labelled_data(response) -> LabelledData:
         "spring_static_force": ("spring", model.params["f0"], {
             "units": units["force"], "long_name": "static compression of a foundation spring"}),
     })
+    if model.base is not None:
+        data.update(_base_states(response, units, coords))
     data.update(_peaks(response, units))
     data.update(_ground_motion(response, units, coords))
     attrs = cf_attributes({
@@ -152,6 +158,30 @@ def labelled_data(response) -> LabelledData:
         "source": "upliftlab reduced model (compatibility-matrix formulation)",
         "info": response.info, "provenance": response.provenance})
     return LabelledData.build(data, coords, attrs)
+
+
+#: The macro-element's stored states (:data:`~.response.BASE_NAMES`): long name, unit kind.
+BASE_STATES = {
+    "V": ("vertical force on the base (compression positive, without the dashpots)", "force"),
+    "H": ("horizontal force on the base (without the dashpot)", "force"),
+    "M": ("moment on the base about O (without the dashpots)", "moment"),
+    "v_p": ("plastic settlement of O (down positive)", "length"),
+    "u_p": ("plastic sway of the base", "length"),
+    "theta_p": ("plastic rotation of the base", "rad"),
+    "contact_from": ("left end of the contact, from O", "length"),
+    "contact_to": ("right end of the contact, from O", "length"),
+    "rounding": ("rounding rho of the soil's surface under the base", "length"),
+    "dissipated": ("energy the macro-element dissipated", "energy"),
+}
+
+
+def _base_states(response, units, coords) -> dict:
+    """The macro-element's stored states, ``base_<name>`` along ``time``."""
+    from .response import BASE_NAMES
+    return {f"base_{name}": ("time", response.base[:, k],
+                             {"units": units.get(BASE_STATES[name][1], BASE_STATES[name][1]),
+                              "long_name": BASE_STATES[name][0]})
+            for k, name in enumerate(BASE_NAMES)}
 
 
 def _peaks(response, units) -> dict:

@@ -27,8 +27,9 @@ import scipy.linalg
 from ..checks import InputError
 from ..scenes import Scene
 from . import springs as sp
-from .compatibility import DofMap, SpringLayout, compatibility_matrix, layout_for, stiffness_matrix
-from .laws import Bed, law_of
+from .compatibility import (DofMap, SpringLayout, base_transform, compatibility_matrix,
+                            layout_for, stiffness_matrix)
+from .laws import Base, Bed, law_of
 
 __all__ = ["ReducedModel", "build_model", "impact_effective_mass", "impact_step"]
 
@@ -40,7 +41,10 @@ class ReducedModel:
     ``mass`` (n) diagonal masses; ``A`` (n × n_spring) compatibility; ``params`` one record of
     :data:`~.springs.SPRING_DTYPE` per spring, story springs first;
     ``ground_load`` L = −M r (n), the force per unit ground acceleration; ``geometric`` K_G (n × n)
-    P-Δ stiffness; ``weight`` W carried by the foundation; ``layout`` the foundation springs.
+    P-Δ stiffness; ``weight`` W carried by the foundation; ``layout`` the foundation springs;
+    ``base`` the base element of a law that is one (the macro-element,
+    :class:`~.laws.macro.element.BaseElement`), which then replaces the foundation springs and
+    the sway spring (``layout`` still gives the base's half-width).
     """
 
     scene: Scene
@@ -56,6 +60,7 @@ class ReducedModel:
     static_rotation: float = 0.0
     notes: tuple[str, ...] = field(default=())
     sway_height: float = 0.0
+    base: object | None = None
 
     @property
     def exact(self) -> bool:
@@ -89,12 +94,12 @@ class ReducedModel:
     @property
     def sway_spring(self) -> int:
         """Index of the sway spring (after the story springs), −1 without one."""
-        return self.story_count if self.dofs.sway >= 0 else -1
+        return self.story_count if self.dofs.sway >= 0 and self.base is None else -1
 
     @property
     def foundation_start(self) -> int:
         """Index of the first foundation spring (after the stories and the sway spring)."""
-        return self.story_count + (1 if self.dofs.sway >= 0 else 0)
+        return self.story_count + (1 if self.sway_spring >= 0 else 0)
 
     @property
     def foundation_slice(self) -> slice:
@@ -105,11 +110,16 @@ class ReducedModel:
         return self.scene.g
 
     def bonded_matrices(self, with_impact: bool = False) -> tuple[np.ndarray, np.ndarray]:
-        """(K, C) with every spring elastic and in contact: K = A S Aᵀ + K_G (eq. 5)."""
+        """(K, C) with every spring elastic and in contact: K = A S Aᵀ + K_G (eq. 5), and a base
+        element's at rest."""
         p = self.params
         k = p["k"] + p["kh"]
         c = p["c"] + (p["cimp"] if with_impact else 0.0)
-        return stiffness_matrix(self.A, k) + self.geometric, stiffness_matrix(self.A, c)
+        K, C = stiffness_matrix(self.A, k) + self.geometric, stiffness_matrix(self.A, c)
+        if self.base is not None:
+            Kb, Cb = self.base.bonded_matrices()
+            K, C = K + Kb, C + Cb
+        return K, C
 
     def bonded_periods(self) -> np.ndarray:
         """Periods (s) of the bonded, undamped system, longest first."""
@@ -150,12 +160,19 @@ def build_model(scene: Scene) -> ReducedModel:
     sway_height = 0.0
     if f.sways:
         sway_height = _sway_masses(dofs, s, masses, heights, g, mass, load)
-    A = compatibility_matrix(dofs, heights, layout, exact=exact, sway_height=sway_height)
+    law = None if fixed else law_of(f.law)
+    element = law is not None and law.element is not None
+    A = compatibility_matrix(dofs, heights, None if element else layout, exact=exact,
+                             sway_height=sway_height, sway_spring=not element)
     tables = [_story_params(s, masses)]
-    if f.sways:
+    if f.sways and not element:
         tables.append(_sway_params(f, s.vertical_weight))
-    weight, theta_s = 0.0, 0.0
-    if layout is not None:
+    weight, theta_s, base = 0.0, 0.0, None
+    if element:
+        base = law.element(f.law, _base(f, layout, s.vertical_weight, mass[dofs.v],
+                                         base_transform(dofs, sway_height)))
+        weight = s.vertical_weight
+    elif layout is not None:
         found, theta_s = _foundation_params(f, layout, s.vertical_weight, rotary_mass,
                                             mass[dofs.v])
         tables.append(found)
@@ -168,7 +185,17 @@ def build_model(scene: Scene) -> ReducedModel:
     return ReducedModel(scene=scene, dofs=dofs, mass=mass, A=A, params=params, ground_load=load,
                         geometric=geometric, weight=weight, heights=heights, layout=layout,
                         static_rotation=theta_s, notes=_notes(f, layout),
-                        sway_height=sway_height)
+                        sway_height=sway_height, base=base)
+
+
+def _base(f, layout: SpringLayout, weight: float, vertical_mass: float, transform) -> Base:
+    """What an element law is built from: the foundation's dashpots as a density over the
+    width, c′ = ζ_f 2√(K_v m_v)/B (a uniform bed's dashpots, c_i = c′ × its width), and the
+    sway's."""
+    density = f.damping_ratio * 2.0 * math.sqrt(f.stiffness * vertical_mass) / f.width
+    return Base(layout=layout, weight=weight, sway_stiffness=f.sway_stiffness,
+                dashpot_density=density, sway_dashpot=f.sway_damping or 0.0,
+                transform=transform)
 
 
 #: Springs beyond which the paper's per-spring impact damper is warned about (Fig. 1b's 12).

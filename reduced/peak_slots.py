@@ -39,6 +39,9 @@ class TrackedPeaks:
     force: np.ndarray           # slot B of every spring (force)
     stories: int                # story springs: the first ``stories`` of each slot
     sways: bool = False         # a sway spring follows the story springs
+    base_gap: float = 0.0       # a base element's larger gap under its edges (length)
+    base_sway: float = 0.0      # its largest |u − u_rest| (length)
+    base_force: float = 0.0     # its largest |H| without the dashpot (force)
 
     @property
     def sway(self) -> float:
@@ -62,7 +65,7 @@ class TrackedPeaks:
         return [float(v) for v in self.opening[:self.stories]]
 
 
-def static_energy(params: np.ndarray) -> float:
+def static_energy(params: np.ndarray, base=None) -> float:
     """Σ ½ F0 δ0 over the foundation springs (the story springs carry no static force): the
     strain energy the weight stores in the bed at rest, ½ W δ0 for a bed of linear springs
     (force × length). The energy balance is measured against it as well as the input: the
@@ -70,9 +73,10 @@ def static_energy(params: np.ndarray) -> float:
     rounding residual of about 1e-16 of it, and a motion whose input is smaller than it (a
     tiny motion, far too weak to lift the base: lifting it takes of the order of ½ W δ0) would
     otherwise be refused for that rounding (1.3e285 "of the input" for a record scaled by
-    1e-150)."""
+    1e-150). A ``base`` element adds the energy it stores at rest."""
     found = params["kind"] != 0  # laws.spring.STORY
-    return float(0.5 * np.sum(params["f0"][found] * params["d0"][found]))
+    springs = float(0.5 * np.sum(params["f0"][found] * params["d0"][found]))
+    return springs + (base.rest_energy if base is not None else 0.0)
 
 
 def weighted_plastic_settlement(params: np.ndarray, plastic: np.ndarray) -> float:
@@ -109,7 +113,9 @@ def decode_peaks(raw: np.ndarray, *, stories: int, rocks: bool, settles: bool,
         min_contact_length=float(raw[kn.P_CMIN]),
         energy_residual=float(raw[kn.P_ERES] / max(raw[kn.P_ESCALE], static, 1e-300)),
         overturned_at=float(raw[kn.P_TOVER]),
-        opening=raw[n0::2], force=raw[n0 + 1::2], stories=stories, sways=sways)
+        opening=raw[n0::2], force=raw[n0 + 1::2], stories=stories, sways=sways,
+        base_gap=float(raw[kn.P_BGAP]), base_sway=float(raw[kn.P_BU]),
+        base_force=float(raw[kn.P_BH]))
 
 
 def start_peaks(params: np.ndarray, stories: int, start: list[float]) -> np.ndarray:

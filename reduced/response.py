@@ -21,9 +21,15 @@ from .model import ReducedModel
 from .peak_slots import TrackedPeaks, decode_peaks, static_energy, weighted_plastic_settlement
 from .static import contact_lengths
 
-__all__ = ["Response", "ENERGY_NAMES", "energy_balance_error"]
+__all__ = ["Response", "ENERGY_NAMES", "BASE_NAMES", "energy_balance_error"]
 
 ENERGY_NAMES = ("input", "kinetic", "strain", "gravity", "viscous", "impact", "plastic")
+#: The columns of a base element's stored states (:mod:`.kernels.base`): its forces without
+#: the dashpots (force, force, force·length), plastic displacement (length, length, rad), the
+#: contact from ``contact_from`` to ``contact_to`` (length, from O), the rounding ρ of the
+#: soil's surface (length) and the energy it dissipated (force·length).
+BASE_NAMES = ("V", "H", "M", "v_p", "u_p", "theta_p", "contact_from", "contact_to",
+              "rounding", "dissipated")
 
 
 @dataclass(frozen=True, eq=False)
@@ -35,6 +41,8 @@ class Response:
     ``mode`` and ``plastic`` deformation; ``energy`` (nt × 7, :data:`ENERGY_NAMES`, cumulative).
     ``peaks`` are tracked at every step (with cubic interpolation between steps), not only at
     the stored times. ``info`` holds the integrator, step and counters; ``provenance`` the rest.
+    ``base`` (nt × :data:`BASE_NAMES`): a base element's states (the macro-element; no columns
+    without one).
     """
 
     #: The names of the energy account's columns (:data:`ENERGY_NAMES`).
@@ -55,6 +63,7 @@ class Response:
     info: dict = field(default_factory=dict)
     provenance: dict = field(default_factory=dict)
     motion: object = field(default=None, repr=False)  # the Motion the run read (for its file)
+    base: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
 
     # ---- histories --------------------------------------------------------------------------
     @property
@@ -89,7 +98,10 @@ class Response:
     @property
     def sway(self) -> np.ndarray:
         """Horizontal displacement of the base relative to the ground, u_b: the sway spring's
-        deformation, its sliding included (length; zero without a sway spring)."""
+        deformation, its sliding included, or a base element's sway u (length; zero without
+        either)."""
+        if self.model.base is not None:
+            return self.q @ self.model.base.transform[1]
         j = self.model.sway_spring
         return self.deformation[:, j] if j >= 0 else np.zeros(self.time.size)
 
@@ -161,7 +173,10 @@ class Response:
         """Downward displacement of the base over the leftmost spring, from rest (length).
 
         Negative when the base rises there (uplift), as plotted in Ewing's Figs. 4, 5, 7–10.
+        A base element has no springs: its left edge, x = −b, moves down by −b θ − V.
         """
+        if self.model.base is not None:
+            return -self.model.layout.half_width * self.theta - self.V
         return self.deformation[:, self.foundation_slice][:, self.leftmost]
 
     @cached_property
@@ -169,6 +184,8 @@ class Response:
         """Length of base in contact (length)."""
         if self.model.layout is None:
             return np.zeros(self.time.size)
+        if self.model.base is not None:
+            return self.base[:, 7] - self.base[:, 6]
         f = self.foundation_slice
         return contact_lengths(self.model, self.deformation[:, f], self.plastic[:, f])
 
@@ -206,7 +223,8 @@ class Response:
         """max |residual| / max(max input, initial energy, static strain energy of the bed):
         the balance's relative error, over the stored states and the checks the integrator
         made between them (:func:`energy_balance_error`)."""
-        return max(energy_balance_error(self.energy, static_energy(self.model.params)),
+        return max(energy_balance_error(self.energy, static_energy(self.model.params,
+                                                                   self.model.base)),
                    self.tracked.energy_residual)
 
     @property
@@ -222,7 +240,7 @@ class Response:
         return decode_peaks(self.raw_peaks, stories=self.model.story_count,
                             rocks=self.dofs.theta >= 0, settles=self.dofs.v >= 0,
                             exact=self.model.exact, sways=self.dofs.sway >= 0,
-                            static=static_energy(self.model.params))
+                            static=static_energy(self.model.params, self.model.base))
 
     @cached_property
     def peaks(self) -> dict[str, float]:
@@ -256,7 +274,9 @@ class Response:
             out["sway_force"] = pk.sway_force
             out["residual_sway"] = float(self.deformation[-1, j])
             out["sliding"] = float(self.plastic[-1, j])
-        if self.model.layout is not None:
+        if self.model.base is not None:
+            out.update(self._base_peaks(pk))
+        elif self.model.layout is not None:
             out["uplift_left"] = max(float(gap[self.leftmost]), 0.0)
             out["uplift_max"] = max(float(np.max(gap)), 0.0)
             out["spring_force_max"] = float(np.max(pk.force[f]))
@@ -270,6 +290,20 @@ class Response:
             out["min_contact_length"] = pk.min_contact_length
         out["energy_balance_error"] = self.energy_balance_error
         return {k: (float(v) if not isinstance(v, list) else v) for k, v in out.items()}
+
+    def _base_peaks(self, pk: TrackedPeaks) -> dict[str, float]:
+        """The peaks of a base element: its sway and horizontal force, the larger gap under its
+        edges, the least contact length (each at the steps' ends), and of the last state its
+        plastic settlement and, at rest, the residual settlement."""
+        sway_row = self.model.base.transform[1]
+        out = {"sway": pk.base_sway, "sway_force": pk.base_force,
+               "residual_sway": float(sway_row @ self.q[-1]),
+               "uplift_max": pk.base_gap, "min_contact_length": pk.min_contact_length,
+               "final_vertical_position": float(self.V[-1]),
+               "plastic_settlement": float(self.base[-1, 3])}
+        if self.at_rest():
+            out["residual_settlement"] = float(-self.V[-1])
+        return out
 
     def summary(self) -> dict:
         """One-line summary: the peaks that matter, with units and provenance essentials."""

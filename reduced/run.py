@@ -20,8 +20,10 @@ from . import kernels as kn
 from .cost import check_run_cost
 from .integrators import METHODS, StepPlan, method, time_step
 from .laws import curved_kinds, initial_history
+from .laws.macro.compiled import S_COUNT, W_COUNT, pack
+from .laws.macro.plastic import FAILURES as MACRO_FAILURES
 from .model import ReducedModel, build_model
-from .peak_slots import decode_peaks, start_peaks
+from .peak_slots import decode_peaks, start_peaks, static_energy
 from .response import Response, ground_displacement
 from .static import initial_state
 
@@ -46,6 +48,10 @@ def initial_conditions(model: ReducedModel, motion: Motion) -> tuple[np.ndarray,
         raise InputError("motion.displacement with structure.kinematics = 'exact': the static "
                          "push that holds it is solved in small rotations only; valid: 0 (use "
                          "motion.rotation or motion.velocity)")
+    if model.base is not None and (motion.initial_displacement or motion.initial_rotation):
+        raise InputError("motion.displacement or motion.rotation with foundation.law = 'macro': "
+                         "the static push that holds the initial state is solved for springs "
+                         "only; valid: 0 (use motion.velocity, or a ground motion)")
     q0 = initial_state(model, displacement=motion.initial_displacement,
                        rotation=motion.initial_rotation)
     qd0 = np.zeros_like(q0)
@@ -104,7 +110,8 @@ def run_model(model: ReducedModel, motion: Motion, *, integrator: str | None = N
     status, out, counters = integrate(KernelInputs.of(model, plan), name, plan, q0, qd0,
                                       ground_acceleration(motion.acceleration, model.g),
                                       motion.dt, timings=timings)
-    _check_status(status, counters, plan, name)
+    _check_status(status, counters, plan, name, out.pop("base_status"))
+    negative_work = out.pop("base_negative_work")
     arrays = out
     t = arrays["time"]
     info = {"integrator": name, "dt": plan.dt, "steps": plan.steps, "output_stride": plan.stride,
@@ -124,6 +131,8 @@ def run_model(model: ReducedModel, motion: Motion, *, integrator: str | None = N
             "compile_time_s": timings["compile_s"],
             "motion": motion.name, "motion_source": motion.source, "pga_g": motion.pga,
             "motion_sha256": motion_checksum(motion)}
+    if model.base is not None:
+        info["macro_negative_work"] = negative_work
     prov = provenance(model="reduced", scene=model.scene.name, scene_file=model.scene.source,
                       case=model.scene.case, overrides=list(model.scene.overrides),
                       scene_digest=model.scene.digest, scene_data=model.scene.data)
@@ -154,6 +163,11 @@ def plan_run(model: ReducedModel, motion: Motion, name: str, *, dt: float | None
                          "exact kinematics has a mass matrix that changes with θ, integrated by "
                          "the explicit integrators; valid: "
                          + ", ".join(repr(k) for k, v in METHODS.items() if v.explicit))
+    if model.base is not None and m.kind != "fixed":
+        raise InputError(f"analysis.integrator = {name!r} with foundation.law = 'macro': the "
+                         "macro-element's state moves with the explicit fixed-step "
+                         "integrators' accepted steps; valid: " + ", ".join(
+                             repr(k) for k, v in METHODS.items() if v.kind == "fixed"))
     if m.kind == "events" and np.any(np.isin(model.params["kind"], curved_kinds())):
         law = model.scene.foundation.law
         raise InputError(f"analysis.integrator = {name!r} with foundation.law = {law.name!r}: "
@@ -181,6 +195,16 @@ def check_response(response: Response) -> None:
     if bad or not np.all(np.isfinite(response.q)):
         raise IntegrationError(f"{where}: the run produced non-finite values "
                                f"({', '.join(bad) or 'state'}); nothing is reported")
+    negative = response.info.get("macro_negative_work", 0.0)
+    scale = max(np.max(np.abs(response.energy_of("input"))),
+                static_energy(response.model.params, response.model.base), 1e-300)
+    if not negative <= tol * scale:
+        raise IntegrationError(
+            f"{where}: the macro-element did negative plastic work, {negative / scale:.3g} of "
+            "the energy scale (beyond analysis.energy_tolerance = "
+            f"{tol:g}): its bounding surface's flow created energy (it does where the load "
+            "nears the surface's apex, V → 0, as the footing lifts off), so its numbers are "
+            "not trusted; nothing is reported")
     if not error <= tol:
         raise EnergyBalanceError(
             f"{where}: the energy balance closes to {error:.3g} of its scale (the largest of "
@@ -209,6 +233,7 @@ class KernelInputs:
     story: np.ndarray      # (h, m, W) of each story mass
     floor: np.ndarray      # smallest scales of q and q̇ of the error control
     shortest_period: float = 0.0  # of the bonded system (s): the chattering budget's clock
+    base: tuple = ()       # the base element's record (:mod:`.kernels.base`), empty if none
 
     @classmethod
     def of(cls, model: ReducedModel, plan: StepPlan | None = None) -> KernelInputs:
@@ -219,7 +244,8 @@ class KernelInputs:
         return cls(model.params, 1.0 / model.mass, model.geometric, model.ground_load,
                    model.weight, d.theta, d.v, model.story_count, scale,
                    model.scene.analysis.hht_alpha, frame_of(model, plan), story_table(model),
-                   error_floors(model), float(model.linearised.bonded_periods()[-1]))
+                   error_floors(model), float(model.linearised.bonded_periods()[-1]),
+                   base_record(model.base, model.dofs.size))
 
 
     @classmethod
@@ -234,7 +260,27 @@ class KernelInputs:
         frame[kn.F_ISWAY] = -1
         frame[kn.F_HMAX] = frame[kn.F_H0] = math.inf
         return cls(params, 1.0 / mass, np.zeros((n, n)), np.zeros(n), weight, -1, v, 0, 1.0,
-                   0.0, frame, np.zeros((0, 3)), np.full(2 * n, 1e-12))
+                   0.0, frame, np.zeros((0, 3)), np.full(2 * n, 1e-12), 0.0,
+                   base_record(None, n))
+
+
+def base_record(element, size: int) -> tuple:
+    """The kernels' base-element record (:mod:`.kernels.base`) of a model's ``element`` (a
+    :class:`~.laws.macro.element.BaseElement`) on ``size`` DOFs; with no element, its empty
+    form (no parameters), which the kernels pass over. :func:`integrate` runs on a copy, so
+    that the record stays at rest."""
+    if element is None:
+        return (np.zeros(0), np.zeros(S_COUNT), np.zeros(S_COUNT), np.zeros((3, 3)),
+                np.zeros(W_COUNT), np.zeros((3, size)), np.zeros(kn.N_C))
+    rest = element.rest
+    C = np.zeros(kn.N_C)
+    C[kn.C_D0:kn.C_D0 + 3] = rest.displacement
+    C[kn.C_Q0:kn.C_Q0 + 3] = rest.forces
+    C[kn.C_CV], C[kn.C_CH] = element.dashpot_density, element.sway_dashpot
+    C[kn.C_DF], C[kn.C_E0] = element.force_step, element.rest_energy
+    S = rest.packed()
+    return (pack(element.law), S, S.copy(), np.zeros((3, 3)), np.zeros(W_COUNT),
+            np.ascontiguousarray(element.transform, dtype=float), C)
 
 
 def story_table(model: ReducedModel) -> np.ndarray:
@@ -330,17 +376,19 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
         "deformation": np.zeros((nout, ns)), "force": np.zeros((nout, ns)),
         "mode": np.zeros((nout, ns), np.int64), "plastic": np.zeros((nout, ns)),
         "energy": np.zeros((nout, kn.N_ENERGY)),
+        "base": np.zeros((nout, kn.N_BASE_OUT if inputs.base[0].size else 0)),
     }
     peaks = start_peaks(P, inputs.stories, _initial_values(P, inputs, q0))
     counters = np.zeros(kn.N_COUNTERS, np.int64)
     params = P.view(np.recarray)  # records read as p.k in compiled and plain code
     history = initial_history(P).view(np.recarray)
     frame = inputs.frame.copy()  # its pivot side changes during a run
+    base = tuple(a.copy() for a in inputs.base)  # its state changes during a run
     system = (inputs.minv, params, inputs.geometric, inputs.ground_load, ag, dtg, inputs.weight,
-              frame, inputs.story)  # the kernels' SYSTEM record
+              frame, inputs.story, base)  # the kernels' SYSTEM record
     clock = (plan.dt, plan.steps, plan.stride)
     outputs = (out["time"], out["q"], out["qd"], out["deformation"], out["force"], out["mode"],
-               out["plastic"], out["energy"])
+               out["plastic"], out["energy"], out["base"])
     log = np.zeros((0, 5))
     m = method(name)
     announce_compilation("the reduced model's kernels", m.kernel, COMPILE_TIME)
@@ -367,6 +415,8 @@ def integrate(inputs: KernelInputs, name: str, plan: StepPlan, q0: np.ndarray,
     rows = int(counters[4])  # the run may end between outputs (overturned, failed)
     out = {k: v[:rows] for k, v in out.items()}
     out["raw_peaks"] = peaks
+    out["base_status"] = int(base[6][kn.C_STATUS])
+    out["base_negative_work"] = float(base[6][kn.C_NEGATIVE])
     out["impacts"] = log[:min(int(counters[3]), log.shape[0])].copy()
     return status, out, counters
 
@@ -408,9 +458,15 @@ def ground_acceleration(acceleration: np.ndarray, g: float) -> np.ndarray:
     return np.append(acceleration * g, 0.0)
 
 
-def _check_status(status: int, counters: np.ndarray, plan: StepPlan, name: str) -> None:
+def _check_status(status: int, counters: np.ndarray, plan: StepPlan, name: str,
+                  base_status: int = 0) -> None:
     if status in (kn.OK, kn.OVERTURNED):
         return
+    if status == kn.BASE_FAILED:
+        t = (counters[0] + 1) * plan.dt
+        raise IntegrationError(f"{name}: the macro-element's step to t = {t:.6g} s failed: "
+                               f"{MACRO_FAILURES.get(base_status, 'unknown reason')}; nothing "
+                               "is reported")
     if status == kn.CHATTER:
         t = counters[1] * plan.dt
         raise IntegrationError(

@@ -159,7 +159,8 @@ def test_capacity_keys_are_checked_up_front():
     with pytest.raises(InputError, match=r"cannot carry the weight|tension at rest"):
         build_model(bed_scene(yield_forces=[1.0] * SPRINGS))  # Σ Fy = 48 kN/m < W
     with pytest.raises(InputError, match=r"capacity_multiple is read only with foundation.law = "
-                                         r"'elastoplastic' or 'qz' \(law is 'elastic'\)"):
+                                         r"'elastoplastic' or 'qz' or 'macro' "
+                                         r"\(law is 'elastic'\)"):
         bed_scene(capacity_multiple=3.0, law="elastic")
     with pytest.raises(InputError, match=r"foundation.capacity_multiple = 1"):
         bed_scene(capacity_multiple=1.0)

@@ -109,10 +109,13 @@ def test_a_registered_law_refuses_the_keys_of_other_laws(linear, tmp_path):
 
 def test_the_two_registries_name_the_same_laws_with_the_same_records():
     # Reference: each registry on its own; a law read by scenes must be one the model builds.
-    assert list(scene_laws.LAWS) == list(reduced_laws.LAWS) == ["elastic", "elastoplastic", "qz"]
+    assert list(scene_laws.LAWS) == list(reduced_laws.LAWS) == ["elastic", "elastoplastic", "qz",
+                                                                "macro"]
     for name, law in reduced_laws.LAWS.items():
         assert law.record is scene_laws.LAWS[name] and law.name == name
         assert {n for n, _ in law.columns} <= set(SPRING_DTYPE.names)
+        # a law is springs (a builder and kinds) or one element on the base, never both
+        assert (law.springs is None) == (law.element is not None) == (not law.kinds)
     # a law with a state at rest has kinds of its own (its start would touch no other law's)
     for law in reduced_laws.LAWS.values():
         if law.start is not None:

@@ -52,6 +52,7 @@ KINDS: dict[str, Kind] = {
     "force": Kind(1, 0, "{F}", "N", 1e-6, 1e13),
     "stiffness": Kind(1, -1, "{F}/{L}", "N/m", 1e-6, 1e16),
     "dashpot": Kind(1, -1, "{F}*s/{L}", "N*s/m", 0.0, 1e16, tiny=1e-9),
+    "rocking_stiffness": Kind(1, 1, "{F}*{L}/rad", "N*m/rad", 1e-6, 1e18),
     # a rotary inertia 0 < I0 < 1e-9 kg m² (a 1 g body 1 mm across) is a zero written otherwise
     "rotary_inertia": Kind(1, 1, "{F}*{L}*s^2", "kg*m^2", 0.0, 1e18, tiny=1e-9),
     "modulus": Kind(1, -2, "{F}/{L}^2", "Pa", 1e3, 1e13),

@@ -8,7 +8,9 @@ spring history another (:data:`HISTORY_DTYPE`); their fields are described in
 
 Status codes: ``OK``; ``CHATTER`` too many switches in one step; ``NONFINITE`` a non-finite
 state; ``NO_CONVERGENCE`` Newton did not converge; ``OVERTURNED`` past the toppling angle (the
-run ends there, a result); ``STEP_UNDERFLOW`` the error control cut the step to round-off.
+run ends there, a result); ``STEP_UNDERFLOW`` the error control cut the step to round-off;
+``BASE_FAILED`` a step of the base element could not be completed (why: its status, in the
+element's record, :mod:`.base`).
 """
 
 from __future__ import annotations
@@ -32,7 +34,10 @@ P_MOT, P_CMIN, P_ERES, P_ESCALE, P_ETOT0 = range(6, 11)
 # toppling: the overturning ratio and time at the last accepted state, and the time at which
 # the ratio reached 1 (interpolated linearly between the last two accepted states)
 P_RPREV, P_TPREV, P_TOVER = range(11, 14)
-N_PEAK_SCALARS = 14
+# a base element (:mod:`.base`): the larger gap under its edges, its largest |u − u_rest| and
+# |H| (its forces without the dashpots), at the steps' ends
+P_BGAP, P_BU, P_BH = range(14, 17)
+N_PEAK_SCALARS = 17
 
 # the frame: constants of the scene's geometry and kinematics that every integrator takes (one
 # float array), and the pivot side of exact kinematics (the one entry that changes in a run)
@@ -56,7 +61,7 @@ F_ISWAY = 14   # index of the base's horizontal DOF u_b in q for a flexible stru
                # −1 otherwise (no sway, or a rigid structure, whose sway DOF is its centre's)
 N_FRAME = 15
 
-OK, CHATTER, NONFINITE, NO_CONVERGENCE, OVERTURNED, STEP_UNDERFLOW = 0, 1, 2, 3, 4, 5
+OK, CHATTER, NONFINITE, NO_CONVERGENCE, OVERTURNED, STEP_UNDERFLOW, BASE_FAILED = range(7)
 # counters: [0] steps cut at a switch (events) or the failing step, [1] switches or halvings,
 # [2] right-hand sides or Newton iterations, [3] impacts logged, [4] output rows written,
 # [5] trial steps rejected by the error control
@@ -73,10 +78,12 @@ N_SAMPLES = 4
 
 # Records that travel through the kernels as tuples (numba passes a tuple of arrays at no cost,
 # and unpacks it into names):
-#   SYSTEM   (minv, P, KG, L, ag, dtg, weight, frame, story): the scene as the kernels see it:
-#            inverse masses, spring records, K_G, ground load, ground acceleration (samples dtg
-#            apart), the weight on the foundation, the frame and the story table (h, m, W).
-#   OUTPUTS  (time, q, q̇, e, f, mode, εp, energy): the stored states, one row each.
+#   SYSTEM   (minv, P, KG, L, ag, dtg, weight, frame, story, base): the scene as the kernels
+#            see it: inverse masses, spring records, K_G, ground load, ground acceleration
+#            (samples dtg apart), the weight on the foundation, the frame, the story table
+#            (h, m, W) and the base element (:mod:`.base`; its parameters empty: none).
+#   OUTPUTS  (time, q, q̇, e, f, mode, εp, energy, base): the stored states, one row each
+#            (base: the base element's, N_BASE_OUT columns, or none).
 #   STAGES   (k1, k2, k3, k4, qs, q̇s, q1, q̇1, acc1, Mw): an RK4 step's stages, its stage
 #            state, its end and the mass matrix of exact kinematics.
 #   BOOKS    (modes, H, e_ref, e, ė): what the bookkeeping reads of the springs: their modes,

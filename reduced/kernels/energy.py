@@ -10,6 +10,7 @@ from numba import njit
 
 from .codes import (E_IMPACT, E_INPUT, E_PLASTIC, E_VISCOUS, F_EXACT, F_IV, HOT, P_ERES, P_ESCALE,
                     P_ETOT0, STORY)
+from .base import base_energy
 from .laws import spring_state
 from .motion import deformations
 from .rocking import exact_energy
@@ -37,11 +38,12 @@ def energy_balance(q, qd, acc, books, system):
     ``books`` and ``system`` are the records :data:`~.codes.BOOKS` and
     :data:`~.codes.SYSTEM`."""
     modes, H, e_ref, e, ed = books
-    minv, P, KG, _, _, _, weight, frame, story = system
+    minv, P, KG, _, _, _, weight, frame, story, base = system
     deformations(q, qd, P, e, ed)
     strain = 0.0
     for j in range(e.size):
         strain += spring_state(j, P[j], modes[j], H[j], e[j])[2]
+    strain += base_energy(base)
     kinetic, gravity = kinetic_gravity(q, qd, minv, KG, weight, frame, story)
     return (kinetic + strain - e_ref + gravity + acc[E_VISCOUS] + acc[E_IMPACT] + acc[E_PLASTIC]
             - acc[E_INPUT])

@@ -53,8 +53,8 @@ def integrate_events(q0, qd0, clock, system, floor, max_switches, outputs, peaks
     their stable length. The springs off the bed keep (e, ė, ë) in arrays; the bed's follow
     from the state of its two DOFs.
     """
-    minv, P, KG, L, ag, dtg, weight, frame, story = system
-    scene = (minv, P, geometric_or_nothing(KG), L, ag, dtg, weight, frame, story)
+    minv, P, KG, L, ag, dtg, weight, frame, story, base = system
+    scene = (minv, P, geometric_or_nothing(KG), L, ag, dtg, weight, frame, story, base)
     ns, n = P.size, q0.size
     modes = np.zeros(ns, dtype=np.int64)
     e_all, ed_all = np.zeros(ns), np.zeros(ns)
@@ -94,7 +94,7 @@ def march_events(q, qd, acc, clock, system, control, tables, books, stages, work
     ``frame[F_OUTDT]`` (:func:`record_between`), so that what is stored does not change the
     steps taken."""
     dt, nsteps, stride = clock
-    _, P, _, _, _, _, _, frame, story = system
+    _, P, _, _, _, _, _, frame, story, _ = system
     floor, max_switches = control
     Tg, Tb = tables
     modes, H, _, _, _ = books

@@ -8,7 +8,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .codes import E_PLASTIC, F_ECHECK, HOT, NONFINITE, N_ACC, OK, OVERTURNED
+from .base import commit_base, track_base
+from .codes import (BASE_FAILED, E_PLASTIC, F_ECHECK, HOT, NONFINITE, N_ACC, OK,
+                    OVERTURNED)
 from .energy import check_energy, start_energy, static_strain_energy
 from .interpolants import finite
 from .laws import commit_all, initial_modes
@@ -24,8 +26,8 @@ def fixed_start(q0, qd0, system, outputs, peaks, counters, H):
     modes, the first stored state and the energy datum. Returns (system with K_G or an empty
     K_G, books, stages, (contact, e0, ė0), the state q, q̇, acc, and whether the structure is
     released past its toppling angle)."""
-    minv, P, KG, L, ag, dtg, weight, frame, story = system
-    scene = (minv, P, geometric_or_nothing(KG), L, ag, dtg, weight, frame, story)
+    minv, P, KG, L, ag, dtg, weight, frame, story, base = system
+    scene = (minv, P, geometric_or_nothing(KG), L, ag, dtg, weight, frame, story, base)
     ns, n = P.size, q0.size
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
     k1, k2, k3, k4 = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
@@ -44,6 +46,7 @@ def fixed_start(q0, qd0, system, outputs, peaks, counters, H):
     counters[4] = 1
     start_energy(q, qd, acc, books, scene, peaks)
     deformations(q, qd, P, e0, ed0)
+    track_base(base, peaks)
     toppled = after_fixed_step(0.0, q, P, H, e0, frame, story, peaks)
     stages = (k1, k2, k3, k4, qs, qds, q1, qd1, acc1, Mw)
     return scene, books, stages, (contact, e0, ed0), q, qd, acc, toppled
@@ -67,7 +70,7 @@ def end_fixed_step(step, t, clock, q, qd, acc, books, e0, system, outputs, peaks
     check (``e0`` the springs' deformations at the step's end). Returns OVERTURNED if the run
     ends here, else OK."""
     _, nsteps, stride = clock
-    _, P, _, _, _, _, _, frame, story = system
+    _, P, _, _, _, _, _, frame, story, _ = system
     H = books[1]
     if after_fixed_step(t, q, P, H, e0, frame, story, peaks):
         row = stop_row(step, stride)
@@ -92,7 +95,7 @@ def accept_fixed_step(step, clock, state, trial, system, books, fixed, outputs, 
     dt = clock[0]
     q, qd, acc = state
     q1, qd1, acc1 = trial
-    _, P, _, _, _, _, _, frame, _ = system
+    _, P, _, _, _, _, _, frame, _, base = system
     modes, H, _, e1, ed1 = books
     contact, e0, ed0 = fixed
     if not finite(q1, qd1):
@@ -106,6 +109,12 @@ def accept_fixed_step(step, clock, state, trial, system, books, fixed, outputs, 
     copy(e0, e1)
     copy(ed0, ed1)
     acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
+    work, status = commit_base(q, base)
+    if status != 0:
+        counters[0] = step
+        return BASE_FAILED
+    acc[E_PLASTIC] += work
+    track_base(base, peaks)
     if end_fixed_step(step, (step + 1) * dt, clock, q, qd, acc, books, e0, system, outputs,
                       peaks, counters) != OK:
         return OVERTURNED

@@ -63,7 +63,7 @@ def newmark_residual(t, h, start, scheme, system, H, modes, e, ed, tangents, end
     q, qd, qdd, fint0 = start
     q1, qd1, qdd1, fint1 = end
     alpha, beta, gamma = scheme
-    minv, P, KG, L, ag, dtg, _, _, _ = system
+    minv, P, KG, L, ag, dtg, _, _, _, _ = system
     kt, ct, fd, fimp = tangents
     n = q.size
     a0 = ground_acceleration(t, ag, dtg)
@@ -118,7 +118,7 @@ def newmark_substep(t, h, start, scheme, system, H, modes, e, ed, tangents, newt
     q, qd, qdd, _ = start
     q1 = end[0]
     beta = scheme[1]
-    minv, P, KG, _, _, _, _, _, _ = system
+    minv, P, KG, _, _, _, _, _, _, _ = system
     kt, ct, _, _ = tangents
     tol, fscale, max_iter = newton
     n = q.size
@@ -168,7 +168,7 @@ def integrate_newmark(q0, qd0, clock, system, scheme, newton, max_halvings, outp
     from switches; HHT's own numerical dissipation is what its balance leaves open.
     """
     dt, nsteps, _ = clock
-    minv, P, KG, L, ag, dtg, _, frame, story = system
+    minv, P, KG, L, ag, dtg, _, frame, story, _ = system
     ns, n = P.size, q0.size
     e, ed = np.zeros(ns), np.zeros(ns)
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)

@@ -15,6 +15,7 @@ import math
 import numpy as np
 from numba import njit
 
+from .base import base_force
 from .codes import F_EXACT, F_ITH, F_SIDE
 from .laws import force_in_mode, from_history, natural_mode, trial_force
 from .rocking import finish_accelerations
@@ -69,9 +70,10 @@ def accelerations(t, q, qd, natural, system, modes, H, Mw, qdd):
     plastic work is counted at the return map instead; with exact kinematics the base pivots
     on the edge of θ's sign); otherwise modes are frozen. Springs on
     the same two DOFs as the last spring (the foundation bed, on θ and V) sum their forces
-    locally instead of scattering each into q̈.
+    locally instead of scattering each into q̈. A base element (:mod:`.base`) adds its own,
+    from a trial copy of its committed state.
     """
-    minv, P, KG, L, ag, dtg, _, frame, story = system
+    minv, P, KG, L, ag, dtg, _, frame, story, element = system
     n = q.size
     a = ground_acceleration(t, ag, dtg)
     pin = 0.0
@@ -83,7 +85,7 @@ def accelerations(t, q, qd, natural, system, modes, H, Mw, qdd):
     pv = 0.0
     pi = 0.0
     pp = 0.0
-    b0, b1 = P[P.size - 1].i0, P[P.size - 1].i1
+    b0, b1 = (P[P.size - 1].i0, P[P.size - 1].i1) if P.size else (0, 0)  # none: a base element
     qb0, qb1, vb0, vb1 = q[b0], q[b1], qd[b0], qd[b1]
     fb0 = 0.0
     fb1 = 0.0
@@ -119,6 +121,7 @@ def accelerations(t, q, qd, natural, system, modes, H, Mw, qdd):
                 qdd[p.i2] -= p.a2 * f
     qdd[b0] -= fb0
     qdd[b1] -= fb1
+    pv += base_force(q, qd, element, qdd)
     if natural and frame[F_EXACT] > 0.0 and q[int(frame[F_ITH])] != 0.0:
         frame[F_SIDE] = 1.0 if q[int(frame[F_ITH])] > 0.0 else -1.0
     pin += finish_accelerations(a, q, qd, minv, frame, story, Mw, qdd)

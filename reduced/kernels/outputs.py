@@ -7,6 +7,7 @@ from __future__ import annotations
 from numba import njit
 
 from .codes import E_IMPACT, E_INPUT, E_PLASTIC, E_VISCOUS, HOT, N_ACC
+from .base import base_energy, record_base
 from .energy import kinetic_gravity
 from .interpolants import hermite, quintic, quintic_at
 from .laws import spring_state
@@ -18,8 +19,8 @@ def record(k, t, q, qd, acc, books, system, outputs):
     """Store the state at output index k (the records :data:`~.codes.BOOKS`,
     :data:`~.codes.SYSTEM` and :data:`~.codes.OUTPUTS`)."""
     modes, H, e_ref, e, ed = books
-    minv, P, KG, _, _, _, weight, frame, story = system
-    out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy = outputs
+    minv, P, KG, _, _, _, weight, frame, story, base = system
+    out_t, out_q, out_qd, out_e, out_f, out_mode, out_ep, out_energy, out_base = outputs
     n = q.size
     deformations(q, qd, P, e, ed)
     out_t[k] = t
@@ -34,6 +35,8 @@ def record(k, t, q, qd, acc, books, system, outputs):
         out_ep[k, j] = ep
         out_f[k, j] = f
         strain += w
+    strain += base_energy(base)
+    record_base(k, base, out_base)
     kinetic, gravity = kinetic_gravity(q, qd, minv, KG, weight, frame, story)
     out_energy[k, 0] = acc[E_INPUT]
     out_energy[k, 1] = kinetic

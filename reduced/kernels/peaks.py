@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from numba import njit
 
-from .codes import (FAST, F_B, F_EXACT, F_ITH, F_IV, F_NFLEX, F_SIDE, HOT, N_PEAK_SCALARS, P_CMIN, P_MOT, P_RPREV,
-                    P_THMAX, P_THMIN, P_TOVER, P_TPREV, P_UMAX, P_UMIN, P_VMAX, P_VMIN, SEPARATED,
-                    STORY, T_A0, T_A1, T_C, T_F, T_FY, T_GAP, T_K, T_KC)
+from .codes import (FAST, F_B, F_EXACT, F_ITH, F_IV, F_NFLEX, F_SIDE, HOT, N_PEAK_SCALARS, P_CMIN,
+                    P_MOT, P_RPREV, P_THMAX, P_THMIN, P_TOVER, P_TPREV, P_UMAX, P_UMIN, P_VMAX,
+                    P_VMIN, SEPARATED, STORY, T_A0, T_A1, T_C, T_F, T_FY, T_GAP, T_K, T_KC)
 from .interpolants import hermite_extreme
 from .rocking import overturn_ratio
 from .tables import bed_rates

@@ -112,7 +112,7 @@ def bed_forces(T, x, xd, y, yd):
 def frozen_accelerations(t, q, qd, system, Tg, Tb, Mw, qdd):
     """q̈ with every spring held in its tabulated mode (event stepper); returns the powers
     (input, viscous, impact, plastic)."""
-    minv, P, KG, L, ag, dtg, _, frame, story = system
+    minv, P, KG, L, ag, dtg, _, frame, story, _ = system
     n = q.size
     a = ground_acceleration(t, ag, dtg)
     pin = 0.0

@@ -5,7 +5,9 @@ record of the law (:mod:`upliftlab.scenes.laws`, the law's own keys of ``[founda
 the bed's rows of the spring table, and its compiled forms, side by side; :class:`~.base.Law`
 is its entry here. :mod:`.elastic` and :mod:`.elastoplastic` (Ewing's Cases A–C; the elastic
 springs are the elasto-plastic ones with Fy = ∞, and share their compiled forms), :mod:`.qz`
-(hysteretic q–z springs). :mod:`.spring` holds the spring record they all fill.
+(hysteretic q–z springs), and :mod:`.macro` (the macro-element: one element on the base's
+three DOFs instead of springs, :mod:`.macro.element`). :mod:`.spring` holds the spring record
+they all fill.
 
 The spring record and the history (:data:`SPRING_DTYPE`, :data:`HISTORY_DTYPE`) are the base
 fields of :mod:`.spring` followed by the fields of each law that has its own. The compiled
@@ -25,14 +27,16 @@ import numpy as np
 from ...checks import InputError
 from ...scenes import laws as scene_laws
 from . import elastic, elastoplastic, qz
-from .base import Bed, Law
+from .base import Base, Bed, Law
+from .macro import element as macro_element
 from .spring import HISTORY_FIELDS, SPRING_FIELDS
 
-__all__ = ["LAWS", "Law", "Bed", "SPRING_DTYPE", "HISTORY_DTYPE", "law_of", "register",
+__all__ = ["LAWS", "Law", "Bed", "Base", "SPRING_DTYPE", "HISTORY_DTYPE", "law_of", "register",
            "initial_history", "curved_kinds"]
 
 #: The foundation laws of the reduced model, by the name a scene gives them.
-LAWS: dict[str, Law] = {law.name: law for law in (elastic.LAW, elastoplastic.LAW, qz.LAW)}
+LAWS: dict[str, Law] = {law.name: law for law in (elastic.LAW, elastoplastic.LAW, qz.LAW,
+                                                    macro_element.LAW)}
 
 
 def _dtype(base, own) -> np.dtype:

@@ -11,7 +11,7 @@ import numpy as np
 from ...scenes.laws import LawRecord
 from ..compatibility import SpringLayout
 
-__all__ = ["Bed", "Law"]
+__all__ = ["Bed", "Base", "Law"]
 
 
 @dataclass(frozen=True)
@@ -33,6 +33,23 @@ class Bed:
 
 
 @dataclass(frozen=True)
+class Base:
+    """What an element law's builder is given: the ``layout`` of the scene's springs (its
+    half-width, and the bonded K_v and K_θ the element takes unless told otherwise), the
+    ``weight`` it carries at rest (force), the sway's ``sway_stiffness`` K_h (force/length),
+    the dashpots (``dashpot_density`` c′, force·s/length² per unit length of contact, and the
+    sway's ``sway_dashpot``, force·s/length) and ``transform`` T (3 × n): the element's
+    displacement (v, u, θ) from rest is T q."""
+
+    layout: SpringLayout
+    weight: float
+    sway_stiffness: float
+    dashpot_density: float
+    sway_dashpot: float
+    transform: np.ndarray
+
+
+@dataclass(frozen=True)
 class Law:
     """A foundation law of the reduced model.
 
@@ -44,14 +61,20 @@ class Law:
     ``columns`` and ``history`` its own fields of the spring record and of the history (name,
     dtype), added to :data:`~upliftlab.reduced.laws.SPRING_DTYPE` and ``HISTORY_DTYPE``.
     ``start(p, h)`` puts a spring's history at its state at rest (None: zeros).
+
+    A law that is one element on the base's three DOFs rather than a bed of springs (the
+    macro-element) has no ``springs`` and no kinds: ``element(record, base)`` builds it
+    from the base's :class:`Base` (the kernels take it as their base element,
+    :mod:`upliftlab.reduced.kernels.base`).
     """
 
     record: type[LawRecord]
-    springs: Callable
+    springs: Callable | None
     kinds: tuple[int, ...]
     columns: tuple[tuple[str, type], ...] = ()
     history: tuple[tuple[str, type], ...] = ()
     start: Callable | None = None
+    element: Callable | None = None
 
     @property
     def name(self) -> str:

@@ -207,7 +207,10 @@ def substep(P, S, target, D, W):
         for i in range(3):
             S[S_C + i] = centre[i]
             Q[i] = Q0[i] - centre[i]  # Q holds Q0 − centre for the distance ratio
-        s = min(_scaled_norm(P, Q) / max(t * _scaled_norm(P, direction), 1e-300), 1.0)
+        travelled, reach = _scaled_norm(P, Q), t * _scaled_norm(P, direction)
+        # the load's distance ratio to its image; 1 when the image is the load itself (a
+        # centre placed on the surface by a reversal there, reloaded outwards: t = 0)
+        s = 1.0 if reach <= travelled else travelled / reach
         for i in range(3):
             Q[i] = centre[i] + t * direction[i]  # the image point
             flow[i] = normal[i]

@@ -105,6 +105,25 @@ class MacroElement:
                              f"{self.friction_angle:g}, unit_weight = {self.unit_weight:g}: the "
                              "strip has no bearing capacity (needs c > 0, or φ > 0 and γ > 0)")
 
+    @classmethod
+    def of_capacity(cls, width: float, vertical_stiffness: float, horizontal_stiffness: float,
+                    rocking_stiffness: float, ultimate_load: float, frictional_share: float,
+                    **plastic) -> MacroElement:
+        """The element whose central capacity is ``ultimate_load`` V_ult (force), a share
+        ``frictional_share`` s of it from the N_γ term and the rest from the cohesive term:
+        V(B′) = (1 − s) V_ult B′/B + s V_ult (B′/B)². The soil enters the capacity only
+        through these two pressures, so c, φ and γ are placeholders (c = 1, φ = 30°, γ = 1)
+        whose terms the factors scale to them; ``plastic`` the other fields."""
+        in_range("frictional_share", frictional_share, 0.0, 1.0)
+        positive("ultimate_load", ultimate_load)
+        n_c, _, n_gamma = bearing_factors(30.0)
+        return cls(width, vertical_stiffness, horizontal_stiffness, rocking_stiffness,
+                   cohesion=1.0 if frictional_share < 1.0 else 0.0, friction_angle=30.0,
+                   unit_weight=1.0,
+                   cohesive_factor=(1.0 - frictional_share) * ultimate_load / (width * n_c),
+                   frictional_factor=frictional_share * ultimate_load
+                   / (width * width * 0.5 * n_gamma), **plastic)
+
     @property
     def cohesive_pressure(self) -> float:
         """c N_c times its factor (kPa): the cohesive term's bearing pressure."""

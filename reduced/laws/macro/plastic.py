@@ -52,7 +52,8 @@ __all__ = ["MacroState", "MacroStep", "at_rest", "elastic_forces", "step", "size
 #: Largest trial force change per sub-step, scaled by V_ult (and B V_ult for M).
 MAX_FORCE_STEP = 2e-3
 
-_FAILURES = {cc.STEP_CONTACT: "the contact's iterations did not converge",
+#: Why a step of the macro-element failed, by its status.
+FAILURES = {cc.STEP_CONTACT: "the contact's iterations did not converge",
              cc.STEP_SURFACE: "the bounding surface is not closed along the load",
              cc.STEP_SUBSTEPS: f"the step needs more than {cc.MAX_SUBSTEPS} sub-steps",
              cc.STEP_FLOW: "the load has no stiffness along its plastic flow"}
@@ -112,7 +113,7 @@ def elastic_forces(law: MacroElement, elastic, guess=None, rounding: float = 0.0
     energy, ok = cc.elastic(cc.pack(law), np.asarray(elastic, dtype=float), g, Q, D,
                             float(rounding))
     if not ok:
-        raise MacroStepError(f"macro: {_FAILURES[cc.STEP_CONTACT]} at {list(elastic)}")
+        raise MacroStepError(f"macro: {FAILURES[cc.STEP_CONTACT]} at {list(elastic)}")
     return Q, D, energy
 
 
@@ -149,7 +150,7 @@ def step(law: MacroElement, state: MacroState, displacement,
     status = cc.step_into(P, S, target, float(max_force_step), count, D, W) if count else \
         cc.STEP_CONTACT
     if status != cc.STEP_OK:
-        raise MacroStepError(f"macro: {_FAILURES[status]} (from {state.forces.tolist()} to "
+        raise MacroStepError(f"macro: {FAILURES[status]} (from {state.forces.tolist()} to "
                              f"displacement {list(displacement)})")
     return MacroStep(MacroState.unpacked(S), D, count)
 

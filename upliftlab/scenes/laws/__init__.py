@@ -23,15 +23,16 @@ from ..table import Table, choice
 from .base import LawContext, LawRecord
 from .elastic import ElasticLaw
 from .elastoplastic import YIELD_KEYS, ElastoplasticLaw
+from .macro import MacroLaw
 from .qz import QZ_ELASTIC_RANGE_MAX, QZ_EXPONENT_MAX, QZ_SOIL_NAMES, SUCTION_MAX, QzLaw
 
 __all__ = ["LAWS", "LawContext", "LawRecord", "ElasticLaw", "ElastoplasticLaw", "QzLaw",
-           "YIELD_KEYS", "QZ_SOIL_NAMES", "QZ_EXPONENT_MAX", "QZ_ELASTIC_RANGE_MAX",
+           "MacroLaw", "YIELD_KEYS", "QZ_SOIL_NAMES", "QZ_EXPONENT_MAX", "QZ_ELASTIC_RANGE_MAX",
            "SUCTION_MAX", "register", "read_law", "check_overrides", "curved_law"]
 
 #: The laws by name, in the order their names are listed.
 LAWS: dict[str, type[LawRecord]] = {law.name: law for law in (ElasticLaw, ElastoplasticLaw,
-                                                               QzLaw)}
+                                                               QzLaw, MacroLaw)}
 
 
 def register(record: type[LawRecord]) -> None:

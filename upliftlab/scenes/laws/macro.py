@@ -1,0 +1,98 @@
+"""The macro-element foundation law's record: one element for the whole base, its forces
+(V, H, M) at the base's centre against its settlement, sway and rotation (the law itself:
+:mod:`upliftlab.reduced.laws.macro`)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+from ... import bounds
+from ...checks import InputError
+from ..table import Table, in_range
+from .base import LawContext, LawRecord
+from .elastoplastic import MULTIPLE
+
+__all__ = ["MacroLaw", "SLIDING_RATIO"]
+
+#: t_h of Green's (1954) peak for a bonded strip on clay, H_max = t_h V (1 − V/V_ult).
+SLIDING_RATIO = 4.0 / (2.0 + math.pi)
+
+
+@dataclass(frozen=True, eq=False, kw_only=True)
+class MacroLaw(LawRecord):
+    """The macro-element: the base's bearing capacity under a central load V_ult is
+    ``capacity_multiple`` times the weight; ``frictional_share`` of it comes from the N_γ term
+    (½ γ B² N_γ: the capacity of a narrower contact falls with the square of its width), the
+    rest from the cohesive term (c B N_c: with the width); ``rocking_stiffness`` K_r
+    (force·length/rad; None: the bonded K_θ of the scene's springs' layout);
+    ``sliding_ratio`` t_h; ``initial_size`` ζ0 of the bounding surface, growing to 1 with the
+    plastic settlement over ``hardening_settlement`` (length; None: B/100);
+    ``interior_modulus`` h0 and ``interior_exponent`` γ of the plastic modulus inside it;
+    ``settlement_coupling`` χ; ``rounding_ratio`` λ_ρ; ``force_step`` the largest change of
+    trial force in one of the element's sub-steps, as a fraction of the weight (of the loads
+    in play, not of the capacity: a strong soil's V_ult would make the sub-steps coarse where
+    the footing lifts off and its load nears the bounding surface's apex). The foundation's
+    ``stiffness`` is K_v, ``sway_stiffness`` K_h (required), and its damping (``damping_ratio``
+    and ``sway_damping``) acts where the base is in contact.
+
+    The element opens its own gap on uplift (``support`` must be ``uplift``), has no impact
+    damper (``restitution`` must be 1), carries its own horizontal capacity (no
+    ``sliding_friction``) and is curved (the event stepper cannot tabulate it: a scene that
+    names no integrator takes ``rk4``)."""
+
+    name: ClassVar[str] = "macro"
+    curved: ClassVar[str] = "the macro-element is curved"
+
+    capacity_multiple: float
+    frictional_share: float = 0.0
+    rocking_stiffness: float | None = None
+    sliding_ratio: float = SLIDING_RATIO
+    initial_size: float = 0.5
+    hardening_settlement: float | None = None
+    interior_modulus: float = 1.0
+    interior_exponent: float = 1.0
+    settlement_coupling: float = 0.0
+    rounding_ratio: float = 0.0
+    force_step: float = 3e-4
+
+    @classmethod
+    def read(cls, table: Table, context: LawContext) -> MacroLaw:
+        if context.support != "uplift":
+            raise InputError(f"foundation.support = {context.support!r} with foundation.law = "
+                             "'macro': the macro-element opens its own gap on uplift; valid: "
+                             "'uplift'")
+        length = bounds.checker("length", context.units)
+        rocking = bounds.checker("rocking_stiffness", context.units)
+        return cls(
+            capacity_multiple=table.get("capacity_multiple", MULTIPLE),
+            frictional_share=table.get("frictional_share", in_range(0.0, 1.0), 0.0),
+            rocking_stiffness=table.get("rocking_stiffness", rocking, None),
+            sliding_ratio=table.get("sliding_ratio", in_range(0.0, 4.0, low_open=True),
+                                    SLIDING_RATIO),
+            initial_size=table.get("initial_size", in_range(0.0, 1.0, low_open=True), 0.5),
+            hardening_settlement=table.get("hardening_settlement", length, None),
+            interior_modulus=table.get("interior_modulus", in_range(1e-6, 1e6), 1.0),
+            interior_exponent=table.get("interior_exponent", in_range(0.1, 10.0), 1.0),
+            settlement_coupling=table.get("settlement_coupling", in_range(0.0, 10.0), 0.0),
+            rounding_ratio=table.get("rounding_ratio", in_range(0.0, 1.0), 0.0),
+            force_step=table.get("force_step", in_range(1e-6, 0.1), 3e-4))
+
+    def check(self, foundation) -> None:
+        if foundation.restitution < 1.0:
+            raise InputError(f"foundation.restitution = {foundation.restitution:g} with "
+                             "foundation.law = 'macro': the macro-element has no impact damper "
+                             "(its plasticity dissipates the landing); valid: 1")
+        if foundation.sway_stiffness is None:
+            raise InputError("foundation.sway_stiffness is missing with foundation.law = "
+                             "'macro': the element carries the base's horizontal force, and "
+                             "its elastic part needs K_h (force/length, > 0)")
+        if foundation.sliding_friction is not None:
+            raise InputError(f"foundation.sliding_friction = {foundation.sliding_friction:g} "
+                             "with foundation.law = 'macro': the element's horizontal "
+                             "capacity is its own (foundation.sliding_ratio); remove it")
+        if foundation.dashpots is not None:
+            raise InputError("foundation.dashpots with foundation.law = 'macro': the element "
+                             "has no springs to carry them; its dashpots come from "
+                             "foundation.damping_ratio and foundation.sway_damping")
