@@ -28,7 +28,7 @@ from .slots import (MAX_NEWTON, P_B, P_CHI, P_COUNT, P_CXT, P_CXV, P_H0,  # noqa
                     W_G, W_NORMAL, W_PLASTIC, W_Q, W_Q0, W_START, W_TARGET, W_TRIAL, pack)
 from .surface_forms import (RIDGE, failure, failure_at, failure_gradient,  # noqa: F401
                             failure_size_derivative, failure_value, horizontal_capacity,
-                            image, moment_capacity, size)
+                            image, mobilisation, moment_capacity, size)
 
 __all__ = ["pack", "P_COUNT", "S_COUNT", "W_COUNT", "STEP_OK", "STEP_CONTACT",
            "STEP_SURFACE", "STEP_SUBSTEPS", "STEP_FLOW", "RIDGE", "MAX_NEWTON", "MAX_SUBSTEPS",
@@ -43,34 +43,17 @@ def _dot(a, b):
 
 
 @njit(cache=True, **HOT)
-def _scaled_norm(P, x):
-    vu = P[P_VU]
-    return math.sqrt((x[0] / vu) ** 2 + (x[1] / vu) ** 2 + (x[2] / (P[P_B] * vu)) ** 2)
-
-
-@njit(cache=True, **HOT)
-def plastic_modulus(P, kappa, image_point, flow_v, s, zeta):
-    """K_p at distance ratio s: the bounding surface's K_b plus the interior term."""
+def plastic_modulus(P, kappa, load, flow_v, s, zeta):
+    """K_p at distance ratio s: the bounding surface's K_b (its ∂F/∂ζ at ``load``) plus the
+    interior term."""
     grow = (1.0 - P[P_Z0]) / P[P_KREF] * math.exp(-kappa / P[P_KREF])
-    bound = -failure_size_derivative(P, image_point, zeta) * grow * max(flow_v, 0.0)
+    bound = -failure_size_derivative(P, load, zeta) * grow * max(flow_v, 0.0)
     if s <= 0.0:
         return math.inf
     if s >= 1.0:
         return bound
     interior = P[P_H0] * P[P_KV] / P[P_VU] ** 2
     return bound + interior * ((1.0 - s) / s) ** P[P_GEXP]
-
-
-@njit(cache=True, **HOT)
-def _image_normal(P, W, zeta):
-    """The image along W_DIR from W_CENTRE and the normal there (into W_NORMAL, the image
-    point into W_Q): (t, found)."""
-    centre, direction = W[W_CENTRE:W_CENTRE + 3], W[W_DIR:W_DIR + 3]
-    t, found = image(P, centre, direction, zeta)
-    for i in range(3):
-        W[W_Q + i] = centre[i] + t * direction[i]
-    failure_gradient(P, W[W_Q:W_Q + 3], zeta, W[W_NORMAL:W_NORMAL + 3])
-    return t, found
 
 
 @njit(cache=True, **HOT)
@@ -158,7 +141,7 @@ def substep(P, S, target, D, W):
     """One sub-step of state S (in place) to total displacement ``target``; D is set to the
     tangent; W is scratch (``W_COUNT``). Returns a status."""
     Q0, trial = W[W_Q0:W_Q0 + 3], W[W_TRIAL:W_TRIAL + 3]
-    centre, direction = W[W_CENTRE:W_CENTRE + 3], W[W_DIR:W_DIR + 3]
+    centre = W[W_CENTRE:W_CENTRE + 3]
     normal, flow = W[W_NORMAL:W_NORMAL + 3], W[W_FLOW:W_FLOW + 3]
     plastic, Q, de = W[W_PLASTIC:W_PLASTIC + 3], W[W_Q:W_Q + 3], W[W_DE:W_DE + 3]
     de0, g = W[W_DE0:W_DE0 + 3], W[W_G:W_G + 3]
@@ -188,38 +171,29 @@ def substep(P, S, target, D, W):
     zeta = size(P, S[S_KAPPA])
     kappa = S[S_KAPPA]
     for i in range(3):
-        centre[i] = S[S_C + i]
-        direction[i] = trial[i] - centre[i]
         Q[i] = trial[i]
-    modulus, lam, rate = math.inf, 0.0, 0.0
-    if _scaled_norm(P, direction) > 1e-13:
-        t, found = _image_normal(P, W, zeta)
-        if not found:
-            return STEP_SURFACE
-        if normal[0] * (trial[0] - Q0[0]) + normal[1] * (trial[1] - Q0[1]) \
-                + normal[2] * (trial[2] - Q0[2]) < 0.0:  # a reversal: the centre moves here
-            for i in range(3):
-                centre[i] = Q0[i]
-                direction[i] = trial[i] - centre[i]
-            t, found = _image_normal(P, W, zeta)
-            if not found:
-                return STEP_SURFACE
-        for i in range(3):
-            S[S_C + i] = centre[i]
-            Q[i] = Q0[i] - centre[i]  # Q holds Q0 − centre for the distance ratio
-        travelled, reach = _scaled_norm(P, Q), t * _scaled_norm(P, direction)
-        # the load's distance ratio to its image; 1 when the image is the load itself (a
-        # centre placed on the surface by a reversal there, reloaded outwards: t = 0)
-        s = 1.0 if reach <= travelled else travelled / reach
-        for i in range(3):
-            Q[i] = centre[i] + t * direction[i]  # the image point
-            flow[i] = normal[i]
-        flow[0] += P[P_CHI] * math.hypot(normal[1], normal[2] * P[P_B])
-        modulus = plastic_modulus(P, kappa, Q, flow[0], s, zeta)
+    modulus, lam, rate, loading = math.inf, 0.0, 0.0, 0.0
+    # the load the flow is taken at: the start's, or the trial's when the footing lands
+    # (lifted off, it carried none)
+    source = Q0 if Q0[0] > 0.0 else trial
+    mobilised = mobilisation(P, source, zeta)
+    if mobilised > 0.0:
+        # the normal, at the load, of the surface of the size that passes through it
+        failure_gradient(P, source, mobilised, normal)
         loading = normal[0] * (trial[0] - Q0[0]) + normal[1] * (trial[1] - Q0[1]) \
             + normal[2] * (trial[2] - Q0[2])
+        if loading < 0.0:  # the mobilisation falls: a reversal, the centre moves here
+            for i in range(3):
+                S[S_C + i] = Q0[i]
         for i in range(3):
-            Q[i] = trial[i]
+            centre[i] = S[S_C + i]
+            flow[i] = normal[i]
+        at_centre = mobilisation(P, centre, zeta)
+        span = zeta - at_centre
+        s = 1.0 if mobilised >= zeta or span <= 1e-12 * zeta else \
+            max(mobilised - at_centre, 0.0) / span
+        flow[0] += P[P_CHI] * math.hypot(normal[1], normal[2] * P[P_B])
+        modulus = plastic_modulus(P, kappa, source, flow[0], s, zeta)
         if math.isfinite(modulus) and loading > 0.0:
             nDm = 0.0
             for i in range(3):

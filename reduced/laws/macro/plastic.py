@@ -9,18 +9,27 @@ follows a bounding-surface model (Dafalias 1986, as Cremer et al. 2001 and Chatz
 - the **bounding surface** is the capacity (:mod:`.capacity`) scaled by a size ζ(κ) =
   1 − (1 − ζ0) exp(−κ/κ_ref), κ the accumulated plastic settlement (m): it grows to the
   failure surface as the footing settles, and no load ever lies beyond it;
-- the **image point** Q_I is where the line from the projection centre Q_c (the last load
-  reversal; the static load at rest) through the trial forces meets the bounding surface, and
-  s = |Q − Q_c| / |Q_I − Q_c| ∈ [0, 1] (in forces scaled by V_ult, V_ult, B V_ult) says how far
-  the load has gone towards it;
+- the **mobilisation** ζ_Q of a load is the size of the surface through it (the capacity
+  scaled until it carries the load): a central V is at V/V_ult, and a footing that lifts off
+  under a load at eccentricity b − a/3 (contact a) is at 3V/(2 a q) on a Tresca clay, the
+  pressure under its contact against the soil's, not the load's nearness to the overturning
+  limit M = V b (the first form of this law took s along the ray from the centre to its
+  image on the bounding surface, which an uplifting footing's load heads for near the apex
+  at V = 0, and the normal there: on a wall at FS_v 3 under Ricker pulses of 0.3 and 0.6 g it
+  did negative plastic work of 5.4e-4 and 1.0e-4 of the input, this form none);
+  s = (ζ_Q − ζ_c)/(ζ − ζ_c) ∈ [0, 1] says how far the load has gone from the projection
+  centre's mobilisation ζ_c (the last reversal; the static load at rest) to the bounding
+  surface;
 - the **plastic modulus** is K_p = K_b + h0 (K_v/V_ult²) ((1 − s)/s)^γ: infinite at the centre
   (elastic reloading), the bounding surface's own hardening K_b = −∂F/∂ζ ζ′(κ) ⟨m_v⟩ on it
   (no hardening: perfectly plastic at the capacity);
-- the **flow** is along m = n + χ |(n_H, n_M)| e_V in the scaled forces, n the normal ∂F/∂Q at
-  the image point: with χ > 0 the footing settles while it yields in rotation or shear, the
-  coupling of settlement and rocking that springs yielding one by one lack;
-- a **reversal** (the trial load turns back, n·ΔQ < 0) moves the projection centre to the
-  present load, so that every unload-reload loop dissipates, a little less as it shrinks;
+- the **flow** is along m = n + χ |(n_H, n_M)| e_V in the scaled forces, n the normal ∂F/∂Q of
+  the surface through the load, at the load (so that Q·n ≥ 0 wherever that surface is
+  convex, the clay's everywhere): with χ > 0 the footing settles while it yields in rotation
+  or shear, the coupling of settlement and rocking that springs yielding one by one lack;
+- a **reversal** (the mobilisation falls, n·ΔQ < 0) moves the projection centre to the
+  present load: unloading is elastic, and every unload-reload loop dissipates, a little less
+  as it shrinks;
 - the **rounding** ρ of the soil's surface grows by λ_ρ b |dθ_p| while the bed presses its
   edges harder than its middle (F_ρ > 0, :mod:`.uplift`), and absorbs F_ρ dρ: rocking that
   yields the soil under each edge in turn leaves the footing resting on its middle.

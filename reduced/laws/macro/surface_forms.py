@@ -15,7 +15,8 @@ from ..spring import HOT
 from .slots import P_A1, P_A2, P_B, P_KREF, P_TH, P_VU, P_Z0
 
 __all__ = ["RIDGE", "moment_capacity", "horizontal_capacity", "failure", "failure_at",
-           "failure_value", "failure_gradient", "failure_size_derivative", "size", "image"]
+           "failure_value", "failure_gradient", "failure_size_derivative", "size", "image",
+           "mobilisation"]
 
 #: The rounding of the surface's cone at H = M = 0, as a fraction of B V_ult (:mod:`.capacity`).
 RIDGE = 1e-12
@@ -117,3 +118,29 @@ def image(P, centre, direction, zeta):
         if high - low <= 1e-15 * high:
             break
     return low, True
+
+
+@njit(cache=True, **HOT)
+def mobilisation(P, Q, zeta):
+    """The size ζ_Q ≤ ζ of the surface through the load Q (3): how far the soil's strength is
+    mobilised, by bisection (F falls as the size grows: both capacities grow with it). A
+    central vertical load V is at V/V_ult; on a footing lifting off, a load at eccentricity
+    b − a/3 (contact a) is at 3V/(2 a q) on a Tresca clay: the pressure under the contact, not
+    the load's nearness to the overturning limit M = V b. ζ when Q is on or beyond the surface
+    of size ζ; 0 when V ≤ 0 (no load, nothing mobilised)."""
+    V = Q[0]
+    if V <= 0.0:
+        return 0.0
+    if failure_at(P, V, Q[1], Q[2], zeta) >= 0.0:
+        return zeta
+    low = V / P[P_VU]  # at this size the surface's top apex is the load's V
+    high = zeta
+    for _ in range(200):
+        mid = 0.5 * (low + high)
+        if failure_at(P, V, Q[1], Q[2], mid) > 0.0:
+            low = mid
+        else:
+            high = mid
+        if high - low <= 1e-13 * high:
+            break
+    return high
