@@ -176,12 +176,11 @@ BASE_STATES = {
 
 
 def _base_states(response, units, coords) -> dict:
-    """The macro-element's stored states, ``base_<name>`` along ``time``."""
-    from .response import BASE_NAMES
+    """The macro-element's stored states, ``base_<name>`` along ``time`` (its columns in the
+    order of :data:`~.response.BASE_NAMES`, which are this table's keys)."""
     return {f"base_{name}": ("time", response.base[:, k],
-                             {"units": units.get(BASE_STATES[name][1], BASE_STATES[name][1]),
-                              "long_name": BASE_STATES[name][0]})
-            for k, name in enumerate(BASE_NAMES)}
+                             {"units": units.get(kind, kind), "long_name": long})
+            for k, (name, (long, kind)) in enumerate(BASE_STATES.items())}
 
 
 def _peaks(response, units) -> dict:

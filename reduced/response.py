@@ -27,7 +27,8 @@ ENERGY_NAMES = ("input", "kinetic", "strain", "gravity", "viscous", "impact", "p
 #: The columns of a base element's stored states (:mod:`.kernels.base`): its forces without
 #: the dashpots (force, force, force·length), plastic displacement (length, length, rad), the
 #: contact from ``contact_from`` to ``contact_to`` (length, from O), the rounding ρ of the
-#: soil's surface (length) and the energy it dissipated (force·length).
+#: soil's surface (length) and the energy it dissipated (force·length); their descriptions are
+#: :data:`~.labelled.BASE_STATES`, in this order (a test holds the two alike).
 BASE_NAMES = ("V", "H", "M", "v_p", "u_p", "theta_p", "contact_from", "contact_to",
               "rounding", "dissipated")
 

@@ -141,6 +141,22 @@ def test_a_run_whose_element_creates_energy_is_refused():
         run(_scene(0.5))
 
 
+def test_its_states_are_stored_and_labelled():
+    """The response's base columns are the kernels' (N_BASE_OUT), named alike in the response
+    and its labelled data, and the file carries each with its unit."""
+    from upliftlab.reduced.kernels import N_BASE_OUT
+    from upliftlab.reduced.labelled import BASE_STATES
+    from upliftlab.reduced.response import BASE_NAMES
+    response = run(_scene(0.15))
+    assert response.base.shape[1] == N_BASE_OUT == len(BASE_NAMES)
+    assert tuple(BASE_STATES) == BASE_NAMES
+    data = response.to_xarray()
+    assert data["base_V"].attrs["units"] == "kip"
+    np.testing.assert_array_equal(data["base_dissipated"].values, response.base[:, 9])
+    assert response.contact_length.min() == pytest.approx(response.peaks["min_contact_length"],
+                                                          rel=1e-2)
+
+
 def test_the_model_has_no_springs_under_it():
     model = build_model(_scene(0.5))
     assert model.base is not None
