@@ -188,6 +188,16 @@ def test_a_scene_it_cannot_take_is_refused_with_its_field(change, field):
         _scene(0.5, **change)
 
 
+def test_the_tools_that_take_springs_refuse_it_up_front(tmp_path):
+    """The OpenSees writer and the advisor take beds of springs: one line naming the law."""
+    from upliftlab.comparisons.advise.ladder import advise
+    from upliftlab.comparisons.opensees.spec import check_representable
+    scene = _scene(0.15)
+    for tool in (check_representable, advise):
+        with pytest.raises(InputError, match=r"^foundation.law = 'macro'"):
+            tool(scene)
+
+
 def test_an_initial_rotation_and_a_batch_are_refused():
     free = {"type": "free", "rotation": 0.001, "duration": 1.0}  # a release from a lean
     with pytest.raises(InputError, match="motion.displacement or motion.rotation"):

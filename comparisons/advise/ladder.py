@@ -285,6 +285,11 @@ def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str 
                          f"{scene.foundation.support!r} with {len(scene.structure.stories)} "
                          "stories; the advisor compares foundations of a one-story structure "
                          "that may uplift (support = 'uplift')")
+    if scene.foundation.law.name == "macro":
+        raise InputError("foundation.law = 'macro': the advisor ladders beds of springs "
+                         "(their number and the integrator) and the continuum; the "
+                         "macro-element has no springs to ladder; valid: 'elastic', "
+                         "'elastoplastic', 'qz'")
     if scene.foundation.dashpots is not None:
         raise InputError("foundation.dashpots: the advisor changes the number of springs, "
                          "and these dashpots are given one per spring; use "

@@ -121,6 +121,11 @@ class OpenSeesSpec:
 def check_representable(scene: Scene) -> None:
     """Refuse, with one line naming the field, what the OpenSees bridge cannot represent."""
     s, f, m = scene.structure, scene.foundation, scene.motion
+    if f.law.name == "macro":
+        raise InputError(
+            "foundation.law = 'macro': the OpenSees script writes a bed of zeroLength springs, "
+            "and OpenSeesPy has no section for one element under the base; valid: 'elastic', "
+            "'elastoplastic', 'qz'")
     if f.support == "uplift" and f.restitution < 1.0:
         raise InputError(
             f"foundation.restitution = {f.restitution:g}: Ewing's impact damper (Case C) has "
