@@ -47,12 +47,6 @@ N_BASE_OUT = 10
 
 
 @njit(cache=True, **HOT)
-def has_base(base):
-    """True when the model has a base element."""
-    return base[0].size > 0
-
-
-@njit(cache=True, **HOT)
 def _target(base, q, qd):
     """The element's displacement d_rest + T q and rate T q̇, into C's scratch."""
     T, C = base[5], base[6]

@@ -38,11 +38,6 @@ MAX_SUBSTEPS = 200_000
 
 
 @njit(cache=True, **HOT)
-def _dot(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-@njit(cache=True, **HOT)
 def plastic_modulus(P, kappa, load, flow_v, s, zeta):
     """K_p at distance ratio s: the bounding surface's K_b (its ∂F/∂ζ at ``load``) plus the
     interior term."""
