@@ -347,3 +347,37 @@ def test_a_second_run_into_a_folder_a_live_run_holds_is_refused_in_one_line(tmp_
     again = _cli([*RUN, "--out", str(held), "--force"], tmp_path)
     assert again.returncode == 0, again.stderr[-2000:]
     assert json.loads((held / "upliftlab-run.json").read_text())["complete"]
+
+
+_CAUGHT_IN_EXEC = """
+import os, signal, sys
+from upliftlab.cli.exits import forget_handled_interrupt
+
+def stop(signum, frame):
+    raise KeyboardInterrupt("SIGTERM")
+
+signal.signal(signal.SIGTERM, stop)
+try:  # the interruption leaves code exec ran from a string, and is caught
+    exec("import os, signal\\nos.kill(os.getpid(), signal.SIGTERM)\\nfor i in range(9): pass")
+except KeyboardInterrupt:
+    print("upliftlab: interrupted (SIGTERM)", file=sys.stderr)
+if {forget}:
+    forget_handled_interrupt(130)
+raise SystemExit(130)
+"""
+
+
+@pytest.mark.parametrize("forget", [False, True])
+def test_an_interruption_caught_after_exec_ends_a_module_run_with_130(forget, tmp_path):
+    """``python -m`` of a module that catches a KeyboardInterrupt raised inside code ``exec``
+    ran from a string (as a dataclass's methods are made while a module is imported) and
+    exits 130: CPython 3.11 kills it with SIGINT at the end (-2, the reference: the
+    interpreter's own behaviour, shown by the run without the mend), unless the command
+    clears the mark (:func:`upliftlab.cli.exits.forget_handled_interrupt`), as ``python -m
+    upliftlab`` does (before: the CI's run of the continuum interrupted just after its model
+    was built ended with -2 once in ~1,700 tests)."""
+    (tmp_path / "caught_in_exec.py").write_text(_CAUGHT_IN_EXEC.format(forget=forget))
+    done = subprocess.run([sys.executable, "-m", "caught_in_exec"], cwd=tmp_path, env=_env(),
+                          capture_output=True, text=True, timeout=120)
+    assert done.stderr.strip() == "upliftlab: interrupted (SIGTERM)"
+    assert done.returncode == (130 if forget else -signal.SIGINT)

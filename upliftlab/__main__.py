@@ -1,5 +1,9 @@
 """``python -m upliftlab``: the command line."""
 
 from .cli import main
+from .cli.exits import EXIT_INTERRUPTED, forget_handled_interrupt
 
-raise SystemExit(main())
+code = main()
+if code == EXIT_INTERRUPTED:
+    forget_handled_interrupt(code)
+raise SystemExit(code)

@@ -10,10 +10,14 @@ exceptions; only the command line turns them into these codes (:func:`exit_code`
 
 from __future__ import annotations
 
+import ctypes
+import os
 import shlex
+import sys
 
 __all__ = ["EXIT_OK", "EXIT_FAILED", "EXIT_INPUT", "EXIT_NUMERICS", "EXIT_INTERRUPTED",
-           "exit_code", "one_line", "disk_full_line", "interrupted_line"]
+           "exit_code", "one_line", "disk_full_line", "interrupted_line",
+           "forget_handled_interrupt"]
 
 EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_NUMERICS, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
 
@@ -56,3 +60,29 @@ def interrupted_line(exc: BaseException, argv: list[str]) -> str:
     return (f"upliftlab: interrupted ({one_line(exc) or 'Ctrl-C'}); "
             + (kept.rstrip(".") + "; " if kept else "")
             + f"resume with: {shlex.join(['upliftlab', *argv])}")
+
+
+def forget_handled_interrupt(code: int) -> None:
+    """Let an interrupted ``python -m upliftlab`` end with ``code`` (130), as the command chose.
+
+    CPython 3.11 marks a KeyboardInterrupt as unhandled whenever one leaves code that ``exec``
+    or ``eval`` ran from a string (a dataclass's generated methods while a module is imported,
+    for one), even when the command then catches it; at the end of a ``-m`` run that mark makes
+    the interpreter kill itself with SIGINT (exit status -2 to a parent) in place of the exit
+    code. The mark is cleared here; where the interpreter keeps it elsewhere (3.12 and later),
+    the process ends here with ``code`` after the exit handlers have run and the streams are
+    flushed (the command has already closed every file it wrote).
+    """
+    try:
+        flag = ctypes.c_int.in_dll(ctypes.pythonapi, "_Py_UnhandledKeyboardInterrupt")
+    except (ValueError, AttributeError):
+        import atexit
+
+        atexit._run_exitfuncs()
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
+        os._exit(code)
+    flag.value = 0
