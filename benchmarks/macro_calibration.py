@@ -84,7 +84,24 @@ def calibrate(soil: dict, width: float, evaluations: int):
 
     pushes = sorted(soil["pushovers"], key=lambda p: (p.N, len(p.theta)))
     return calibrate_macro(pushes, width=width, V_ult=soil["V_ult"], K_v=soil["K_v"],
-                           K_r=soil["K_r"], max_evaluations=evaluations, **soil["strength"])
+                           K_r=soil["K_r"], max_evaluations=evaluations,
+                           progress=fit_progress(time.perf_counter()), **soil["strength"])
+
+
+def fit_progress(started: float, every: float = 30.0):
+    """A fit's ``progress(evaluations, at_most, best_cost)``: a line every ``every`` s with
+    the elapsed time and the most the rest can take."""
+    last = [started]
+
+    def report(done: int, at_most: int, best: float) -> None:
+        now = time.perf_counter()
+        if now - last[0] < every:
+            return
+        last[0] = now
+        elapsed = now - started
+        say(f"{NAME}: {done} of at most {at_most} evaluations, best cost {best:.4g}; "
+            f"{elapsed:.0f} s, at most about {elapsed / done * (at_most - done):.0f} s left")
+    return report
 
 
 def one_pass(soil: dict, width: float) -> float:

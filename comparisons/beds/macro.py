@@ -38,7 +38,8 @@ from ...reduced.laws.macro import (LOAD_TOLERANCE, MacroElement, MacroStepError,
 from ...reduced.laws.macro.params import bearing_factors
 
 __all__ = ["RotationPushover", "MacroCalibration", "capacity_line", "macro_pushover",
-           "calibrate_macro", "PLASTIC_BOUNDS", "SETTLEMENT_FLOOR", "LOAD_TOLERANCE"]
+           "calibrate_macro", "evaluation_bound", "PLASTIC_BOUNDS", "SETTLEMENT_FLOOR",
+           "LOAD_TOLERANCE"]
 
 #: The fitted plastic parameters and their bounds: ζ0, log10 κ_ref (m), log10 h0, γ, χ, λ_ρ.
 PLASTIC_BOUNDS = (("initial_size", 0.2, 0.999), ("hardening_settlement", -4.0, 0.0),
@@ -148,13 +149,22 @@ def _residuals(law: MacroElement, pushovers: Sequence[RotationPushover]):
         np.array(misses)
 
 
+def evaluation_bound(max_evaluations: int) -> int:
+    """The most evaluations of the objective :func:`calibrate_macro` makes with
+    ``max_evaluations``: the survey, then each polish's share (at least one step, a finite
+    difference in each of the fitted variables per step)."""
+    return max(int(max_evaluations), SURVEY + 1 + POLISHED * (len(PLASTIC_BOUNDS) + 1))
+
+
 def calibrate_macro(pushovers: Sequence[RotationPushover], *, width: float, V_ult: float,
                     K_v: float, K_r: float, cohesion: float, friction_angle: float = 0.0,
                     unit_weight: float = 0.0, start=(0.7, -2.0, 0.0, 1.0, 0.5, 0.5),
-                    max_evaluations: int = 200) -> MacroCalibration:
+                    max_evaluations: int = 200, progress=None) -> MacroCalibration:
     """The macro-element of a soil from its continuum statics (module docstring): the
     ``pushovers`` (monotonic ones give the capacity; all are fitted), the footing's ``width``,
     the continuum's ``V_ult``, ``K_v``, ``K_r``, and the soil's c, φ, γ (the capacity's form).
+    ``progress(evaluations, at_most, best_cost)`` (None: silent) is called after every
+    evaluation of the objective; an exception it raises (KeyboardInterrupt) stops the fit.
     """
     monotonic = [p for p in pushovers if np.all(np.diff(p.theta) >= 0.0)]
     if not monotonic:
@@ -176,11 +186,16 @@ def calibrate_macro(pushovers: Sequence[RotationPushover], *, width: float, V_ul
     high = [b[2] for b in PLASTIC_BOUNDS]
     low[0] = max(low[0], 1.02 * max(p.N for p in pushovers) / template.ultimate_load)
     x0 = np.clip(np.asarray(start, dtype=float), low, high)
-    calls = [0]
+    calls, best = [0], [math.inf]
+    at_most = evaluation_bound(max_evaluations)
 
     def objective(x):
+        residuals = _residuals(_law(template, x), pushovers)[0]
         calls[0] += 1
-        return _residuals(_law(template, x), pushovers)[0]
+        best[0] = min(best[0], 0.5 * float(np.sum(residuals ** 2)))
+        if progress is not None:
+            progress(calls[0], at_most, best[0])
+        return residuals
 
     candidates = [x0, *(low + (np.asarray(high) - low) * u for u in
                         qmc.LatinHypercube(d=len(x0), seed=0).random(SURVEY))]

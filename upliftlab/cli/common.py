@@ -112,9 +112,9 @@ def mesh_overrides(items: list[str]) -> list[str]:
     return overrides
 
 
-def say(message: str) -> None:
-    """One progress line on stderr."""
-    logger("continuum").info(f"upliftlab continuum: {message}")
+def say(message: str, command: str = "continuum") -> None:
+    """One progress line of ``upliftlab command`` on stderr."""
+    logger(command).info(f"upliftlab {command}: {message}")
 
 
 def eta(started: float, done: int, total: int) -> str:
