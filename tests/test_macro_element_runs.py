@@ -182,6 +182,7 @@ def test_integrators_that_do_not_move_its_state_are_refused(integrator):
     ({"support": "bonded"}, "foundation.support"),
     ({"frictional_share": 1.5}, "foundation.frictional_share"),
     ({"capacity_multiple": 0.5}, "foundation.capacity_multiple"),
+    ({"settlement_coupling": 0.5}, "foundation.settlement_coupling"),
 ])
 def test_a_scene_it_cannot_take_is_refused_with_its_field(change, field):
     with pytest.raises(InputError, match=field.replace(".", r"\.")):

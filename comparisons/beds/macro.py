@@ -33,6 +33,7 @@ from scipy.optimize import least_squares
 from scipy.stats import qmc
 
 from ...checks import InputError
+from ...scenes.laws.macro import MAX_SETTLEMENT_COUPLING
 from ...reduced.laws.macro import (LOAD_TOLERANCE, MacroElement, MacroStepError, at_rest,
                                     at_vertical_load)
 from ...reduced.laws.macro.params import bearing_factors
@@ -42,9 +43,12 @@ __all__ = ["RotationPushover", "MacroCalibration", "capacity_line", "macro_pusho
            "LOAD_TOLERANCE"]
 
 #: The fitted plastic parameters and their bounds: ζ0, log10 κ_ref (m), log10 h0, γ, χ, λ_ρ.
+#: χ keeps to the range a scene may give (:data:`...scenes.laws.macro.MAX_SETTLEMENT_COUPLING`:
+#: the pushovers, pure rocking, would accept a χ whose dynamic runs, with sway, fail).
 PLASTIC_BOUNDS = (("initial_size", 0.2, 0.999), ("hardening_settlement", -4.0, 0.0),
                   ("interior_modulus", -3.0, 3.0), ("interior_exponent", 0.2, 4.0),
-                  ("settlement_coupling", 0.0, 5.0), ("rounding_ratio", 0.0, 1.0))
+                  ("settlement_coupling", 0.0, MAX_SETTLEMENT_COUPLING),
+                  ("rounding_ratio", 0.0, 1.0))
 #: The survey of the plastic parameters before the fit: this many points of a seeded Latin
 #: hypercube in the bounds (and the start); the best ``POLISHED`` of them are polished by least
 #: squares and the better fit kept.
@@ -158,7 +162,7 @@ def evaluation_bound(max_evaluations: int) -> int:
 
 def calibrate_macro(pushovers: Sequence[RotationPushover], *, width: float, V_ult: float,
                     K_v: float, K_r: float, cohesion: float, friction_angle: float = 0.0,
-                    unit_weight: float = 0.0, start=(0.7, -2.0, 0.0, 1.0, 0.5, 0.5),
+                    unit_weight: float = 0.0, start=(0.7, -2.0, 0.0, 1.0, 0.2, 0.5),
                     max_evaluations: int = 200, progress=None) -> MacroCalibration:
     """The macro-element of a soil from its continuum statics (module docstring): the
     ``pushovers`` (monotonic ones give the capacity; all are fitted), the footing's ``width``,
