@@ -205,3 +205,14 @@ def test_an_initial_rotation_and_a_batch_are_refused():
         run(_scene(0, motion=free))
     with pytest.raises(InputError, match="foundation.law = 'macro'"):
         run_batch([_scene(0.5)])
+
+
+def test_its_cost_is_counted_before_the_run():
+    """Reference: :data:`upliftlab.budget.MACRO_SECONDS_PER_STEP`, 300 µs a step (measured:
+    270 µs on this wall at 0.6 g, ``benchmarks/MACRO_SPEED.md``, against 3 µs for a bed of 48
+    springs): the 2 s pulse's 6,800 RK4 steps are estimated at 2 s, so a budget of 1 s refuses
+    the run before it starts, naming the element; the bed of springs at the same budget runs."""
+    with pytest.raises(InputError, match=r"^--budget = 1 s: .*a macro-element"):
+        run(_scene(0.6, **CLAY), budget=1.0)
+    bed = _scene(0.6, law="elastoplastic", capacity_multiple=3.0, sliding_ratio=None)
+    assert run(bed, budget=1.0, histories=False).info["verdict"] == "completed"
