@@ -1,6 +1,6 @@
 """The macro-element's cost in the reduced model, and its error, against a bed of springs.
 
-    python benchmarks/macro_speed.py [--out DIR] [--write]
+    python benchmarks/macro_speed.py [--quick] [--out DIR] [--write]
 
 The scene: Ewing's short-period wall (W = 242 kip on the base, h = 336 in, B = 240 in) on a
 clay macro-element at FS_v 3 (the law of ``tests/test_macro_element_runs.py``), under a Ricker
@@ -15,8 +15,9 @@ stage of a step (five a step with RK4) in sub-steps of at most ``force_step`` of
 its cost follows the path of the load, and its sub-step is first order, so a coarser one buys
 speed at the price of the settlement (the table's second block).
 
-Cost model: each row's runs are estimated at the run's steps × 300 µs (the default) and a
-fresh process at 4 s; the whole benchmark about 2 min. Writes ``MACRO_SPEED.md`` to ``--out``
+Cost model: each row's runs are estimated at the run's steps × 300 µs (the default) and a fresh
+process at 4 s; the whole benchmark about 2 min. ``--quick`` (the tests' path): the 0.15 g
+pulse only, at the default sub-step and its reference. Writes ``MACRO_SPEED.md`` to ``--out``
 (default ``results/bench/macro_speed``); ``--write`` also the committed copy in
 ``benchmarks/``.
 """
@@ -98,9 +99,9 @@ def whole_process(data: dict, folder: Path) -> float:
     return time.perf_counter() - start
 
 
-def measure(amplitude: float, folder: Path) -> dict:
+def measure(amplitude: float, folder: Path, factors=FACTORS) -> dict:
     rows = {}
-    for factor in FACTORS:
+    for factor in factors:
         rows[factor] = in_process(scene_data(amplitude, FORCE_STEP * factor))
     rows["bed"] = in_process(scene_data(amplitude, None, bed=True))
     rows["process"] = whole_process(scene_data(amplitude, FORCE_STEP), folder)
@@ -112,11 +113,12 @@ def _error(value: float, reference: float) -> str:
     return f"{(value / reference - 1.0):+.2e}" if reference else "—"
 
 
-def publish(folder: Path, done: dict, missing: dict) -> None:
+def publish(folder: Path, done: dict, missing: dict, factors=FACTORS,
+            amplitudes=AMPLITUDES) -> None:
     lines = ["# The macro-element's cost in the reduced model", "",
              "Command `python benchmarks/macro_speed.py`; what is run: the script's docstring. "
              "Times on the project's shared 2-core machine; compare within a row block.", ""]
-    for amplitude in AMPLITUDES:
+    for amplitude in amplitudes:
         key = f"{amplitude:g} g"
         lines.append(f"## {key}")
         if key not in done:
@@ -126,7 +128,7 @@ def publish(folder: Path, done: dict, missing: dict) -> None:
         ref = rows[0.1][1]
         lines += ["", "| foundation | force_step | run (s) | µs a step | θ_max error | "
                   "plastic settlement error |", "|---|---|---|---|---|---|"]
-        for factor in FACTORS[1:]:
+        for factor in factors[1:]:
             wall, peaks, steps = rows[factor]
             lines.append(f"| macro-element | {FORCE_STEP * factor:.0e} | {wall:.3f} | "
                          f"{wall / steps * 1e6:.0f} | {_error(peaks['theta'], ref['theta'])} | "
@@ -143,14 +145,23 @@ def publish(folder: Path, done: dict, missing: dict) -> None:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     add_output_arguments(parser, NAME)
+    parser.add_argument("--quick", action="store_true",
+                        help="the 0.15 g pulse at the default sub-step only (the tests' path)")
     args = parser.parse_args(argv)
+    if args.quick and args.write:
+        parser.error("--write: a quick run never updates the committed table")
     folder = output_folder(args, NAME)
-    sections = [Section(f"{a:g} g", lambda a=a: measure(a, folder), 60.0) for a in AMPLITUDES]
+    factors, amplitudes = (FACTORS[:2], AMPLITUDES[:1]) if args.quick else (FACTORS, AMPLITUDES)
+    sections = [Section(f"{a:g} g", lambda a=a: measure(a, folder, factors), 60.0)
+                for a in amplitudes]
 
     def commit(done):
         write_text(HERE / "MACRO_SPEED.md", (folder / "MACRO_SPEED.md").read_text())
 
-    return run_sections(NAME, sections, publish, folder,
+    def publish_these(folder, done, missing):
+        publish(folder, done, missing, factors, amplitudes)
+
+    return run_sections(NAME, sections, publish_these, folder,
                         commit=commit if args.write else None,
                         model="run steps × 300 µs, a fresh process 4 s")
 

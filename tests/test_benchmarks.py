@@ -439,3 +439,19 @@ def test_macro_calibration_fast_path(tmp_path):
         M, _ = macro_pushover(law, p.N, p.theta)
         rms = np.sqrt(np.mean(((M - p.M) / np.max(np.abs(p.M))) ** 2))
         assert num(row["moment rms (of its largest)"]) == pytest.approx(100 * rms, abs=0.1)
+
+
+def test_macro_speed_fast_path(tmp_path):
+    """The wall on the clay macro-element at 0.15 g, at the default sub-step and a tenth of it.
+    Reference: the tenth (the law converged in its sub-step): the default's θ_max within 1e-3
+    (``tests/test_macro_element_runs.py`` holds the same to 1e-3; the committed table measured
+    3e-6) and its plastic settlement within 1e-2 (measured 1.7e-4); the bed of springs is in
+    the table beside it."""
+    out = tmp_path / "speed"
+    run_fast_path("macro_speed.py", out)
+    rows = tables(out / "MACRO_SPEED.md")["0.15 g"]
+    macro = [r for r in rows if r["foundation"] == "macro-element"]
+    assert len(macro) == 1 and any(r["foundation"].endswith("springs") for r in rows)
+    assert abs(bench_output.number(macro[0]["θ_max error"])) <= 1e-3
+    assert abs(bench_output.number(macro[0]["plastic settlement error"])) <= 1e-2
+    assert bench_output.number(macro[0]["µs a step"]) > 0
