@@ -74,7 +74,8 @@ def test_its_overrides_put_that_law_in_the_reduced_model(calibrated):
                 "interior_exponent", "settlement_coupling", "rounding_ratio"):
         assert getattr(law, key) == pytest.approx(record["law"][key], rel=1e-12), key
     assert sorted(p.name for p in out.iterdir()) == ["CALIBRATION.md", "calibration.json",
-                                                     "store", "upliftlab-run.json"]
+                                                     "fit-cache.npz", "store",
+                                                     "upliftlab-run.json"]
     line = [x for x in done.stdout.splitlines() if x.startswith("use it: upliftlab run ")]
     assert len(line) == 1 and "--set foundation.law=macro" in line[0]
     assert "structure.vertical_weight=200" in line[0] and "elements_across" not in line[0]
@@ -89,7 +90,7 @@ def test_the_same_command_resumes_from_its_store(calibrated, tmp_path):
 
     out, record, _ = calibrated
     copy = tmp_path / "cal"
-    shutil.copytree(out / "store", copy / "store")
+    shutil.copytree(out / "store", copy / "store")  # the continuum's runs, not the fit's
     records = sorted(p.name for p in (copy / "store").rglob("*.json"))
     done = _cli([*BASE, "--out", str(copy)], tmp_path)
     assert done.returncode == 0, done.stderr[-3000:]
@@ -103,19 +104,74 @@ def test_the_same_command_resumes_from_its_store(calibrated, tmp_path):
     (["--set", "soil.model=elastic", "--set", "soil.undrained_strength="], "soil.model"),
     (["--fs-v", "0.9"], "--fs-v"),
     (["--fs-v", "3,3"], "--fs-v"),
+    (["--fs-v", "1.5", "--set", "soil.youngs_modulus=20000"], "--fs-v"),
     (["--evaluations", "5"], "--evaluations"),
     (["--budget", "1"], "--budget"),
     (["--set", "structure.vertical_weight=171.39"], "structure.vertical_weight"),
     (["--set", "motion.amplitude=0.5"], "motion.amplitude"),
 ])
 def test_what_it_cannot_calibrate_is_refused_before_any_run(change, field, tmp_path):
-    """One line naming the field, exit 2, and no folder: a soil without strength, an FS_v out
-    of range or repeated, too few evaluations, a budget below the estimate, a structure that
-    cannot carry the element in the reduced model (no base mass to sway), an override the
-    calibration does not read."""
+    """One line naming the field, exit 2, and no folder: a soil without strength, an FS_v out of
+    range, repeated, or whose path would pass 0.1 rad (on Prandtl's capacity), too few
+    evaluations, a budget below the estimate, a structure that cannot carry the element in
+    the reduced model (no base mass to sway), an override the calibration does not read."""
     done = _cli([*BASE, *change, "--out", "cal"], tmp_path)
     lines = [x for x in done.stderr.splitlines() if x.strip()]
     assert done.returncode == 2, done.stderr[-2000:]
     assert lines[-1].startswith("upliftlab: error: ") and field in lines[-1], lines
     assert "Traceback" not in done.stderr
     assert not Path(tmp_path / "cal").exists()
+
+
+def test_an_interrupted_fit_resumes_from_its_evaluations(calibrated, tmp_path):
+    """The fit stopped (KeyboardInterrupt from its progress) after 20 evaluations, its cache
+    saved; a second fit given the cache replays them and ends with the law of the
+    uninterrupted run (to 1e-12: the fit is deterministic) in as many evaluations."""
+    from upliftlab.comparisons.framework.store import Store
+    from upliftlab.comparisons.studies.macro_calibration import FitCache, calibrate_scene
+
+    out, record, _ = calibrated
+    scene = load_scene("strip_footing_clay", overrides=["continuum.elements_across=4",
+                                                        "structure.vertical_weight=200"])
+    store = Store(out / "store")
+
+    def stop(done, at_most, lowest):
+        if done == 20:
+            first.save()
+            raise KeyboardInterrupt("SIGTERM")
+
+    first = FitCache(tmp_path / "fit-cache.npz")
+    with pytest.raises(KeyboardInterrupt):
+        calibrate_scene(scene, store, fs_v=(3.0,), evaluations=10, cache=first,
+                        fit_progress=stop)
+    kept = FitCache(tmp_path / "fit-cache.npz")
+    cal = calibrate_scene(scene, store, fs_v=(3.0,), evaluations=10, cache=kept)
+    assert 0 < 20 <= len(kept) and cal.fit.evaluations == record["fit"]["evaluations"]
+    for key, value in record["law"].items():
+        assert getattr(cal.fit.law, key) == pytest.approx(value, rel=1e-12, abs=1e-300), key
+
+
+def test_a_weight_the_element_cannot_rest_under_is_refused_after_the_statics(tmp_path):
+    """W = 600 on V_ult ≈ 536: one line naming structure.vertical_weight with its range,
+    exit 2, after the two statics runs and before any pushover or fit (the store holds two
+    records, nothing else is written)."""
+    done = _cli([*BASE, "--set", "structure.vertical_weight=600", "--out", "cal"], tmp_path)
+    lines = [x for x in done.stderr.splitlines() if x.strip()]
+    assert done.returncode == 2, done.stderr[-2000:]
+    assert lines[-1].startswith("upliftlab: error: structure.vertical_weight = 600: ")
+    assert "valid range is" in lines[-1]
+    assert len(list((tmp_path / "cal" / "store").rglob("*.json"))) == 2
+    assert not (tmp_path / "cal" / "calibration.json").exists()
+
+
+def test_a_store_that_is_a_link_out_of_the_folder_is_refused(tmp_path):
+    """The output folder's store/ a symbolic link to another folder: one line, exit 2, and
+    nothing written in the folder it points to."""
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    (tmp_path / "cal").mkdir()
+    (tmp_path / "cal" / "store").symlink_to(elsewhere)
+    done = _cli([*BASE, "--out", "cal"], tmp_path)
+    assert done.returncode == 2, done.stderr[-2000:]
+    assert done.stderr.strip().splitlines()[-1].startswith("upliftlab: error: --out = ")
+    assert list(elsewhere.iterdir()) == []

@@ -129,7 +129,8 @@ def macro_pushover(law: MacroElement, N: float, thetas, strict: bool = True):
     return out if strict else (*out, worst)
 
 
-def _residuals(law: MacroElement, pushovers: Sequence[RotationPushover]):
+def _residuals(law: MacroElement, pushovers: Sequence[RotationPushover],
+               floor: float = SETTLEMENT_FLOOR):
     """(every residual, per pushover: moment rms, settlement rms, largest |V − N|/N). A
     pushover the law cannot follow at constant N goes on from its closest states, its miss
     a residual of its own (× 10), so that the objective has no cliff."""
@@ -139,7 +140,7 @@ def _residuals(law: MacroElement, pushovers: Sequence[RotationPushover]):
         if not scale_m > 0.0:
             raise InputError(f"macro calibration: pushover {p.source!r} carries no moment")
         change = p.settlement - p.settlement[0]
-        scale_s = max(float(np.max(np.abs(change))), SETTLEMENT_FLOOR)
+        scale_s = max(float(np.max(np.abs(change))), floor)
         try:
             M, s, miss = macro_pushover(law, p.N, p.theta, strict=False)
         except MacroStepError:  # a step the law itself refuses
@@ -163,12 +164,20 @@ def evaluation_bound(max_evaluations: int) -> int:
 def calibrate_macro(pushovers: Sequence[RotationPushover], *, width: float, V_ult: float,
                     K_v: float, K_r: float, cohesion: float, friction_angle: float = 0.0,
                     unit_weight: float = 0.0, start=(0.7, -2.0, 0.0, 1.0, 0.2, 0.5),
-                    max_evaluations: int = 200, progress=None) -> MacroCalibration:
+                    max_evaluations: int = 200, progress=None, carry: float = 0.0,
+                    length_unit: float = 1.0, cache=None) -> MacroCalibration:
     """The macro-element of a soil from its continuum statics (module docstring): the
     ``pushovers`` (monotonic ones give the capacity; all are fitted), the footing's ``width``,
     the continuum's ``V_ult``, ``K_v``, ``K_r``, and the soil's c, φ, γ (the capacity's form).
-    ``progress(evaluations, at_most, best_cost)`` (None: silent) is called after every
+    ``progress(evaluations, at_most, lowest_cost)`` (None: silent) is called after every
     evaluation of the objective; an exception it raises (KeyboardInterrupt) stops the fit.
+    ``carry``: a central load the law must carry inside its initial surface besides the
+    pushovers' (a structure's weight: ζ0 V_ult above it, so that the element rests elastic
+    under it). ``length_unit``: metres in the inputs' unit of length (the settlement floor and
+    κ_ref's bounds are in metres). ``cache`` (a mapping, None: none): the objective's
+    residuals by the exact point, read before and written after each evaluation; the fit is
+    deterministic, so a fit given the cache of an interrupted one replays its evaluations
+    from it and goes on where it stopped.
     """
     monotonic = [p for p in pushovers if np.all(np.diff(p.theta) >= 0.0)]
     if not monotonic:
@@ -177,6 +186,10 @@ def calibrate_macro(pushovers: Sequence[RotationPushover], *, width: float, V_ul
     frictional = friction_angle > 0.0 and unit_weight > 0.0  # else no N_γ term in the form
     base, slope, capacity_residuals = capacity_line(monotonic, V_ult, width, frictional)
     n_c, _, n_gamma = bearing_factors(friction_angle)
+    if not base > 0.0:
+        raise InputError(f"macro calibration: the capacity line's intercept q₀ = {base:.4g} "
+                         f"(its slope q₁ = {slope:.4g}): the pushovers' capacities fall faster "
+                         "with the contact's width than the N_γ term alone; valid: q₀ > 0")
     if not cohesion > 0.0:
         raise InputError(f"macro calibration: cohesion = {cohesion!r}: the capacity line's "
                          f"intercept q₀ = {base:.4g} kPa is the law's c N_c term, which needs "
@@ -188,13 +201,29 @@ def calibrate_macro(pushovers: Sequence[RotationPushover], *, width: float, V_ul
         frictional_factor=slope / (0.5 * unit_weight * n_gamma) if frictional else 1.0)
     low = [b[1] for b in PLASTIC_BOUNDS]
     high = [b[2] for b in PLASTIC_BOUNDS]
-    low[0] = max(low[0], 1.02 * max(p.N for p in pushovers) / template.ultimate_load)
-    x0 = np.clip(np.asarray(start, dtype=float), low, high)
+    shift = -math.log10(length_unit)  # κ_ref's bounds and start, from metres
+    low[1], high[1] = low[1] + shift, high[1] + shift
+    start = np.asarray(start, dtype=float) + np.eye(len(PLASTIC_BOUNDS))[1] * shift
+    load = max(max(p.N for p in pushovers), carry)
+    low[0] = max(low[0], 1.02 * load / template.ultimate_load)
+    if not low[0] < high[0]:
+        raise InputError(f"macro calibration: a load of {load:.4g} is "
+                         f"{load / template.ultimate_load:.3g} of V_ult = "
+                         f"{template.ultimate_load:.4g}: the law's initial surface "
+                         f"cannot hold it elastic (ζ0 ≤ {high[0]:g}); valid: loads below "
+                         f"{high[0] / 1.02:.3g} V_ult")
+    floor = SETTLEMENT_FLOOR / length_unit
+    x0 = np.clip(start, low, high)
     calls, best = [0], [math.inf]
     at_most = evaluation_bound(max_evaluations)
 
     def objective(x):
-        residuals = _residuals(_law(template, x), pushovers)[0]
+        key = np.asarray(x, dtype=float).tobytes().hex()
+        residuals = None if cache is None else cache.get(key)
+        if residuals is None:
+            residuals = _residuals(_law(template, x), pushovers, floor)[0]
+            if cache is not None:
+                cache[key] = residuals
         calls[0] += 1
         best[0] = min(best[0], 0.5 * float(np.sum(residuals ** 2)))
         if progress is not None:
@@ -211,7 +240,7 @@ def calibrate_macro(pushovers: Sequence[RotationPushover], *, width: float, V_ul
                               diff_step=1e-2, max_nfev=share)
         fit = trial if fit is None or trial.cost < fit.cost else fit
     law = _law(template, fit.x)
-    _, moment_rms, settlement_rms, misses = _residuals(law, pushovers)
+    _, moment_rms, settlement_rms, misses = _residuals(law, pushovers, floor)
     if not np.all(misses <= LOAD_TOLERANCE):
         worst = int(np.argmax(misses))
         raise MacroStepError(f"macro calibration: the fitted law cannot hold N on pushover "

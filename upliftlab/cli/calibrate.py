@@ -14,6 +14,7 @@ by validating the scene with them before anything is written.
 from __future__ import annotations
 
 import json
+import math
 import shlex
 import sys
 import time
@@ -107,11 +108,12 @@ def _cost(scene, fs_count: int, evaluations: int) -> Cost:
     return replace(whole, smaller="fewer --evaluations or --fs-v values, or a coarser mesh")
 
 
-def _fit_progress(started: list):
-    """A ``progress(evaluations, at_most, best)`` printing every FIT_REPORT_SECONDS."""
+def _fit_progress(started: list, cache=None):
+    """A ``progress(evaluations, at_most, lowest)`` printing every FIT_REPORT_SECONDS, and
+    saving ``cache`` (the fit's evaluations) as often."""
     last = [0.0]
 
-    def report(done: int, at_most: int, best: float) -> None:
+    def report(done: int, at_most: int, lowest: float) -> None:
         now = time.perf_counter()
         if not started:
             started.append(now)
@@ -120,9 +122,40 @@ def _fit_progress(started: list):
             return
         last[0] = elapsed
         left = elapsed / done * (at_most - done)
-        say(f"fit: {done} of at most {at_most} evaluations, best cost {best:.4g}; "
+        say(f"fit: {done} of at most {at_most} evaluations, lowest cost so far {lowest:.4g}; "
             f"{elapsed:.0f} s, at most about {left:.0f} s left")
+        if cache is not None:
+            cache.save()
     return report
+
+
+def _own_folder(path, root):
+    """``path`` (under ``root``), refused if it or anything under it is a symbolic link: the
+    store's workers write into it, and every file written must lie inside the output
+    folder."""
+    from pathlib import Path
+
+    path = Path(path)
+    for entry in [path, *(path.rglob("*") if path.is_dir() and not path.is_symlink() else ())]:
+        if entry.is_symlink():
+            raise InputError(f"--out = {str(root)!r}: {str(entry.relative_to(root))!r} is a "
+                             "symbolic link; the calibration writes only inside its output "
+                             "folder; valid: a folder without links (or another --out)")
+    return path
+
+
+def _check_at_rest(scene) -> None:
+    """The reduced model of ``scene`` (the calibrated element under the structure) built, its
+    element at rest under the weight; a failure is the calibration's (exit 3), never a line
+    that fails when the user runs it."""
+    from ..reduced import build_model
+    from ..reduced.laws.macro import MacroStepError
+
+    try:
+        build_model(scene)
+    except (MacroStepError, InputError) as exc:
+        raise RuntimeError(f"the calibrated element cannot carry the structure at rest ({exc});"
+                           " no calibration is written") from None
 
 
 def _run_line(args, items: list[str]) -> list[str]:
@@ -138,9 +171,11 @@ def _run_line(args, items: list[str]) -> list[str]:
 
 def calibrate_command(args) -> int:
     from ..comparisons.framework.store import Store
-    from ..comparisons.studies.macro_calibration import (calibrate_scene, calibration_markdown,
-                                                         calibration_record,
-                                                         check_reduced_scene, macro_strength,
+    from ..comparisons.studies.macro_calibration import (FitCache, calibrate_scene,
+                                                         calibration_markdown,
+                                                         calibration_record, check_reach,
+                                                         check_reduced_scene,
+                                                         estimated_capacity, macro_strength,
                                                          scene_overrides)
     from ..results import write_text
     from ..scenes import load_scene
@@ -157,6 +192,7 @@ def calibrate_command(args) -> int:
     refuse_without_effect(overrides, "the calibration", USED)
     macro_strength(scene)  # a soil without strength is refused before any run
     check_reduced_scene(scene)  # as is a structure that cannot carry the element
+    check_reach(scene, estimated_capacity(scene), fs_v, estimated=True)
     cost = _cost(scene, len(fs_v), evaluations)
     check_budget(cost, scene.analysis.max_steps, scene.analysis.max_memory,
                  time_budget(seconds, CONTINUUM_BUDGET_SECONDS))
@@ -167,23 +203,32 @@ def calibrate_command(args) -> int:
     default = default_out(f"{scene.name}-calibrate",
                           {"overrides": overrides, "fs_v": args.fs_v,
                            "evaluations": args.evaluations})
-    say(f"{scene.name}: calibrating the macro-element at FS_v "
-        f"{', '.join(f'{v:g}' for v in fs_v)} ({cost.sizes}); estimated at most "
-        f"{cost.seconds / 60:.0f} min")
     with claim(args.out, default, settings=settings, force=args.force) as out:
-        started: list = []
-        cal = calibrate_scene(scene, Store(out.path / "store"), fs_v=fs_v,
-                              evaluations=evaluations, workers=workers,
-                              fit_progress=_fit_progress(started))
+        store = _own_folder(out.path / "store", out.path)
+        say(f"{scene.name}: calibrating the macro-element at FS_v "
+            f"{', '.join(f'{v:g}' for v in fs_v)} ({cost.sizes}); estimated at most "
+            f"{math.ceil(cost.seconds / 60):.0f} min")
+        cache = FitCache(out.path / "fit-cache.npz")
+        try:
+            cal = calibrate_scene(scene, Store(store), fs_v=fs_v, evaluations=evaluations,
+                                  workers=workers, cache=cache,
+                                  fit_progress=_fit_progress([], cache))
+        except KeyboardInterrupt as exc:
+            if cache:
+                cache.save()
+                exc.add_note(f"the fit's {len(cache)} evaluations kept in "
+                             f"{cache.path.name}, replayed on resuming")
+            raise
+        cache.save()
         items = scene_overrides(cal, scene)
-        scene.with_overrides(*items)  # the overrides make a valid reduced scene
+        _check_at_rest(scene.with_overrides(*items))
         record = calibration_record(cal, items)
         out.start_writing()
         written = [write_text(out.path / "calibration.json",
                               json.dumps(record, indent=1, allow_nan=False) + "\n"),
                    write_text(out.path / "CALIBRATION.md",
                               calibration_markdown(cal, shlex.join(_run_line(args, items)),
-                                                   command))]
+                                                   command)), cache.path]
         out.complete(written)
     for path in written:
         say(f"wrote {path}")

@@ -68,7 +68,8 @@ def number(name: str, text: str | None, *, integer: bool = False, low: float = 0
     try:
         value = int(text) if integer else float(text)
     except ValueError:
-        kind = "an integer" if integer else "a number"
+        kind = (f"an integer in [{low:g}, {high:g}]" if integer
+                else f"a number in ({low:g}, {high:g}]")
         raise InputError(f"{name} = {text!r}: expected {kind}") from None
     if integer and not low <= value <= high:
         raise InputError(f"{name} = {value}: valid range is [{low:g}, {high:g}]")

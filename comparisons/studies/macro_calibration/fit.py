@@ -30,15 +30,69 @@ from ...beds.continuum_points import evaluate_continuum
 from ...beds.macro import MacroCalibration, RotationPushover, calibrate_macro
 from ...framework.store import Store, point_key
 from ...framework.sweep import run_sweep
-from .plan import macro_strength, pushover_points, statics_points
+from .plan import check_weight, macro_strength, pushover_points, statics_points
 
-__all__ = ["SceneCalibration", "calibrate_scene", "PLATEAU_TOLERANCE", "STUDY"]
+__all__ = ["SceneCalibration", "calibrate_scene", "FitCache", "fit_stamp", "PLATEAU_TOLERANCE",
+           "STUDY", "CARRY_CEILING"]
 
 #: The study name in the store's keys.
 STUDY = "macro_calibration"
+#: The largest W/V_ult the element may carry at rest: its initial surface (ζ0 ≤ 0.999) less the
+#: fit's margin of 2 % (:func:`calibrate_macro`).
+CARRY_CEILING = 0.999 / 1.02
 #: The largest rise of the vertical pushover's load over its last step, as a share of V_ult,
 #: for V_ult to count as the capacity (the map's clay and sand: 0.0 % and 0.6 %).
 PLATEAU_TOLERANCE = 0.02
+
+
+class FitCache(dict):
+    """The fit's evaluations (residuals by the exact point), kept in a file of the output folder
+    so that an interrupted fit resumes: :func:`calibrate_macro` is deterministic and replays
+    them. The file is read only when its stamp matches this fit's (:meth:`bind`: a digest of
+    the pushovers, the statics, the options and the code the residuals come from)."""
+
+    def __init__(self, path) -> None:
+        super().__init__()
+        self.path, self.stamp = path, ""
+
+    def bind(self, stamp: str) -> FitCache:
+        """Take the evaluations the file keeps for ``stamp`` (none for another's)."""
+        self.stamp = stamp
+        try:
+            with np.load(self.path, allow_pickle=False) as data:
+                if str(data["stamp"]) == stamp:
+                    self.update({k: data[k] for k in data.files if k != "stamp"})
+        except (OSError, ValueError, KeyError):
+            pass
+        return self
+
+    def save(self) -> None:
+        """Write the evaluations so far (atomically; nothing before :meth:`bind`)."""
+        import io
+
+        from ....results import write_bytes
+
+        if not self.stamp:
+            return
+        buffer = io.BytesIO()
+        np.savez(buffer, stamp=np.array(self.stamp), **self)
+        write_bytes(self.path, buffer.getvalue())
+
+
+def fit_stamp(pushovers, statics, options) -> str:
+    """The digest a :class:`FitCache` is bound to."""
+    import hashlib
+    import json
+
+    from ....provenance import MODEL_SOURCES, code_digest
+
+    digest = hashlib.sha256(json.dumps([statics, options], sort_keys=True).encode())
+    for p in pushovers:
+        for array in (p.theta, p.M, p.settlement):
+            digest.update(np.ascontiguousarray(array, dtype=float).tobytes())
+        digest.update(repr(float(p.N)).encode())
+    digest.update(code_digest((*MODEL_SOURCES, "upliftlab.comparisons/beds/")).encode())
+    return digest.hexdigest()
 
 
 @dataclass(frozen=True)
@@ -76,10 +130,10 @@ def _statics(scene, store: Store, workers: int, progress) -> tuple[float, float,
     plateau = float((loads[-1] - loads[-2]) / V_ult) if loads.size > 1 else math.inf
     if not plateau <= PLATEAU_TOLERANCE:
         raise InputError(f"scene {scene.name!r}: the vertical pushover's load still rose "
-                         f"{plateau:.1%} of its largest over its last step (valid: at most "
-                         f"{PLATEAU_TOLERANCE:.0%}): the capacity is beyond the path's "
-                         "settlement; the soil is too stiff for its strength to reach it "
-                         "within 0.05 B")
+                         f"{plateau:.2%} of its largest over its last step (valid: at most "
+                         f"{PLATEAU_TOLERANCE:.2%}): the capacity lies beyond the path's "
+                         "settlement of 0.05 B; the soil is too soft for its strength to "
+                         "reach it there")
     return float(stiffness["K_v"]), float(stiffness["K_r"]), V_ult, plateau
 
 
@@ -88,15 +142,18 @@ def _label(fs: float, cyclic: bool) -> str:
 
 
 def calibrate_scene(scene, store: Store, *, fs_v: Sequence[float], evaluations: int,
-                    workers: int = 1, progress=None,
-                    fit_progress: Callable | None = None) -> SceneCalibration:
+                    workers: int = 1, progress=None, fit_progress: Callable | None = None,
+                    cache=None) -> SceneCalibration:
     """The macro-element of ``scene``'s soil and footing (module docstring). The continuum runs
     go to ``store`` (kept: an interrupted calibration resumes from them) on ``workers``
     processes, ``progress`` as :func:`run_sweep` takes it; ``fit_progress(evaluations,
-    at_most, best_cost)`` follows the fit (:func:`calibrate_macro`)."""
+    at_most, lowest_cost)`` follows the fit and ``cache`` keeps its evaluations
+    (:func:`calibrate_macro`). The structure's weight and the paths' reach are checked as
+    soon as the statics give V_ult, before the pushovers."""
     strength = macro_strength(scene)  # refused before any run
     started = time.perf_counter()
     K_v, K_r, V_ult, plateau = _statics(scene, store, workers, progress)
+    check_weight(scene, V_ult, CARRY_CEILING)
     points = pushover_points(scene, V_ult, fs_v)
     statics_time = time.perf_counter() - started
     records = _sweep(points, store, workers, progress)
@@ -119,8 +176,14 @@ def calibrate_scene(scene, store: Store, *, fs_v: Sequence[float], evaluations: 
                          "(a larger FS_v)")
     pushes = sorted(pushovers, key=lambda p: (p.N, len(p.theta)))
     runs_time = time.perf_counter() - started
+    if isinstance(cache, FitCache):
+        cache.bind(fit_stamp(pushes, [K_v, K_r, V_ult, strength], [
+            evaluations, scene.structure.vertical_weight, scene.units.metres,
+            scene.foundation.width]))
     fit = calibrate_macro(pushes, width=scene.foundation.width, V_ult=V_ult, K_v=K_v, K_r=K_r,
-                          max_evaluations=evaluations, progress=fit_progress, **strength)
+                          max_evaluations=evaluations, progress=fit_progress,
+                          carry=scene.structure.vertical_weight,
+                          length_unit=scene.units.metres, cache=cache, **strength)
     all_points = statics_points(scene) + points
     keys = tuple(point_key(STUDY, evaluate_continuum, p) for p in all_points)
     return SceneCalibration(scene.name, scene.digest, scene.foundation.width, K_v, K_r, V_ult,

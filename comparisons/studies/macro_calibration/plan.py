@@ -26,7 +26,11 @@ from ...beds.pushover import cyclic_path, rotation_path
 
 __all__ = ["PathOptions", "PATHS", "DEFAULT_FS_V", "SETTLEMENT_RATIO", "VERTICAL_STEPS",
            "MAX_ROTATION", "macro_strength", "check_fs_v", "statics_points", "pushover_points",
-           "rotation_steps"]
+           "rotation_steps", "estimated_capacity", "check_reach", "check_weight",
+           "MAX_CAPACITY_MULTIPLE"]
+
+#: The largest V_ult/W a scene's element may have (the macro law's ``capacity_multiple``).
+MAX_CAPACITY_MULTIPLE = 1e6
 
 
 @dataclass(frozen=True)
@@ -82,6 +86,37 @@ def macro_strength(scene) -> dict:
                      f"fitted to the soil's yielding; valid: {valid}")
 
 
+def estimated_capacity(scene) -> float:
+    """V_ult of the scene's footing from a closed form, before any run: Prandtl's, or Davis
+    and Booker's with a strength gradient, on an undrained soil; B (c N_c + ½ γ B N_γ) with
+    Vesić's factors on a frictional one (force per length)."""
+    from ....anchors import undrained_capacity
+    from ....reduced.laws.macro.params import bearing_factors
+
+    soil, B = scene.soil, scene.foundation.width
+    if SOIL_MODELS.get(soil.model) == UNDRAINED:
+        return undrained_capacity(soil.undrained_strength, soil.undrained_strength_gradient, B,
+                                  rough=soil.interface == "bonded")
+    n_c, _, n_gamma = bearing_factors(soil.friction_angle)
+    return B * (soil.cohesion * n_c + 0.5 * soil.density * scene.g * B * n_gamma)
+
+
+def check_reach(scene, V_ult: float, fs_v: Sequence[float], paths: PathOptions = PATHS,
+                estimated: bool = False) -> None:
+    """Refuse an FS_v whose monotonic path would reach beyond :data:`MAX_ROTATION` under
+    N = V_ult/FS_v (``estimated``: V_ult from :func:`estimated_capacity`, before any run)."""
+    top = max(paths.theta_ratios)
+    for fs in fs_v:
+        reach = top * _onset(scene, V_ult / fs)
+        if not reach <= MAX_ROTATION:
+            least = fs * reach / MAX_ROTATION
+            raise InputError(f"--fs-v = {fs:g}: the monotonic pushover would reach "
+                             f"{reach:.3g} rad ({top:g} θ_on under N = V_ult/FS_v, V_ult "
+                             f"{'estimated at ' if estimated else ''}{V_ult:.4g}), beyond the "
+                             f"continuum's small rotations ({MAX_ROTATION:g} rad); valid on "
+                             f"this soil: FS_v ≥ {least:.3g}")
+
+
 def check_fs_v(values: Sequence[float]) -> tuple[float, ...]:
     """The FS_v of the pushovers, checked: 1 to 8 distinct values in :data:`FS_V_RANGE`."""
     low, high = FS_V_RANGE
@@ -125,19 +160,25 @@ def pushover_points(scene, V_ult: float, fs_v: Sequence[float],
     """Per FS_v, the monotonic rotation pushover, then the cyclic one, under N = V_ult/FS_v,
     as points of :func:`evaluate_continuum`. A path beyond :data:`MAX_ROTATION` is refused."""
     table, points = _table(scene), []
+    check_reach(scene, V_ult, fs_v, paths)
     for fs in fs_v:
         N = V_ult / fs
         theta_on = _onset(scene, N)
-        reach = max(paths.theta_ratios) * theta_on
-        if not reach <= MAX_ROTATION:
-            raise InputError(f"--fs-v = {fs:g}: the monotonic pushover would reach "
-                             f"{reach:.3g} rad ({max(paths.theta_ratios):g} θ_on on this "
-                             f"soil), beyond the continuum's small rotations; valid: paths "
-                             f"within {MAX_ROTATION:g} rad (a larger FS_v or a stiffer soil)")
         for path in (rotation_path(theta_on, paths), cyclic_path(theta_on, paths)):
             points.append({"scene": table, "soil": "scene", "analysis": "rotation",
                            "N": float(N), "rotations": floats(path)})
     return points
+
+
+def check_weight(scene, V_ult: float, ceiling: float) -> None:
+    """Refuse a structure whose vertical weight W the calibrated element cannot carry at rest
+    with V_ult (its ``capacity_multiple`` V_ult/W in (1, 10⁶]; W below ``ceiling`` × V_ult,
+    the initial surface's largest size less a margin, so that it rests elastic)."""
+    W = scene.structure.vertical_weight
+    low, high = V_ult / MAX_CAPACITY_MULTIPLE, ceiling * V_ult
+    if not low <= W < high:
+        raise InputError(f"structure.vertical_weight = {W:g}: the element's V_ult is "
+                         f"{V_ult:.4g} on this soil; valid range is [{low:.4g}, {high:.4g})")
 
 
 def rotation_steps(fs_count: int, paths: PathOptions = PATHS) -> int:
