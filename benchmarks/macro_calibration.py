@@ -11,8 +11,8 @@ statics rows, :mod:`upliftlab.comparisons.studies.winkler_map.rocking`). The cal
 to the monotonic pushovers' largest moments, the plastic parameters to every pushover's moment
 and settlement. Nothing dynamic enters. The table gives, per soil, the parameters, the capacity
 line's residuals and, per pushover, the rms misfit of the moment (of its largest) and of the
-settlement (of its range, at least 2 mm): the check of each step. ``--quick`` fits one soil to
-its FS_v = 3 pushovers only, with few evaluations (the test's path).
+settlement (of its range, at least N/(10 K_v)): the check of each step. ``--quick`` fits one
+soil to its FS_v = 3 pushovers only, with few evaluations (the test's path).
 
 Writes ``MACRO_CALIBRATION.md`` and ``macro_calibration.json`` (the laws, with the store keys
 of the runs they came from) to ``--out`` (default ``results/bench/macro_calibration``);

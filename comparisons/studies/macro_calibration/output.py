@@ -104,7 +104,7 @@ def calibration_record(cal: SceneCalibration, overrides: list[str]) -> dict:
 def calibration_markdown(cal: SceneCalibration, run_line: str, command: str) -> str:
     """The calibration's checks as a page: the statics, the capacity line and its residuals,
     the law, and per pushover the rms misfit of the moment (of its largest) and of the
-    settlement (of its range, at least 2 mm) and the largest miss of N; ``run_line`` runs the
+    settlement (of its range, at least N/(10 K_v)) and the largest miss of N; ``run_line`` runs the
     scene with the element, ``command`` made the calibration."""
     fit, law = cal.fit, cal.fit.law
     cap = fit.details["capacity"]
