@@ -11,8 +11,8 @@ statics rows, :mod:`upliftlab.comparisons.studies.winkler_map.rocking`). The cal
 to the monotonic pushovers' largest moments, the plastic parameters to every pushover's moment
 and settlement. Nothing dynamic enters. The table gives, per soil, the parameters, the capacity
 line's residuals and, per pushover, the rms misfit of the moment (of its largest) and of the
-settlement (of its range, at least 2 mm): the check of each step. ``--quick`` fits one soil to
-its FS_v = 3 pushovers only, with few evaluations (the test's path).
+settlement (of its range, at least N/(10 K_v)): the check of each step. ``--quick`` fits one
+soil to its FS_v = 3 pushovers only, with few evaluations (the test's path).
 
 Writes ``MACRO_CALIBRATION.md`` and ``macro_calibration.json`` (the laws, with the store keys
 of the runs they came from) to ``--out`` (default ``results/bench/macro_calibration``);
@@ -84,7 +84,24 @@ def calibrate(soil: dict, width: float, evaluations: int):
 
     pushes = sorted(soil["pushovers"], key=lambda p: (p.N, len(p.theta)))
     return calibrate_macro(pushes, width=width, V_ult=soil["V_ult"], K_v=soil["K_v"],
-                           K_r=soil["K_r"], max_evaluations=evaluations, **soil["strength"])
+                           K_r=soil["K_r"], max_evaluations=evaluations,
+                           progress=fit_progress(time.perf_counter()), **soil["strength"])
+
+
+def fit_progress(started: float, every: float = 30.0):
+    """A fit's ``progress(evaluations, at_most, best_cost)``: a line every ``every`` s with
+    the elapsed time and the most the rest can take."""
+    last = [started]
+
+    def report(done: int, at_most: int, best: float) -> None:
+        now = time.perf_counter()
+        if now - last[0] < every:
+            return
+        last[0] = now
+        elapsed = now - started
+        say(f"{NAME}: {done} of at most {at_most} evaluations, best cost {best:.4g}; "
+            f"{elapsed:.0f} s, at most about {elapsed / done * (at_most - done):.0f} s left")
+    return report
 
 
 def one_pass(soil: dict, width: float) -> float:

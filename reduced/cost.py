@@ -37,7 +37,7 @@ def check_run_cost(model: ReducedModel, plan: StepPlan, duration: float, name: s
     stride = max(1, steps // max(plan.rows - 1, 1))
     cost = reduced_cost(steps=steps, step=step, stride=stride, dofs=model.mass.size,
                         springs=model.spring_count, events=method(name).locates_switches,
-                        histories=histories)
+                        histories=histories, element=model.base is not None)
     a = model.scene.analysis
     return check(cost, a.max_steps, a.max_memory, time_budget(budget, REDUCED_BUDGET_SECONDS),
                  api="budget= of upliftlab.reduced.run")

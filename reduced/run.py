@@ -1,4 +1,5 @@
-"""Run a scene through the reduced model: choose the step, integrate, return a :class:`Response`."""
+"""Run a scene through the reduced model: choose the step, integrate, return a
+:class:`Response`."""
 
 from __future__ import annotations
 
@@ -48,10 +49,10 @@ def initial_conditions(model: ReducedModel, motion: Motion) -> tuple[np.ndarray,
         raise InputError("motion.displacement with structure.kinematics = 'exact': the static "
                          "push that holds it is solved in small rotations only; valid: 0 (use "
                          "motion.rotation or motion.velocity)")
-    if model.base is not None and (motion.initial_displacement or motion.initial_rotation):
-        raise InputError("motion.displacement or motion.rotation with foundation.law = 'macro': "
-                         "the static push that holds the initial state is solved for springs "
-                         "only; valid: 0 (use motion.velocity, or a ground motion)")
+    if model.base is not None and motion.initial_displacement:
+        raise InputError("motion.displacement with foundation.law = 'macro': the static push "
+                         "that holds the top mass displaced is solved for springs only; valid: "
+                         "0 (use motion.rotation, motion.velocity, or a ground motion)")
     q0 = initial_state(model, displacement=motion.initial_displacement,
                        rotation=motion.initial_rotation)
     qd0 = np.zeros_like(q0)
@@ -107,7 +108,8 @@ def run_model(model: ReducedModel, motion: Motion, *, integrator: str | None = N
                             histories=histories, budget=budget)
     q0, qd0 = initial_conditions(model, motion)
     timings: dict = {}
-    status, out, counters = integrate(KernelInputs.of(model, plan), name, plan, q0, qd0,
+    inputs = KernelInputs.of(model, plan, base_state=initial_base_state(model, motion, q0))
+    status, out, counters = integrate(inputs, name, plan, q0, qd0,
                                       ground_acceleration(motion.acceleration, model.g),
                                       motion.dt, timings=timings)
     _check_status(status, counters, plan, name, out.pop("base_status"))
@@ -236,7 +238,10 @@ class KernelInputs:
     base: tuple = ()       # the base element's record (:mod:`.kernels.base`), empty if none
 
     @classmethod
-    def of(cls, model: ReducedModel, plan: StepPlan | None = None) -> KernelInputs:
+    def of(cls, model: ReducedModel, plan: StepPlan | None = None,
+           base_state=None) -> KernelInputs:
+        """The inputs of ``model``'s run with ``plan``; ``base_state`` the base element's state
+        at the start (None: at rest)."""
         d = model.dofs
         scale = model.g * float(np.sum(model.mass[list(d.stories)])) + model.weight
         if scale == 0.0:  # a rigid structure sliding on a fixed base: its own weight
@@ -245,8 +250,7 @@ class KernelInputs:
                    model.weight, d.theta, d.v, model.story_count, scale,
                    model.scene.analysis.hht_alpha, frame_of(model, plan), story_table(model),
                    error_floors(model), float(model.linearised.bonded_periods()[-1]),
-                   base_record(model.base, model.dofs.size))
-
+                   base_record(model.base, model.dofs.size, base_state))
 
     @classmethod
     def springs_only(cls, params: np.ndarray, mass: np.ndarray, *, v: int,
@@ -264,11 +268,22 @@ class KernelInputs:
                    base_record(None, n))
 
 
-def base_record(element, size: int) -> tuple:
+def initial_base_state(model: ReducedModel, motion: Motion, q0: np.ndarray):
+    """The base element's state at the start of a run from ``q0``: pushed to a free
+    vibration's initial rotation (:func:`~.laws.macro.element.held_state`), else None (at
+    rest; also without an element)."""
+    if model.base is None or not motion.initial_rotation:
+        return None
+    from .laws.macro.element import held_state
+
+    return held_state(model.base, q0)
+
+
+def base_record(element, size: int, state=None) -> tuple:
     """The kernels' base-element record (:mod:`.kernels.base`) of a model's ``element`` (a
-    :class:`~.laws.macro.element.BaseElement`) on ``size`` DOFs; with no element, its empty
-    form (no parameters), which the kernels pass over. :func:`integrate` runs on a copy, so
-    that the record stays at rest."""
+    :class:`~.laws.macro.element.BaseElement`) on ``size`` DOFs, in ``state`` (None: at
+    rest); with no element, its empty form (no parameters), which the kernels pass over.
+    :func:`integrate` runs on a copy, so that the record stays as it is given."""
     if element is None:
         return (np.zeros(0), np.zeros(S_COUNT), np.zeros(S_COUNT), np.zeros((3, 3)),
                 np.zeros(W_COUNT), np.zeros((3, size)), np.zeros(kn.N_C))
@@ -278,7 +293,7 @@ def base_record(element, size: int) -> tuple:
     C[kn.C_Q0:kn.C_Q0 + 3] = rest.forces
     C[kn.C_CV], C[kn.C_CH] = element.dashpot_density, element.sway_dashpot
     C[kn.C_DF], C[kn.C_E0] = element.force_step, element.rest_energy
-    S = rest.packed()
+    S = (rest if state is None else state).packed()
     return (pack(element.law), S, S.copy(), np.zeros((3, 3)), np.zeros(W_COUNT),
             np.ascontiguousarray(element.transform, dtype=float), C)
 

@@ -168,7 +168,9 @@ def initial_state(model: ReducedModel, *, displacement: float = 0.0,
     """Displacements a free vibration starts from, at rest.
 
     ``rotation`` θ₀ (rad): the base rotated with the superstructure undeformed, V from vertical
-    equilibrium (e.g. a block released on its corner; exact kinematics holds sin θ₀). ``displacement`` (length): the top mass
+    equilibrium (e.g. a block released on its corner; exact kinematics holds sin θ₀; a
+    macro-element is pushed there from rest, :func:`_element_equilibrium`).
+    ``displacement`` (length): the top mass
     displaced relative to the ground and held there by a lateral force at the top, every other
     DOF in static equilibrium.
     """
@@ -176,7 +178,8 @@ def initial_state(model: ReducedModel, *, displacement: float = 0.0,
     d = model.dofs
     if rotation:
         if d.theta < 0:
-            raise InputError("motion.rotation needs a rocking base (foundation.support is 'fixed')")
+            raise InputError("motion.rotation needs a rocking base (foundation.support is "
+                             "'fixed')")
         if model.exact:  # q holds sin θ and the deflections in the rotated frame (zero)
             if not abs(rotation) < 0.5 * np.pi:
                 raise InputError(f"motion.rotation = {rotation:g} rad: valid range is "
@@ -184,7 +187,9 @@ def initial_state(model: ReducedModel, *, displacement: float = 0.0,
             q[d.theta] = np.sin(rotation)
         else:
             _carry(model, q, rotation)
-        if model.layout is not None:
+        if model.base is not None:
+            q[d.v] = _element_equilibrium(model, q, rotation)
+        elif model.layout is not None:
             q[d.v] = _vertical_equilibrium(model, q, initial_history(model.params))
     if displacement:
         if not d.stories:
@@ -192,6 +197,24 @@ def initial_state(model: ReducedModel, *, displacement: float = 0.0,
                              "motion.rotation for a rigid one")
         q = _displaced(model, q, displacement)
     return q
+
+
+def _element_equilibrium(model: ReducedModel, q: np.ndarray, rotation: float) -> float:
+    """V at which a base element (the macro-element) pushed to the rotation of q carries the
+    weight (:func:`~.laws.macro.element.held_state`)."""
+    from .laws.macro import MacroStepError
+    from .laws.macro.element import held_state
+
+    element, iv = model.base, model.dofs.v
+    q[iv] = 0.0
+    try:
+        state = held_state(element, q)
+    except MacroStepError as exc:
+        raise InputError(f"motion.rotation = {rotation:g} rad: the macro-element cannot carry "
+                         f"the weight on the way there ({exc}); valid: a rotation it holds "
+                         "(smaller)") from None
+    row = element.transform[0]
+    return float((state.displacement[0] - element.rest.displacement[0] - row @ q) / row[iv])
 
 
 def _carry(model: ReducedModel, q: np.ndarray, theta: float) -> None:

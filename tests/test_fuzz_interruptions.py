@@ -381,3 +381,25 @@ def test_an_interruption_caught_after_exec_ends_a_module_run_with_130(forget, tm
                           capture_output=True, text=True, timeout=120)
     assert done.stderr.strip() == "upliftlab: interrupted (SIGTERM)"
     assert done.returncode == (130 if forget else -signal.SIGINT)
+
+
+CALIBRATE = ["calibrate", "strip_footing_clay", "--mesh", "elements_across=4", "--fs-v", "3",
+             "--evaluations", "10", "--set", "structure.vertical_weight=200"]
+
+
+def test_an_interrupted_calibration_keeps_its_continuum_runs(tmp_path):
+    """SIGTERM while the fit runs (its first progress line): exit 130, one line naming the
+    command that resumes it, no lock, no part file, no completion marker, no result files;
+    the store keeps the four continuum runs it made (each a whole record) and the fit's
+    evaluations are kept in fit-cache.npz, which the line names."""
+    out = tmp_path / "cal"
+    code, err, tag = _interrupt([*CALIBRATE, "--out", str(out)], tmp_path, _line("fit: "),
+                                "term")
+    assert _gone(tag) == []
+    line = _final_line(err, "upliftlab: interrupted")
+    assert code == 130 and "resume with: upliftlab calibrate strip_footing_clay" in line
+    assert _leftovers(tmp_path) == [] and not (out / "upliftlab-run.json").exists()
+    assert not (out / "calibration.json").exists()
+    records = list((out / "store").rglob("*.json"))
+    assert len(records) == 4 and all(json.loads(p.read_text()) for p in records)
+    assert (out / "fit-cache.npz").is_file() and "evaluations kept in fit-cache.npz" in line

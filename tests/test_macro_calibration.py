@@ -67,7 +67,7 @@ def test_calibration_reproduces_a_law_of_known_parameters():
     of the settlement's range."""
     truth = MacroElement(**ELASTIC, cohesion=50.0, initial_size=0.75,
                          hardening_settlement=0.005, interior_modulus=2.0,
-                         interior_exponent=1.2, settlement_coupling=0.4, rounding_ratio=0.5)
+                         interior_exponent=1.2, settlement_coupling=0.3, rounding_ratio=0.5)
     theta_on = 2e-3
     mono = np.linspace(0, 8 * theta_on, 9)
     cycle = np.concatenate([np.linspace(0, 4, 5), np.linspace(4, -4, 9),

@@ -378,3 +378,30 @@ def test_any_law_in_range_either_steps_or_says_why():
             stopped += 1
             assert str(error).startswith("macro: ")
     assert stopped < 40
+
+
+def test_a_settlement_coupling_within_the_scenes_bound_steps_where_a_larger_one_fails():
+    """Reference: the plastic multiplier's denominator K_p + nᵀDn + χ r nᵀD e_V (r = |(n_H,
+    B n_M)|), which the flow's extra settlement lowers below the surface's widest point: on
+    this clay's elastic part its closed-form minimum over the surface gives χ* = 1.54 (issue
+    36 note), reached under sway and rocking near lift-off. On 20 seeded walks of settlement,
+    sway and rotation, χ = 2 stops some with a failed flow, as the closed form says it must;
+    χ at the scenes' bound (:data:`MAX_SETTLEMENT_COUPLING`, 0.4) steps on every one."""
+    from upliftlab.reduced.laws.macro import MacroStepError
+    from upliftlab.scenes.laws.macro import MAX_SETTLEMENT_COUPLING
+
+    def failed(chi):
+        count = 0
+        for seed in range(20):
+            law = law_of(settlement_coupling=chi, rounding_ratio=0.0)
+            state = at_rest(law, law.ultimate_load / 3)
+            try:
+                for d in random_walk(law, 500 + seed, count=60):
+                    state = step(law, state, d).state
+            except MacroStepError as error:
+                assert "flow" in str(error), str(error)
+                count += 1
+        return count
+
+    assert failed(MAX_SETTLEMENT_COUPLING) == 0
+    assert failed(2.0) > 0

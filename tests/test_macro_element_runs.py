@@ -169,6 +169,29 @@ def test_the_model_has_no_springs_under_it():
     np.testing.assert_allclose(K, Kb, rtol=1e-9, atol=1e-9 * np.abs(Kb).max())
 
 
+@pytest.mark.parametrize("rigid", [False, True])
+def test_a_free_rocking_release_starts_from_the_held_rotation(rigid):
+    """A wall (or a block) released from a held rotation θ0 = 2 θ_up (its static uplift
+    rotation), no ground motion. Reference: 400 elastic springs, whose static push to θ0 is
+    their own vertical equilibrium (the element's elastic limit: the same bed): θ's
+    history within 1e-3 of its peak, the peaks θ, V_max, V_min and the least contact length
+    within 1e-4; at the start the element carries the weight (V = W to 1e-9) at θ0 and has
+    done no plastic work; the energy balance closes."""
+    theta_up = 2 * 242.0 / (20000.0 / 240.0 * 240.0 ** 2)  # 2W/(k B²), k = K_v/B
+    free = {"type": "free", "rotation": 2 * theta_up, "duration": 1.0}
+    macro = run(_scene(0.0, rigid=rigid, dt=2e-4, motion=free))
+    bed = run(_scene(0.0, law="elastic", rigid=rigid, dt=2e-4, motion=free))
+    assert macro.theta[0] == pytest.approx(2 * theta_up, rel=1e-12)
+    assert macro.base[0, 0] == pytest.approx(242.0, rel=1e-9)
+    assert np.abs(macro.base[:, 3:6]).max() < 1e-5 * 242.0 / 20000.0
+    m, s = macro.peaks, bed.peaks
+    for key in ("theta", "V_max", "V_min", "min_contact_length"):
+        assert m[key] == pytest.approx(s[key], rel=1e-4, abs=1e-9), key
+    history = np.interp(bed.time, macro.time, macro.theta)
+    assert np.max(np.abs(history - bed.theta)) <= 1e-3 * np.max(np.abs(bed.theta))
+    assert macro.energy_balance_error <= ENERGY_TOL
+
+
 @pytest.mark.parametrize("integrator", ["events", "newmark", "hht"])
 def test_integrators_that_do_not_move_its_state_are_refused(integrator):
     with pytest.raises(InputError, match="valid: 'rk4', 'abm4'"):
@@ -182,6 +205,7 @@ def test_integrators_that_do_not_move_its_state_are_refused(integrator):
     ({"support": "bonded"}, "foundation.support"),
     ({"frictional_share": 1.5}, "foundation.frictional_share"),
     ({"capacity_multiple": 0.5}, "foundation.capacity_multiple"),
+    ({"settlement_coupling": 0.5}, "foundation.settlement_coupling"),
 ])
 def test_a_scene_it_cannot_take_is_refused_with_its_field(change, field):
     with pytest.raises(InputError, match=field.replace(".", r"\.")):
@@ -198,9 +222,20 @@ def test_the_tools_that_take_springs_refuse_it_up_front(tmp_path):
             tool(scene)
 
 
-def test_an_initial_rotation_and_a_batch_are_refused():
-    free = {"type": "free", "rotation": 0.001, "duration": 1.0}  # a release from a lean
-    with pytest.raises(InputError, match="motion.displacement or motion.rotation"):
-        run(_scene(0, motion=free))
+def test_an_initial_displacement_and_a_batch_are_refused():
+    held = {"type": "free", "displacement": 0.5, "duration": 1.0}  # the top mass held aside
+    with pytest.raises(InputError, match=r"^motion\.displacement with foundation\.law"):
+        run(_scene(0, motion=held))
     with pytest.raises(InputError, match="foundation.law = 'macro'"):
         run_batch([_scene(0.5)])
+
+
+def test_its_cost_is_counted_before_the_run():
+    """Reference: :data:`upliftlab.budget.MACRO_SECONDS_PER_STEP`, 300 µs a step (measured:
+    270 µs on this wall at 0.6 g, ``benchmarks/MACRO_SPEED.md``, against 3 µs for a bed of 48
+    springs): the 2 s pulse's 6,800 RK4 steps are estimated at 2 s, so a budget of 1 s refuses
+    the run before it starts, naming the element; the bed of springs at the same budget runs."""
+    with pytest.raises(InputError, match=r"^--budget = 1 s: .*a macro-element"):
+        run(_scene(0.6, **CLAY), budget=1.0)
+    bed = _scene(0.6, law="elastoplastic", capacity_multiple=3.0, sliding_ratio=None)
+    assert run(bed, budget=1.0, histories=False).info["verdict"] == "completed"

@@ -39,6 +39,12 @@ GIB = 2.0 ** 30
 #: Seconds per step of the reduced model: a fixed part and a part per spring (event stepper:
 #: 6 µs per step with 40 springs, 22 µs with 160).
 REDUCED_SECONDS_PER_STEP = (1.0e-6, 1.3e-7)
+#: Seconds per step of a macro-element under the base (``foundation.law = "macro"``): its
+#: update runs at every stage of a step (five a step with RK4), in sub-steps of at most
+#: ``force_step`` of trial force each, so its cost follows the load's path: a wall at FS_v 3
+#: under a 0.6 g Ricker pulse took 270 µs a step at the default force step, 46 µs at ten times
+#: it (``benchmarks/MACRO_SPEED.md``); far from its capacity it takes a few µs.
+MACRO_SECONDS_PER_STEP = 3.0e-4
 #: Switches (separations and recontacts) the event stepper locates per spring and second of
 #: a rocking run (the figure its event log is sized by): each is a step of its own over every
 #: spring, so the run's time grows as springs² (measured on wall_free e07, 3 s: 250, 1000 and
@@ -145,10 +151,11 @@ def _raise_to(seconds: float) -> str:
 
 
 def reduced_cost(*, steps: int, step: float, stride: int, dofs: int, springs: int,
-                 events: bool, histories: bool = True) -> Cost:
+                 events: bool, histories: bool = True, element: bool = False) -> Cost:
     """The reduced model's run: ``steps`` of ``step`` (s), histories every ``stride`` steps
     (only the ends without ``histories``), ``dofs`` and ``springs`` (story springs included);
-    the event stepper (``events``) keeps a log of impacts."""
+    the event stepper (``events``) keeps a log of impacts; ``element``: a macro-element under
+    the base (:data:`MACRO_SECONDS_PER_STEP`)."""
     outputs = (steps // max(stride, 1) + 1) if histories else 2
     per_output = 8.0 * (2 * dofs + 6 * springs + 8)  # q, q̇, spring arrays, derived, energy
     duration = steps * step
@@ -157,9 +164,12 @@ def reduced_cost(*, steps: int, step: float, stride: int, dofs: int, springs: in
     memory = outputs * per_output + log + 8.0 * dofs * springs + 200.0 * springs
     a, b = REDUCED_SECONDS_PER_STEP
     located = f", up to {switches:.3g} located switches" if events else ""
-    return Cost("the reduced run", int(steps), float(step), memory,
-                (steps + switches) * (a + b * springs), f"{springs} springs, {dofs} DOFs"
-                + located, "fewer springs or a shorter duration")
+    seconds = (steps + switches) * (a + b * springs) + (MACRO_SECONDS_PER_STEP * steps
+                                                          if element else 0.0)
+    sizes = (f"{springs} springs, " if not element else "a macro-element, ") + f"{dofs} DOFs"
+    return Cost("the reduced run", int(steps), float(step), memory, seconds, sizes + located,
+                "fewer springs or a shorter duration" if not element
+                else "a larger force_step or a shorter duration")
 
 
 def continuum_cost(*, analysis: str, steps: int, step: float, dofs: int,

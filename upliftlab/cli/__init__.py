@@ -16,6 +16,9 @@
                         [--no-render] [--json] [--force] [--budget SECONDS]
     upliftlab opensees SCENE [--case A|B] [--set KEY=VALUE ...] [--out DIR] [--run] [--json]
                        [--force]
+    upliftlab calibrate SCENE [--case C] [--set KEY=VALUE ...] [--mesh KEY=VALUE ...]
+                        [--fs-v LIST] [--evaluations N] [--workers N] [--out DIR] [--json]
+                        [--force] [--budget SECONDS]
     upliftlab store verify|migrate|pack DIR [--sample N] [--name NAME]
 
 Bad input ends with one line naming the field, the value and the valid range (exit code 2),
@@ -67,6 +70,7 @@ __all__ = ["main", "parser"]
 
 def parser() -> Parser:
     """The parser of every subcommand."""
+    from .calibrate import add_calibrate
     from .commands import add_reduced_commands
     from .continuum import add_continuum
     from .opensees import add_opensees
@@ -82,6 +86,7 @@ def parser() -> Parser:
     add_report(sub)
     add_continuum(sub)
     add_opensees(sub)
+    add_calibrate(sub)
     add_study(sub)
     add_store(sub)
     for command in sub.choices.values():  # after the subcommand: upliftlab run X --quiet
@@ -90,13 +95,13 @@ def parser() -> Parser:
 
 
 def _handler(command: str):
-    from . import commands, continuum, opensees, report, store, study
+    from . import calibrate, commands, continuum, opensees, report, store, study
 
     return {"run": commands.run_command, "paper": commands.paper_command,
             "scenes": commands.scenes_command, "advise": commands.advise_command,
             "report": report.report_command, "continuum": continuum.continuum,
             "opensees": opensees.opensees_command, "study": study.study_command,
-            "store": store.store}[command]
+            "store": store.store, "calibrate": calibrate.calibrate_command}[command]
 
 
 def _terminated(signum, frame):

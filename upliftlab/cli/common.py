@@ -68,7 +68,8 @@ def number(name: str, text: str | None, *, integer: bool = False, low: float = 0
     try:
         value = int(text) if integer else float(text)
     except ValueError:
-        kind = "an integer" if integer else "a number"
+        kind = (f"an integer in [{low:g}, {high:g}]" if integer
+                else f"a number in ({low:g}, {high:g}]")
         raise InputError(f"{name} = {text!r}: expected {kind}") from None
     if integer and not low <= value <= high:
         raise InputError(f"{name} = {value}: valid range is [{low:g}, {high:g}]")
@@ -112,9 +113,9 @@ def mesh_overrides(items: list[str]) -> list[str]:
     return overrides
 
 
-def say(message: str) -> None:
-    """One progress line on stderr."""
-    logger("continuum").info(f"upliftlab continuum: {message}")
+def say(message: str, command: str = "continuum") -> None:
+    """One progress line of ``upliftlab command`` on stderr."""
+    logger(command).info(f"upliftlab {command}: {message}")
 
 
 def eta(started: float, done: int, total: int) -> str:

@@ -435,7 +435,8 @@ def _dynamic(model, scene, motion, threads: int, out, started: float, flag, comm
         path = exc.result.save(out.path / "result.nc")
         until = exc.result.metadata.get("completed_until", float(exc.result.time[-1]))
         print(f"upliftlab: interrupted at t = {until:.4g} s of the motion ("
-              f"{flag.name or 'Ctrl-C'}); wrote the rows computed so far to {path} (attribute incomplete = 1, "
+              f"{flag.name or 'Ctrl-C'}); wrote the rows computed so far to {path} "
+              "(attribute incomplete = 1, "
               f"completed_until = {until:.4g} s); resume with: {command}", file=sys.stderr)
         return EXIT_INTERRUPTED
     except EnergyBalanceError as exc:

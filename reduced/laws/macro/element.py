@@ -20,7 +20,10 @@ from ..base import Base, Law
 from .params import MacroElement
 from .plastic import MacroState, at_rest, at_vertical_load, elastic_forces, stored_energy
 
-__all__ = ["BaseElement", "LAW", "element", "rest_state"]
+__all__ = ["BaseElement", "LAW", "element", "rest_state", "held_state", "PUSH_STEPS"]
+
+#: Equal steps of the push from rest to a free vibration's initial rotation (:func:`held_state`).
+PUSH_STEPS = 40
 
 
 @dataclass(frozen=True, eq=False)
@@ -68,6 +71,23 @@ def rest_state(law: MacroElement, weight: float) -> MacroState:
     if weight < limit:
         return at_rest(law, weight)
     return at_vertical_load(law, at_rest(law, 0.5 * limit), (0.0, 0.0), weight)[0]
+
+
+def held_state(element: BaseElement, q: np.ndarray) -> MacroState:
+    """The element under the base's sway and rotation of ``q`` (d = d_rest + T q; q's V is not
+    read), pushed there from rest in :data:`PUSH_STEPS` equal steps, each step's settlement
+    from vertical equilibrium V = V_rest: where a free vibration released from a held
+    rotation starts. The path matters once the element yields (the springs' static push has
+    none: they yield in their own compression alone). Raises
+    :class:`~.params.MacroStepError` where the element cannot carry the weight on the way."""
+    rest = element.rest
+    target = rest.displacement + element.transform @ np.asarray(q, dtype=float)
+    start = rest.displacement[1:]
+    state = rest
+    for k in range(1, PUSH_STEPS + 1):
+        held = start + (target[1:] - start) * (k / PUSH_STEPS)
+        state, _ = at_vertical_load(element.law, state, held, rest.forces[0])
+    return state
 
 
 def element(record: MacroLaw, base: Base) -> BaseElement:
