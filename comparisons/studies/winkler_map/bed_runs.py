@@ -48,7 +48,9 @@ def bed_soil_damping(point: Mapping, foundation: Mapping) -> dict:
     from ....continuum.dynamics.rayleigh import scene_rayleigh
     from ...beds.soil_damping import with_soil_damping
 
-    return with_soil_damping(dict(foundation), scene_rayleigh(point_scene(point)).beta)
+    scene = point_scene(point)
+    return with_soil_damping(dict(foundation), scene_rayleigh(scene).beta,
+                             vertical_mass=scene.structure.vertical_weight / scene.g)
 
 
 def run_bed(point: Mapping, foundation: Mapping) -> dict:
@@ -96,9 +98,14 @@ def bed_scene(point: Mapping, foundation: Mapping):
 
 def reduced_measures(response) -> dict:
     """The measures of :func:`measured` of a reduced model's ``response`` (its peaks where the
-    event stepper caught a peak between recorded steps)."""
+    event stepper caught a peak between recorded steps). A base element (the macro-element)
+    has no springs to read edge gaps from: its edge uplift is its own tracked peak, the larger
+    gap under its edges at the steps' ends (``peaks["uplift_max"]``)."""
     t = np.asarray(response.time, dtype=float)
-    uplift = float(np.max(edge_uplift_history(reduced_edge_gap_history(response))))
+    if response.model.base is not None:
+        uplift = float(response.peaks["uplift_max"])
+    else:
+        uplift = float(np.max(edge_uplift_history(reduced_edge_gap_history(response))))
     u_peak = max(float(np.max(np.abs(response.u))), float(response.peaks["u"]))
     theta = np.asarray(response.theta, dtype=float)
     out = measured(t - t[0], theta, uplift, np.asarray(response.settlement, dtype=float), u_peak,
