@@ -3,8 +3,9 @@ to the continuum's statics (:mod:`upliftlab.comparisons.studies.macro_calibratio
 ``--set`` overrides that put it under the scene's structure in the reduced model.
 
 Before any run: the scene, the options and the whole cost (the continuum's statics and
-pushovers at the continuum's per-step rates, the fit at :data:`~upliftlab.comparisons.beds.macro.FIT_SECONDS_PER_STEP` per step
-of the law's pushovers, at most its evaluation bound) are checked against the budget. The
+pushovers at the continuum's per-step rates, the fit at
+:data:`~upliftlab.comparisons.beds.macro.FIT_SECONDS_PER_STEP` per step of the law's pushovers,
+at most its evaluation bound) are checked against the budget. The
 continuum runs go to a store in the output folder, so the same command resumes an interrupted
 calibration without making them again; the fit is made again (minutes). Progress: the sweep's
 lines, then the fit's every :data:`FIT_REPORT_SECONDS` with its ETA. The overrides are checked

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 from ....anchors import half_plane_onset_rotation
 from ....checks import InputError
-from ....scenes.soil import FRICTIONAL, SOIL_MODELS, UNDRAINED
+from ....scenes.soil import SOIL_MODELS, UNDRAINED
 from ...beds.continuum_points import floats
 from ...beds.macro import macro_strength
 from ...beds.pushover import cyclic_path, rotation_path
