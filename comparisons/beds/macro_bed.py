@@ -83,7 +83,7 @@ def build_macro(reference, options) -> dict:
 def element_damping_ratio(table: Mapping, beta: float, vertical_mass: float) -> float:
     """The element's ``damping_ratio`` that gives it the soil's β K_v (module docstring):
     β ω_v/2, ω_v = √(K_v/m_v), ``vertical_mass`` m_v (mass per length)."""
-    if not vertical_mass > 0.0:
+    if vertical_mass is None or not vertical_mass > 0.0:
         raise InputError(f"vertical mass = {vertical_mass!r}: the element's soil damping needs "
                          "the structure's vertical mass; valid range is > 0")
     return 0.5 * beta * math.sqrt(float(table["stiffness"]) / vertical_mass)
