@@ -457,6 +457,18 @@ def test_macro_speed_fast_path(tmp_path):
     assert bench_output.number(macro[0]["µs a step"]) > 0
 
 
+def test_hm_envelope_fast_path(tmp_path):
+    """The clay's H–M section at v = 0.5 on 4 across: seven probes, each outside the
+    Green–effective-width lower bound (Houlsby and Puzrin 1999; ratio ≥ 1) and its distance
+    to the macro-element's elliptic section finite and positive."""
+    out = tmp_path / "hm"
+    run_fast_path("hm_envelope.py", out)
+    rows = tables(out / "HM_ENVELOPE.md")["4 elements across (1296 DOFs)"]
+    assert len(rows) == 7
+    assert all(bench_output.number(r["bound"]) >= 1.0 for r in rows)
+    assert all(0.0 < bench_output.number(r["element"]) < 10.0 for r in rows)
+
+
 @pytest.mark.slow
 def test_macro_map_slice_fast_path(tmp_path):
     """The clay at FS_v 3 of the half-plane map's slice h/B 1.5, T 0.5 s (its map made first
