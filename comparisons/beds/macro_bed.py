@@ -26,6 +26,7 @@ import numpy as np
 
 from ...checks import InputError
 from ...reduced.laws.macro import MacroElement
+from .base import required_extra
 
 __all__ = ["PLASTIC_KEYS", "element_keys", "build_macro", "gazetas_sway_stiffness",
            "element_damping_ratio", "element_of", "macro_rocking"]
@@ -56,10 +57,8 @@ def element_keys(law: MacroElement, weight: float) -> dict:
 
 
 def _law(reference) -> MacroElement:
-    fitted = reference.extra.get("macro")
-    if fitted is None:
-        raise InputError("BedReference.extra['macro'] is missing: the macro bed needs the "
-                         "soil's fitted element (the map's stored fit)")
+    fitted = required_extra(reference, "macro", "the macro bed needs the soil's fitted "
+                            "element (the map's stored fit)")
     if "error" in fitted:
         raise InputError(f"macro: the soil's fit was refused: {fitted['error']}")
     return MacroElement(**{**fitted["law"], "vertical_stiffness": float(reference.K_v),
