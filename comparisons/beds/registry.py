@@ -25,8 +25,8 @@ pushovers; ``macro`` is no bed of springs but the macro-element (:mod:`.macro_be
 once per soil to the continuum's statics (:mod:`.macro`, a stored fit of the map).
 ``end_stiffened_bearing`` keeps its springs but lets each yield at the soil's one bearing
 pressure V_ult/B over its tributary width, the convention of beam-on-nonlinear-Winkler
-practice, where ``end_stiffened_plastic`` yields each spring at FS_v times its static force, which gives the
-stiffened ends R_k times the middle's pressure capacity.
+practice, where ``end_stiffened_plastic`` yields each spring at FS_v times its static force,
+which gives the stiffened ends R_k times the middle's pressure capacity.
 """
 
 from __future__ import annotations
