@@ -167,3 +167,21 @@ def test_a_fit_refused_is_a_record_that_says_why():
     with pytest.raises(InputError, match="fit was refused: macro calibration: no monotonic"):
         bed_foundation("macro", ref, wm.FULL_OPTIONS)
     assert math.isfinite(fitted.ultimate_load)
+
+
+def test_the_kept_fits_are_the_published_calibration():
+    """The half-plane store keeps the map's fit of each soil (``packs/macro-fits``): its law
+    is ``benchmarks/macro_calibration.json``'s, made by the benchmark from the same store's
+    pushovers through another path (its own reader of the records), field by field (1e-12),
+    and it holds N on every pushover."""
+    store = Store(HERE.parent / "benchmarks" / "winkler_map_halfplane_store")
+    fits = {}
+    for key in store.keys():
+        entry = store.entry(key)
+        if entry["function"].endswith("evaluate_macro_fit"):
+            fits[entry["params"]["soil"]] = entry["record"]
+    assert sorted(fits) == ["clay", "sand"]
+    for soil, record in fits.items():
+        for field, value in CALIBRATION[soil]["law"].items():
+            assert record["law"][field] == pytest.approx(value, rel=1e-12, abs=1e-15), field
+        assert max(record["load_misses"]) <= LOAD_TOLERANCE
