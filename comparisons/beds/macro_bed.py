@@ -8,8 +8,9 @@ point's own elastic part, K_v and K_r of :class:`.base.BedReference` (the number
 bed of the point is calibrated to), and its capacity as a multiple of the point's weight N.
 It sways on the reference's tie where the reference's footing has one (the half-plane's; the
 map's :func:`~upliftlab.comparisons.studies.winkler_map.bed_runs.bed_sway` sets it, as for
-every bed), else on Gazetas' static K_h = 2G/(2 − ν) of a strip (the box holds its footing
-horizontally; the element needs a K_h, and this is the soil's).
+every bed), else on the scene's own sway spring (the advisor's scenes), else on Gazetas'
+static K_h = 2G/(2 − ν) of a strip: the element carries the base's horizontal force and needs
+a K_h, and this is the soil's.
 
 The soil's Rayleigh damping β, which a bed of springs takes as β k_i beside each spring
 (:mod:`.soil_damping`), the element takes as its one vertical dashpot density β K_v/B (the same
@@ -49,10 +50,13 @@ def element_keys(law: MacroElement, weight: float) -> dict:
     parameters."""
     V_ult = law.ultimate_load
     share = law.frictional_modulus * law.width ** 2 / V_ult
+    if not -1e-12 <= share <= 1.0 + 1e-12:
+        raise InputError(f"macro: the N_γ term's share of V_ult = {share:.6g}; valid range is "
+                         "[0, 1] (the law's capacity terms are both ≥ 0)")
     return {"law": "macro", "stiffness": float(law.vertical_stiffness),
             "rocking_stiffness": float(law.rocking_stiffness),
             "capacity_multiple": float(V_ult / weight),
-            "frictional_share": float(min(max(share, 0.0), 1.0)),
+            "frictional_share": float(min(max(share, 0.0), 1.0)),  # round-off only
             **{key: float(getattr(law, key)) for key in PLASTIC_KEYS}}
 
 
