@@ -53,7 +53,7 @@ def bed_soil_damping(point: Mapping, foundation: Mapping) -> dict:
                              vertical_mass=scene.structure.vertical_weight / scene.g)
 
 
-def run_bed(point: Mapping, foundation: Mapping) -> dict:
+def run_bed(point: Mapping, foundation: Mapping, analysis: Mapping | None = None) -> dict:
     """A bed's run of a point's motion (reduced model, live, not stored): the measures of
     :func:`measured`, its ``peak_settlement`` (the base centre's largest settlement, down),
     its wall time ``wall_time_s`` (the run alone, s), its foundation energy E_F and the
@@ -62,11 +62,13 @@ def run_bed(point: Mapping, foundation: Mapping) -> dict:
     ``analysis.max_steps`` is refused before it starts, as it would be for a user: on the
     half-plane a bed whose footing carries its own mass has a stiff mode the error-controlled
     integrator's first step resolves, and the q–z bed's on a record of a minute is above it).
-    One bed's refusal leaves its error NaN at that point and the map goes on."""
+    One bed's refusal leaves its error NaN at that point and the map goes on. ``analysis``:
+    ``[analysis]`` keys of the bed's run over the point's (the macro-element's integrator and
+    step, :func:`element_analysis`)."""
     from ....checks import InputError
     from ....reduced import IntegrationError, run as run_reduced
 
-    scene = bed_scene(point, foundation)
+    scene = bed_scene(point, foundation, analysis)
     started = time.perf_counter()
     try:
         response = run_reduced(scene)
@@ -80,7 +82,16 @@ def run_bed(point: Mapping, foundation: Mapping) -> dict:
             "energy_balance_error": float(response.peaks["energy_balance_error"])}
 
 
-def bed_scene(point: Mapping, foundation: Mapping):
+def element_analysis(options) -> dict:
+    """The ``[analysis]`` keys of the macro-element's runs on the map: ``options.
+    macro_integrator`` at ``options.macro_dt`` (Newmark at 1 ms by default: on the half-plane
+    the footing's own mass on the tie's dashpot is an overdamped mode that holds RK4 to about
+    2e-5 s; Newmark carries the element at 1 ms within 1e-3 of RK4,
+    ``tests/test_winkler_map_macro.py``)."""
+    return {"integrator": options.macro_integrator, "dt": float(options.macro_dt)}
+
+
+def bed_scene(point: Mapping, foundation: Mapping, analysis: Mapping | None = None):
     """The reduced model's scene of a bed (its ``[foundation]`` table ``foundation``) on a
     point: the point's structure and motion, the bed's foundation with the sway of
     :func:`bed_sway` and the soil damping of :func:`bed_soil_damping`, no soil or continuum
@@ -88,6 +99,8 @@ def bed_scene(point: Mapping, foundation: Mapping):
     data = copy.deepcopy(point["scene"])
     data["foundation"] = {**bed_soil_damping(point, foundation),
                           **bed_sway(data.get("continuum", {}))}
+    if analysis:
+        data["analysis"] = {**data.get("analysis", {}), **analysis}
     B = 2.0 * data["foundation"]["half_width"]
     data["motion"] = motion_table(point["motion"], point["intensity"], B,
                                   data["structure"]["height"])

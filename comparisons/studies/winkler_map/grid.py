@@ -81,7 +81,8 @@ class Options:
     impedance's at each structure's rocking frequency (:mod:`...beds.rocking_stiffness`).
     ``macro_fs_v``: the FS_v whose rotation pushovers (monotonic and cyclic) the macro-element
     is fitted to, once per soil whatever the grid's FS_v (the whole map's four), in at most
-    ``macro_evaluations`` evaluations of the fit (:mod:`.macro_points`).
+    ``macro_evaluations`` evaluations of the fit (:mod:`.macro_points`); its runs take
+    ``macro_integrator`` at ``macro_dt`` (s) (:func:`.bed_runs.element_analysis`).
     """
 
     elements_across: int = 16
@@ -105,6 +106,8 @@ class Options:
     reference: str = "box"
     macro_fs_v: tuple[float, ...] = (2.0, 3.0, 5.0, 10.0)
     macro_evaluations: int = 1500
+    macro_integrator: str = "newmark"
+    macro_dt: float = 1e-3
 
 
 FULL_GRID = Grid()
@@ -223,4 +226,7 @@ def check_options(options: Options, beds: Sequence[str]) -> Options:
     if evaluations > 20000:
         raise InputError(f"options.macro_evaluations = {evaluations}: valid range is "
                          "[1, 20000]")
+    checks.one_of("options.macro_integrator", options.macro_integrator,
+                  ("newmark", "hht", "rk4", "abm4"))
+    checks.in_range("options.macro_dt", options.macro_dt, 0.0, 0.01, low_open=True)
     return options
