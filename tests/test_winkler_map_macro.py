@@ -212,3 +212,27 @@ def test_on_the_half_plane_newmark_takes_the_steps_rk4_cannot():
     for key, value in e.items():
         assert i[key] == pytest.approx(value, rel=1e-3, abs=1e-3 * scale.get(key, 0.0)), key
     assert implicit.energy_balance_error <= 1e-4
+
+
+def test_a_light_structure_gets_the_step_that_resolves_its_fastest_mode():
+    """At FS_v 10 the footing's sway (its mass a share of a light N) has a period under 10 ms:
+    Newmark at 1 ms could not resolve it (10 steps a period) and was refused at 4 of the
+    slice's 32 points; the map's run shortens the step to 0.95 of T_min/10, T_min from the
+    eigenvalues of M⁻¹K of the bonded model by numpy (an independent computation), and the
+    run completes."""
+    from upliftlab.comparisons.studies.winkler_map.bed_runs import (_resolved, element_analysis,
+                                                                    run_bed)
+    from upliftlab.reduced import build_model
+
+    fitted = MacroElement(**CALIBRATION["clay"]["law"])
+    point, ref = _point("clay", 10.0, fitted)
+    foundation = bed_foundation("macro", ref, wm.FULL_OPTIONS)
+    analysis = element_analysis(wm.FULL_OPTIONS)
+    scene = _resolved(bed_scene(point, foundation, analysis))
+    model = build_model(scene).linearised
+    K, _ = model.bonded_matrices()
+    omega2 = np.linalg.eigvals(np.diag(1.0 / model.mass) @ (K - model.geometric)).real
+    T_min = 2.0 * math.pi / math.sqrt(omega2.max())
+    assert T_min < 10e-3
+    assert scene.analysis.dt == pytest.approx(0.95 * T_min / 10.0, rel=1e-9)
+    assert "refused" not in run_bed(point, foundation, analysis)

@@ -69,6 +69,8 @@ def run_bed(point: Mapping, foundation: Mapping, analysis: Mapping | None = None
     from ....reduced import IntegrationError, run as run_reduced
 
     scene = bed_scene(point, foundation, analysis)
+    if analysis:
+        scene = _resolved(scene)
     started = time.perf_counter()
     try:
         response = run_reduced(scene)
@@ -84,11 +86,30 @@ def run_bed(point: Mapping, foundation: Mapping, analysis: Mapping | None = None
 
 def element_analysis(options) -> dict:
     """The ``[analysis]`` keys of the macro-element's runs on the map: ``options.
-    macro_integrator`` at ``options.macro_dt`` (Newmark at 1 ms by default: on the half-plane
-    the footing's own mass on the tie's dashpot is an overdamped mode that holds RK4 to about
-    2e-5 s; Newmark carries the element at 1 ms within 1e-3 of RK4,
-    ``tests/test_winkler_map_macro.py``)."""
+    macro_integrator`` at steps of at most ``options.macro_dt`` (Newmark at 1 ms by default:
+    on the half-plane the footing's own mass on the tie's dashpot is an overdamped mode that
+    holds RK4 to about 2e-5 s; Newmark carries the element at 1 ms within 1e-3 of RK4,
+    ``tests/test_winkler_map_macro.py``), shortened where an implicit integrator could not
+    resolve the point's shortest bonded period (:func:`_resolved`)."""
     return {"integrator": options.macro_integrator, "dt": float(options.macro_dt)}
+
+
+def _resolved(scene):
+    """``scene`` with its implicit step shortened to 0.95 of what resolves its shortest bonded
+    period (:func:`~upliftlab.reduced.integrators.resolution_limit`: a light structure's
+    footing sways faster), unchanged otherwise."""
+    from ....reduced import build_model
+    from ....reduced.integrators import method, resolution_limit
+
+    a = scene.analysis
+    if a.dt is None or method(a.integrator).explicit:
+        return scene
+    largest, _ = resolution_limit(build_model(scene))
+    if a.dt <= largest:
+        return scene
+    data = copy.deepcopy(scene.data)
+    data["analysis"] = {**data.get("analysis", {}), "dt": 0.95 * largest}
+    return scene_from_dict(data, merged=True)
 
 
 def bed_scene(point: Mapping, foundation: Mapping, analysis: Mapping | None = None):
