@@ -16,6 +16,8 @@ Analyses (results are frozen records with ``save()`` to NetCDF)
     -> :class:`StaticPath`; :func:`uplift_onset` -> :class:`UpliftOnset`;
     :func:`vm_envelope` -> :class:`Envelope`; :func:`sway_pushover` -> :class:`StaticPath`
     and :func:`vh_envelope` -> :class:`SwayEnvelope` (an interface that carries shear);
+    :func:`combined_pushover` -> :class:`StaticPath` and :func:`hm_envelope` ->
+    :class:`HMEnvelope` (the H–M section at constant V, by radial probes in (u, B θ));
     :func:`run_dynamic` (gravity, then a ground
     motion; explicit central differences by default, or HHT-α / Newmark with Newton
     (``continuum.dynamics``); Lysmer boundaries, rigid or compliant base, SDOF superstructure)
@@ -69,6 +71,7 @@ from .statics.analyses import (Envelope, FootingStiffness, StaticPath, UpliftOns
                                elastic_gravity_stress, footing_stiffness, geostatic, k0_stress,
                                moment_pushover, rotation_pushover, uplift_onset, vertical_pushover,
                                vm_envelope)
+from .statics.combined import HMEnvelope, combined_pushover, hm_envelope
 from .statics.sway import SwayEnvelope, sway_pushover, vh_envelope
 
 __all__ = [
@@ -83,6 +86,7 @@ __all__ = [
     "StaticPath", "vertical_pushover", "rotation_pushover", "moment_pushover",
     "UpliftOnset", "uplift_onset", "Envelope", "vm_envelope",
     "sway_pushover", "SwayEnvelope", "vh_envelope",
+    "combined_pushover", "HMEnvelope", "hm_envelope",
     "DynamicOptions", "DynamicResult", "run_dynamic", "estimate_error", "MeshErrorEstimate",
     "Impedance", "ImpedanceOptions", "impedance_model",
 ]

@@ -165,11 +165,12 @@ def plan_run(model: ReducedModel, motion: Motion, name: str, *, dt: float | None
                          "exact kinematics has a mass matrix that changes with θ, integrated by "
                          "the explicit integrators; valid: "
                          + ", ".join(repr(k) for k, v in METHODS.items() if v.explicit))
-    if model.base is not None and m.kind != "fixed":
+    if model.base is not None and m.kind not in ("fixed", "implicit"):
         raise InputError(f"analysis.integrator = {name!r} with foundation.law = 'macro': the "
-                         "macro-element's state moves with the explicit fixed-step "
-                         "integrators' accepted steps; valid: " + ", ".join(
-                             repr(k) for k, v in METHODS.items() if v.kind == "fixed"))
+                         "macro-element's state moves with the fixed-step integrators' "
+                         "accepted steps; valid: " + ", ".join(
+                             repr(k) for k, v in METHODS.items()
+                             if v.kind in ("fixed", "implicit")))
     if m.kind == "events" and np.any(np.isin(model.params["kind"], curved_kinds())):
         law = model.scene.foundation.law
         raise InputError(f"analysis.integrator = {name!r} with foundation.law = {law.name!r}: "

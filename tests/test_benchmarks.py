@@ -457,12 +457,25 @@ def test_macro_speed_fast_path(tmp_path):
     assert bench_output.number(macro[0]["µs a step"]) > 0
 
 
+def test_hm_envelope_fast_path(tmp_path):
+    """The clay's H–M section at v = 0.5 on 4 across: seven probes, each outside the
+    Green–effective-width lower bound (Houlsby and Puzrin 1999; ratio ≥ 1) and its distance
+    to the macro-element's elliptic section finite and positive."""
+    out = tmp_path / "hm"
+    run_fast_path("hm_envelope.py", out)
+    rows = tables(out / "HM_ENVELOPE.md")["4 elements across (1296 DOFs)"]
+    assert len(rows) == 7
+    assert all(bench_output.number(r["bound"]) >= 1.0 for r in rows)
+    assert all(0.0 < bench_output.number(r["element"]) < 10.0 for r in rows)
+
+
 @pytest.mark.slow
 def test_macro_map_slice_fast_path(tmp_path):
     """The clay at FS_v 3 of the half-plane map's slice h/B 1.5, T 0.5 s (its map made first
-    from the kept store, beds live: several minutes, hence slow). Reference: the map's own
-    continuum measures in that dataset; the macro-element's runs all complete, and its median
-    error in peak θ is within 10 % (measured: 1.6 %)."""
+    from the kept store, the macro-element's fit among its records, beds and element live:
+    several minutes, hence slow). Reference: the map's own continuum measures in that
+    dataset; the macro-element's runs all complete, and its median error in peak θ is within
+    10 % (measured: 1.6 %)."""
     env = {**os.environ, "MPLBACKEND": "Agg"}
     made = subprocess.run([sys.executable, "-m", "upliftlab", "study", "winkler_map",
                            "--reference", "half_plane", "--store",
@@ -473,7 +486,10 @@ def test_macro_map_slice_fast_path(tmp_path):
                           env=env, capture_output=True, text=True, timeout=TIMEOUT)
     assert made.returncode == 0, made.stderr[-3000:]
     out = tmp_path / "slice"
-    run_fast_path("macro_map_slice.py", out, "--map", str(tmp_path / "map" / "map.nc"))
+    read = subprocess.run([sys.executable, str(BENCH / "macro_map_slice.py"), "--out",
+                           str(out), "--map", str(tmp_path / "map" / "map.nc")], env=env,
+                          capture_output=True, text=True, timeout=TIMEOUT)
+    assert read.returncode == 0, read.stderr[-3000:]
     text = (out / "MACRO_MAP_SLICE.md").read_text()
     assert "Refused runs" not in text
     row = tables(out / "MACRO_MAP_SLICE.md")["Shares and errors"][0]

@@ -93,3 +93,26 @@ def test_editing_a_shared_layer_or_a_model_makes_every_record_stale(copies, sour
     if source not in copies:
         pytest.fail(f"{source} is not a source of the package: update the test")
     assert _edited(copies, source) == [True] * len(FUNCTIONS)
+
+
+@pytest.mark.parametrize("source, stale", [
+    ("upliftlab.reduced/laws/macro/plastic.py", True),  # the law it fits
+    ("upliftlab.comparisons/beds/macro.py", True),  # the fit
+    (MAP + "macro_points.py", True),  # its point
+    ("upliftlab.continuum/model.py", False),  # the pushovers enter as numbers
+    ("upliftlab.comparisons/beds/macro_bed.py", False),  # the bed built on it, live
+    (MAP + "points.py", False),
+])
+def test_the_macro_fits_records_depend_on_the_fit_and_the_law_alone(copies, source, stale):
+    """The macro-element's fit (a stored point of the map that takes minutes) goes stale when
+    the law or the fit changes, and not when the continuum or the map's dynamic runs do."""
+    from upliftlab.comparisons.studies.winkler_map.macro_points import evaluate_macro_fit
+
+    def digest():
+        P._digest.cache_clear()
+        return P.code_digest(evaluate_macro_fit.point.depends_on())
+
+    before = digest()
+    with open(copies[source], "a") as fh:
+        fh.write("\n# an edit\n")
+    assert (digest() != before) == stale

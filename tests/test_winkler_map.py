@@ -30,7 +30,7 @@ from upliftlab.cli import main as cli_main
 
 from upliftlab.anchors import prandtl_capacity, winkler_rocking
 from upliftlab.checks import InputError
-from upliftlab.comparisons.beds import bed_foundation, BedReference, BEDS
+from upliftlab.comparisons.beds import bed_foundation, BedReference, bed_names
 from upliftlab.comparisons.studies import winkler_map as wm
 from upliftlab.comparisons.framework.store import Store
 from upliftlab.comparisons.framework.study import ascii_text
@@ -48,6 +48,9 @@ from upliftlab.scenes import load_scene, scene_from_dict
 FILES = ("map.nc", "statics.nc", "summary.md", "summary.json", "figures/theta_error.png",
          "figures/uplift_error.png", "figures/residual_settlement_error.png",
          "figures/error_distribution.png", "figures/speed.png")
+
+#: The beds of the fast map, on the box reference (the macro-element stands on the half-plane).
+BOX_BEDS = bed_names(wm.FAST_OPTIONS)
 
 
 @pytest.fixture(scope="module")
@@ -74,7 +77,7 @@ def m(study):
 def inputs(study):
     """({soil: statics}, {soil: impedance}, {(soil, fs_v): rotation pushovers}) the fast map's
     beds were calibrated from, read back from its store."""
-    return calibration_inputs(wm.FAST_GRID, wm.FAST_OPTIONS, tuple(BEDS),
+    return calibration_inputs(wm.FAST_GRID, wm.FAST_OPTIONS, BOX_BEDS,
                               Store(study.study.directory / "store"))
 
 
@@ -95,7 +98,7 @@ def test_the_fast_map_runs_end_to_end_and_writes_its_files(study, m):
         assert (out / name).is_file(), name
     assert m.continuum_wall_time.dims == POINT_DIMS
     assert m.continuum_wall_time.shape == (1, 2, 1, 1, 1, 1)
-    assert tuple(m.calibration.values) == tuple(BEDS)
+    assert tuple(m.calibration.values) == BOX_BEDS
     for q in wm.MEASURES:
         assert np.isfinite(m[f"continuum_{q}"]).all() and np.isfinite(m[f"bed_{q}"]).all()
     # one soil's statics pair, its impedance, and a cyclic and a monotonic rotation pushover
@@ -105,7 +108,7 @@ def test_the_fast_map_runs_end_to_end_and_writes_its_files(study, m):
     assert int(m.attrs["computed"]) == 10
     assert "winkler_map" in STUDIES and definition("winkler_map") is wm.DEFINITION
     tree = study.study.to_xarray()
-    c = list(BEDS).index("uniform")
+    c = list(BOX_BEDS).index("uniform")
     assert float(tree["map"].error.sel(calibration="uniform", measure="theta", fs_v=2.0)
                  .squeeze()) == pytest.approx(float(errors_of(m)[0, 0, 0, 0, 0, 0, c, 0]), abs=0)
 
@@ -122,7 +125,7 @@ def test_the_opened_folder_selects_an_error_by_label_as_the_summary_states_it(st
     folder = study.study.directory
     tree = open_study(folder)
     numbers = json.loads((folder / "summary.json").read_text())["numbers"]
-    for name in BEDS:
+    for name in BOX_BEDS:
         for f, fs in enumerate(wm.FAST_GRID.fs_v):
             error = tree["map"].error.sel(soil="clay", fs_v=fs, h_over_B=1.5, period=0.2,
                                           intensity=3.0, calibration=name, measure="theta")
@@ -153,7 +156,7 @@ def test_every_bed_has_the_continuums_rocking_stiffness(written, inputs):
                           extra={"density": soil.density, "structure": structure,
                                  "impedance": inputs[1]["clay"], **pushover})
     pushovers = inputs[2]
-    for name in BEDS:
+    for name in BOX_BEDS:
         rocking = pushovers["clay", 2.0]  # the fitted bed's statics (any FS_v: K_r is kept)
         table = bed_foundation(name, replace(ref, extra={**ref.extra, "rocking": rocking}),
                                   wm.FAST_OPTIONS)
@@ -231,7 +234,7 @@ def test_a_region_stated_in_the_maps_own_parameters(m):
     FS_v = 5 with h/B ≤ 1.5 pass, a corner region of 2 cells."""
     import xarray as xr
 
-    shape = (1, 2, 3, 1, 1, 3, len(BEDS), len(wm.MEASURES))
+    shape = (1, 2, 3, 1, 1, 3, len(BOX_BEDS), len(wm.MEASURES))
     errors = np.full(shape, 0.05)
     theta, settle = wm.MEASURES.index("theta"), wm.MEASURES.index("residual_settlement")
     errors[:, 0, ..., theta] = 0.30
@@ -239,7 +242,7 @@ def test_a_region_stated_in_the_maps_own_parameters(m):
     errors[..., 2, :, theta] = 0.90
     coords = {"soil": ["clay"], "fs_v": [2.0, 5.0], "h_over_B": [1.0, 1.5, 2.5],
               "period": [0.2], "intensity": [3.0], "motion": ["a", "b", "c"],
-              "calibration": list(BEDS), "measure": list(wm.MEASURES)}
+              "calibration": list(BOX_BEDS), "measure": list(wm.MEASURES)}
     none = np.zeros(shape[:6], np.int8)
     data = xr.Dataset({"error": (POINT_DIMS + ("calibration", "measure"), errors),
                        "continuum_bearing_failure": (POINT_DIMS, none),
@@ -772,7 +775,7 @@ def test_a_continuum_run_that_fails_is_reported_and_left_out_or_held_to(tmp_path
     assert np.isfinite(beds[0, 0, ..., :2]).all() and np.isnan(beds[0, 1]).all()
     # each bed's flag against its own peak settlement at the failed point
     statics, impedances, pushovers = calibration_inputs(
-        wm.FAST_GRID, wm.FAST_OPTIONS, tuple(BEDS), Store(tmp_path / "out" / "store"))
+        wm.FAST_GRID, wm.FAST_OPTIONS, BOX_BEDS, Store(tmp_path / "out" / "store"))
     st = statics["clay"]
     motions = wm.study_motions(wm.FAST_GRID, wm.FAST_OPTIONS, tmp_path / "out")
     point = dynamic_points(wm.FAST_GRID, wm.FAST_OPTIONS, motions, base_table(),
@@ -916,7 +919,7 @@ def test_the_maps_verdicts_are_its_stored_runs_counted_apart(study, written):
     from upliftlab.continuum.dynamics.validity import BEYOND
 
     store = Store(study.study.directory / "store")
-    statics, _, _ = calibration_inputs(wm.FAST_GRID, wm.FAST_OPTIONS, tuple(BEDS), store)
+    statics, _, _ = calibration_inputs(wm.FAST_GRID, wm.FAST_OPTIONS, BOX_BEDS, store)
     motions = wm.study_motions(wm.FAST_GRID, wm.FAST_OPTIONS, study.study.directory)
     points = dynamic_points(wm.FAST_GRID, wm.FAST_OPTIONS, motions, base_table(),
                             load_scene(BASE_SCENE).g, {"clay": statics["clay"].V_ult})

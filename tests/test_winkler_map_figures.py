@@ -51,9 +51,9 @@ def _texts(fig):
 
 
 def test_the_error_map_is_a_grid_of_page_proportions():
-    # Every panel is drawn, in rows of at most MAP_COLUMNS; the figure is at most 1,000 px wide
-    # at the studies' 110 dpi, and between 0.6 and 1.6 times as tall as wide (the strip was
-    # 0.17).
+    # Every panel is drawn, each soil's in rows of at most MAP_COLUMNS; the figure is at most
+    # 1,000 px wide at the studies' 110 dpi, and between 0.6 and 1.6 times as tall as wide (the
+    # strip was 0.17).
     import matplotlib.pyplot as plt
 
     fig, panels = _figure()
@@ -62,7 +62,7 @@ def test_the_error_map_is_a_grid_of_page_proportions():
                 and ax.get_label() != "<colorbar>"]
         assert len(heat) == panels
         rows = {round(ax.get_position().y0, 3) for ax in heat}
-        assert len(rows) == -(-panels // MAP_COLUMNS)
+        assert len(rows) == 2 * -(-len(BEDS) // MAP_COLUMNS)  # each soil's beds from a new row
         width, height = fig.get_size_inches() * DPI
         assert width <= 1000 and 0.6 <= height / width <= 1.6, (width, height)
     finally:

@@ -39,18 +39,20 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from ...anchors import half_plane_onset_rotation
+from ...budget import MACRO_SECONDS_PER_STEP
 from ...checks import InputError
 from ...log import logger
 from ...scenes import Scene, scene_from_dict
 from ...units import unit_system
+from .macro import MACRO_NEEDS, read_macro_calibration
 from .map_evidence import MapEvidence, find_map, format_evidence, map_evidence
 from ..framework.protocol import CHECKOUT
 from ..framework.store import Store
 from ..framework.study import relative_error
 from ..beds import BEDS, BedReference, base_table, bed_foundation
 from ..beds.continuum_points import evaluate_continuum
-from ..studies.winkler_map import (FAST_OPTIONS, FLOOR_FRACTION, FULL_OPTIONS, KEPT_STORE, Estimate,
-                                   continuum_measures, estimate_cost, evaluate_impedance,
+from ..studies.winkler_map import (FAST_OPTIONS, FLOOR_FRACTION, FULL_OPTIONS, KEPT_STORE,
+                                   Estimate, continuum_measures, estimate_cost, evaluate_impedance,
                                    evaluate_static, impedance_dofs, impedance_point_of,
                                    pushover_points, reduced_measures, scales, soil_impedance,
                                    story_constants, timed_dynamic_runs)
@@ -84,7 +86,8 @@ COST_MODEL = (f"modelled cost = {RUN_SECONDS * 1e3:g} ms + s(integrator) × rhs 
               "the springs counted on the candidate's own run, the same on every run of the "
               "scene; s(integrator) measured once on this machine (events "
               f"{SPRING_CALL_SECONDS['events'] * 1e9:g} ns, rk4 "
-              f"{SPRING_CALL_SECONDS['rk4'] * 1e9:g} ns)")
+              f"{SPRING_CALL_SECONDS['rk4'] * 1e9:g} ns); a macro-element's run adds "
+              f"{MACRO_SECONDS_PER_STEP * 1e6:g} µs a step")
 #: Why a measured runtime does not decide, as both ladders state it.
 NOT_TIMED = ("measured runtimes are reported beside it and do not decide: on this shared "
              "machine a run's repeats spread by tens of percent, enough to swap candidates from "
@@ -113,8 +116,10 @@ def work_of(response) -> Work:
     info = response.info
     springs, calls = int(response.model.spring_count), int(info["counters"][2])
     rate = SPRING_CALL_SECONDS[info["integrator"]]
+    element = (MACRO_SECONDS_PER_STEP * int(info["steps"])
+               if response.model.base is not None else 0.0)  # a macro-element's steps
     return Work(info["integrator"], springs, int(info["steps"]), calls,
-                RUN_SECONDS + rate * calls * (springs + SPRING_OFFSET))
+                RUN_SECONDS + rate * calls * (springs + SPRING_OFFSET) + element)
 
 
 @dataclass(frozen=True)
@@ -194,7 +199,9 @@ class ContinuumPlan:
     """What the ladder will run and what it should cost, decided before any run: ``meshes``,
     ``estimate`` (seconds of one worker, the statics included, the explicit loop's one-off
     compilation not), ``run`` (False: over ``budget``, the map's evidence stands in),
-    ``map`` the map's evidence (None: no map)."""
+    ``map`` the map's evidence (None: no map), ``macro`` the macro-element's calibration of
+    the scene's soil (``upliftlab calibrate``'s record; None: the ``macro`` bed is not
+    built)."""
 
     meshes: tuple[int, ...]
     estimate: Estimate
@@ -202,6 +209,7 @@ class ContinuumPlan:
     run: bool
     map: MapEvidence | None
     map_path: str | None
+    macro: dict | None = None
 
 
 @dataclass(frozen=True)
@@ -253,9 +261,13 @@ def kept_timings() -> list[dict]:
 
 
 def plan_continuum(scene: Scene, measure: str, tol: float, *, fast: bool = False,
-                   budget: float | None = None, map_path=None) -> ContinuumPlan:
+                   budget: float | None = None, map_path=None,
+                   macro_calibration=None) -> ContinuumPlan:
     """Check the scene, estimate the ladder's cost and read the map, before any run; over
-    ``budget`` (s) refuse (:class:`InputError`) unless the scene falls inside the map."""
+    ``budget`` (s) refuse (:class:`InputError`) unless the scene falls inside the map.
+    ``macro_calibration``: ``upliftlab calibrate``'s file (:mod:`.macro`)."""
+    macro = (read_macro_calibration(macro_calibration, scene)
+             if macro_calibration is not None else None)
     base_units = unit_system(base_table()["units"])
     if scene.units != base_units:
         raise InputError(f"units = {scene.data.get('units')!r}: the continuum ladder builds its "
@@ -287,7 +299,7 @@ def plan_continuum(scene: Scene, measure: str, tol: float, *, fast: bool = False
                          f"[{math.ceil(estimate.seconds)}, ...) s"
                          f"{'' if fast else ', or --fast'}; {where}")
     return ContinuumPlan(tuple(meshes), estimate, budget, run, evidence,
-                         None if path is None else str(path))
+                         None if path is None else str(path), macro)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -417,14 +429,20 @@ def scene_pushovers(scene: Scene, elements_across: int, fast: bool) -> dict:
 
 
 def bed_reference(scene: Scene, statics: SoilNumbers, impedance,
-                  pushovers: dict | None = None) -> BedReference:
+                  pushovers: dict | None = None, macro: dict | None = None) -> BedReference:
     """The continuum numbers the beds are built from: the statics, the scene's N, B, h,
-    density and ``[structure]``, the pushover, the impedance and the rotation pushovers."""
+    density and ``[structure]``, the pushover, the impedance and the rotation pushovers; the
+    macro-element's calibration (``macro``, :func:`read_macro_calibration`) and the scene's
+    own sway stiffness where it has them."""
     soil = scene.soil
     extra = {"density": soil.density, "structure": copy.deepcopy(scene.data["structure"]),
              "settlement": statics.settlement, "load": statics.load, "impedance": impedance}
     if pushovers is not None:
         extra["rocking"] = pushovers
+    if macro is not None:
+        extra["macro"] = macro
+    if scene.foundation.sway_stiffness is not None:
+        extra["sway_stiffness"] = float(scene.foundation.sway_stiffness)
     return BedReference(soil.model, scene.structure.weight, scene.foundation.width,
                         scene.structure.height, statics.K_v, statics.K_r, statics.V_ult,
                         soil.shear_modulus, soil.poisson_ratio, extra=extra)
@@ -464,7 +482,7 @@ def run_continuum(scene: Scene, quantity: str, measure: str, tol: float, plan: C
     statics = soil_numbers(scene, plan.meshes[-1], fast)
     pushovers = scene_pushovers(scene, plan.meshes[-1], fast)
     reference_numbers = bed_reference(scene, statics, scene_impedance(scene, plan.meshes[-1]),
-                                      pushovers)
+                                      pushovers, plan.macro)
     B, h, N = scene.foundation.width, scene.structure.height, scene.structure.weight
     floor = FLOOR_FRACTION * scales(N, B, h, statics.K_v, statics.K_r,
                                     story_constants(scene)[0])[measure]
@@ -473,11 +491,12 @@ def run_continuum(scene: Scene, quantity: str, measure: str, tol: float, plan: C
     beds = []
     for name, entry in BEDS.items():
         try:
+            if name == "macro" and plan.macro is None:
+                raise InputError(MACRO_NEEDS)
             table = bed_foundation(name, reference_numbers, options)
+            r = bed_run(scene, table)
         except InputError as exc:  # e.g. a rocking frequency outside the impedance's a0
             r = {"refused": f"cannot be built for this scene: {exc}"}
-        else:
-            r = bed_run(scene, table)
         if "refused" in r:
             beds.append(BedCheck(name, entry.label, math.nan, math.nan, math.nan, math.nan,
                                  False, r["refused"]))

@@ -261,7 +261,7 @@ def select(measured: Sequence[Measured]) -> Measured | None:
 
 def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str | None = None,
            overrides: Sequence[str] = (), fast: bool = False, repeats: int = 3,
-           budget: float | None = None, map_path=None) -> Advice:
+           budget: float | None = None, map_path=None, macro_calibration=None) -> Advice:
     """Measure the ladder on ``scene`` and recommend the candidate within ``tol`` of least
     modelled cost (:func:`select`, :data:`PICK_RULE`).
 
@@ -269,7 +269,9 @@ def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str 
     ``fast`` uses a reference bed of 160 springs and a ladder up to N = 80 (seconds) instead of
     640 and 320, and continuum meshes of 2, 4, 8 elements across instead of 4, 8, 16. For a
     scene with ``[soil]``: ``budget`` (s) caps the continuum ladder's estimated cost,
-    ``map_path`` a Winkler map's ``map.nc`` (:mod:`.advise_continuum`). Every input is checked,
+    ``map_path`` a Winkler map's ``map.nc`` (:mod:`.advise_continuum`), ``macro_calibration``
+    ``upliftlab calibrate``'s ``calibration.json`` of the scene's soil, which puts the
+    macro-element in the continuum ladder (:mod:`.macro`). Every input is checked,
     and the continuum's cost estimated, before any run.
     """
     q = _quantity(quantity)
@@ -294,11 +296,15 @@ def advise(scene: str | Scene, quantity: str = "peak_u", tol="5%", *, case: str 
         raise InputError("foundation.dashpots: the advisor changes the number of springs, "
                          "and these dashpots are given one per spring; use "
                          "foundation.damping_ratio")
-    if scene.soil is None and (budget is not None or map_path is not None):
-        raise InputError(f"{'--budget' if budget is not None else '--map'}: has no effect: "
+    if scene.soil is None and (budget is not None or map_path is not None
+                               or macro_calibration is not None):
+        option = ("--budget" if budget is not None else "--map" if map_path is not None
+                  else "--macro-calibration")
+        raise InputError(f"{option}: has no effect: "
                          f"scene {scene.name!r} has no [soil] table, so the advisor ladders "
                          "the reduced model only (no continuum run to budget, no map to read)")
-    plan = (plan_continuum(scene, q, tol, fast=fast, budget=budget, map_path=map_path)
+    plan = (plan_continuum(scene, q, tol, fast=fast, budget=budget, map_path=map_path,
+                           macro_calibration=macro_calibration)
             if scene.soil is not None else None)
     sizes = FAST if fast else FULL
     data = {"scene": scene.data, "motion": sve.motion_entry(scene)}

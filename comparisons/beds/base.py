@@ -14,10 +14,12 @@ import copy
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
+from ...checks import InputError
 from ...scenes import load_scene
 from .stiffness import calibrate
 
-__all__ = ["BASE_SCENE", "base_table", "BedReference", "base_builder", "calibration"]
+__all__ = ["BASE_SCENE", "base_table", "BedReference", "base_builder", "calibration",
+           "required_extra"]
 
 #: The scene the beds are built in: a 2 m strip footing on clay, in kN-m-s.
 BASE_SCENE = "strip_footing_clay"
@@ -80,3 +82,12 @@ def base_builder(name: str) -> Callable:
     build.__doc__ = (f"The ``{name}`` bed of :func:`.stiffness.calibrate` as a "
                      "[foundation] table.")
     return build
+
+
+def required_extra(reference: BedReference, name: str, needs: str):
+    """``reference.extra[name]``, refused in one line saying what the bed ``needs`` it for
+    where the reference does not carry it."""
+    value = reference.extra.get(name)
+    if value is None:
+        raise InputError(f"BedReference.extra[{name!r}] is missing: {needs}")
+    return value

@@ -32,7 +32,7 @@ import numpy as np
 
 from ...checks import InputError
 from ...reduced.compatibility import end_stiffened_bed
-from .base import base_builder, base_table
+from .base import required_extra, base_builder, base_table
 from .dashpots import impedance_dashpots_of
 from .pushover import FLOORS, bed_rocking
 
@@ -66,10 +66,8 @@ def capacity_profile(stiffnesses, widths, capacity: float, beta: float) -> np.nd
 
 
 def _rocking(reference) -> dict:
-    rocking = reference.extra.get("rocking")
-    if rocking is None:
-        raise InputError("BedReference.extra['rocking'] is missing: the fitted bed needs the "
-                         "continuum's cyclic and monotonic rotation pushovers at the point's N")
+    rocking = required_extra(reference, "rocking", "the fitted bed needs the continuum's "
+                             "cyclic and monotonic rotation pushovers at the point's N")
     if "error" in rocking:
         raise InputError(f"the fitted bed at N = {reference.N:g} ({reference.soil}): the "
                          f"continuum's rotation pushover stopped ({rocking['error']}), so there "

@@ -34,13 +34,14 @@ from scipy.stats import qmc
 
 from ...checks import InputError
 from ...scenes.laws.macro import MAX_SETTLEMENT_COUPLING
+from ...scenes.soil import FRICTIONAL, SOIL_MODELS, UNDRAINED
 from ...reduced.laws.macro import (LOAD_TOLERANCE, MacroElement, MacroStepError, at_rest,
                                     at_vertical_load)
 from ...reduced.laws.macro.params import bearing_factors
 
 __all__ = ["RotationPushover", "MacroCalibration", "capacity_line", "macro_pushover",
            "calibrate_macro", "evaluation_bound", "PLASTIC_BOUNDS", "SETTLEMENT_FLOOR",
-           "LOAD_TOLERANCE"]
+           "LOAD_TOLERANCE", "FIT_SECONDS_PER_STEP", "macro_strength"]
 
 #: The fitted plastic parameters and their bounds: ζ0, log10 κ_ref (m), log10 h0, γ, χ, λ_ρ.
 #: χ keeps to the range a scene may give (:data:`...scenes.laws.macro.MAX_SETTLEMENT_COUPLING`:
@@ -63,6 +64,11 @@ POLISHED = 4
 #: alike).
 SETTLEMENT_FLOOR = 0.1
 _LOGS = ("hardening_settlement", "interior_modulus")
+#: Seconds per step of the law's rotation pushover in the fit, an upper bound for a cost
+#: estimate (each evaluation pushes the law over every continuum path): the clay's first
+#: calibration took 2077 s for 346 evaluations of 248 steps, 24 ms a step; the χ-bounded one
+#: 1418 s for 473, 12 ms (``benchmarks/MACRO_CALIBRATION.md``).
+FIT_SECONDS_PER_STEP = 0.025
 
 
 @dataclass(frozen=True)
@@ -93,6 +99,30 @@ class MacroCalibration:
     cost: float = math.nan
     evaluations: int = 0
     details: Mapping = field(default_factory=dict, repr=False)
+
+
+def macro_strength(scene) -> dict:
+    """The macro-element's c, φ, γ (the form of its capacity) of the scene's soil: an undrained
+    soil's c_u (its gradient enters through the fitted capacity line), a frictional soil's c,
+    φ and unit weight ρ g. A soil without strength, or a frictional one without cohesion (the
+    capacity line's intercept is the c N_c term), is refused in one line."""
+    soil = scene.soil
+    if soil is None:
+        raise InputError(f"scene {scene.name!r}: soil is missing; the calibration runs the "
+                         "continuum and needs a [soil] table")
+    strength = SOIL_MODELS.get(soil.model)
+    if strength == UNDRAINED:
+        return {"cohesion": soil.undrained_strength}
+    if strength == FRICTIONAL:
+        if not soil.cohesion > 0.0:
+            raise InputError(f"soil.cohesion = {soil.cohesion:g}: the macro-element's capacity "
+                             "line has a cohesive term c N_c as its intercept; valid range is "
+                             "(0, ...) (a small c, e.g. 1 kPa, for a sand)")
+        return {"cohesion": soil.cohesion, "friction_angle": soil.friction_angle,
+                "unit_weight": soil.density * scene.g}
+    valid = ", ".join(repr(k) for k, v in SOIL_MODELS.items() if v is not None)
+    raise InputError(f"soil.model = {soil.model!r}: has no strength, and the macro-element is "
+                     f"fitted to the soil's yielding; valid: {valid}")
 
 
 def capacity_line(pushovers: Sequence[RotationPushover], V_ult: float, width: float,

@@ -118,7 +118,12 @@ def bed_rocking(base: Mapping, N: float, foundation: Mapping, cyclic_theta, mono
                 ) -> dict:
     """A bed's pushovers on the continuum's rotations: ``cyclic`` and ``monotonic`` records
     (θ, M, settlement, contact) and its uplift-onset moment ``onset_moment`` (the quasi-static
-    lateral force at the first spring's separation times the height), units of the scene."""
+    lateral force at the first spring's separation times the height), units of the scene.
+    The macro-element's are its own (:func:`.macro_bed.macro_rocking`)."""
+    if foundation.get("law") == "macro":
+        from .macro_bed import macro_rocking
+
+        return macro_rocking(N, foundation, cyclic_theta, monotonic_theta)
     data = {k: copy.deepcopy(v) for k, v in base.items() if k not in ("soil", "continuum")}
     data["structure"] = {**data["structure"], "weight": float(N)}
     data["foundation"] = dict(foundation)

@@ -158,8 +158,8 @@ def impedance_at(impedance, omega: float, columns, what: str) -> tuple[float, ..
 
 
 def impedance_dashpots(impedance, omega: float) -> tuple[float, float, float]:
-    """(C_v, C_h, C_r) of an :class:`~upliftlab.continuum.impedance.analysis.Impedance` at ``omega``
-    (rad/s): C_j = Im K_j/ω at each of its frequencies, linear in ω between them
+    """(C_v, C_h, C_r) of an :class:`~upliftlab.continuum.impedance.analysis.Impedance` at
+    ``omega`` (rad/s): C_j = Im K_j/ω at each of its frequencies, linear in ω between them
     (:func:`impedance_at`)."""
     return impedance_at(impedance, omega, [impedance.dashpot(mode) for mode in "vhr"],
                         "radiation dashpots")

@@ -10,7 +10,7 @@ plugs into the map by adding one entry here (and, if it needs a continuum quanti
 yet in :class:`BedReference`, one static analysis in the map's
 :mod:`~upliftlab.comparisons.studies.winkler_map.statics`).
 
-Nine entries today. Four are the base beds of :mod:`.stiffness`, which the Winkler-against-
+Eleven entries today. Four are the base beds of :mod:`.stiffness`, which the Winkler-against-
 continuum study compares too (built by :func:`.stiffness.calibrate`, so that both studies build
 the same beds):
 ``uniform`` to K_r, ``end_stiffened`` to K_r and K_v (when some R_k reaches it), and both with
@@ -20,11 +20,13 @@ dashpots from Gazetas' strip formulas (``uniform_plastic_gazetas``) or from the 
 impedance (``uniform_plastic_impedance``, :mod:`.dashpots`), and hysteretic q–z springs
 fitted to the continuum's whole vertical pushover (``qz``, :mod:`.qz.bed`).
 ``end_stiffened_plastic_impedance`` gives the end-stiffened elasto-plastic bed the impedance
-dashpots too. ``end_stiffened_bearing``
-keeps its springs but lets each yield at the soil's one bearing pressure V_ult/B over its
-tributary width, the convention of beam-on-nonlinear-Winkler practice, where
-``end_stiffened_plastic`` yields each spring at FS_v times its static force, which gives the
-stiffened ends R_k times the middle's pressure capacity.
+dashpots too; ``end_stiffened_fitted_impedance`` fits its capacity profile to the rotation
+pushovers; ``macro`` is no bed of springs but the macro-element (:mod:`.macro_bed`), fitted
+once per soil to the continuum's statics (:mod:`.macro`, a stored fit of the map).
+``end_stiffened_bearing`` keeps its springs but lets each yield at the soil's one bearing
+pressure V_ult/B over its tributary width, the convention of beam-on-nonlinear-Winkler
+practice, where ``end_stiffened_plastic`` yields each spring at FS_v times its static force,
+which gives the stiffened ends R_k times the middle's pressure capacity.
 """
 
 from __future__ import annotations
@@ -37,6 +39,7 @@ from ...reduced.compatibility import winkler_bed
 from .base import BedReference, base_builder, calibration
 from .dashpots import build_uniform_plastic_impedance, impedance_dashpots_of
 from .fitted import build_end_stiffened_fitted_impedance
+from .macro_bed import build_macro
 from .qz.bed import build_qz
 from .radiation import distribute, gazetas_dashpots
 from .soil_damping import with_soil_damping
@@ -51,7 +54,9 @@ class BedEntry:
     quantities it is calibrated to (text), and ``needs`` the stored continuum quantities beyond
     the statics that the map must compute for it (``impedance``: the soil's dynamic impedance,
     the map's :mod:`~upliftlab.comparisons.studies.winkler_map.impedance_points`); ``short`` its
-    abbreviation in tables and figures."""
+    abbreviation in tables and figures; ``references`` the map's continuum references it
+    stands on (the macro-element only on the half-plane, whose footing sways on a tie: the
+    element carries the base's horizontal force, and the box holds its footing)."""
 
     name: str
     label: str
@@ -59,6 +64,7 @@ class BedEntry:
     matches: str
     needs: tuple[str, ...] = ()
     short: str = ""
+    references: tuple[str, ...] = ("box", "half_plane")
 
 
 def build_uniform_plastic_gazetas(reference: BedReference, options) -> dict:
@@ -142,12 +148,25 @@ BEDS: dict[str, BedEntry] = {
         "K_r, K_v where reachable, V_ult, the capacity profile to the rotation pushovers, and "
         "the FE impedance's C_v and C_r at the rocking frequency", needs=("impedance",),
         short="ES-f-I"),
+    "macro": BedEntry(
+        "macro", "macro-element calibrated to the continuum's statics", build_macro,
+        "K_v, K_r, the capacity's form to the monotonic pushovers' largest moments, and the "
+        "plastic parameters to every rotation pushover of the soil (its moment and settlement)",
+        needs=("macro",), short="ME", references=("half_plane",)),
 }
 
 
 def bed_names(options) -> tuple[str, ...]:
-    """The calibrations a run compares: ``options.beds``, or every registered one."""
-    return tuple(options.beds) or tuple(BEDS)
+    """The calibrations a run compares: ``options.beds``, or every registered one that stands
+    on ``options.reference``; a named bed that does not is refused (InputError)."""
+    reference = getattr(options, "reference", "box")
+    for name in options.beds:
+        if name in BEDS and reference not in BEDS[name].references:
+            raise InputError(f"options.beds: {name!r} with options.reference = {reference!r}: "
+                             f"it stands only on {', '.join(BEDS[name].references)}; valid "
+                             "beds here: " + ", ".join(n for n, e in BEDS.items()
+                                                        if reference in e.references))
+    return tuple(options.beds) or tuple(n for n, e in BEDS.items() if reference in e.references)
 
 
 def bed_foundation(name: str, reference: BedReference, options,

@@ -12,6 +12,10 @@ explicit route carries β K₀ through a Maxwell arm relaxing at ω_c = 10 ω₂
 of β's up to ω₂); the bed's Kelvin–Voigt dashpot stands for it there (on the map's half-plane
 points at FS_v 3 the arm moved the continuum's peaks by at most 0.17 % against β K₀ itself).
 
+The macro-element (``law = "macro"``, :mod:`.macro_bed`) has no springs to put dashpots beside:
+it takes the same β K_v as its one dashpot density (``damping_ratio`` β ω_v/2, ω_v = √(K_v/m_v)
+on the structure's vertical mass m_v), whose rocking part is then β K_r alike.
+
 Off unless asked for (:func:`with_soil_damping` on a bed's ``[foundation]`` table, or
 ``bed_foundation(..., soil_beta=β)`` of :mod:`.registry`): every bed's numbers stay what they
 were. The dashpots are added to a bed's own (a radiation bed's); a bed with a
@@ -25,6 +29,7 @@ from ...checks import InputError
 from ...reduced.compatibility import layout_for
 from ...scenes.structure import read_foundation
 from ...units import UnitSystem, unit_system
+from .macro_bed import element_damping_ratio
 
 __all__ = ["soil_dashpots", "with_soil_damping"]
 
@@ -37,10 +42,11 @@ def soil_dashpots(table: dict, beta: float, units: UnitSystem | None = None) -> 
     return tuple(float(beta * k) for k in layout.stiffnesses)
 
 
-def with_soil_damping(table: dict, beta: float | None,
-                      units: UnitSystem | None = None) -> dict:
+def with_soil_damping(table: dict, beta: float | None, units: UnitSystem | None = None,
+                      vertical_mass: float | None = None) -> dict:
     """The ``[foundation]`` ``table`` with the soil's β k_i added to its springs' dashpots
-    (module docstring); ``table`` itself when ``beta`` is None. β ≥ 0 (s)."""
+    (module docstring); ``table`` itself when ``beta`` is None. β ≥ 0 (s). The macro-element's
+    table takes β K_v as its ``damping_ratio`` on ``vertical_mass`` (mass per length)."""
     if beta is None:
         return table
     if not beta >= 0.0:
@@ -49,6 +55,8 @@ def with_soil_damping(table: dict, beta: float | None,
     if table.get("damping_ratio", 0.0):
         raise InputError(f"foundation.damping_ratio = {table['damping_ratio']:g} with the "
                          "soil's Rayleigh dashpots: a bed takes one or the other; valid: 0")
+    if table.get("law") == "macro":
+        return {**table, "damping_ratio": element_damping_ratio(table, beta, vertical_mass)}
     added = soil_dashpots(table, beta, units)
     own = table.get("dashpots") or [0.0] * len(added)
     if len(own) != len(added):

@@ -176,3 +176,53 @@ def track_base(base, peaks):
     peaks[P_BGAP] = max(peaks[P_BGAP], base_gap(base))
     peaks[P_BU] = max(peaks[P_BU], abs(S[S_D + 1] - C[C_D0 + 1]))
     peaks[P_BH] = max(peaks[P_BH], abs(S[S_Q + 1]))
+
+
+@njit(cache=True, **HOT)
+def base_internal(q, qd, base, fint, scratch):
+    """Add the element's generalised forces at the trial state (q, q̇) to ``fint`` (an
+    implicit step's internal force; ``scratch`` a vector of q's size); returns the dashpots'
+    power. Each call starts from the committed state with no failure noted, so that a Newton
+    iterate that the element cannot reach does not outlive a later one it can: what counts is
+    the iterate the step converges to (:func:`commit_base` moves the state there, or fails)."""
+    P, C = base[0], base[6]
+    if P.size == 0:
+        return 0.0
+    C[C_STATUS] = 0.0
+    for k in range(q.size):
+        scratch[k] = 0.0
+    power = base_force(q, qd, base, scratch)
+    for k in range(q.size):
+        fint[k] -= scratch[k]
+    return power
+
+
+@njit(cache=True, **HOT)
+def base_tangent(base, damping, scale, J):
+    """Add ``scale`` Tᵀ (D + ``damping`` C_d) T to ``J``: D the element's tangent at its last
+    trial (:func:`base_force`), C_d its dashpots over the trial's contact (the contact's own
+    change with the displacement left out: a Newton iteration's tangent, not the update's)."""
+    P, St, D, T, C = base[0], base[2], base[3], base[5], base[6]
+    if P.size == 0:
+        return
+    _, _, I0, I1, I2 = contact_moments(P, St)
+    cv, ch = C[C_CV], C[C_CH] * I0 / P[P_B]
+    n = T.shape[1]
+    for a in range(3):
+        for b in range(3):
+            k = D[a, b]
+            if a == 0 and b == 0:
+                k += damping * cv * I0
+            elif (a == 0 and b == 2) or (a == 2 and b == 0):
+                k += damping * cv * I1
+            elif a == 2 and b == 2:
+                k += damping * cv * I2
+            elif a == 1 and b == 1:
+                k += damping * ch
+            if k == 0.0:
+                continue
+            for i in range(n):
+                if T[a, i] == 0.0:
+                    continue
+                for j in range(n):
+                    J[i, j] += scale * T[a, i] * k * T[b, j]

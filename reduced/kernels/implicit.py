@@ -8,8 +8,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .codes import (E_IMPACT, E_INPUT, E_PLASTIC, E_VISCOUS, NONFINITE, NO_CONVERGENCE, N_ACC, OK,
-                    OVERTURNED)
+from .base import base_internal, base_tangent, commit_base, track_base
+from .codes import (BASE_FAILED, E_IMPACT, E_INPUT, E_PLASTIC, E_VISCOUS, NONFINITE,
+                    NO_CONVERGENCE, N_ACC, OK, OVERTURNED)
 from .energy import check_energy, start_energy, static_strain_energy
 from .fixed_step import end_fixed_step
 from .interpolants import finite
@@ -72,6 +73,7 @@ def newmark_residual(t, h, start, scheme, system, H, modes, e, ed, tangents, end
         qdd1[i] = (q1[i] - q[i] - h * qd[i]) / (beta * h * h) - (0.5 / beta - 1.0) * qdd[i]
         qd1[i] = qd[i] + h * ((1.0 - gamma) * qdd[i] + gamma * qdd1[i])
     internal_force(q1, qd1, P, KG, H, e, ed, fint1, kt, ct, modes, fd, fimp)
+    base_internal(q1, qd1, system[9], fint1, R)  # R as scratch: it is filled below
     rnorm = 0.0
     scale = 0.0
     for i in range(n):
@@ -84,8 +86,9 @@ def newmark_residual(t, h, start, scheme, system, H, modes, e, ed, tangents, end
 
 
 @njit(cache=True)
-def newmark_jacobian(h, scheme, minv, P, KG, kt, ct, J):
-    """J = M/(βh²) + (1+α)(A diag(k_t + γ c_t/(βh)) Aᵀ + K_G), ``scheme`` = (α, β, γ)."""
+def newmark_jacobian(h, scheme, minv, P, KG, kt, ct, base, J):
+    """J = M/(βh²) + (1+α)(A diag(k_t + γ c_t/(βh)) Aᵀ + K_G + Tᵀ (D + γ C_d/(βh)) T),
+    ``scheme`` = (α, β, γ); the last term the base element's (:func:`.base.base_tangent`)."""
     alpha, beta, gamma = scheme
     n = minv.size
     for i in range(n):
@@ -102,6 +105,7 @@ def newmark_jacobian(h, scheme, minv, P, KG, kt, ct, J):
         for a in range(p.nnz):
             for b in range(p.nnz):
                 J[idx[a], idx[b]] += val[a] * val[b] * stiff
+    base_tangent(base, gamma / (beta * h), 1 + alpha, J)
 
 
 @njit(cache=True)
@@ -132,7 +136,7 @@ def newmark_substep(t, h, start, scheme, system, H, modes, e, ed, tangents, newt
     rnorm, scale = newmark_residual(t, h, start, scheme, system, H, modes, e, ed, tangents, end,
                                     R)
     for it in range(1, max_iter + 1):
-        newmark_jacobian(h, scheme, minv, P, KG, kt, ct, J)
+        newmark_jacobian(h, scheme, minv, P, KG, kt, ct, system[9], J)
         dq = np.linalg.solve(J, R)
         step = 1.0
         trial[:] = q1
@@ -168,7 +172,7 @@ def integrate_newmark(q0, qd0, clock, system, scheme, newton, max_halvings, outp
     from switches; HHT's own numerical dissipation is what its balance leaves open.
     """
     dt, nsteps, _ = clock
-    minv, P, KG, L, ag, dtg, _, frame, story, _ = system
+    minv, P, KG, L, ag, dtg, _, frame, story, base = system
     ns, n = P.size, q0.size
     e, ed = np.zeros(ns), np.zeros(ns)
     e0, ed0, e1, ed1 = np.zeros(ns), np.zeros(ns), np.zeros(ns), np.zeros(ns)
@@ -181,6 +185,8 @@ def integrate_newmark(q0, qd0, clock, system, scheme, newton, max_halvings, outp
     modes = np.zeros(ns, dtype=np.int64)
     contact = np.ones(ns, dtype=np.int64)
     internal_force(q, qd, P, KG, H, e0, ed0, fint0, kt, ct, modes, fd0, fimp0)
+    scratch, spare = np.zeros(n), np.zeros(n)
+    base_power0 = base_internal(q, qd, base, fint0, scratch)
     a0 = ground_acceleration(0.0, ag, dtg)
     for i in range(n):
         qdd[i] = (L[i] * a0 - fint0[i]) * minv[i]
@@ -224,6 +230,11 @@ def integrate_newmark(q0, qd0, clock, system, scheme, newton, max_halvings, outp
                 share = 0.5 * (fimp0[j] + fimp1[j])
                 acc[E_VISCOUS] += work * (1.0 - share)
                 acc[E_IMPACT] += work * share
+            if base[0].size:  # the element's dashpots: the trapezoid of their power
+                spare[:] = 0.0
+                base_power1 = base_internal(q1, qd1, base, spare, scratch)
+                acc[E_VISCOUS] += 0.5 * (base_power0 + base_power1) * h
+                base_power0 = base_power1
             q[:] = q1
             qd[:] = qd1
             qdd[:] = qdd1
@@ -235,6 +246,12 @@ def integrate_newmark(q0, qd0, clock, system, scheme, newton, max_halvings, outp
             fd0[:] = fd1
             fimp0[:] = fimp1
             acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
+            work, status = commit_base(q, base)
+            if status != 0:
+                counters[0] = step
+                return BASE_FAILED
+            acc[E_PLASTIC] += work
+            track_base(base, peaks)
             t = t + h if t_end - (t + h) > t_tol else t_end
         if not finite(q, qd):
             counters[0] = step

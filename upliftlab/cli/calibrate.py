@@ -3,8 +3,9 @@ to the continuum's statics (:mod:`upliftlab.comparisons.studies.macro_calibratio
 ``--set`` overrides that put it under the scene's structure in the reduced model.
 
 Before any run: the scene, the options and the whole cost (the continuum's statics and
-pushovers at the continuum's per-step rates, the fit at :data:`FIT_SECONDS_PER_STEP` per step
-of the law's pushovers, at most its evaluation bound) are checked against the budget. The
+pushovers at the continuum's per-step rates, the fit at
+:data:`~upliftlab.comparisons.beds.macro.FIT_SECONDS_PER_STEP` per step of the law's pushovers,
+at most its evaluation bound) are checked against the budget. The
 continuum runs go to a store in the output folder, so the same command resumes an interrupted
 calibration without making them again; the fit is made again (minutes). Progress: the sweep's
 lines, then the fit's every :data:`FIT_REPORT_SECONDS` with its ETA. The overrides are checked
@@ -29,12 +30,8 @@ from ..outdir import claim
 from .common import default_out, mesh_overrides, number, refuse_without_effect
 from .common import say as _say
 
-__all__ = ["add_calibrate", "calibrate_command", "FIT_SECONDS_PER_STEP", "DEFAULT_EVALUATIONS"]
+__all__ = ["add_calibrate", "calibrate_command", "DEFAULT_EVALUATIONS"]
 
-#: Seconds per step of the law's rotation pushover in the fit (each evaluation pushes the law
-#: over every continuum path): the clay's calibration took 2077 s for 346 evaluations of 248
-#: steps (``benchmarks/MACRO_CALIBRATION.md``), 24 ms a step.
-FIT_SECONDS_PER_STEP = 0.025
 #: The fit's default budget of evaluations (the map's soils converged in 346 and 442).
 DEFAULT_EVALUATIONS = 500
 EVALUATIONS_RANGE = (10, 20000)
@@ -91,7 +88,7 @@ def _fs_v(text: str | None):
 
 def _cost(scene, fs_count: int, evaluations: int) -> Cost:
     """The calibration's cost: the continuum runs one after another, then the fit."""
-    from ..comparisons.beds.macro import evaluation_bound
+    from ..comparisons.beds.macro import FIT_SECONDS_PER_STEP, evaluation_bound
     from ..comparisons.studies.macro_calibration import rotation_steps
     from ..comparisons.studies.macro_calibration.plan import VERTICAL_STEPS
     from ..scenes import ContinuumOptions

@@ -70,6 +70,9 @@ def add_reduced_commands(sub) -> None:
                                     "(unless a Winkler map covers the scene: its evidence then)")
     a.add_argument("--map", dest="map_path", metavar="PATH",
                    help="a Winkler map's map.nc (default results/winkler_map/map.nc if present)")
+    a.add_argument("--macro-calibration", metavar="PATH",
+                   help="scene with [soil]: `upliftlab calibrate`'s calibration.json of its "
+                        "soil and footing, which puts the macro-element in the continuum ladder")
     a.add_argument("--json", action="store_true", help="print the advice as one JSON object")
 
 
@@ -167,6 +170,6 @@ def advise_command(args) -> int:
     budget = number("--budget", args.budget, high=1e9)
     advice = advise(args.scene, args.quantity, args.tol, case=args.case,
                     overrides=args.overrides, fast=args.fast, budget=budget,
-                    map_path=args.map_path)
+                    map_path=args.map_path, macro_calibration=args.macro_calibration)
     print(json.dumps(advice.to_dict()) if args.json else format_advice(advice))
     return EXIT_OK if advice.certified else EXIT_NUMERICS

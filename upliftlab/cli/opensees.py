@@ -68,6 +68,8 @@ def opensees_command(args) -> int:
     dt = _positive("--dt", args.dt)
     timeout = _positive("--timeout", args.timeout)
     scene = load_scene(args.scene, case=args.case, overrides=args.overrides, motion=args.motion)
+    if scene.foundation.law.name == "macro":
+        return _macro_tcl(args, scene, dt)
     spec = opensees_spec(scene, dt=dt, dashpots=args.dashpots)  # refuses before any file
     settings = {"command": "opensees", "scene": scene.name, "scene_digest": scene.digest,
                 "overrides": list(scene.overrides), "motion": args.motion, "dt": dt,
@@ -95,4 +97,34 @@ def opensees_command(args) -> int:
         print(json.dumps(result.to_json()))
     else:
         print(comparison_table(result))
+    return 0
+
+
+def _macro_tcl(args, scene, dt) -> int:
+    """A macro-element scene: the Tcl model on ``soilFootingSection2d``
+    (:mod:`upliftlab.comparisons.opensees.tcl`), written, not run."""
+    from ..comparisons.opensees.tcl import tcl_numbers, write_tcl
+
+    if args.run:
+        raise InputError("--run: with foundation.law = 'macro' the OpenSees counterpart is "
+                         "soilFootingSection2d, which only Tcl OpenSees has (openseespy 3.7 "
+                         "does not); write the Tcl model without --run and run it with "
+                         "`OpenSees model.tcl`")
+    if args.dashpots != "clipped":
+        raise InputError(f"--dashpots = {args.dashpots!r}: the Tcl model of a macro-element "
+                         "scene has no springs to put dashpots on; valid: the default")
+    numbers = tcl_numbers(scene, dt)  # refuses before any file
+    settings = {"command": "opensees", "scene": scene.name, "scene_digest": scene.digest,
+                "overrides": list(scene.overrides), "motion": args.motion, "dt": dt,
+                "tcl": True}
+    default = Path("results") / f"{scene.name}-opensees"
+    with claim(args.out, default, settings=settings, force=args.force) as out:
+        out.start_writing()
+        files = write_tcl(scene, out.path, dt)
+        out.complete([files.motion, files.numbers, files.notes, files.script])
+    print(f"upliftlab opensees: wrote {files.script}, {files.numbers}, {files.motion} and "
+          f"{files.notes}: the macro-element as soilFootingSection2d (FS = "
+          f"{numbers['FS']:.4g}, Vult = {numbers['Vult']:.6g}), {int(numbers['steps'])} Newmark "
+          f"steps of {numbers['dt']:.4g} s; run it with `OpenSees {files.script.name}` (Tcl "
+          "OpenSees; how the models correspond: model.md)")
     return 0

@@ -8,15 +8,13 @@ import dataclasses
 
 from ....scenes.laws.macro import MacroLaw
 from ....scenes.structure import Foundation
+from ...beds.macro_bed import element_keys, gazetas_sway_stiffness
 from .fit import PLATEAU_TOLERANCE, SceneCalibration
 from .plan import PATHS, SETTLEMENT_RATIO, VERTICAL_STEPS
 
 __all__ = ["scene_overrides", "fitting_items", "check_reduced_scene", "calibration_record",
-           "calibration_markdown", "PLASTIC_KEYS"]
+           "calibration_markdown"]
 
-#: The fitted plastic parameters, as the scene's keys.
-PLASTIC_KEYS = ("initial_size", "hardening_settlement", "interior_modulus", "interior_exponent",
-                "settlement_coupling", "rounding_ratio")
 _FOUNDATION_KEYS = {f.name for f in dataclasses.fields(Foundation)} | {"vertical_period"}
 _MACRO_KEYS = {f.name for f in dataclasses.fields(MacroLaw)}
 
@@ -27,17 +25,12 @@ def _number(value: float) -> str:
 
 def scene_overrides(cal: SceneCalibration, scene) -> list[str]:
     """``--set`` items that make ``scene``'s foundation the calibrated element: the law and
-    its keys; K_v (``stiffness``) and K_r from the continuum; the capacity as a multiple of the
-    scene's vertical weight; and what :func:`fitting_items` adds."""
-    law = cal.fit.law
-    V_ult = law.ultimate_load
-    share = law.frictional_modulus * law.width ** 2 / V_ult
-    items = ["foundation.law=macro", f"foundation.stiffness={_number(cal.K_v)}",
-             f"foundation.rocking_stiffness={_number(cal.K_r)}",
-             f"foundation.capacity_multiple="
-             f"{_number(V_ult / scene.structure.vertical_weight)}",
-             f"foundation.frictional_share={_number(min(max(share, 0.0), 1.0))}"]
-    items += [f"foundation.{key}={_number(getattr(law, key))}" for key in PLASTIC_KEYS]
+    its keys (:func:`~...beds.macro_bed.element_keys`: K_v and K_r from the continuum, the
+    capacity as a multiple of the scene's vertical weight, the plastic parameters); and what
+    :func:`fitting_items` adds."""
+    keys = element_keys(cal.fit.law, scene.structure.vertical_weight)
+    items = [f"foundation.{key}={value if key == 'law' else _number(value)}"
+             for key, value in keys.items()]
     return items + fitting_items(scene, items)
 
 
@@ -54,7 +47,8 @@ def fitting_items(scene, items: list[str]) -> list[str]:
     if scene.foundation.sway_stiffness is None:
         soil = scene.soil
         G = soil.youngs_modulus / (2.0 * (1.0 + soil.poisson_ratio))
-        extra.append(f"foundation.sway_stiffness={_number(2.0 * G / (2.0 - soil.poisson_ratio))}")
+        K_h = gazetas_sway_stiffness(G, soil.poisson_ratio)
+        extra.append(f"foundation.sway_stiffness={_number(K_h)}")
     set_here = {item.split("=", 1)[0].split(".", 1)[1] for item in [*items, *extra]}
     for key in sorted(data):
         removed = key in ("vertical_period", "sliding_friction", "dashpots") or (

@@ -20,8 +20,9 @@ from dataclasses import dataclass
 
 from ....anchors import half_plane_onset_rotation
 from ....checks import InputError
-from ....scenes.soil import FRICTIONAL, SOIL_MODELS, UNDRAINED
+from ....scenes.soil import SOIL_MODELS, UNDRAINED
 from ...beds.continuum_points import floats
+from ...beds.macro import macro_strength
 from ...beds.pushover import cyclic_path, rotation_path
 
 __all__ = ["PathOptions", "PATHS", "DEFAULT_FS_V", "SETTLEMENT_RATIO", "VERTICAL_STEPS",
@@ -60,30 +61,6 @@ MAX_ROTATION = 0.1
 #: the path), and at most where the footing barely yields.
 FS_V_RANGE = (1.5, 50.0)
 _FREE = {"type": "free", "velocity": 1.0, "duration": 1.0}
-
-
-def macro_strength(scene) -> dict:
-    """The macro-element's c, φ, γ (the form of its capacity) of the scene's soil: an undrained
-    soil's c_u (its gradient enters through the fitted capacity line), a frictional soil's c,
-    φ and unit weight ρ g. A soil without strength, or a frictional one without cohesion (the
-    capacity line's intercept is the c N_c term), is refused in one line."""
-    soil = scene.soil
-    if soil is None:
-        raise InputError(f"scene {scene.name!r}: soil is missing; the calibration runs the "
-                         "continuum and needs a [soil] table")
-    strength = SOIL_MODELS.get(soil.model)
-    if strength == UNDRAINED:
-        return {"cohesion": soil.undrained_strength}
-    if strength == FRICTIONAL:
-        if not soil.cohesion > 0.0:
-            raise InputError(f"soil.cohesion = {soil.cohesion:g}: the macro-element's capacity "
-                             "line has a cohesive term c N_c as its intercept; valid range is "
-                             "(0, ...) (a small c, e.g. 1 kPa, for a sand)")
-        return {"cohesion": soil.cohesion, "friction_angle": soil.friction_angle,
-                "unit_weight": soil.density * scene.g}
-    valid = ", ".join(repr(k) for k, v in SOIL_MODELS.items() if v is not None)
-    raise InputError(f"soil.model = {soil.model!r}: has no strength, and the macro-element is "
-                     f"fitted to the soil's yielding; valid: {valid}")
 
 
 def estimated_capacity(scene) -> float:

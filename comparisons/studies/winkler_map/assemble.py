@@ -17,7 +17,7 @@ from ...beds import bed_foundation
 from ...beds.fitted import FITTED, fit_capacity_profile
 from ...framework.study import relative_error
 from ...framework.sweep import StderrProgress, SweepProgress
-from .bed_runs import run_bed
+from .bed_runs import element_analysis, run_bed
 from .dataset import PointArrays
 from .energy import ENERGIES, energies_of, energy_scale, same_run
 from .grid import FLOOR_FRACTION, MEASURES, STUDY
@@ -63,13 +63,15 @@ def assemble(grid, options, calibrations, motions, statics, points, runs, impeda
                 continue
             for c, name in enumerate(calibrations):
                 foundation = bed_foundation(name, ref, options)
+                analysis = (element_analysis(options) if foundation.get("law") == "macro"
+                            else None)
                 if name not in warmed:  # the first run compiles the kernels: not timed
-                    run_bed(point, foundation)
+                    run_bed(point, foundation, analysis)
                     warmed.add(name)
                 if np.isnan(a.bed_K_r[idx[:4] + (c,)]):
                     a.bed_K_r[idx[:4] + (c,)], a.bed_K_v[idx[:4] + (c,)] = _bed_stiffness(
                         point, foundation)
-                bed = run_bed(point, foundation)
+                bed = run_bed(point, foundation, analysis)
                 a.bed_wall[at + (c,)] = bed["wall_time_s"]
                 if "refused" in bed:
                     refusals.append(f"{where}, {name}: {bed['refused']}")

@@ -48,10 +48,12 @@ def bed_soil_damping(point: Mapping, foundation: Mapping) -> dict:
     from ....continuum.dynamics.rayleigh import scene_rayleigh
     from ...beds.soil_damping import with_soil_damping
 
-    return with_soil_damping(dict(foundation), scene_rayleigh(point_scene(point)).beta)
+    scene = point_scene(point)
+    return with_soil_damping(dict(foundation), scene_rayleigh(scene).beta,
+                             vertical_mass=scene.structure.vertical_weight / scene.g)
 
 
-def run_bed(point: Mapping, foundation: Mapping) -> dict:
+def run_bed(point: Mapping, foundation: Mapping, analysis: Mapping | None = None) -> dict:
     """A bed's run of a point's motion (reduced model, live, not stored): the measures of
     :func:`measured`, its ``peak_settlement`` (the base centre's largest settlement, down),
     its wall time ``wall_time_s`` (the run alone, s), its foundation energy E_F and the
@@ -60,11 +62,15 @@ def run_bed(point: Mapping, foundation: Mapping) -> dict:
     ``analysis.max_steps`` is refused before it starts, as it would be for a user: on the
     half-plane a bed whose footing carries its own mass has a stiff mode the error-controlled
     integrator's first step resolves, and the q–z bed's on a record of a minute is above it).
-    One bed's refusal leaves its error NaN at that point and the map goes on."""
+    One bed's refusal leaves its error NaN at that point and the map goes on. ``analysis``:
+    ``[analysis]`` keys of the bed's run over the point's (the macro-element's integrator and
+    step, :func:`element_analysis`)."""
     from ....checks import InputError
     from ....reduced import IntegrationError, run as run_reduced
 
-    scene = bed_scene(point, foundation)
+    scene = bed_scene(point, foundation, analysis)
+    if analysis:
+        scene = _resolved(scene)
     started = time.perf_counter()
     try:
         response = run_reduced(scene)
@@ -78,7 +84,35 @@ def run_bed(point: Mapping, foundation: Mapping) -> dict:
             "energy_balance_error": float(response.peaks["energy_balance_error"])}
 
 
-def bed_scene(point: Mapping, foundation: Mapping):
+def element_analysis(options) -> dict:
+    """The ``[analysis]`` keys of the macro-element's runs on the map: ``options.
+    macro_integrator`` at steps of at most ``options.macro_dt`` (Newmark at 1 ms by default:
+    on the half-plane the footing's own mass on the tie's dashpot is an overdamped mode that
+    holds RK4 to about 2e-5 s; Newmark carries the element at 1 ms within 1e-3 of RK4,
+    ``tests/test_winkler_map_macro.py``), shortened where an implicit integrator could not
+    resolve the point's shortest bonded period (:func:`_resolved`)."""
+    return {"integrator": options.macro_integrator, "dt": float(options.macro_dt)}
+
+
+def _resolved(scene):
+    """``scene`` with its implicit step shortened to 0.95 of what resolves its shortest bonded
+    period (:func:`~upliftlab.reduced.integrators.resolution_limit`: a light structure's
+    footing sways faster), unchanged otherwise."""
+    from ....reduced import build_model
+    from ....reduced.integrators import method, resolution_limit
+
+    a = scene.analysis
+    if a.dt is None or method(a.integrator).explicit:
+        return scene
+    largest, _ = resolution_limit(build_model(scene))
+    if a.dt <= largest:
+        return scene
+    data = copy.deepcopy(scene.data)
+    data["analysis"] = {**data.get("analysis", {}), "dt": 0.95 * largest}
+    return scene_from_dict(data, merged=True)
+
+
+def bed_scene(point: Mapping, foundation: Mapping, analysis: Mapping | None = None):
     """The reduced model's scene of a bed (its ``[foundation]`` table ``foundation``) on a
     point: the point's structure and motion, the bed's foundation with the sway of
     :func:`bed_sway` and the soil damping of :func:`bed_soil_damping`, no soil or continuum
@@ -86,6 +120,8 @@ def bed_scene(point: Mapping, foundation: Mapping):
     data = copy.deepcopy(point["scene"])
     data["foundation"] = {**bed_soil_damping(point, foundation),
                           **bed_sway(data.get("continuum", {}))}
+    if analysis:
+        data["analysis"] = {**data.get("analysis", {}), **analysis}
     B = 2.0 * data["foundation"]["half_width"]
     data["motion"] = motion_table(point["motion"], point["intensity"], B,
                                   data["structure"]["height"])
@@ -96,9 +132,14 @@ def bed_scene(point: Mapping, foundation: Mapping):
 
 def reduced_measures(response) -> dict:
     """The measures of :func:`measured` of a reduced model's ``response`` (its peaks where the
-    event stepper caught a peak between recorded steps)."""
+    event stepper caught a peak between recorded steps). A base element (the macro-element)
+    has no springs to read edge gaps from: its edge uplift is its own tracked peak, the larger
+    gap under its edges at the steps' ends (``peaks["uplift_max"]``)."""
     t = np.asarray(response.time, dtype=float)
-    uplift = float(np.max(edge_uplift_history(reduced_edge_gap_history(response))))
+    if response.model.base is not None:
+        uplift = float(response.peaks["uplift_max"])
+    else:
+        uplift = float(np.max(edge_uplift_history(reduced_edge_gap_history(response))))
     u_peak = max(float(np.max(np.abs(response.u))), float(response.peaks["u"]))
     theta = np.asarray(response.theta, dtype=float)
     out = measured(t - t[0], theta, uplift, np.asarray(response.settlement, dtype=float), u_peak,

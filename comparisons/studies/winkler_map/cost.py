@@ -95,7 +95,9 @@ class Estimate:
     ``seconds`` of one worker, ``by_soil`` the same per soil; ``per_run`` the median estimate
     of a dynamic run; ``source`` where the rates came from; ``checks`` stored runs made by
     earlier code that are made again to check them (:mod:`..freshness`), at their own
-    recorded wall times, ``check_seconds`` (included in ``seconds``)."""
+    recorded wall times, ``check_seconds`` (included in ``seconds``); ``fits`` the
+    macro-element's fits to make (one per soil, not continuum runs) and their ``fit_seconds``
+    at most (included in ``seconds``)."""
 
     runs: int
     static: int
@@ -107,6 +109,8 @@ class Estimate:
     source: str
     checks: int = 0
     check_seconds: float = 0.0
+    fits: int = 0
+    fit_seconds: float = 0.0
 
     def text(self, workers: int | None = 1) -> str:
         """The estimate in one line; ``workers`` None: a Dask cluster or a caller's executor,
@@ -114,6 +118,10 @@ class Estimate:
         check = (f"; {self.checks} stored runs made by earlier code are made again first, "
                  f"{_duration(self.check_seconds)} of one worker, to check them"
                  if self.checks else "")
+        if self.fits:
+            check = (f"; the macro-element's fit of {self.fits} soil"
+                     f"{'s' if self.fits > 1 else ''}, at most {_duration(self.fit_seconds)} "
+                     f"of one worker (included){check}")
         if self.runs == 0:
             return (f"0 continuum runs to make (0 static, 0 dynamic; {self.stored} already "
                     f"stored): every run is read from the store{check}")

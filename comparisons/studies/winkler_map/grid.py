@@ -79,6 +79,10 @@ class Options:
     ``bed_stiffness``: what the beds' K_v
     and K_r are, ``static`` the box's statics (the default) or ``rocking`` the half-plane
     impedance's at each structure's rocking frequency (:mod:`...beds.rocking_stiffness`).
+    ``macro_fs_v``: the FS_v whose rotation pushovers (monotonic and cyclic) the macro-element
+    is fitted to, once per soil whatever the grid's FS_v (the whole map's four), in at most
+    ``macro_evaluations`` evaluations of the fit (:mod:`.macro_points`); its runs take
+    ``macro_integrator`` at ``macro_dt`` (s) (:func:`.bed_runs.element_analysis`).
     """
 
     elements_across: int = 16
@@ -100,6 +104,10 @@ class Options:
     budget: float | None = None
     figures: bool = True
     reference: str = "box"
+    macro_fs_v: tuple[float, ...] = (2.0, 3.0, 5.0, 10.0)
+    macro_evaluations: int = 1500
+    macro_integrator: str = "newmark"
+    macro_dt: float = 1e-3
 
 
 FULL_GRID = Grid()
@@ -108,7 +116,8 @@ FAST_GRID = Grid(soils=("clay",), fs_v=(2.0, 5.0), h_over_B=(1.5,), periods=(0.2
 FULL_OPTIONS = Options()
 FAST_OPTIONS = Options(elements_across=4, pulse_tail=0.6, vertical_steps=8,
                        theta_ratios=(2.0, 5.0), monotonic_steps=3, cycle_ratios=(2.0,),
-                       cycle_steps=2, energy=True)
+                       cycle_steps=2, energy=True, macro_fs_v=(2.0, 5.0),
+                       macro_evaluations=30)
 
 
 def grid_with(base: Grid, assignments: Sequence[str]) -> Grid:
@@ -211,4 +220,13 @@ def check_options(options: Options, beds: Sequence[str]) -> Options:
     checks.boolean("options.energy", options.energy)
     checks.boolean("options.figures", options.figures)
     checks.one_of("options.reference", options.reference, REFERENCES)
+    checks.ascending("options.macro_fs_v", options.macro_fs_v, 1.0, 100.0, low_open=True)
+    evaluations = checks.integer_at_least("options.macro_evaluations",
+                                          options.macro_evaluations, 1)
+    if evaluations > 20000:
+        raise InputError(f"options.macro_evaluations = {evaluations}: valid range is "
+                         "[1, 20000]")
+    checks.one_of("options.macro_integrator", options.macro_integrator,
+                  ("newmark", "hht", "rk4", "abm4"))
+    checks.in_range("options.macro_dt", options.macro_dt, 0.0, 0.01, low_open=True)
     return options

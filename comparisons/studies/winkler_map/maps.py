@@ -8,12 +8,13 @@ from __future__ import annotations
 import concurrent.futures as cf
 import contextlib
 import os
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
 from ....log import logger
-from ...beds import base_table, bed_foundation, bed_rocking
+from ....scenes import load_scene
+from ...beds import BASE_SCENE, base_table, bed_foundation, bed_rocking
 from ...beds.continuum_points import evaluate_continuum
 from ...framework.sweep import DASK_ENV, run_sweep, sweep_executor
 from .assemble import assemble
@@ -22,6 +23,7 @@ from .dataset import map_dataset
 from .energy_points import evaluate_energy
 from .grid import STUDY, Grid, Options
 from .impedance_points import evaluate_impedance, impedance_point, soil_impedance
+from .macro_points import evaluate_macro_fit, fit_rotation_points, soil_fit_points
 from .plan import (bed_needs, cells, dynamic_points, estimate_map, map_rocking_points,
                    plan_map, point_key_of, reference, scene_of)
 from .points import evaluate_dynamic, point_table
@@ -61,8 +63,8 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
         executor = ctx.executor
         if in_process:
             executor = stack.enter_context(cf.ThreadPoolExecutor(1))  # no pool to start
-        elif executor is None and (estimate.runs or estimate.checks):
-            n = max(1, min(workers, estimate.runs + estimate.checks))
+        elif executor is None and (estimate.runs or estimate.checks or estimate.fits):
+            n = max(1, min(workers, estimate.runs + estimate.checks + estimate.fits))
             executor = stack.enter_context(sweep_executor(ctx.scheduler, workers=n))
         sweep = {"executor": executor, "chunk": 1, "study": STUDY, "progress": ctx.progress}
         records = run_sweep(evaluate_static, statics_points, store, **sweep)
@@ -77,6 +79,9 @@ def compute_map(grid: Grid, options: Options, calibrations: Sequence[str], motio
         before += sum(1 for p in rotations if store.has(point_key_of(p, evaluate_continuum)))
         rocking_records = run_sweep(evaluate_continuum, rotations, store, **sweep)
         pushovers = _pushovers(grid, loads, base, rocking_records)
+        if "macro" in bed_needs(calibrations, options):
+            fits = _macro_fits(grid, options, base, g, statics, loads, store, sweep)
+            _with_fits(pushovers, fits)
         _build_every_bed(grid, options, calibrations, motions, statics, points, impedances,
                          pushovers)
         runs = run_sweep(evaluate_dynamic, points, store, **sweep)
@@ -113,7 +118,8 @@ def calibration_inputs(grid: Grid, options: Options, calibrations: Sequence[str]
                        store) -> tuple[dict, dict, dict]:
     """What the map's beds are calibrated from, read back from ``store`` (nothing is run):
     ({soil: :class:`.statics.SoilStatics`}, {soil: the continuum's impedance, when a bed needs
-    it}, {(soil, fs_v): the continuum's rotation pushovers}); with :func:`.plan.reference`
+    it}, {(soil, fs_v): the continuum's rotation pushovers, with the soil's macro-element fit
+    when a bed needs it}); with :func:`.plan.reference`
     they build any bed of the map again. Raises KeyError for a point the store does not
     hold."""
     base = base_table()
@@ -137,6 +143,13 @@ def calibration_inputs(grid: Grid, options: Options, calibrations: Sequence[str]
             impedances[soil] = soil_impedance(point, stored(point, evaluate_impedance))
     rotations = map_rocking_points(grid, options, base, loads)
     pushovers = _pushovers(grid, loads, base, [stored(p, evaluate_continuum) for p in rotations])
+    if "macro" in needs:
+        fit_rotations = fit_rotation_points(grid.soils, options, base, loads)
+        points = soil_fit_points(grid.soils, options, base, statics, fit_rotations,
+                                 [stored(p, evaluate_continuum) for p in fit_rotations],
+                                 [point_key_of(p, evaluate_continuum) for p in fit_rotations],
+                                 load_scene(BASE_SCENE).g)
+        _with_fits(pushovers, {p["soil"]: stored(p, evaluate_macro_fit) for p in points})
     return statics, impedances, pushovers
 
 
@@ -155,6 +168,26 @@ def _pushovers(grid, loads, base, records) -> dict:
             "cyclic": cyclic, "monotonic": monotonic,
             "theta_on": theta_onset(loads[soil] / fs, soil, B)}
     return out
+
+
+def _macro_fits(grid, options, base, g, statics, loads, store, sweep) -> dict:
+    """{soil: the macro-element's stored fit} (:mod:`.macro_points`): its rotation pushovers
+    at ``options.macro_fs_v`` (read from the store, or made), then the fit (read, or
+    made)."""
+    rotations = fit_rotation_points(grid.soils, options, base, loads)
+    records = run_sweep(evaluate_continuum, rotations, store, **sweep)
+    keys = [point_key_of(p, evaluate_continuum) for p in rotations]
+    by_soil = {s.soil: s for s in statics}
+    points = soil_fit_points(grid.soils, options, base, by_soil, rotations, records, keys, g)
+    fits = run_sweep(evaluate_macro_fit, points, store, **sweep)
+    return {p["soil"]: fit for p, fit in zip(points, fits)}
+
+
+def _with_fits(pushovers: dict, fits: Mapping) -> None:
+    """Each (soil, fs_v)'s rotation pushovers given the soil's macro-element fit (``macro``:
+    its record), where :func:`.plan.reference` finds it for the ``macro`` bed."""
+    for (soil, _), rocking in pushovers.items():
+        rocking["macro"] = fits[soil]
 
 
 def _build_every_bed(grid, options, calibrations, motions, statics, points, impedances,

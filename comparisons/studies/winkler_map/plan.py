@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Mapping, Sequence
+from dataclasses import replace
 
 from ....scenes import load_scene, scene_from_dict
 from ...beds import BASE_SCENE, BEDS, BedReference, base_table
@@ -20,7 +21,9 @@ from .impedance_points import evaluate_impedance, impedance_point
 from .motions import motion_duration
 from .points import evaluate_dynamic, point_table
 from .rocking import rocking_points
-from .statics import SoilStatics, evaluate_static, static_points
+from .macro_points import (evaluate_macro_fit, fit_rotation_points, fit_seconds,
+                           soil_fit_points)
+from .statics import SoilStatics, evaluate_static, soil_statics, static_points
 
 __all__ = ["cells", "dynamic_points", "point_key_of", "scene_of", "map_rocking_points",
            "reference", "bed_needs", "estimate_map", "plan_map", "FREE_MOTION"]
@@ -65,10 +68,12 @@ def map_rocking_points(grid, options, base, loads) -> list[dict]:
 
 
 def _estimate(grid, options, motions, base, g, store, statics_points, loads,
-              impedance_points) -> Estimate:
+              impedance_points, macro: bool = False) -> Estimate:
     """The cost of what is not stored yet. A soil whose statics are not stored has no vertical
     load yet: its dynamic points and its rotation pushovers all count as still to run. The
-    rates are those of the grid's stored dynamic runs, else of the store's others."""
+    rates are those of the grid's stored dynamic runs, else of the store's others. With
+    ``macro``: the macro-element's rotation pushovers at FS_v the grid lacks, and its fits
+    (:func:`_macro_fits`)."""
     static_records = [store.get(point_key_of(p, evaluate_static)) for p in statics_points]
     impedance_records = [store.get(point_key_of(p, evaluate_impedance)) for p in impedance_points]
     impedance_rows = [(soil, impedance_dofs(p), len(p["impedance"]["a0"]), r is not None)
@@ -85,6 +90,9 @@ def _estimate(grid, options, motions, base, g, store, statics_points, loads,
         stored = soil in loads and store.has(point_key_of(point, evaluate_continuum))
         static_rows.append((soil, scene_of(point["scene"]), stored,
                             len(point["rotations"]) / (options.vertical_steps + 1)))
+    fit_keys = []
+    fits = (_macro_fits(grid, options, base, g, store, loads, static_rows, fit_keys)
+            if macro else [])
     dynamic = dynamic_points(grid, options, motions, base, g,
                               {s: loads.get(s, 1.0) for s in grid.soils})
     durations = {m["name"]: motion_duration(m) for m in motions}
@@ -110,7 +118,53 @@ def _estimate(grid, options, motions, base, g, store, statics_points, loads,
         (rotations if loads else [], evaluate_continuum), (dynamic if loads else [],
                                                            evaluate_dynamic),
         (dynamic if loads else [], evaluate_energy)) for p in points]
+    keyed += [(key, evaluate_macro_fit) for key in fit_keys]
+    if fits:
+        seconds = sum(f for _, f in fits)
+        by_soil = dict(estimate.by_soil)
+        for soil, f in fits:
+            by_soil[soil] = by_soil.get(soil, 0.0) + f
+        estimate = replace(estimate, fits=len(fits), fit_seconds=seconds, by_soil=by_soil,
+                           seconds=estimate.seconds + seconds)
     return with_checks(estimate, store, keyed)
+
+
+def _macro_fits(grid, options, base, g, store, loads, static_rows,
+                keys: list) -> list[tuple[str, float]]:
+    """The macro-element's work not yet stored: its rotation pushovers at the FS_v of
+    ``options.macro_fs_v`` that the grid does not push over, appended to ``static_rows``, and
+    (soil, estimated seconds) of each soil's fit the store does not hold; the store keys of
+    the fits whose inputs it holds are appended to ``keys``."""
+    rotations = fit_rotation_points(grid.soils, options, base,
+                                    {s: loads.get(s, 1.0) for s in grid.soils})
+    per_soil = 2 * len(options.macro_fs_v)
+    todo = []
+    for i, soil in enumerate(grid.soils):
+        mine = rotations[i * per_soil:(i + 1) * per_soil]
+        records = []
+        for k, point in enumerate(mine):
+            record = store.get(point_key_of(point, evaluate_continuum)) if soil in loads else None
+            records.append(record)
+            if options.macro_fs_v[k // 2] not in grid.fs_v:
+                static_rows.append((soil, scene_of(point["scene"]), record is not None,
+                                    len(point["rotations"]) / (options.vertical_steps + 1)))
+        if all(r is not None for r in records) and soil in loads:
+            statics = {soil: _loads_statics(store, soil, options, base)}
+            rotation_keys = [point_key_of(p, evaluate_continuum) for p in mine]
+            point = soil_fit_points([soil], options, base, statics, mine, records,
+                                    rotation_keys, g)[0]
+            keys.append(point_key_of(point, evaluate_macro_fit))
+            if store.has(keys[-1]):
+                continue
+        todo.append((soil, fit_seconds(mine, options.macro_evaluations)))
+    return todo
+
+
+def _loads_statics(store, soil, options, base) -> SoilStatics:
+    """The soil's stored statics (both records are in ``store``)."""
+    b = base["foundation"]["half_width"]
+    return soil_statics(soil, [store.get(point_key_of(p, evaluate_static))
+                               for p in static_points(soil, options, b)])
 
 
 def estimate_map(grid: Grid, options: Options, calibrations: Sequence[str], motions,
@@ -135,7 +189,7 @@ def plan_map(grid, options, calibrations, motions, store) -> tuple:
     impedance_points = ([impedance_point(soil, options, b) for soil in grid.soils]
                         if "impedance" in needs else [])
     estimate = _estimate(grid, options, motions, base, g, store, statics_points, loads,
-                         impedance_points)
+                         impedance_points, "macro" in needs)
     return base, g, statics_points, static_records, impedance_points, estimate
 
 
@@ -170,6 +224,8 @@ def reference(st: SoilStatics, scene, structure: Mapping, impedance=None,
         extra["impedance"] = impedance
     if rocking is not None:
         extra["rocking"] = rocking
+        if "macro" in rocking:  # the soil's macro-element fit (the map's stored record)
+            extra["macro"] = rocking["macro"]
     ref = BedReference(st.soil, scene.structure.vertical_weight, scene.foundation.width,
                        scene.structure.height, st.K_v, st.K_r, st.V_ult,
                        scene.soil.shear_modulus, scene.soil.poisson_ratio, extra=extra)

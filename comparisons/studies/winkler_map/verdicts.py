@@ -21,7 +21,8 @@ REFERENCE_TEXTS = {
                   "by a tie of the handbook strip's K_h = 2G/(2 − ν) and C_h = ρ V_s B, the "
                   "clay's undrained strength growing 1.7 kPa/m with depth, and the soil's "
                   "small-strain damping, Rayleigh ξ = 1 % at f₁ = V_s/(4H) and 5 f₁, carried "
-                  "into every bed as a dashpot β k_i beside each spring"}
+                  "into every bed as a dashpot β k_i beside each spring (into the "
+                  "macro-element as its dashpot density β K_v/B)"}
 
 
 #: The half-plane's footing sways: what the beds leave out (the box's note is

@@ -42,6 +42,7 @@ def compute(scene, ctx: Context):
     if isinstance(options, Options) and options.budget is None and ctx.budget is not None:
         options = replace(options, budget=ctx.budget)
     options = check_options(options, tuple(BEDS))
+    calibrations = bed_names(options)  # a bed named on a reference it does not stand on: refused
     _check_store_reference(ctx.store, options.reference)
     if options.figures:
         require_matplotlib(STUDY)
@@ -49,7 +50,7 @@ def compute(scene, ctx: Context):
     fresh = [p for p in (out, out / "motions") if not p.exists()]
     motions = study_motions(grid, options, out)
     try:
-        tree = compute_map(grid, options, bed_names(options), motions, ctx)
+        tree = compute_map(grid, options, calibrations, motions, ctx)
     except InputError:  # refused: leave no copied records behind, and no empty folders
         if out / "motions" in fresh:
             shutil.rmtree(out / "motions", ignore_errors=True)
