@@ -9,7 +9,8 @@ Three sections, each written as it ends (``benchmarks/bench_output.py``):
 1. ``box``: ``upliftlab study winkler_map`` on the grid with the box's kept store
    (``benchmarks/winkler_map_store``), into ``<out>/box``;
 2. ``half_plane``: the same with ``--reference half_plane`` and its kept store
-   (``benchmarks/winkler_map_halfplane_store``), into ``<out>/half_plane``;
+   (``benchmarks/winkler_map_halfplane_store``), into ``<out>/half_plane``; both with the beds
+   that stand on both references (:func:`shared_beds`: not the macro-element);
 3. ``compare``: the two ``map.nc`` read back, and ``MAP_REFERENCES.md`` written from them
    alone: per soil and FS_v, the points each reference counts (a run beyond the small-strain
    reference, refused or failed has no error), each bed's share within the θ tolerance in peak
@@ -56,11 +57,20 @@ QUICK_GRID = ["soils=clay", "fs_v=10", "h_over_B=1.5", "periods=0.5", "intensiti
               "pulse_periods=0.25", "elcentro=false", "fema_components=0"]
 
 
+def shared_beds() -> list[str]:
+    """The beds that stand on both references (the macro-element stands on the half-plane
+    only): both maps run these, so that they compare bed by bed."""
+    from upliftlab.comparisons.beds import BEDS
+
+    return [name for name, entry in BEDS.items() if set(STORES) <= set(entry.references)]
+
+
 def run_map(reference: str, grid: list[str], folder: Path, args) -> Path:
     """The map on ``reference`` (its kept store) into ``folder/reference``; its map.nc."""
     out = folder / reference
     command = [sys.executable, "-m", "upliftlab", "study", "winkler_map", "--out", str(out),
-               "--store", str(STORES[reference]), "--reference", reference, "--no-figures"]
+               "--store", str(STORES[reference]), "--reference", reference, "--no-figures",
+               "--beds", ",".join(shared_beds())]
     for assignment in grid:
         command += ["--grid", assignment]
     if args.workers:

@@ -306,7 +306,7 @@ def test_the_maps_beds_build_on_the_rocking_basis_from_the_kept_store():
     needs the impedance even for beds that do not; the registered beds build; the uniform
     bed has K_r(ω̃) and the impedance bed's dashpot frequency (the reduced model's own
     eigenproblem on that bed) is ω̃ to 1e-8; the default reference keeps the box's statics."""
-    from upliftlab.comparisons.beds import BASE_SCENE, BEDS, base_table, bed_foundation
+    from upliftlab.comparisons.beds import BASE_SCENE, base_table, bed_foundation, bed_names
     from upliftlab.comparisons.beds.dashpots import impedance_dashpots_of
     from upliftlab.comparisons.framework.store import Store
     from upliftlab.comparisons.studies.winkler_map.maps import calibration_inputs
@@ -335,7 +335,7 @@ def test_the_maps_beds_build_on_the_rocking_basis_from_the_kept_store():
     assert ref.K_r == at.K_r and ref.K_v == at.K_v < st.K_v
     # every bed but the two that fit (qz 15 s, ES-f-I 45 s: their compiled pushovers), which
     # take K_v and K_r from the same reference
-    tables = {name: bed_foundation(name, ref, options) for name in BEDS
+    tables = {name: bed_foundation(name, ref, options) for name in bed_names(options)
               if name not in ("qz", "end_stiffened_fitted_impedance")}
     assert all(t["support"] == "uplift" for t in tables.values())
     uniform = next(c for c in calibrate(ref, options) if c.name == "uniform")

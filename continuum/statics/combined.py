@@ -24,7 +24,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ... import checks
 from ...checks import InputError
@@ -96,6 +95,8 @@ def green_effective_width(V: float, cohesion: float, width: float, reduced) -> t
     docstring; force/length, force·length/length), at vertical load ``V`` on a strip of
     ``width`` B on clay of undrained strength ``cohesion``; a B′ too narrow to carry V
     (V/(c B′) > 2 + π) is refused."""
+    from scipy.optimize import brentq  # here: a dynamic run imports the continuum, not this
+
     reduced = np.atleast_1d(np.asarray(reduced, dtype=float))
     load = V / (cohesion * reduced)
     if np.any(load > 2.0 + math.pi) or np.any(reduced > width) or np.any(reduced <= 0.0):
