@@ -30,7 +30,7 @@ from numba import njit
 
 from ..laws.macro.compiled import (P_B, P_CXT, P_CXV, S_D, S_P, S_Q, S_ROUND, S_W, STEP_OK,
                                    W_DE, W_Q, bed_moments, elastic, step_into)
-from .codes import HOT, P_BGAP, P_BH, P_BU, P_CMIN
+from .codes import E_PLASTIC, HOT, P_BGAP, P_BH, P_BU, P_CMIN
 
 # slots of C: the displacement at rest (3), the forces at rest (3), the dashpot density c′ and
 # the sway's dashpot c_h, the largest trial force step of a sub-step (V_ult-scaled), the status
@@ -102,8 +102,41 @@ def base_force(q, qd, base, qdd):
     fm = St[S_Q + 2] - C[C_Q0 + 2] + cv * (I1 * vd + I2 * td)
     for k in range(q.size):
         qdd[k] -= T[0, k] * fv + T[1, k] * fh + T[2, k] * fm
+    return _dashpot_power(P, C, I0, I1, I2)
+
+
+@njit(cache=True, **HOT)
+def _dashpot_power(P, C, I0, I1, I2):
+    """The dashpots' power at the rates in C's scratch over a contact of moments I0, I1, I2."""
+    vd, ud, td = C[C_RATE], C[C_RATE + 1], C[C_RATE + 2]
+    cv = C[C_CV]
     return cv * (I0 * vd * vd + 2.0 * I1 * vd * td + I2 * td * td) \
         + C[C_CH] * I0 / P[P_B] * ud * ud
+
+
+@njit(cache=True, **HOT)
+def committed_power(q, qd, base):
+    """The dashpots' power at rates q̇ over the committed state's contact (0 without a base
+    element): after :func:`commit_base` moved the state to an accepted step's end, the power
+    there without moving the element again."""
+    P, S = base[0], base[1]
+    if P.size == 0:
+        return 0.0
+    _target(base, q, qd)
+    _, _, I0, I1, I2 = contact_moments(P, S)
+    return _dashpot_power(P, base[6], I0, I1, I2)
+
+
+@njit(cache=True, **HOT)
+def accept_base(q, base, acc, peaks):
+    """The base element at an accepted step's end q: its state committed there, its plastic
+    work booked in ``acc``, its peaks tracked; returns the status (0, or why it failed)."""
+    work, status = commit_base(q, base)
+    if status != 0:
+        return status
+    acc[E_PLASTIC] += work
+    track_base(base, peaks)
+    return 0
 
 
 @njit(cache=True, **HOT)

@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .base import commit_base, track_base
+from .base import accept_base, track_base
 from .codes import (BASE_FAILED, E_PLASTIC, F_ECHECK, HOT, NONFINITE, N_ACC, OK,
                     OVERTURNED)
 from .energy import check_energy, start_energy, static_strain_energy
@@ -109,12 +109,9 @@ def accept_fixed_step(step, clock, state, trial, system, books, fixed, outputs, 
     copy(e0, e1)
     copy(ed0, ed1)
     acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
-    work, status = commit_base(q, base)
-    if status != 0:
+    if accept_base(q, base, acc, peaks) != 0:
         counters[0] = step
         return BASE_FAILED
-    acc[E_PLASTIC] += work
-    track_base(base, peaks)
     if end_fixed_step(step, (step + 1) * dt, clock, q, qd, acc, books, e0, system, outputs,
                       peaks, counters) != OK:
         return OVERTURNED

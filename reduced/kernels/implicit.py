@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .base import base_internal, base_tangent, commit_base, track_base
+from .base import accept_base, base_internal, base_tangent, committed_power
 from .codes import (BASE_FAILED, E_IMPACT, E_INPUT, E_PLASTIC, E_VISCOUS, NONFINITE,
                     NO_CONVERGENCE, N_ACC, OK, OVERTURNED)
 from .energy import check_energy, start_energy, static_strain_energy
@@ -185,7 +185,7 @@ def integrate_newmark(q0, qd0, clock, system, scheme, newton, max_halvings, outp
     modes = np.zeros(ns, dtype=np.int64)
     contact = np.ones(ns, dtype=np.int64)
     internal_force(q, qd, P, KG, H, e0, ed0, fint0, kt, ct, modes, fd0, fimp0)
-    scratch, spare = np.zeros(n), np.zeros(n)
+    scratch = np.zeros(n)
     base_power0 = base_internal(q, qd, base, fint0, scratch)
     a0 = ground_acceleration(0.0, ag, dtg)
     for i in range(n):
@@ -230,11 +230,6 @@ def integrate_newmark(q0, qd0, clock, system, scheme, newton, max_halvings, outp
                 share = 0.5 * (fimp0[j] + fimp1[j])
                 acc[E_VISCOUS] += work * (1.0 - share)
                 acc[E_IMPACT] += work * share
-            if base[0].size:  # the element's dashpots: the trapezoid of their power
-                spare[:] = 0.0
-                base_power1 = base_internal(q1, qd1, base, spare, scratch)
-                acc[E_VISCOUS] += 0.5 * (base_power0 + base_power1) * h
-                base_power0 = base_power1
             q[:] = q1
             qd[:] = qd1
             qdd[:] = qdd1
@@ -246,12 +241,13 @@ def integrate_newmark(q0, qd0, clock, system, scheme, newton, max_halvings, outp
             fd0[:] = fd1
             fimp0[:] = fimp1
             acc[E_PLASTIC] += commit_all(P, modes, H, contact, e0, ed0)
-            work, status = commit_base(q, base)
-            if status != 0:
+            if accept_base(q, base, acc, peaks) != 0:
                 counters[0] = step
                 return BASE_FAILED
-            acc[E_PLASTIC] += work
-            track_base(base, peaks)
+            # the element's dashpots: the trapezoid of their power, at the committed end
+            base_power1 = committed_power(q, qd, base)
+            acc[E_VISCOUS] += 0.5 * (base_power0 + base_power1) * h
+            base_power0 = base_power1
             t = t + h if t_end - (t + h) > t_tol else t_end
         if not finite(q, qd):
             counters[0] = step
