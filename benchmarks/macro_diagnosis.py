@@ -19,7 +19,8 @@ soil's macro-element fit; nothing is fitted here):
   coupling (χ = 0: no settlement from flow in rotation or sway), a horizontal capacity 5.1
   times the fit's (the sliding ratio t_h at the scene's largest, 4, from the fit's 0.778: the
   base shear nearly out of the failure surface and its flow), and a stiffer interior
-  (h0 × 100: the small cycles inside the bounding surface nearly elastic).
+  (h0 × 100: the small cycles inside the bounding surface nearly elastic); and one more that
+  keeps the soil's surface flat (λ_ρ = 0: no rounding under the edges).
 
 The table gives, per point, the residual settlement (the map's measure: the settlement when
 the footing is flattest) of each, and the same measure taken in the period after the pulse's
@@ -56,7 +57,8 @@ POINTS = [(soil, fs, intensity) for soil in ("clay", "sand") for fs in (3.0, 5.0
 QUICK = [("clay", 3.0, 1.5)]
 PULSE = 0.6  # s, the map's longer Ricker pulse
 VARIANTS = {"map": {}, "χ = 0": {"settlement_coupling": 0.0},
-            "t_h = 4": {"sliding_ratio": 4.0}, "h0 × 100": {"interior_modulus": 100.0}}
+            "t_h = 4": {"sliding_ratio": 4.0}, "h0 × 100": {"interior_modulus": 100.0},
+            "λ_ρ = 0": {"rounding_ratio": 0.0}}
 #: Variants that multiply a key of the element's table rather than set it.
 SCALED = {"interior_modulus"}
 _WARM: list = []
@@ -122,6 +124,7 @@ def _element(point: dict, foundation: dict, options, force_step: float | None = 
     return {"t": t - t[0], "theta": np.asarray(response.theta, dtype=float),
             "settlement": np.asarray(response.settlement, dtype=float),
             "measures": reduced_measures(response), "wall": wall,
+            "plastic_settlement": np.asarray(response.base[:, 3], dtype=float),
             "steps": int(response.info["steps"])}
 
 
@@ -206,6 +209,22 @@ def publish(folder: Path, done: dict, missing: dict) -> None:
                  f"{at_pulse_end(runs['map']) / e:.0%}"]
         cells += [f"{1e3 * res[v]:.2f} ({res[v] / c - 1:+.0%})" for v in list(VARIANTS)[1:]]
         lines.append("| " + " | ".join(cells) + " |")
+    lines += ["", "## Where the element's plastic settlement accrues", "",
+              "The element's plastic settlement v_p (mm, down; the map's run, at its recorded "
+              "steps): at the pulse's end (its centre plus one period), at the run's end, and "
+              "the sums of its downward and upward changes.", "",
+              "| point | v_p at the pulse's end | v_p at the end | down | up |",
+              "|---|---|---|---|---|"]
+    for key, r in done.items():
+        if key == "update":
+            continue
+        e = r["runs"]["map"]
+        vp = e["plastic_settlement"]
+        change = np.diff(vp)
+        end = float(np.interp(2.5 * PULSE, e["t"], vp))
+        lines.append(f"| {key} | {1e3 * end:.2f} | {1e3 * vp[-1]:.2f} | "
+                     f"{1e3 * change[change > 0].sum():.2f} | "
+                     f"{1e3 * change[change < 0].sum():.2f} |")
     lines += ["", "## Cost, both models timed in this process", "",
               "| point | continuum (s) | element (s) | ratio | element at the coarsest "
               "sub-step (s) | ratio | its θ error | its settlement error | element steps |",
