@@ -1,12 +1,14 @@
-"""The macro-element on the pulse points of one slice of the half-plane map, beside the map's
-beds on the same points (issue 36 §3: a first slice, before the whole map).
+"""The macro-element on the points of a slice of the half-plane map, beside the map's beds on
+the same points (issue 36 §3: slices, before the whole map).
 
     python benchmarks/macro_map_slice.py --map DIR/map.nc [--out DIR] [--write]
 
 ``--map``: the map's dataset of the slice, made by ``upliftlab study winkler_map --reference
 half_plane --store benchmarks/winkler_map_halfplane_store --grid h_over_B=1.5 --grid
-periods=0.5 --grid fema_components=0 --grid elcentro=false`` (its continuum runs and the
-macro-element's fits read from the kept store; the beds and the element run live). The
+periods=0.5 --grid fema_components=0 --grid elcentro=false`` (the pulses of one slice), or
+with ``--grid h_over_B=1.0,1.5 --grid fema_components=10`` (two slices, the records with the
+pulses), and ``--budget 1`` so that nothing but the kept runs is used (its continuum runs and
+the macro-element's fits read from the kept store; the beds and the element run live). The
 macro-element is a bed of the map's registry (``macro``,
 :mod:`upliftlab.comparisons.beds.macro_bed`): fitted once per soil to the store's rotation
 pushovers (nothing dynamic), put under each point's structure with the point's K_v and K_r, the
@@ -16,7 +18,8 @@ measure is the map's: relative, with the map's floor (a tenth of the measure at 
 threshold). The table gives, per soil and all together, the share of the points within 10 % in
 both peak θ and edge uplift and within 20 % in residual settlement, and the median error per
 measure, for the macro-element and for every bed, on the points where the continuum's run is
-compared (bearing failures and runs beyond small strain left out, as the map does).
+compared (bearing failures and runs beyond small strain left out, as the map does), and the
+share within 10 % in θ and uplift on the pulses and on the records apart.
 
 It reads the dataset only (under a second). Writes ``MACRO_MAP_SLICE.md`` to ``--out``
 (default ``results/bench/macro_map_slice``); ``--write`` also the committed table.
@@ -78,12 +81,21 @@ def publish(folder: Path, done: dict, missing: dict) -> None:
     labels = [str(x) for x in ds["calibration_key"].values]
     soils = [str(s) for s in ds["soil_label"].values]
     shown = ("theta", "uplift", "residual_settlement", "u", "base_shear")
+    kinds = np.array([str(k) for k in ds["motion_kind"].values])
+    lines += [f"The slice: h/B {', '.join(f'{x:g}' for x in ds['h_over_B'].values)}, T "
+              f"{', '.join(f'{x:g}' for x in ds['period'].values)} s, intensities "
+              f"{', '.join(f'{x:g}' for x in ds['intensity'].values)} a_up; "
+              f"{int((kinds == 'ricker').sum())} pulses and {int((kinds != 'ricker').sum())} "
+              "records.", ""]
     lines += ["## Shares and errors", "", "| model | points | θ and uplift within 10 %: all | "
               + " | ".join(soils) + " | residual settlement within 20 %: all | "
               + " | ".join(soils) + " | " + " | ".join(f"median abs. error, {m}"
                                                          for m in shown) + " |",
               "|" + "---|" * (4 + 2 * len(soils) + len(shown))]
+    lines[-2] = lines[-2][:-1] + "| θ and uplift within 10 %: pulses | records |"
+    lines[-1] += "---|---|"
     compared = np.isfinite(bed_err[..., labels.index("macro"), q["theta"]])
+    pulse = np.broadcast_to(kinds == "ricker", compared.shape)  # motion: the last axis
     order = ["macro"] + [name for name in labels if name != "macro"]
     for name in order:
         cube = bed_err[..., labels.index(name), :]
@@ -95,6 +107,8 @@ def publish(folder: Path, done: dict, missing: dict) -> None:
                 mask[np.arange(mask.shape[0]) != s] = False
                 cells.append(_share(cube, mask, group, tol))
         cells += [f"{np.nanmedian(np.abs(cube[..., q[m]][compared])):.1%}" for m in shown]
+        for on in (pulse, ~pulse):
+            cells.append(_share(cube, compared & on, (q["theta"], q["uplift"]), 0.10))
         lines.append("| " + " | ".join(cells) + " |")
     walls = r["walls"]
     lines += ["", f"The macro-element's runs: median {np.median(walls):.2f} s, largest "

@@ -35,7 +35,7 @@ from .batch_chunks import COLUMNS, ENERGY, NOT_RUN, STATUS_NAMES, execute, rewar
 from .batch_table import BatchInterrupted, BatchTable
 from .integrators import StepPlan, method
 from .model import build_model
-from .run import KernelInputs, initial_conditions, plan_run
+from .run import KernelInputs, initial_base_state, initial_conditions, plan_run
 
 __all__ = ["BatchResult", "BatchInterrupted", "run_batch", "STATUS_NAMES", "COLUMNS", "NOT_RUN",
            "ENERGY"]
@@ -48,7 +48,9 @@ class BatchResult(BatchTable):
 
     ``u`` peak superstructure deformation, ``theta`` peak base rotation, ``uplift_left`` peak
     gap under the leftmost foundation spring, ``weighted_plastic_settlement`` Σkε_p/Σk at the
-    end (down positive: :func:`~.peak_slots.weighted_plastic_settlement`),
+    end (down positive: :func:`~.peak_slots.weighted_plastic_settlement`; on a macro-element,
+    ``uplift_left`` is the peak gap under the footing's left edge and
+    ``weighted_plastic_settlement`` its plastic settlement v_p at the end),
     ``final_vertical_position`` V at the end (up positive) (these three NaN without a
     foundation; a batch keeps the ends of each run only, so it cannot tell whether a run ended
     at rest and has no residual settlement), ``base_shear`` peak base shear,
@@ -114,6 +116,7 @@ class _Job:
     leftmost: int        # spring index of the leftmost foundation spring (−1: none)
     energy_tolerance: float
     exact: bool
+    element: bool = False  # the base is one element (the macro-element), not springs
 
 
 def run_batch(scenes: Sequence[Scene], motion: Motion | None = None, *,
@@ -220,10 +223,6 @@ def _prepare(scenes, motion, integrator, dt):
 def _job(scene: Scene, motion, integrator, dt, bases, motions) -> _Job:
     """The run of one scene, as :func:`~.run.run_model` sets it up (histories off)."""
     model = build_model(scene)
-    if model.base is not None:
-        raise InputError("foundation.law = 'macro': the batch's table keeps the springs' peaks, "
-                         "and the macro-element has none; run such a scene alone "
-                         "(upliftlab.run, or upliftlab run SCENE)")
     index, factor, motion = _base_motion(scene, motion, bases, motions)
     a = scene.analysis
     name = integrator or a.integrator
@@ -233,9 +232,10 @@ def _job(scene: Scene, motion, integrator, dt, bases, motions) -> _Job:
     samples = max(motion.acceleration.size, math.ceil(duration / motion.dt - 1e-9))
     found = model.foundation_slice
     leftmost = (model.foundation_start + int(np.argmin(model.params["x"][found]))
-                if model.layout is not None else -1)
-    return _Job(name, KernelInputs.of(model, plan), plan, q0, qd0, index, factor, samples,
-                motion.dt, model.g, leftmost, a.energy_tolerance, model.exact)
+                if model.layout is not None and model.base is None else -1)
+    inputs = KernelInputs.of(model, plan, base_state=initial_base_state(model, motion, q0))
+    return _Job(name, inputs, plan, q0, qd0, index, factor, samples, motion.dt, model.g,
+                leftmost, a.energy_tolerance, model.exact, model.base is not None)
 
 
 def _base_motion(scene: Scene, motion: Motion | None, bases: dict, motions: list):

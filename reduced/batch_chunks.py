@@ -22,19 +22,21 @@ from ..checks import InputError, scheduler_address
 from ..workers import process_pool
 from . import kernels as kn
 from .peak_slots import decode_peaks, static_energy, weighted_plastic_settlement
-from .response import energy_balance_error
+from .response import ENERGY_NAMES, energy_balance_error
 from .run import ground_acceleration, integrate
 
 __all__ = ["COLUMNS", "ENERGY", "NOT_RUN", "STATUS_NAMES", "execute", "run_chunk", "rewarn",
            "dask_client"]
 
-#: A run that finished with its energy balance beyond ``analysis.energy_tolerance``.
+#: A run that finished with its energy balance beyond ``analysis.energy_tolerance``, or whose
+#: macro-element did negative plastic work beyond it (a single run refuses both alike).
 ENERGY = 100
 #: A run that an interruption left undone (:class:`~.batch.BatchInterrupted`).
 NOT_RUN = 101
 STATUS_NAMES = {kn.OK: "ok", kn.CHATTER: "chattering", kn.NONFINITE: "non-finite state",
                 kn.NO_CONVERGENCE: "Newton did not converge", kn.OVERTURNED: "overturned",
                 kn.STEP_UNDERFLOW: "step underflow", ENERGY: "energy balance beyond tolerance",
+                kn.BASE_FAILED: "macro-element step failed",
                 NOT_RUN: "not run (interrupted)"}
 COLUMNS = ("u", "theta", "uplift_left", "weighted_plastic_settlement",
            "final_vertical_position", "base_shear", "energy_balance_error", "dt")
@@ -130,9 +132,14 @@ def _run_job(job, acceleration) -> tuple[int, np.ndarray]:
                                     _samples(job, acceleration), job.dtg, impacts=False)
     if code in (kn.OK, kn.OVERTURNED):
         row = _row(job, out)
-        defined = [v for v, name in zip(row, COLUMNS) if job.leftmost >= 0
+        defined = [v for v, name in zip(row, COLUMNS) if job.leftmost >= 0 or job.element
                    or name not in FOUNDATION_COLUMNS]
         if not row[COLUMNS.index("energy_balance_error")] <= job.energy_tolerance:
+            code = ENERGY
+        elif job.element and not out["base_negative_work"] <= job.energy_tolerance * max(
+                float(np.max(np.abs(out["energy"][:, ENERGY_NAMES.index("input")]),
+                             initial=0.0)),
+                _static(job), 1e-300):
             code = ENERGY
         elif np.all(np.isfinite(defined)):
             values[:] = row
@@ -150,11 +157,19 @@ def _samples(job, acceleration: np.ndarray) -> np.ndarray:
     return ground_acceleration(acc, job.g)
 
 
+def _static(job) -> float:
+    """The scale floor of a job's energy balance: its bed's (and its base element's) strain
+    energy at rest (:func:`~.peak_slots.static_energy`)."""
+    base = job.inputs.base
+    rest = float(base[6][kn.C_E0]) if base[0].size else 0.0
+    return static_energy(job.inputs.params) + rest
+
+
 def _row(job, out: dict) -> list[float]:
     """The values of :attr:`~.response.Response.peaks` that the batch keeps, from the same
     arrays (the first and last states, the tracked peaks)."""
     inputs = job.inputs
-    static = static_energy(inputs.params)
+    static = _static(job)
     pk = decode_peaks(out["raw_peaks"], stories=inputs.stories, rocks=inputs.theta >= 0,
                       settles=inputs.v >= 0, exact=job.exact, static=static)
     u, theta, shear = pk.u, pk.theta, pk.base_shear
@@ -162,6 +177,10 @@ def _row(job, out: dict) -> list[float]:
     if job.leftmost >= 0:
         uplift = max(float(pk.opening[job.leftmost]), 0.0)
         settlement = weighted_plastic_settlement(inputs.params, out["plastic"][-1])
+        final_v = float(out["q"][-1, inputs.v])
+    elif job.element:  # its left edge's gap, its plastic settlement v_p (:mod:`.kernels.base`)
+        uplift = pk.base_gap_left
+        settlement = float(out["base"][-1, 3])
         final_v = float(out["q"][-1, inputs.v])
     energy = max(energy_balance_error(out["energy"], static), pk.energy_residual)
     return [u, theta, uplift, settlement, final_v, shear, energy, job.plan.dt]

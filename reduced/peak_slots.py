@@ -42,6 +42,7 @@ class TrackedPeaks:
     base_gap: float = 0.0       # a base element's larger gap under its edges (length)
     base_sway: float = 0.0      # its largest |u − u_rest| (length)
     base_force: float = 0.0     # its largest |H| without the dashpot (force)
+    base_gap_left: float = 0.0  # its largest gap under its left edge, x = −b (length)
 
     @property
     def sway(self) -> float:
@@ -115,7 +116,7 @@ def decode_peaks(raw: np.ndarray, *, stories: int, rocks: bool, settles: bool,
         overturned_at=float(raw[kn.P_TOVER]),
         opening=raw[n0::2], force=raw[n0 + 1::2], stories=stories, sways=sways,
         base_gap=float(raw[kn.P_BGAP]), base_sway=float(raw[kn.P_BU]),
-        base_force=float(raw[kn.P_BH]))
+        base_force=float(raw[kn.P_BH]), base_gap_left=float(raw[kn.P_BGAPL]))
 
 
 def start_peaks(params: np.ndarray, stories: int, start: list[float]) -> np.ndarray:

@@ -495,3 +495,33 @@ def test_macro_map_slice_fast_path(tmp_path):
     row = tables(out / "MACRO_MAP_SLICE.md")["Shares and errors"][0]
     assert row["model"] == "macro-element" and int(row["points"]) >= 3
     assert bench_output.number(row["median abs. error, theta"]) <= 10.0
+
+
+def test_macro_diagnosis_fast_path(tmp_path):
+    """One point of the half-plane map (clay, FS_v 3, 1.5 a_up, the 0.6 s pulse), built from
+    the kept store: the continuum's live run is the store's record of that point (its residual
+    settlement within the table's rounding, 0.005 mm: the same run made again), the element
+    is faster than the continuum in the same process, and its coarsest sub-step faster still.
+    Reference: the store's record, made by the map's cluster run, not by this script."""
+    from upliftlab.comparisons.framework.store import Store
+    from upliftlab.comparisons.studies.winkler_map.plan import point_key_of
+    from upliftlab.comparisons.studies.winkler_map.points import evaluate_dynamic
+
+    out = tmp_path / "out"
+    run_fast_path("macro_diagnosis.py", out)
+    complete(out, "macro_diagnosis")
+    found = tables(out / "MACRO_DIAGNOSIS.md")
+    row = found["Residual settlement"][0]
+    assert row["point"] == "clay, FS_v 3, 1.5 a_up"
+    spec = importlib.util.spec_from_file_location("macro_diagnosis",
+                                                  BENCH / "macro_diagnosis.py")
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    point, _, _ = bench._map_inputs("clay", 3.0, 1.5)
+    stored = Store(BENCH / "winkler_map_halfplane_store").get(
+        point_key_of(point, evaluate_dynamic))
+    kept = 1e3 * stored["measures"]["residual_settlement"]
+    assert bench_output.number(row["continuum"]) == pytest.approx(kept, abs=0.005)
+    cost = found["Cost, both models timed in this process"][0]
+    assert bench_output.number(cost["ratio"]) > 1.0
+    assert float(cost["element at the coarsest sub-step (s)"]) < float(cost["element (s)"])

@@ -242,12 +242,46 @@ def test_the_tools_that_take_springs_refuse_it_up_front(tmp_path):
             tool(scene)
 
 
-def test_an_initial_displacement_and_a_batch_are_refused():
+def test_an_initial_displacement_is_refused_alone_and_in_a_batch():
     held = {"type": "free", "displacement": 0.5, "duration": 1.0}  # the top mass held aside
     with pytest.raises(InputError, match=r"^motion\.displacement with foundation\.law"):
         run(_scene(0, motion=held))
-    with pytest.raises(InputError, match="foundation.law = 'macro'"):
-        run_batch([_scene(0.5)])
+    with pytest.raises(InputError, match=r"scene 0 .*motion\.displacement with foundation"):
+        run_batch([_scene(0, motion=held)], integrator=None, workers=1)
+    # the batch's default integrator (the event stepper) cannot carry it: refused up front
+    with pytest.raises(InputError, match=r"nothing was integrated: .*'events' with "
+                       r"foundation\.law = 'macro'"):
+        run_batch([_scene(0.5, **CLAY)], workers=1)
+
+
+def test_a_batch_gives_each_runs_own_peaks():
+    """Reference: each scene run alone (``run``, no histories: the same kernel and step), whose
+    peaks the batch must give to round-off (1e-12): u, θ, base shear, the plastic settlement
+    v_p at the end and the final V; and the left edge's peak gap against the run of the mirror
+    image (the ground motion negated, the wall symmetric), whose left edge is the first run's
+    right: the larger of the two left gaps is the element's own larger edge gap
+    (``uplift_max``), and the two differ (a column of the larger gap would give both the
+    same). A yielding clay wall and a stiff one, Newmark and RK4, two processes."""
+    scenes = [_scene(0.6, integrator="newmark", dt=1e-3, **CLAY),
+              _scene(0.3, integrator="rk4", **CLAY)]
+    mirrored = [_scene(-0.6, integrator="newmark", dt=1e-3, **CLAY),
+                _scene(-0.3, integrator="rk4", **CLAY)]
+    batch = run_batch(scenes + mirrored, integrator=None, workers=2)
+    assert batch.ok.all()
+    for i, scene in enumerate(scenes):
+        alone = run(scene, histories=False)
+        row, mirror = batch.row(i), batch.row(i + len(scenes))
+        for key in ("u", "theta", "base_shear"):
+            assert row[key] == pytest.approx(alone.peaks[key], rel=1e-12), key
+        assert row["weighted_plastic_settlement"] == pytest.approx(alone.base[-1, 3], rel=1e-12)
+        assert row["final_vertical_position"] == pytest.approx(
+            alone.q[-1, alone.model.dofs.v], rel=1e-12)
+        assert alone.peaks["uplift_max"] > 0.0  # the base lifts off
+        assert max(row["uplift_left"], mirror["uplift_left"]) == pytest.approx(
+            alone.peaks["uplift_max"], rel=1e-9)
+        # one edge, not the larger of both: the two runs' left edges differ (measured: 2 %)
+        assert abs(row["uplift_left"] / mirror["uplift_left"] - 1.0) > 1e-3
+        assert row["energy_balance_error"] <= ENERGY_TOL
 
 
 def test_its_cost_is_counted_before_the_run():

@@ -28,11 +28,11 @@ from .codes import (BASE_FAILED, BONDED, CHATTER, CLIPPED, CONTACT, ELASTIC, E_I
                     F_ISWAY, F_ITH, F_IV, F_MB, F_NFLEX, F_OUTDT, F_RTOL, F_SIDE, F_WTOT,
                     HISTORY_DTYPE, HOT, MAX_DEPTH, MAX_PIECES, NONFINITE, NO_CONVERGENCE, N_ACC,
                     N_CONDITIONS, N_COUNTERS, N_ENERGY, N_FRAME, N_PEAK_SCALARS, N_ROWS, N_SAMPLES,
-                    OK, OVERSHOOT_TOL, OVERTURNED, P_BGAP, P_BH, P_BU, P_CMIN, P_ERES, P_ESCALE,
-                    P_ETOT0, P_MOT, P_RPREV, P_THMAX, P_THMIN, P_TOVER, P_TPREV, P_UMAX, P_UMIN,
-                    P_VMAX, P_VMIN, QZ, ROUNDING, SEPARATED, SPRING_DTYPE, STEP_UNDERFLOW, STORY,
-                    SWITCH_TOL, T_A0, T_A1, T_C, T_COND, T_F, T_FY, T_GAP, T_I, T_K, T_KC, T_P,
-                    T_V, UPLIFT, YIELDING, YIELD_NEG, YIELD_POS)
+                    OK, OVERSHOOT_TOL, OVERTURNED, P_BGAP, P_BGAPL, P_BH, P_BU, P_CMIN, P_ERES,
+                    P_ESCALE, P_ETOT0, P_MOT, P_RPREV, P_THMAX, P_THMIN, P_TOVER, P_TPREV, P_UMAX,
+                    P_UMIN, P_VMAX, P_VMIN, QZ, ROUNDING, SEPARATED, SPRING_DTYPE, STEP_UNDERFLOW,
+                    STORY, SWITCH_TOL, T_A0, T_A1, T_C, T_COND, T_F, T_FY, T_GAP, T_I, T_K, T_KC,
+                    T_P, T_V, UPLIFT, YIELDING, YIELD_NEG, YIELD_POS)
 from .laws import (commit_all, commit_step, condition, current_plastic, force_in_mode,
                    from_history, initial_modes, law, natural_mode, past_limit, spring_state,
                    switch_mode, tangent, trial_force, trial_mode, validity)
@@ -66,9 +66,9 @@ from .fixed_step import end_fixed_step, integrate_abm4, integrate_rk4, march_abm
 from .implicit import (integrate_newmark, internal_force, newmark_jacobian, newmark_residual,
                        newmark_substep)
 
-__all__ = ["BASE_FAILED", "P_BGAP", "P_BH", "P_BU", "C_CH", "C_CV", "C_D0", "C_DF", "C_E0",
-           "C_NEGATIVE", "C_Q0", "C_STATUS", "N_BASE_OUT", "N_C", "base_energy", "base_force",
-           "base_gap", "commit_base", "contact_moments", "record_base", "track_base",
+__all__ = ["BASE_FAILED", "P_BGAP", "P_BGAPL", "P_BH", "P_BU", "C_CH", "C_CV", "C_D0", "C_DF",
+           "C_E0", "C_NEGATIVE", "C_Q0", "C_STATUS", "N_BASE_OUT", "N_C", "base_energy",
+           "base_force", "base_gap", "commit_base", "contact_moments", "record_base", "track_base",
            "BONDED", "CHATTER", "CLIPPED", "CONTACT", "ELASTIC", "E_IMPACT", "E_INPUT",
            "E_PLASTIC", "E_VISCOUS", "FAST", "F_B", "F_ECHECK", "F_EXACT", "F_H0", "F_HMAX",
            "F_IB", "F_ISWAY", "F_ITH", "F_IV", "F_MB", "F_NFLEX", "F_OUTDT", "F_RTOL",

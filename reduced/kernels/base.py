@@ -30,7 +30,7 @@ from numba import njit
 
 from ..laws.macro.compiled import (P_B, P_CXT, P_CXV, S_D, S_P, S_Q, S_ROUND, S_W, STEP_OK,
                                    W_DE, W_Q, bed_moments, elastic, step_into)
-from .codes import E_PLASTIC, HOT, P_BGAP, P_BH, P_BU, P_CMIN
+from .codes import E_PLASTIC, HOT, P_BGAP, P_BGAPL, P_BH, P_BU, P_CMIN
 
 # slots of C: the displacement at rest (3), the forces at rest (3), the dashpot density c′ and
 # the sway's dashpot c_h, the largest trial force step of a sub-step (V_ult-scaled), the status
@@ -173,15 +173,21 @@ def base_energy(base):
 
 
 @njit(cache=True, **HOT)
-def base_gap(base):
-    """The larger gap under the footing's two edges, ⟨−w(±b)⟩, of the committed state (length):
-    the bed's compression at the edges, w(±b) = v_b ± θ_b b − 2ρ/3."""
+def edge_gaps(base):
+    """The gaps under the footing's left and right edges, (⟨−w(−b)⟩, ⟨−w(b)⟩), of the
+    committed state (length): the bed's compression at the edges, w(±b) = v_b ± θ_b b − 2ρ/3."""
     P, S = base[0], base[1]
     b = 0.5 * P[P_B]
-    v = S[S_D] - S[S_P] - P[P_CXV] * S[S_Q]
+    v = S[S_D] - S[S_P] - P[P_CXV] * S[S_Q] - 2.0 * S[S_ROUND] / 3.0
     theta = S[S_D + 2] - S[S_P + 2] - P[P_CXT] * S[S_Q + 2]
-    w = min(v + theta * b, v - theta * b) - 2.0 * S[S_ROUND] / 3.0
-    return max(-w, 0.0)
+    return max(theta * b - v, 0.0), max(-v - theta * b, 0.0)
+
+
+@njit(cache=True, **HOT)
+def base_gap(base):
+    """The larger gap under the footing's two edges (length, :func:`edge_gaps`)."""
+    left, right = edge_gaps(base)
+    return max(left, right)
 
 
 @njit(cache=True, **HOT)
@@ -200,13 +206,16 @@ def record_base(k, base, out):
 @njit(cache=True, **HOT)
 def track_base(base, peaks):
     """The base element's peaks at a committed state: its least contact length (P_CMIN), the
-    larger gap under its edges, its largest |u − u_rest| and |H|."""
+    larger gap under its edges and the gap under its left edge, its largest |u − u_rest| and
+    |H|."""
     P, S, C = base[0], base[1], base[6]
     if P.size == 0:
         return
     length = contact_moments(P, S)[2]
     peaks[P_CMIN] = min(peaks[P_CMIN], length)
-    peaks[P_BGAP] = max(peaks[P_BGAP], base_gap(base))
+    left, right = edge_gaps(base)
+    peaks[P_BGAP] = max(peaks[P_BGAP], left, right)
+    peaks[P_BGAPL] = max(peaks[P_BGAPL], left)
     peaks[P_BU] = max(peaks[P_BU], abs(S[S_D + 1] - C[C_D0 + 1]))
     peaks[P_BH] = max(peaks[P_BH], abs(S[S_Q + 1]))
 

@@ -35,9 +35,10 @@ P_MOT, P_CMIN, P_ERES, P_ESCALE, P_ETOT0 = range(6, 11)
 # the ratio reached 1 (interpolated linearly between the last two accepted states)
 P_RPREV, P_TPREV, P_TOVER = range(11, 14)
 # a base element (:mod:`.base`): the larger gap under its edges, its largest |u − u_rest| and
-# |H| (its forces without the dashpots), at the steps' ends
-P_BGAP, P_BU, P_BH = range(14, 17)
-N_PEAK_SCALARS = 17
+# |H| (its forces without the dashpots), the gap under its left edge (x = −b), at the steps'
+# ends
+P_BGAP, P_BU, P_BH, P_BGAPL = range(14, 18)
+N_PEAK_SCALARS = 18
 
 # the frame: constants of the scene's geometry and kinematics that every integrator takes (one
 # float array), and the pivot side of exact kinematics (the one entry that changes in a run)
