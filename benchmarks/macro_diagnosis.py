@@ -65,7 +65,8 @@ _WARM: list = []
 
 
 def _map_inputs(soil: str, fs: float, intensity: float) -> tuple:
-    """(the map's dynamic point, its bed reference, the map's options) at one coordinate of the slice."""
+    """(the map's dynamic point, its bed reference, the map's options) at one coordinate of the
+    slice."""
     import upliftlab.comparisons.studies.winkler_map as wm
     from upliftlab.comparisons.beds import BASE_SCENE, base_table
     from upliftlab.comparisons.framework.store import Store
