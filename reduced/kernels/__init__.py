@@ -39,7 +39,7 @@ from .laws import (commit_all, commit_step, condition, current_plastic, force_in
 from ..laws.qz.compiled import (qz_backbone, qz_commit, qz_force, qz_mode, qz_spring_state,
                                 qz_start, qz_trial)
 from .base import (C_CH, C_CV, C_D0, C_DF, C_E0, C_NEGATIVE, C_Q0, C_STATUS, N_BASE_OUT, N_C,
-                   base_energy, base_force, commit_base, contact_moments,
+                   base_energy, base_force, base_gap, commit_base, contact_moments,
                    record_base, track_base)
 from .motion import (accelerations, deformation, deformations, geometric_or_nothing,
                      ground_acceleration, rates)
@@ -68,7 +68,7 @@ from .implicit import (integrate_newmark, internal_force, newmark_jacobian, newm
 
 __all__ = ["BASE_FAILED", "P_BGAP", "P_BGAPL", "P_BH", "P_BU", "C_CH", "C_CV", "C_D0", "C_DF",
            "C_E0", "C_NEGATIVE", "C_Q0", "C_STATUS", "N_BASE_OUT", "N_C", "base_energy",
-           "base_force", "commit_base", "contact_moments", "record_base", "track_base",
+           "base_force", "base_gap", "commit_base", "contact_moments", "record_base", "track_base",
            "BONDED", "CHATTER", "CLIPPED", "CONTACT", "ELASTIC", "E_IMPACT", "E_INPUT",
            "E_PLASTIC", "E_VISCOUS", "FAST", "F_B", "F_ECHECK", "F_EXACT", "F_H0", "F_HMAX",
            "F_IB", "F_ISWAY", "F_ITH", "F_IV", "F_MB", "F_NFLEX", "F_OUTDT", "F_RTOL",

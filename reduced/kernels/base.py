@@ -184,6 +184,13 @@ def edge_gaps(base):
 
 
 @njit(cache=True, **HOT)
+def base_gap(base):
+    """The larger gap under the footing's two edges (length, :func:`edge_gaps`)."""
+    left, right = edge_gaps(base)
+    return max(left, right)
+
+
+@njit(cache=True, **HOT)
 def record_base(k, base, out):
     """Store the committed state in row k of the base's outputs (``N_BASE_OUT`` columns)."""
     P, S = base[0], base[1]
