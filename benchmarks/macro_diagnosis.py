@@ -15,6 +15,8 @@ soil's macro-element fit; nothing is fitted here):
   and K_r, the tie's sway spring, the soil's β K_v), with its settlement history; then the
   same run at the scene's coarsest sub-step (``force_step`` 0.1 of the weight: about one
   sub-step an iteration), the floor of what the element's update costs at this time step;
+- the element with revision 1's flow (δ = 1, ε = 0: associated in V, the coupling alike
+  inside the surface and on it) and the fit's other parameters;
 - three variants of the element that each remove one way it can settle: no settlement
   coupling (χ = 0: no settlement from flow in rotation or sway), a horizontal capacity 5.1
   times the fit's (the sliding ratio t_h at the scene's largest, 4, from the fit's 0.778: the
@@ -56,7 +58,8 @@ POINTS = [(soil, fs, intensity) for soil in ("clay", "sand") for fs in (3.0, 5.0
           for intensity in (1.5, 3.0)]
 QUICK = [("clay", 3.0, 1.5)]
 PULSE = 0.6  # s, the map's longer Ricker pulse
-VARIANTS = {"map": {}, "χ = 0": {"settlement_coupling": 0.0},
+VARIANTS = {"map": {}, "δ = 1, ε = 0": {"flow_dilatancy": 1.0, "coupling_exponent": 0.0},
+            "χ = 0": {"settlement_coupling": 0.0},
             "t_h = 4": {"sliding_ratio": 4.0}, "h0 × 100": {"interior_modulus": 100.0},
             "λ_ρ = 0": {"rounding_ratio": 0.0}}
 #: Variants that multiply a key of the element's table rather than set it.

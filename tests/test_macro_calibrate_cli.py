@@ -71,7 +71,8 @@ def test_its_overrides_put_that_law_in_the_reduced_model(calibrated):
     assert law.vertical_stiffness == pytest.approx(record["statics"]["K_v"], rel=1e-12)
     assert law.rocking_stiffness == pytest.approx(record["statics"]["K_r"], rel=1e-12)
     for key in ("initial_size", "hardening_settlement", "interior_modulus",
-                "interior_exponent", "settlement_coupling", "rounding_ratio"):
+                "interior_exponent", "settlement_coupling", "rounding_ratio", "flow_dilatancy",
+                "coupling_exponent"):
         assert getattr(law, key) == pytest.approx(record["law"][key], rel=1e-12), key
     assert sorted(p.name for p in out.iterdir()) == ["CALIBRATION.md", "calibration.json",
                                                      "fit-cache.npz", "store",

@@ -226,6 +226,9 @@ def test_the_implicit_integrators_carry_it_as_rk4_does(integrator, dt, tolerance
     ({"frictional_share": 1.5}, "foundation.frictional_share"),
     ({"capacity_multiple": 0.5}, "foundation.capacity_multiple"),
     ({"settlement_coupling": 0.5}, "foundation.settlement_coupling"),
+    ({"flow_dilatancy": 1.5}, "foundation.flow_dilatancy"),
+    ({"flow_dilatancy": -0.1}, "foundation.flow_dilatancy"),
+    ({"coupling_exponent": 9.0}, "foundation.coupling_exponent"),
 ])
 def test_a_scene_it_cannot_take_is_refused_with_its_field(change, field):
     with pytest.raises(InputError, match=field.replace(".", r"\.")):

@@ -188,3 +188,25 @@ def test_store_verify_checks_every_functions_stale_records(code, tmp_path, capsy
     FACTOR["value"] = 5.0
     assert main(["store", "verify", str(tmp_path / "store"), "--sample", "2"]) == 3
     assert "moved beyond the tolerance" in capsys.readouterr().err
+
+
+def test_store_verify_leaves_records_of_another_revision_as_data(code, tmp_path, capsys,
+                                                                 monkeypatch):
+    """Reference: the key holds the models' revisions, so a record of an earlier revision is
+    never read again. ``store verify`` after a raised revision and a code change makes only
+    today's revision's stale records again (2 of them, the sample) and says how many of the
+    other it left (3), exit 0; it does not make the earlier revision's with today's code."""
+    import upliftlab.continuum as continuum
+    from upliftlab.cli import main
+
+    store = Store(tmp_path / "store")
+    _sweep(store, [{"x": float(i)} for i in range(3)])
+    monkeypatch.setattr(continuum, "REVISION", continuum.REVISION + 1)
+    _sweep(store, [{"x": float(i)} for i in range(10, 14)])
+    assert len(list(store.keys())) == 7
+    code("b")
+    CALLS.clear()
+    assert main(["store", "verify", str(tmp_path / "store"), "--sample", "2"]) == 0
+    out = capsys.readouterr().out
+    assert len(CALLS) == 2 and all(x >= 10 for x in CALLS)
+    assert "tests:triple: 3 records of another model revision" in out

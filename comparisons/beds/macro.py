@@ -8,7 +8,7 @@ What it is fitted to, in order, each step a check with its residuals kept:
    continuum's own V_ult/B at B′ = B, fitted by least squares to the largest moment of each
    monotonic rotation pushover (B′ = B − 2 M_max/N). A line that would fall with B′ is held
    flat (the cohesive term alone, as on the clay).
-3. **Plasticity**: ζ0, κ_ref, h0, γ, χ and λ_ρ by least squares to the moment and the
+3. **Plasticity**: ζ0, κ_ref, h0, γ, χ, λ_ρ, δ and ε by least squares to the moment and the
    settlement along every stored rotation pushover of the soil, monotonic and cyclic, at every
    FS_v: residuals M/M_max and Δs/max(Δs, N/(10 K_v)), the settlement counted from θ = 0 (the law
    starts elastic under N, the continuum has yielded under it). The objective is piecewise
@@ -43,13 +43,15 @@ __all__ = ["RotationPushover", "MacroCalibration", "capacity_line", "macro_pusho
            "calibrate_macro", "evaluation_bound", "PLASTIC_BOUNDS", "SETTLEMENT_FLOOR",
            "LOAD_TOLERANCE", "FIT_SECONDS_PER_STEP", "macro_strength"]
 
-#: The fitted plastic parameters and their bounds: ζ0, log10 κ_ref (m), log10 h0, γ, χ, λ_ρ.
+#: The fitted plastic parameters and their bounds: ζ0, log10 κ_ref (m), log10 h0, γ, χ, λ_ρ,
+#: δ (the flow's dilatancy: 1 associated) and ε (the coupling's exponent: 0 everywhere alike).
 #: χ keeps to the range a scene may give (:data:`...scenes.laws.macro.MAX_SETTLEMENT_COUPLING`:
 #: the pushovers, pure rocking, would accept a χ whose dynamic runs, with sway, fail).
 PLASTIC_BOUNDS = (("initial_size", 0.2, 0.999), ("hardening_settlement", -4.0, 0.0),
                   ("interior_modulus", -3.0, 3.0), ("interior_exponent", 0.2, 4.0),
                   ("settlement_coupling", 0.0, MAX_SETTLEMENT_COUPLING),
-                  ("rounding_ratio", 0.0, 1.0))
+                  ("rounding_ratio", 0.0, 1.0), ("flow_dilatancy", 0.0, 1.0),
+                  ("coupling_exponent", 0.0, 4.0))
 #: The survey of the plastic parameters before the fit: this many points of a seeded Latin
 #: hypercube in the bounds (and the start); the best ``POLISHED`` of them are polished by least
 #: squares and the better fit kept.
@@ -199,7 +201,7 @@ def evaluation_bound(max_evaluations: int) -> int:
 
 def calibrate_macro(pushovers: Sequence[RotationPushover], *, width: float, V_ult: float,
                     K_v: float, K_r: float, cohesion: float, friction_angle: float = 0.0,
-                    unit_weight: float = 0.0, start=(0.7, -2.0, 0.0, 1.0, 0.2, 0.5),
+                    unit_weight: float = 0.0, start=(0.7, -2.0, 0.0, 1.0, 0.2, 0.5, 1.0, 0.0),
                     max_evaluations: int = 200, progress=None, carry: float = 0.0,
                     length_unit: float = 1.0, cache=None) -> MacroCalibration:
     """The macro-element of a soil from its continuum statics (module docstring): the

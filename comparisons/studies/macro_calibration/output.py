@@ -115,10 +115,12 @@ def calibration_markdown(cal: SceneCalibration, run_line: str, command: str) -> 
              f"{cap['q1']:.6g} B′, residuals "
              f"{', '.join(f'{r:+.1%}' for r in fit.capacity_residuals)}; fit: "
              f"{fit.evaluations} evaluations, cost {fit.cost:.3g}.", "",
-             "| ζ0 | κ_ref | h0 | γ | χ | λ_ρ |", "|---|---|---|---|---|---|",
+             "| ζ0 | κ_ref | h0 | γ | χ | λ_ρ | δ | ε |",
+             "|---|---|---|---|---|---|---|---|",
              f"| {law.initial_size:.3f} | {law.hardening_settlement:.3g} | "
              f"{law.interior_modulus:.3g} | {law.interior_exponent:.3f} | "
-             f"{law.settlement_coupling:.3f} | {law.rounding_ratio:.3f} |", "",
+             f"{law.settlement_coupling:.3f} | {law.rounding_ratio:.3f} | "
+             f"{law.flow_dilatancy:.3f} | {law.coupling_exponent:.3f} |", "",
              "| pushover | moment rms (of its largest) | settlement rms (of its range) | "
              "largest miss of V (of N) |", "|---|---|---|---|"]
     for p, m, s, miss in zip(cal.pushovers, fit.moment_rms, fit.settlement_rms,

@@ -21,11 +21,11 @@ from ..spring import HOT
 from .bed_forms import (bed, bed_energy, bed_length, bed_moments, contact, elastic,  # noqa: F401
                         flat_bed_displacement, rounding_force, rounding_sensitivity, solve2,
                         vertical_rocking)
-from .slots import (MAX_NEWTON, P_B, P_CHI, P_COUNT, P_CXT, P_CXV, P_H0,  # noqa: F401
-                    P_GEXP, P_KH, P_KREF, P_KV, P_KW, P_RHO, P_VU, P_Z0, S_C, S_COUNT, S_D,
-                    S_KAPPA, S_P, S_Q, S_ROUND, S_W, STEP_CONTACT, STEP_FLOW, STEP_OK,
-                    STEP_SUBSTEPS, STEP_SURFACE, W_CENTRE, W_COUNT, W_DE, W_DE0, W_DIR, W_FLOW,
-                    W_G, W_NORMAL, W_PLASTIC, W_Q, W_Q0, W_START, W_TARGET, W_TRIAL, pack)
+from .slots import (MAX_NEWTON, P_B, P_CEXP, P_CHI, P_COUNT, P_CXT, P_CXV,  # noqa: F401
+                    P_DIL, P_GEXP, P_H0, P_KH, P_KREF, P_KV, P_KW, P_RHO, P_VU, P_Z0, S_C,
+                    S_COUNT, S_D, S_KAPPA, S_P, S_Q, S_ROUND, S_W, STEP_CONTACT, STEP_FLOW,
+                    STEP_OK, STEP_SUBSTEPS, STEP_SURFACE, W_CENTRE, W_COUNT, W_DE, W_DE0, W_DIR,
+                    W_FLOW, W_G, W_NORMAL, W_PLASTIC, W_Q, W_Q0, W_START, W_TARGET, W_TRIAL, pack)
 from .surface_forms import (RIDGE, failure, failure_at, failure_gradient,  # noqa: F401
                             failure_size_derivative, failure_value, horizontal_capacity,
                             image, mobilisation, moment_capacity, size)
@@ -35,6 +35,9 @@ __all__ = ["pack", "P_COUNT", "S_COUNT", "W_COUNT", "STEP_OK", "STEP_CONTACT",
            "step", "step_into"]
 
 MAX_SUBSTEPS = 200_000
+#: The share of nᵀDn the flow's settlement beyond the normal's may take from the load's
+#: stiffness along the flow (:func:`_held_flow`).
+FLOW_MARGIN = 0.5
 
 
 @njit(cache=True, **HOT)
@@ -49,6 +52,35 @@ def plastic_modulus(P, kappa, load, flow_v, s, zeta):
         return bound
     interior = P[P_H0] * P[P_KV] / P[P_VU] ** 2
     return bound + interior * ((1.0 - s) / s) ** P[P_GEXP]
+
+
+@njit(cache=True, **HOT)
+def settlement_flow(P, normal, s):
+    """The flow's settlement part m_V at a load whose surface's normal is ``normal`` and whose
+    distance ratio is ``s``: n_V where the normal points to more V, δ n_V where it points to
+    less (δ the flow's dilatancy), plus χ s^ε |(n_H, B n_M)| (the settlement coupling)."""
+    flow = normal[0] if normal[0] >= 0.0 else P[P_DIL] * normal[0]
+    weight = 1.0 if P[P_CEXP] == 0.0 else s ** P[P_CEXP]
+    return flow + P[P_CHI] * weight * math.hypot(normal[1], normal[2] * P[P_B])
+
+
+@njit(cache=True, **HOT)
+def _held_flow(D, normal, flow_v):
+    """The flow's settlement part ``flow_v`` held so that the load keeps its stiffness along
+    the flow: the part beyond the normal's, a = m_V − n_V, lowers nᵀDm by a (−nᵀD e_V) where
+    that is negative, and is kept to at most half of nᵀDn's worth, so that
+    K_p + nᵀDm ≥ K_p + ½ nᵀDn > 0 (D the trial's tangent, positive definite)."""
+    extra = flow_v - normal[0]
+    if extra <= 0.0:
+        return flow_v
+    nDn, nDe = 0.0, 0.0
+    for i in range(3):
+        nDe += normal[i] * D[i, 0]
+        for j in range(3):
+            nDn += normal[i] * D[i, j] * normal[j]
+    if nDe < 0.0 and extra * -nDe > FLOW_MARGIN * nDn:
+        return normal[0] + FLOW_MARGIN * nDn / -nDe
+    return flow_v
 
 
 @njit(cache=True, **HOT)
@@ -187,7 +219,7 @@ def substep(P, S, target, D, W):
         span = zeta - at_centre
         s = 1.0 if mobilised >= zeta or span <= 1e-12 * zeta else \
             max(mobilised - at_centre, 0.0) / span
-        flow[0] += P[P_CHI] * math.hypot(normal[1], normal[2] * P[P_B])
+        flow[0] = _held_flow(D, normal, settlement_flow(P, normal, s))
         modulus = plastic_modulus(P, kappa, source, flow[0], s, zeta)
         if math.isfinite(modulus) and loading > 0.0:
             nDm = 0.0

@@ -102,7 +102,8 @@ def element(record: MacroLaw, base: Base) -> BaseElement:
         sliding_ratio=record.sliding_ratio, initial_size=record.initial_size,
         hardening_settlement=settlement if settlement is not None else width / 100.0,
         interior_modulus=record.interior_modulus, interior_exponent=record.interior_exponent,
-        settlement_coupling=record.settlement_coupling, rounding_ratio=record.rounding_ratio)
+        settlement_coupling=record.settlement_coupling, rounding_ratio=record.rounding_ratio,
+        flow_dilatancy=record.flow_dilatancy, coupling_exponent=record.coupling_exponent)
     return BaseElement(law, rest_state(law, base.weight), np.array(base.transform, dtype=float),
                        base.dashpot_density, base.sway_dashpot,
                        record.force_step * base.weight / law.ultimate_load)

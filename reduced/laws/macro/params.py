@@ -59,9 +59,14 @@ class MacroElement:
     κ as ζ = 1 − (1 − ζ0) exp(−κ / ``hardening_settlement``) (m); inside it the plastic modulus
     ``interior_modulus`` h0 · ((1 − s)/s)^``interior_exponent`` (in units of K_v/V_ult², s the
     distance to the bounding surface along the line from the last reversal); and the flow
-    direction the surface's normal with ``settlement_coupling`` χ times its moment-and-shear
-    part added to the settlement: χ = 0 is associated flow, χ > 0 settles the footing while it
-    yields in rotation. ``rounding_ratio`` λ_ρ: the fraction of the edges' plastic travel
+    direction the surface's normal, its upward settlement part (where the normal points to
+    less V, below the surface's widest V) scaled by ``flow_dilatancy`` δ (1: associated, the
+    footing heaves there as the surface's normal says; 0: it does not heave, as an undrained
+    soil that keeps its volume), with ``settlement_coupling`` χ times s^``coupling_exponent``
+    ε times its moment-and-shear part added to the settlement: χ = 0 and δ = 1 is associated
+    flow, χ > 0 settles the footing while it yields in rotation, and ε > 0 makes that
+    coupling act near the bounding surface (s → 1) and fade in the small cycles inside it
+    (s → 0). ``rounding_ratio`` λ_ρ: the fraction of the edges' plastic travel
     b |dθ_p| that rounds the soil's surface (:mod:`.uplift`), while the edges press harder than
     the middle; 0: the surface stays flat.
     """
@@ -82,6 +87,8 @@ class MacroElement:
     interior_exponent: float = 1.0
     settlement_coupling: float = 0.0
     rounding_ratio: float = 0.0
+    flow_dilatancy: float = 1.0
+    coupling_exponent: float = 0.0
 
     def __post_init__(self):
         positive("macro.width", self.width)
@@ -100,6 +107,8 @@ class MacroElement:
         positive("macro.interior_exponent", self.interior_exponent)
         in_range("macro.settlement_coupling", self.settlement_coupling, 0.0, 10.0)
         in_range("macro.rounding_ratio", self.rounding_ratio, 0.0, 1.0)
+        in_range("macro.flow_dilatancy", self.flow_dilatancy, 0.0, 1.0)
+        in_range("macro.coupling_exponent", self.coupling_exponent, 0.0, 8.0)
         if not self.ultimate_load > 0.0:
             raise InputError(f"macro: cohesion = {self.cohesion:g}, friction_angle = "
                              f"{self.friction_angle:g}, unit_weight = {self.unit_weight:g}: the "

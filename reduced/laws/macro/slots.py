@@ -13,8 +13,8 @@ __all__ = ["pack", "P_COUNT", "S_COUNT", "W_COUNT", "STEP_OK", "STEP_CONTACT",
            "STEP_SURFACE", "STEP_SUBSTEPS", "STEP_FLOW", "MAX_NEWTON"]
 
 (P_B, P_KV, P_KH, P_KR, P_KW, P_CXV, P_CXT, P_A1, P_A2, P_VU, P_TH, P_Z0, P_KREF, P_H0,
- P_GEXP, P_CHI, P_RHO) = range(17)
-P_COUNT = 17
+ P_GEXP, P_CHI, P_RHO, P_DIL, P_CEXP) = range(19)
+P_COUNT = 19
 S_D, S_P, S_Q, S_C, S_KAPPA, S_W, S_ROUND = 0, 3, 6, 9, 12, 13, 14
 S_COUNT = 15
 # the scratch array: the update's vectors, three floats each
@@ -35,7 +35,8 @@ def pack(law) -> np.ndarray:
     P[[P_CXV, P_CXT]] = law.remainder_compliance
     P[[P_A1, P_A2, P_VU, P_TH]] = (law.cohesive_pressure, law.frictional_modulus,
                                    law.ultimate_load, law.sliding_ratio)
-    P[[P_Z0, P_KREF, P_H0, P_GEXP, P_CHI, P_RHO]] = (
+    P[[P_Z0, P_KREF, P_H0, P_GEXP, P_CHI, P_RHO, P_DIL, P_CEXP]] = (
         law.initial_size, law.hardening_settlement, law.interior_modulus,
-        law.interior_exponent, law.settlement_coupling, law.rounding_ratio)
+        law.interior_exponent, law.settlement_coupling, law.rounding_ratio,
+        law.flow_dilatancy, law.coupling_exponent)
     return P
