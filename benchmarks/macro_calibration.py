@@ -121,6 +121,8 @@ def one_pass(soil: dict, width: float) -> float:
 
 
 def section(name: str, soil: dict, cal, seconds: float) -> str:
+    from upliftlab.comparisons.studies.macro_calibration.output import law_table
+
     law = cal.law
     lines = [f"## {name}", "",
              f"V_ult {soil['V_ult']:.1f} kN/m, K_v {soil['K_v']:.0f} kN/m/m, K_r "
@@ -128,12 +130,7 @@ def section(name: str, soil: dict, cal, seconds: float) -> str:
              f"{cal.details['capacity']['q0']:.1f} + {cal.details['capacity']['q1']:.1f} B′ "
              f"kPa, residuals {', '.join(f'{r:+.1%}' for r in cal.capacity_residuals)}; "
              f"fit: {cal.evaluations} evaluations, cost {cal.cost:.3g}, {seconds:.0f} s.", "",
-             "| ζ0 | κ_ref (m) | h0 | γ | χ | λ_ρ | δ | ε |",
-             "|---|---|---|---|---|---|---|---|",
-             f"| {law.initial_size:.3f} | {law.hardening_settlement:.3g} | "
-             f"{law.interior_modulus:.3g} | {law.interior_exponent:.3f} | "
-             f"{law.settlement_coupling:.3f} | {law.rounding_ratio:.3f} | "
-             f"{law.flow_dilatancy:.3f} | {law.coupling_exponent:.3f} |", "",
+             *law_table(law, "m"), "",
              "| pushover | moment rms (of its largest) | settlement rms (of its range) | "
              "largest miss of V (of N) |", "|---|---|---|---|"]
     for p, m, s, miss in zip(sorted(soil["pushovers"], key=lambda p: (p.N, len(p.theta))),

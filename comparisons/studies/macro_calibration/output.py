@@ -12,8 +12,8 @@ from ...beds.macro_bed import element_keys, gazetas_sway_stiffness
 from .fit import PLATEAU_TOLERANCE, SceneCalibration
 from .plan import PATHS, SETTLEMENT_RATIO, VERTICAL_STEPS
 
-__all__ = ["scene_overrides", "fitting_items", "check_reduced_scene", "calibration_record",
-           "calibration_markdown"]
+__all__ = ["law_table", "scene_overrides", "fitting_items", "check_reduced_scene",
+           "calibration_record", "calibration_markdown"]
 
 _FOUNDATION_KEYS = {f.name for f in dataclasses.fields(Foundation)} | {"vertical_period"}
 _MACRO_KEYS = {f.name for f in dataclasses.fields(MacroLaw)}
@@ -95,6 +95,18 @@ def calibration_record(cal: SceneCalibration, overrides: list[str]) -> dict:
     }
 
 
+def law_table(law, length_unit: str = "") -> list[str]:
+    """The fitted plastic parameters of ``law`` (a
+    :class:`~upliftlab.reduced.laws.macro.MacroElement`) as a Markdown table's three lines;
+    ``length_unit`` is κ_ref's, written in its header when given."""
+    kappa = f"κ_ref ({length_unit})" if length_unit else "κ_ref"
+    return [f"| ζ0 | {kappa} | h0 | γ | χ | λ_ρ | δ | ε |", "|---|---|---|---|---|---|---|---|",
+            f"| {law.initial_size:.3f} | {law.hardening_settlement:.3g} | "
+            f"{law.interior_modulus:.3g} | {law.interior_exponent:.3f} | "
+            f"{law.settlement_coupling:.3f} | {law.rounding_ratio:.3f} | "
+            f"{law.flow_dilatancy:.3f} | {law.coupling_exponent:.3f} |"]
+
+
 def calibration_markdown(cal: SceneCalibration, run_line: str, command: str) -> str:
     """The calibration's checks as a page: the statics, the capacity line and its residuals,
     the law, and per pushover the rms misfit of the moment (of its largest) and of the
@@ -115,12 +127,7 @@ def calibration_markdown(cal: SceneCalibration, run_line: str, command: str) -> 
              f"{cap['q1']:.6g} B′, residuals "
              f"{', '.join(f'{r:+.1%}' for r in fit.capacity_residuals)}; fit: "
              f"{fit.evaluations} evaluations, cost {fit.cost:.3g}.", "",
-             "| ζ0 | κ_ref | h0 | γ | χ | λ_ρ | δ | ε |",
-             "|---|---|---|---|---|---|---|---|",
-             f"| {law.initial_size:.3f} | {law.hardening_settlement:.3g} | "
-             f"{law.interior_modulus:.3g} | {law.interior_exponent:.3f} | "
-             f"{law.settlement_coupling:.3f} | {law.rounding_ratio:.3f} | "
-             f"{law.flow_dilatancy:.3f} | {law.coupling_exponent:.3f} |", "",
+             *law_table(law), "",
              "| pushover | moment rms (of its largest) | settlement rms (of its range) | "
              "largest miss of V (of N) |", "|---|---|---|---|"]
     for p, m, s, miss in zip(cal.pushovers, fit.moment_rms, fit.settlement_rms,
