@@ -36,8 +36,8 @@ small strain are listed and not compared (as the map does). A run of the section
 (a step that does not converge in 50 Newton iterations, as the Tcl script stops) is counted as
 such.
 
-Cost: the section's runs about 2–10 s each, the beds' a few seconds; the whole about 5 minutes
-(``--quick`` 30 s). Writes ``OPENSEES_CONTACT_INTERFACE.md`` to ``--out`` (default
+Cost: about 3 s a point (the section's two runs, the two beds' and their warm-up runs), about
+65 s in all on this machine (``--quick`` about 10 s). Writes ``OPENSEES_CONTACT_INTERFACE.md`` to ``--out`` (default
 ``results/bench/opensees_contact_interface``); ``--write`` also the committed copy.
 """
 
@@ -222,6 +222,9 @@ def compute(args) -> dict:
                             capture_output=True, text=True).stdout.strip() or "unknown"
     rows = [r for soil in (("clay",) if args.quick else ("clay", "sand"))
             for r in _slice(soil, args.quick)]
+    print(f"{NAME}: {len(rows)} points, each the continuum's stored run and four live runs "
+          f"(about 3 s a point here): about {3 * len(rows) + 10} s", file=sys.stderr,
+          flush=True)
     done = []
     started = time.perf_counter()
     for i, row in enumerate(rows, 1):
