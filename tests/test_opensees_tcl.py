@@ -23,7 +23,7 @@ from upliftlab.scenes import load_scene
 
 SETS = ["foundation.law=macro", "foundation.capacity_multiple=3.0",
         "foundation.sway_stiffness=38000", "structure.vertical_weight=180",
-        "foundation.sway_damping=200"]
+        "foundation.sway_damping=200", "foundation.rocking_stiffness=60000"]
 STUB = r"""
 set commands {model node fix mass section element uniaxialMaterial geomTransf equalDOF region
               timeSeries load constraints numberer system test algorithm integrator analysis
@@ -80,7 +80,9 @@ def test_the_section_and_the_structure_are_the_scenes(tmp_path):
     assert FS == pytest.approx(3.0, rel=1e-12)  # V_ult/W_v: the scene's capacity_multiple
     assert Vult == pytest.approx(3.0 * W_v, rel=1e-12)
     assert L == pytest.approx(2.0, rel=1e-12) and dL == pytest.approx(2.0 / 40, rel=1e-12)
-    assert Kv == pytest.approx(scene.foundation.stiffness, rel=1e-12)
+    # the section rocks like a uniform bed of Kv/L² (contact_interface.py measures it): Kv
+    # = 12 K_r/L² gives it the scene's K_r at its uplift onset
+    assert Kv == pytest.approx(12.0 * 60000.0 / L ** 2, rel=1e-12)
     assert Kh == pytest.approx(38000.0, rel=1e-12) and Rv == pytest.approx(0.1)
     g = scene.g
     masses = {args[0]: list(map(float, args[1:])) for name, args in calls if name == "mass"}
@@ -106,7 +108,8 @@ def test_the_section_and_the_structure_are_the_scenes(tmp_path):
     assert len(transient) == math.ceil(motion.duration / dt - 1e-9)
     assert [args for name, args in calls if name == "analyze"][:3] == [["10"], ["1"], ["1"]]
     notes = (folder / "model.md").read_text()
-    assert f"Kv L³/12 = {Kv * L ** 3 / 12:.6g}" in notes
+    assert f"Kv = 12 K_r/L² = {Kv:.6g}" in notes
+    assert f"{Kv / scene.foundation.stiffness:.3g} times the element's K_v" in notes
 
 
 @pytest.mark.parametrize("line", ["Kv 1e5;exit", "Kv [exec touch PWNED]", "Kv 1 2",

@@ -11,15 +11,23 @@ script checks every one is a number before it builds anything), the ground accel
 
 The section's seven numbers from the element (:func:`tcl_numbers`): FS = V_ult/W_v and
 V_ult the element's central capacity (the section takes the vertical load to be V_ult/FS);
-L = B; Kv = the element's K_v, the section's vertical stiffness ``ks(0,0)``, and so its uplift
-onset θ = 2 W_v/(Kv L) (``thetaPlus``) is a uniform bed's of that K_v; Kh = the element's K_h;
-Rv the soil's elastic rebound (no counterpart in the element: :data:`REBOUND`); dL = L/40, the
-section's discretisation of the footing. What the section cannot take is said, with its
-number, in ``model.md`` (:func:`correspondence`): its rocking stiffness is Kv L³/12 (a Winkler
-modulus's, while its vertical stiffness takes Kv as the footing's whole stiffness: the two
-agree only where L = 1 in the model's units; the element's K_r is the continuum's), and it
-has no dashpot, no settlement coupling of its own form and a capacity per unit length fixed
-by Vult/L.
+L = B; Kv = 12 K_r/L² with K_r the element's rocking stiffness (:func:`section_kv`); Kh = the
+element's K_h; Rv the soil's elastic rebound (no counterpart in the element: :data:`REBOUND`);
+dL = L/40, the section's discretisation of the footing. What the section cannot take is said,
+with its number, in ``model.md`` (:func:`correspondence`).
+
+Why Kv from K_r: the section rocks on a bed whose modulus is Kv/L² (its contact pressures
+grow by Kv/L² per unit of penetration), so its moment at the uplift onset θ = 2 W/(Kv L) is a
+uniform bed's, (Kv L²/12) θ, while its vertical stiffness is Kv: one number cannot give both
+the element's K_v and K_r (on the half-plane map's points K_r = 4.7 (K_v L²/12)). Measured on
+24 pulse points of the half-plane map with the section compiled from OpenSees's source
+(``benchmarks/OPENSEES_CONTACT_INTERFACE.md``): with Kv = K_v the median error in peak θ is
+113 % and 1 of 24 peak story drifts is within 10 %; with Kv = 12 K_r/L², 30 % and 10 of 24
+(and 4 of 24 runs stop on a step that does not converge). Rocking governs what a user reads,
+so Kv matches it; the vertical stiffness is then 12 K_r/(K_v L²) times the element's, said
+in ``model.md``. The section's M–θ has no linear range at all (a secant of 12 Kv L²/12 at
+θ_on/100, 0.93 Kv L²/12 at θ_on, both measured), and its own ``Kt = Kv L³/12`` is only its
+first tangent.
 
 Not run here: no Tcl OpenSees on this machine (openseespy 3.7 has no ``soilFootingSection2d``).
 The tests source the script in ``tclsh`` with the OpenSees commands recorded.
@@ -37,7 +45,8 @@ from ...reduced import build_model
 from ...results import write_text
 from ...scenes import Scene
 
-__all__ = ["TclFiles", "REBOUND", "SEGMENTS", "tcl_numbers", "correspondence", "write_tcl",
+__all__ = ["TclFiles", "REBOUND", "SEGMENTS", "section_kv", "tcl_numbers", "correspondence",
+           "write_tcl",
            "check_tcl_representable", "TCL_NAME", "NUMBERS_TXT", "MOTION_G"]
 
 TCL_NAME, NUMBERS_TXT, MOTION_G, NOTES_MD = ("model.tcl", "model_numbers.txt", "motion_g.txt",
@@ -76,6 +85,12 @@ def check_tcl_representable(scene: Scene) -> None:
                          "and needs a ground motion; valid: a record or a pulse")
 
 
+def section_kv(rocking_stiffness: float, width: float) -> float:
+    """The section's Kv that gives it a rocking stiffness ``rocking_stiffness`` K_r at its
+    uplift onset (module docstring): 12 K_r/L² (force/length per length)."""
+    return 12.0 * rocking_stiffness / width ** 2
+
+
 def tcl_numbers(scene: Scene, dt: float | None = None) -> dict[str, float]:
     """The numbers ``model.tcl`` reads (module docstring), in the scene's units."""
     from .spec import default_step
@@ -98,7 +113,7 @@ def tcl_numbers(scene: Scene, dt: float | None = None) -> dict[str, float]:
         "story_stiffness": k_story, "story_damping_beta": c_story / k_story,
         "rotary_inertia": float(s.rotary_inertia),
         "FS": float(law.ultimate_load / s.vertical_weight), "Vult": float(law.ultimate_load),
-        "L": float(law.width), "Kv": float(law.vertical_stiffness),
+        "L": float(law.width), "Kv": section_kv(float(law.rocking_stiffness), float(law.width)),
         "Kh": float(law.horizontal_stiffness), "Rv": REBOUND, "dL": law.width / SEGMENTS,
         "sway_damping": float(f.sway_damping or 0.0), "dt": float(step),
         "steps": float(math.ceil(duration / step - 1e-9)), "motion_dt": float(motion.dt),
@@ -112,7 +127,6 @@ def correspondence(scene: Scene, numbers: dict) -> str:
     scene's numbers."""
     law = build_model(scene).base.law
     L, Kv = numbers["L"], numbers["Kv"]
-    section_Kr = Kv * L ** 3 / 12.0
     unit = scene.units
     rows = [
         ("V_ult (central capacity)",
@@ -121,15 +135,21 @@ def correspondence(scene: Scene, numbers: dict) -> str:
         ("W_v / V_ult", f"FS = {numbers['FS']:.6g}", "the section takes its vertical load to "
          "be Vult/FS and starts its contact from it"),
         ("B", f"L = {L:.6g} {unit.length}", "the same"),
-        ("K_v", f"Kv = {Kv:.6g}", "the same, as the section's vertical stiffness ks(0,0); "
-         "its uplift onset θ = 2 W_v/(Kv L) is a uniform bed's of that K_v"),
+        ("K_r", f"Kv = 12 K_r/L² = {Kv:.6g}", "the section's rocking at its uplift onset "
+         "θ = 2 W/(Kv L) is a uniform bed's, (Kv L²/12) θ = K_r θ: Kv is chosen for it. "
+         "Its M–θ has no linear range (a secant about 12 times K_r at a hundredth of the "
+         "onset, measured), and its own first tangent Kt = Kv L³/12 "
+         f"= {Kv * L ** 3 / 12:.6g} is not its rocking stiffness"),
+        ("K_v", f"Kv = {Kv:.6g}", f"the section's vertical stiffness is Kv: "
+         f"{Kv / law.vertical_stiffness:.3g} times the element's K_v = "
+         f"{law.vertical_stiffness:.6g} (one number cannot give both)"),
         ("K_h", f"Kh = {numbers['Kh']:.6g}", "elastic in both; the element's sliding "
          f"capacity is t_h V (1 − V/V_ult), t_h = {law.sliding_ratio:.4g}; the section's "
          "follows its own bounding surface"),
-        ("K_r", f"Kv L³/12 = {section_Kr:.6g}", f"the element's K_r = {law.rocking_stiffness:.6g}"
-         f" ({section_Kr / law.rocking_stiffness - 1.0:+.1%}): the section's rocking "
-         "stiffness is a Winkler modulus's (Kv per unit length), its vertical stiffness "
-         "takes Kv as the whole footing's; the two agree only where L = 1"),
+        ("capacity", f"Vult/L = {numbers['Vult'] / L:.6g} per unit length", "the section's "
+         "moment capacity is Tresca's, (V L/2)(1 − V/Vult), for every soil (measured within "
+         "−0.3…+6.5 % of it at FS 3–10); the element's follows the contact width on a "
+         "frictional soil, (V L/2)(1 − √(V/Vult)) with the N_γ term alone"),
         ("λ_ρ (rounding)", f"Rv = {numbers['Rv']:g}", "no counterpart: the section's soil "
          "rebounds by Rv of its compression, the element's surface rounds; Rv is a choice"),
         ("ζ0, κ_ref, h0, γ, χ", "none", "the section's plasticity is its own (the bounding "
@@ -151,7 +171,12 @@ def correspondence(scene: Scene, numbers: dict) -> str:
               "centre, the story mass its horizontal mass, as in upliftlab's reduced model.",
               "", "Before the motion, one static step of a horizontal load of 1e-6 of the "
               "story weight is put on and taken off: after a purely vertical load history "
-              "the section returns NaN on its first dynamic step.", ""]
+              "the section returns NaN on its first dynamic step.", "",
+              "Two properties of the section to know when changing the analysis (both "
+              "measured on its compiled source): its initial tangent is a zero matrix, so an "
+              "algorithm or a damping on the initial stiffness gets nothing from it; and its "
+              "tangent is not symmetric (a coupling of V to θ, none of M to v), so the system "
+              "must not be a symmetric one (the script uses UmfPack).", ""]
     return "\n".join(lines)
 
 
