@@ -34,11 +34,13 @@ within 10 % in both peak θ and edge uplift, within 20 % in residual settlement 
 u, and the median absolute errors; points where the continuum failed in bearing or ran beyond
 small strain are listed and not compared (as the map does). A run of the section that stops
 (a step that does not converge in 50 Newton iterations, as the Tcl script stops) is counted as
-such.
+such. Then the section alone (:func:`section_checks`), one ulp of its Kv, and its Rv at 0.1,
+0.5 and 1 at one point (:func:`rebound`).
 
 Cost: about 3 s a point (the section's two runs, the two beds' and their warm-up runs), about
-65 s in all on this machine (``--quick`` about 10 s). Writes ``OPENSEES_CONTACT_INTERFACE.md`` to ``--out`` (default
-``results/bench/opensees_contact_interface``); ``--write`` also the committed copy.
+65 s in all on this machine (``--quick`` about 10 s). Writes ``OPENSEES_CONTACT_INTERFACE.md``
+to ``--out`` (default ``results/bench/opensees_contact_interface``); ``--write`` also the
+committed copy.
 """
 
 from __future__ import annotations
@@ -235,7 +237,30 @@ def compute(args) -> dict:
               f"about {left:.0f} s left", file=sys.stderr, flush=True)
     checks = section_checks(library, done_numbers(rows[0]))
     ulp = compute_point({**rows[0], "ulp": True}, library)["ulp"]
-    return {"rows": done, "commit": commit, "checks": checks, "ulp": ulp}
+    return {"rows": done, "commit": commit, "checks": checks, "ulp": ulp,
+            "rebound": rebound(library, rows[min(1, len(rows) - 1)])}
+
+
+#: The section's Rv (the share of its soil's compression that rebounds) tried beside the
+#: bridge's :data:`~upliftlab.comparisons.opensees.tcl.REBOUND`.
+REBOUNDS = (0.1, 0.5, 1.0)
+
+
+def rebound(library: Path, row: dict) -> dict:
+    """The section's residual settlement (m) at one point with each of :data:`REBOUNDS` (or
+    why its run stopped), and the continuum's."""
+    from upliftlab.comparisons.studies.winkler_map.plan import point_key_of
+    from upliftlab.comparisons.studies.winkler_map.points import evaluate_dynamic
+
+    scene, numbers = _element_scene(row), done_numbers(row)
+    out = {}
+    for rv in REBOUNDS:
+        run = _section_measures(library, scene, {**numbers, "Rv": rv})
+        out[rv] = run.get("stopped") or run["measures"]["residual_settlement"]
+    record = row["store"].get(point_key_of(row["point"], evaluate_dynamic))
+    where = f"{row['soil']}, FS_v {row['fs']:g}, {row['intensity']:g} a_up, {row['motion']}"
+    return {"where": where, "section": out,
+            "continuum": record["measures"]["residual_settlement"]}
 
 
 def _element_scene(row: dict):
@@ -326,6 +351,11 @@ def publish(folder: Path, result: dict, write: bool) -> None:
     lines += ["", f"One ulp of Kv (the first point, {first['soil']}, FS_v {first['fs']:g}, "
               f"{first['intensity']:g} a_up, {first['motion']}, Kv = K_v): with K_v, "
               f"{result['ulp'][0]}; with the next float below it, {result['ulp'][1]}."]
+    rb = result["rebound"]
+    cells = [f"Rv = {rv:g}: " + (f"{1e3 * v:.2f} mm" if isinstance(v, float) else v)
+             for rv, v in rb["section"].items()]
+    lines += ["", f"The section's Rv ({rb['where']}): residual settlement " + "; ".join(cells)
+              + f" (the continuum's {1e3 * rb['continuum']:.2f} mm)."]
     text = "\n".join(lines) + "\n"
     write_text(folder / "OPENSEES_CONTACT_INTERFACE.md", text)
     if write:
