@@ -25,9 +25,9 @@ the element's K_v and K_r (on the half-plane map's points K_r = 4.7 (K_v L²/12)
 113 % and 1 of 24 peak story drifts is within 10 %; with Kv = 12 K_r/L², 30 % and 10 of 24
 (and 4 of 24 runs stop on a step that does not converge). Rocking governs what a user reads,
 so Kv matches it; the vertical stiffness is then 12 K_r/(K_v L²) times the element's, said
-in ``model.md``. The section's M–θ has no linear range at all (a secant of 12 Kv L²/12 at
-θ_on/100, 0.93 Kv L²/12 at θ_on, both measured), and its own ``Kt = Kv L³/12`` is only its
-first tangent.
+in ``model.md``. The section's M–θ has no linear range at all (a secant of 12.3 Kv L²/12 at
+θ_on/100, 4.2 at θ_on/10 and 0.95 at θ_on, measured), and its own ``Kt = Kv L³/12`` is only
+its first tangent.
 
 Not run here: no Tcl OpenSees on this machine (openseespy 3.7 has no ``soilFootingSection2d``).
 The tests source the script in ``tclsh`` with the OpenSees commands recorded.
