@@ -5,8 +5,9 @@ how closely it then follows them.
                                            [--evaluations N] [--quick] [--out DIR] [--write]
 
 For each soil the store holds the footing's stiffness (K_v, K_r), its vertical capacity and,
-at each FS_v, a monotonic rotation pushover and one of cycles at growing amplitude (the map's
-statics rows, :mod:`upliftlab.comparisons.studies.winkler_map.rocking`). The calibration
+at each FS_v, a monotonic rotation pushover and one of cycles at growing amplitude, and at
+FS_v 3 and 5 six cycles at one amplitude (the map's statics rows and the fit's own,
+:mod:`upliftlab.comparisons.studies.winkler_map.rocking`). The calibration
 (:mod:`upliftlab.comparisons.beds.macro`) fits the macro-element to them: the capacity line
 to the monotonic pushovers' largest moments, the plastic parameters to every pushover's moment
 and settlement. Nothing dynamic enters. The table gives, per soil, the parameters, the capacity
@@ -75,8 +76,15 @@ def strength(table: dict) -> dict:
 
 
 def label(p, V_ult: float) -> str:
-    cyclic = np.any(np.diff(p.theta) < 0.0)
-    return f"FS_v {V_ult / p.N:.0f}, {'cycles' if cyclic else 'monotonic'}"
+    """"FS_v n, monotonic", "…, cycles" (growing amplitudes) or "…, k cycles at one
+    amplitude" (repeated: whether the footing shakes down)."""
+    theta = np.asarray(p.theta)
+    kind = "monotonic"
+    if np.any(np.diff(theta) < 0.0):
+        peaks = theta[1:-1][(theta[1:-1] > theta[:-2]) & (theta[1:-1] >= theta[2:])]
+        repeated = peaks.size > 1 and np.ptp(peaks) <= 1e-9 * np.max(np.abs(peaks))
+        kind = f"{peaks.size} cycles at one amplitude" if repeated else "cycles"
+    return f"FS_v {V_ult / p.N:.0f}, {kind}"
 
 
 def calibrate(soil: dict, width: float, evaluations: int):

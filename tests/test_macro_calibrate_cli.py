@@ -72,7 +72,7 @@ def test_its_overrides_put_that_law_in_the_reduced_model(calibrated):
     assert law.rocking_stiffness == pytest.approx(record["statics"]["K_r"], rel=1e-12)
     for key in ("initial_size", "hardening_settlement", "interior_modulus",
                 "interior_exponent", "settlement_coupling", "rounding_ratio", "flow_dilatancy",
-                "coupling_exponent"):
+                "coupling_exponent", "memory_modulus"):
         assert getattr(law, key) == pytest.approx(record["law"][key], rel=1e-12), key
     assert sorted(p.name for p in out.iterdir()) == ["CALIBRATION.md", "calibration.json",
                                                      "fit-cache.npz", "store",

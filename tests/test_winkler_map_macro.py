@@ -80,7 +80,7 @@ def test_the_bed_is_the_fitted_element_under_the_points_weight(soil):
         assert moment_capacity(law, V) == pytest.approx(V * (B - reduced) / 2.0, rel=1e-6)
     for key in ("initial_size", "hardening_settlement", "interior_modulus",
                 "interior_exponent", "settlement_coupling", "rounding_ratio", "sliding_ratio",
-                "flow_dilatancy", "coupling_exponent"):
+                "flow_dilatancy", "coupling_exponent", "memory_modulus"):
         assert getattr(law, key) == pytest.approx(getattr(fitted, key), rel=1e-12)
     assert model.base.rest.forces[0] == pytest.approx(ref.N, rel=1e-9)
 
