@@ -58,6 +58,19 @@ def plastic_modulus(P, kappa, load, flow_v, s, zeta, memory):
 
 
 @njit(cache=True, **HOT)
+def memory_factor(P, mobilised, at_centre, remembered):
+    """1 + μ w: the interior modulus's factor for a load of mobilisation ``mobilised`` whose
+    side remembers ``remembered`` and whose projection centre is at ``at_centre``, w =
+    (ζ_m − ζ_Q)/(ζ_m − ζ_c) the share of the way from the load back to its reversal: 1 + μ
+    at the reversal, falling to 1 as the load reaches its side's memory (continuous, so that
+    the update stays a continuous function of the displacement), 1 beyond it or where the
+    centre lies beyond the memory."""
+    if P[P_MEM] == 0.0 or not mobilised < remembered or not at_centre < remembered:
+        return 1.0
+    return 1.0 + P[P_MEM] * min((remembered - mobilised) / (remembered - at_centre), 1.0)
+
+
+@njit(cache=True, **HOT)
 def settlement_flow(P, normal, s):
     """The flow's settlement part m_V at a load whose surface's normal is ``normal`` and whose
     distance ratio is ``s``: n_V where the normal points to more V, δ n_V where it points to
@@ -210,7 +223,7 @@ def substep(P, S, target, D, W):
     if mobilised > 0.0:
         # the memory of the load's side (the sign of M): the largest mobilisation it reached
         side = S_MEM if source[2] >= 0.0 else S_MEM + 1
-        remembered = mobilised < S[side]
+        remembered = S[side]
         S[side] = max(S[side], mobilised)
         # the normal, at the load, of the surface of the size that passes through it
         failure_gradient(P, source, mobilised, normal)
@@ -227,9 +240,8 @@ def substep(P, S, target, D, W):
         s = 1.0 if mobilised >= zeta or span <= 1e-12 * zeta else \
             max(mobilised - at_centre, 0.0) / span
         flow[0] = _held_flow(D, normal, settlement_flow(P, normal, s))
-        # inside the memory, reloading that the soil has carried before: a stiffer interior
-        memory = 1.0 + P[P_MEM] if remembered else 1.0
-        modulus = plastic_modulus(P, kappa, source, flow[0], s, zeta, memory)
+        modulus = plastic_modulus(P, kappa, source, flow[0], s, zeta,
+                                  memory_factor(P, mobilised, at_centre, remembered))
         if math.isfinite(modulus) and loading > 0.0:
             nDm = 0.0
             for i in range(3):

@@ -70,11 +70,11 @@ class MacroElement:
     ε times its moment-and-shear part added to the settlement: χ = 0 and δ = 1 is associated
     flow, χ > 0 settles the footing while it yields in rotation, and ε > 0 makes that
     coupling act near the bounding surface (s → 1) and fade in the small cycles inside it
-    (s → 0). ``memory_modulus`` μ: the plastic modulus is K_p (1 + μ) while the load's
-    mobilisation is below the largest its side (the sign of M) has reached (0: no memory, the
-    law of revision 2). ``rounding_ratio`` λ_ρ: the fraction of the edges' plastic travel
-    b |dθ_p| that rounds the soil's surface (:mod:`.uplift`), while the edges press harder than
-    the middle; 0: the surface stays flat.
+    (s → 0). ``memory_modulus`` μ: the interior modulus is up to 1 + μ times stiffer while
+    the load's mobilisation is below the largest its side (the sign of M) has reached (0: no
+    memory, the law of revision 2). ``rounding_ratio`` λ_ρ: the fraction of the edges'
+    plastic travel b |dθ_p| that rounds the soil's surface (:mod:`.uplift`), while the edges
+    press harder than the middle; 0: the surface stays flat.
     """
 
     width: float
