@@ -173,9 +173,14 @@ def test_a_fit_refused_is_a_record_that_says_why():
 def test_the_kept_fits_are_the_published_calibration():
     """The half-plane store keeps the map's fit of each soil at today's revision of the
     reduced model (``packs/macro-fits*``; a fit of an earlier revision is kept as data, not
-    read): its law is ``benchmarks/macro_calibration.json``'s, made by the benchmark from the
-    same store's pushovers through another path (its own reader of the records), field by
-    field (1e-12), and it holds N on every pushover."""
+    read): its law is ``benchmarks/macro_calibration.json``'s field by field (1e-12: the
+    published table is the kept fit), it holds N on every pushover, and pushed again over
+    the continuum's pushovers that the fit point keeps (the reference: the continuum's stored
+    runs), its moment misfit per pushover is the record's (1e-9) and within 35 % rms of the
+    pushover's largest moment (measured: at most 30.3 %, the sand's FS_v 2 cycles). That the
+    optimizer makes the same law again is the store's check of a stale fit (a re-run sample
+    within 1e-6) and ``benchmarks/macro_calibration.py --refit``."""
+    from upliftlab.comparisons.beds.macro import macro_pushover
     from upliftlab.reduced import REVISION
 
     store = Store(HERE.parent / "benchmarks" / "winkler_map_halfplane_store")
@@ -185,12 +190,20 @@ def test_the_kept_fits_are_the_published_calibration():
         if entry["function"].endswith("evaluate_macro_fit") \
                 and entry["models"] == {"reduced": REVISION}:
             assert entry["params"]["soil"] not in fits
-            fits[entry["params"]["soil"]] = entry["record"]
+            fits[entry["params"]["soil"]] = entry
     assert sorted(fits) == ["clay", "sand"]
-    for soil, record in fits.items():
+    for soil, entry in fits.items():
+        record = entry["record"]
         for field, value in CALIBRATION[soil]["law"].items():
             assert record["law"][field] == pytest.approx(value, rel=1e-12, abs=1e-15), field
         assert max(record["load_misses"]) <= LOAD_TOLERANCE
+        law = MacroElement(**record["law"])
+        pushes = sorted(entry["params"]["pushovers"], key=lambda p: (p["N"], len(p["theta"])))
+        for p, rms in zip(pushes, record["moment_rms"], strict=True):
+            M, _ = macro_pushover(law, p["N"], p["theta"])
+            again = math.sqrt(np.mean(((M - p["M"]) / np.max(np.abs(p["M"]))) ** 2))
+            assert again == pytest.approx(rms, rel=1e-9)
+            assert again <= 0.35
 
 
 def test_on_the_half_plane_newmark_takes_the_steps_rk4_cannot():
