@@ -91,24 +91,17 @@ def stored_fits(store: Path) -> dict:
         pushes = sorted((RotationPushover(p["N"], np.array(p["theta"]), np.array(p["M"]),
                                           np.array(p["settlement"]), p["source"])
                          for p in params["pushovers"]), key=lambda p: (p.N, len(p.theta)))
+        law = MacroElement(**record["law"])
         cal = MacroCalibration(
-            law=MacroElement(**record["law"]),
+            law=law,
             capacity_residuals=np.array(record["capacity_residuals"]),
             moment_rms=np.array(record["moment_rms"]),
             settlement_rms=np.array(record["settlement_rms"]),
             load_misses=np.array(record["load_misses"]), sources=tuple(record["sources"]),
             cost=record["cost"], evaluations=record["evaluations"],
-            details={"capacity": _capacity_of(record["law"])})
+            details={"capacity": {"q0": law.cohesive_pressure, "q1": law.frictional_modulus}})
         fits[params["soil"]] = (cal, pushes, record["wall_time_s"])
     return fits
-
-
-def _capacity_of(law: dict) -> dict:
-    """q₀ and q₁ of a fitted law's capacity line (its c N_c and ½ γ N_γ terms)."""
-    from upliftlab.reduced.laws.macro import MacroElement
-
-    element = MacroElement(**law)
-    return {"q0": element.cohesive_pressure, "q1": element.frictional_modulus}
 
 
 def strength(table: dict) -> dict:

@@ -16,14 +16,14 @@ from __future__ import annotations
 
 import copy
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 from ....anchors import half_plane_onset_rotation
 from ....checks import InputError
 from ....scenes.soil import SOIL_MODELS, UNDRAINED
 from ...beds.continuum_points import floats
 from ...beds.macro import macro_strength
-from ...beds.pushover import cyclic_path, rotation_path
+from ...beds.pushover import cyclic_path, repeated_cycles, rotation_path
 
 __all__ = ["PathOptions", "PATHS", "DEFAULT_FS_V", "SETTLEMENT_RATIO", "VERTICAL_STEPS",
            "MAX_ROTATION", "macro_strength", "check_fs_v", "statics_points", "pushover_points",
@@ -150,8 +150,7 @@ def _path(kind: str, theta_on: float, paths: PathOptions):
         return rotation_path(theta_on, paths)
     if kind == "cycles":
         return cyclic_path(theta_on, paths)
-    return cyclic_path(theta_on, replace(paths, cycle_ratios=(paths.repeat_ratio,)
-                                         * paths.repeat_cycles))
+    return cyclic_path(theta_on, repeated_cycles(paths, paths.repeat_ratio, paths.repeat_cycles))
 
 
 def pushover_points(scene, V_ult: float, fs_v: Sequence[float],

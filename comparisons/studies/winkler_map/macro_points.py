@@ -25,10 +25,10 @@ from __future__ import annotations
 import dataclasses
 import time
 from collections.abc import Mapping, Sequence
-from dataclasses import replace
 
 import numpy as np
 
+from ...beds.pushover import repeated_cycles
 from ...beds.macro import (FIT_SECONDS_PER_STEP, RotationPushover, calibrate_macro,
                            evaluation_bound)
 from ...framework.sources import import_closure, source_name
@@ -87,12 +87,14 @@ def fit_rotation_points(soils: Sequence[str], options, base: Mapping,
     the map's own), then per FS_v of ``options.macro_repeat_fs_v`` ``options.repeat_cycles``
     full cycles at ``options.repeat_ratio`` θ_on (whether the footing shakes down);
     ``loads[soil]`` its V_ult."""
-    repeated = replace(options, cycle_ratios=(options.repeat_ratio,) * options.repeat_cycles)
-    return [p for soil in soils for p in
-            [q for fs in options.macro_fs_v
-             for q in rocking_points(base, soil, loads[soil] / fs, options)]
-            + [rocking_points(base, soil, loads[soil] / fs, repeated)[0]
-               for fs in options.macro_repeat_fs_v]]
+    repeated = repeated_cycles(options, options.repeat_ratio, options.repeat_cycles)
+    points = []
+    for soil in soils:
+        for fs in options.macro_fs_v:
+            points += rocking_points(base, soil, loads[soil] / fs, options)
+        points += [rocking_points(base, soil, loads[soil] / fs, repeated)[0]
+                   for fs in options.macro_repeat_fs_v]
+    return points
 
 
 def soil_fit_points(soils: Sequence[str], options, base: Mapping, statics: Mapping,

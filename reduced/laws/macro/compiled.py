@@ -44,9 +44,9 @@ FLOW_MARGIN = 0.5
 @njit(cache=True, **HOT)
 def plastic_modulus(P, kappa, load, flow_v, s, zeta, memory):
     """K_p at distance ratio s: the bounding surface's K_b (its ∂F/∂ζ at ``load``) plus the
-    interior term times ``memory`` (1 + μ inside the memory, else 1): the memory stiffens the
-    reloading inside the surface and fades as the load nears it, so that a load that reaches
-    the surface does so at the surface's own modulus."""
+    interior term times ``memory`` (:func:`memory_factor`, 1 outside the memory): the memory
+    stiffens the interior term only, which vanishes at the surface, so that a load that
+    reaches the surface does so at the surface's own modulus."""
     grow = (1.0 - P[P_Z0]) / P[P_KREF] * math.exp(-kappa / P[P_KREF])
     bound = -failure_size_derivative(P, load, zeta) * grow * max(flow_v, 0.0)
     if s <= 0.0:

@@ -15,12 +15,9 @@ import math
 from dataclasses import dataclass
 
 from ....checks import InputError, in_range, nonnegative, positive
+from ....scenes.laws.macro import MAX_MEMORY_MODULUS
 
-__all__ = ["MacroElement", "MacroStepError", "bearing_factors", "MAX_MEMORY_MODULUS"]
-
-#: The largest memory modulus μ: reloading 1e6 times stiffer than the first loading is, to
-#: the sub-step's force resolution, elastic.
-MAX_MEMORY_MODULUS = 1e6
+__all__ = ["MacroElement", "MacroStepError", "bearing_factors"]
 
 
 class MacroStepError(RuntimeError):

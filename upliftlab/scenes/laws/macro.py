@@ -14,8 +14,8 @@ from ..table import Table, in_range
 from .base import LawContext, LawRecord
 from .elastoplastic import MULTIPLE
 
-#: The largest memory modulus μ (:data:`upliftlab.reduced.laws.macro.params.MAX_MEMORY_MODULUS`,
-#: restated here: the scenes' records do not import the models).
+#: The largest memory modulus μ, for the scenes and the law alike: reloading 1e6 times stiffer
+#: than the first loading is, to the sub-step's force resolution, elastic.
 MAX_MEMORY_MODULUS = 1e6
 
 __all__ = ["MacroLaw", "SLIDING_RATIO", "MAX_SETTLEMENT_COUPLING"]
