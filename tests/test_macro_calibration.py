@@ -61,28 +61,31 @@ def test_pushover_at_constant_load_is_the_uplift_closed_form():
 
 
 def test_calibration_reproduces_a_law_of_known_parameters():
-    """Reference: pushovers made by a law of stated parameters (a monotonic one and a cycle,
-    at two loads). The calibration, started elsewhere, comes back to those parameters within
-    1 % (measured: 1e-4), and its pushovers to theirs within 0.1 % of the largest moment and
-    of the settlement's range."""
+    """Reference: pushovers made by a law of stated parameters (a monotonic one, a cycle and
+    three repeated cycles, at two loads; the memory's μ inside its bounds). The calibration,
+    started elsewhere, comes back to those parameters within 1 %, and its pushovers to theirs
+    within 0.1 % of the largest moment and of the settlement's range."""
     truth = MacroElement(**ELASTIC, cohesion=50.0, initial_size=0.75,
                          hardening_settlement=0.005, interior_modulus=2.0,
-                         interior_exponent=1.2, settlement_coupling=0.3, rounding_ratio=0.5)
+                         interior_exponent=1.2, settlement_coupling=0.3, rounding_ratio=0.5,
+                         memory_modulus=10.0)
     theta_on = 2e-3
     mono = np.linspace(0, 8 * theta_on, 9)
-    cycle = np.concatenate([np.linspace(0, 4, 5), np.linspace(4, -4, 9),
-                            np.linspace(-4, 0, 5)[1:]]) * theta_on
+    one = np.concatenate([np.linspace(0, 4, 5), np.linspace(4, -4, 9), np.linspace(-4, 0, 5)[1:]])
+    cycle = one * theta_on
+    repeated = np.concatenate([[0.0]] + [one[1:] * 0.5 * theta_on] * 3)
     pushes = []
     for fs in (2.5, 5.0):
         N = truth.ultimate_load / fs
-        for path in (mono, cycle):
+        for path in (mono, cycle, repeated):
             M, s = macro_pushover(truth, N, path)
             pushes.append(RotationPushover(N, path, M, s, f"fs {fs}"))
     cal = calibrate_macro(pushes, width=B, V_ult=truth.ultimate_load,
                           K_v=ELASTIC["vertical_stiffness"], K_r=ELASTIC["rocking_stiffness"],
                           cohesion=50.0, max_evaluations=700)
     for name in ("initial_size", "hardening_settlement", "interior_modulus",
-                 "interior_exponent", "settlement_coupling", "rounding_ratio"):
+                 "interior_exponent", "settlement_coupling", "rounding_ratio",
+                 "memory_modulus"):
         assert getattr(cal.law, name) == pytest.approx(getattr(truth, name), rel=1e-2), name
     for p in pushes:
         M, s = macro_pushover(cal.law, p.N, p.theta)

@@ -209,10 +209,13 @@ def test_the_kept_fits_are_the_published_calibration():
 def test_on_the_half_plane_newmark_takes_the_steps_rk4_cannot():
     """On the half-plane a point's footing sways on the tie's dashpot with its own mass (1 %
     of N): an overdamped mode (λ = −2.1e3 /s) that bounds RK4's energy-limited step to about
-    2e-5 s. Newmark, with the element in its Newton iteration, runs the same point at 1e-3 s:
-    at least 50 times fewer steps, and every measure of the map within 1e-3 of RK4's
-    (measured: within 1e-4, the residual settlement 1e-4), its energy balance within 1e-4."""
-    from upliftlab.comparisons.studies.winkler_map.bed_runs import reduced_measures
+    2e-5 s. Newmark, with the element in its Newton iteration, runs the same point at the
+    map's step (0.25 ms): at least 10 times fewer steps, and every measure of the map within
+    1e-3 of RK4's (measured on revision 3's clay: within 9e-5; at 1 ms its residual
+    settlement was 2.1e-3 off, Newmark's own error: 4.8e-4 at 0.5 ms), its energy balance
+    within 1e-4."""
+    from upliftlab.comparisons.studies.winkler_map.bed_runs import (element_analysis,
+                                                                    reduced_measures)
     from upliftlab.reduced import run
     from upliftlab.scenes import scene_from_dict
 
@@ -222,9 +225,11 @@ def test_on_the_half_plane_newmark_takes_the_steps_rk4_cannot():
     scene = bed_scene(point, bed_foundation("macro", ref, wm.FULL_OPTIONS))
     explicit = run(scene)
     data = {**scene.data, "analysis": {**scene.data.get("analysis", {}),
-                                       "integrator": "newmark", "dt": 1e-3}}
-    implicit = run(scene_from_dict(data, merged=True))
-    assert implicit.info["steps"] * 50 <= explicit.info["steps"]
+                                       **element_analysis(wm.FULL_OPTIONS)}}
+    newmark = scene_from_dict(data, merged=True)
+    assert (newmark.analysis.integrator, newmark.analysis.dt) == ("newmark", 2.5e-4)
+    implicit = run(newmark)
+    assert implicit.info["steps"] * 10 <= explicit.info["steps"]
     e, i = reduced_measures(explicit), reduced_measures(implicit)
     scale = {"residual_settlement": abs(e["residual_settlement"]), "residual_rotation":
              abs(e["theta"])}  # a residual rotation near 0 is held to the peak's scale
@@ -235,10 +240,10 @@ def test_on_the_half_plane_newmark_takes_the_steps_rk4_cannot():
 
 def test_a_light_structure_gets_the_step_that_resolves_its_fastest_mode():
     """At FS_v 10 the footing's sway (its mass a share of a light N) has a period under 10 ms:
-    Newmark at 1 ms could not resolve it (10 steps a period) and was refused at 4 of the
-    slice's 32 points; the map's run shortens the step to 0.95 of T_min/10, T_min from the
-    eigenvalues of M⁻¹K of the bonded model by numpy (an independent computation), and the
-    run completes."""
+    Newmark at 1 ms (the map's first step; a user's ``macro_dt`` may be as long as 10 ms)
+    could not resolve it (10 steps a period) and was refused at 4 of the slice's 32 points;
+    the map's run shortens the step to 0.95 of T_min/10, T_min from the eigenvalues of M⁻¹K
+    of the bonded model by numpy (an independent computation), and the run completes."""
     from upliftlab.comparisons.studies.winkler_map.bed_runs import (_resolved, element_analysis,
                                                                     run_bed)
     from upliftlab.reduced import build_model
@@ -246,7 +251,7 @@ def test_a_light_structure_gets_the_step_that_resolves_its_fastest_mode():
     fitted = MacroElement(**CALIBRATION["clay"]["law"])
     point, ref = _point("clay", 10.0, fitted)
     foundation = bed_foundation("macro", ref, wm.FULL_OPTIONS)
-    analysis = element_analysis(wm.FULL_OPTIONS)
+    analysis = element_analysis(replace(wm.FULL_OPTIONS, macro_dt=1e-3))
     scene = _resolved(bed_scene(point, foundation, analysis))
     model = build_model(scene).linearised
     K, _ = model.bonded_matrices()

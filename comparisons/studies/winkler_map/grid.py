@@ -110,7 +110,7 @@ class Options:
     macro_fs_v: tuple[float, ...] = (2.0, 3.0, 5.0, 10.0)
     macro_evaluations: int = 1500
     macro_integrator: str = "newmark"
-    macro_dt: float = 1e-3
+    macro_dt: float = 2.5e-4
     macro_repeat_fs_v: tuple[float, ...] = (3.0, 5.0)
     repeat_cycles: int = 6
     repeat_ratio: float = 2.0
