@@ -5,8 +5,9 @@ how closely it then follows them.
                                            [--evaluations N] [--quick] [--out DIR] [--write]
 
 For each soil the store holds the footing's stiffness (K_v, K_r), its vertical capacity and,
-at each FS_v, a monotonic rotation pushover and one of cycles at growing amplitude (the map's
-statics rows, :mod:`upliftlab.comparisons.studies.winkler_map.rocking`). The calibration
+at each FS_v, a monotonic rotation pushover and one of cycles at growing amplitude, and at
+FS_v 3 and 5 six cycles at one amplitude (the map's statics rows and the fit's own,
+:mod:`upliftlab.comparisons.studies.winkler_map.rocking`). The calibration
 (:mod:`upliftlab.comparisons.beds.macro`) fits the macro-element to them: the capacity line
 to the monotonic pushovers' largest moments, the plastic parameters to every pushover's moment
 and settlement. Nothing dynamic enters. The table gives, per soil, the parameters, the capacity
@@ -14,11 +15,16 @@ line's residuals and, per pushover, the rms misfit of the moment (of its largest
 settlement (of its range, at least N/(10 K_v)): the check of each step. ``--quick`` fits one
 soil to its FS_v = 3 pushovers only, with few evaluations (the test's path).
 
+A soil whose fit the store keeps (the map's ``evaluate_macro_fit`` record of today's reduced
+model revision, made by ``upliftlab study winkler_map --beds macro`` on the same pushovers) is
+read from it, with the fit's own wall time; ``--refit`` (or a store without it) fits again
+here.
+
 Writes ``MACRO_CALIBRATION.md`` and ``macro_calibration.json`` (the laws, with the store keys
 of the runs they came from) to ``--out`` (default ``results/bench/macro_calibration``);
 ``--write`` also rewrites the committed copies in ``benchmarks/``. It runs no continuum: it
-reads the store, and each fit takes one to a few minutes (a pushover of the law is
-milliseconds; the fit makes a few hundred of each).
+reads the store, and each fit takes ten to forty minutes (a pushover of the law is
+milliseconds; the fit makes a few hundred passes over every pushover).
 """
 
 from __future__ import annotations
@@ -66,6 +72,38 @@ def store_statics(store: Path) -> dict:
     return soils
 
 
+def stored_fits(store: Path) -> dict:
+    """{soil: (MacroCalibration, its pushovers, wall time s)} of the map's fits in ``store``
+    made with today's reduced model revision (the last one found per soil)."""
+    from upliftlab.comparisons.beds.macro import MacroCalibration, RotationPushover
+    from upliftlab.comparisons.framework.store import Store
+    from upliftlab.reduced import REVISION
+    from upliftlab.reduced.laws.macro import MacroElement
+
+    kept, fits = Store(store), {}
+    for key in kept.keys():
+        entry = kept.entry(key)
+        if not (entry["function"].endswith("winkler_map:evaluate_macro_fit")
+                and entry.get("models") == {"reduced": REVISION}
+                and "error" not in entry["record"]):
+            continue
+        params, record = entry["params"], entry["record"]
+        pushes = sorted((RotationPushover(p["N"], np.array(p["theta"]), np.array(p["M"]),
+                                          np.array(p["settlement"]), p["source"])
+                         for p in params["pushovers"]), key=lambda p: (p.N, len(p.theta)))
+        law = MacroElement(**record["law"])
+        cal = MacroCalibration(
+            law=law,
+            capacity_residuals=np.array(record["capacity_residuals"]),
+            moment_rms=np.array(record["moment_rms"]),
+            settlement_rms=np.array(record["settlement_rms"]),
+            load_misses=np.array(record["load_misses"]), sources=tuple(record["sources"]),
+            cost=record["cost"], evaluations=record["evaluations"],
+            details={"capacity": {"q0": law.cohesive_pressure, "q1": law.frictional_modulus}})
+        fits[params["soil"]] = (cal, pushes, record["wall_time_s"])
+    return fits
+
+
 def strength(table: dict) -> dict:
     """The macro-element's c, φ, γ of a continuum soil table (kPa, degrees, kN/m³)."""
     if table["model"] == "tresca":
@@ -75,8 +113,15 @@ def strength(table: dict) -> dict:
 
 
 def label(p, V_ult: float) -> str:
-    cyclic = np.any(np.diff(p.theta) < 0.0)
-    return f"FS_v {V_ult / p.N:.0f}, {'cycles' if cyclic else 'monotonic'}"
+    """"FS_v n, monotonic", "…, cycles" (growing amplitudes) or "…, k cycles at one
+    amplitude" (repeated: whether the footing shakes down)."""
+    theta = np.asarray(p.theta)
+    kind = "monotonic"
+    if np.any(np.diff(theta) < 0.0):
+        peaks = theta[1:-1][(theta[1:-1] > theta[:-2]) & (theta[1:-1] >= theta[2:])]
+        repeated = peaks.size > 1 and np.ptp(peaks) <= 1e-9 * np.max(np.abs(peaks))
+        kind = f"{peaks.size} cycles at one amplitude" if repeated else "cycles"
+    return f"FS_v {V_ult / p.N:.0f}, {kind}"
 
 
 def calibrate(soil: dict, width: float, evaluations: int):
@@ -134,7 +179,8 @@ def section(name: str, soil: dict, cal, seconds: float) -> str:
              "| pushover | moment rms (of its largest) | settlement rms (of its range) | "
              "largest miss of V (of N) |", "|---|---|---|---|"]
     for p, m, s, miss in zip(sorted(soil["pushovers"], key=lambda p: (p.N, len(p.theta))),
-                             cal.moment_rms, cal.settlement_rms, cal.load_misses):
+                             cal.moment_rms, cal.settlement_rms, cal.load_misses,
+                             strict=True):
         lines.append(f"| {label(p, soil['V_ult'])} | {m:.1%} | {s:.1%} | {miss:.1e} |")
     return "\n".join(lines) + "\n"
 
@@ -147,6 +193,8 @@ def main(argv=None) -> int:
     parser.add_argument("--evaluations", type=int, default=1500)
     parser.add_argument("--quick", action="store_true",
                         help="one soil, its FS_v = 3 pushovers, 30 evaluations")
+    parser.add_argument("--refit", action="store_true",
+                        help="fit again even where the store keeps the map's fit")
     args = parser.parse_args(argv)
     soils_asked = [s.strip() for s in args.soils.split(",") if s.strip()]
     if not soils_asked or any(s not in MODELS.values() for s in soils_asked):
@@ -171,12 +219,20 @@ def main(argv=None) -> int:
     width = 2.0
     sections, laws = [], {}
     budget = 30 if args.quick else args.evaluations
+    stored = {} if args.quick or args.refit else stored_fits(Path(args.store))
     for name in soils_asked:
-        say(f"{NAME}: fitting the {name} ({len(kept[name]['pushovers'])} pushovers, at most "
-            f"{budget} evaluations, estimated {budget * one_pass(kept[name], width):.0f} s)")
-        start = time.perf_counter()
-        cal = calibrate(kept[name], width, 30 if args.quick else args.evaluations)
-        sections.append(section(name, kept[name], cal, time.perf_counter() - start))
+        if name in stored:
+            cal, kept[name]["pushovers"], seconds = stored[name]
+            say(f"{NAME}: the {name}'s fit read from the store ({cal.evaluations} "
+                f"evaluations, {seconds:.0f} s when it was made)")
+            sections.append(section(name, kept[name], cal, seconds))
+        else:
+            say(f"{NAME}: fitting the {name} ({len(kept[name]['pushovers'])} pushovers, at "
+                f"most {budget} evaluations, estimated "
+                f"{budget * one_pass(kept[name], width):.0f} s)")
+            start = time.perf_counter()
+            cal = calibrate(kept[name], width, budget)
+            sections.append(section(name, kept[name], cal, time.perf_counter() - start))
         laws[name] = {"law": dataclasses.asdict(cal.law), "sources": list(cal.sources),
                       "moment_rms": cal.moment_rms.tolist(),
                       "settlement_rms": cal.settlement_rms.tolist()}

@@ -11,7 +11,7 @@ soil's macro-element fit; nothing is fitted here):
 
 - the **continuum**, run live in this process (explicit route, 16 across, kernels compiled
   before the clock starts, as the map's own runs are timed), with its settlement history;
-- the **macro-element** as the map runs it (Newmark at 1 ms, the fit's law, the point's K_v
+- the **macro-element** as the map runs it (Newmark at 0.25 ms, the fit's law, the point's K_v
   and K_r, the tie's sway spring, the soil's β K_v), with its settlement history; then the
   same run at the scene's coarsest sub-step (``force_step`` 0.1 of the weight: about one
   sub-step an iteration), the floor of what the element's update costs at this time step;

@@ -13,7 +13,7 @@ macro-element is a bed of the map's registry (``macro``,
 :mod:`upliftlab.comparisons.beds.macro_bed`): fitted once per soil to the store's rotation
 pushovers (nothing dynamic), put under each point's structure with the point's K_v and K_r, the
 footing's sway tie and the soil's Rayleigh β as its dashpot density β K_v/B, run on Newmark at
-1 ms (the map's ``options.macro_integrator`` and ``macro_dt``). Its error in each
+0.25 ms (the map's ``options.macro_integrator`` and ``macro_dt``). Its error in each
 measure is the map's: relative, with the map's floor (a tenth of the measure at the uplift
 threshold). The table gives, per soil and all together, the share of the points within 10 % in
 both peak θ and edge uplift and within 20 % in residual settlement, and the median error per

@@ -89,6 +89,7 @@ def compute_cycles(soil: str, fs: float, quick: bool) -> dict:
     from upliftlab.comparisons.beds import BASE_SCENE, base_table, bed_foundation
     from upliftlab.comparisons.beds.continuum_points import evaluate_continuum
     from upliftlab.comparisons.beds.macro_bed import macro_rocking
+    from upliftlab.comparisons.beds.pushover import repeated_cycles
     from upliftlab.comparisons.framework.sweep import run_sweep
     from upliftlab.comparisons.studies.winkler_map.grid import STUDY
     from upliftlab.comparisons.studies.winkler_map.plan import point_key_of, reference, scene_of
@@ -99,7 +100,7 @@ def compute_cycles(soil: str, fs: float, quick: bool) -> dict:
     grid, options, statics, impedances, pushovers, store = _inputs(soil, (fs,), False)
     st, base = statics[soil], base_table()
     N = st.V_ult / fs
-    path_options = options if quick else replace(options, cycle_ratios=(AMPLITUDE,) * CYCLES)
+    path_options = options if quick else repeated_cycles(options, AMPLITUDE, CYCLES)
     point = rocking_points(base, soil, N, path_options)[0]
     if quick:
         record = store.get(point_key_of(point, evaluate_continuum))

@@ -21,7 +21,7 @@ Ricker pulses (0.25 and 0.6 s) at 1.5 and 3 times the uplift acceleration (24 po
   the macro-element's scene of the point (:func:`upliftlab.comparisons.opensees.tcl.
   tcl_numbers`: FS, V_ult, L = B, Kv = 12 K_r/L² (the section's rocking at its uplift onset
   the element's K_r), K_h of the element, R_v = 0.1, dL = L/40, the tie's sway dashpot, the
-  structure and the motion at the element's step of 1 ms), and again with Kv = K_v (the
+  structure and the motion at the element's step of 0.25 ms), and again with Kv = K_v (the
   section's vertical stiffness the element's, its rocking then a uniform bed's, 0.21 K_r on
   these points), measured as the map measures a bed:
   peak |θ|, the larger gap under its edges (the section's own footing and soil surface),

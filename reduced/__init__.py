@@ -11,7 +11,11 @@ in :mod:`.kernels`.
 # the
 #: model's numbers, so that stored records of the old numbers are no longer read; an edit that
 #: changes no number leaves it (stored records are then checked by a re-run sample instead).
-REVISION = 2
+REVISION = 3
+# 3: the macro-element remembers the largest mobilisation each side (the sign of M) has
+#    reached, and reloading below it is up to 1 + μ times stiffer in its plastic part (μ fitted, to
+#    repeated cycles besides the others), so that a footing cycled at one amplitude shakes
+#    down; its fits move; the other laws' numbers do not (μ = 0 is revision 2's law).
 # 2: the macro-element's flow keeps a fitted share δ of the normal's heave and scales its
 #    settlement coupling by s^ε (both fitted; δ = 1, ε = 0 is revision 1's law), so its fits
 #    move; the other laws' numbers do not.

@@ -390,7 +390,9 @@ CALIBRATE = ["calibrate", "strip_footing_clay", "--mesh", "elements_across=4", "
 def test_an_interrupted_calibration_keeps_its_continuum_runs(tmp_path):
     """SIGTERM while the fit runs (its first progress line): exit 130, one line naming the
     command that resumes it, no lock, no part file, no completion marker, no result files;
-    the store keeps the four continuum runs it made (each a whole record) and the fit's
+    the store keeps the five continuum runs it made (the stiffness, the vertical pushover and
+    the three rotation pushovers at FS_v 3: monotonic, cycles and repeated cycles; each a whole
+    record) and the fit's
     evaluations are kept in fit-cache.npz, which the line names."""
     out = tmp_path / "cal"
     code, err, tag = _interrupt([*CALIBRATE, "--out", str(out)], tmp_path, _line("fit: "),
@@ -401,5 +403,5 @@ def test_an_interrupted_calibration_keeps_its_continuum_runs(tmp_path):
     assert _leftovers(tmp_path) == [] and not (out / "upliftlab-run.json").exists()
     assert not (out / "calibration.json").exists()
     records = list((out / "store").rglob("*.json"))
-    assert len(records) == 4 and all(json.loads(p.read_text()) for p in records)
+    assert len(records) == 5 and all(json.loads(p.read_text()) for p in records)
     assert (out / "fit-cache.npz").is_file() and "evaluations kept in fit-cache.npz" in line

@@ -55,7 +55,8 @@ def test_its_statics_meet_their_closed_forms(calibrated):
     assert abs(statics["K_r"] / K_R - 1.0) <= 0.02, statics
     assert statics["plateau"] <= 0.02
     assert record["capacity_line"]["q1"] == 0.0
-    assert [p["label"] for p in record["pushovers"]] == ["FS_v 3, monotonic", "FS_v 3, cycles"]
+    assert [p["label"] for p in record["pushovers"]] == ["FS_v 3, monotonic", "FS_v 3, cycles",
+                                                         "FS_v 3, repeated"]
     assert all(p["load_miss"] <= 1e-6 for p in record["pushovers"])
 
 
@@ -72,7 +73,7 @@ def test_its_overrides_put_that_law_in_the_reduced_model(calibrated):
     assert law.rocking_stiffness == pytest.approx(record["statics"]["K_r"], rel=1e-12)
     for key in ("initial_size", "hardening_settlement", "interior_modulus",
                 "interior_exponent", "settlement_coupling", "rounding_ratio", "flow_dilatancy",
-                "coupling_exponent"):
+                "coupling_exponent", "memory_modulus"):
         assert getattr(law, key) == pytest.approx(record["law"][key], rel=1e-12), key
     assert sorted(p.name for p in out.iterdir()) == ["CALIBRATION.md", "calibration.json",
                                                      "fit-cache.npz", "store",

@@ -60,35 +60,58 @@ def test_pushover_at_constant_load_is_the_uplift_closed_form():
     np.testing.assert_allclose(M, closed, rtol=1e-6, atol=1e-9)
 
 
-def test_calibration_reproduces_a_law_of_known_parameters():
-    """Reference: pushovers made by a law of stated parameters (a monotonic one and a cycle,
-    at two loads). The calibration, started elsewhere, comes back to those parameters within
-    1 % (measured: 1e-4), and its pushovers to theirs within 0.1 % of the largest moment and
-    of the settlement's range."""
-    truth = MacroElement(**ELASTIC, cohesion=50.0, initial_size=0.75,
-                         hardening_settlement=0.005, interior_modulus=2.0,
-                         interior_exponent=1.2, settlement_coupling=0.3, rounding_ratio=0.5)
+KNOWN = MacroElement(**ELASTIC, cohesion=50.0, initial_size=0.75, hardening_settlement=0.005,
+                     interior_modulus=2.0, interior_exponent=1.2, settlement_coupling=0.3,
+                     rounding_ratio=0.5, memory_modulus=10.0)
+FITTED = ("initial_size", "hardening_settlement", "interior_modulus", "interior_exponent",
+          "settlement_coupling", "rounding_ratio", "memory_modulus")
+
+
+def _known_pushovers():
+    """Pushovers made by :data:`KNOWN` at FS 2.5 and 5: a monotonic one to 8 θ_on, a cycle to
+    ±4 θ_on and two repeated cycles at ±2 θ_on (the path that identifies the memory's μ)."""
     theta_on = 2e-3
     mono = np.linspace(0, 8 * theta_on, 9)
     cycle = np.concatenate([np.linspace(0, 4, 5), np.linspace(4, -4, 9),
                             np.linspace(-4, 0, 5)[1:]]) * theta_on
+    repeated = np.concatenate([[0.0]] + [np.array([1, 2, 1, 0, -1, -2, -1, 0.0])] * 2) * theta_on
     pushes = []
     for fs in (2.5, 5.0):
-        N = truth.ultimate_load / fs
-        for path in (mono, cycle):
-            M, s = macro_pushover(truth, N, path)
+        N = KNOWN.ultimate_load / fs
+        for path in (mono, cycle, repeated):
+            M, s = macro_pushover(KNOWN, N, path)
             pushes.append(RotationPushover(N, path, M, s, f"fs {fs}"))
-    cal = calibrate_macro(pushes, width=B, V_ult=truth.ultimate_load,
+    return pushes
+
+
+def _recovers_the_known_law(**fit):
+    pushes = _known_pushovers()
+    cal = calibrate_macro(pushes, width=B, V_ult=KNOWN.ultimate_load,
                           K_v=ELASTIC["vertical_stiffness"], K_r=ELASTIC["rocking_stiffness"],
-                          cohesion=50.0, max_evaluations=700)
-    for name in ("initial_size", "hardening_settlement", "interior_modulus",
-                 "interior_exponent", "settlement_coupling", "rounding_ratio"):
-        assert getattr(cal.law, name) == pytest.approx(getattr(truth, name), rel=1e-2), name
+                          cohesion=50.0, **fit)
+    for name in FITTED:
+        assert getattr(cal.law, name) == pytest.approx(getattr(KNOWN, name), rel=1e-2), name
     for p in pushes:
         M, s = macro_pushover(cal.law, p.N, p.theta)
         assert np.max(np.abs(M - p.M)) <= 1e-3 * np.max(np.abs(p.M))
         change = p.settlement - p.settlement[0]
         assert np.max(np.abs((s - s[0]) - change)) <= 1e-3 * max(np.ptp(change), 2e-3)
+
+
+def test_calibration_returns_to_a_law_of_known_parameters():
+    """Reference: pushovers made by a law of stated parameters (:func:`_known_pushovers`; its
+    memory's μ inside the fit's bounds). Started 7–25 % away in each parameter, the fit comes
+    back to them within 1 %, and its pushovers to theirs within 0.1 % of the largest moment
+    and of the settlement's range. (From the fit's own start: the slow test below.)"""
+    near = (0.7, np.log10(0.004), np.log10(2.4), 1.0, 0.25, 0.6, 0.9, 0.2, np.log10(8.0))
+    _recovers_the_known_law(start=near, max_evaluations=400)
+
+
+@pytest.mark.slow
+def test_calibration_finds_a_law_of_known_parameters_from_its_own_start():
+    """As above, from the fit's default start and its survey (measured: every parameter
+    within 2e-5 of the truth after 748 evaluations, 5 min on this machine)."""
+    _recovers_the_known_law(max_evaluations=1600)
 
 
 def test_a_calibration_without_a_monotonic_pushover_is_refused():

@@ -229,6 +229,8 @@ def test_the_implicit_integrators_carry_it_as_rk4_does(integrator, dt, tolerance
     ({"flow_dilatancy": 1.5}, "foundation.flow_dilatancy"),
     ({"flow_dilatancy": -0.1}, "foundation.flow_dilatancy"),
     ({"coupling_exponent": 9.0}, "foundation.coupling_exponent"),
+    ({"memory_modulus": -1.0}, "foundation.memory_modulus"),
+    ({"memory_modulus": 2e6}, "foundation.memory_modulus"),
 ])
 def test_a_scene_it_cannot_take_is_refused_with_its_field(change, field):
     with pytest.raises(InputError, match=field.replace(".", r"\.")):

@@ -8,15 +8,16 @@ What it is fitted to, in order, each step a check with its residuals kept:
    continuum's own V_ult/B at B′ = B, fitted by least squares to the largest moment of each
    monotonic rotation pushover (B′ = B − 2 M_max/N). A line that would fall with B′ is held
    flat (the cohesive term alone, as on the clay).
-3. **Plasticity**: ζ0, κ_ref, h0, γ, χ, λ_ρ, δ and ε by least squares to the moment and the
-   settlement along every stored rotation pushover of the soil, monotonic and cyclic, at every
-   FS_v: residuals M/M_max and Δs/max(Δs, N/(10 K_v)), the settlement counted from θ = 0 (the law
-   starts elastic under N, the continuum has yielded under it). The objective is piecewise
-   smooth (it kinks where a sub-step's load turns) and has more than one minimum (h0 and γ
-   trade off), so the fit surveys the bounds first (a seeded Latin hypercube) and polishes the
-   four best points with scipy's dogleg method (box bounds, finite differences of 1 % in the
-   fitted variables), keeping the best. A fitted law that cannot hold N on a pushover within
-   ``LOAD_TOLERANCE`` is refused.
+3. **Plasticity**: ζ0, κ_ref, h0, γ, χ, λ_ρ, δ, ε and the memory's μ by least squares to the
+   moment and the settlement along every stored rotation pushover of the soil, monotonic and
+   cyclic (growing amplitudes, and repeated cycles at one, which say whether the footing
+   shakes down), at every FS_v: residuals M/M_max and Δs/max(Δs, N/(10 K_v)), the settlement
+   counted from θ = 0 (the law starts elastic under N, the continuum has yielded under it).
+   The objective is piecewise smooth (it kinks where a sub-step's load turns) and has more
+   than one minimum (h0 and γ trade off), so the fit surveys the bounds first (a seeded Latin
+   hypercube) and polishes the four best points with scipy's dogleg method (box bounds,
+   finite differences of 1 % in the fitted variables), keeping the best. A fitted law that
+   cannot hold N on a pushover within ``LOAD_TOLERANCE`` is refused.
 
 No dynamic run enters: the map is the test. :func:`macro_pushover` pushes the law over a
 rotation path at constant N (the continuum's pushover, with u held).
@@ -44,14 +45,15 @@ __all__ = ["RotationPushover", "MacroCalibration", "capacity_line", "macro_pusho
            "LOAD_TOLERANCE", "FIT_SECONDS_PER_STEP", "macro_strength"]
 
 #: The fitted plastic parameters and their bounds: ζ0, log10 κ_ref (m), log10 h0, γ, χ, λ_ρ,
-#: δ (the flow's dilatancy: 1 associated) and ε (the coupling's exponent: 0 everywhere alike).
+#: δ (the flow's dilatancy: 1 associated), ε (the coupling's exponent: 0 everywhere alike) and
+#: log10 μ (the memory's stiffening of reloading: 0.01, none to speak of, to 1e4, elastic).
 #: χ keeps to the range a scene may give (:data:`...scenes.laws.macro.MAX_SETTLEMENT_COUPLING`:
 #: the pushovers, pure rocking, would accept a χ whose dynamic runs, with sway, fail).
 PLASTIC_BOUNDS = (("initial_size", 0.2, 0.999), ("hardening_settlement", -4.0, 0.0),
                   ("interior_modulus", -3.0, 3.0), ("interior_exponent", 0.2, 4.0),
                   ("settlement_coupling", 0.0, MAX_SETTLEMENT_COUPLING),
                   ("rounding_ratio", 0.0, 1.0), ("flow_dilatancy", 0.0, 1.0),
-                  ("coupling_exponent", 0.0, 4.0))
+                  ("coupling_exponent", 0.0, 4.0), ("memory_modulus", -2.0, 4.0))
 #: The survey of the plastic parameters before the fit: this many points of a seeded Latin
 #: hypercube in the bounds (and the start); the best ``POLISHED`` of them are polished by least
 #: squares and the better fit kept.
@@ -65,7 +67,7 @@ POLISHED = 4
 #: the same with either (473 evaluations, cost 2.57; the sand 315, 2.65; every parameter
 #: alike).
 SETTLEMENT_FLOOR = 0.1
-_LOGS = ("hardening_settlement", "interior_modulus")
+_LOGS = ("hardening_settlement", "interior_modulus", "memory_modulus")
 #: Seconds per step of the law's rotation pushover in the fit, an upper bound for a cost
 #: estimate (each evaluation pushes the law over every continuum path): the clay's first
 #: calibration took 2077 s for 346 evaluations of 248 steps, 24 ms a step; the χ-bounded one
@@ -201,7 +203,8 @@ def evaluation_bound(max_evaluations: int) -> int:
 
 def calibrate_macro(pushovers: Sequence[RotationPushover], *, width: float, V_ult: float,
                     K_v: float, K_r: float, cohesion: float, friction_angle: float = 0.0,
-                    unit_weight: float = 0.0, start=(0.7, -2.0, 0.0, 1.0, 0.2, 0.5, 1.0, 0.0),
+                    unit_weight: float = 0.0,
+                    start=(0.7, -2.0, 0.0, 1.0, 0.2, 0.5, 1.0, 0.0, 1.0),
                     max_evaluations: int = 200, progress=None, carry: float = 0.0,
                     length_unit: float = 1.0, cache=None) -> MacroCalibration:
     """The macro-element of a soil from its continuum statics (module docstring): the

@@ -35,7 +35,7 @@ __all__ = ["PLASTIC_KEYS", "element_keys", "build_macro", "gazetas_sway_stiffnes
 #: The law's fields that a scene's ``[foundation]`` takes by the same name.
 PLASTIC_KEYS = ("initial_size", "hardening_settlement", "interior_modulus", "interior_exponent",
                 "settlement_coupling", "rounding_ratio", "sliding_ratio", "flow_dilatancy",
-                "coupling_exponent")
+                "coupling_exponent", "memory_modulus")
 
 
 def gazetas_sway_stiffness(shear_modulus: float, poisson: float) -> float:

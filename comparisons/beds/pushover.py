@@ -14,7 +14,7 @@ from __future__ import annotations
 import copy
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -22,8 +22,9 @@ from ...reduced import build_model as build_reduced, rocking_pushover, uplift_on
 from ...scenes import Scene, scene_from_dict
 from .stiffness import Calibration
 
-__all__ = ["FLOORS", "FREE_MOTION", "rotation_path", "cyclic_path", "BedResponse", "bed_scene",
-           "pushover_record", "bed_response", "bed_rocking", "path_values"]
+__all__ = ["FLOORS", "FREE_MOTION", "rotation_path", "cyclic_path", "repeated_cycles",
+           "BedResponse", "bed_scene", "pushover_record", "bed_response", "bed_rocking",
+           "path_values"]
 
 #: Error floors, as fractions: a reference smaller than its floor is measured against the floor
 #: instead (moments × N B, contact length × B, settlement × the continuum's settlement under N,
@@ -44,6 +45,13 @@ def rotation_path(theta_on: float, options) -> np.ndarray:
     ratios += list(np.geomspace(1.5, top, options.monotonic_steps)) + list(options.theta_ratios)
     ratios = np.unique(np.round(ratios, 10))
     return theta_on * ratios
+
+
+def repeated_cycles(options, ratio: float, cycles: int):
+    """``options`` (any record with ``cycle_ratios``) whose :func:`cyclic_path` is ``cycles``
+    full cycles at one amplitude, ``ratio`` θ_on: the path that says whether a footing
+    shakes down."""
+    return replace(options, cycle_ratios=(float(ratio),) * int(cycles))
 
 
 def cyclic_path(theta_on: float, options) -> np.ndarray:

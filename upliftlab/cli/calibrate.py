@@ -86,7 +86,7 @@ def _fs_v(text: str | None):
     return check_fs_v(values)
 
 
-def _cost(scene, fs_count: int, evaluations: int) -> Cost:
+def _cost(scene, fs_v, evaluations: int) -> Cost:
     """The calibration's cost: the continuum runs one after another, then the fit."""
     from ..comparisons.beds.macro import FIT_SECONDS_PER_STEP, evaluation_bound
     from ..comparisons.studies.macro_calibration import rotation_steps
@@ -95,7 +95,7 @@ def _cost(scene, fs_count: int, evaluations: int) -> Cost:
     from .continuum import _grid
 
     dofs, _ = _grid(scene, scene.continuum or ContinuumOptions())
-    steps = rotation_steps(fs_count)
+    steps = rotation_steps(fs_v)
     runs = [continuum_cost(analysis="pushover", steps=n, step=0.0, dofs=dofs, snapshots=0)
             for n in (1, VERTICAL_STEPS, steps)]
     bound = evaluation_bound(evaluations)
@@ -190,7 +190,7 @@ def calibrate_command(args) -> int:
     macro_strength(scene)  # a soil without strength is refused before any run
     check_reduced_scene(scene)  # as is a structure that cannot carry the element
     check_reach(scene, estimated_capacity(scene), fs_v, estimated=True)
-    cost = _cost(scene, len(fs_v), evaluations)
+    cost = _cost(scene, fs_v, evaluations)
     check_budget(cost, scene.analysis.max_steps, scene.analysis.max_memory,
                  time_budget(seconds, CONTINUUM_BUDGET_SECONDS))
     command = shlex.join(["upliftlab", *getattr(args, "argv", sys.argv[1:])])

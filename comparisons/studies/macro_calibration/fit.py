@@ -30,7 +30,8 @@ from ...beds.continuum_points import evaluate_continuum
 from ...beds.macro import MacroCalibration, RotationPushover, calibrate_macro
 from ...framework.store import Store, point_key
 from ...framework.sweep import run_sweep
-from .plan import check_weight, macro_strength, pushover_points, statics_points
+from .plan import (check_weight, macro_strength, pushover_kinds, pushover_points,
+                   statics_points)
 
 __all__ = ["SceneCalibration", "calibrate_scene", "FitCache", "fit_stamp", "PLATEAU_TOLERANCE",
            "STUDY", "CARRY_CEILING"]
@@ -137,10 +138,6 @@ def _statics(scene, store: Store, workers: int, progress) -> tuple[float, float,
     return float(stiffness["K_v"]), float(stiffness["K_r"]), V_ult, plateau
 
 
-def _label(fs: float, cyclic: bool) -> str:
-    return f"FS_v {fs:g}, {'cycles' if cyclic else 'monotonic'}"
-
-
 def calibrate_scene(scene, store: Store, *, fs_v: Sequence[float], evaluations: int,
                     workers: int = 1, progress=None, fit_progress: Callable | None = None,
                     cache=None) -> SceneCalibration:
@@ -158,15 +155,14 @@ def calibrate_scene(scene, store: Store, *, fs_v: Sequence[float], evaluations: 
     statics_time = time.perf_counter() - started
     records = _sweep(points, store, workers, progress)
     pushovers, left_out, kept_fs = [], [], []
-    for k, (point, record) in enumerate(zip(points, records)):
-        fs, cyclic = fs_v[k // 2], bool(k % 2)
+    for (fs, kind), point, record in zip(pushover_kinds(fs_v), points, records):
         if "error" in record:
-            left_out.append((fs, "cycles" if cyclic else "monotonic", str(record["error"])))
+            left_out.append((fs, kind, str(record["error"])))
             continue
         pushovers.append(RotationPushover(
             float(point["N"]), np.asarray(record["theta"], dtype=float),
             np.asarray(record["M"], dtype=float), np.asarray(record["settlement"], dtype=float),
-            _label(fs, cyclic)))
+            f"FS_v {fs:g}, {kind}"))
         kept_fs.append(fs)
     if not any(np.all(np.diff(p.theta) >= 0.0) for p in pushovers):
         raise InputError(f"--fs-v = {','.join(f'{v:g}' for v in fs_v)}: the soil could not "

@@ -100,11 +100,13 @@ def law_table(law, length_unit: str = "") -> list[str]:
     :class:`~upliftlab.reduced.laws.macro.MacroElement`) as a Markdown table's three lines;
     ``length_unit`` is κ_ref's, written in its header when given."""
     kappa = f"κ_ref ({length_unit})" if length_unit else "κ_ref"
-    return [f"| ζ0 | {kappa} | h0 | γ | χ | λ_ρ | δ | ε |", "|---|---|---|---|---|---|---|---|",
+    return [f"| ζ0 | {kappa} | h0 | γ | χ | λ_ρ | δ | ε | μ |",
+            "|---|---|---|---|---|---|---|---|---|",
             f"| {law.initial_size:.3f} | {law.hardening_settlement:.3g} | "
             f"{law.interior_modulus:.3g} | {law.interior_exponent:.3f} | "
             f"{law.settlement_coupling:.3f} | {law.rounding_ratio:.3f} | "
-            f"{law.flow_dilatancy:.3f} | {law.coupling_exponent:.3f} |"]
+            f"{law.flow_dilatancy:.3f} | {law.coupling_exponent:.3f} | "
+            f"{law.memory_modulus:.3g} |"]
 
 
 def calibration_markdown(cal: SceneCalibration, run_line: str, command: str) -> str:
@@ -119,7 +121,9 @@ def calibration_markdown(cal: SceneCalibration, run_line: str, command: str) -> 
              f"and mesh: the stiffness in full contact, a vertical pushover to "
              f"{SETTLEMENT_RATIO:g} B in {VERTICAL_STEPS} steps, and at each FS_v a monotonic "
              f"rotation pushover to {max(PATHS.theta_ratios):g} θ_on and cycles at "
-             f"{', '.join(f'{r:g}' for r in PATHS.cycle_ratios)} θ_on. Nothing dynamic "
+             f"{', '.join(f'{r:g}' for r in PATHS.cycle_ratios)} θ_on, and at FS_v "
+             f"{' and '.join(f'{v:g}' for v in PATHS.repeat_fs_v)} {PATHS.repeat_cycles} "
+             f"cycles at {PATHS.repeat_ratio:g} θ_on. Nothing dynamic "
              "enters: the scene's own dynamic runs are the test.", "",
              f"K_v {cal.K_v:.6g}, K_r {cal.K_r:.6g}, V_ult {cal.V_ult:.6g} (the vertical "
              f"pushover's last step rose {cal.plateau:.2%} of it; at most "

@@ -23,10 +23,11 @@ from ....checks import InputError
 from ....scenes.soil import SOIL_MODELS, UNDRAINED
 from ...beds.continuum_points import floats
 from ...beds.macro import macro_strength
-from ...beds.pushover import cyclic_path, rotation_path
+from ...beds.pushover import cyclic_path, repeated_cycles, rotation_path
 
 __all__ = ["PathOptions", "PATHS", "DEFAULT_FS_V", "SETTLEMENT_RATIO", "VERTICAL_STEPS",
            "MAX_ROTATION", "macro_strength", "check_fs_v", "statics_points", "pushover_points",
+           "pushover_kinds",
            "rotation_steps", "estimated_capacity", "check_reach", "check_weight",
            "MAX_CAPACITY_MULTIPLE"]
 
@@ -39,12 +40,17 @@ class PathOptions:
     """The rotation paths (:func:`~...beds.pushover.rotation_path`, :func:`cyclic_path`):
     ``theta_ratios`` θ/θ_on on the monotonic path, reached in ``monotonic_steps`` geometric
     steps beyond 1.5 θ_on; ``cycle_ratios`` the amplitudes of the cycles, ``cycle_steps``
-    steps per quarter cycle."""
+    steps per quarter cycle; at each FS_v of ``repeat_fs_v`` that the calibration pushes
+    over, also ``repeat_cycles`` full cycles at ``repeat_ratio`` θ_on (whether the footing
+    shakes down: the element's memory)."""
 
     theta_ratios: tuple[float, ...] = (2.0, 5.0, 10.0, 30.0)
     monotonic_steps: int = 14
     cycle_ratios: tuple[float, ...] = (2.0, 5.0, 10.0)
     cycle_steps: int = 4
+    repeat_fs_v: tuple[float, ...] = (3.0, 5.0)
+    repeat_cycles: int = 6
+    repeat_ratio: float = 2.0
 
 
 #: The map's paths (its ``Options`` defaults): the calibration of its two soils was made on
@@ -132,19 +138,30 @@ def _onset(scene, N: float) -> float:
     return half_plane_onset_rotation(N, scene.foundation.width, G, soil.poisson_ratio)
 
 
+def pushover_kinds(fs_v: Sequence[float], paths: PathOptions = PATHS) -> list[tuple]:
+    """(FS_v, kind) of each of :func:`pushover_points`, in their order: per FS_v
+    ``monotonic``, ``cycles`` and, at an FS_v of ``paths.repeat_fs_v``, ``repeated``."""
+    return [(fs, kind) for fs in fs_v for kind in
+            ("monotonic", "cycles", *(("repeated",) if fs in paths.repeat_fs_v else ()))]
+
+
+def _path(kind: str, theta_on: float, paths: PathOptions):
+    if kind == "monotonic":
+        return rotation_path(theta_on, paths)
+    if kind == "cycles":
+        return cyclic_path(theta_on, paths)
+    return cyclic_path(theta_on, repeated_cycles(paths, paths.repeat_ratio, paths.repeat_cycles))
+
+
 def pushover_points(scene, V_ult: float, fs_v: Sequence[float],
                     paths: PathOptions = PATHS) -> list[dict]:
-    """Per FS_v, the monotonic rotation pushover, then the cyclic one, under N = V_ult/FS_v,
-    as points of :func:`evaluate_continuum`. A path beyond :data:`MAX_ROTATION` is refused."""
-    table, points = _table(scene), []
+    """The rotation pushovers of :func:`pushover_kinds` under N = V_ult/FS_v, as points of
+    :func:`evaluate_continuum`. A path beyond :data:`MAX_ROTATION` is refused."""
+    table = _table(scene)
     check_reach(scene, V_ult, fs_v, paths)
-    for fs in fs_v:
-        N = V_ult / fs
-        theta_on = _onset(scene, N)
-        for path in (rotation_path(theta_on, paths), cyclic_path(theta_on, paths)):
-            points.append({"scene": table, "soil": "scene", "analysis": "rotation",
-                           "N": float(N), "rotations": floats(path)})
-    return points
+    return [{"scene": table, "soil": "scene", "analysis": "rotation", "N": float(V_ult / fs),
+             "rotations": floats(_path(kind, _onset(scene, V_ult / fs), paths))}
+            for fs, kind in pushover_kinds(fs_v, paths)]
 
 
 def check_weight(scene, V_ult: float, ceiling: float) -> None:
@@ -158,8 +175,7 @@ def check_weight(scene, V_ult: float, ceiling: float) -> None:
                          f"{V_ult:.4g} on this soil; valid range is [{low:.4g}, {high:.4g})")
 
 
-def rotation_steps(fs_count: int, paths: PathOptions = PATHS) -> int:
-    """The steps of every rotation pushover of ``fs_count`` FS_v values (their lengths do not
+def rotation_steps(fs_v: Sequence[float], paths: PathOptions = PATHS) -> int:
+    """The steps of every rotation pushover at the FS_v values ``fs_v`` (their lengths do not
     depend on N)."""
-    one = len(rotation_path(1.0, paths)) + len(cyclic_path(1.0, paths))
-    return fs_count * one
+    return sum(len(_path(kind, 1.0, paths)) for _, kind in pushover_kinds(fs_v, paths))

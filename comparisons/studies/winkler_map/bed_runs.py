@@ -86,10 +86,11 @@ def run_bed(point: Mapping, foundation: Mapping, analysis: Mapping | None = None
 
 def element_analysis(options) -> dict:
     """The ``[analysis]`` keys of the macro-element's runs on the map: ``options.
-    macro_integrator`` at steps of at most ``options.macro_dt`` (Newmark at 1 ms by default:
+    macro_integrator`` at steps of at most ``options.macro_dt`` (Newmark at 0.25 ms by default:
     on the half-plane the footing's own mass on the tie's dashpot is an overdamped mode that
-    holds RK4 to about 2e-5 s; Newmark carries the element at 1 ms within 1e-3 of RK4,
-    ``tests/test_winkler_map_macro.py``), shortened where an implicit integrator could not
+    holds RK4 to about 2e-5 s; Newmark carries the element at 0.25 ms within 1e-3 of RK4,
+    ``tests/test_winkler_map_macro.py``; at 1 ms revision 3's sharp reloading moved the clay's
+    residual settlement by 2.1e-3), shortened where an implicit integrator could not
     resolve the point's shortest bonded period (:func:`_resolved`)."""
     return {"integrator": options.macro_integrator, "dt": float(options.macro_dt)}
 

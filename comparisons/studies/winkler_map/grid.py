@@ -82,7 +82,10 @@ class Options:
     ``macro_fs_v``: the FS_v whose rotation pushovers (monotonic and cyclic) the macro-element
     is fitted to, once per soil whatever the grid's FS_v (the whole map's four), in at most
     ``macro_evaluations`` evaluations of the fit (:mod:`.macro_points`); its runs take
-    ``macro_integrator`` at ``macro_dt`` (s) (:func:`.bed_runs.element_analysis`).
+    ``macro_integrator`` at ``macro_dt`` (s) (:func:`.bed_runs.element_analysis`);
+    ``macro_repeat_fs_v``: the FS_v at which it is also fitted to ``repeat_cycles`` full
+    cycles at ``repeat_ratio`` θ_on, the pushover that says whether the footing shakes down
+    (the element's memory, revision 3).
     """
 
     elements_across: int = 16
@@ -107,7 +110,10 @@ class Options:
     macro_fs_v: tuple[float, ...] = (2.0, 3.0, 5.0, 10.0)
     macro_evaluations: int = 1500
     macro_integrator: str = "newmark"
-    macro_dt: float = 1e-3
+    macro_dt: float = 2.5e-4
+    macro_repeat_fs_v: tuple[float, ...] = (3.0, 5.0)
+    repeat_cycles: int = 6
+    repeat_ratio: float = 2.0
 
 
 FULL_GRID = Grid()
@@ -117,7 +123,7 @@ FULL_OPTIONS = Options()
 FAST_OPTIONS = Options(elements_across=4, pulse_tail=0.6, vertical_steps=8,
                        theta_ratios=(2.0, 5.0), monotonic_steps=3, cycle_ratios=(2.0,),
                        cycle_steps=2, energy=True, macro_fs_v=(2.0, 5.0),
-                       macro_evaluations=30)
+                       macro_evaluations=30, macro_repeat_fs_v=(5.0,), repeat_cycles=2)
 
 
 def grid_with(base: Grid, assignments: Sequence[str]) -> Grid:
@@ -229,4 +235,11 @@ def check_options(options: Options, beds: Sequence[str]) -> Options:
     checks.one_of("options.macro_integrator", options.macro_integrator,
                   ("newmark", "hht", "rk4", "abm4"))
     checks.in_range("options.macro_dt", options.macro_dt, 0.0, 0.01, low_open=True)
+    if options.macro_repeat_fs_v:
+        checks.ascending("options.macro_repeat_fs_v", options.macro_repeat_fs_v, 1.0, 100.0,
+                         low_open=True)
+    cycles = checks.integer_at_least("options.repeat_cycles", options.repeat_cycles, 2)
+    if cycles > 50:
+        raise InputError(f"options.repeat_cycles = {cycles}: valid range is [2, 50]")
+    checks.in_range("options.repeat_ratio", options.repeat_ratio, 0.0, 1000.0, low_open=True)
     return options

@@ -3,8 +3,9 @@
 A soil's point holds what :func:`~upliftlab.comparisons.beds.macro.calibrate_macro` is fitted
 to, as numbers: the footing's width, the soil's statics (K_v, K_r, V_ult), its strength (the
 capacity's form: c, φ, γ, :func:`~upliftlab.comparisons.beds.macro.soil_strength`), the
-continuum's rotation pushovers at ``options.macro_fs_v`` (monotonic and cyclic, each with the
-store key of its run) and the fit's ``evaluations``. Its record is the fitted law's fields and
+continuum's rotation pushovers at ``options.macro_fs_v`` (monotonic and cyclic) and at
+``options.macro_repeat_fs_v`` (repeated cycles at one amplitude), each with the store key of
+its run, and the fit's ``evaluations``. Its record is the fitted law's fields and
 the fit's checks (the capacity line's residuals, the moment and settlement misfits and the
 largest miss of N per pushover, the cost), or ``error`` where the fit was refused. The fit is
 deterministic, so a record made again reproduces it; it takes minutes (a few hundred
@@ -27,6 +28,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from ...beds.pushover import repeated_cycles
 from ...beds.macro import (FIT_SECONDS_PER_STEP, RotationPushover, calibrate_macro,
                            evaluation_bound)
 from ...framework.sources import import_closure, source_name
@@ -34,6 +36,7 @@ from ...framework.store import point_function
 from .rocking import rocking_points
 
 __all__ = ["macro_fit_point", "evaluate_macro_fit", "fit_seconds", "fit_rotation_points",
+           "fit_rotation_fs",
            "soil_fit_points"]
 
 
@@ -70,13 +73,28 @@ def fit_seconds(rotations: Sequence[Mapping], evaluations: int) -> float:
     return evaluation_bound(evaluations) * steps * FIT_SECONDS_PER_STEP
 
 
+def fit_rotation_fs(options) -> list[tuple[float, bool]]:
+    """(FS_v, whether the map's statics rows push over the same path) of each of a soil's
+    :func:`fit_rotation_points`, in their order."""
+    return [(fs, True) for fs in options.macro_fs_v for _ in range(2)] + \
+        [(fs, False) for fs in options.macro_repeat_fs_v]
+
+
 def fit_rotation_points(soils: Sequence[str], options, base: Mapping,
                         loads: Mapping) -> list[dict]:
-    """The continuum's rotation pushovers the fits are made from: per soil, per FS_v of
-    ``options.macro_fs_v``, the cyclic and the monotonic one (:func:`.rocking.rocking_points`,
-    the map's own); ``loads[soil]`` its V_ult."""
-    return [p for soil in soils for fs in options.macro_fs_v
-            for p in rocking_points(base, soil, loads[soil] / fs, options)]
+    """The continuum's rotation pushovers the fits are made from, per soil: per FS_v of
+    ``options.macro_fs_v`` the cyclic and the monotonic one (:func:`.rocking.rocking_points`,
+    the map's own), then per FS_v of ``options.macro_repeat_fs_v`` ``options.repeat_cycles``
+    full cycles at ``options.repeat_ratio`` θ_on (whether the footing shakes down);
+    ``loads[soil]`` its V_ult."""
+    repeated = repeated_cycles(options, options.repeat_ratio, options.repeat_cycles)
+    points = []
+    for soil in soils:
+        for fs in options.macro_fs_v:
+            points += rocking_points(base, soil, loads[soil] / fs, options)
+        points += [rocking_points(base, soil, loads[soil] / fs, repeated)[0]
+                   for fs in options.macro_repeat_fs_v]
+    return points
 
 
 def soil_fit_points(soils: Sequence[str], options, base: Mapping, statics: Mapping,
@@ -89,7 +107,7 @@ def soil_fit_points(soils: Sequence[str], options, base: Mapping, statics: Mappi
     from ....scenes import scene_from_dict
     from ...beds.macro import macro_strength
 
-    per_soil = 2 * len(options.macro_fs_v)
+    per_soil = len(fit_rotation_fs(options))
     width = 2.0 * base["foundation"]["half_width"]
     points = []
     for i, soil in enumerate(soils):

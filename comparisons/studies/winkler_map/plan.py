@@ -21,8 +21,8 @@ from .impedance_points import evaluate_impedance, impedance_point
 from .motions import motion_duration
 from .points import evaluate_dynamic, point_table
 from .rocking import rocking_points
-from .macro_points import (evaluate_macro_fit, fit_rotation_points, fit_seconds,
-                           soil_fit_points)
+from .macro_points import (evaluate_macro_fit, fit_rotation_fs, fit_rotation_points,
+                           fit_seconds, soil_fit_points)
 from .statics import SoilStatics, evaluate_static, soil_statics, static_points
 
 __all__ = ["cells", "dynamic_points", "point_key_of", "scene_of", "map_rocking_points",
@@ -131,13 +131,15 @@ def _estimate(grid, options, motions, base, g, store, statics_points, loads,
 
 def _macro_fits(grid, options, base, g, store, loads, static_rows,
                 keys: list) -> list[tuple[str, float]]:
-    """The macro-element's work not yet stored: its rotation pushovers at the FS_v of
-    ``options.macro_fs_v`` that the grid does not push over, appended to ``static_rows``, and
+    """The macro-element's work not yet stored: its rotation pushovers (at the FS_v of
+    ``options.macro_fs_v``, and the repeated cycles) that the grid does not push over,
+    appended to ``static_rows``, and
     (soil, estimated seconds) of each soil's fit the store does not hold; the store keys of
     the fits whose inputs it holds are appended to ``keys``."""
     rotations = fit_rotation_points(grid.soils, options, base,
                                     {s: loads.get(s, 1.0) for s in grid.soils})
-    per_soil = 2 * len(options.macro_fs_v)
+    kinds = fit_rotation_fs(options)
+    per_soil = len(kinds)
     todo = []
     for i, soil in enumerate(grid.soils):
         mine = rotations[i * per_soil:(i + 1) * per_soil]
@@ -145,7 +147,7 @@ def _macro_fits(grid, options, base, g, store, loads, static_rows,
         for k, point in enumerate(mine):
             record = store.get(point_key_of(point, evaluate_continuum)) if soil in loads else None
             records.append(record)
-            if options.macro_fs_v[k // 2] not in grid.fs_v:
+            if not (kinds[k][1] and kinds[k][0] in grid.fs_v):
                 static_rows.append((soil, scene_of(point["scene"]), record is not None,
                                     len(point["rotations"]) / (options.vertical_steps + 1)))
         if all(r is not None for r in records) and soil in loads:

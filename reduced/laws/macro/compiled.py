@@ -22,10 +22,11 @@ from .bed_forms import (bed, bed_energy, bed_length, bed_moments, contact, elast
                         flat_bed_displacement, rounding_force, rounding_sensitivity, solve2,
                         vertical_rocking)
 from .slots import (MAX_NEWTON, P_B, P_CEXP, P_CHI, P_COUNT, P_CXT, P_CXV,  # noqa: F401
-                    P_DIL, P_GEXP, P_H0, P_KH, P_KREF, P_KV, P_KW, P_RHO, P_VU, P_Z0, S_C,
-                    S_COUNT, S_D, S_KAPPA, S_P, S_Q, S_ROUND, S_W, STEP_CONTACT, STEP_FLOW,
-                    STEP_OK, STEP_SUBSTEPS, STEP_SURFACE, W_CENTRE, W_COUNT, W_DE, W_DE0, W_DIR,
-                    W_FLOW, W_G, W_NORMAL, W_PLASTIC, W_Q, W_Q0, W_START, W_TARGET, W_TRIAL, pack)
+                    P_DIL, P_GEXP, P_H0, P_KH, P_KREF, P_KV, P_KW, P_MEM, P_RHO, P_VU, P_Z0,
+                    S_C, S_COUNT, S_D, S_KAPPA, S_MEM, S_P, S_Q, S_ROUND, S_W, STEP_CONTACT,
+                    STEP_FLOW, STEP_OK, STEP_SUBSTEPS, STEP_SURFACE, W_CENTRE, W_COUNT, W_DE,
+                    W_DE0, W_DIR, W_FLOW, W_G, W_NORMAL, W_PLASTIC, W_Q, W_Q0, W_START,
+                    W_TARGET, W_TRIAL, pack)
 from .surface_forms import (RIDGE, failure, failure_at, failure_gradient,  # noqa: F401
                             failure_size_derivative, failure_value, horizontal_capacity,
                             image, mobilisation, moment_capacity, size)
@@ -41,9 +42,11 @@ FLOW_MARGIN = 0.5
 
 
 @njit(cache=True, **HOT)
-def plastic_modulus(P, kappa, load, flow_v, s, zeta):
+def plastic_modulus(P, kappa, load, flow_v, s, zeta, memory):
     """K_p at distance ratio s: the bounding surface's K_b (its ∂F/∂ζ at ``load``) plus the
-    interior term."""
+    interior term times ``memory`` (:func:`memory_factor`, 1 outside the memory): the memory
+    stiffens the interior term only, which vanishes at the surface, so that a load that
+    reaches the surface does so at the surface's own modulus."""
     grow = (1.0 - P[P_Z0]) / P[P_KREF] * math.exp(-kappa / P[P_KREF])
     bound = -failure_size_derivative(P, load, zeta) * grow * max(flow_v, 0.0)
     if s <= 0.0:
@@ -51,7 +54,20 @@ def plastic_modulus(P, kappa, load, flow_v, s, zeta):
     if s >= 1.0:
         return bound
     interior = P[P_H0] * P[P_KV] / P[P_VU] ** 2
-    return bound + interior * ((1.0 - s) / s) ** P[P_GEXP]
+    return bound + memory * interior * ((1.0 - s) / s) ** P[P_GEXP]
+
+
+@njit(cache=True, **HOT)
+def memory_factor(P, mobilised, at_centre, remembered):
+    """1 + μ w: the interior modulus's factor for a load of mobilisation ``mobilised`` whose
+    side remembers ``remembered`` and whose projection centre is at ``at_centre``, w =
+    (ζ_m − ζ_Q)/(ζ_m − ζ_c) the share of the way from the load back to its reversal: 1 + μ
+    at the reversal, falling to 1 as the load reaches its side's memory (continuous, so that
+    the update stays a continuous function of the displacement), 1 beyond it or where the
+    centre lies beyond the memory."""
+    if P[P_MEM] == 0.0 or not mobilised < remembered or not at_centre < remembered:
+        return 1.0
+    return 1.0 + P[P_MEM] * min((remembered - mobilised) / (remembered - at_centre), 1.0)
 
 
 @njit(cache=True, **HOT)
@@ -205,6 +221,10 @@ def substep(P, S, target, D, W):
     source = Q0 if Q0[0] > 0.0 else trial
     mobilised = mobilisation(P, source, zeta)
     if mobilised > 0.0:
+        # the memory of the load's side (the sign of M): the largest mobilisation it reached
+        side = S_MEM if source[2] >= 0.0 else S_MEM + 1
+        remembered = S[side]
+        S[side] = max(S[side], mobilised)
         # the normal, at the load, of the surface of the size that passes through it
         failure_gradient(P, source, mobilised, normal)
         loading = normal[0] * (trial[0] - Q0[0]) + normal[1] * (trial[1] - Q0[1]) \
@@ -220,7 +240,8 @@ def substep(P, S, target, D, W):
         s = 1.0 if mobilised >= zeta or span <= 1e-12 * zeta else \
             max(mobilised - at_centre, 0.0) / span
         flow[0] = _held_flow(D, normal, settlement_flow(P, normal, s))
-        modulus = plastic_modulus(P, kappa, source, flow[0], s, zeta)
+        modulus = plastic_modulus(P, kappa, source, flow[0], s, zeta,
+                                  memory_factor(P, mobilised, at_centre, remembered))
         if math.isfinite(modulus) and loading > 0.0:
             nDm = 0.0
             for i in range(3):

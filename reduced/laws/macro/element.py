@@ -103,7 +103,8 @@ def element(record: MacroLaw, base: Base) -> BaseElement:
         hardening_settlement=settlement if settlement is not None else width / 100.0,
         interior_modulus=record.interior_modulus, interior_exponent=record.interior_exponent,
         settlement_coupling=record.settlement_coupling, rounding_ratio=record.rounding_ratio,
-        flow_dilatancy=record.flow_dilatancy, coupling_exponent=record.coupling_exponent)
+        flow_dilatancy=record.flow_dilatancy, coupling_exponent=record.coupling_exponent,
+        memory_modulus=record.memory_modulus)
     return BaseElement(law, rest_state(law, base.weight), np.array(base.transform, dtype=float),
                        base.dashpot_density, base.sway_dashpot,
                        record.force_step * base.weight / law.ultimate_load)

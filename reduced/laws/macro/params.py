@@ -15,6 +15,7 @@ import math
 from dataclasses import dataclass
 
 from ....checks import InputError, in_range, nonnegative, positive
+from ....scenes.laws.macro import MAX_MEMORY_MODULUS
 
 __all__ = ["MacroElement", "MacroStepError", "bearing_factors"]
 
@@ -66,9 +67,11 @@ class MacroElement:
     ε times its moment-and-shear part added to the settlement: χ = 0 and δ = 1 is associated
     flow, χ > 0 settles the footing while it yields in rotation, and ε > 0 makes that
     coupling act near the bounding surface (s → 1) and fade in the small cycles inside it
-    (s → 0). ``rounding_ratio`` λ_ρ: the fraction of the edges' plastic travel
-    b |dθ_p| that rounds the soil's surface (:mod:`.uplift`), while the edges press harder than
-    the middle; 0: the surface stays flat.
+    (s → 0). ``memory_modulus`` μ: the interior modulus is up to 1 + μ times stiffer while
+    the load's mobilisation is below the largest its side (the sign of M) has reached (0: no
+    memory, the law of revision 2). ``rounding_ratio`` λ_ρ: the fraction of the edges'
+    plastic travel b |dθ_p| that rounds the soil's surface (:mod:`.uplift`), while the edges
+    press harder than the middle; 0: the surface stays flat.
     """
 
     width: float
@@ -89,6 +92,7 @@ class MacroElement:
     rounding_ratio: float = 0.0
     flow_dilatancy: float = 1.0
     coupling_exponent: float = 0.0
+    memory_modulus: float = 0.0
 
     def __post_init__(self):
         positive("macro.width", self.width)
@@ -109,6 +113,7 @@ class MacroElement:
         in_range("macro.rounding_ratio", self.rounding_ratio, 0.0, 1.0)
         in_range("macro.flow_dilatancy", self.flow_dilatancy, 0.0, 1.0)
         in_range("macro.coupling_exponent", self.coupling_exponent, 0.0, 8.0)
+        in_range("macro.memory_modulus", self.memory_modulus, 0.0, MAX_MEMORY_MODULUS)
         if not self.ultimate_load > 0.0:
             raise InputError(f"macro: cohesion = {self.cohesion:g}, friction_angle = "
                              f"{self.friction_angle:g}, unit_weight = {self.unit_weight:g}: the "

@@ -14,6 +14,10 @@ from ..table import Table, in_range
 from .base import LawContext, LawRecord
 from .elastoplastic import MULTIPLE
 
+#: The largest memory modulus μ, for the scenes and the law alike: reloading 1e6 times stiffer
+#: than the first loading is, to the sub-step's force resolution, elastic.
+MAX_MEMORY_MODULUS = 1e6
+
 __all__ = ["MacroLaw", "SLIDING_RATIO", "MAX_SETTLEMENT_COUPLING"]
 
 #: t_h of Green's (1954) peak for a bonded strip on clay, H_max = t_h V (1 − V/V_ult).
@@ -52,7 +56,9 @@ class MacroLaw(LawRecord):
     plastic settlement over ``hardening_settlement`` (length; None: B/100);
     ``interior_modulus`` h0 and ``interior_exponent`` γ of the plastic modulus inside it;
     ``settlement_coupling`` χ and its ``coupling_exponent`` ε (the coupling scaled by s^ε,
-    s the load's distance ratio to the bounding surface); ``flow_dilatancy`` δ (the share of
+    s the load's distance ratio to the bounding surface); ``memory_modulus`` μ (reloading
+    below the largest mobilisation the load's side has reached is 1 + μ times stiffer in its
+    plastic part: 0, no memory); ``flow_dilatancy`` δ (the share of
     the normal's heave the flow keeps, 1 associated); ``rounding_ratio`` λ_ρ; ``force_step``
     the largest change of trial force in one of the element's sub-steps, as a fraction of the
     weight (of the loads in play, not of the capacity: a strong soil's V_ult would make the
@@ -80,6 +86,7 @@ class MacroLaw(LawRecord):
     rounding_ratio: float = 0.0
     flow_dilatancy: float = 1.0
     coupling_exponent: float = 0.0
+    memory_modulus: float = 0.0
     force_step: float = 3e-4
 
     @classmethod
@@ -104,6 +111,7 @@ class MacroLaw(LawRecord):
             rounding_ratio=table.get("rounding_ratio", in_range(0.0, 1.0), 0.0),
             flow_dilatancy=table.get("flow_dilatancy", in_range(0.0, 1.0), 1.0),
             coupling_exponent=table.get("coupling_exponent", in_range(0.0, 8.0), 0.0),
+            memory_modulus=table.get("memory_modulus", in_range(0.0, MAX_MEMORY_MODULUS), 0.0),
             force_step=table.get("force_step", in_range(1e-6, 0.1), 3e-4))
 
     def check(self, foundation) -> None:
