@@ -135,6 +135,10 @@ def _element(point: dict, foundation: dict, options, force_step: float | None = 
             "settlement": np.asarray(response.settlement, dtype=float),
             "measures": reduced_measures(response), "wall": wall,
             "plastic_settlement": np.asarray(response.base[:, 3], dtype=float),
+            "plastic_rotation": np.asarray(response.base[:, 5], dtype=float),
+            "eccentricity": (np.asarray(response.base[:, 2], dtype=float)
+                             / (np.asarray(response.base[:, 0], dtype=float)
+                                * 2.0 * scene.foundation.half_width)),
             "steps": int(response.info["steps"])}
 
 
@@ -244,6 +248,24 @@ def publish(folder: Path, done: dict, missing: dict) -> None:
         lines.append(f"| {key} | {1e3 * end:.2f} | {1e3 * vp[-1]:.2f} | "
                      f"{1e3 * change[change > 0].sum():.2f} | "
                      f"{1e3 * change[change < 0].sum():.2f} |")
+    lines += ["", "## Residual rotation", "",
+              "The tilt left at the end (mrad, the map's measure: θ's mean over the run's last "
+              "quarter) of both models, and the element's plastic rotation θ_p and its moment "
+              "M/(V B) at the step where the map reads the residual settlement (the flattest "
+              "of the last quarter): a tilt that the element keeps and the continuum does not "
+              "is swung back there against the element's moment, which lifts its centre.", "",
+              "| point | continuum | element | element's θ_p when flattest | its M/(V B) then |",
+              "|---|---|---|---|---|"]
+    for key, r in done.items():
+        if key == "update":
+            continue
+        c, e = r["runs"]["continuum"], r["runs"]["map"]
+        tail = np.flatnonzero(e["t"] >= 0.75 * e["t"][-1])
+        flat = tail[int(np.argmin(np.abs(e["theta"][tail])))]
+        lines.append(f"| {key} | {1e3 * c['measures']['residual_rotation']:.2f} | "
+                     f"{1e3 * e['measures']['residual_rotation']:.2f} | "
+                     f"{1e3 * e['plastic_rotation'][flat]:.2f} | "
+                     f"{e['eccentricity'][flat]:+.3f} |")
     lines += ["", "## Cost, both models timed in this process", "",
               "| point | continuum (s) | element (s) | ratio | element at the coarsest "
               "sub-step (s) | ratio | its θ error | its settlement error | element steps |",
