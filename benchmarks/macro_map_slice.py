@@ -69,7 +69,8 @@ def publish(folder: Path, done: dict, missing: dict) -> None:
              "Command `python benchmarks/macro_map_slice.py`; what is run and compared: the "
              "script's docstring. Errors are relative, with the map's floors; a share counts "
              "the points where the continuum's run is compared (bearing failures and runs "
-             "beyond small strain left out, as the map does).", ""]
+             "beyond small strain left out, as the map does), and a model's run that failed "
+             "there as a miss (the medians are of the runs that completed).", ""]
     if "points" not in done:
         write_text(folder / "MACRO_MAP_SLICE.md", "\n".join(
             lines + [f"(not measured: {missing.get('points', 'not run yet')})", ""]))
@@ -87,19 +88,24 @@ def publish(folder: Path, done: dict, missing: dict) -> None:
               f"{', '.join(f'{x:g}' for x in ds['intensity'].values)} a_up; "
               f"{int((kinds == 'ricker').sum())} pulses and {int((kinds != 'ricker').sum())} "
               "records.", ""]
-    lines += ["## Shares and errors", "", "| model | points | θ and uplift within 10 %: all | "
+    lines += ["## Shares and errors", "", "| model | points | runs failed | "
+              "θ and uplift within 10 %: all | "
               + " | ".join(soils) + " | residual settlement within 20 %: all | "
               + " | ".join(soils) + " | " + " | ".join(f"median abs. error, {m}"
                                                          for m in shown) + " |",
-              "|" + "---|" * (4 + 2 * len(soils) + len(shown))]
+              "|" + "---|" * (5 + 2 * len(soils) + len(shown))]
     lines[-2] = lines[-2][:-1] + "| θ and uplift within 10 %: pulses | records |"
     lines[-1] += "---|---|"
-    compared = np.isfinite(bed_err[..., labels.index("macro"), q["theta"]])
+    # the continuum's run is compared where any model has an error there: a model's own
+    # failed run must not take the point out of the other models' counts (or its own)
+    compared = np.isfinite(bed_err[..., q["theta"]]).any(axis=-1)
     pulse = np.broadcast_to(kinds == "ricker", compared.shape)  # motion: the last axis
     order = ["macro"] + [name for name in labels if name != "macro"]
     for name in order:
         cube = bed_err[..., labels.index(name), :]
-        cells = ["macro-element" if name == "macro" else name, str(int(compared.sum()))]
+        failed = compared & ~np.isfinite(cube[..., q["theta"]])
+        cells = ["macro-element" if name == "macro" else name, str(int(compared.sum())),
+                 str(int(failed.sum()))]
         for group, tol in (((q["theta"], q["uplift"]), 0.10), ((q["residual_settlement"],), 0.20)):
             cells.append(_share(cube, compared, group, tol))
             for s in range(len(soils)):
@@ -113,10 +119,12 @@ def publish(folder: Path, done: dict, missing: dict) -> None:
     walls = r["walls"]
     lines += ["", f"The macro-element's runs: median {np.median(walls):.2f} s, largest "
               f"{np.max(walls):.2f} s (in the map's process, kernels compiled).", ""]
-    refused = [str(x) for x in ds.attrs.get("refusals", "").split("\n")
-               if ", macro:" in str(x)] if isinstance(ds.attrs.get("refusals"), str) else []
+    refusals = ds.attrs.get("refusals", [])
+    refusals = refusals.split("\n") if isinstance(refusals, str) else list(np.atleast_1d(
+        refusals))
+    refused = [str(x) for x in refusals if ", macro:" in str(x)]
     if refused:
-        lines += ["Refused runs of the macro-element (no error counted):", ""]
+        lines += ["Refused runs of the macro-element (each counted as a miss):", ""]
         lines += [f"- {x}" for x in refused] + [""]
     write_text(folder / "MACRO_MAP_SLICE.md", "\n".join(lines))
 
