@@ -208,21 +208,12 @@ def _label(key: tuple) -> str:
     return f"{soil}, FS_v {fs:g}, {intensity:g} a_up"
 
 
-def publish(folder: Path, done: dict, missing: dict) -> None:
-    lines = ["# Where the macro-element's settlement departs from the continuum's, and what its "
-             "run costs",
-             "", "Command `python benchmarks/macro_diagnosis.py`; what is run: the script's "
-             "docstring. Settlements in mm (down); \"at the pulse's end\" is the share of the "
-             "residual settlement already there one period after the pulse (the footing's "
-             "settlement when flattest in the period after the pulse's centre plus one "
-             "period).", "",
-             "## Residual settlement", "",
+def _settlement_table(points: dict) -> list[str]:
+    lines = ["## Residual settlement", "",
              "| point | continuum | element (map) | at the pulse's end: continuum | element | "
              + " | ".join(f"element, {v}" for v in list(VARIANTS)[1:]) + " |",
              "|" + "---|" * (5 + len(VARIANTS) - 1)]
-    for key, r in done.items():
-        if key == "update":
-            continue
+    for key, r in points.items():
         runs = r["runs"]
         res = {k: v["measures"]["residual_settlement"] for k, v in runs.items()}
         c, e = res["continuum"], res["map"]
@@ -232,15 +223,17 @@ def publish(folder: Path, done: dict, missing: dict) -> None:
         cells += [f"{1e3 * res[v]:.2f} ({res[v] / c - 1:+.0%})" if v in res
                   else f"refused ({r['refused'][v]})" for v in list(VARIANTS)[1:]]
         lines.append("| " + " | ".join(cells) + " |")
-    lines += ["", "## Where the element's plastic settlement accrues", "",
-              "The element's plastic settlement v_p (mm, down; the map's run, at its recorded "
-              "steps): at the pulse's end (its centre plus one period), at the run's end, and "
-              "the sums of its downward and upward changes.", "",
-              "| point | v_p at the pulse's end | v_p at the end | down | up |",
-              "|---|---|---|---|---|"]
-    for key, r in done.items():
-        if key == "update":
-            continue
+    return lines
+
+
+def _accrual_table(points: dict) -> list[str]:
+    lines = ["## Where the element's plastic settlement accrues", "",
+             "The element's plastic settlement v_p (mm, down; the map's run, at its recorded "
+             "steps): at the pulse's end (its centre plus one period), at the run's end, and "
+             "the sums of its downward and upward changes.", "",
+             "| point | v_p at the pulse's end | v_p at the end | down | up |",
+             "|---|---|---|---|---|"]
+    for key, r in points.items():
         e = r["runs"]["map"]
         vp = e["plastic_settlement"]
         change = np.diff(vp)
@@ -248,17 +241,19 @@ def publish(folder: Path, done: dict, missing: dict) -> None:
         lines.append(f"| {key} | {1e3 * end:.2f} | {1e3 * vp[-1]:.2f} | "
                      f"{1e3 * change[change > 0].sum():.2f} | "
                      f"{1e3 * change[change < 0].sum():.2f} |")
-    lines += ["", "## Residual rotation", "",
-              "The tilt left at the end (mrad, the map's measure: θ's mean over the run's last "
-              "quarter) of both models, and the element's plastic rotation θ_p and its moment "
-              "M/(V B) at the step where the map reads the residual settlement (the flattest "
-              "of the last quarter): a tilt that the element keeps and the continuum does not "
-              "is swung back there against the element's moment, which lifts its centre.", "",
-              "| point | continuum | element | element's θ_p when flattest | its M/(V B) then |",
-              "|---|---|---|---|---|"]
-    for key, r in done.items():
-        if key == "update":
-            continue
+    return lines
+
+
+def _rotation_table(points: dict) -> list[str]:
+    lines = ["## Residual rotation", "",
+             "The tilt left at the end (mrad, the map's measure: θ's mean over the run's last "
+             "quarter) of both models, and the element's plastic rotation θ_p and its moment "
+             "M/(V B) at the step where the map reads the residual settlement (the flattest "
+             "of the last quarter): a tilt that the element keeps and the continuum does not "
+             "is swung back there against the element's moment, which lifts its centre.", "",
+             "| point | continuum | element | element's θ_p when flattest | its M/(V B) then |",
+             "|---|---|---|---|---|"]
+    for key, r in points.items():
         c, e = r["runs"]["continuum"], r["runs"]["map"]
         tail = np.flatnonzero(e["t"] >= 0.75 * e["t"][-1])
         flat = tail[int(np.argmin(np.abs(e["theta"][tail])))]
@@ -266,13 +261,15 @@ def publish(folder: Path, done: dict, missing: dict) -> None:
                      f"{1e3 * e['measures']['residual_rotation']:.2f} | "
                      f"{1e3 * e['plastic_rotation'][flat]:.2f} | "
                      f"{e['eccentricity'][flat]:+.3f} |")
-    lines += ["", "## Cost, both models timed in this process", "",
-              "| point | continuum (s) | element (s) | ratio | element at the coarsest "
-              "sub-step (s) | ratio | its θ error | its settlement error | element steps |",
-              "|---|---|---|---|---|---|---|---|---|"]
-    for key, r in done.items():
-        if key == "update":
-            continue
+    return lines
+
+
+def _cost_table(points: dict, update: float | None) -> list[str]:
+    lines = ["## Cost, both models timed in this process", "",
+             "| point | continuum (s) | element (s) | ratio | element at the coarsest "
+             "sub-step (s) | ratio | its θ error | its settlement error | element steps |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for key, r in points.items():
         runs = r["runs"]
         c, e, f = runs["continuum"], runs["map"], runs["coarsest sub-step"]
         em, fm = e["measures"], f["measures"]
@@ -281,13 +278,28 @@ def publish(folder: Path, done: dict, missing: dict) -> None:
                      f"{c['wall'] / f['wall']:.0f}× | {fm['theta'] / em['theta'] - 1:+.1%} | "
                      f"{fm['residual_settlement'] / em['residual_settlement'] - 1:+.1%} | "
                      f"{e['steps']} |")
-    if "update" in done:
+    if update is not None and points:
         slowest = max(r["runs"]["coarsest sub-step"]["wall"] / r["runs"]["map"]["steps"]
-                      for k, r in done.items() if k != "update")
-        lines += ["", f"The element's update alone: {done['update']:.2f} µs a sub-step (the "
+                      for r in points.values())
+        lines += ["", f"The element's update alone: {update:.2f} µs a sub-step (the "
                   "clay's law, a random walk to its capacity). The coarsest sub-step's run "
                   f"costs up to {1e6 * slowest:.0f} µs a time step (Newton's iterations, the "
                   "structure, the outputs)."]
+    return lines
+
+
+def publish(folder: Path, done: dict, missing: dict) -> None:
+    points = {k: r for k, r in done.items() if k != "update"}
+    lines = ["# Where the macro-element's settlement departs from the continuum's, and what its "
+             "run costs",
+             "", "Command `python benchmarks/macro_diagnosis.py`; what is run: the script's "
+             "docstring. Settlements in mm (down); \"at the pulse's end\" is the share of the "
+             "residual settlement already there one period after the pulse (the footing's "
+             "settlement when flattest in the period after the pulse's centre plus one "
+             "period).", ""]
+    for table in (_settlement_table, _accrual_table, _rotation_table):
+        lines += table(points) + [""]
+    lines += _cost_table(points, done.get("update"))
     if missing:
         lines += ["", "Not measured: " + "; ".join(f"{k}: {v}" for k, v in missing.items())]
     write_text(folder / "MACRO_DIAGNOSIS.md", "\n".join(lines) + "\n")
