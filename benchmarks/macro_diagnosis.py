@@ -136,9 +136,9 @@ def _element(point: dict, foundation: dict, options, force_step: float | None = 
             "measures": reduced_measures(response), "wall": wall,
             "plastic_settlement": np.asarray(response.base[:, 3], dtype=float),
             "plastic_rotation": np.asarray(response.base[:, 5], dtype=float),
-            "eccentricity": (np.asarray(response.base[:, 2], dtype=float)
-                             / (np.asarray(response.base[:, 0], dtype=float)
-                                * 2.0 * scene.foundation.half_width)),
+            "moment": np.asarray(response.base[:, 2], dtype=float),
+            "vertical": np.asarray(response.base[:, 0], dtype=float),
+            "width": 2.0 * scene.foundation.half_width,
             "steps": int(response.info["steps"])}
 
 
@@ -154,11 +154,10 @@ def at_pulse_end(run: dict) -> float:
 def compute_point(soil: str, fs: float, intensity: float) -> dict:
     """Every run of one point (module docstring)."""
     from upliftlab.comparisons.beds import bed_foundation
+    from upliftlab.reduced import IntegrationError
 
     point, ref, options = _map_inputs(soil, fs, intensity)
     foundation = bed_foundation("macro", ref, options)
-    from upliftlab.reduced import IntegrationError
-
     runs, refused = {"continuum": _continuum(point)}, {}
     for label, change in VARIANTS.items():
         table = copy.deepcopy(foundation)
@@ -169,7 +168,7 @@ def compute_point(soil: str, fs: float, intensity: float) -> dict:
         except IntegrationError as error:  # a variant's own check refused it: say so
             if label == "map":
                 raise
-            refused[label] = str(error).split(": ", 1)[1].split(" (")[0]
+            refused[label] = str(error).split(": ", 1)[-1].split(" (")[0]
     runs["coarsest sub-step"] = _element(point, foundation, options, force_step=0.1)
     return {"runs": runs, "refused": refused}
 
@@ -260,7 +259,7 @@ def _rotation_table(points: dict) -> list[str]:
         lines.append(f"| {key} | {1e3 * c['measures']['residual_rotation']:.2f} | "
                      f"{1e3 * e['measures']['residual_rotation']:.2f} | "
                      f"{1e3 * e['plastic_rotation'][flat]:.2f} | "
-                     f"{e['eccentricity'][flat]:+.3f} |")
+                     f"{e['moment'][flat] / (e['vertical'][flat] * e['width']):+.3f} |")
     return lines
 
 
