@@ -252,14 +252,15 @@ def _rotation_table(points: dict) -> list[str]:
              "is swung back there against the element's moment, which lifts its centre.", "",
              "| point | continuum | element | element's θ_p when flattest | its M/(V B) then |",
              "|---|---|---|---|---|"]
+    from upliftlab.comparisons.framework.measures import settlement_when_flattest as flattest
+
     for key, r in points.items():
         c, e = r["runs"]["continuum"], r["runs"]["map"]
-        tail = np.flatnonzero(e["t"] >= 0.75 * e["t"][-1])
-        flat = tail[int(np.argmin(np.abs(e["theta"][tail])))]
+        theta_p, M, V = (flattest(e["t"], e["theta"], e[name])
+                         for name in ("plastic_rotation", "moment", "vertical"))
         lines.append(f"| {key} | {1e3 * c['measures']['residual_rotation']:.2f} | "
                      f"{1e3 * e['measures']['residual_rotation']:.2f} | "
-                     f"{1e3 * e['plastic_rotation'][flat]:.2f} | "
-                     f"{e['moment'][flat] / (e['vertical'][flat] * e['width']):+.3f} |")
+                     f"{1e3 * theta_p:.2f} | {M / (V * e['width']):+.3f} |")
     return lines
 
 
