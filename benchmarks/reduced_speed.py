@@ -597,7 +597,10 @@ def main(argv: list[str] | None = None) -> int:
     cost = plan_costs(config, args.repeats, span)
     sections = [Section(s.key, s.compute, cost.get(s.key)) for s in sections]
 
+    drawn = {}  # folder: the sections the figure there was last drawn from
+
     def publish(folder: Path, results: dict, missing: dict) -> None:
+        """The table after every section; the figure when a section it draws has come."""
         done.clear()
         done.update(results)
         text = document(args, config, results, missing)
@@ -606,8 +609,10 @@ def main(argv: list[str] | None = None) -> int:
                 for r in results[f"runs N = {n}"][1]]
         rows_t = [r for n in config["springs"] if f"tributary N = {n}" in results
                   for r in results[f"tributary N = {n}"][1]]
-        if rows:
+        shown = tuple(k for k in results if k.startswith(("runs N = ", "tributary N = ")))
+        if rows and drawn.get(folder) != shown:
             figure(rows, rows_t, folder / "reduced_speed.png")
+            drawn[folder] = shown
 
     def commit(results: dict) -> None:
         publish(HERE, results, {})

@@ -86,13 +86,16 @@ def test_its_overrides_put_that_law_in_the_reduced_model(calibrated):
 
 
 def test_the_same_command_resumes_from_its_store(calibrated, tmp_path):
-    """A second command into a copy of the folder without its results makes no continuum run
-    (the store's four records are all it holds) and gives the same law (to 1e-12)."""
+    """A second command into a copy of the folder without its results (the store and the fit's
+    evaluations) makes no continuum run (the store's four records are all it holds), replays
+    the fit and gives the same law (to 1e-12). (That the fit, interrupted, goes on to the same
+    law when it must compute: the interrupted-fit test below.)"""
     import shutil
 
     out, record, _ = calibrated
     copy = tmp_path / "cal"
-    shutil.copytree(out / "store", copy / "store")  # the continuum's runs, not the fit's
+    shutil.copytree(out / "store", copy / "store")  # the continuum's runs
+    shutil.copy(out / "fit-cache.npz", copy / "fit-cache.npz")  # and the fit's evaluations
     records = sorted(p.name for p in (copy / "store").rglob("*.json"))
     done = _cli([*BASE, "--out", str(copy)], tmp_path)
     assert done.returncode == 0, done.stderr[-3000:]
