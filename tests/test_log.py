@@ -8,6 +8,8 @@ cached function).
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from upliftlab import cli, log
@@ -57,17 +59,40 @@ def test_compilation_is_announced_once_and_only_without_a_cache(tmp_path, monkey
 
 
 def test_the_cache_index_is_where_numba_writes_it():
-    # Reference: numba's cache locator for NUMBA_CACHE_DIR, which names the folder
-    # <source folder>_<sha1 of its absolute path> and the index <module>.<function>-<line>.nbi.
-    import hashlib
-    from pathlib import Path
-
+    # Reference: numba's own locator for the kernel (the dispatcher's cache path, chosen by
+    # numba through NUMBA_CACHE_LOCATOR_CLASSES): upliftlab's names the folder by the kernel's
+    # place in the package, whatever the path it is installed at, and the index is
+    # <module>.<function>-<line>.nbi.
     from upliftlab.reduced.integrators import METHODS
 
-    folder, pattern = log.cache_index(METHODS["hht"].kernel)
-    source = Path(__file__).resolve().parents[1] / "reduced" / "kernels"
-    assert str(folder) == f"kernels_{hashlib.sha1(str(source).encode()).hexdigest()}"
+    kernel = METHODS["hht"].kernel
+    folder, pattern = log.cache_index(kernel)
+    assert str(folder) == "upliftlab.reduced_kernels"
+    assert Path(kernel._cache._cache_path).name == str(folder)
     assert pattern == "implicit.integrate_newmark-*.nbi"
+
+
+def test_a_kernel_outside_the_package_keeps_numbas_own_cache_folder(tmp_path, monkeypatch):
+    # Reference: numba's own name for a source folder, <folder name>_<sha1 of its absolute
+    # path>: upliftlab's locator takes upliftlab's sources only. (Cached in this test's folder.)
+    import hashlib
+    import importlib.util
+
+    from numba.core import config
+
+    monkeypatch.setattr(config, "CACHE_DIR", str(tmp_path / "cache"))
+
+    source = tmp_path / "elsewhere" / "outside.py"
+    source.parent.mkdir()
+    source.write_text("from numba import njit\n\n@njit(cache=True)\ndef twice(x):\n"
+                      "    return 2 * x\n")
+    spec = importlib.util.spec_from_file_location("outside", source)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    assert module.twice(2.0) == 4.0
+    folder, pattern = log.cache_index(module.twice)
+    assert str(folder) == f"elsewhere_{hashlib.sha1(str(source.parent).encode()).hexdigest()}"
+    assert Path(module.twice._cache._cache_path).name == str(folder)
 
 
 def test_provenance_names_the_code_the_libraries_and_the_motion(elcentro):

@@ -83,11 +83,7 @@ def test_an_edited_law_is_compiled_afresh(tmp_path):
     forms, to 1e-12). A control process on the first process's cache folder, as numba alone
     would use it, still gives the stale −2."""
     copy = tmp_path / "checkout"
-    root = Path(__file__).resolve().parents[1]
-    ignore = shutil.ignore_patterns("__pycache__", "*.pyc")
-    # the installed layout: the core with the reduced model nested in it
-    shutil.copytree(root / "upliftlab", copy / "upliftlab", ignore=ignore)
-    shutil.copytree(root / "reduced", copy / "upliftlab" / "reduced", ignore=ignore)
+    _copy_package(copy)
     env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR",
                                                             "NUMBA_DISABLE_JIT")}
     env["XDG_CACHE_HOME"] = str(tmp_path / "cache")
@@ -107,6 +103,43 @@ def test_an_edited_law_is_compiled_afresh(tmp_path):
 
     stale, _, _ = _force_in(copy, dict(env, NUMBA_CACHE_DIR=folder_before))
     assert stale == pytest.approx(before, rel=1e-12)
+
+
+def _copy_package(copy: Path) -> None:
+    """The package in the installed layout (the core with the reduced model nested in it)."""
+    root = Path(__file__).resolve().parents[1]
+    ignore = shutil.ignore_patterns("__pycache__", "*.pyc")
+    shutil.copytree(root / "upliftlab", copy / "upliftlab", ignore=ignore)
+    shutil.copytree(root / "reduced", copy / "upliftlab" / "reduced", ignore=ignore)
+
+
+_CACHE_COUNTS = _FORCE_OF_ONE_SPRING.replace(
+    "print(repr(float(fint[0])), os.environ[\"NUMBA_CACHE_DIR\"], reduced.__file__)",
+    "stats = kn.internal_force.stats\n"
+    "print(sum(stats.cache_hits.values()), sum(stats.cache_misses.values()), reduced.__file__)")
+
+
+def test_the_same_kernels_installed_elsewhere_are_read_not_compiled(tmp_path):
+    """Two copies of the package at two paths (the README's main job installs one in
+    ``site-packages``, its tests run another from the checkout; a CI clone lands at a new
+    path), one cache folder: the first process compiles ``internal_force`` (numba's own
+    counters: a cache miss, no hit), the second, from the other copy, reads it (a hit, no
+    miss). With numba's own locator, which names the folder by the source's absolute path, the
+    second compiled it again."""
+    env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR",
+                                                            "NUMBA_DISABLE_JIT")}
+    env["XDG_CACHE_HOME"] = str(tmp_path / "cache")
+    assert "cache_hits" in _CACHE_COUNTS  # the probe prints numba's counters
+    counts = []
+    for name in ("first", "second"):
+        _copy_package(tmp_path / name)
+        out = subprocess.run([sys.executable, "-c", _CACHE_COUNTS], cwd=tmp_path / name,
+                             env=env, capture_output=True, text=True, check=True,
+                             timeout=600).stdout.split()
+        assert Path(out[2]).resolve().is_relative_to((tmp_path / name).resolve())
+        counts.append((int(out[0]), int(out[1])))
+    assert counts[0][0] == 0 and counts[0][1] >= 1
+    assert counts[1][0] >= 1 and counts[1][1] == 0
 
 
 def test_the_registry_holds_every_integrator_the_scene_accepts():

@@ -2,7 +2,8 @@
 
 Core (this package): units, motions, scenes, results, checks and the command line.
 Models: :mod:`upliftlab.reduced` (Ewing's compatibility-matrix model) and
-:mod:`upliftlab.continuum` (plane-strain soil in scikit-fem). Studies: :mod:`upliftlab.comparisons`.
+:mod:`upliftlab.continuum` (plane-strain soil in scikit-fem). Studies:
+:mod:`upliftlab.comparisons`.
 
 The names below are imported on first use, so that ``import upliftlab.cli`` loads no numpy
 before the command line has set its thread counts (:mod:`upliftlab.cli`).
@@ -20,6 +21,14 @@ KERNEL_SOURCES = ("upliftlab.reduced/kernels/", "upliftlab.reduced/laws/",
                   "upliftlab.continuum/contact/", "upliftlab.continuum/materials/")
 
 
+#: numba's cache locators (``NUMBA_CACHE_LOCATOR_CLASSES``): upliftlab's
+#: (:class:`upliftlab.kernel_cache.PackageLocator`: a kernel's folder named by its place in the
+#: package) first, then numba's own in numba's order.
+KERNEL_LOCATORS = ",".join(["upliftlab.kernel_cache.PackageLocator", "UserProvidedCacheLocator",
+                            "InTreeCacheLocator", "UserWideCacheLocator",
+                            "IPythonCacheLocator", "ZipCacheLocator"])
+
+
 def _numba_cache_outside_the_package() -> None:
     """Compiled kernels are cached in ``$XDG_CACHE_HOME/upliftlab/numba/<digest>``
     (``~/.cache/...``; ``NUMBA_CACHE_DIR`` if set), not beside the installed sources: a cache
@@ -32,10 +41,15 @@ def _numba_cache_outside_the_package() -> None:
     an edit to a continuum soil model's point return (each model's module in ``materials/``)
     the element loops that inline it, and an edit to the element loops or the contact steps
     the explicit time loop that holds them (``explicit_loop.py``).
-    Left alone when the folder cannot be written."""
+    Left alone when the folder cannot be written. Each kernel's folder in it is named by its
+    place in the package, not by the path it is installed at (:data:`KERNEL_LOCATORS`)."""
     import os
     import sys
 
+    os.environ.setdefault("NUMBA_CACHE_LOCATOR_CLASSES", KERNEL_LOCATORS)
+    if "numba" in sys.modules:  # imported before upliftlab: its config has been read
+        sys.modules["numba"].config.CACHE_LOCATOR_CLASSES = \
+            os.environ["NUMBA_CACHE_LOCATOR_CLASSES"]
     if os.environ.get("NUMBA_CACHE_DIR"):
         return
     from .provenance import code_digest

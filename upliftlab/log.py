@@ -59,15 +59,34 @@ def configure(verbosity: int = 0) -> None:
 
 def cache_index(function) -> tuple[Path, str]:
     """Where numba's cache keeps the index of a compiled ``function`` (cache=True) under
-    ``NUMBA_CACHE_DIR``: the folder ``<source folder name>_<sha1 of its absolute path>`` and the
-    file pattern ``<module>.<function>-*.nbi``."""
+    ``NUMBA_CACHE_DIR``: the folder (for a source of upliftlab's packages, while upliftlab's
+    locator is numba's first: its place in the package,
+    :func:`upliftlab.kernel_cache.package_subpath`; else numba's own name,
+    ``<source folder name>_<sha1 of its absolute path>``) and the file pattern
+    ``<module>.<function>-*.nbi``."""
     import hashlib
     import inspect
 
     plain = getattr(function, "py_func", function)
     source = Path(inspect.getfile(plain)).resolve()
+    pattern = f"{source.stem}.{plain.__name__}-*.nbi"
+    if _package_locator_first():
+        from .kernel_cache import package_subpath
+
+        folder = package_subpath(source)
+        if folder is not None:
+            return Path(folder), pattern
     folder = f"{source.parent.name}_{hashlib.sha1(str(source.parent).encode()).hexdigest()}"
-    return Path(folder), f"{source.stem}.{plain.__name__}-*.nbi"
+    return Path(folder), pattern
+
+
+def _package_locator_first() -> bool:
+    """Whether numba looks for upliftlab's kernels with upliftlab's locator first (its
+    ``CACHE_LOCATOR_CLASSES``; a numba without it caches by path)."""
+    from numba.core import config
+
+    chosen = getattr(config, "CACHE_LOCATOR_CLASSES", "") or ""
+    return chosen.split(",")[0].strip() == "upliftlab.kernel_cache.PackageLocator"
 
 
 def kernels_cached(cache: str | os.PathLike | None, function) -> bool:
