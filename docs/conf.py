@@ -57,6 +57,7 @@ extensions = [
     "scene_reference",
     "include_markdown",
     "docstrings",
+    "sidebar",
 ]
 
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
