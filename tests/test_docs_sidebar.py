@@ -9,18 +9,20 @@ from __future__ import annotations
 import importlib.util
 from pathlib import Path
 
+import pytest
+
 SIDEBAR = Path(__file__).resolve().parents[1] / "docs" / "_ext" / "sidebar.py"
 
 
-def _sidebar():
+@pytest.fixture(scope="module")
+def sidebar():
     spec = importlib.util.spec_from_file_location("docs_sidebar", SIDEBAR)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
 
 
-def test_the_themes_toctree_call_is_collapsed_and_keeps_its_other_options():
-    sidebar = _sidebar()
+def test_the_themes_toctree_call_is_collapsed_and_keeps_its_other_options(sidebar):
     calls = []
 
     def toctree(**options):
@@ -37,10 +39,9 @@ def test_the_themes_toctree_call_is_collapsed_and_keeps_its_other_options():
     assert page == {"title": "search"}
 
 
-def test_it_runs_before_the_themes_handler():
+def test_it_runs_before_the_themes_handler(sidebar):
     # Sphinx calls the handlers of an event in the order of their priority (lower first); a
     # theme's handler has the default, 500
-    sidebar = _sidebar()
     connected = []
 
     class App:
@@ -48,5 +49,5 @@ def test_it_runs_before_the_themes_handler():
             connected.append((event, handler, priority))
 
     metadata = sidebar.setup(App())
-    assert connected == [("html-page-context", sidebar.collapse_sidebar, 400)]
-    assert connected[0][2] < 500 and metadata["parallel_write_safe"]
+    assert connected == [("html-page-context", sidebar.collapse_sidebar, sidebar.PRIORITY)]
+    assert sidebar.PRIORITY < 500 and metadata["parallel_write_safe"]
