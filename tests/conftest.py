@@ -7,6 +7,8 @@ that no run can pass by leaving the record's tests out.
 
 from __future__ import annotations
 
+import os
+from pathlib import Path
 
 import pytest
 
@@ -47,3 +49,52 @@ def cf_failures():
         return required, [f"{name}: {exc}" for name, (exc, _) in errors.items()]
 
     return failures
+
+
+class FastStores:
+    """Stores of the points of fast studies that this test session has made, shared by its
+    worker processes. A module that makes a fast study publishes its store (:meth:`publish`);
+    a module that needs the same study's results but does not test their making seeds its own
+    store from it first (:meth:`seed`) and reads those points back: the path a resumed run
+    takes. Nothing waits: a study not yet published is made, so which path a reader takes
+    depends on the order the workers meet the modules, and both give the same numbers."""
+
+    def __init__(self, root):
+        self.root = root
+
+    def seed(self, name: str, store) -> bool:
+        """Copy the published store of study ``name`` into ``store`` (a folder); False when
+        none is published yet."""
+        import shutil
+
+        published = self.root / name
+        if not published.is_dir():
+            return False
+        shutil.copytree(published, store, dirs_exist_ok=True)
+        return True
+
+    def publish(self, name: str, store) -> None:
+        """Publish the folder ``store`` as study ``name``'s, unless one is published already
+        (a copy, renamed into place whole: a reader never sees half of it)."""
+        import shutil
+        import tempfile
+
+        self.root.mkdir(parents=True, exist_ok=True)
+        if (self.root / name).exists() or not store.is_dir():
+            return
+        staging = Path(tempfile.mkdtemp(prefix=f".{name}.", dir=self.root))
+        shutil.copytree(store, staging / "store")
+        try:
+            (staging / "store").rename(self.root / name)
+        except OSError:  # another worker published it first
+            pass
+        shutil.rmtree(staging, ignore_errors=True)
+
+
+@pytest.fixture(scope="session")
+def fast_stores(tmp_path_factory):
+    """The session's :class:`FastStores`: under pytest-xdist in the folder the workers'
+    temporary folders share (one per session), else in this session's own."""
+    base = tmp_path_factory.getbasetemp()
+    return FastStores((base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base)
+                      / "fast-stores")

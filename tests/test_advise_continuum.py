@@ -40,8 +40,11 @@ TOL = 0.10
 
 
 @pytest.fixture(scope="module")
-def fast_map(tmp_path_factory):
+def fast_map(tmp_path_factory, fast_stores):
+    """The fast map's file, its continuum runs read from the session's when another module
+    has made them (conftest.FastStores)."""
     out = tmp_path_factory.mktemp("winkler_map")
+    fast_stores.seed("winkler_map", out / "store")
     wm.run(fast=True, out=out, options=replace(FAST_OPTIONS, figures=False))
     return out / "map.nc"
 

@@ -500,8 +500,9 @@ def test_macro_map_slice_fast_path(tmp_path):
 def test_macro_diagnosis_fast_path(tmp_path):
     """One point of the half-plane map (clay, FS_v 3, 1.5 a_up, the 0.6 s pulse), built from
     the kept store: the continuum's live run is the store's record of that point (its residual
-    settlement within the table's rounding, 0.005 mm: the same run made again), the element
-    is faster than the continuum in the same process, and its coarsest sub-step faster still.
+    settlement within the table's rounding, 0.005 mm: the same run made again), and the cost
+    table's ratios are its own times divided (within their rounding). Which model is faster
+    is the benchmark's to measure, not this test's: the times vary with the machine's load.
     Reference: the store's record, made by the map's cluster run, not by this script."""
     from upliftlab.comparisons.framework.store import Store
     from upliftlab.comparisons.studies.winkler_map.plan import point_key_of
@@ -522,9 +523,18 @@ def test_macro_diagnosis_fast_path(tmp_path):
         point_key_of(point, evaluate_dynamic))
     kept = 1e3 * stored["measures"]["residual_settlement"]
     assert bench_output.number(row["continuum"]) == pytest.approx(kept, abs=0.005)
-    cost = found["Cost, both models timed in this process"][0]
-    assert bench_output.number(cost["ratio"]) > 1.0
-    assert float(cost["element at the coarsest sub-step (s)"]) < float(cost["element (s)"])
+    # the cost row's cells in order (its two "ratio" columns share a name): point, continuum
+    # (s), element (s), ratio, element at the coarsest sub-step (s), ratio, …
+    text = (out / "MACRO_DIAGNOSIS.md").read_text(encoding="utf-8")
+    section = text.split("## Cost, both models timed in this process", 1)[1]
+    cells = [c.strip() for c in section.split("\n|---", 1)[1].split("\n")[1].strip("|")
+             .split("|")]
+    continuum = float(cells[1])
+    for seconds, ratio in ((cells[2], cells[3]), (cells[4], cells[5])):
+        # each time printed to 0.05 s or 0.0005 s, the ratio to the nearest whole number
+        quotient = continuum / float(seconds)
+        bound = 0.5 + quotient * (0.05 / continuum + 0.0005 / float(seconds))
+        assert abs(bench_output.number(ratio) - quotient) <= bound, (seconds, ratio, quotient)
 
 
 def test_macro_small_cycles_fast_path(tmp_path):

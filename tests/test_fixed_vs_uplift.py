@@ -4,9 +4,9 @@ spectrum.
 The study's result is one labelled dataset (``study.data``), selected by building, support,
 family and period. References: Fig. 11 as read from the paper (peak u 0.164 in fixed, 0.055 in
 uplift allowed in Case C); the exact Nigam–Jennings recurrence for the fixed-base spectral
-displacement (the fixed base is a linear SDOF with 5 % damping); the single-run path (:func:`reduced.run`)
-against the batch path (:func:`reduced.run_batch`) at the paper's periods; ratios computed by
-hand for the range statements.
+displacement (the fixed base is a linear SDOF with 5 % damping); the single-run path
+(:func:`reduced.run`) against the batch path (:func:`reduced.run_batch`) at the paper's periods;
+ratios computed by hand for the range statements.
 """
 
 from __future__ import annotations
@@ -24,8 +24,12 @@ from upliftlab.reduced.exact import hermite_peak, nigam_jennings
 
 
 @pytest.fixture(scope="module")
-def study(elcentro, tmp_path_factory):
-    return fvu.run(fast=True, out=tmp_path_factory.mktemp("fixed_vs_uplift"))
+def study(elcentro, tmp_path_factory, fast_stores):
+    """The fast study, its points published for the report's test (conftest.FastStores)."""
+    out = tmp_path_factory.mktemp("fixed_vs_uplift")
+    made = fvu.run(fast=True, out=out)
+    fast_stores.publish("fixed_vs_uplift", out / "store")
+    return made
 
 
 def test_fig11_matches_the_paper(study):

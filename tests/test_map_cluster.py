@@ -86,11 +86,14 @@ def _study(*argv, cwd) -> subprocess.CompletedProcess:
                           env={**os.environ, "OMP_NUM_THREADS": "1"})
 
 
-def test_the_fast_map_runs_on_a_cluster_of_separate_processes(cluster, tmp_path):
+def test_the_fast_map_runs_on_a_cluster_of_separate_processes(cluster, tmp_path, fast_stores):
     on_cluster = _study("--fast", "--no-figures", "--scheduler", cluster, "--out",
                         str(tmp_path / "cluster"), cwd=tmp_path)
     assert on_cluster.returncode == 0, on_cluster.stderr[-3000:]
     assert "split over the executor's workers" in on_cluster.stderr
+    # the local map's runs: those another process of this session made, when one has
+    # (conftest.FastStores), else made here; either way not the cluster's
+    fast_stores.seed("winkler_map", tmp_path / "local" / "store")
     local = _study("--fast", "--no-figures", "--workers", "1", "--out", str(tmp_path / "local"),
                    cwd=tmp_path)
     assert local.returncode == 0, local.stderr[-3000:]

@@ -23,9 +23,12 @@ from upliftlab.reduced import run
 
 
 @pytest.fixture(scope="module")
-def study(tmp_path_factory):
+def study(tmp_path_factory, fast_stores):
+    """The fast study, its points published for the report's test (conftest.FastStores)."""
     out = tmp_path_factory.mktemp("speed_vs_error")
-    return sve.run(fast=True, out=out, progress=False)
+    made = sve.run(fast=True, out=out, progress=False)
+    fast_stores.publish("speed_vs_error", out / "store")
+    return made
 
 
 def _scenes(ds) -> list[str]:

@@ -22,11 +22,14 @@ from upliftlab.comparisons.framework.store import Store
 
 
 @pytest.fixture(scope="module")
-def study(tmp_path_factory):
+def study(tmp_path_factory, fast_stores):
     """The fast study without its figures (most of its time: their drawing is tested where
-    they are used, by tests/test_report.py, whose fast report embeds every one of them)."""
+    they are used, by tests/test_report.py, whose fast report embeds every one of them); its
+    points published for the report's test (conftest.FastStores)."""
     out = tmp_path_factory.mktemp("two_spring")
-    return tse.run(fast=True, out=out, progress=False, options=tse.Options(figures=False))
+    made = tse.run(fast=True, out=out, progress=False, options=tse.Options(figures=False))
+    fast_stores.publish("two_spring_equivalence", out / "store")
+    return made
 
 
 @pytest.fixture(scope="module")

@@ -62,9 +62,13 @@ def executor():
 
 
 @pytest.fixture(scope="module")
-def study(tmp_path_factory, executor):
+def study(tmp_path_factory, executor, fast_stores):
+    """The fast map from an empty store, its runs published for the modules that read them
+    (conftest.FastStores)."""
     out = tmp_path_factory.mktemp("winkler_map")
-    return wm.run(fast=True, out=out, executor=executor, progress=False)
+    made = wm.run(fast=True, out=out, executor=executor, progress=False)
+    fast_stores.publish("winkler_map", out / "store")
+    return made
 
 
 @pytest.fixture(scope="module")

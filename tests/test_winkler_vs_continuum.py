@@ -43,9 +43,12 @@ from upliftlab.scenes import load_scene
 
 
 @pytest.fixture(scope="module")
-def study(tmp_path_factory):
+def study(tmp_path_factory, fast_stores):
+    """The fast study, its points published for the report's test (conftest.FastStores)."""
     out = tmp_path_factory.mktemp("winkler_vs_continuum")
-    return wvc.run(fast=True, out=out, progress=False)
+    made = wvc.run(fast=True, out=out, progress=False)
+    fast_stores.publish("winkler_vs_continuum", out / "store")
+    return made
 
 
 @pytest.fixture(scope="module")
