@@ -2,7 +2,7 @@
 
 Build it strict (every warning an error), offline, from the repository's root::
 
-    python -m sphinx -W --keep-going -b html docs docs/_build/html
+    python -m sphinx -j auto -W --keep-going -b html docs docs/_build/html
 
 Pages are Markdown (myst-parser); the gallery's scripts (``docs/gallery/*.py``) are executed by
 sphinx-gallery; the API pages are generated from the docstrings (autodoc, autosummary); the

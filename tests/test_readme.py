@@ -39,8 +39,8 @@ AT2 = ("PEER NGA STRONG MOTION DATABASE RECORD\nan example record\nACCELERATION 
 #: Command of a README or docs ``bash`` block -> how it is exercised, and the files it must leave
 #: (relative to its cwd).
 EXERCISED = {
-    '.venv/bin/python -m pip install -e ".[docs]" && .venv/bin/python -m sphinx -W --keep-going '
-    '-b html docs docs/_build/html': ("ci-docs", ()),
+    '.venv/bin/python -m pip install -e ".[docs]" && .venv/bin/python -m sphinx -j auto -W '
+    '--keep-going -b html docs docs/_build/html': ("ci-docs", ()),
     'python3 -m venv .venv && .venv/bin/python -m pip install ".[plot]" && '
     '.venv/bin/upliftlab paper --out results/paper': ("ci", ()),
     'python3 -m venv .venv && .venv/bin/python -m pip install -e ".[test]" && '
