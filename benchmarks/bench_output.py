@@ -258,10 +258,21 @@ def missing_section(title: str, key: str, missing: dict) -> str:
 # ---------------------------------------------------------------------------------------------
 
 
+def _distinct(names: list[str]) -> list[str]:
+    """``names`` with the second of a repeated name written 'name (2)', the third 'name (3)'."""
+    seen: dict[str, int] = {}
+    out = []
+    for name in names:
+        seen[name] = seen.get(name, 0) + 1
+        out.append(name if seen[name] == 1 else f"{name} ({seen[name]})")
+    return out
+
+
 def markdown_tables(text: str) -> dict[str, list[dict[str, str]]]:
     """Every pipe table of a Markdown text as rows of {header: cell}, keyed by the heading
     (``## ...``/``### ...``) above it; a second table under one heading gets ' (2)' and so
-    on. Cells are stripped text."""
+    on, and so does a second column of one name in a table (``ratio``, ``ratio (2)``). Cells
+    are stripped text."""
     tables: dict[str, list[dict[str, str]]] = {}
     heading, lines = "", text.splitlines()
     i = 0
@@ -271,7 +282,7 @@ def markdown_tables(text: str) -> dict[str, list[dict[str, str]]]:
             heading = line.lstrip("#").strip()
         elif line.startswith("|") and i + 1 < len(lines) and \
                 lines[i + 1].strip().startswith("|---"):
-            header = [c.strip() for c in line.strip("|").split("|")]
+            header = _distinct([c.strip() for c in line.strip("|").split("|")])
             rows, i = [], i + 2
             while i < len(lines) and lines[i].strip().startswith("|"):
                 cells = [c.strip() for c in lines[i].strip().strip("|").split("|")]

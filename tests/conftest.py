@@ -8,6 +8,8 @@ that no run can pass by leaving the record's tests out.
 from __future__ import annotations
 
 import os
+import shutil
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -59,26 +61,18 @@ class FastStores:
     takes. Nothing waits: a study not yet published is made, so which path a reader takes
     depends on the order the workers meet the modules, and both give the same numbers."""
 
-    def __init__(self, root):
+    def __init__(self, root: Path):
         self.root = root
 
-    def seed(self, name: str, store) -> bool:
-        """Copy the published store of study ``name`` into ``store`` (a folder); False when
-        none is published yet."""
-        import shutil
+    def seed(self, name: str, store: Path) -> None:
+        """Copy the published store of study ``name`` into the folder ``store``, when one is
+        published."""
+        if (self.root / name).is_dir():
+            shutil.copytree(self.root / name, store, dirs_exist_ok=True)
 
-        published = self.root / name
-        if not published.is_dir():
-            return False
-        shutil.copytree(published, store, dirs_exist_ok=True)
-        return True
-
-    def publish(self, name: str, store) -> None:
+    def publish(self, name: str, store: Path) -> None:
         """Publish the folder ``store`` as study ``name``'s, unless one is published already
         (a copy, renamed into place whole: a reader never sees half of it)."""
-        import shutil
-        import tempfile
-
         self.root.mkdir(parents=True, exist_ok=True)
         if (self.root / name).exists() or not store.is_dir():
             return
