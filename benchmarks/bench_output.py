@@ -258,14 +258,12 @@ def missing_section(title: str, key: str, missing: dict) -> str:
 # ---------------------------------------------------------------------------------------------
 
 
-def _distinct(names: list[str]) -> list[str]:
-    """``names`` with the second of a repeated name written 'name (2)', the third 'name (3)'."""
-    seen: dict[str, int] = {}
-    out = []
-    for name in names:
-        seen[name] = seen.get(name, 0) + 1
-        out.append(name if seen[name] == 1 else f"{name} ({seen[name]})")
-    return out
+def _unused(name: str, taken) -> str:
+    """``name``, or the first of 'name (2)', 'name (3)', … not in ``taken``."""
+    key, k = name, 2
+    while key in taken:
+        key, k = f"{name} ({k})", k + 1
+    return key
 
 
 def markdown_tables(text: str) -> dict[str, list[dict[str, str]]]:
@@ -282,16 +280,15 @@ def markdown_tables(text: str) -> dict[str, list[dict[str, str]]]:
             heading = line.lstrip("#").strip()
         elif line.startswith("|") and i + 1 < len(lines) and \
                 lines[i + 1].strip().startswith("|---"):
-            header = _distinct([c.strip() for c in line.strip("|").split("|")])
+            header: list[str] = []
+            for cell in line.strip("|").split("|"):
+                header.append(_unused(cell.strip(), header))
             rows, i = [], i + 2
             while i < len(lines) and lines[i].strip().startswith("|"):
                 cells = [c.strip() for c in lines[i].strip().strip("|").split("|")]
                 rows.append(dict(zip(header, cells)))
                 i += 1
-            key, k = heading, 2
-            while key in tables:
-                key, k = f"{heading} ({k})", k + 1
-            tables[key] = rows
+            tables[_unused(heading, tables)] = rows
             continue
         i += 1
     return tables
