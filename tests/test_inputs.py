@@ -124,6 +124,10 @@ def test_a_motion_file_is_parsed_once_and_reread_when_it_changes(tmp_path):
 @pytest.mark.parametrize("content, message", [
     ("0.0 0.1\n0.01 nan\n", "line 2: value nan is not a finite number"),
     ("0.0 0.1\n0.01 0.2\n0.03 0.1\n", "line 2: time step 0.01 s differs from the mean step 0.015 s"),
+    # a repeated time is named on its own row, line 3, not on the step before it (line 2);
+    # a time that goes back, likewise; the comment line does not shift the numbering
+    ("0.0 0.1\n0.02 0.2\n0.02 0.3\n", r"line 3: time 0\.02 s does not increase \(the row"),
+    ("# t a\n0.0 0.1\n0.02 0.2\n0.04 0.3\n0.03 0.1\n", r"line 5: time 0\.03 s does not increase"),
     ("0.0 0.1 0.3\n0.01 0.2 0.4\n", "3 columns; expected 2"),
     ("0.0 0.1\n0.01\n", "line 2: 1 columns, but the first data row has 2"),
     ("0.0 abc\n", "is not numbers"),

@@ -355,9 +355,13 @@ def _uniform_step(time: np.ndarray, path: Path, lines: list[int]) -> float:
     if time.size < 2:
         raise InputError(f"motion file {str(path)!r}: needs at least two samples")
     steps = np.diff(time)
+    back = np.flatnonzero(~(steps > 0))
+    if back.size:
+        # a repeated or earlier time: the row it is on is the one at fault, not its neighbour
+        i = back[0]
+        raise InputError(f"motion file {str(path)!r} line {lines[i + 1]}: time {time[i + 1]:g} s "
+                         f"does not increase (the row before has {time[i]:g} s)")
     step = (time[-1] - time[0]) / (time.size - 1)
-    if not step > 0:
-        raise InputError(f"motion file {str(path)!r}: time does not increase")
     off = np.flatnonzero(np.abs(steps - step) > _UNIFORM_DT_RTOL * step + 1e-12)
     if off.size:
         i = off[0]
