@@ -112,8 +112,8 @@ def add_continuum(sub) -> None:
                                  "any)")
     c.add_argument("--no-render", action="store_true",
                    help="skip the PNG and GIF renders (dynamic: the pictures cost at most "
-                        f"{PICTURE_SHARE:.0%} of the solve's CPU time, the GIF taking as many "
-                        "evenly spaced snapshots as fit, at least 9)")
+                        f"{PICTURE_SHARE * 100:.0f}%% of the solve's CPU time, the GIF taking "
+                        "as many evenly spaced snapshots as fit, at least 9)")
     c.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     c.add_argument("--force", action="store_true", help="replace a different run in --out")
     c.add_argument("--budget", metavar="SECONDS",
