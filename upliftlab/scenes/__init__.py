@@ -182,9 +182,9 @@ def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
     structure = read_structure(table.get("structure"), units)
     vertical_mass = structure.vertical_weight / g
     scene = Scene(
-        title=table.get("title", string, ""),
-        description=table.get("description", string, ""),
-        reference=table.get("reference", string, ""),
+        title=table.get("title", text, ""),
+        description=table.get("description", text, ""),
+        reference=table.get("reference", text, ""),
         units=units,
         structure=structure,
         foundation=read_foundation(table.get("foundation"), vertical_mass, units),
@@ -209,6 +209,19 @@ def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
 #: The integrator a scene with curved springs (q–z) takes when it names none (the default, the
 #: event stepper, tabulates piecewise-affine laws and refuses a curved law).
 QZ_INTEGRATOR = "rk4"
+
+
+def text(name: str, value) -> str:
+    """``value`` if it is a string of text: no control character but tab and line breaks. A
+    scene's title, description and reference are written into every result (netCDF refuses a
+    NUL in a string, after the run) and printed on the terminal (an escape sequence there
+    would act on it)."""
+    value = string(name, value)
+    for position, character in enumerate(value):
+        if (ord(character) < 32 and character not in "\t\n\r") or ord(character) == 127:
+            raise InputError(f"{name}: control character {character!r} at position {position}; "
+                             "a scene's text holds printable characters, tabs and line breaks")
+    return value
 
 
 def _analysis_for(analysis: Analysis, analysis_data, foundation_data) -> Analysis:
