@@ -466,3 +466,23 @@ def test_a_yield_multiple_override_without_an_elastoplastic_law_is_refused(case,
                    overrides=[*extra, "foundation.yield_multiple=5"])
     assert load_scene("short_period_free", case="C",
                       overrides=["foundation.yield_multiple=5"]).foundation.law.yield_multiple == 5
+
+
+def test_a_step_that_runs_as_another_is_said(tmp_path, capsys):
+    """A run's steps are whole numbers in its duration: ``--dt 0.7`` on a 3 s run ran as 0.6 s,
+    ``--dt 10`` as 3 s and ``analysis.output_dt = 0.07`` on 0.2 s as 0.0667 s, with no word
+    (the reference: 3/0.7 → 5 steps of 0.6 s; 0.2/0.07 → 3 outputs of 0.2/3 s)."""
+    cases = [(["--dt", "0.7"], "--dt = 0.7 s runs as 0.6 s, a whole number of steps in the "
+                               "run's 3 s"),
+             (["--dt", "10"], "--dt = 10 s runs as 3 s"),
+             (["--set", "analysis.output_dt=0.07", "--set", "motion.duration=0.2"],
+              "analysis.output_dt = 0.07 s runs as 0.0666667 s"),
+             (["--set", "analysis.dt=0.07", "--set", "motion.duration=0.2"],
+              "analysis.dt = 0.07 s runs as 0.0666667 s")]
+    for i, (extra, note) in enumerate(cases):
+        assert cli(["run", "wall_free", "--case", "e07", "--no-figure", "--json",
+                    "--out", str(tmp_path / str(i)), *extra]) == 0
+        assert note in capsys.readouterr().err, extra
+    assert cli(["run", "wall_free", "--case", "e07", "--no-figure", "--json", "--dt", "0.5",
+                "--out", str(tmp_path / "even")]) == 0
+    assert "runs as" not in capsys.readouterr().err  # 0.5 s divides 3 s: nothing to say

@@ -16,7 +16,8 @@ from ..extras import need_extra
 from ..log import logger
 from ..outdir import claim
 from ..scenes.motion import INTEGRATORS
-from .common import default_out, number, refuse_without_effect, say_if_rounded
+from .common import (default_out, number, refuse_without_effect, say_if_rounded,
+                     say_if_step_changed)
 from .exits import EXIT_NUMERICS, EXIT_OK
 
 __all__ = ["add_reduced_commands", "run_command", "paper_command", "scenes_command",
@@ -105,8 +106,13 @@ def run_command(args) -> int:
                            budget=budget)
         for note in response.info.get("notes", []):
             logger("cli").warning(f"upliftlab run: note: {note}")
-        say_if_rounded("upliftlab run", scene.analysis.duration or motion.duration,
-                       response.info["steps"], response.info["dt"])
+        duration = scene.analysis.duration or motion.duration
+        say_if_rounded("upliftlab run", duration, response.info["steps"], response.info["dt"])
+        say_if_step_changed("upliftlab run", "--dt" if dt is not None else "analysis.dt",
+                            dt if dt is not None else scene.analysis.dt, response.info["dt"],
+                            duration)
+        say_if_step_changed("upliftlab run", "analysis.output_dt", scene.analysis.output_dt,
+                            response.info["output_dt"], duration)
         out.start_writing()
         written = response.save(out.path / f"{scene.name}.nc", csv=args.csv)
         if not args.no_figure:
