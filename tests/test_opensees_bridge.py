@@ -217,3 +217,14 @@ def test_run_json_has_the_same_keys_for_both(opensees, tmp_path, capsys):
     for name in ("model.py", "comparison.md", "comparison.json", "histories.csv",
                  "opensees_summary.json", "upliftlab.nc"):
         assert (out / name).is_file(), name
+
+
+def test_timeout_without_run_refused(tmp_path, capsys):
+    """--timeout without --run (no OpenSees run to limit) is refused as --json is: one line
+    naming the option and its value, exit 2, nothing written."""
+    out = tmp_path / "out"
+    code = main(["opensees", "wall_free", "--timeout", "5", "--out", str(out)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1
+    assert "--timeout = '5': only with --run" in err[0]
+    assert not out.exists()

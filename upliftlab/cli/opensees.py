@@ -18,6 +18,9 @@ from ..outdir import claim
 
 __all__ = ["add_opensees", "opensees_command"]
 
+#: Seconds the OpenSees run of ``--run`` may take unless ``--timeout`` says otherwise.
+DEFAULT_TIMEOUT = "3600"
+
 
 def add_opensees(sub) -> None:
     """The parser of ``upliftlab opensees``."""
@@ -35,7 +38,7 @@ def add_opensees(sub) -> None:
                    "clipped (default, as upliftlab's), detaching or parallel")
     o.add_argument("--run", action="store_true", help="run it (the 'opensees' extra) and "
                    "upliftlab; write both models' peaks and histories side by side")
-    o.add_argument("--timeout", default="3600", help="of the OpenSees run (s, default 3600)")
+    o.add_argument("--timeout", help="with --run: of the OpenSees run (s, default 3600)")
     o.add_argument("--json", action="store_true", help="with --run: print one JSON object "
                    "{\"upliftlab\": {...}, \"opensees\": {...}}")
     o.add_argument("--force", action="store_true", help="replace a different run in --out")
@@ -65,8 +68,11 @@ def opensees_command(args) -> int:
 
     if args.json and not args.run:
         raise InputError("--json: only with --run (it prints both models' summaries)")
+    if args.timeout is not None and not args.run:
+        raise InputError(f"--timeout = {args.timeout!r}: only with --run (it limits the "
+                         "OpenSees run, which only --run starts)")
     dt = _positive("--dt", args.dt)
-    timeout = _positive("--timeout", args.timeout)
+    timeout = _positive("--timeout", DEFAULT_TIMEOUT if args.timeout is None else args.timeout)
     scene = load_scene(args.scene, case=args.case, overrides=args.overrides, motion=args.motion)
     if scene.foundation.law.name == "macro":
         return _macro_tcl(args, scene, dt)
