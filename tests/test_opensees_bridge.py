@@ -228,3 +228,55 @@ def test_timeout_without_run_refused(tmp_path, capsys):
     assert code == 2 and len(err) == 1
     assert "--timeout = '5': only with --run" in err[0]
     assert not out.exists()
+
+
+def _hostile_scene(tmp_path, title):
+    """long_period_free (Case A) from a copy whose title is ``title`` (a TOML basic string)."""
+    from pathlib import Path
+
+    text = (Path(__file__).parents[1] / "scenes" / "long_period_free.toml").read_text()
+    line = next(x for x in text.splitlines() if x.startswith("title = "))
+    path = tmp_path / "evil.toml"
+    path.write_text(text.replace(line, f"title = {title}"))
+    return path
+
+
+def test_script_outputs_keep_a_titles_lines_out_of_the_data(tmp_path, capsys):
+    """A title with line breaks and a terminal escape: every header line of the script's
+    histories CSV is a comment (as upliftlab's own CSV), so the title adds no row to what
+    pandas or the bridge's reader read; on stderr the title is one escaped line (no raw
+    control character). The script is imported, not run: no OpenSees needed."""
+    import importlib.util
+    from types import SimpleNamespace
+
+    import pandas as pd
+
+    path = _hostile_scene(tmp_path, '"x\\"\\"\\"; import os\\n1,2,3,4,5,6\\n\\u001b[31mred"')
+    files = write_script(opensees_spec(load_scene(str(path), case="A")), tmp_path / "m")
+    loaded = importlib.util.spec_from_file_location("hostile_model", files.script)
+    model = importlib.util.module_from_spec(loaded)
+    loaded.loader.exec_module(model)
+    model.load_scene_numbers()
+    assert model.TITLE == 'x"""; import os\n1,2,3,4,5,6\n\x1b[31mred'
+    rows = [(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), (0.01, 0.5, 1e-4, -0.1, 0.2, 3.0)]
+    observer = SimpleNamespace(rows=rows, peak={"u": 0.5, "theta": 1e-4, "uplift": 0.0,
+                                                "shear": 3.0})
+    model.write_outputs(observer, "completed", 1.0, 0.1, 1)
+    csv_path = tmp_path / "m" / "opensees_histories.csv"
+    lines = csv_path.read_text().splitlines()
+    names = "time,u,theta,V,left_spring_displacement,base_shear"
+    header = lines[:lines.index(names)]
+    assert header == ['# x"""; import os', "# 1,2,3,4,5,6",
+                      "# \x1b[31mred: OpenSees histories; units kip-in-s; theta as "
+                      "upliftlab's; left_spring_displacement is the compression from rest"]
+    table = pd.read_csv(csv_path, comment="#")
+    assert list(table.columns) == names.split(",")
+    np.testing.assert_array_equal(table.to_numpy(), np.array(rows))
+    histories = runner.read_histories(csv_path)
+    np.testing.assert_array_equal(histories["base_shear"], [0.0, 3.0])
+    capsys.readouterr()
+    model.announce()
+    err = capsys.readouterr().err
+    assert err.splitlines()[0] == ('OpenSees model of evil-A: x"""; import os\\n1,2,3,4,5,6'
+                                   '\\n\\x1b[31mred (kip-in-s)')
+    assert len(err.splitlines()) == 1 + len(model.NOTES) and "\x1b" not in err
