@@ -280,3 +280,29 @@ def test_script_outputs_keep_a_titles_lines_out_of_the_data(tmp_path, capsys):
     assert err.splitlines()[0] == ('OpenSees model of evil-A: x"""; import os\\n1,2,3,4,5,6'
                                    '\\n\\x1b[31mred (kip-in-s)')
     assert len(err.splitlines()) == 1 + len(model.NOTES) and "\x1b" not in err
+
+
+def test_command_in_model_json_is_shell_quoted_and_reproduces_the_run(tmp_path, capsys):
+    """model.json's COMMAND is the shell-quoted command that writes the model again: the scene
+    path as given (not its stem), --case, each --set, then the resolved --dt and --dashpots.
+    A shell splits it back into exactly those arguments and runs nothing of a path or an
+    override with quotes, $(...), backquotes, ; or globs."""
+    import shlex
+    import subprocess
+
+    marker = tmp_path / "INJECTED"
+    scene = tmp_path / "s" / "e'v\"il$(id);[x]{y}.toml"
+    scene.parent.mkdir()
+    scene.write_text(_hostile_scene(tmp_path, '"plain"').read_text())
+    override = f"title=a; $(touch {marker}) `touch {marker}` \" x"
+    out = tmp_path / "out"
+    code = main(["opensees", str(scene), "--case", "A", "--set", override, "--out", str(out)])
+    assert code == 0, capsys.readouterr().err
+    data = json.loads((out / "model.json").read_text())
+    expected = ["upliftlab", "opensees", str(scene), "--case", "A", "--set", override,
+                "--dt", repr(data["DT"]), "--dashpots", "clipped"]
+    assert shlex.split(data["COMMAND"]) == expected
+    shell = subprocess.run(["sh", "-c", f"set -- {data['COMMAND']}; printf '%s\\0' \"$@\""],
+                           capture_output=True, text=True, cwd=tmp_path, check=True)
+    assert shell.stdout.split("\0")[:-1] == expected
+    assert not marker.exists()

@@ -14,6 +14,7 @@ import json
 import math
 import statistics
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -90,8 +91,11 @@ def _upliftlab_summary(response: Response, runtime: float) -> dict:
 
 
 def compare(scene: Scene, out: str | Path, *, dt: float | None = None,
-            dashpots: str = "clipped", timeout: float = 3600.0) -> Comparison:
+            dashpots: str = "clipped", timeout: float = 3600.0,
+            scene_args: Sequence[str] | None = None) -> Comparison:
     """Write the script of ``scene`` into ``out``, run both models and return the comparison.
+    ``scene_args``: the command-line arguments that chose the scene (for the command the
+    script's ``model.json`` names, :func:`.script.write_script`).
 
     Every input is checked before any file is written; raises
     :class:`~.runner.OpenSeesError` if the OpenSees run fails and the reduced model's
@@ -99,7 +103,7 @@ def compare(scene: Scene, out: str | Path, *, dt: float | None = None,
     """
     spec = opensees_spec(scene, dt=dt, dashpots=dashpots)
     require_opensees()
-    files = write_script(spec, out)
+    files = write_script(spec, out, scene_args)
     _say(f"wrote {files.script}, {files.numbers}"
          + (f" and {files.motion}" if files.motion else ""))
     started = time.perf_counter()

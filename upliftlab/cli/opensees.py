@@ -56,6 +56,15 @@ def _positive(name: str, text: str | None) -> float | None:
     return value
 
 
+def _scene_args(args) -> list[str]:
+    """The arguments that chose the scene, as given: the scene, --case, --motion and each
+    --set (for the command in the script's model.json, which adds the resolved step)."""
+    chosen = [args.scene]
+    for option, value in (("--case", args.case), ("--motion", args.motion)):
+        chosen += [option, value] if value is not None else []
+    return chosen + [a for o in args.overrides for a in ("--set", o)]
+
+
 def opensees_command(args) -> int:
     """Run the subcommand; 0 when the script was written (and, with --run, both runs
     finished)."""
@@ -84,7 +93,7 @@ def opensees_command(args) -> int:
     with claim(args.out, default, settings=settings, force=args.force) as out:
         out.start_writing()
         if not args.run:
-            files = write_script(spec, out.path)
+            files = write_script(spec, out.path, _scene_args(args))
             out.complete([f for f in (files.script, files.numbers, files.motion)
                           if f is not None])
             extra = f" and {files.motion}" if files.motion else ""
@@ -93,7 +102,8 @@ def opensees_command(args) -> int:
                   f"{spec.steps} Newmark steps of {spec.dt:.4g} s; run it with "
                   f"`python {files.script}` (needs openseespy)")
             return 0
-        result = compare(scene, out.path, dt=dt, dashpots=args.dashpots, timeout=timeout)
+        result = compare(scene, out.path, dt=dt, dashpots=args.dashpots, timeout=timeout,
+                         scene_args=_scene_args(args))
         written = write_comparison(result, out.path)
         out.complete([result.files.script, result.files.numbers, *written,
                       *[f for f in (result.files.motion,) if f is not None]])
