@@ -306,3 +306,33 @@ def test_command_in_model_json_is_shell_quoted_and_reproduces_the_run(tmp_path, 
                            capture_output=True, text=True, cwd=tmp_path, check=True)
     assert shell.stdout.split("\0")[:-1] == expected
     assert not marker.exists()
+
+
+@pytest.mark.parametrize("options, message", [
+    (["--dt", "1e-12"], "analysis.max_steps = 10000000: the OpenSees run would take 8e+12 "
+                        "Newmark steps of 1e-12 s (8 s); raise it (--set "
+                        "analysis.max_steps=8000000000000) to write it anyway"),
+    (["--run", "--dt", "1e-9"], "analysis.max_steps = 10000000: the OpenSees run would take "
+                                "8e+09 Newmark steps of 1e-09 s (8 s)"),
+    (["--dt", "5e-324"], "analysis.max_steps = 10000000: the OpenSees run would take inf "
+                         "Newmark steps of 4.94e-324 s (8 s); take a larger step (--dt)"),
+    # the OpenSees run within the limit, upliftlab's own run (analysis.dt) above it
+    (["--run", "--dt", "1e-3", "--set", "analysis.dt=1e-5", "--set",
+      "analysis.max_steps=100000"], "analysis.max_steps = 100000: the reduced run would take "
+                                    "8e+05 steps of 1e-05 s"),
+])
+def test_step_count_refused_before_anything_is_written_or_run(options, message, monkeypatch,
+                                                              tmp_path, capsys):
+    """A run above analysis.max_steps (the OpenSees script's Newmark steps, with or without
+    --run; with --run, upliftlab's runs beside it too) ends with one line naming the limit and
+    the steps, exit 2, before any file is written or any model run."""
+    import importlib
+
+    compare_module = importlib.import_module("upliftlab.comparisons.opensees.compare")
+    monkeypatch.setattr(compare_module, "run", lambda *a, **k: pytest.fail("upliftlab ran"))
+    out = tmp_path / "out"
+    code = main(["opensees", "long_period_free", "--case", "A", *options, "--out", str(out)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1, err
+    assert message in err[0]
+    assert not out.exists()

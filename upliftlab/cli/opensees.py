@@ -70,7 +70,8 @@ def opensees_command(args) -> int:
     finished)."""
     # imported here, not with the parser: the comparison loads the reduced model, which every
     # other command (a continuum run among them) would otherwise load to build its parser
-    from ..comparisons.opensees.compare import comparison_table, compare, write_comparison
+    from ..comparisons.opensees.compare import (check_upliftlab_runs, comparison_table, compare,
+                                                write_comparison)
     from ..comparisons.opensees.script import write_script
     from ..comparisons.opensees.spec import opensees_spec
     from ..scenes import load_scene
@@ -86,6 +87,8 @@ def opensees_command(args) -> int:
     if scene.foundation.law.name == "macro":
         return _macro_tcl(args, scene, dt)
     spec = opensees_spec(scene, dt=dt, dashpots=args.dashpots)  # refuses before any file
+    if args.run:  # upliftlab's runs beside it, their cost included, before the folder is claimed
+        check_upliftlab_runs(scene, spec.dt)
     settings = {"command": "opensees", "scene": scene.name, "scene_digest": scene.digest,
                 "overrides": list(scene.overrides), "motion": args.motion, "dt": dt,
                 "dashpots": args.dashpots, "run": bool(args.run)}
