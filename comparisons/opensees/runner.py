@@ -131,7 +131,7 @@ def _stamp(path: Path) -> tuple[int, int, int] | None:
 
 
 def read_histories(path: Path) -> dict:
-    """The script's CSV: a comment line, a header, then one row per step."""
+    """The script's CSV: comment lines, a header, then one row per step."""
     with open(path) as f:
         rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))]
     names, data = rows[0], np.array(rows[1:], dtype=float)

@@ -93,7 +93,7 @@ def section_kv(rocking_stiffness: float, width: float) -> float:
 
 def tcl_numbers(scene: Scene, dt: float | None = None) -> dict[str, float]:
     """The numbers ``model.tcl`` reads (module docstring), in the scene's units."""
-    from .spec import default_step
+    from .spec import check_step_count, default_step
 
     check_tcl_representable(scene)
     model = build_model(scene)
@@ -107,6 +107,7 @@ def tcl_numbers(scene: Scene, dt: float | None = None) -> dict[str, float]:
     step = default_step(scene, motion) if dt is None else dt
     if not (math.isfinite(step) and 0.0 < step <= duration):
         raise InputError(f"--dt = {step:g}: valid range is (0, {duration:g}] s")
+    check_step_count(scene, step, duration)
     return {
         "g": float(scene.g), "story_weight": float(story.weight),
         "vertical_weight": float(s.vertical_weight), "height": float(story.height),
