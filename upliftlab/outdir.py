@@ -36,7 +36,7 @@ from pathlib import Path
 from .checks import InputError
 from .paths import check_folder_name, disk_full, pop_root, push_root
 
-__all__ = ["MARKER", "LOCK", "Claim", "claim", "settings_digest", "read_marker"]
+__all__ = ["MARKER", "LOCK", "Claim", "claim", "probe_folder", "settings_digest", "read_marker"]
 
 MARKER = "upliftlab-run.json"
 _CONTROL = re.compile(r"[\x00-\x1f\x7f]")
@@ -173,17 +173,49 @@ def claim(out: str | os.PathLike | None, default: str | os.PathLike, *, settings
                          f"({exc.strerror or exc})") from None
 
 
-def _claim(path: Path, settings: dict, force: bool, option: str) -> Claim:
-    """:func:`claim` of the folder ``path`` (its checks, in order)."""
-    if _CONTROL.search(str(path)):
-        raise InputError(f"{option} = {str(path)!r}: a folder name with a control character "
-                         "(a line break, a tab, …) is refused")
+def _refuse_a_file(path: Path, option: str) -> None:
+    """An :class:`InputError` naming ``option`` if ``path``, or the nearest of its folders that
+    exists, is a file (nothing can be made in it)."""
     for parent in [path, *path.parents]:
         if parent.exists():
             if not parent.is_dir():
                 where = "is" if parent == path else f"lies under {str(parent)!r}, which is"
                 raise InputError(f"{option} = {str(path)!r}: {where} a file, not a folder")
             break
+
+
+def probe_folder(folder: str | os.PathLike, option: str) -> Path:
+    """``folder``, checked before any work to be a folder this process can write to: named as
+    one (:func:`~upliftlab.paths.check_folder_name`), not a file nor under one, and one where a
+    file can be made (a probe file is made and removed, and the folders made for it removed
+    again: nothing is left behind). Else an :class:`InputError` naming ``option`` and the
+    value. Unlike :func:`claim` it locks nothing (a study's store is shared on purpose)."""
+    path = check_folder_name(folder, option)
+    _refuse_a_file(path, option)
+    created = [p for p in reversed([path, *path.parents]) if not p.exists()]
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+        fd, probe = tempfile.mkstemp(prefix=".probe.", dir=path)
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as exc:
+        if disk_full(exc):  # not bad input: the command's own exit (3, no space left)
+            raise
+        raise InputError(f"{option} = {str(path)!r}: cannot write there "
+                         f"({exc.strerror or exc})") from None
+    finally:
+        for made in reversed(created):
+            with contextlib.suppress(OSError):
+                made.rmdir()
+    return path
+
+
+def _claim(path: Path, settings: dict, force: bool, option: str) -> Claim:
+    """:func:`claim` of the folder ``path`` (its checks, in order)."""
+    if _CONTROL.search(str(path)):
+        raise InputError(f"{option} = {str(path)!r}: a folder name with a control character "
+                         "(a line break, a tab, …) is refused")
+    _refuse_a_file(path, option)
     created = [p for p in reversed([path, *path.parents]) if not p.exists()]
     result = Claim(path, settings, created)
     try:
