@@ -234,6 +234,39 @@ def test_a_records_own_values_out_of_range_name_the_file(tmp_path, monkeypatch, 
         assert not (tmp_path / "o").exists()
 
 
+# a device: /dev/null, not /dev/zero, so that code which opened it would read nothing, not fill
+# the memory (the old --macro-calibration read /dev/zero until the kernel killed it)
+@pytest.mark.parametrize("given, kind", [
+    ("m/adir", "a folder"), ("m/fifo.txt", "a named pipe"), ("/dev/null", "a character device"),
+])
+def test_a_motion_path_that_is_not_a_regular_file_says_what_it_is(given, kind, tmp_path,
+                                                                  monkeypatch, capsys, fifo):
+    """A folder, a named pipe or a device was refused as 'does not exist'; a named pipe is
+    never opened (it would wait for a writer)."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "m" / "adir").mkdir(parents=True)
+    fifo("m/fifo.txt")
+    assert cli(["run", "wall_free", "--case", "e07", "--no-figure", "--motion", given,
+                "--out", "o"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"upliftlab: error: motion file '{given}' is {kind}, not a regular file; "
+                   "give a record file (two columns, one column with motion.dt, or PEER .AT2)"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["m"]
+
+
+def test_a_scene_path_that_is_a_named_pipe_says_so(tmp_path, monkeypatch, capsys, fifo):
+    """A scene path that is a named pipe was refused as 'no such file' (a folder already said
+    it was one); it is never opened."""
+    monkeypatch.chdir(tmp_path)
+    fifo("m/s.toml")
+    assert cli(["run", "m/s.toml", "--no-figure", "--out", "o"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("upliftlab: error: scene 'm/s.toml': a named "
+                                               "pipe, not a scene file; a path is used as "
+                                               "given"), err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["m"]
+
+
 def test_one_column_needs_dt_and_missing_names_say_how_to_supply(tmp_path, monkeypatch):
     path = tmp_path / "one.txt"
     path.write_text("0.1\n0.2\n")

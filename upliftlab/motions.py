@@ -27,6 +27,7 @@ import numpy as np
 
 from .bounds import KINDS
 from .checks import InputError, finite, in_range, nonnegative, positive
+from .paths import NO_SUCH_FILE, REGULAR_FILE, file_kind
 
 __all__ = [
     "Motion",
@@ -214,10 +215,14 @@ def load_motion(name_or_path: str | os.PathLike, dt: float | None = None) -> Mot
     text = str(name_or_path)
     candidate = Path(text).expanduser()
     looks_like_path = candidate.suffix != "" or os.sep in text or (os.altsep or os.sep) in text
-    if candidate.is_file():
+    kind = file_kind(candidate, f"motion file {text!r}")
+    if kind == REGULAR_FILE:
         return read_motion(candidate, dt=dt)
     if looks_like_path:
-        raise InputError(f"motion file {text!r} does not exist")
+        if kind == NO_SUCH_FILE:
+            raise InputError(f"motion file {text!r} does not exist")
+        raise InputError(f"motion file {text!r} is {kind}, not a regular file; give a record "
+                         "file (two columns, one column with motion.dt, or PEER .AT2)")
     motion = read_motion(find_motion(text), dt=dt)
     if text == ELCENTRO:
         _say_if_not_the_expected_elcentro(motion)
@@ -250,12 +255,13 @@ def read_motion(path: str | os.PathLike, dt: float | None = None) -> Motion:
     :class:`Motion` is immutable, so the cached record is shared safely.
     """
     path = Path(path)
+    kind = file_kind(path, f"motion file {str(path)!r}")
+    if kind not in (REGULAR_FILE, NO_SUCH_FILE):  # before it is opened: a pipe would block
+        raise InputError(f"motion file {str(path)!r} is {kind}, not a regular file")
     try:
         stat = path.stat()
     except OSError as exc:
         raise InputError(f"motion file {str(path)!r}: cannot read it ({exc.strerror})") from None
-    if not path.is_file():
-        raise InputError(f"motion file {str(path)!r}: not a file")
     if stat.st_size > MAX_FILE_BYTES:
         raise InputError(f"motion file {str(path)!r}: {stat.st_size / 2**20:.0f} MiB; a motion "
                          f"file may hold at most {MAX_FILE_BYTES // 2**20} MiB (about ten "
