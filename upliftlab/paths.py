@@ -39,7 +39,8 @@ from .checks import InputError
 
 __all__ = ["MAX_COMPONENT", "path_component", "check_folder_name", "check_target",
            "output_root", "temporary_sibling", "TEMPORARY_TAG", "DISK_FULL", "disk_full",
-           "forget_temporary", "remove_live_temporaries"]
+           "forget_temporary", "remove_live_temporaries", "file_kind",
+           "REGULAR_FILE", "NO_SUCH_FILE"]
 
 #: Longest name upliftlab turns into a path component (a file name may hold 255 bytes; the
 #: name is joined with a case, a suffix and a temporary file's tag).
@@ -159,6 +160,27 @@ def check_target(path: str | os.PathLike) -> Path:
             raise InputError(f"output {str(path)!r}: resolves to {str(where)!r}, outside the "
                              f"output folder {str(roots[-1])!r}; nothing is written there")
     return path
+
+
+#: What :func:`file_kind` calls a regular file, and a path that names nothing.
+REGULAR_FILE, NO_SUCH_FILE = "a regular file", "no such file"
+
+
+def file_kind(path: str | os.PathLike, where: str) -> str:
+    """What an input ``path`` is: :data:`REGULAR_FILE`, :data:`NO_SUCH_FILE`, or what else it
+    is ("a folder", "a named pipe", "a character device", ...). Found by ``os.stat`` (links
+    followed) without opening it: opening a named pipe waits for a writer, and a device such
+    as /dev/zero never ends. A path that cannot be examined is refused in one line that begins
+    with ``where`` (the option or field and the path)."""
+    try:
+        mode = os.stat(path).st_mode
+    except (FileNotFoundError, NotADirectoryError):
+        return NO_SUCH_FILE
+    except OSError as exc:
+        raise InputError(f"{where}: cannot be examined ({exc.strerror})") from None
+    except ValueError as exc:  # a NUL in the path
+        raise InputError(f"{where}: not a path ({exc})") from None
+    return REGULAR_FILE if stat.S_ISREG(mode) else _kind(mode)
 
 
 def _kind(mode: int) -> str:

@@ -29,7 +29,7 @@ from pathlib import Path
 from .. import checks
 from ..checks import InputError
 from ..motions import Motion
-from ..paths import path_component
+from ..paths import NO_SUCH_FILE, REGULAR_FILE, file_kind, path_component
 from .motion import (DEFAULT_ENERGY_TOLERANCE, DEFAULT_MAX_MEMORY,  # noqa: F401
                      DEFAULT_MAX_STEPS, DEFAULT_RTOL, INTEGRATORS, MAX_SCALE, MOTION_TYPES,
                      Analysis, MotionSpec, build_motion, read_analysis, read_motion)
@@ -286,10 +286,11 @@ def find_scene(name_or_path: str) -> Path:
     """A scene file given by a path, used as given (a path that names no file is refused, never
     replaced by a packaged scene of the same name), or the packaged scene of that name."""
     path = Path(name_or_path).expanduser()
-    if path.is_file():
+    kind = file_kind(path, f"scene {name_or_path!r}")  # not opened: a named pipe would block
+    if kind == REGULAR_FILE:
         return path
     if _is_path(name_or_path):
-        what = "a folder, not a scene file" if path.is_dir() else "no such file"
+        what = kind if kind == NO_SUCH_FILE else f"{kind}, not a scene file"
         raise InputError(f"scene {name_or_path!r}: {what}; a path is used as given (a packaged "
                          "scene is named without folder or .toml, see `upliftlab scenes`)")
     scenes = packaged_scenes()
