@@ -376,6 +376,32 @@ def test_stale_temporary_files_are_cleaned_and_live_locks_refused(tmp_path, caps
     assert read_marker(out)["complete"]
 
 
+@pytest.mark.parametrize("content", ["99999999999999999999", "-1", "0", "nobody"])
+def test_a_lock_holding_no_process_id_is_stale(content, tmp_path, capsys):
+    """A lock whose content no upliftlab run writes (a number beyond any process id, -1, 0, a
+    word) is taken as stale: the run proceeds and leaves no lock (it used to fail with an
+    OverflowError, or stay locked for good by 'process -1')."""
+    out = tmp_path / "locked"
+    out.mkdir()
+    (out / LOCK).write_text(content + "\n")
+    assert cli(["run", "wall_free", "--no-figure", "--set", "analysis.duration=0.1", "--out",
+                str(out)]) == 0, capsys.readouterr().err
+    assert read_marker(out)["complete"] and not (out / LOCK).exists()
+
+
+def test_an_empty_lock_is_refused_with_what_to_do(tmp_path, capsys):
+    """An empty lock is a run that has not yet written its id (or a crash's): refused, kept."""
+    out = tmp_path / "locked"
+    out.mkdir()
+    (out / LOCK).write_text("")
+    assert cli(["run", "wall_free", "--no-figure", "--out", str(out)]) == 2
+    assert _error(capsys) == (f"upliftlab: error: --out = {str(out)!r}: another upliftlab run "
+                              "is writing to it (lock file .upliftlab.lock, empty or "
+                              "unreadable; if no upliftlab run is writing there, a crash left "
+                              "it: remove it)")
+    assert (out / LOCK).read_text() == ""
+
+
 def test_a_killed_run_leaves_no_marker_and_the_next_run_recovers(tmp_path):
     """Kill a run (SIGKILL, so nothing is cleaned up) and check the folder says it is
     incomplete; the next run takes the folder over and completes it."""

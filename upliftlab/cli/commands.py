@@ -40,7 +40,9 @@ def add_reduced_commands(sub) -> None:
     r.add_argument("--csv", action="store_true", help="also write the histories as CSV")
     r.add_argument("--no-figure", action="store_true", help="skip the PNG figure")
     r.add_argument("--json", action="store_true", help="print the summary as one JSON object")
-    r.add_argument("--force", action="store_true", help="replace a different run in --out")
+    r.add_argument("--force", action="store_true",
+                   help="replace a different run in --out (only files upliftlab made there: a "
+                        "file of yours at an output's name is refused, --force or not)")
     r.add_argument("--budget", metavar="SECONDS",
                    help="refuse (exit 2) before any integration a run estimated to take "
                         "longer than this (default 3600 s); raise it to run one on purpose")
@@ -97,8 +99,10 @@ def run_command(args) -> int:
                 "overrides": list(scene.overrides), "motion": args.motion, "dt": dt,
                 "integrator": args.integrator}
     motion = scene.build_motion()  # the record is read and checked before the folder
+    outputs = [f"{scene.name}{suffix}" for suffix, wanted in
+               ((".nc", True), (".csv", args.csv), (".png", not args.no_figure)) if wanted]
     with claim(args.out, default_out(scene.name, variant), settings=settings,
-               force=args.force) as out:
+               force=args.force, outputs=outputs) as out:
         from ..reduced import run
         with warnings.catch_warnings():  # the model's notes are printed as notes, below
             warnings.simplefilter("ignore")
