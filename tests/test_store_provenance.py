@@ -305,3 +305,22 @@ def test_a_study_refuses_a_corrupt_record_before_any_work(code, tmp_path):
         _sweep(store, [{"x": 0.0}, {"x": 1.0}])
     assert CALLS == [] and store.path(key).read_text() == NOTE
     assert [p.name for p in (tmp_path / "store").rglob("*.json")] == [f"{key}.json"]
+
+
+@pytest.mark.parametrize("text, said", [
+    ("{not json", "not JSON ("),
+    ('["accepted"]', "not a table of accepted code digests"),
+    ('{"accepted": 3}', "not a table of accepted code digests"),
+])
+def test_a_provenance_file_that_is_not_one_is_refused_not_written_over(text, said, code,
+                                                                       tmp_path):
+    """A ``provenance.json`` that could not be read was taken as empty, and the next check's
+    stamp wrote over it: the checks it held were lost. Now it is refused naming it, and kept."""
+    store = Store(tmp_path / "store")
+    _sweep(store, [{"x": 1.0}])
+    (tmp_path / "store" / st.STAMPS).write_text(text)
+    code("b")
+    with pytest.raises(st.InputError) as refused:
+        _sweep(store, [{"x": 1.0}])
+    assert f"provenance.json': {said}" in str(refused.value)
+    assert (tmp_path / "store" / st.STAMPS).read_text() == text

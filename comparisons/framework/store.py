@@ -338,11 +338,29 @@ class Store:
     def accepted(self) -> dict:
         """``provenance.json``: per function name, the code digests accepted for each code
         digest that checked them (:mod:`.freshness`)."""
+        return self._stamps().get("accepted", {})
+
+    def _stamps(self) -> dict:
+        """``provenance.json`` as a table; {} when there is none. A file that is not such a
+        table is refused naming it: read as empty, the next :meth:`stamp` would write over
+        the checks it holds."""
+        path = self.root / STAMPS
         try:
-            stamps = json.loads((self.root / STAMPS).read_text())
-        except (OSError, ValueError):
+            text = path.read_text(encoding="utf-8")
+        except FileNotFoundError:
             return {}
-        return stamps.get("accepted", {}) if isinstance(stamps, dict) else {}
+        except (OSError, UnicodeDecodeError) as exc:
+            raise InputError(f"store provenance {str(path)!r}: cannot be read ({exc}); move "
+                             "it out of the store") from None
+        try:
+            stamps = json.loads(text)
+        except ValueError as exc:
+            raise InputError(f"store provenance {str(path)!r}: not JSON ({exc}); move it out "
+                             "of the store") from None
+        if not isinstance(stamps, dict) or not isinstance(stamps.get("accepted", {}), dict):
+            raise InputError(f"store provenance {str(path)!r}: not a table of accepted code "
+                             "digests ('accepted', 'checks'); move it out of the store")
+        return stamps
 
     def is_fresh(self, entry: Mapping) -> bool:
         """Whether ``entry`` was made by today's code (:func:`depends_digest` of its function),
@@ -356,10 +374,7 @@ class Store:
     def stamp(self, function: str, accepts: Sequence[str], check: Mapping) -> Path:
         """Record that today's code reproduced the records of ``function`` made by the code
         digests ``accepts`` (``check``: what was run and how close it came)."""
-        try:
-            stamps = json.loads((self.root / STAMPS).read_text())
-        except (OSError, ValueError):
-            stamps = {}
+        stamps = self._stamps()
         code = depends_digest(function)
         per_code = stamps.setdefault("accepted", {}).setdefault(function, {})
         per_code[code] = sorted(set(per_code.get(code, [])) | set(accepts))
