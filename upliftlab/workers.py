@@ -322,13 +322,13 @@ class _PipeHandler(logging.Handler):
 def _read_answer(read: int, check: Callable[[], None]):
     """The message ("answer" or "raised", value) the child sends on ``read`` (:func:`_child`),
     None if it sent none; its log records handled as they come, and ``check`` called while no
-    answer has come."""
+    answer has come nor started to come (an answer being received is computed: it is kept)."""
     import pickle
     import select
 
     buffer, message = bytearray(), None
     while True:
-        if message is None:
+        if message is None and not buffer:
             check()
         ready, _, _ = select.select([read], [], [], CHILD_POLL)
         if not ready:
