@@ -8,6 +8,8 @@ Each reads and checks its scene, options and output folder before any work
 from __future__ import annotations
 
 import json
+import shlex
+import sys
 import warnings
 
 from .. import bounds
@@ -16,9 +18,11 @@ from ..extras import need_extra
 from ..log import logger
 from ..outdir import claim
 from ..scenes.motion import INTEGRATORS
+from ..workers import in_child
 from .common import (default_out, number, refuse_without_effect, say_if_rounded,
                      say_if_step_changed)
-from .exits import EXIT_NUMERICS, EXIT_OK
+from .exits import EXIT_INTERRUPTED, EXIT_NUMERICS, EXIT_OK
+from .stop import stop_flag
 
 __all__ = ["add_reduced_commands", "run_command", "paper_command", "scenes_command",
            "advise_command", "REDUCED_KEYS", "ADVISE_KEYS"]
@@ -85,6 +89,21 @@ REDUCED_KEYS = ("schema", "units", "title", "description", "reference", "structu
 
 
 def run_command(args) -> int:
+    """``upliftlab run``: check everything, claim the folder, run the scene, write its files.
+
+    An interruption (:mod:`.stop`) before the run is computed ends it at once with nothing
+    written: the run is computed in a child process (:func:`upliftlab.workers.in_child`), since
+    its compiled time loop would hold off a signal until its end. Once the response is here, a
+    signal lets its data files be written (the figure is skipped), leaves the folder without
+    its completion marker and ends with one line and exit 130. After the marker the run is
+    complete: a signal then changes nothing."""
+    with stop_flag() as flag:
+        flag.defer()  # a signal only sets the flag, checked between the steps below
+        return _run(args, flag)
+
+
+def _run(args, flag) -> int:
+    """:func:`run_command` with its ``flag`` (deferred)."""
     from ..scenes import load_scene
 
     if not args.no_figure:
@@ -101,13 +120,11 @@ def run_command(args) -> int:
     motion = scene.build_motion()  # the record is read and checked before the folder
     outputs = [f"{scene.name}{suffix}" for suffix, wanted in
                ((".nc", True), (".csv", args.csv), (".png", not args.no_figure)) if wanted]
+    flag.check()
     with claim(args.out, default_out(scene.name, variant), settings=settings,
                force=args.force, outputs=outputs) as out:
-        from ..reduced import run
-        with warnings.catch_warnings():  # the model's notes are printed as notes, below
-            warnings.simplefilter("ignore")
-            response = run(scene, motion=motion, integrator=args.integrator, dt=dt,
-                           budget=budget)
+        response = in_child(_run_quietly, scene, motion, args.integrator, dt, budget,
+                            check=flag.check)  # ends the child, raises, if a signal came
         for note in response.info.get("notes", []):
             logger("cli").warning(f"upliftlab run: note: {note}")
         duration = scene.analysis.duration or motion.duration
@@ -119,17 +136,34 @@ def run_command(args) -> int:
                             response.info["output_dt"], duration)
         out.start_writing()
         written = response.save(out.path / f"{scene.name}.nc", csv=args.csv)
-        if not args.no_figure:
+        if not args.no_figure and not flag.stopped:
             from ..reduced.figures import response_figure, save
             written.append(save(response_figure(response), out.path / f"{scene.name}.png"))
+        if flag.stopped:  # every data file written, no completion marker
+            names = ", ".join(sorted(p.name for p in written))
+            skipped = "" if args.no_figure else " (figure skipped)"
+            print(f"upliftlab: interrupted ({flag.name}) after the run was computed; wrote "
+                  f"{names} to {out.path}{skipped}, not marked complete; resume with: "
+                  f"{shlex.join(['upliftlab', *args.argv])}", file=sys.stderr)
+            return EXIT_INTERRUPTED
         out.complete(written)
-    for path in written:
-        logger("cli").info(f"upliftlab run: wrote {path}")
-    if args.json:
-        print(json.dumps(response.summary(), allow_nan=False))
-    else:
-        print(response.summary_line())
+        for path in written:
+            logger("cli").info(f"upliftlab run: wrote {path}")
+        if args.json:
+            print(json.dumps(response.summary(), allow_nan=False))
+        else:
+            print(response.summary_line())
     return EXIT_OK
+
+
+def _run_quietly(scene, motion, integrator, dt, budget):
+    """The reduced model's response of ``scene`` (:func:`upliftlab.reduced.run`), its warnings
+    silenced: the command prints the model's notes as notes."""
+    from ..reduced import run
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return run(scene, motion=motion, integrator=integrator, dt=dt, budget=budget)
 
 
 def paper_command(args) -> int:
