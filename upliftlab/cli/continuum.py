@@ -36,7 +36,7 @@ from ..budget import (CONTINUUM_BUDGET_SECONDS, MAX_BUDGET_SECONDS, continuum_co
                       in_sequence, time_budget)
 from ..checks import InputError
 from ..extras import need_extra
-from .common import (MESH_KEYS, default_out, eta, mesh_overrides, number,
+from .common import (FORCE_HELP, MESH_KEYS, default_out, eta, mesh_overrides, number,
                      refuse_without_effect, say, say_if_rounded)
 from . import error_estimate as estimate_cli
 from .exits import EXIT_INTERRUPTED, EXIT_NUMERICS
@@ -115,7 +115,7 @@ def add_continuum(sub) -> None:
                         f"{PICTURE_SHARE * 100:.0f}%% of the solve's CPU time, the GIF taking "
                         "as many evenly spaced snapshots as fit, at least 9)")
     c.add_argument("--json", action="store_true", help="print the summary as one JSON object")
-    c.add_argument("--force", action="store_true", help="replace a different run in --out")
+    c.add_argument("--force", action="store_true", help=FORCE_HELP)
     c.add_argument("--budget", metavar="SECONDS",
                    help="refuse (exit 2) before any meshing a run estimated to take longer "
                         "than this (default 86400 s); raise it to run one on purpose")
