@@ -462,6 +462,18 @@ _DECLARED = {
     "calibrate": (["calibrate", "strip_footing_clay", "--mesh", "elements_across=4", "--fs-v",
                    "3", "--evaluations", "10", "--set", "structure.vertical_weight=200"],
                   "CALIBRATION.md"),
+    "continuum pushover": (["continuum", "strip_footing_clay", "--analysis", "pushover",
+                            "--steps", "2"], "moment_rotation.png"),
+    "continuum dynamic": (["continuum", "strip_footing_clay", "--analysis", "dynamic",
+                           "--set", "analysis.duration=0.03"], "fields.xdmf"),
+    "continuum picture": (["continuum", "strip_footing_clay", "--analysis", "dynamic",
+                           "--set", "analysis.duration=0.03"], "uplift.gif"),
+    "continuum estimate": (["continuum", "strip_footing_clay", "--analysis", "dynamic",
+                            "--set", "analysis.duration=0.03", "--error-estimate"],
+                           "error_estimate.json"),
+    "continuum coarser run": (["continuum", "strip_footing_clay", "--analysis", "dynamic",
+                               "--set", "analysis.duration=0.03", "--error-estimate"],
+                              "error_estimate/8_across/result.nc"),
     "paper": (["paper"], "summary.md"),
     "paper figure": (["paper"], "fig04.png"),
     "report": (["report", "--fast"], "report.html"),
@@ -477,11 +489,11 @@ def test_every_command_refuses_a_users_file_at_an_outputs_name_before_any_work(
     monkeypatch.chdir(tmp_path)
     argv, name = _DECLARED[command]
     out = tmp_path / "out"
-    out.mkdir()
     mine = out / name
+    mine.parent.mkdir(parents=True)
     mine.write_text("my own file\n")
     for force in ([], ["--force"]):
         line = _refused([*argv, "--out", str(out), *force], capsys)
         assert line == _own_file_line(out, name)
         assert mine.read_text() == "my own file\n"
-        assert sorted(p.name for p in out.iterdir()) == [name]
+        assert sorted(str(p.relative_to(out)) for p in out.rglob("*") if p.is_file()) == [name]
