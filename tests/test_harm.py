@@ -497,3 +497,23 @@ def test_every_command_refuses_a_users_file_at_an_outputs_name_before_any_work(
         assert line == _own_file_line(out, name)
         assert mine.read_text() == "my own file\n"
         assert sorted(str(p.relative_to(out)) for p in out.rglob("*") if p.is_file()) == [name]
+
+
+@pytest.mark.parametrize("command", list(_DECLARED))
+def test_every_command_refuses_a_link_at_an_outputs_name_before_any_work(
+        command, tmp_path, monkeypatch, capsys):
+    """A link at one of the command's output names (to a file outside the folder that does
+    not exist yet): exit 2 with one line naming it, before any work; the link is left, nothing
+    is written, outside the folder either."""
+    monkeypatch.chdir(tmp_path)
+    argv, name = _DECLARED[command]
+    out = tmp_path / "out"
+    link = out / name
+    link.parent.mkdir(parents=True)
+    link.symlink_to(tmp_path / "outside")
+    line = _refused([*argv, "--out", str(out)], capsys)
+    assert line == (f"upliftlab: error: output {str(link)!r}: is a symbolic link, not a regular "
+                    "file; upliftlab replaces only regular files")
+    assert link.is_symlink() and not (tmp_path / "outside").exists()
+    assert sorted(str(p.relative_to(out)) for p in out.rglob("*")
+                  if p.is_symlink() or p.is_file()) == [name]
