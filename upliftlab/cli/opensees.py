@@ -73,7 +73,7 @@ def opensees_command(args) -> int:
     # other command (a continuum run among them) would otherwise load to build its parser
     from ..comparisons.opensees.compare import (COMPARISON_NAMES, check_upliftlab_runs,
                                                 comparison_table, compare, write_comparison)
-    from ..comparisons.opensees.runner import RUN_OUTPUTS
+    from ..comparisons.opensees.runner import RUN_OUTPUTS, require_opensees
     from ..comparisons.opensees.script import script_names, write_script
     from ..comparisons.opensees.spec import opensees_spec
     from ..scenes import load_scene
@@ -91,6 +91,7 @@ def opensees_command(args) -> int:
     spec = opensees_spec(scene, dt=dt, dashpots=args.dashpots)  # refuses before any file
     if args.run:  # upliftlab's runs beside it, their cost included, before the folder is claimed
         check_upliftlab_runs(scene, spec.dt)
+        require_opensees()  # the extra missing: one line, and no folder made for nothing
     settings = {"command": "opensees", "scene": scene.name, "scene_digest": scene.digest,
                 "overrides": list(scene.overrides), "motion": args.motion, "dt": dt,
                 "dashpots": args.dashpots, "run": bool(args.run)}
