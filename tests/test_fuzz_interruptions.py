@@ -461,7 +461,10 @@ def test_a_signal_while_the_result_is_written_lets_the_writing_finish(tmp_path):
         "upliftlab: interrupted (SIGINT) after the run was computed; wrote wall_free-e07.csv, "
         f"wall_free-e07.nc to o, not marked complete; resume with: upliftlab {' '.join(RUN)} "
         "--csv --out o")
-    assert sorted(p.name for p in out.iterdir()) == ["wall_free-e07.csv", "wall_free-e07.nc"]
+    # and the record of the files being written, which stays until the folder is complete:
+    # the next run knows those two as upliftlab's (upliftlab.outdir.WRITING)
+    assert sorted(p.name for p in out.iterdir()) == [".upliftlab-writing.json",
+                                                      "wall_free-e07.csv", "wall_free-e07.nc"]
     rows, _ = read_netcdf(out / "wall_free-e07.nc")
     assert rows["time"][-1] == pytest.approx(0.2)
 

@@ -441,3 +441,79 @@ def test_a_kept_point_finds_its_fema_record_while_a_command_holds_its_output_fol
     with output_root(tmp_path / "out"):  # a command holds its output folder
         found = locate(motion)
     assert found.startswith(str(tmp_path / "cache")) and file_sha256(found) == motion["sha256"]
+
+
+# ---------------------------------------------------------------------------------------------
+# Every command that writes into an output folder declares its outputs before any work
+# ---------------------------------------------------------------------------------------------
+
+_MACRO = [a for s in ("foundation.law=macro", "foundation.capacity_multiple=3.0",
+                      "foundation.sway_stiffness=38000", "structure.vertical_weight=180",
+                      "foundation.sway_damping=200", "foundation.rocking_stiffness=60000")
+          for a in ("--set", s)]
+_ELASTIC_CLAY = ["--set", "soil.model=elastic", "--set", "soil.undrained_strength="]
+#: (command line without --out, the name of one of its outputs)
+_DECLARED = {
+    "opensees": (["opensees", "wall_free", "--case", "e10"], "model.py"),
+    "opensees --run": (["opensees", "wall_free", "--case", "e10", "--run"], "comparison.md"),
+    "opensees macro": (["opensees", "strip_footing_clay", *_MACRO], "model.tcl"),
+    "impedance": (["continuum", "strip_footing_clay", "--analysis", "impedance",
+                   *_ELASTIC_CLAY, "--a0", "0.2"], "impedance.png"),
+    "calibrate": (["calibrate", "strip_footing_clay", "--mesh", "elements_across=4", "--fs-v",
+                   "3", "--evaluations", "10", "--set", "structure.vertical_weight=200"],
+                  "CALIBRATION.md"),
+    "continuum pushover": (["continuum", "strip_footing_clay", "--analysis", "pushover",
+                            "--steps", "2"], "moment_rotation.png"),
+    "continuum dynamic": (["continuum", "strip_footing_clay", "--analysis", "dynamic",
+                           "--set", "analysis.duration=0.03"], "fields.xdmf"),
+    "continuum picture": (["continuum", "strip_footing_clay", "--analysis", "dynamic",
+                           "--set", "analysis.duration=0.03"], "uplift.gif"),
+    "continuum estimate": (["continuum", "strip_footing_clay", "--analysis", "dynamic",
+                            "--set", "analysis.duration=0.03", "--error-estimate"],
+                           "error_estimate.json"),
+    "continuum coarser run": (["continuum", "strip_footing_clay", "--analysis", "dynamic",
+                               "--set", "analysis.duration=0.03", "--error-estimate"],
+                              "error_estimate/8_across/result.nc"),
+    "paper": (["paper"], "summary.md"),
+    "paper figure": (["paper"], "fig04.png"),
+    "report": (["report", "--fast"], "report.html"),
+}
+
+
+@pytest.mark.parametrize("command", list(_DECLARED))
+def test_every_command_refuses_a_users_file_at_an_outputs_name_before_any_work(
+        command, tmp_path, monkeypatch, capsys):
+    """A file of the user's at one of the command's output names: exit 2 with the one line
+    naming it, before any work (nothing but that file in the folder afterwards), with or
+    without --force; the file is left as it was."""
+    monkeypatch.chdir(tmp_path)
+    argv, name = _DECLARED[command]
+    out = tmp_path / "out"
+    mine = out / name
+    mine.parent.mkdir(parents=True)
+    mine.write_text("my own file\n")
+    for force in ([], ["--force"]):
+        line = _refused([*argv, "--out", str(out), *force], capsys)
+        assert line == _own_file_line(out, name)
+        assert mine.read_text() == "my own file\n"
+        assert sorted(str(p.relative_to(out)) for p in out.rglob("*") if p.is_file()) == [name]
+
+
+@pytest.mark.parametrize("command", list(_DECLARED))
+def test_every_command_refuses_a_link_at_an_outputs_name_before_any_work(
+        command, tmp_path, monkeypatch, capsys):
+    """A link at one of the command's output names (to a file outside the folder that does
+    not exist yet): exit 2 with one line naming it, before any work; the link is left, nothing
+    is written, outside the folder either."""
+    monkeypatch.chdir(tmp_path)
+    argv, name = _DECLARED[command]
+    out = tmp_path / "out"
+    link = out / name
+    link.parent.mkdir(parents=True)
+    link.symlink_to(tmp_path / "outside")
+    line = _refused([*argv, "--out", str(out)], capsys)
+    assert line == (f"upliftlab: error: output {str(link)!r}: is a symbolic link, not a regular "
+                    "file; upliftlab replaces only regular files")
+    assert link.is_symlink() and not (tmp_path / "outside").exists()
+    assert sorted(str(p.relative_to(out)) for p in out.rglob("*")
+                  if p.is_symlink() or p.is_file()) == [name]

@@ -242,22 +242,25 @@ def _hostile_scene(tmp_path, title):
 
 
 def test_script_outputs_keep_a_titles_lines_out_of_the_data(tmp_path, capsys):
-    """A title with line breaks and a terminal escape: every header line of the script's
-    histories CSV is a comment (as upliftlab's own CSV), so the title adds no row to what
-    pandas or the bridge's reader read; on stderr the title is one escaped line (no raw
-    control character). The script is imported, not run: no OpenSees needed."""
+    """A title with line breaks: every header line of the script's histories CSV is a comment
+    (as upliftlab's own CSV), so the title adds no row to what pandas or the bridge's reader
+    read; on stderr the title is one escaped line. A terminal escape cannot come from a scene
+    (its text refuses control characters but tabs and line breaks: test_inputs), but the
+    script escapes whatever its numbers file holds: one is put in its title here. The script
+    is imported, not run: no OpenSees needed."""
     import importlib.util
     from types import SimpleNamespace
 
     import pandas as pd
 
-    path = _hostile_scene(tmp_path, '"x\\"\\"\\"; import os\\n1,2,3,4,5,6\\n\\u001b[31mred"')
+    path = _hostile_scene(tmp_path, '"x\\"\\"\\"; import os\\n1,2,3,4,5,6\\nred"')
     files = write_script(opensees_spec(load_scene(str(path), case="A")), tmp_path / "m")
     loaded = importlib.util.spec_from_file_location("hostile_model", files.script)
     model = importlib.util.module_from_spec(loaded)
     loaded.loader.exec_module(model)
     model.load_scene_numbers()
-    assert model.TITLE == 'x"""; import os\n1,2,3,4,5,6\n\x1b[31mred'
+    assert model.TITLE == 'x"""; import os\n1,2,3,4,5,6\nred'
+    model.TITLE = model.TITLE.replace("red", "\x1b[31mred")
     rows = [(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), (0.01, 0.5, 1e-4, -0.1, 0.2, 3.0)]
     observer = SimpleNamespace(rows=rows, peak={"u": 0.5, "theta": 1e-4, "uplift": 0.0,
                                                 "shear": 3.0})

@@ -207,11 +207,13 @@ def _take_stale_lock(lock: Path) -> None:
 
 
 def claim(out: str | os.PathLike | None, default: str | os.PathLike, *, settings: dict,
-          force: bool = False, option: str = "--out", outputs=()) -> Claim:
+          force: bool = False, option: str = "--out", outputs=(), patterns=()) -> Claim:
     """Check and claim the output folder ``out`` (``default`` when None) for a run with
-    ``settings`` that will write the files named ``outputs`` in it (module docstring). Nothing
-    is computed before this returns. A path through ``..`` is resolved first (links
-    followed), so that no folder is created that the ``..`` then leaves."""
+    ``settings`` that will write the files named ``outputs`` in it (module docstring), and
+    files whose names, known only as it runs, match the glob ``patterns`` (those already
+    there are checked as outputs). Nothing is computed before this returns. A path through
+    ``..`` is resolved first (links followed), so that no folder is created that the ``..``
+    then leaves."""
     if out is not None and (not isinstance(out, (str, os.PathLike)) or not str(out).strip()):
         raise InputError(f"{option} = {out!r}: expected a folder path")
     path = check_folder_name(out if out is not None else default, option)
@@ -220,6 +222,7 @@ def claim(out: str | os.PathLike | None, default: str | os.PathLike, *, settings
     try:
         result = _claim(path, settings, force, option)
         result.outputs = [str(name) for name in outputs]
+        result.outputs += _matching(path, patterns, result.outputs)
         try:
             check_outputs(result)
         except BaseException:
@@ -353,6 +356,15 @@ def _read_json(path: Path) -> object:
         return json.loads(path.read_text())
     except (OSError, ValueError):
         return None
+
+
+def _matching(folder: Path, patterns, named) -> list[str]:
+    """The names (in ``folder``) of the entries there that match a glob of ``patterns`` and are
+    not in ``named``: a file, a link or another non-folder a run writing such names could
+    replace."""
+    found = {str(entry.relative_to(folder)) for pattern in patterns
+             for entry in folder.glob(pattern) if entry.is_symlink() or not entry.is_dir()}
+    return sorted(found - set(named))
 
 
 def check_outputs(held: Claim) -> None:

@@ -30,8 +30,8 @@ from .runner import OpenSeesRun, require_opensees, run_script
 from .script import ScriptFiles, modelling_notes, write_script
 from .spec import OpenSeesSpec, opensees_spec
 
-__all__ = ["SUMMARY_KEYS", "PEAK_KEYS", "Comparison", "compare", "check_upliftlab_runs",
-           "write_comparison", "summary_of", "comparison_table"]
+__all__ = ["COMPARISON_NAMES", "SUMMARY_KEYS", "PEAK_KEYS", "Comparison", "compare",
+           "check_upliftlab_runs", "write_comparison", "summary_of", "comparison_table"]
 
 #: The keys of both models' summaries (the uplift ones only with a foundation of springs).
 SUMMARY_KEYS = ("scene", "verdict", "integrator", "dt", "units", "runtime_s", "peak_u",
@@ -245,6 +245,11 @@ def _figure(c: Comparison, path: Path, curves: bool = True) -> Path | None:
     return save(fig, path)
 
 
+#: The files :func:`write_comparison` writes (the figure only where matplotlib is installed).
+COMPARISON_NAMES = ("comparison.md", "comparison.json", "histories.csv", "upliftlab.nc",
+                    "histories.png")
+
+
 def write_comparison(c: Comparison, out: str | Path, *, curves: bool = True) -> list[Path]:
     """``comparison.md``, ``comparison.json``, ``histories.csv``, ``histories.png`` (the
     difference upliftlab − OpenSees; with ``curves`` both histories beside it) and
@@ -260,12 +265,13 @@ def write_comparison(c: Comparison, out: str | Path, *, curves: bool = True) -> 
             f"{notes}\n")
     data = {**c.to_json(), "upliftlab_same_step": c.same_step, "notes": list(c.notes),
             "opensees_wall_s": c.opensees.wall}
-    written = [write_text(out / "comparison.md", text),
-               write_text(out / "comparison.json", json.dumps(data, indent=1) + "\n"),
-               write_csv(out / "histories.csv", _histories(c),
+    md, data_json, csv, netcdf, png = COMPARISON_NAMES
+    written = [write_text(out / md, text),
+               write_text(out / data_json, json.dumps(data, indent=1) + "\n"),
+               write_csv(out / csv, _histories(c),
                          header=f"{c.spec.title}: upliftlab and OpenSees on upliftlab's stored "
                                 f"times; units {c.spec.units}; left spring: compression from "
                                 "rest")]
-    written += c.response.save(out / "upliftlab.nc")
-    figure = _figure(c, out / "histories.png", curves)
+    written += c.response.save(out / netcdf)
+    figure = _figure(c, out / png, curves)
     return written + ([figure] if figure else [])

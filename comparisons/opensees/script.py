@@ -23,7 +23,7 @@ from ...results import write_text
 from .spec import OpenSeesSpec
 
 __all__ = ["ScriptFiles", "script_text", "script_numbers", "motion_text", "write_script",
-           "modelling_notes"]
+           "script_names", "modelling_notes"]
 
 SCRIPT_NAME, NUMBERS_NAME, MOTION_NAME = "model.py", "model.json", "motion.txt"
 
@@ -176,6 +176,14 @@ def motion_text(spec: OpenSeesSpec) -> str:
     return "\n".join(lines) + "\n"
 
 
+def script_names(spec: OpenSeesSpec) -> list[str]:
+    """The names of the files :func:`write_script` writes for ``spec`` (``motion.txt`` only
+    for a motion that is not free vibration), declared before any work so that the output
+    folder's check covers them (:func:`upliftlab.outdir.claim`)."""
+    motion = [] if spec.motion.is_free_vibration else [MOTION_NAME]
+    return [*motion, NUMBERS_NAME, SCRIPT_NAME]
+
+
 def write_script(spec: OpenSeesSpec, out: str | Path,
                  scene_args: Sequence[str] | None = None) -> ScriptFiles:
     """Write ``model.py``, ``model.json`` (and ``motion.txt`` unless the motion is free
@@ -183,7 +191,7 @@ def write_script(spec: OpenSeesSpec, out: str | Path,
     command-line arguments that chose the scene, for the command in ``model.json``."""
     out = Path(out)
     motion = None
-    if not spec.motion.is_free_vibration:
+    if MOTION_NAME in script_names(spec):
         motion = write_text(out / MOTION_NAME, motion_text(spec))
     numbers = script_numbers(spec, MOTION_NAME if motion is not None else None, scene_args)
     json_file = write_text(out / NUMBERS_NAME, json.dumps(numbers, indent=1) + "\n")

@@ -47,7 +47,8 @@ from ...scenes import Scene
 
 __all__ = ["TclFiles", "REBOUND", "SEGMENTS", "section_kv", "tcl_numbers", "correspondence",
            "write_tcl",
-           "check_tcl_representable", "TCL_NAME", "NUMBERS_TXT", "MOTION_G"]
+           "check_tcl_representable", "TCL_NAME", "NUMBERS_TXT", "MOTION_G",
+           "TCL_NAMES"]
 
 TCL_NAME, NUMBERS_TXT, MOTION_G, NOTES_MD = ("model.tcl", "model_numbers.txt", "motion_g.txt",
                                               "model.md")
@@ -200,3 +201,7 @@ def write_tcl(scene: Scene, out: str | Path, dt: float | None = None) -> TclFile
     notes = write_text(out / NOTES_MD, correspondence(scene, numbers))
     script = write_text(out / TCL_NAME, _script_text())
     return TclFiles(script, numbers_file, motion_file, notes)
+
+
+#: The files :func:`write_tcl` writes, declared before any work (the output folder's check).
+TCL_NAMES = (MOTION_G, NUMBERS_TXT, NOTES_MD, TCL_NAME)

@@ -19,13 +19,14 @@ from ..log import logger
 from ..outdir import claim
 from ..scenes.motion import INTEGRATORS
 from ..workers import in_child
-from .common import (default_out, number, refuse_without_effect, say_if_rounded,
+from .common import (FORCE_HELP, default_out, number, refuse_without_effect, say_if_rounded,
                      say_if_step_changed)
 from .exits import EXIT_INTERRUPTED, EXIT_NUMERICS, EXIT_OK
 from .stop import stop_flag
 
 __all__ = ["add_reduced_commands", "run_command", "paper_command", "scenes_command",
-           "advise_command", "REDUCED_KEYS", "ADVISE_KEYS"]
+           "advise_command", "paper_outputs", "REDUCED_KEYS",
+           "ADVISE_KEYS"]
 
 
 def add_reduced_commands(sub) -> None:
@@ -45,8 +46,7 @@ def add_reduced_commands(sub) -> None:
     r.add_argument("--no-figure", action="store_true", help="skip the PNG figure")
     r.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     r.add_argument("--force", action="store_true",
-                   help="replace a different run in --out (only files upliftlab made there: a "
-                        "file of yours at an output's name is refused, --force or not)")
+                   help=FORCE_HELP)
     r.add_argument("--budget", metavar="SECONDS",
                    help="refuse (exit 2) before any integration a run estimated to take "
                         "longer than this (default 3600 s); raise it to run one on purpose")
@@ -56,7 +56,7 @@ def add_reduced_commands(sub) -> None:
     pp.add_argument("--out", default=None, help="output directory (default results/paper)")
     pp.add_argument("--motion", help="path of the El Centro 1940 N-S record, if it is not on "
                                      "UPLIFTLAB_MOTIONS")
-    pp.add_argument("--force", action="store_true", help="replace a different run in --out")
+    pp.add_argument("--force", action="store_true", help=FORCE_HELP)
 
     sub.add_parser("scenes", help="list the packaged scenes")
 
@@ -172,7 +172,8 @@ def paper_command(args) -> int:
     need_extra("upliftlab paper", "matplotlib")
     record = record_for(args.motion)  # the record is read and checked before any work
     settings = {"command": "paper", "motion": None if record is None else record.source}
-    with claim(args.out, "results/paper", settings=settings, force=args.force) as out:
+    with claim(args.out, "results/paper", settings=settings, force=args.force,
+               outputs=paper_outputs(record)) as out:
         summary = paper_main(out.path, record=record, claim=out)
     holds = sum(c["holds"] for c in summary["claims"])
     print(f"upliftlab paper: {len(summary['figures'])} figures and summary.md in {out.path}; "
@@ -180,6 +181,19 @@ def paper_command(args) -> int:
     if summary["note"]:
         print(f"upliftlab paper: {summary['note']}")
     return EXIT_OK
+
+
+def paper_outputs(record) -> list[str]:
+    """The files ``upliftlab paper`` writes with ``record`` (None: no El Centro record), named
+    in its folder: a run per case the record allows (``runs/<key>.nc``), a figure per figure
+    whose cases all ran, ``summary.json`` and ``summary.md``. Derived from the study's own
+    table (:data:`~upliftlab.reduced.paper.FIGURES`) as :func:`~upliftlab.reduced.paper.
+    paper_study` derives them, so that each is checked before any work."""
+    from ..reduced.paper import FIGURES
+
+    ran = {c.key for f in FIGURES for c in f.cases if record is not None or not c.needs_record}
+    figures = [f"fig{f.number:02d}.png" for f in FIGURES if all(c.key in ran for c in f.cases)]
+    return [*(f"runs/{key}.nc" for key in sorted(ran)), *figures, "summary.json", "summary.md"]
 
 
 def scenes_command(_args) -> int:

@@ -20,7 +20,12 @@ from ..outdir import settings_digest
 from .exits import EXIT_INPUT
 
 __all__ = ["Parser", "add_verbosity", "refuse_without_effect", "number", "say_if_rounded",
-           "say_if_step_changed", "default_out", "mesh_overrides", "say", "eta", "MESH_KEYS"]
+           "say_if_step_changed", "default_out", "mesh_overrides", "say", "eta", "MESH_KEYS",
+           "FORCE_HELP"]
+
+#: The help of every ``--force``: what it replaces, and what it never does.
+FORCE_HELP = ("replace a different run in --out (only files upliftlab made there: a file of "
+              "yours at an output's name is refused, --force or not)")
 
 #: ``--mesh`` keys: the [continuum] fields that shape the mesh and its quadrature.
 MESH_KEYS = ("elements_across", "grading", "element", "domain_width", "domain_depth",

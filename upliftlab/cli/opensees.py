@@ -15,6 +15,7 @@ from pathlib import Path
 from ..checks import InputError
 from ..log import logger
 from ..outdir import claim
+from .common import FORCE_HELP
 
 __all__ = ["add_opensees", "opensees_command"]
 
@@ -41,7 +42,7 @@ def add_opensees(sub) -> None:
     o.add_argument("--timeout", help="with --run: of the OpenSees run (s, default 3600)")
     o.add_argument("--json", action="store_true", help="with --run: print one JSON object "
                    "{\"upliftlab\": {...}, \"opensees\": {...}}")
-    o.add_argument("--force", action="store_true", help="replace a different run in --out")
+    o.add_argument("--force", action="store_true", help=FORCE_HELP)
 
 
 def _positive(name: str, text: str | None) -> float | None:
@@ -70,9 +71,10 @@ def opensees_command(args) -> int:
     finished)."""
     # imported here, not with the parser: the comparison loads the reduced model, which every
     # other command (a continuum run among them) would otherwise load to build its parser
-    from ..comparisons.opensees.compare import (check_upliftlab_runs, comparison_table, compare,
-                                                write_comparison)
-    from ..comparisons.opensees.script import write_script
+    from ..comparisons.opensees.compare import (COMPARISON_NAMES, check_upliftlab_runs,
+                                                comparison_table, compare, write_comparison)
+    from ..comparisons.opensees.runner import RUN_OUTPUTS, require_opensees
+    from ..comparisons.opensees.script import script_names, write_script
     from ..comparisons.opensees.spec import opensees_spec
     from ..scenes import load_scene
 
@@ -89,11 +91,14 @@ def opensees_command(args) -> int:
     spec = opensees_spec(scene, dt=dt, dashpots=args.dashpots)  # refuses before any file
     if args.run:  # upliftlab's runs beside it, their cost included, before the folder is claimed
         check_upliftlab_runs(scene, spec.dt)
+        require_opensees()  # the extra missing: one line, and no folder made for nothing
     settings = {"command": "opensees", "scene": scene.name, "scene_digest": scene.digest,
                 "overrides": list(scene.overrides), "motion": args.motion, "dt": dt,
                 "dashpots": args.dashpots, "run": bool(args.run)}
     default = Path("results") / f"{scene.name}-opensees"
-    with claim(args.out, default, settings=settings, force=args.force) as out:
+    outputs = script_names(spec) + (list(RUN_OUTPUTS + COMPARISON_NAMES) if args.run else [])
+    with claim(args.out, default, settings=settings, force=args.force,
+               outputs=outputs) as out:
         out.start_writing()
         if not args.run:
             files = write_script(spec, out.path, _scene_args(args))
@@ -109,7 +114,8 @@ def opensees_command(args) -> int:
                          scene_args=_scene_args(args))
         written = write_comparison(result, out.path)
         out.complete([result.files.script, result.files.numbers, *written,
-                      *[f for f in (result.files.motion,) if f is not None]])
+                      *[f for f in (result.files.motion,) if f is not None],
+                      *[out.path / name for name in RUN_OUTPUTS]])
     for path in written:
         logger("opensees").info(f"upliftlab opensees: wrote {path}")
     if args.json:
@@ -122,7 +128,7 @@ def opensees_command(args) -> int:
 def _macro_tcl(args, scene, dt) -> int:
     """A macro-element scene: the Tcl model on ``soilFootingSection2d``
     (:mod:`upliftlab.comparisons.opensees.tcl`), written, not run."""
-    from ..comparisons.opensees.tcl import tcl_numbers, write_tcl
+    from ..comparisons.opensees.tcl import TCL_NAMES, tcl_numbers, write_tcl
 
     if args.run:
         raise InputError("--run: with foundation.law = 'macro' the OpenSees counterpart is "
@@ -137,7 +143,8 @@ def _macro_tcl(args, scene, dt) -> int:
                 "overrides": list(scene.overrides), "motion": args.motion, "dt": dt,
                 "tcl": True}
     default = Path("results") / f"{scene.name}-opensees"
-    with claim(args.out, default, settings=settings, force=args.force) as out:
+    with claim(args.out, default, settings=settings, force=args.force,
+               outputs=TCL_NAMES) as out:
         out.start_writing()
         files = write_tcl(scene, out.path, dt)
         out.complete([files.motion, files.numbers, files.notes, files.script])
