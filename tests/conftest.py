@@ -92,3 +92,34 @@ def fast_stores(tmp_path_factory):
     base = tmp_path_factory.getbasetemp()
     return FastStores((base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base)
                       / "fast-stores")
+
+
+@pytest.fixture
+def fifo(tmp_path):
+    """A function: a named pipe at ``tmp_path / name`` with a writer waiting for a reader.
+
+    Code that opens the pipe to read it then reads an empty file at once instead of waiting
+    forever for a writer (so a test of a pipe fails, and never hangs, where it is opened); at
+    the end of the test the waiting writer is released by opening the pipe without waiting."""
+    import threading
+
+    made = []
+
+    def make(name: str) -> Path:
+        path = tmp_path / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        os.mkfifo(path)
+
+        def write_nothing():
+            os.close(os.open(path, os.O_WRONLY))  # waits until someone opens it to read
+
+        writer = threading.Thread(target=write_nothing, daemon=True)
+        writer.start()
+        made.append((path, writer))
+        return path
+
+    yield make
+    for path, writer in made:
+        reader = os.open(path, os.O_RDONLY | os.O_NONBLOCK)  # lets a waiting writer go on
+        writer.join()
+        os.close(reader)

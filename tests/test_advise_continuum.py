@@ -402,6 +402,27 @@ def test_cli_bad_continuum_options_refused_before_any_run(args, words, monkeypat
         assert w in err[0]
 
 
+@pytest.mark.parametrize("option", ["--map", "--macro-calibration"])
+# a device: /dev/null, not /dev/zero, so that code which opened it would read nothing, not fill
+# the memory (the old --macro-calibration read /dev/zero until the kernel killed it)
+@pytest.mark.parametrize("given, kind", [("adir", "a folder"), ("fifo.txt", "a named pipe"),
+                                         ("/dev/null", "a character device")])
+def test_a_map_or_calibration_that_is_not_a_regular_file_says_what_it_is(
+        option, given, kind, tmp_path, monkeypatch, capsys, fifo):
+    """--map of a folder or a named pipe was refused as 'no such file'; --macro-calibration of
+    a named pipe waited for a writer until killed. One line naming the option, the path and
+    what it is, before any run; the pipe is never opened."""
+    _no_runs(monkeypatch)
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "adir").mkdir()
+    fifo("fifo.txt")
+    code = cli.main(["advise", SCENE, "--fast", option, given])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1
+    assert err[0].startswith(f"upliftlab: error: {option} = '{given}': {kind}, not a regular "
+                             "file; "), err
+
+
 @pytest.mark.parametrize("args", [["--budget", "100"], ["--map", "map.nc"]])
 def test_continuum_options_on_a_scene_without_soil_are_refused(args, monkeypatch, capsys):
     """--budget and --map have no effect on a scene without [soil]: refused in one line

@@ -81,8 +81,9 @@ def test_point_key_is_sha256_of_the_canonical_text():
 
 
 def test_store_round_trip_and_partial_files(tmp_path):
-    """What is put is read back exactly (tolerance 0); a half-written temporary file or a
-    truncated record is not a record."""
+    """What is put is read back exactly (tolerance 0); a half-written temporary file is not a
+    record; a truncated record (records are written atomically: not one of upliftlab's) is
+    refused naming the file, not read as missing and written over."""
     store = Store(tmp_path / "store")
     key = point_key("s", "m:f", {"x": 0.1})
     assert store.get(key) is None and not store.has(key)
@@ -98,6 +99,9 @@ def test_store_round_trip_and_partial_files(tmp_path):
     other = point_key("s", "m:f", {"x": 0.2})
     store.path(other).parent.mkdir(parents=True, exist_ok=True)
     store.path(other).write_text('{"key": "' + other + '", "rec')  # truncated record
+    with pytest.raises(InputError, match=f"store record '{store.path(other)}': not JSON"):
+        store.get(other, "missing")
+    store.path(other).unlink()  # the user moves it out of the store
     assert not store.has(other) and store.get(other, "missing") == "missing"
     store.put(other, {"u": 2.0})
     assert store.get(other) == {"u": 2.0}

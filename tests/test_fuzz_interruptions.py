@@ -169,12 +169,14 @@ def _as_from_a_terminal() -> None:
     signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
-def _interrupt(argv, cwd, when, how: str, timeout: float = 600):
+def _interrupt(argv, cwd, when, how: str, timeout: float = 600, wait: float = 120,
+               tag: str = ""):
     """Start ``upliftlab argv`` in a session of its own; when ``when(child pids, stderr so
     far)`` is true, signal it (``how``: ``ctrl-c`` SIGINT to the process group, ``term``
     SIGTERM to the command, ``kill`` SIGKILL to it); return (exit code, stderr, the tag of its
-    processes)."""
-    tag = uuid.uuid4().hex
+    processes, ``tag`` if given). A command still running ``wait`` s after the signal fails
+    the test (and is killed)."""
+    tag = tag or uuid.uuid4().hex
     proc = subprocess.Popen([sys.executable, "-m", "upliftlab", *argv], cwd=cwd,
                             env=_env(tag), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                             text=True, start_new_session=True, preexec_fn=_as_from_a_terminal)
@@ -191,7 +193,12 @@ def _interrupt(argv, cwd, when, how: str, timeout: float = 600):
         os.killpg(proc.pid, signal.SIGINT)
     else:
         proc.send_signal(signal.SIGTERM if how == "term" else signal.SIGKILL)
-    proc.wait(timeout=120)
+    try:
+        proc.wait(timeout=wait)
+    except subprocess.TimeoutExpired:
+        for pid in _tagged(tag):
+            os.kill(pid, signal.SIGKILL)
+        pytest.fail(f"{how}: the command still ran {wait} s after the signal")
     reader.join(timeout=120)
     if reader.is_alive():
         survivors = _tagged(tag)
@@ -330,6 +337,186 @@ def test_an_interrupted_continuum_run_keeps_what_it_computed(moment, how, tmp_pa
         assert attrs["completed_until"] == pytest.approx(rows["time"][-1], rel=1e-6)
     else:
         assert n == whole["time"].size and (out / "fields.xdmf").is_file()
+
+
+# ---------------------------------------------------------------------------------------------
+# Signals to the reduced model's run, at every moment from the interpreter's start to its exit
+# ---------------------------------------------------------------------------------------------
+
+#: The command's ``sitecustomize`` (on its PYTHONPATH, loaded as its interpreter starts): it
+#: sends the command, once, the signal ``UPLIFTLAB_TEST_SIGNAL`` = ``<moment>:<SIGNAME>`` names,
+#: at ``import:<module>`` (as the module starts loading), ``weakref:<module>`` (from inside a
+#: weakref callback run then, where a raised KeyboardInterrupt is swallowed), ``commit`` (as a
+#: NetCDF part file, written whole, is about to be renamed into place) or ``exit`` (from the
+#: last exit handler, after ``main`` has returned): the moments no sleep hits reliably.
+_SITECUSTOMIZE = """
+import os, signal, sys
+
+_moment, _name = os.environ["UPLIFTLAB_TEST_SIGNAL"].rsplit(":", 1)
+_kind, _, _module = _moment.partition(":")
+_fired = []
+
+
+def _fire():
+    if not _fired:
+        _fired.append(True)
+        os.kill(os.getpid(), getattr(signal, _name))
+        sum(range(100))  # a call: the handler runs here
+
+
+if _kind == "exit":
+    import atexit
+    atexit.register(_fire)
+elif _kind == "commit":
+    _replace = os.replace
+
+    def _replacing(source, target, *args, **kwargs):
+        if str(source).endswith(".part") and ".nc." in str(source):
+            _fire()
+        return _replace(source, target, *args, **kwargs)
+
+    os.replace = _replacing
+else:
+    class _Finder:
+        def find_spec(self, fullname, path=None, target=None):
+            if fullname == _module and not _fired:
+                if _kind == "weakref":
+                    import weakref
+
+                    class _Thing:
+                        pass
+
+                    thing = _Thing()
+                    ref = weakref.ref(thing, lambda r: _fire())
+                    del thing
+                else:
+                    _fire()
+            return None
+
+    sys.meta_path.insert(0, _Finder())
+"""
+
+
+def _signalled(argv, tmp_path, at: str, script: bool = False):
+    """``upliftlab argv`` (``script``: through its console script, else ``python -m``) in
+    ``tmp_path``, sent the signal ``at`` names (:data:`_SITECUSTOMIZE`); its finished
+    process."""
+    hooks = tmp_path / "hooks"
+    hooks.mkdir(exist_ok=True)
+    (hooks / "sitecustomize.py").write_text(_SITECUSTOMIZE)
+    env = {**_env(), "PYTHONPATH": os.pathsep.join(
+        [str(hooks), *filter(None, [os.environ.get("PYTHONPATH")])]),
+        "UPLIFTLAB_TEST_SIGNAL": at}
+    start = ([str(Path(sys.executable).with_name("upliftlab"))] if script
+             else [sys.executable, "-m", "upliftlab"])
+    return subprocess.run([*start, *argv], cwd=tmp_path, env=env, capture_output=True,
+                          text=True, timeout=300, preexec_fn=_as_from_a_terminal)
+
+
+@pytest.mark.parametrize("name, script", [("SIGINT", True), ("SIGTERM", True),
+                                          ("SIGINT", False), ("SIGTERM", False)])
+def test_a_signal_while_the_command_loads_numpy_ends_it_in_one_line(name, script, tmp_path):
+    """A signal as numpy starts loading (the first few tenths of a second of any command,
+    before its ``main`` runs): one line, exit 130, nothing written (before: SIGINT printed
+    the KeyboardInterrupt's traceback from the import, SIGTERM ended the process silently with
+    143, as its default action)."""
+    done = _signalled([*RUN, "--out", "o"], tmp_path, f"import:numpy:{name}", script)
+    assert done.stderr.splitlines() == [
+        f"upliftlab: interrupted ({name}); resume with: upliftlab {' '.join(RUN)} --out o"]
+    assert done.returncode == 130 and not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("name", ["SIGINT", "SIGTERM"])
+def test_a_signal_as_the_command_exits_changes_nothing(name, tmp_path):
+    """A signal after ``main`` has returned (the run complete, its summary printed), as the
+    interpreter exits: exit 0, the summary, no traceback (before: SIGTERM killed the process,
+    143, no line; SIGINT raised a KeyboardInterrupt in the exit handler)."""
+    done = _signalled([*RUN, "--out", "o"], tmp_path, f"exit:{name}")
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "peak u =" in done.stdout and "Traceback" not in done.stderr
+    assert "interrupted" not in done.stderr and "Exception ignored" not in done.stderr
+    assert json.loads((tmp_path / "o" / "upliftlab-run.json").read_text())["complete"]
+
+
+def test_a_signal_that_lands_in_a_weakref_callback_still_ends_the_run(tmp_path):
+    """SIGTERM whose handler runs inside a weakref callback, where Python swallows what the
+    handler raises (as it did from numba's caches, 3-4.5 s into a run): one line, exit 130,
+    no folder claimed (before: "Exception ignored ... KeyboardInterrupt", then the run went on
+    to write its result and exit 0)."""
+    done = _signalled([*RUN, "--out", "o"], tmp_path, "weakref:upliftlab.cli.commands:SIGTERM")
+    assert done.stderr.splitlines() == [
+        f"upliftlab: interrupted (SIGTERM); resume with: upliftlab {' '.join(RUN)} --out o"]
+    assert done.returncode == 130 and not (tmp_path / "o").exists()
+
+
+def test_a_signal_while_the_result_is_written_lets_the_writing_finish(tmp_path):
+    """Ctrl-C as the NetCDF file's part, written whole, is about to be renamed into place:
+    the NetCDF file and the CSV are written, the folder is not marked complete, one line
+    names them, exit 130 (before: the part file and the whole folder were removed). The file
+    holds the whole run (its last time is the run's 0.2 s)."""
+    done = _signalled([*RUN, "--csv", "--out", "o"], tmp_path, "commit:SIGINT")
+    out = tmp_path / "o"
+    line = _final_line(done.stderr, "upliftlab: interrupted")
+    assert done.returncode == 130 and line == (
+        "upliftlab: interrupted (SIGINT) after the run was computed; wrote wall_free-e07.csv, "
+        f"wall_free-e07.nc to o, not marked complete; resume with: upliftlab {' '.join(RUN)} "
+        "--csv --out o")
+    # and the record of the files being written, which stays until the folder is complete:
+    # the next run knows those two as upliftlab's (upliftlab.outdir.WRITING)
+    assert sorted(p.name for p in out.iterdir()) == [".upliftlab-writing.json",
+                                                      "wall_free-e07.csv", "wall_free-e07.nc"]
+    rows, _ = read_netcdf(out / "wall_free-e07.nc")
+    assert rows["time"][-1] == pytest.approx(0.2)
+
+
+#: A run whose compiled time loop would take about 13 minutes (3e8 steps of RK4).
+ENDLESS = ["run", "wall_free", "--case", "e07", "--integrator", "rk4", "--dt", "1e-8",
+           "--set", "analysis.max_steps=1e9", "--budget", "1e6", "--no-figure", "--verbose"]
+
+
+def _cpu_seconds(pids) -> float:
+    """The CPU time (user and system, s) the processes ``pids`` have used."""
+    total = 0
+    for pid in pids:
+        try:
+            with open(f"/proc/{pid}/stat") as fh:
+                fields = fh.read().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        total += int(fields[11]) + int(fields[12])
+    return total / os.sysconf("SC_CLK_TCK")
+
+
+def _in_the_loop(tag: str, text: str, seconds: float = 2.0):
+    """When stderr has ``text`` (the line the run logs before it loads its compiled loop) and
+    the command's processes (``tag``) have used ``seconds`` of CPU since: past loading the
+    kernel from numba's cache (well under a second of CPU), in the loop."""
+    seen: list[float] = []
+
+    def when(children, err):
+        if text not in err:
+            return False
+        used = _cpu_seconds(_tagged(tag))
+        seen[:] = seen or [used]
+        return used - seen[0] >= seconds
+    return when
+
+
+@pytest.mark.parametrize("how", ["ctrl-c", "term"])
+def test_a_signal_in_the_compiled_time_loop_ends_the_run_at_once(how, tmp_path):
+    """Ctrl-C or SIGTERM with the compiled time loop running (2 s of CPU after its --verbose
+    line): the run ends there, one line, exit 130, no process left, the folder it created
+    removed (before: the loop held the signal off until its end, minutes later here, 14 s
+    later in the review's run)."""
+    out, tag = tmp_path / "long", uuid.uuid4().hex
+    code, err, tag = _interrupt([*ENDLESS, "--out", str(out)], tmp_path,
+                                _in_the_loop(tag, "rk4: dt = 1e-08 s"), how, wait=60, tag=tag)
+    assert _gone(tag) == []
+    line = _final_line(err, "upliftlab: interrupted")
+    name = "SIGINT" if how == "ctrl-c" else "SIGTERM"
+    assert code == 130 and line == (f"upliftlab: interrupted ({name}); resume with: "
+                                    f"upliftlab {' '.join(ENDLESS)} --out {out}")
+    assert not out.exists() and _leftovers(tmp_path) == []
 
 
 # ---------------------------------------------------------------------------------------------

@@ -207,6 +207,141 @@ def test_only_upliftlabs_own_temporaries_are_removed(tmp_path, monkeypatch, caps
     assert not stale.exists() and live.exists()
 
 
+def _own_file_line(out: Path, name: str) -> str:
+    """The one line refusing the user's file ``out / name`` at an output's name."""
+    return (f"upliftlab: error: output {str(out / name)!r}: a file upliftlab did not make is "
+            "at this output's name; move it away (or remove it), then run again (--force "
+            "replaces only upliftlab's own files)")
+
+
+def test_a_users_file_at_an_outputs_name_is_refused_force_or_not(tmp_path, monkeypatch,
+                                                                  capsys):
+    """A CSV of the user's named as the run's CSV, in an empty folder and in one holding a
+    complete run made without ``--csv``: refused before any work, with or without --force,
+    and left as it was; nothing else is written. upliftlab's own files are still replaced."""
+    monkeypatch.chdir(tmp_path)
+    out = tmp_path / "q" / "f"
+    out.mkdir(parents=True)
+    mine = out / "wall_free-e07.csv"
+    mine.write_text("my own precious csv\n")
+    argv = ["run", "wall_free", "--case", "e07", "--no-figure", *SHORT, "--out", str(out)]
+    for force in ([], ["--force"]):
+        assert _refused([*argv, "--csv", *force], capsys) == _own_file_line(out, mine.name)
+        assert mine.read_text() == "my own precious csv\n"
+        assert sorted(p.name for p in out.iterdir()) == [mine.name]
+    mine.unlink()
+    assert cli(argv) == 0  # a complete run without --csv
+    mine.write_text("my own precious csv\n")
+    assert _refused([*argv, "--csv"], capsys) == _own_file_line(out, mine.name)
+    assert mine.read_text() == "my own precious csv\n"
+    mine.unlink()
+    assert cli([*argv, "--csv"]) == 0 and cli([*argv, "--csv"]) == 0  # its own: replaced
+    assert mine.read_text() != "my own precious csv\n"
+
+
+def test_a_run_stopped_after_its_first_file_leaves_that_file_known_as_upliftlabs(
+        tmp_path, monkeypatch, capsys):
+    """The figure fails after the result file is written: no marker, but the next run
+    replaces that result file (the record of the files being written names it)."""
+    import upliftlab.reduced.figures as figures
+
+    monkeypatch.chdir(tmp_path)
+    argv = ["run", "wall_free", "--case", "e07", *SHORT, "--out", "out"]
+
+    def broken(fig, path):
+        raise InputError("figure: refused on purpose")
+
+    monkeypatch.setattr(figures, "save", broken)
+    assert cli(argv) == 2
+    assert (tmp_path / "out" / "wall_free-e07.nc").is_file()
+    assert not (tmp_path / "out" / "upliftlab-run.json").exists()
+    monkeypatch.undo()
+    monkeypatch.chdir(tmp_path)
+    capsys.readouterr()
+    assert cli(argv) == 0, capsys.readouterr().err
+    assert not (tmp_path / "out" / ".upliftlab-writing.json").exists()
+
+
+def test_a_link_at_a_later_outputs_name_is_refused_before_any_file_is_written(
+        tmp_path, monkeypatch, capsys):
+    """A link at the figure's name (written after the result file): refused before the run,
+    so no result file is written beside it; the link is left as it was."""
+    monkeypatch.chdir(tmp_path)
+    out = tmp_path / "p" / "outE"
+    out.mkdir(parents=True)
+    link = out / "wall_free-e07.png"
+    link.symlink_to(tmp_path / "p" / "outside.nc")
+    line = _refused(["run", "wall_free", "--case", "e07", *SHORT, "--out", str(out)], capsys)
+    assert line == (f"upliftlab: error: output {str(link)!r}: is a symbolic link, not a regular "
+                    "file; upliftlab replaces only regular files")
+    assert sorted(p.name for p in out.iterdir()) == [link.name] and link.is_symlink()
+    assert not (tmp_path / "p" / "outside.nc").exists()
+
+
+@pytest.mark.parametrize("kind", ["not JSON", "link"])
+def test_a_marker_that_is_not_upliftlabs_is_refused_and_kept(kind, tmp_path, monkeypatch,
+                                                             capsys):
+    """A file of the user's named ``upliftlab-run.json`` (not JSON), or a link by that name:
+    refused (one line), left as it was, nothing written."""
+    monkeypatch.chdir(tmp_path)
+    out = tmp_path / "out"
+    out.mkdir()
+    marker = out / "upliftlab-run.json"
+    if kind == "link":
+        (tmp_path / "notes.txt").write_text("the user's\n")
+        marker.symlink_to(tmp_path / "notes.txt")
+        what = "not a regular file"
+    else:
+        marker.write_text("the user's notes\n")
+        what = "a regular file but not upliftlab's JSON"
+    line = _refused(["run", "wall_free", "--case", "e07", "--no-figure", *SHORT, "--out",
+                     "out"], capsys)
+    assert line == (f"upliftlab: error: --out = 'out': its upliftlab-run.json is {what}, so "
+                    "not upliftlab's; move it away or remove it, then run again")
+    assert sorted(p.name for p in out.iterdir()) == ["upliftlab-run.json"]
+    if kind == "link":
+        assert marker.is_symlink() and (tmp_path / "notes.txt").read_text() == "the user's\n"
+    else:
+        assert marker.read_text() == "the user's notes\n"
+
+
+def test_an_out_path_through_dotdot_creates_only_the_folder_asked_for(tmp_path, monkeypatch,
+                                                                       capsys):
+    """``--out q/a/../b``: the run is written in ``q/b``, and no ``q/a`` is left behind."""
+    monkeypatch.chdir(tmp_path)
+    assert cli(["run", "wall_free", "--case", "e07", "--no-figure", *SHORT, "--out",
+                "q/a/../b"]) == 0, capsys.readouterr().err
+    assert sorted(p.name for p in (tmp_path / "q").iterdir()) == ["b"]
+    assert (tmp_path / "q" / "b" / "wall_free-e07.nc").is_file()
+
+
+@pytest.mark.parametrize("stem, case", [("é" * 70, "c" * 95), ("é" * 100, "c" * 100)],
+                         ids=["70 é, 95 c", "100 é, 100 c"])
+def test_a_name_long_in_bytes_is_refused_before_the_run(stem, case, tmp_path, monkeypatch,
+                                                        capsys):
+    """A scene file's name of 70 or 100 ``é`` (140 or 200 bytes in UTF-8) is refused by its
+    length in bytes, before the run: no traceback, nothing written."""
+    monkeypatch.chdir(tmp_path)
+    scene = _scene_file(tmp_path, name=f"{stem}.toml", case=case)
+    line = _refused(["run", str(scene), "--case", case, "--no-figure", *SHORT, "--out",
+                     "out"], capsys)
+    assert line == (f"upliftlab: error: scene file name = {stem[:40]!r}...: {len(stem)} "
+                    f"characters, {2 * len(stem)} bytes; valid: 1 to 100 bytes (UTF-8: an "
+                    "accented letter takes 2), no '/', '\\', control characters or leading '.'")
+    assert not (tmp_path / "out").exists()
+
+
+def test_an_output_name_and_its_temporary_sibling_must_fit_in_bytes(tmp_path):
+    """:func:`check_output_name` counts bytes and adds the temporary file's longer name."""
+    from upliftlab.paths import TEMPORARY_EXTRA, check_output_name
+
+    limit = os.pathconf(tmp_path, "PC_NAME_MAX")
+    fits = "é" * ((limit - TEMPORARY_EXTRA) // 2)
+    assert check_output_name(tmp_path / fits) == tmp_path / fits
+    with pytest.raises(InputError, match=f"a file name of {2 * len(fits) + 2} bytes"):
+        check_output_name(tmp_path / (fits + "é"))
+
+
 # ---------------------------------------------------------------------------------------------
 # Device nodes and other non-regular files
 # ---------------------------------------------------------------------------------------------
@@ -306,3 +441,79 @@ def test_a_kept_point_finds_its_fema_record_while_a_command_holds_its_output_fol
     with output_root(tmp_path / "out"):  # a command holds its output folder
         found = locate(motion)
     assert found.startswith(str(tmp_path / "cache")) and file_sha256(found) == motion["sha256"]
+
+
+# ---------------------------------------------------------------------------------------------
+# Every command that writes into an output folder declares its outputs before any work
+# ---------------------------------------------------------------------------------------------
+
+_MACRO = [a for s in ("foundation.law=macro", "foundation.capacity_multiple=3.0",
+                      "foundation.sway_stiffness=38000", "structure.vertical_weight=180",
+                      "foundation.sway_damping=200", "foundation.rocking_stiffness=60000")
+          for a in ("--set", s)]
+_ELASTIC_CLAY = ["--set", "soil.model=elastic", "--set", "soil.undrained_strength="]
+#: (command line without --out, the name of one of its outputs)
+_DECLARED = {
+    "opensees": (["opensees", "wall_free", "--case", "e10"], "model.py"),
+    "opensees --run": (["opensees", "wall_free", "--case", "e10", "--run"], "comparison.md"),
+    "opensees macro": (["opensees", "strip_footing_clay", *_MACRO], "model.tcl"),
+    "impedance": (["continuum", "strip_footing_clay", "--analysis", "impedance",
+                   *_ELASTIC_CLAY, "--a0", "0.2"], "impedance.png"),
+    "calibrate": (["calibrate", "strip_footing_clay", "--mesh", "elements_across=4", "--fs-v",
+                   "3", "--evaluations", "10", "--set", "structure.vertical_weight=200"],
+                  "CALIBRATION.md"),
+    "continuum pushover": (["continuum", "strip_footing_clay", "--analysis", "pushover",
+                            "--steps", "2"], "moment_rotation.png"),
+    "continuum dynamic": (["continuum", "strip_footing_clay", "--analysis", "dynamic",
+                           "--set", "analysis.duration=0.03"], "fields.xdmf"),
+    "continuum picture": (["continuum", "strip_footing_clay", "--analysis", "dynamic",
+                           "--set", "analysis.duration=0.03"], "uplift.gif"),
+    "continuum estimate": (["continuum", "strip_footing_clay", "--analysis", "dynamic",
+                            "--set", "analysis.duration=0.03", "--error-estimate"],
+                           "error_estimate.json"),
+    "continuum coarser run": (["continuum", "strip_footing_clay", "--analysis", "dynamic",
+                               "--set", "analysis.duration=0.03", "--error-estimate"],
+                              "error_estimate/8_across/result.nc"),
+    "paper": (["paper"], "summary.md"),
+    "paper figure": (["paper"], "fig04.png"),
+    "report": (["report", "--fast"], "report.html"),
+}
+
+
+@pytest.mark.parametrize("command", list(_DECLARED))
+def test_every_command_refuses_a_users_file_at_an_outputs_name_before_any_work(
+        command, tmp_path, monkeypatch, capsys):
+    """A file of the user's at one of the command's output names: exit 2 with the one line
+    naming it, before any work (nothing but that file in the folder afterwards), with or
+    without --force; the file is left as it was."""
+    monkeypatch.chdir(tmp_path)
+    argv, name = _DECLARED[command]
+    out = tmp_path / "out"
+    mine = out / name
+    mine.parent.mkdir(parents=True)
+    mine.write_text("my own file\n")
+    for force in ([], ["--force"]):
+        line = _refused([*argv, "--out", str(out), *force], capsys)
+        assert line == _own_file_line(out, name)
+        assert mine.read_text() == "my own file\n"
+        assert sorted(str(p.relative_to(out)) for p in out.rglob("*") if p.is_file()) == [name]
+
+
+@pytest.mark.parametrize("command", list(_DECLARED))
+def test_every_command_refuses_a_link_at_an_outputs_name_before_any_work(
+        command, tmp_path, monkeypatch, capsys):
+    """A link at one of the command's output names (to a file outside the folder that does
+    not exist yet): exit 2 with one line naming it, before any work; the link is left, nothing
+    is written, outside the folder either."""
+    monkeypatch.chdir(tmp_path)
+    argv, name = _DECLARED[command]
+    out = tmp_path / "out"
+    link = out / name
+    link.parent.mkdir(parents=True)
+    link.symlink_to(tmp_path / "outside")
+    line = _refused([*argv, "--out", str(out)], capsys)
+    assert line == (f"upliftlab: error: output {str(link)!r}: is a symbolic link, not a regular "
+                    "file; upliftlab replaces only regular files")
+    assert link.is_symlink() and not (tmp_path / "outside").exists()
+    assert sorted(str(p.relative_to(out)) for p in out.rglob("*")
+                  if p.is_symlink() or p.is_file()) == [name]

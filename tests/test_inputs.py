@@ -4,6 +4,7 @@ valid range. Also the readers, scenes and result files that guard the inputs and
 import json
 import math
 import os
+import re
 
 import numpy as np
 import pytest
@@ -123,7 +124,12 @@ def test_a_motion_file_is_parsed_once_and_reread_when_it_changes(tmp_path):
 
 @pytest.mark.parametrize("content, message", [
     ("0.0 0.1\n0.01 nan\n", "line 2: value nan is not a finite number"),
-    ("0.0 0.1\n0.01 0.2\n0.03 0.1\n", "line 2: time step 0.01 s differs from the mean step 0.015 s"),
+    ("0.0 0.1\n0.01 0.2\n0.03 0.1\n", r"line 2: time step 0\.01 s \(from the row before\) "
+                                     r"differs from the file's typical step 0\.015 s"),
+    # a repeated time is named on its own row, line 3, not on the step before it (line 2);
+    # a time that goes back, likewise; the comment line does not shift the numbering
+    ("0.0 0.1\n0.02 0.2\n0.02 0.3\n", r"line 3: time 0\.02 s does not increase \(the row"),
+    ("# t a\n0.0 0.1\n0.02 0.2\n0.04 0.3\n0.03 0.1\n", r"line 5: time 0\.03 s does not increase"),
     ("0.0 0.1 0.3\n0.01 0.2 0.4\n", "3 columns; expected 2"),
     ("0.0 0.1\n0.01\n", "line 2: 1 columns, but the first data row has 2"),
     ("0.0 abc\n", "is not numbers"),
@@ -133,6 +139,132 @@ def test_bad_motion_files_are_refused(tmp_path, content, message):
     path.write_text(content)
     with pytest.raises(InputError, match=message):
         read_motion(path)
+
+
+def _rows(times) -> str:
+    """A two-column record of ``times`` (s), 0.1 g throughout, one row a line."""
+    return "".join(f"{t} 0.1\n" for t in times)
+
+
+TIMES = [round(0.02 * k, 2) for k in range(100)]  # 100 rows at 0.02 s: 0 to 1.98 s
+
+
+@pytest.mark.parametrize("times, line, step", [
+    (TIMES[:50] + TIMES[51:], 51, "0.04"),  # line 51 (1.02 s) follows line 50 (0.98 s)
+    (TIMES[:-1] + [2.50], 100, "0.54"),     # the last row's time mistyped
+    ([0, 0.02, 0.05, 0.07], 3, "0.03"),     # the odd step ends on line 3
+])
+def test_an_odd_time_step_is_named_on_its_own_line(times, line, step, tmp_path):
+    """The line of the first row whose step differs from the file's typical (median) step.
+    Measured from the mean step, (t_last - t_first)/(n - 1), one bad row anywhere made every
+    step differ, and the message named line 2. An accepted file's step is still that mean."""
+    path = tmp_path / "bad.txt"
+    path.write_text(_rows(times))
+    with pytest.raises(InputError, match=re.escape(
+            f"'{path}' line {line}: time step {step} s (from the row before) differs from the "
+            "file's typical step 0.02 s (the median of its steps)")):
+        read_motion(path)
+    jittered = tmp_path / "jittered.txt"  # steps within the 1e-6 tolerance of uniform
+    times = [0.02 * k + 6e-9 * (-1) ** k for k in range(100)]
+    jittered.write_text(_rows(f"{t!r}" for t in times))
+    assert read_motion(jittered).dt == (times[-1] - times[0]) / 99
+
+
+AT2_HEAD = "PEER NGA\nx\nACCELERATION TIME SERIES IN UNITS OF G\n"
+
+
+@pytest.mark.parametrize("content, message", [
+    # a form feed on a line of its own, then a bad row on line 4 (not 5)
+    ("0 0.1\n\f\n0.02 0.2\n0.04 x\n", "line 4: '0.04 x' is not numbers"),
+    # \x85, \u2028 and a form feed in a comment are the comment's, not line breaks
+    ("# a\x85b\u2028c\fd\n0 0.1\n0.02 0.2\n0.04 x\n", "line 4: '0.04 x' is not numbers"),
+    ("# comment\fwith form feed\n0 0.1\n0.02 0.2\n0.04 0.1\n0.07 0\n",
+     "line 5: time step 0.03 s"),
+    # a line break is \n, \r\n or \r alone
+    ("0 0.1\r\n0.02 0.2\r0.04 x\n", "line 3: '0.04 x' is not numbers"),
+    # in a PEER record: a title with a form feed and \x1c; a sample on line 6 that is nan
+    (AT2_HEAD.replace("x", "x\fy\x1cz") + "NPTS=   6, DT=   .0100 SEC\n0.1 0.2 0.3\nnan 0.1 0.2\n",
+     "line 6: value nan is not a finite number"),
+])
+def test_lines_are_counted_as_an_editor_counts_them(content, message, tmp_path):
+    """``str.splitlines`` also breaks lines at \\f, \\v, \\x1c-\\x1e, \\x85, \\u2028 and
+    \\u2029: messages named a line too far on, and a comment went on as a data line."""
+    path = tmp_path / ("bad.AT2" if content.startswith("PEER") else "bad.txt")
+    path.write_bytes(content.encode())
+    with pytest.raises(InputError, match=re.escape(f"'{path}' {message}")):
+        read_motion(path)
+
+
+@pytest.mark.parametrize("body, message", [
+    ("NPTS=   6, DT=   .0100 SEC\n0.1 0.2 0.3\n0.4 nan 0.2\n",
+     "line 6: value nan is not a finite number"),
+    ("NPTS=   7, DT=   .0100 SEC\n0.1 0.2 0.3\n0.4 0.5 0.2\n",
+     "line 4: the header says NPTS=7 but lines 5-6 hold 6 values"),
+    ("NPTS=   3, DT=   1E-300 SEC\n0.1 0.2 0.3\n",
+     "line 4: DT = 1e-300: valid range is [1e-09, 1000]"),
+])
+def test_a_peer_records_faults_name_their_line(body, message, tmp_path):
+    """A nan sample was named by its 0-based sample number ('value 4'), a count that does not
+    match NPTS and a DT of 1e-300 s by no line (the last as 'motion.dt', a field not set)."""
+    path = tmp_path / "bad.AT2"
+    path.write_text(AT2_HEAD + body)
+    with pytest.raises(InputError, match=re.escape(f"motion file '{path}' {message}")):
+        read_motion(path)
+
+
+def test_a_records_own_values_out_of_range_name_the_file(tmp_path, monkeypatch, capsys):
+    """A record with 1e300 g on line 3 was refused as 'motion.scale = 1: the scaled record's PGA
+    would be 1e+300 g', a field never set; a step of 1e-300 s as 'motion.dt = 1e-300'. Each now
+    names the file and its line; a scale that takes a record beyond 100 g is still blamed."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "big.txt").write_text("# g\n0 0.1\n0.02 -1e300\n0.04 0.2\n")
+    (tmp_path / "tiny.txt").write_text("0 0.1\n1e-300 0.2\n2e-300 0.1\n")
+    (tmp_path / "fine.txt").write_text("0 0.1\n0.02 -60\n0.04 0.2\n")
+    run = ["run", "wall_free", "--case", "e07", "--no-figure", "--out", "o"]
+    for argv, words in (
+            (["big.txt"], f"motion file '{tmp_path / 'big.txt'}' line 3: acceleration -1e+300 "
+                          "g, the record's peak; valid: a PGA up to 100 g"),
+            (["tiny.txt"], "motion file 'tiny.txt' line 2: the file's time step dt = 1e-300: "
+                           "valid range is [1e-09, 1000]"),
+            (["fine.txt", "--set", "motion.scale=2"], "motion.scale = 2: the scaled record's "
+                                                      "PGA would be 120 g")):
+        assert cli([*run, "--motion", *argv]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and err[0].startswith(f"upliftlab: error: {words}"), err
+        assert not (tmp_path / "o").exists()
+
+
+# a device: /dev/null, not /dev/zero, so that code which opened it would read nothing, not fill
+# the memory (the old --macro-calibration read /dev/zero until the kernel killed it)
+@pytest.mark.parametrize("given, kind", [
+    ("m/adir", "a folder"), ("m/fifo.txt", "a named pipe"), ("/dev/null", "a character device"),
+])
+def test_a_motion_path_that_is_not_a_regular_file_says_what_it_is(given, kind, tmp_path,
+                                                                  monkeypatch, capsys, fifo):
+    """A folder, a named pipe or a device was refused as 'does not exist'; a named pipe is
+    never opened (it would wait for a writer)."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "m" / "adir").mkdir(parents=True)
+    fifo("m/fifo.txt")
+    assert cli(["run", "wall_free", "--case", "e07", "--no-figure", "--motion", given,
+                "--out", "o"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"upliftlab: error: motion file '{given}' is {kind}, not a regular file; "
+                   "give a record file (two columns, one column with motion.dt, or PEER .AT2)"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["m"]
+
+
+def test_a_scene_path_that_is_a_named_pipe_says_so(tmp_path, monkeypatch, capsys, fifo):
+    """A scene path that is a named pipe was refused as 'no such file' (a folder already said
+    it was one); it is never opened."""
+    monkeypatch.chdir(tmp_path)
+    fifo("m/s.toml")
+    assert cli(["run", "m/s.toml", "--no-figure", "--out", "o"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("upliftlab: error: scene 'm/s.toml': a named "
+                                               "pipe, not a scene file; a path is used as "
+                                               "given"), err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["m"]
 
 
 def test_one_column_needs_dt_and_missing_names_say_how_to_supply(tmp_path, monkeypatch):
@@ -165,7 +297,6 @@ def test_netcdf_results_are_self_describing_and_read_by_xarray(tmp_path):
     # Reference: the CF-1.10 conventions and the NetCDF-4 format (an HDF5 file, its arrays
     # deflated), checked with h5py independently of xarray; the values round-trip exactly.
     import h5py
-    import xarray as xr
     scene = load_scene("short_period_free", case="C", overrides=["motion.duration=0.5"])
     response = run(scene)
     path = response.save(tmp_path / "run.nc", csv=True)[0]
@@ -263,3 +394,38 @@ def test_paper_without_the_record_makes_free_vibration_figures(tmp_path, monkeyp
     assert "El Centro" in capsys.readouterr().out
     for n in (4, 7, 9):
         assert (tmp_path / "paper" / f"fig{n:02d}.png").stat().st_size > 10_000
+
+
+@pytest.mark.parametrize("key, value, shown", [
+    # a NUL in the title was found only when the result was written, after the run
+    # ("ValueError: VLEN strings do not support embedded NULLs", a traceback)
+    ("title", "a\x00b", r"title: control character '\\x00' at position 1"),
+    ("description", "x\x1b[31mred", r"description: control character '\\x1b' at position 1"),
+    ("reference", "\x7f", r"reference: control character '\\x7f' at position 0"),
+])
+def test_a_scenes_text_refuses_control_characters(key, value, shown):
+    with pytest.raises(InputError, match=shown):
+        load_scene("wall_free", overrides=[f"{key}={json.dumps(value)}"])
+    allowed = "tab\tand\nlines"
+    ok = load_scene("wall_free", overrides=[f"{key}={json.dumps(allowed)}"])
+    assert getattr(ok, key) == allowed
+
+
+def test_a_case_table_cannot_change_the_unit_system(tmp_path):
+    """A ``[cases.si]`` table with ``units = "N-m-s"`` read every kip and inch of the scene
+    as newton and metre (peak u 0.3705 'm' with exit 0); ``--set units`` was already refused."""
+    scene = load_scene("wall_free")
+    text = open(scene.source).read() + '\n[cases.si]\nunits = "N-m-s"\n'
+    path = tmp_path / "caseunits.toml"
+    path.write_text(text)
+    with pytest.raises(InputError, match="cases.si.units = 'N-m-s': every number of this scene "
+                                         "is in 'kip-in-s'; a case table cannot convert them"):
+        load_scene(str(path), case="si")
+
+
+@pytest.mark.parametrize("key", ["structure..weight", ".structure.weight", "structure.weight.",
+                                 "structure. .weight"])
+def test_an_override_key_with_an_empty_part_is_refused(key):
+    """``structure..weight=1`` was read as ``structure.weight=1``."""
+    with pytest.raises(InputError, match="the key has an empty part"):
+        load_scene("wall_free", overrides=[f"{key}=1"])

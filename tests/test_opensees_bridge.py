@@ -217,3 +217,125 @@ def test_run_json_has_the_same_keys_for_both(opensees, tmp_path, capsys):
     for name in ("model.py", "comparison.md", "comparison.json", "histories.csv",
                  "opensees_summary.json", "upliftlab.nc"):
         assert (out / name).is_file(), name
+
+
+def test_timeout_without_run_refused(tmp_path, capsys):
+    """--timeout without --run (no OpenSees run to limit) is refused as --json is: one line
+    naming the option and its value, exit 2, nothing written."""
+    out = tmp_path / "out"
+    code = main(["opensees", "wall_free", "--timeout", "5", "--out", str(out)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1
+    assert "--timeout = '5': only with --run" in err[0]
+    assert not out.exists()
+
+
+def _hostile_scene(tmp_path, title):
+    """long_period_free (Case A) from a copy whose title is ``title`` (a TOML basic string)."""
+    from pathlib import Path
+
+    text = (Path(__file__).parents[1] / "scenes" / "long_period_free.toml").read_text()
+    line = next(x for x in text.splitlines() if x.startswith("title = "))
+    path = tmp_path / "evil.toml"
+    path.write_text(text.replace(line, f"title = {title}"))
+    return path
+
+
+def test_script_outputs_keep_a_titles_lines_out_of_the_data(tmp_path, capsys):
+    """A title with line breaks: every header line of the script's histories CSV is a comment
+    (as upliftlab's own CSV), so the title adds no row to what pandas or the bridge's reader
+    read; on stderr the title is one escaped line. A terminal escape cannot come from a scene
+    (its text refuses control characters but tabs and line breaks: test_inputs), but the
+    script escapes whatever its numbers file holds: one is put in its title here. The script
+    is imported, not run: no OpenSees needed."""
+    import importlib.util
+    from types import SimpleNamespace
+
+    import pandas as pd
+
+    path = _hostile_scene(tmp_path, '"x\\"\\"\\"; import os\\n1,2,3,4,5,6\\nred"')
+    files = write_script(opensees_spec(load_scene(str(path), case="A")), tmp_path / "m")
+    loaded = importlib.util.spec_from_file_location("hostile_model", files.script)
+    model = importlib.util.module_from_spec(loaded)
+    loaded.loader.exec_module(model)
+    model.load_scene_numbers()
+    assert model.TITLE == 'x"""; import os\n1,2,3,4,5,6\nred'
+    model.TITLE = model.TITLE.replace("red", "\x1b[31mred")
+    rows = [(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), (0.01, 0.5, 1e-4, -0.1, 0.2, 3.0)]
+    observer = SimpleNamespace(rows=rows, peak={"u": 0.5, "theta": 1e-4, "uplift": 0.0,
+                                                "shear": 3.0})
+    model.write_outputs(observer, "completed", 1.0, 0.1, 1)
+    csv_path = tmp_path / "m" / "opensees_histories.csv"
+    lines = csv_path.read_text().splitlines()
+    names = "time,u,theta,V,left_spring_displacement,base_shear"
+    header = lines[:lines.index(names)]
+    assert header == ['# x"""; import os', "# 1,2,3,4,5,6",
+                      "# \x1b[31mred: OpenSees histories; units kip-in-s; theta as "
+                      "upliftlab's; left_spring_displacement is the compression from rest"]
+    table = pd.read_csv(csv_path, comment="#")
+    assert list(table.columns) == names.split(",")
+    np.testing.assert_array_equal(table.to_numpy(), np.array(rows))
+    histories = runner.read_histories(csv_path)
+    np.testing.assert_array_equal(histories["base_shear"], [0.0, 3.0])
+    capsys.readouterr()
+    model.announce()
+    err = capsys.readouterr().err
+    assert err.splitlines()[0] == ('OpenSees model of evil-A: x"""; import os\\n1,2,3,4,5,6'
+                                   '\\n\\x1b[31mred (kip-in-s)')
+    assert len(err.splitlines()) == 1 + len(model.NOTES) and "\x1b" not in err
+
+
+def test_command_in_model_json_is_shell_quoted_and_reproduces_the_run(tmp_path, capsys):
+    """model.json's COMMAND is the shell-quoted command that writes the model again: the scene
+    path as given (not its stem), --case, each --set, then the resolved --dt and --dashpots.
+    A shell splits it back into exactly those arguments and runs nothing of a path or an
+    override with quotes, $(...), backquotes, ; or globs."""
+    import shlex
+    import subprocess
+
+    marker = tmp_path / "INJECTED"
+    scene = tmp_path / "s" / "e'v\"il$(id);[x]{y}.toml"
+    scene.parent.mkdir()
+    scene.write_text(_hostile_scene(tmp_path, '"plain"').read_text())
+    override = f"title=a; $(touch {marker}) `touch {marker}` \" x"
+    out = tmp_path / "out"
+    code = main(["opensees", str(scene), "--case", "A", "--set", override, "--out", str(out)])
+    assert code == 0, capsys.readouterr().err
+    data = json.loads((out / "model.json").read_text())
+    expected = ["upliftlab", "opensees", str(scene), "--case", "A", "--set", override,
+                "--dt", repr(data["DT"]), "--dashpots", "clipped"]
+    assert shlex.split(data["COMMAND"]) == expected
+    shell = subprocess.run(["sh", "-c", f"set -- {data['COMMAND']}; printf '%s\\0' \"$@\""],
+                           capture_output=True, text=True, cwd=tmp_path, check=True)
+    assert shell.stdout.split("\0")[:-1] == expected
+    assert not marker.exists()
+
+
+@pytest.mark.parametrize("options, message", [
+    (["--dt", "1e-12"], "analysis.max_steps = 10000000: the OpenSees run would take 8e+12 "
+                        "Newmark steps of 1e-12 s (8 s); raise it (--set "
+                        "analysis.max_steps=8000000000000) to write it anyway"),
+    (["--run", "--dt", "1e-9"], "analysis.max_steps = 10000000: the OpenSees run would take "
+                                "8e+09 Newmark steps of 1e-09 s (8 s)"),
+    (["--dt", "5e-324"], "analysis.max_steps = 10000000: the OpenSees run would take inf "
+                         "Newmark steps of 4.94e-324 s (8 s); take a larger step (--dt)"),
+    # the OpenSees run within the limit, upliftlab's own run (analysis.dt) above it
+    (["--run", "--dt", "1e-3", "--set", "analysis.dt=1e-5", "--set",
+      "analysis.max_steps=100000"], "analysis.max_steps = 100000: the reduced run would take "
+                                    "8e+05 steps of 1e-05 s"),
+])
+def test_step_count_refused_before_anything_is_written_or_run(options, message, monkeypatch,
+                                                              tmp_path, capsys):
+    """A run above analysis.max_steps (the OpenSees script's Newmark steps, with or without
+    --run; with --run, upliftlab's runs beside it too) ends with one line naming the limit and
+    the steps, exit 2, before any file is written or any model run."""
+    import importlib
+
+    compare_module = importlib.import_module("upliftlab.comparisons.opensees.compare")
+    monkeypatch.setattr(compare_module, "run", lambda *a, **k: pytest.fail("upliftlab ran"))
+    out = tmp_path / "out"
+    code = main(["opensees", "long_period_free", "--case", "A", *options, "--out", str(out)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1, err
+    assert message in err[0]
+    assert not out.exists()

@@ -142,3 +142,18 @@ def test_what_the_tcl_model_cannot_do_is_refused_before_any_file(tmp_path, capsy
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and words in err[0]
     assert not out.exists()
+
+
+def test_step_count_above_max_steps_refused(tmp_path, capsys):
+    """A Tcl model of more Newmark steps than analysis.max_steps is refused with one line, exit
+    2, before any file is written (as the OpenSeesPy script's)."""
+    out = tmp_path / "tcl"
+    args = ["opensees", "strip_footing_clay", "--out", str(out), "--dt", "1e-12"]
+    for item in SETS:
+        args += ["--set", item]
+    assert cli.main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1
+    assert "analysis.max_steps = 10000000: the OpenSees run would take " in err[0]
+    assert "Newmark steps of 1e-12 s" in err[0]
+    assert not out.exists()

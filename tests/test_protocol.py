@@ -105,6 +105,60 @@ def test_a_study_command_refuses_bad_input_in_one_line(tmp_path, capsys, monkeyp
     assert not out.exists()
 
 
+@pytest.mark.parametrize("option, value, message", [
+    ("--out", "m/empty.txt", "--out = 'm/empty.txt': is a file, not a folder"),
+    ("--store", "m/empty.txt", "--store = 'm/empty.txt': is a file, not a folder"),
+    ("--store", "m/empty.txt/s", "--store = 'm/empty.txt/s': lies under 'm/empty.txt', "
+                                 "which is a file, not a folder"),
+    ("--store", "/proc/1/x", "--store = '/proc/1/x': cannot write there (No such file or "
+                             "directory)"),
+], ids=["out is a file", "store is a file", "store under a file", "store in /proc"])
+def test_a_study_command_refuses_an_unusable_out_or_store_before_work(option, value, message,
+                                                                      tmp_path, capsys,
+                                                                      monkeypatch):
+    # Reviewer's cases: --out or --store an existing file was refused (exit 2) only after the
+    # first point was computed, naming m/empty.txt/store/7b/7b9d….json, not the option;
+    # --store /proc/1/x was a FileNotFoundError traceback (exit 1). Now: one line naming the
+    # option and the value, exit 2, nothing computed, nothing left behind.
+    from upliftlab.cli import main
+    from upliftlab.comparisons.studies.fixed_vs_uplift import DEFINITION
+
+    def never(scene, context):
+        raise AssertionError("computed despite an unusable folder")
+
+    _as_the_study(monkeypatch, replace(DEFINITION, compute=never))
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "m").mkdir()
+    (tmp_path / "m" / "empty.txt").write_text("")
+    assert main(["study", "fixed_vs_uplift", "--fast", "--no-figures", "--workers", "1",
+                 option, value]) == 2
+    assert capsys.readouterr().err == f"upliftlab: error: {message}\n"
+    assert sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*")) == [
+        "m", "m/empty.txt"]
+
+
+def test_run_study_refuses_a_file_as_its_out_or_store_before_compute(tmp_path):
+    # The library's own check (the command's default store is OUT/store): named as the
+    # Context's fields, before compute.
+    def never(scene, context):
+        raise AssertionError("computed despite an unusable folder")
+
+    study = protocol.Study("probe", "Probe", "", None, never, never, scene="a_scene")
+    (tmp_path / "o").mkdir()
+    (tmp_path / "o" / "store").write_text("")
+    (tmp_path / "f").write_text("")
+    for context, message in [
+            (protocol.Context(out=tmp_path / "f"), f"out = '{tmp_path / 'f'}': is a file"),
+            (protocol.Context(out=tmp_path / "o"), f"store = '{tmp_path / 'o' / 'store'}': is "
+                                                   "a file"),
+            (protocol.Context(out=tmp_path / "p", store=tmp_path / "f" / "s"),
+             f"store = '{tmp_path / 'f' / 's'}': lies under '{tmp_path / 'f'}'")]:
+        with pytest.raises(InputError) as refused:
+            protocol.run_study(study, None, context)
+        assert str(refused.value).startswith(message)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["f", "o"]
+
+
 def test_a_study_command_reports_a_solver_failure_in_one_line(tmp_path, capsys, monkeypatch):
     # A solver that gave up (here a stand-in ConvergenceError with a two-line message): exit 3,
     # one line on stderr naming the study, the error's kind and its message; no traceback.

@@ -376,6 +376,32 @@ def test_stale_temporary_files_are_cleaned_and_live_locks_refused(tmp_path, caps
     assert read_marker(out)["complete"]
 
 
+@pytest.mark.parametrize("content", ["99999999999999999999", "-1", "0", "nobody"])
+def test_a_lock_holding_no_process_id_is_stale(content, tmp_path, capsys):
+    """A lock whose content no upliftlab run writes (a number beyond any process id, -1, 0, a
+    word) is taken as stale: the run proceeds and leaves no lock (it used to fail with an
+    OverflowError, or stay locked for good by 'process -1')."""
+    out = tmp_path / "locked"
+    out.mkdir()
+    (out / LOCK).write_text(content + "\n")
+    assert cli(["run", "wall_free", "--no-figure", "--set", "analysis.duration=0.1", "--out",
+                str(out)]) == 0, capsys.readouterr().err
+    assert read_marker(out)["complete"] and not (out / LOCK).exists()
+
+
+def test_an_empty_lock_is_refused_with_what_to_do(tmp_path, capsys):
+    """An empty lock is a run that has not yet written its id (or a crash's): refused, kept."""
+    out = tmp_path / "locked"
+    out.mkdir()
+    (out / LOCK).write_text("")
+    assert cli(["run", "wall_free", "--no-figure", "--out", str(out)]) == 2
+    assert _error(capsys) == (f"upliftlab: error: --out = {str(out)!r}: another upliftlab run "
+                              "is writing to it (lock file .upliftlab.lock, empty or "
+                              "unreadable; if no upliftlab run is writing there, a crash left "
+                              "it: remove it)")
+    assert (out / LOCK).read_text() == ""
+
+
 def test_a_killed_run_leaves_no_marker_and_the_next_run_recovers(tmp_path):
     """Kill a run (SIGKILL, so nothing is cleaned up) and check the folder says it is
     incomplete; the next run takes the folder over and completes it."""
@@ -466,3 +492,23 @@ def test_a_yield_multiple_override_without_an_elastoplastic_law_is_refused(case,
                    overrides=[*extra, "foundation.yield_multiple=5"])
     assert load_scene("short_period_free", case="C",
                       overrides=["foundation.yield_multiple=5"]).foundation.law.yield_multiple == 5
+
+
+def test_a_step_that_runs_as_another_is_said(tmp_path, capsys):
+    """A run's steps are whole numbers in its duration: ``--dt 0.7`` on a 3 s run ran as 0.6 s,
+    ``--dt 10`` as 3 s and ``analysis.output_dt = 0.07`` on 0.2 s as 0.0667 s, with no word
+    (the reference: 3/0.7 → 5 steps of 0.6 s; 0.2/0.07 → 3 outputs of 0.2/3 s)."""
+    cases = [(["--dt", "0.7"], "--dt = 0.7 s runs as 0.6 s, a whole number of steps in the "
+                               "run's 3 s"),
+             (["--dt", "10"], "--dt = 10 s runs as 3 s"),
+             (["--set", "analysis.output_dt=0.07", "--set", "motion.duration=0.2"],
+              "analysis.output_dt = 0.07 s runs as 0.0666667 s"),
+             (["--set", "analysis.dt=0.07", "--set", "motion.duration=0.2"],
+              "analysis.dt = 0.07 s runs as 0.0666667 s")]
+    for i, (extra, note) in enumerate(cases):
+        assert cli(["run", "wall_free", "--case", "e07", "--no-figure", "--json",
+                    "--out", str(tmp_path / str(i)), *extra]) == 0
+        assert note in capsys.readouterr().err, extra
+    assert cli(["run", "wall_free", "--case", "e07", "--no-figure", "--json", "--dt", "0.5",
+                "--out", str(tmp_path / "even")]) == 0
+    assert "runs as" not in capsys.readouterr().err  # 0.5 s divides 3 s: nothing to say

@@ -9,6 +9,7 @@ known by construction.
 
 from __future__ import annotations
 
+import gzip
 import hashlib
 import json
 import math
@@ -210,3 +211,116 @@ def test_store_verify_leaves_records_of_another_revision_as_data(code, tmp_path,
     out = capsys.readouterr().out
     assert len(CALLS) == 2 and all(x >= 10 for x in CALLS)
     assert "tests:triple: 3 records of another model revision" in out
+
+
+NOTE = "this is my precious note\n"
+ANY_KEY = "ab" + "c" * 62
+
+
+def _refused_by_the_store(argv, capsys, *names):
+    """``upliftlab ARGV`` ends with exit 2 and one line naming ``names``, no traceback."""
+    from upliftlab.cli import main
+
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    for name in names:
+        assert name in err, (name, err)
+    return err
+
+
+def test_store_pack_refuses_a_loose_file_it_cannot_read_and_keeps_it(tmp_path, capsys):
+    """Reviewer's case: ``store pack`` packed a note in place of a record as ``null`` (exit 0),
+    deleted the note and its folder, and every later verify, migrate or pack ended in a
+    TypeError traceback. Now each refuses in one line naming the file (exit 2), nothing is
+    moved, written or deleted."""
+    root = tmp_path / "st"
+    note = root / "ab" / f"{ANY_KEY}.json"
+    note.parent.mkdir(parents=True)
+    note.write_text(NOTE)
+    for action in (["pack", str(root), "--name", "p1"], ["verify", str(root)],
+                   ["migrate", str(root)]):
+        err = _refused_by_the_store(["store", *action], capsys, f"store record '{note}'")
+        assert ": not JSON (" in err and "a record is a JSON table with its 'key'" in err
+    assert note.read_text() == NOTE
+    assert sorted(p.relative_to(root).as_posix() for p in root.rglob("*")) == [
+        "ab", f"ab/{ANY_KEY}.json"]
+
+
+def test_store_pack_refuses_a_record_of_another_key_and_a_file_not_named_as_one(tmp_path,
+                                                                               capsys):
+    """A loose file under another key's name, or a ``??/*.json`` not named as a record: the
+    old store packed the first as ``null`` and failed on the second with a key error that
+    named no file."""
+    root = tmp_path / "st"
+    other = root / "cd" / f"cd{'c' * 62}.json"
+    other.parent.mkdir(parents=True)
+    other.write_text(json.dumps({"key": ANY_KEY, "record": 1}))
+    err = _refused_by_the_store(["store", "pack", str(root), "--name", "p"], capsys, str(other))
+    assert f"holds the record of key '{ANY_KEY}', not of its file name's" in err
+    other.unlink()
+    stray = root / "cd" / "notes.json"
+    stray.write_text("{}")
+    err = _refused_by_the_store(["store", "pack", str(root), "--name", "p"], capsys,
+                                f"store file '{stray}': not named as a record")
+    assert stray.read_text() == "{}" and not (root / "packs").exists()
+
+
+@pytest.mark.parametrize("data, where", [
+    (b"garbage\n", ": cannot be read as gzip-compressed JSON lines (Not a gzipped file"),
+    (gzip.compress(mtime=0, data=b'{"a":1}\n'), ", line 1: not a record; "),
+    (gzip.compress(mtime=0, data=b'{"key":"' + ANY_KEY.encode() + b'","record":1}\nnull\n'),
+     ", line 2: not a record; "),
+    (gzip.compress(mtime=0, data=b'{"key":"' + ANY_KEY.encode() + b'","record":1}\n{"key":\n'),
+     ", line 2: not JSON ("),
+    (gzip.compress(mtime=0, data=b'{"key":"' + ANY_KEY.encode() + b'","record":1}\n')[:-9],
+     ": cannot be read as gzip-compressed JSON lines ("),
+], ids=["not gzip", "a table without key", "null", "not JSON", "cut short"])
+def test_a_pack_that_is_not_one_is_refused_naming_it_and_its_line(data, where, code, tmp_path,
+                                                                  capsys):
+    """``store verify`` of a pack of 'garbage' raised BadGzipFile, of a line '{"a":1}' a
+    KeyError; a ``null`` line (what the old ``pack`` wrote) a TypeError. Each command now
+    refuses in one line naming the pack (and the line); ``pack`` moves no loose record."""
+    root = tmp_path / "st"
+    _sweep(Store(root), [{"x": 1.0}])
+    loose = sorted(root.glob("??/*.json"))
+    pack = root / "packs" / "x.jsonl.gz"
+    pack.parent.mkdir()
+    pack.write_bytes(data)
+    for action in (["verify", str(root)], ["migrate", str(root)],
+                   ["pack", str(root), "--name", "x"], ["pack", str(root), "--name", "y"]):
+        _refused_by_the_store(["store", *action], capsys, f"store pack '{pack}'{where}")
+    assert pack.read_bytes() == data and sorted(root.glob("??/*.json")) == loose
+    assert sorted(p.name for p in pack.parent.iterdir()) == ["x.jsonl.gz"]
+
+
+def test_a_study_refuses_a_corrupt_record_before_any_work(code, tmp_path):
+    """A sweep read a loose file that is not its record as missing, made the point again and
+    wrote over the file. It now stops before any work with the file's name, the file kept."""
+    store = Store(tmp_path / "store")
+    key = point_key("s", triple, {"x": 1.0})
+    store.path(key).parent.mkdir(parents=True)
+    store.path(key).write_text(NOTE)
+    with pytest.raises(st.InputError, match=f"store record '{store.path(key)}': not JSON"):
+        _sweep(store, [{"x": 0.0}, {"x": 1.0}])
+    assert CALLS == [] and store.path(key).read_text() == NOTE
+    assert [p.name for p in (tmp_path / "store").rglob("*.json")] == [f"{key}.json"]
+
+
+@pytest.mark.parametrize("text, said", [
+    ("{not json", "not JSON ("),
+    ('["accepted"]', "not a table of accepted code digests"),
+    ('{"accepted": 3}', "not a table of accepted code digests"),
+])
+def test_a_provenance_file_that_is_not_one_is_refused_not_written_over(text, said, code,
+                                                                       tmp_path):
+    """A ``provenance.json`` that could not be read was taken as empty, and the next check's
+    stamp wrote over it: the checks it held were lost. Now it is refused naming it, and kept."""
+    store = Store(tmp_path / "store")
+    _sweep(store, [{"x": 1.0}])
+    (tmp_path / "store" / st.STAMPS).write_text(text)
+    code("b")
+    with pytest.raises(st.InputError) as refused:
+        _sweep(store, [{"x": 1.0}])
+    assert f"provenance.json': {said}" in str(refused.value)
+    assert (tmp_path / "store" / st.STAMPS).read_text() == text

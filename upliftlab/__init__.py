@@ -11,6 +11,43 @@ before the command line has set its thread counts (:mod:`upliftlab.cli`).
 
 from .version import __version__
 
+#: SIGINT and SIGTERM (numbers) that came while the ``upliftlab`` command loaded, before
+#: :func:`upliftlab.cli.main` set its own handlers (:func:`_hold_signals_while_loading`).
+COMMAND_SIGNALS: list[int] = []
+
+
+def _started_as_the_command() -> bool:
+    """Whether this process is the ``upliftlab`` command: its script, or ``python -m
+    upliftlab`` (read from the command line the interpreter was given, ``sys.orig_argv``, which
+    a spawned worker does not share even where it takes its parent's ``sys.argv``)."""
+    import os
+    import sys
+
+    given = getattr(sys, "orig_argv", [])
+    if os.path.basename(sys.argv[0]) == "upliftlab" and sys.argv[0] in given[1:2]:
+        return True
+    return "-m" in given and given[given.index("-m") + 1:][:1] == ["upliftlab"]
+
+
+def _hold_signals_while_loading() -> None:
+    """In the ``upliftlab`` command only (not in a program that imports upliftlab), record
+    SIGINT and SIGTERM from this first line of the package until the command's ``main`` takes
+    them over (:meth:`upliftlab.cli.stop.StopFlag.adopt`) and ends with its one line: loading
+    numpy and the code digest take a few tenths of a second, in which Python's own handling
+    printed a traceback (SIGINT) or nothing at all (SIGTERM, exit 143). After ``main``, the
+    same recorder holds any signal until the process has exited with the code ``main`` chose.
+    A signal the process inherited as ignored stays ignored."""
+    import signal
+
+    if not _started_as_the_command():
+        return
+    for number in (signal.SIGINT, signal.SIGTERM):
+        if signal.getsignal(number) is not signal.SIG_IGN:
+            signal.signal(number, lambda signum, frame: COMMAND_SIGNALS.append(signum))
+
+
+_hold_signals_while_loading()
+
 
 #: The compiled kernels' sources (as :func:`upliftlab.provenance.package_files` names them), the
 #: reduced laws' and the soil models' compiled forms among them: the numba cache folder is keyed

@@ -24,6 +24,7 @@ from pathlib import Path
 from numba.core import config
 from numba.core.caching import UserProvidedCacheLocator
 
+
 def package_subpath(py_file: str | os.PathLike) -> str | None:
     """The cache folder's name of a source of upliftlab's packages: its folder as
     :func:`upliftlab.provenance.package_files` names it, ``/`` written ``_``

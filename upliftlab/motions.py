@@ -27,6 +27,7 @@ import numpy as np
 
 from .bounds import KINDS
 from .checks import InputError, finite, in_range, nonnegative, positive
+from .paths import NO_SUCH_FILE, REGULAR_FILE, file_kind
 
 __all__ = [
     "Motion",
@@ -34,6 +35,7 @@ __all__ = [
     "MOTIONS_ENV",
     "ELCENTRO",
     "read_motion",
+    "sample_line",
     "find_motion",
     "load_motion",
     "free_vibration",
@@ -52,6 +54,8 @@ ELCENTRO_DESCRIPTION = (
 )
 _SUFFIXES = ("", ".txt", ".dat", ".csv", ".acc", ".AT2", ".at2")
 _UNIFORM_DT_RTOL = 1e-6
+#: What ends a line of a motion file: what an editor counts (:func:`_editor_lines`).
+_LINE_BREAK = re.compile(r"\r\n|\r|\n")
 #: Largest motion file read (bytes): a record of ten million samples is about 200 MB of text.
 MAX_FILE_BYTES = 256 * 2**20
 #: Most samples a motion may have (400 MB of float64).
@@ -132,7 +136,8 @@ class Motion:
         """This motion scaled so that its peak ground acceleration is ``pga`` (g)."""
         positive("motion.pga", pga)
         if self.pga == 0.0:
-            raise InputError(f"motion {self.name!r} has zero acceleration: cannot scale it to a PGA")
+            raise InputError(f"motion {self.name!r} has zero acceleration: cannot scale it to a "
+                             "PGA")
         return self.scaled(pga / self.pga)
 
     def extended(self, duration: float) -> Motion:
@@ -210,10 +215,14 @@ def load_motion(name_or_path: str | os.PathLike, dt: float | None = None) -> Mot
     text = str(name_or_path)
     candidate = Path(text).expanduser()
     looks_like_path = candidate.suffix != "" or os.sep in text or (os.altsep or os.sep) in text
-    if candidate.is_file():
+    kind = file_kind(candidate, f"motion file {text!r}")
+    if kind == REGULAR_FILE:
         return read_motion(candidate, dt=dt)
     if looks_like_path:
-        raise InputError(f"motion file {text!r} does not exist")
+        if kind == NO_SUCH_FILE:
+            raise InputError(f"motion file {text!r} does not exist")
+        raise InputError(f"motion file {text!r} is {kind}, not a regular file; give a record "
+                         "file (two columns, one column with motion.dt, or PEER .AT2)")
     motion = read_motion(find_motion(text), dt=dt)
     if text == ELCENTRO:
         _say_if_not_the_expected_elcentro(motion)
@@ -246,12 +255,13 @@ def read_motion(path: str | os.PathLike, dt: float | None = None) -> Motion:
     :class:`Motion` is immutable, so the cached record is shared safely.
     """
     path = Path(path)
+    kind = file_kind(path, f"motion file {str(path)!r}")
+    if kind not in (REGULAR_FILE, NO_SUCH_FILE):  # before it is opened: a pipe would block
+        raise InputError(f"motion file {str(path)!r} is {kind}, not a regular file")
     try:
         stat = path.stat()
     except OSError as exc:
         raise InputError(f"motion file {str(path)!r}: cannot read it ({exc.strerror})") from None
-    if not path.is_file():
-        raise InputError(f"motion file {str(path)!r}: not a file")
     if stat.st_size > MAX_FILE_BYTES:
         raise InputError(f"motion file {str(path)!r}: {stat.st_size / 2**20:.0f} MiB; a motion "
                          f"file may hold at most {MAX_FILE_BYTES // 2**20} MiB (about ten "
@@ -272,12 +282,54 @@ def _read_motion_cached(given: str, resolved: str, mtime_ns: int, size: int,
         raise InputError(f"motion file {str(path)!r}: cannot read it ({exc.strerror})") from None
     if "\x00" in text:
         raise InputError(f"motion file {str(path)!r}: binary data, not a text record")
-    if path.suffix.lower() == ".at2" or text.lstrip().upper().startswith("PEER"):
+    if _is_at2(text, path):
         step, acc = _parse_at2(text, path)
         _no_dt(dt, step, path)
     else:
         step, acc = _parse_columns(text, path, dt)
     return Motion(name=path.stem, dt=step, acceleration=acc, source=resolved)
+
+
+def _is_at2(text: str, path: Path) -> bool:
+    """Whether a motion file is a PEER .AT2 record: by its suffix or its first word."""
+    return path.suffix.lower() == ".at2" or text.lstrip().upper().startswith("PEER")
+
+
+def sample_line(motion: Motion, index: int) -> int | None:
+    """The line of ``motion``'s record file that holds sample ``index``, for a message that
+    names it; None for a built-in motion, or when the file is gone or no longer holds it."""
+    path = Path(motion.source) if motion.source and not motion.source.startswith("builtin:") \
+        else None
+    if path is None or not path.is_file():
+        return None
+    try:
+        text = path.read_text(errors="replace")
+    except OSError:
+        return None
+    lines = _editor_lines(text)
+    numbers = (_at2_value_lines(lines) if _is_at2(text, path)
+               else [number for number, _ in _data_rows(lines)])
+    return int(numbers[index]) if 0 <= index < len(numbers) else None
+
+
+def _data_rows(lines: list[str]):
+    """(line number, text before any ``#``) of each line of a column file that holds data."""
+    for number, line in enumerate(lines, start=1):
+        body = line.split("#", 1)[0].strip()
+        if body:
+            yield number, body
+
+
+def _editor_lines(text: str) -> list[str]:
+    """``text`` cut into the lines an editor counts: at ``\\n``, ``\\r\\n`` and ``\\r`` alone.
+    ``str.splitlines`` also cuts at a form feed, a vertical tab, ``\\x1c``-``\\x1e``, ``\\x85``,
+    ``\\u2028`` and ``\\u2029``, so every message after one would name a line too far on
+    (and a comment with one would go on as a data line). A final line break ends the last
+    line; it does not begin an empty one (as with ``str.splitlines``)."""
+    lines = _LINE_BREAK.split(text)
+    if lines and lines[-1] == "":
+        lines.pop()
+    return lines
 
 
 def _floats(line: str) -> bool:
@@ -302,16 +354,14 @@ def _ascii_numbers(lines: list[str], path: Path, first: int = 0) -> None:
 
 def _parse_columns(text: str, path: Path, dt: float | None) -> tuple[float, np.ndarray]:
     rows, lines = [], []
-    _ascii_numbers(text.splitlines(), path)
-    for number, line in enumerate(text.splitlines(), start=1):
-        body = line.split("#", 1)[0].strip()
-        if not body:
-            continue
+    text_lines = _editor_lines(text)
+    _ascii_numbers(text_lines, path)
+    for number, body in _data_rows(text_lines):
         fields = body.replace(",", " ").split()
         try:
             rows.append([float(f) for f in fields])
         except ValueError:
-            raise InputError(f"motion file {str(path)!r} line {number}: {line.strip()!r} "
+            raise InputError(f"motion file {str(path)!r} line {number}: {body!r} "
                              "is not numbers") from None
         lines.append(number)
     if not rows:
@@ -355,16 +405,40 @@ def _uniform_step(time: np.ndarray, path: Path, lines: list[int]) -> float:
     if time.size < 2:
         raise InputError(f"motion file {str(path)!r}: needs at least two samples")
     steps = np.diff(time)
+    back = np.flatnonzero(~(steps > 0))
+    if back.size:
+        # a repeated or earlier time: the row it is on is the one at fault, not its neighbour
+        i = back[0]
+        raise InputError(f"motion file {str(path)!r} line {lines[i + 1]}: time {time[i + 1]:g} s "
+                         f"does not increase (the row before has {time[i]:g} s)")
     step = (time[-1] - time[0]) / (time.size - 1)
-    if not step > 0:
-        raise InputError(f"motion file {str(path)!r}: time does not increase")
-    off = np.flatnonzero(np.abs(steps - step) > _UNIFORM_DT_RTOL * step + 1e-12)
-    if off.size:
-        i = off[0]
+    if np.any(_off_step(steps, step)):
+        i, typical = _first_odd_step(steps, step)
         raise InputError(
-            f"motion file {str(path)!r} line {lines[i + 1]}: time step {steps[i]:g} s differs "
-            f"from the mean step {step:g} s; the time step must be uniform")
+            f"motion file {str(path)!r} line {lines[i + 1]}: time step {steps[i]:g} s (from "
+            f"the row before) differs from the file's {typical}; the time step must be uniform")
+    in_range(f"motion file {str(path)!r} line {lines[1]}: the file's time step dt", step,
+             KINDS["step"].low, KINDS["step"].high)
     return float(step)
+
+
+def _off_step(steps: np.ndarray, step: float) -> np.ndarray:
+    """Which ``steps`` (s) differ from ``step`` (s) by more than the tolerance of a uniform
+    record (:data:`_UNIFORM_DT_RTOL`, relative, and 1e-12 s)."""
+    return np.abs(steps - step) > _UNIFORM_DT_RTOL * step + 1e-12
+
+
+def _first_odd_step(steps: np.ndarray, mean: float) -> tuple[int, str]:
+    """Index of the first of ``steps`` (s) that differs from the record's typical step, and that
+    step described. The typical step is the median: one bad row moves the mean (a deleted row,
+    a wrong last time), so that every step differed from it, the first one included. A record is
+    accepted or refused by the mean (its step, :func:`_uniform_step`) as before; only when no
+    step differs from the median (steps that drift within the tolerance) is the mean named."""
+    median = float(np.median(steps))
+    odd = np.flatnonzero(_off_step(steps, median))
+    if odd.size:
+        return int(odd[0]), f"typical step {median:g} s (the median of its steps)"
+    return int(np.flatnonzero(_off_step(steps, mean))[0]), f"mean step {mean:g} s"
 
 
 #: A number as a PEER header writes it: ASCII digits only (``\\d`` and ``float`` also take
@@ -376,11 +450,11 @@ _AT2_HEADER = re.compile(r"NPTS\s*=\s*" + _COUNT + r"\s*,?\s*DT\s*=\s*" + _REAL,
 _AT2_HEADER_NEW = re.compile(r"^\s*" + _COUNT + r"\s+" + _REAL + r"\s+NPTS",
                              re.IGNORECASE | re.ASCII)
 #: A data line of a record: ASCII numbers, separated by blanks or commas.
-_DATA_LINE = re.compile(r"[0-9eE+\-., \t\r]*|.*(?:nan|inf).*", re.IGNORECASE | re.ASCII)
+_DATA_LINE = re.compile(r"[0-9eE+\-., \t\r\f\v]*|.*(?:nan|inf).*", re.IGNORECASE | re.ASCII)
 
 
 def _parse_at2(text: str, path: Path) -> tuple[float, np.ndarray]:
-    lines = text.splitlines()
+    lines = _editor_lines(text)
     if len(lines) < 5:
         raise InputError(f"motion file {str(path)!r}: too short for a PEER .AT2 record")
     header = lines[3]
@@ -398,12 +472,21 @@ def _parse_at2(text: str, path: Path) -> tuple[float, np.ndarray]:
         raise InputError(f"motion file {str(path)!r} line {number}: "
                          f"{lines[number - 1].strip()[:60]!r} is not numbers") from None
     if values.size != npts:
-        raise InputError(f"motion file {str(path)!r}: header says NPTS={npts} but the file "
-                         f"holds {values.size} values")
+        raise InputError(f"motion file {str(path)!r} line 4: the header says NPTS={npts} but "
+                         f"lines 5-{len(lines)} hold {values.size} values")
     if not np.all(np.isfinite(values)):
         i = int(np.flatnonzero(~np.isfinite(values))[0])
-        raise InputError(f"motion file {str(path)!r}: value {i} is {values[i]}, not finite")
-    return positive(f"motion file {str(path)!r} line 4: DT", step), values
+        raise InputError(f"motion file {str(path)!r} line {_at2_value_lines(lines)[i]}: value "
+                         f"{values[i]} is not a finite number")
+    low, high = KINDS["step"].low, KINDS["step"].high
+    return in_range(f"motion file {str(path)!r} line 4: DT", step, low, high), values
+
+
+def _at2_value_lines(lines: list[str]) -> np.ndarray:
+    """The line (1-based) of each value of a PEER .AT2 record's ``lines``: its values are read
+    from line 5 on, several a line."""
+    counts = [len(line.split()) for line in lines[4:]]
+    return np.repeat(np.arange(5, 5 + len(counts)), counts)
 
 
 def free_vibration(duration: float, dt: float = 0.01, *, velocity: float = 0.0,
@@ -417,7 +500,8 @@ def free_vibration(duration: float, dt: float = 0.01, *, velocity: float = 0.0,
     n = _sample_count(duration, dt)
     return Motion(name="free", dt=dt, acceleration=np.zeros(n), initial_velocity=velocity,
                   initial_displacement=displacement, initial_rotation=rotation,
-                  source=f"builtin:free(v0={velocity:g}, x0={displacement:g}, theta0={rotation:g})")
+                  source=f"builtin:free(v0={velocity:g}, x0={displacement:g}, "
+                         f"theta0={rotation:g})")
 
 
 def _pulse_samples(duration: float, dt: float) -> np.ndarray:

@@ -9,6 +9,13 @@ A command that writes results first calls :func:`claim`, before any computation:
   refused, whatever it holds;
 * a folder holding another run's results — its completion marker records different settings —
   is refused unless ``force`` (two runs into one folder must not silently mix);
+* a completion marker or a record of files being written that is not upliftlab's (a link, or
+  not a JSON object) is refused: it is the user's, and upliftlab replaces only its own files;
+* the files the command will write (``outputs``) are checked by name before any work
+  (:func:`check_outputs`): each must fit the file system's name limit in bytes, be no link or
+  other non-regular file, and, if it exists, be one upliftlab made here (listed by the
+  folder's marker or record of files being written). A file of the user's at an output's name
+  is refused with or without ``force``: the user moves it, or removes it;
 * the folder is locked (:data:`LOCK`, holding this process's id) until the command ends, and
   is the one place the command writes to until then (:func:`upliftlab.paths.check_target`).
   Nothing in it is removed but upliftlab's own files: the temporary files of a killed writer
@@ -16,10 +23,17 @@ A command that writes results first calls :func:`claim`, before any computation:
   files never.
 
 Just before it writes its first file the command calls :meth:`Claim.start_writing`, which
+records the files it is about to write (:data:`WRITING`, when it declared ``outputs``) and
 removes the old completion marker; when every file is written it calls
-:meth:`Claim.complete`, which writes the completion marker :data:`MARKER` last. A folder whose
-marker is missing holds an interrupted or failed run. The marker lists the files and the
-settings (:func:`settings_digest`).
+:meth:`Claim.complete`, which writes the completion marker :data:`MARKER` last and removes the
+record. A folder whose marker is missing holds an interrupted or failed run; its record still
+names the files upliftlab made, which the next run may replace. The marker lists the files and
+the settings (:func:`settings_digest`).
+
+A lock names the process holding it. A lock whose process has ended is stale and removed; so
+is one whose content is no process id (not a whole number from 1 to 2³¹ − 1: upliftlab never
+writes that, so no live upliftlab run holds it). An empty lock is a run that has created it
+and not yet written its id: it is refused, with what to do if it was left by a crash.
 """
 
 from __future__ import annotations
@@ -29,18 +43,26 @@ import hashlib
 import json
 import os
 import re
+import stat
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from .checks import InputError
-from .paths import check_folder_name, disk_full, pop_root, push_root
+from .paths import (check_folder_name, check_output_name, check_target, disk_full, pop_root,
+                    push_root)
 
-__all__ = ["MARKER", "LOCK", "Claim", "claim", "settings_digest", "read_marker"]
+__all__ = ["MARKER", "LOCK", "WRITING", "Claim", "claim", "probe_folder", "settings_digest",
+           "read_marker"]
 
 MARKER = "upliftlab-run.json"
 _CONTROL = re.compile(r"[\x00-\x1f\x7f]")
 LOCK = ".upliftlab.lock"
+#: The record of the files a run is writing (present from :meth:`Claim.start_writing` until
+#: :meth:`Claim.complete`; it survives an interrupted run).
+WRITING = ".upliftlab-writing.json"
+#: The largest process id a lock may name (pid_t is a signed 32-bit integer).
+_PID_MAX = 2**31 - 1
 
 
 def settings_digest(settings: dict) -> str:
@@ -57,6 +79,7 @@ def read_marker(folder: str | os.PathLike) -> dict | None:
 
 
 def _alive(pid: int) -> bool:
+    """Whether process ``pid`` (1 to :data:`_PID_MAX`) runs."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
@@ -77,6 +100,7 @@ class Claim:
     created: list[Path] = field(default_factory=list)
     locked: bool = False
     root: Path | None = None
+    outputs: list[str] = field(default_factory=list)
 
     def __enter__(self) -> Claim:
         return self
@@ -105,7 +129,14 @@ class Claim:
         self.root = push_root(self.path)
 
     def start_writing(self) -> None:
-        """The first file is about to be written: the folder no longer holds a complete run."""
+        """The first file is about to be written: the folder no longer holds a complete run.
+        The declared outputs (and the files upliftlab made here before) are recorded first
+        (:data:`WRITING`), so that an interrupted run's files are still known as upliftlab's."""
+        if self.outputs:
+            from .results import write_text
+
+            names = sorted(_made_here(self.path) | set(self.outputs))
+            write_text(self.path / WRITING, json.dumps({"files": names}, indent=2) + "\n")
         with contextlib.suppress(FileNotFoundError):
             (self.path / MARKER).unlink()
 
@@ -119,6 +150,8 @@ class Claim:
         record = {"complete": True, "settings": self.settings,
                   "settings_digest": settings_digest(self.settings), "files": names}
         path = write_text(self.path / MARKER, json.dumps(record, indent=2, default=str) + "\n")
+        with contextlib.suppress(FileNotFoundError):
+            (self.path / WRITING).unlink()  # the marker now lists what was written
         self.release()
         return path
 
@@ -138,34 +171,64 @@ class Claim:
                 folder.rmdir()  # only if empty
 
 
-def _lock_owner(lock: Path) -> str:
+def _lock_pid(lock: Path) -> int | None:
+    """The process id ``lock`` holds; 0 if it is empty (a run between creating it and writing
+    its id) or cannot be read; None if its content is no process id (module docstring)."""
     try:
-        pid = int(lock.read_text().strip())
-    except (OSError, ValueError):
-        return f"lock file {lock.name}"
+        text = lock.read_text(errors="replace").strip()
+    except OSError:
+        return 0
+    if not text:
+        return 0
+    try:
+        pid = int(text)
+    except ValueError:
+        return None
+    return pid if 0 < pid <= _PID_MAX else None
+
+
+def _lock_owner(lock: Path) -> str:
+    """Who holds ``lock``, for the refusal's line."""
+    pid = _lock_pid(lock)
+    if pid is None:
+        return f"lock file {lock.name}, holding no process id"
+    if not pid:
+        return (f"lock file {lock.name}, empty or unreadable; if no upliftlab run is writing "
+                "there, a crash left it: remove it")
     return f"process {pid}"
 
 
 def _take_stale_lock(lock: Path) -> None:
-    """Remove a lock left by a process that no longer runs."""
-    try:
-        pid = int(lock.read_text().strip())
-    except (OSError, ValueError):
-        return
-    if not _alive(pid):
+    """Remove a lock left by a process that no longer runs, or one holding no process id."""
+    pid = _lock_pid(lock)
+    if pid is None or (pid and not _alive(pid)):
         with contextlib.suppress(FileNotFoundError):
             lock.unlink()
 
 
 def claim(out: str | os.PathLike | None, default: str | os.PathLike, *, settings: dict,
-          force: bool = False, option: str = "--out") -> Claim:
+          force: bool = False, option: str = "--out", outputs=(), patterns=()) -> Claim:
     """Check and claim the output folder ``out`` (``default`` when None) for a run with
-    ``settings`` (module docstring). Nothing is computed before this returns."""
+    ``settings`` that will write the files named ``outputs`` in it (module docstring), and
+    files whose names, known only as it runs, match the glob ``patterns`` (those already
+    there are checked as outputs). Nothing is computed before this returns. A path through
+    ``..`` is resolved first (links followed), so that no folder is created that the ``..``
+    then leaves."""
     if out is not None and (not isinstance(out, (str, os.PathLike)) or not str(out).strip()):
         raise InputError(f"{option} = {out!r}: expected a folder path")
     path = check_folder_name(out if out is not None else default, option)
+    if ".." in path.parts:
+        path = Path(os.path.realpath(path))
     try:
-        return _claim(path, settings, force, option)
+        result = _claim(path, settings, force, option)
+        result.outputs = [str(name) for name in outputs]
+        result.outputs += _matching(path, patterns, result.outputs)
+        try:
+            check_outputs(result)
+        except BaseException:
+            result.abandon()
+            raise
+        return result
     except OSError as exc:  # a name too long, a folder not reachable: one line, not a trace
         if disk_full(exc):  # not bad input: the command's own exit (3, no space left)
             raise
@@ -173,17 +236,49 @@ def claim(out: str | os.PathLike | None, default: str | os.PathLike, *, settings
                          f"({exc.strerror or exc})") from None
 
 
-def _claim(path: Path, settings: dict, force: bool, option: str) -> Claim:
-    """:func:`claim` of the folder ``path`` (its checks, in order)."""
-    if _CONTROL.search(str(path)):
-        raise InputError(f"{option} = {str(path)!r}: a folder name with a control character "
-                         "(a line break, a tab, …) is refused")
+def _refuse_a_file(path: Path, option: str) -> None:
+    """An :class:`InputError` naming ``option`` if ``path``, or the nearest of its folders that
+    exists, is a file (nothing can be made in it)."""
     for parent in [path, *path.parents]:
         if parent.exists():
             if not parent.is_dir():
                 where = "is" if parent == path else f"lies under {str(parent)!r}, which is"
                 raise InputError(f"{option} = {str(path)!r}: {where} a file, not a folder")
             break
+
+
+def probe_folder(folder: str | os.PathLike, option: str) -> Path:
+    """``folder``, checked before any work to be a folder this process can write to: named as
+    one (:func:`~upliftlab.paths.check_folder_name`), not a file nor under one, and one where a
+    file can be made (a probe file is made and removed, and the folders made for it removed
+    again: nothing is left behind). Else an :class:`InputError` naming ``option`` and the
+    value. Unlike :func:`claim` it locks nothing (a study's store is shared on purpose)."""
+    path = check_folder_name(folder, option)
+    _refuse_a_file(path, option)
+    created = [p for p in reversed([path, *path.parents]) if not p.exists()]
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+        fd, probe = tempfile.mkstemp(prefix=".probe.", dir=path)
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as exc:
+        if disk_full(exc):  # not bad input: the command's own exit (3, no space left)
+            raise
+        raise InputError(f"{option} = {str(path)!r}: cannot write there "
+                         f"({exc.strerror or exc})") from None
+    finally:
+        for made in reversed(created):
+            with contextlib.suppress(OSError):
+                made.rmdir()
+    return path
+
+
+def _claim(path: Path, settings: dict, force: bool, option: str) -> Claim:
+    """:func:`claim` of the folder ``path`` (its checks, in order)."""
+    if _CONTROL.search(str(path)):
+        raise InputError(f"{option} = {str(path)!r}: a folder name with a control character "
+                         "(a line break, a tab, …) is refused")
+    _refuse_a_file(path, option)
     created = [p for p in reversed([path, *path.parents]) if not p.exists()]
     result = Claim(path, settings, created)
     try:
@@ -204,7 +299,12 @@ def _claim(path: Path, settings: dict, force: bool, option: str) -> Claim:
     except (InputError, OSError):
         result.abandon()
         raise
-    marker = read_marker(path)
+    try:
+        marker = _own_record(path, MARKER, option)
+        _own_record(path, WRITING, option)
+    except InputError:
+        result.abandon()
+        raise
     if marker is not None and not force:
         if marker.get("settings_digest") != settings_digest(settings):
             result.abandon()
@@ -214,3 +314,70 @@ def _claim(path: Path, settings: dict, force: bool, option: str) -> Claim:
             raise InputError(f"{option} = {str(path)!r}: holds a different run ({what}); "
                              "choose another folder, or add --force to replace it")
     return result
+
+
+def _own_record(folder: Path, name: str, option: str) -> dict | None:
+    """The JSON object in ``folder / name`` (the marker, or the record of files being written),
+    None if there is none; an :class:`InputError` if something else is there (a link, a folder,
+    not a JSON object): upliftlab did not make it, and does not replace it."""
+    path = folder / name
+    try:
+        mode = os.lstat(path).st_mode
+    except FileNotFoundError:
+        return None
+    record = None
+    if stat.S_ISREG(mode):
+        try:
+            record = json.loads(path.read_text())
+        except (OSError, ValueError):
+            record = None
+    if not isinstance(record, dict):
+        what = "a regular file but not upliftlab's JSON" if stat.S_ISREG(mode) else \
+            "not a regular file"
+        raise InputError(f"{option} = {str(folder)!r}: its {name} is {what}, so not "
+                         "upliftlab's; move it away or remove it, then run again")
+    return record
+
+
+def _made_here(folder: Path) -> set[str]:
+    """The names of the files upliftlab made in ``folder``: those the completion marker lists
+    and those the record of an interrupted run's files lists."""
+    names: set[str] = set()
+    for record in (read_marker(folder), _read_json(folder / WRITING)):
+        files = record.get("files") if isinstance(record, dict) else None
+        if isinstance(files, list):
+            names.update(str(f) for f in files)
+    return names
+
+
+def _read_json(path: Path) -> object:
+    """The JSON in ``path``, None if there is none or it is not JSON."""
+    try:
+        return json.loads(path.read_text())
+    except (OSError, ValueError):
+        return None
+
+
+def _matching(folder: Path, patterns, named) -> list[str]:
+    """The names (in ``folder``) of the entries there that match a glob of ``patterns`` and are
+    not in ``named``: a file, a link or another non-folder a run writing such names could
+    replace."""
+    found = {str(entry.relative_to(folder)) for pattern in patterns
+             for entry in folder.glob(pattern) if entry.is_symlink() or not entry.is_dir()}
+    return sorted(found - set(named))
+
+
+def check_outputs(held: Claim) -> None:
+    """Check, before any work, each file ``held`` will write (its ``outputs``, names in its
+    folder): the name fits the file system in bytes, with its temporary file's
+    (:func:`~upliftlab.paths.check_output_name`); nothing but a regular file is there, and the
+    path stays inside the folder (:func:`~upliftlab.paths.check_target`); a file that is there
+    is one upliftlab made here (:func:`_made_here`), else it is the user's and is refused,
+    ``force`` or not."""
+    made = _made_here(held.path) if held.outputs else set()
+    for name in held.outputs:
+        target = check_target(check_output_name(held.path / name))
+        if os.path.lexists(target) and name not in made:
+            raise InputError(f"output {str(target)!r}: a file upliftlab did not make is at "
+                             "this output's name; move it away (or remove it), then run "
+                             "again (--force replaces only upliftlab's own files)")

@@ -6,7 +6,7 @@ the user's files, whatever field or path carries it:
 * **A name that becomes a path is one plain component** (:func:`path_component`): a scene's
   name and case, a study's label. No separator, no ``.`` or ``..``, no leading dot (hidden
   names are upliftlab's own temporary files), no control character, at most
-  :data:`MAX_COMPONENT` characters.
+  :data:`MAX_COMPONENT` bytes in the file system's encoding (a character may take several).
 * **Every file is written inside the output folder** (:func:`check_target`). While a command
   holds an output folder (:mod:`upliftlab.outdir` registers it, and a study its store), a
   target whose resolved path, links followed, lies outside every registered root is refused.
@@ -37,12 +37,15 @@ from pathlib import Path
 
 from .checks import InputError
 
-__all__ = ["MAX_COMPONENT", "path_component", "check_folder_name", "check_target",
+__all__ = ["MAX_COMPONENT", "path_component", "check_folder_name", "check_output_name",
+           "check_target", "TEMPORARY_EXTRA",
            "output_root", "temporary_sibling", "TEMPORARY_TAG", "DISK_FULL", "disk_full",
-           "forget_temporary", "remove_live_temporaries"]
+           "forget_temporary", "remove_live_temporaries", "file_kind",
+           "REGULAR_FILE", "NO_SUCH_FILE"]
 
-#: Longest name upliftlab turns into a path component (a file name may hold 255 bytes; the
-#: name is joined with a case, a suffix and a temporary file's tag).
+#: Longest name upliftlab turns into a path component, in bytes of the file system's encoding
+#: (a file name may hold 255 bytes; the name is joined with a case, a suffix and a temporary
+#: file's tag).
 MAX_COMPONENT = 100
 
 #: What marks a temporary file as upliftlab's own.
@@ -61,14 +64,49 @@ _ROOTS_LOCK = threading.Lock()
 def path_component(name: str, field: str) -> str:
     """``name``, checked to be one plain path component (module docstring); else an
     :class:`~upliftlab.checks.InputError` naming ``field``."""
-    valid = ("valid: 1 to 100 characters, no '/', '\\', control characters or leading '.'")
+    valid = (f"valid: 1 to {MAX_COMPONENT} bytes (UTF-8: an accented letter takes 2), no '/', "
+             "'\\', control characters or leading '.'")
     if not isinstance(name, str) or not name:
         raise InputError(f"{field} = {name!r}: not a name; {valid}")
-    if len(name) > MAX_COMPONENT:
-        raise InputError(f"{field} = {name[:40]!r}...: {len(name)} characters; {valid}")
+    size = _name_bytes(name)
+    if size > MAX_COMPONENT:
+        raise InputError(f"{field} = {name[:40]!r}...: {len(name)} characters, {size} bytes; "
+                         f"{valid}")
     if _UNSAFE.search(name) or name.startswith(".") or name.strip() != name:
         raise InputError(f"{field} = {name!r}: cannot name a file; {valid}")
     return name
+
+
+def _name_bytes(name: str) -> int:
+    """The length of ``name`` in bytes of the file system's encoding, which is what its limits
+    count (a name that cannot be encoded counts its UTF-8 bytes, and fails where it is used)."""
+    try:
+        return len(os.fsencode(name))
+    except UnicodeError:
+        return len(name.encode("utf-8", "surrogatepass"))
+
+
+#: The longest temporary sibling's name beyond its target's name: ``.`` + ``.upliftlab-`` +
+#: a process id (at most 10 digits) + ``-`` + 8 random characters + ``.part``.
+TEMPORARY_EXTRA = len(f"..{TEMPORARY_TAG}-{2**31 - 1}-xxxxxxxx.part")
+
+
+def check_output_name(path: str | os.PathLike, field: str = "output") -> Path:
+    """``path``, a file upliftlab will write, checked by its name alone before any work: the
+    name and its temporary sibling's longer one (:func:`temporary_sibling`) fit the file
+    system's NAME_MAX, counted in bytes; else an :class:`~upliftlab.checks.InputError`."""
+    path = Path(path)
+    folder = next((p for p in [path.parent, *path.parent.parents] if p.is_dir()), Path("."))
+    try:
+        name_max = os.pathconf(folder, "PC_NAME_MAX")
+    except (OSError, ValueError, AttributeError):
+        name_max = 255
+    size = _name_bytes(path.name)
+    if size + TEMPORARY_EXTRA > name_max:
+        raise InputError(f"{field} {path.name[:60]!r}...: a file name of {size} bytes; with "
+                         f"its temporary file's {TEMPORARY_EXTRA} more it must fit the file "
+                         f"system's {name_max} (shorten the scene file's or the case's name)")
+    return path
 
 
 def check_folder_name(path: str | os.PathLike, option: str = "--out") -> Path:
@@ -159,6 +197,27 @@ def check_target(path: str | os.PathLike) -> Path:
             raise InputError(f"output {str(path)!r}: resolves to {str(where)!r}, outside the "
                              f"output folder {str(roots[-1])!r}; nothing is written there")
     return path
+
+
+#: What :func:`file_kind` calls a regular file, and a path that names nothing.
+REGULAR_FILE, NO_SUCH_FILE = "a regular file", "no such file"
+
+
+def file_kind(path: str | os.PathLike, where: str) -> str:
+    """What an input ``path`` is: :data:`REGULAR_FILE`, :data:`NO_SUCH_FILE`, or what else it
+    is ("a folder", "a named pipe", "a character device", ...). Found by ``os.stat`` (links
+    followed) without opening it: opening a named pipe waits for a writer, and a device such
+    as /dev/zero never ends. A path that cannot be examined is refused in one line that begins
+    with ``where`` (the option or field and the path)."""
+    try:
+        mode = os.stat(path).st_mode
+    except (FileNotFoundError, NotADirectoryError):
+        return NO_SUCH_FILE
+    except OSError as exc:
+        raise InputError(f"{where}: cannot be examined ({exc.strerror})") from None
+    except ValueError as exc:  # a NUL in the path
+        raise InputError(f"{where}: not a path ({exc})") from None
+    return REGULAR_FILE if stat.S_ISREG(mode) else _kind(mode)
 
 
 def _kind(mode: int) -> str:

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 import contextlib
+import logging
 import multiprocessing
 import os
 import signal
@@ -41,7 +42,7 @@ from .paths import remove_live_temporaries
 
 __all__ = ["SINGLE_THREAD_ENVIRONMENT", "PARENT_POLL", "TERMINATE_GRACE",
            "inherited_environment", "signals_deferred", "process_pool", "watch_parent",
-           "single_threaded"]
+           "single_threaded", "in_child"]
 
 #: One thread for OpenMP, MKL, OpenBLAS and numba.
 SINGLE_THREAD_ENVIRONMENT = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
@@ -203,3 +204,162 @@ def process_pool(workers: int, initializer: Callable | None = None,
     finally:
         with signals_deferred():
             _end(pool, failed)
+
+
+#: How often (s) :func:`in_child` looks at its ``check`` while the child computes.
+CHILD_POLL = 0.05
+
+
+def in_child(work: Callable, *args, check: Callable[[], None] = lambda: None, **kwargs):
+    """``work(*args, **kwargs)`` computed in a forked child process, its answer (or the
+    exception it raised) returned (raised) here; its log records are handled here as they come.
+
+    Why: compiled code (a numba time loop) holds the interpreter until it returns, so a signal
+    handler of this process could not run before the loop's end (18 s later, in one case).
+    This process only waits, calling ``check`` every :data:`CHILD_POLL` s: what ``check``
+    raises (a :class:`~upliftlab.cli.stop.StopFlag`'s KeyboardInterrupt) ends the child at
+    once (SIGKILL: it writes no file) and is raised here. The child ignores SIGINT (a Ctrl-C
+    to the process group is this process's to handle) and dies with this process (Linux's
+    parent-death signal). Without ``os.fork`` (Windows) ``work`` runs here."""
+    if not hasattr(os, "fork"):
+        return work(*args, **kwargs)
+    import sys
+
+    read, write = os.pipe()
+    for stream in (sys.stdout, sys.stderr):  # nothing buffered here is written twice
+        stream.flush()
+    parent = os.getpid()
+    pid = os.fork()
+    if pid == 0:  # the child: it never returns from here
+        os.close(read)
+        _child(parent, write, work, args, kwargs)
+    os.close(write)
+    status = None
+    try:
+        message = _read_answer(read, check)
+        status = os.waitpid(pid, 0)[1]
+    finally:
+        os.close(read)
+        if status is None:  # ended early here: the child goes too
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(pid, signal.SIGKILL)
+            os.waitpid(pid, 0)
+    return _answer(message, status, check)
+
+
+def _child(parent: int, write: int, work: Callable, args, kwargs) -> None:
+    """The forked child of :func:`in_child`: compute, send the answer as framed pickles on
+    ``write`` (the log records first, as they come), and end without running this process's
+    exit handlers or ``finally`` blocks (they belong to the parent)."""
+    import pickle
+    import sys
+
+    code = 0
+    try:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        _die_with(parent)
+        root = logging.getLogger("upliftlab")
+        root.handlers, root.propagate = [_PipeHandler(write)], False
+        try:
+            message = ("answer", work(*args, **kwargs))
+        except BaseException as exc:  # noqa: BLE001  (raised in the parent)
+            import traceback
+
+            exc.add_note("in the computing process:\n" + "".join(
+                traceback.format_exception(exc)).rstrip())
+            message = ("raised", exc)
+        try:
+            data = pickle.dumps(message, protocol=pickle.HIGHEST_PROTOCOL)
+        except Exception as exc:  # noqa: BLE001  (an exception that does not pickle)
+            data = pickle.dumps(("raised", RuntimeError(f"{type(message[1]).__name__}: "
+                                                        f"{message[1]} ({exc})")))
+        _send(write, data)
+    except BaseException:  # noqa: BLE001  (the parent says the child ended without an answer)
+        code = 1
+    finally:
+        with contextlib.suppress(Exception):
+            sys.stdout.flush()
+            sys.stderr.flush()
+        os._exit(code)
+
+
+def _die_with(parent: int) -> None:
+    """End this process (SIGKILL) when ``parent`` dies (Linux's PR_SET_PDEATHSIG; elsewhere
+    nothing), also if it died already."""
+    try:
+        import ctypes
+
+        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG = 1
+    except (OSError, AttributeError):
+        pass
+    if os.getppid() != parent:
+        os._exit(1)
+
+
+def _send(fd: int, data: bytes) -> None:
+    """Write one frame: the length of ``data`` (8 bytes) and ``data``."""
+    for part in (len(data).to_bytes(8, "little"), data):
+        view = memoryview(part)
+        while view:
+            view = view[os.write(fd, view):]
+
+
+class _PipeHandler(logging.Handler):
+    """The child's log handler: each record, its message formatted, sent to the parent."""
+
+    def __init__(self, fd: int) -> None:
+        super().__init__()
+        self.fd = fd
+
+    def emit(self, record: logging.LogRecord) -> None:
+        import pickle
+
+        record.msg, record.args, record.exc_info = record.getMessage(), None, None
+        _send(self.fd, pickle.dumps(("log", record)))
+
+
+def _read_answer(read: int, check: Callable[[], None]):
+    """The message ("answer" or "raised", value) the child sends on ``read`` (:func:`_child`),
+    None if it sent none; its log records handled as they come, and ``check`` called while no
+    answer has come nor started to come (an answer being received is computed: it is kept)."""
+    import pickle
+    import select
+
+    buffer, message = bytearray(), None
+    while True:
+        if message is None and not buffer:
+            check()
+        ready, _, _ = select.select([read], [], [], CHILD_POLL)
+        if not ready:
+            continue
+        chunk = os.read(read, 1 << 20)
+        if not chunk:
+            break
+        buffer += chunk
+        while len(buffer) >= 8 and len(buffer) >= 8 + int.from_bytes(buffer[:8], "little"):
+            size = int.from_bytes(buffer[:8], "little")
+            kind, value = pickle.loads(buffer[8:8 + size])
+            del buffer[:8 + size]
+            if kind == "log":
+                logging.getLogger(value.name).handle(value)
+            else:
+                message = (kind, value)
+    return message
+
+
+def _answer(message, status: int, check: Callable[[], None]):
+    """What :func:`in_child` returns or raises: the child's ``message``; when it sent none, the
+    interruption that ended it (``check``'s, or the signal it died of) or a RuntimeError
+    naming how it ended (exit ``status``, as ``os.waitpid`` gives it)."""
+    if message is None:
+        check()  # a signal to the whole process group ended the child too
+        ended = os.waitstatus_to_exitcode(status)
+        if -ended in (signal.SIGINT, signal.SIGTERM):
+            raise KeyboardInterrupt(signal.Signals(-ended).name)
+        why = (f"by {signal.Signals(-ended).name}" if ended < 0 else f"with exit status {ended}")
+        raise RuntimeError(f"the computing process ended {why} before its answer")
+    kind, value = message
+    if kind == "raised":
+        raise value
+    return value

@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 
 from ...checks import InputError
+from ...paths import NO_SUCH_FILE, REGULAR_FILE, file_kind
 from ...scenes import Scene
 
 __all__ = ["MACRO_NEEDS", "read_macro_calibration"]
@@ -34,6 +35,10 @@ def read_macro_calibration(path, scene: Scene) -> dict:
     from ...reduced.laws.macro import MacroElement
 
     where = f"--macro-calibration = {str(path)!r}"
+    kind = file_kind(path, where)  # examined before it is opened: a named pipe would block
+    if kind not in (REGULAR_FILE, NO_SUCH_FILE):  # a missing file is refused below
+        raise InputError(f"{where}: {kind}, not a regular file; valid: the calibration.json "
+                         "written by `upliftlab calibrate SCENE`")
     try:
         record = json.loads(Path(path).read_text())
         law = MacroElement(**{k: float(v) for k, v in record["law"].items()})

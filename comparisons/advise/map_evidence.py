@@ -26,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from ...checks import InputError
+from ...paths import NO_SUCH_FILE, REGULAR_FILE, file_kind
 from ...scenes import ContinuumOptions, Scene, scene_from_dict
 from ..studies.winkler_map import reference_continuum, reference_soil
 
@@ -93,8 +94,10 @@ def find_map(path: str | Path | None) -> Path | None:
     it exists, else None."""
     if path is not None:
         p = Path(path)
-        if not p.is_file():
-            raise InputError(f"--map = {str(path)!r}: no such file; give a map.nc written by "
+        kind = file_kind(p, f"--map = {str(path)!r}")  # not opened: a named pipe would block
+        if kind != REGULAR_FILE:
+            what = kind if kind == NO_SUCH_FILE else f"{kind}, not a regular file"
+            raise InputError(f"--map = {str(path)!r}: {what}; give a map.nc written by "
                              "upliftlab study winkler_map")
         return p
     return DEFAULT_MAP if DEFAULT_MAP.is_file() else None

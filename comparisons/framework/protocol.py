@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ... import checks
-from ...paths import check_folder_name
+from ...outdir import probe_folder
 from .store import Store
 
 __all__ = ["Study", "Context", "StudyRun", "run_study", "default_out", "CHECKOUT"]
@@ -134,11 +134,10 @@ class StudyRun:
 def _resolved(study: Study, context: Context) -> Context:
     checks.boolean("fast", context.fast)
     out = Path(context.out) if context.out is not None else default_out(study.name, context.fast)
-    check_folder_name(out, "out")
+    probe_folder(out, "out")  # a file, or a place nothing can be made: refused before work
     store = context.store
-    if store is not None and not isinstance(store, Store):
-        check_folder_name(store, "store")
-    store = store if isinstance(store, Store) else Store(store or out / "store")
+    if not isinstance(store, Store):
+        store = Store(probe_folder(store if store is not None else out / "store", "store"))
     return dataclasses.replace(context, out=out, store=store)
 
 

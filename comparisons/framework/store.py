@@ -14,7 +14,10 @@ The store is a folder: loose records (``<k[:2]>/<k>.json``, one per point, writt
 so that several processes may add to it at once) and packs (``packs/*.jsonl.gz``, many records
 in one compressed file, read only: how a store is kept with the repository, :meth:`Store.pack`).
 ``provenance.json`` holds the code digests a check accepted. Parameters named ``_…`` locate an
-input on this machine (a file path): they stay out of the key and out of the record.
+input on this machine (a file path): they stay out of the key and out of the record. A file
+where a record belongs that is not one (not JSON, not gzip, another key, no record) is refused
+with an :class:`~upliftlab.checks.InputError` naming it (and a pack's line) when it is read:
+it is never skipped, rewritten, packed or removed.
 """
 
 from __future__ import annotations
@@ -25,6 +28,7 @@ import importlib
 import json
 import math
 import os
+import zlib
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -188,6 +192,47 @@ def entry_code(entry: Mapping) -> str | None:
     return prov.get("depends_sha256") if isinstance(prov, Mapping) else entry.get("code")
 
 
+_HEX = frozenset("0123456789abcdef")
+_VALID = ("a record is a JSON table with its 'key' (64 lowercase hex digits, the loose file's "
+          "name) and its 'record'")
+
+
+def _is_key(text) -> bool:
+    """Whether ``text`` is a store key: 64 lowercase hex digits (a SHA-256)."""
+    return isinstance(text, str) and len(text) == 64 and set(text) <= _HEX
+
+
+def _checked(entry, where: str, key: str | None = None) -> dict:
+    """``entry`` if it is a complete record (of ``key``, when given), else an
+    :class:`InputError` naming ``where`` (the file, and a pack's line)."""
+    if not isinstance(entry, dict) or not _is_key(entry.get("key")) or "record" not in entry:
+        raise InputError(f"{where}: not a record; {_VALID}; move it out of the store")
+    if key is not None and entry["key"] != key:
+        raise InputError(f"{where}: holds the record of key {entry['key']!r}, not of its file "
+                         f"name's; {_VALID}; move it out of the store")
+    return entry
+
+
+def _read_pack(pack: Path) -> dict[str, dict]:
+    """The entries of the pack ``pack`` by key. A pack that is not gzip-compressed JSON lines
+    of records is refused, naming it (and the line): its records must not be lost unseen."""
+    where, entries = f"store pack {str(pack)!r}", {}
+    try:
+        with gzip.open(pack, "rt", encoding="utf-8") as fh:
+            for number, line in enumerate(fh, 1):
+                try:
+                    entry = json.loads(line)
+                except ValueError as exc:
+                    raise InputError(f"{where}, line {number}: not JSON ({exc}); {_VALID}; "
+                                     "move the pack out of the store") from None
+                entry = _checked(entry, f"{where}, line {number}")
+                entries[entry["key"]] = entry
+    except (OSError, EOFError, zlib.error, UnicodeDecodeError) as exc:
+        raise InputError(f"{where}: cannot be read as gzip-compressed JSON lines ({exc}); move "
+                         "it out of the store") from None
+    return entries
+
+
 @dataclass(frozen=True)
 class Store:
     """A folder of records (module docstring)."""
@@ -209,10 +254,7 @@ class Store:
         if "entries" not in self._packs:
             entries = {}
             for pack in sorted((self.root / PACKS).glob("*.jsonl.gz")):
-                with gzip.open(pack, "rt", encoding="utf-8") as fh:
-                    for line in fh:
-                        entry = json.loads(line)
-                        entries[entry["key"]] = entry
+                entries.update(_read_pack(pack))
             self._packs["entries"] = entries
         return self._packs["entries"]
 
@@ -221,16 +263,32 @@ class Store:
         return self.entry(key) is not None
 
     def entry(self, key: str) -> dict | None:
-        """The stored entry of ``key`` (record and metadata), or None. An unreadable loose
-        file (not JSON, or for another key) counts as missing: the next :meth:`put` rewrites
-        it."""
+        """The stored entry of ``key`` (record and metadata), its loose file's else its
+        pack's, or None. A loose file that is not a record of ``key`` (not JSON, another key)
+        is refused naming it (:meth:`_loose`): it is not the store's to skip or rewrite."""
+        entry = self._loose(key)
+        return entry if entry is not None else self._packed().get(key)
+
+    def _loose(self, key: str) -> dict | None:
+        """The entry in the loose file of ``key``, None if there is no such file; a file that
+        cannot be read, or is not a record of ``key``, is an :class:`InputError` naming it.
+        (Records are written atomically: a loose file is never half-written by upliftlab.)"""
+        path = self.path(key)
+        where = f"store record {str(path)!r}"
         try:
-            entry = json.loads(self.path(key).read_text())
-        except (OSError, ValueError):
-            entry = self._packed().get(key)
-        if not isinstance(entry, dict) or entry.get("key") != key or "record" not in entry:
+            text = path.read_text(encoding="utf-8")
+        except FileNotFoundError:
             return None
-        return entry
+        except (OSError, UnicodeDecodeError) as exc:
+            reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else exc
+            raise InputError(f"{where}: cannot be read ({reason}); move it out of the store"
+                             ) from None
+        try:
+            entry = json.loads(text)
+        except ValueError as exc:
+            raise InputError(f"{where}: not JSON ({exc}); {_VALID}; move it out of the store"
+                             ) from None
+        return _checked(entry, where, key)
 
     def get(self, key: str, default=None):
         """The record stored under ``key``, or ``default``."""
@@ -255,12 +313,18 @@ class Store:
         return path
 
     def keys(self) -> Iterator[str]:
-        """Every stored key, loose and packed (complete records only)."""
+        """Every stored key, loose and packed. A loose ``??/*.json`` file not named as a
+        record (``<k[:2]>/<k>.json``) is refused naming it (it is no record to skip)."""
         loose = set()
         if self.root.is_dir():
             for path in self.root.glob(f"??/*{_SUFFIX}"):
-                if not path.name.startswith("."):
-                    loose.add(path.stem)
+                if path.name.startswith("."):  # a temporary of a write under way
+                    continue
+                if not _is_key(path.stem) or path.parent.name != path.stem[:2]:
+                    raise InputError(f"store file {str(path)!r}: not named as a record "
+                                     "(<64 lowercase hex digits>.json in the folder of its "
+                                     "first two); move it out of the store")
+                loose.add(path.stem)
         yield from sorted(loose | self._packed().keys())
 
     def __len__(self) -> int:
@@ -274,11 +338,29 @@ class Store:
     def accepted(self) -> dict:
         """``provenance.json``: per function name, the code digests accepted for each code
         digest that checked them (:mod:`.freshness`)."""
+        return self._stamps().get("accepted", {})
+
+    def _stamps(self) -> dict:
+        """``provenance.json`` as a table; {} when there is none. A file that is not such a
+        table is refused naming it: read as empty, the next :meth:`stamp` would write over
+        the checks it holds."""
+        path = self.root / STAMPS
         try:
-            stamps = json.loads((self.root / STAMPS).read_text())
-        except (OSError, ValueError):
+            text = path.read_text(encoding="utf-8")
+        except FileNotFoundError:
             return {}
-        return stamps.get("accepted", {}) if isinstance(stamps, dict) else {}
+        except (OSError, UnicodeDecodeError) as exc:
+            raise InputError(f"store provenance {str(path)!r}: cannot be read ({exc}); move "
+                             "it out of the store") from None
+        try:
+            stamps = json.loads(text)
+        except ValueError as exc:
+            raise InputError(f"store provenance {str(path)!r}: not JSON ({exc}); move it out "
+                             "of the store") from None
+        if not isinstance(stamps, dict) or not isinstance(stamps.get("accepted", {}), dict):
+            raise InputError(f"store provenance {str(path)!r}: not a table of accepted code "
+                             "digests ('accepted', 'checks'); move it out of the store")
+        return stamps
 
     def is_fresh(self, entry: Mapping) -> bool:
         """Whether ``entry`` was made by today's code (:func:`depends_digest` of its function),
@@ -292,10 +374,7 @@ class Store:
     def stamp(self, function: str, accepts: Sequence[str], check: Mapping) -> Path:
         """Record that today's code reproduced the records of ``function`` made by the code
         digests ``accepts`` (``check``: what was run and how close it came)."""
-        try:
-            stamps = json.loads((self.root / STAMPS).read_text())
-        except (OSError, ValueError):
-            stamps = {}
+        stamps = self._stamps()
         code = depends_digest(function)
         per_code = stamps.setdefault("accepted", {}).setdefault(function, {})
         per_code[code] = sorted(set(per_code.get(code, [])) | set(accepts))
@@ -310,19 +389,17 @@ class Store:
     def pack(self, name: str, keys: Sequence[str] | None = None) -> Path:
         """Move loose records (``keys``, default all) into the compressed pack
         ``packs/<name>.jsonl.gz`` (added to one of that name), and remove their loose files.
-        A pack holds no machine paths: the records' locators are already left out."""
+        A pack holds no machine paths: the records' locators are already left out. Every
+        record (loose and in the pack) is read before anything is written or removed: a file
+        that is not one is refused naming it (:meth:`_loose`, :func:`_read_pack`)."""
         from ...paths import path_component
 
         path_component(name, "pack name")
         target = self.root / PACKS / f"{name}.jsonl.gz"
-        chosen = [k for k in (keys if keys is not None else list(self.keys()))
-                  if self.path(k).is_file()]
-        entries = {}
-        if target.is_file():
-            with gzip.open(target, "rt", encoding="utf-8") as fh:
-                entries = {e["key"]: e for e in map(json.loads, fh)}
-        for key in chosen:
-            entries[key] = self.entry(key)
+        entries = _read_pack(target) if target.is_file() else {}
+        loose = {k: self._loose(k) for k in (keys if keys is not None else list(self.keys()))}
+        chosen = [k for k, entry in loose.items() if entry is not None]
+        entries.update((k, loose[k]) for k in chosen)
         with output_root(self.root), atomic_path(target) as tmp:
             with gzip.GzipFile(tmp, "wb", compresslevel=9, mtime=0) as fh:
                 for key in sorted(entries):

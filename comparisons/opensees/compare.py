@@ -14,6 +14,7 @@ import json
 import math
 import statistics
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -21,15 +22,16 @@ import numpy as np
 
 from ...checks import InputError
 from ...log import logger
-from ...reduced import Response, run
+from ...reduced import Response, build_model, run
+from ...reduced.run import plan_run
 from ...results import write_csv, write_text
 from ...scenes import Scene
 from .runner import OpenSeesRun, require_opensees, run_script
 from .script import ScriptFiles, modelling_notes, write_script
 from .spec import OpenSeesSpec, opensees_spec
 
-__all__ = ["SUMMARY_KEYS", "PEAK_KEYS", "Comparison", "compare", "write_comparison",
-           "summary_of", "comparison_table"]
+__all__ = ["COMPARISON_NAMES", "SUMMARY_KEYS", "PEAK_KEYS", "Comparison", "compare",
+           "check_upliftlab_runs", "write_comparison", "summary_of", "comparison_table"]
 
 #: The keys of both models' summaries (the uplift ones only with a foundation of springs).
 SUMMARY_KEYS = ("scene", "verdict", "integrator", "dt", "units", "runtime_s", "peak_u",
@@ -90,16 +92,20 @@ def _upliftlab_summary(response: Response, runtime: float) -> dict:
 
 
 def compare(scene: Scene, out: str | Path, *, dt: float | None = None,
-            dashpots: str = "clipped", timeout: float = 3600.0) -> Comparison:
+            dashpots: str = "clipped", timeout: float = 3600.0,
+            scene_args: Sequence[str] | None = None) -> Comparison:
     """Write the script of ``scene`` into ``out``, run both models and return the comparison.
+    ``scene_args``: the command-line arguments that chose the scene (for the command the
+    script's ``model.json`` names, :func:`.script.write_script`).
 
     Every input is checked before any file is written; raises
     :class:`~.runner.OpenSeesError` if the OpenSees run fails and the reduced model's
     :class:`~upliftlab.reduced.IntegrationError` if upliftlab's does.
     """
     spec = opensees_spec(scene, dt=dt, dashpots=dashpots)
+    check_upliftlab_runs(scene, spec.dt)
     require_opensees()
-    files = write_script(spec, out)
+    files = write_script(spec, out, scene_args)
     _say(f"wrote {files.script}, {files.numbers}"
          + (f" and {files.motion}" if files.motion else ""))
     started = time.perf_counter()
@@ -114,6 +120,18 @@ def compare(scene: Scene, out: str | Path, *, dt: float | None = None,
     notes = tuple(modelling_notes(spec)) + tuple(_measured_notes(spec, upliftlab, same_step,
                                                                  summary_of(result.summary)))
     return Comparison(spec, files, upliftlab, same_step, result, response, notes)
+
+
+def check_upliftlab_runs(scene: Scene, step: float) -> None:
+    """Every check upliftlab's two runs in :func:`compare` make before they start (integrator,
+    step, cost against ``analysis.max_steps``, ``max_memory`` and the time budget), made
+    before any file is written or run: refused only when it started, the second run would
+    leave the script written and the first run done for nothing. ``step``: the OpenSees
+    step (s)."""
+    model = build_model(scene)
+    motion = scene.build_motion()
+    plan_run(model, motion, scene.analysis.integrator)
+    plan_run(model, motion, "newmark", dt=step)
 
 
 def _rel(a: float | None, b: float | None) -> float:
@@ -227,6 +245,11 @@ def _figure(c: Comparison, path: Path, curves: bool = True) -> Path | None:
     return save(fig, path)
 
 
+#: The files :func:`write_comparison` writes (the figure only where matplotlib is installed).
+COMPARISON_NAMES = ("comparison.md", "comparison.json", "histories.csv", "upliftlab.nc",
+                    "histories.png")
+
+
 def write_comparison(c: Comparison, out: str | Path, *, curves: bool = True) -> list[Path]:
     """``comparison.md``, ``comparison.json``, ``histories.csv``, ``histories.png`` (the
     difference upliftlab − OpenSees; with ``curves`` both histories beside it) and
@@ -242,12 +265,13 @@ def write_comparison(c: Comparison, out: str | Path, *, curves: bool = True) -> 
             f"{notes}\n")
     data = {**c.to_json(), "upliftlab_same_step": c.same_step, "notes": list(c.notes),
             "opensees_wall_s": c.opensees.wall}
-    written = [write_text(out / "comparison.md", text),
-               write_text(out / "comparison.json", json.dumps(data, indent=1) + "\n"),
-               write_csv(out / "histories.csv", _histories(c),
+    md, data_json, csv, netcdf, png = COMPARISON_NAMES
+    written = [write_text(out / md, text),
+               write_text(out / data_json, json.dumps(data, indent=1) + "\n"),
+               write_csv(out / csv, _histories(c),
                          header=f"{c.spec.title}: upliftlab and OpenSees on upliftlab's stored "
                                 f"times; units {c.spec.units}; left spring: compression from "
                                 "rest")]
-    written += c.response.save(out / "upliftlab.nc")
-    figure = _figure(c, out / "histories.png", curves)
+    written += c.response.save(out / netcdf)
+    figure = _figure(c, out / png, curves)
     return written + ([figure] if figure else [])

@@ -428,9 +428,12 @@ class Observer:
 def write_outputs(observer, status, runtime, setup, steps):
     """opensees_histories.csv and opensees_summary.json beside this script."""
     names = "time,u,theta,V,left_spring_displacement,base_shear"
+    header = (f"{TITLE}: OpenSees histories; units {UNITS}; theta as upliftlab's; "
+              "left_spring_displacement is the compression from rest")
     with open(os.path.join(HERE, "opensees_histories.csv"), "w") as f:
-        f.write(f"# {TITLE}: OpenSees histories; units {UNITS}; theta as upliftlab's; "
-                "left_spring_displacement is the compression from rest\n" + names + "\n")
+        # every line of the header a comment, a title's line breaks included (as upliftlab's
+        # own CSV): no line of the title can become a row of numbers
+        f.write("".join(f"# {line}\n" for line in header.splitlines()) + names + "\n")
         for row in observer.rows:
             f.write(",".join(f"{value:.10g}" for value in row) + "\n")
     pk, last = observer.peak, observer.rows[-1]
@@ -452,11 +455,23 @@ def write_outputs(observer, status, runtime, setup, steps):
     return summary
 
 
+def printable(text):
+    """``text`` with each character that is not printable (a line break, a terminal escape)
+    written as its Python escape (``\\n``, ``\\x1b``): a scene's title reaches the terminal as
+    text, never as control codes."""
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in str(text))
+
+
+def announce():
+    """The scene and its modelling notes, on stderr, one line each."""
+    print(printable(f"OpenSees model of {SCENE}: {TITLE} ({UNITS})"), file=sys.stderr)
+    for note in NOTES:
+        print(printable(f"- {note}"), file=sys.stderr)
+
+
 def main():
     load_scene_numbers()
-    print(f"OpenSees model of {SCENE}: {TITLE} ({UNITS})", file=sys.stderr)
-    for note in NOTES:
-        print(f"- {note}", file=sys.stderr)
+    announce()
     ops = import_opensees()
     start = time.perf_counter()
     build_model(ops)

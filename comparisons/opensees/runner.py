@@ -24,7 +24,7 @@ import numpy as np
 from ...checks import InputError
 from ...log import logger
 
-__all__ = ["OPENSEES_EXTRA", "OpenSeesRun", "OpenSeesError", "opensees_available",
+__all__ = ["RUN_OUTPUTS", "OPENSEES_EXTRA", "OpenSeesRun", "OpenSeesError", "opensees_available",
            "require_opensees", "run_script"]
 
 OPENSEES_EXTRA = 'pip install "upliftlab[opensees]"'
@@ -82,6 +82,10 @@ def _relay(stream, keep: deque, echo: bool) -> None:
             logger("opensees").info(line.rstrip("\n"))
 
 
+#: The files the OpenSees script writes beside itself when it runs.
+RUN_OUTPUTS = ("opensees_summary.json", "opensees_histories.csv")
+
+
 def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True) -> OpenSeesRun:
     """Run ``script`` (``python model.py`` in its folder) and read its two output files.
 
@@ -90,7 +94,7 @@ def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True
     """
     script = Path(script).resolve()
     folder = script.parent
-    outputs = ("opensees_summary.json", "opensees_histories.csv")
+    outputs = RUN_OUTPUTS
     before = {name: _stamp(folder / name) for name in outputs}  # never read a previous run's
     start = time.perf_counter()
     child = subprocess.Popen([sys.executable, script.name], cwd=folder, env=_environment(),
@@ -108,7 +112,7 @@ def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True
     relay.join(timeout=5)
     child.stdout.close()
     wall = time.perf_counter() - start
-    summary_path = folder / "opensees_summary.json"
+    summary_path = folder / RUN_OUTPUTS[0]
     if any(_stamp(folder / name) in (None, before[name]) for name in outputs):
         last = next((line for line in reversed(tail) if line.strip()), "no message")
         raise OpenSeesError(f"OpenSees run of {script} exited with code {child.returncode} "
@@ -117,7 +121,7 @@ def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True
     if child.returncode != 0 or summary.get("verdict") != "completed":
         raise OpenSeesError(f"OpenSees run of {script}: {summary.get('verdict')} "
                             f"(exit code {child.returncode})")
-    return OpenSeesRun(summary, read_histories(folder / "opensees_histories.csv"), wall)
+    return OpenSeesRun(summary, read_histories(folder / RUN_OUTPUTS[1]), wall)
 
 
 def _stamp(path: Path) -> tuple[int, int, int] | None:
@@ -131,7 +135,7 @@ def _stamp(path: Path) -> tuple[int, int, int] | None:
 
 
 def read_histories(path: Path) -> dict:
-    """The script's CSV: a comment line, a header, then one row per step."""
+    """The script's CSV: comment lines, a header, then one row per step."""
     with open(path) as f:
         rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))]
     names, data = rows[0], np.array(rows[1:], dtype=float)

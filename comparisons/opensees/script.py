@@ -12,6 +12,8 @@ ground motion, if any, goes into ``motion.txt`` as two columns, time [s] and acc
 from __future__ import annotations
 
 import json
+import shlex
+from collections.abc import Sequence
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
@@ -21,7 +23,7 @@ from ...results import write_text
 from .spec import OpenSeesSpec
 
 __all__ = ["ScriptFiles", "script_text", "script_numbers", "motion_text", "write_script",
-           "modelling_notes"]
+           "script_names", "modelling_notes"]
 
 SCRIPT_NAME, NUMBERS_NAME, MOTION_NAME = "model.py", "model.json", "motion.txt"
 
@@ -36,13 +38,18 @@ class ScriptFiles:
     motion: Path | None
 
 
-def _command(spec: OpenSeesSpec) -> str:
-    parts = ["upliftlab opensees", spec.scene_name.rsplit("-", 1)[0] if spec.case
-             else spec.scene_name]
-    if spec.case:
-        parts += ["--case", spec.case]
-    parts += [f"--set {o}" for o in spec.overrides]
-    return " ".join(parts + [f"--dt {spec.dt!r}", f"--dashpots {spec.dashpots}"])
+def _command(spec: OpenSeesSpec, scene_args: Sequence[str] | None = None) -> str:
+    """The shell command that writes this model again: ``upliftlab opensees``, the arguments
+    that chose the scene (``scene_args``, as the command line gave them: the scene as given,
+    --case, --motion, each --set; None: the spec's scene name, case and overrides), then the
+    step and dashpots it resolved to; every argument shell-quoted (:func:`shlex.join`), so
+    that pasting it runs nothing a scene's path or an override holds."""
+    if scene_args is None:
+        scene_args = [spec.scene_name.rsplit("-", 1)[0] if spec.case else spec.scene_name]
+        scene_args += ["--case", spec.case] if spec.case else []
+        scene_args += [a for o in spec.overrides for a in ("--set", o)]
+    return shlex.join(["upliftlab", "opensees", *scene_args, "--dt", repr(spec.dt),
+                       "--dashpots", spec.dashpots])
 
 
 def modelling_notes(spec: OpenSeesSpec) -> list[str]:
@@ -127,16 +134,18 @@ def script_text() -> str:
     return resources.files(__package__).joinpath("model_script.py").read_text(encoding="utf-8")
 
 
-def script_numbers(spec: OpenSeesSpec, motion_file: str | None) -> dict:
+def script_numbers(spec: OpenSeesSpec, motion_file: str | None,
+                   scene_args: Sequence[str] | None = None) -> dict:
     """What ``model.json`` holds for the script (:mod:`.model_script`'s constants): numbers
-    in the scene's units, the scene's names and the modelling notes; JSON text only."""
+    in the scene's units, the scene's names, the command that wrote it (``scene_args``:
+    :func:`_command`) and the modelling notes; JSON text only."""
     s = spec
     lever = [t.height - b for t, b in zip(s.stories, [0.0] + [t.height for t in s.stories])]
     scale = (s.vertical_weight / sum(p.k for p in s.springs) if s.springs
              else s.stories[0].weight / s.stories[0].stiffness)
     return {
         "WRITTEN_BY": f"upliftlab {__version__}", "SCENE": s.scene_name, "TITLE": s.title,
-        "COMMAND": _command(spec), "UNITS": s.units,
+        "COMMAND": _command(spec, scene_args), "UNITS": s.units,
         "G": float(s.g), "SUPPORT": s.support, "DASHPOTS": s.dashpots, "RIGID": bool(s.rigid),
         "P_DELTA": bool(s.p_delta), "VERTICAL_WEIGHT": float(s.vertical_weight),
         "ROTARY_INERTIA": float(s.rotary_inertia),
@@ -167,14 +176,24 @@ def motion_text(spec: OpenSeesSpec) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_script(spec: OpenSeesSpec, out: str | Path) -> ScriptFiles:
+def script_names(spec: OpenSeesSpec) -> list[str]:
+    """The names of the files :func:`write_script` writes for ``spec`` (``motion.txt`` only
+    for a motion that is not free vibration), declared before any work so that the output
+    folder's check covers them (:func:`upliftlab.outdir.claim`)."""
+    motion = [] if spec.motion.is_free_vibration else [MOTION_NAME]
+    return [*motion, NUMBERS_NAME, SCRIPT_NAME]
+
+
+def write_script(spec: OpenSeesSpec, out: str | Path,
+                 scene_args: Sequence[str] | None = None) -> ScriptFiles:
     """Write ``model.py``, ``model.json`` (and ``motion.txt`` unless the motion is free
-    vibration) into ``out``; each file atomically, the script last."""
+    vibration) into ``out``; each file atomically, the script last. ``scene_args``: the
+    command-line arguments that chose the scene, for the command in ``model.json``."""
     out = Path(out)
     motion = None
-    if not spec.motion.is_free_vibration:
+    if MOTION_NAME in script_names(spec):
         motion = write_text(out / MOTION_NAME, motion_text(spec))
-    numbers = script_numbers(spec, MOTION_NAME if motion is not None else None)
+    numbers = script_numbers(spec, MOTION_NAME if motion is not None else None, scene_args)
     json_file = write_text(out / NUMBERS_NAME, json.dumps(numbers, indent=1) + "\n")
     script = write_text(out / SCRIPT_NAME, script_text())
     return ScriptFiles(script, json_file, motion)

@@ -22,7 +22,7 @@ from ...scenes import Scene
 from .qz import QzSimple2Spring, qzsimple2_springs
 
 __all__ = ["DASHPOT_MODELS", "POINTS_PER_PERIOD", "FoundationSpring", "Story", "OpenSeesSpec",
-           "check_representable", "default_step", "opensees_spec"]
+           "check_representable", "check_step_count", "default_step", "opensees_spec"]
 
 #: How the foundation dashpots are modelled in OpenSees (``--dashpots``): ``clipped`` (the
 #: default) wraps spring and dashpot in ``TensionOnly`` so that their sum never pulls, as
@@ -157,6 +157,23 @@ def check_representable(scene: Scene) -> None:
             "a ground motion)")
 
 
+def check_step_count(scene: Scene, step: float, duration: float) -> float:
+    """The Newmark steps of the OpenSees run, ``duration`` / ``step`` (both s); refused (before
+    any file is written) above the scene's ``analysis.max_steps``, the limit every upliftlab
+    run is held to: a step of 1e-12 s would otherwise write a script of 10¹³ steps."""
+    steps = duration / step  # a float: a step of 5e-324 s makes it inf, not an overflow
+    limit = scene.analysis.max_steps
+    if steps >= limit + 0.5:  # the script takes round(duration / step) steps
+        about = (f"the OpenSees run would take {steps:.4g} Newmark steps of {step:.3g} s "
+                 f"({duration:g} s)")
+        raise InputError(f"analysis.max_steps = {limit}: {about}; raise it (--set "
+                         f"analysis.max_steps={math.ceil(steps)}) to write it anyway, or take "
+                         "a larger step (--dt) or a shorter duration" if steps < 1e15 else
+                         f"analysis.max_steps = {limit}: {about}; take a larger step (--dt) "
+                         "or a shorter duration")
+    return steps
+
+
 def default_step(scene: Scene, motion: Motion) -> float:
     """``analysis.dt`` if the scene sets it, else the largest record step / n with
     :data:`POINTS_PER_PERIOD` steps per shortest bonded period (s)."""
@@ -191,6 +208,7 @@ def opensees_spec(scene: Scene, *, dt: float | None = None,
         raise InputError(f"--dt = {step:g}: must be a finite number > 0 (s)")
     if step > duration:
         raise InputError(f"--dt = {step:g}: longer than the run ({duration:g} s)")
+    check_step_count(scene, step, duration)
     p = model.params
     found = p[model.foundation_slice]
     springs = tuple(FoundationSpring(float(r["x"]), float(r["k"]), float(r["c"]),

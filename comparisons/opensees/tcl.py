@@ -47,7 +47,8 @@ from ...scenes import Scene
 
 __all__ = ["TclFiles", "REBOUND", "SEGMENTS", "section_kv", "tcl_numbers", "correspondence",
            "write_tcl",
-           "check_tcl_representable", "TCL_NAME", "NUMBERS_TXT", "MOTION_G"]
+           "check_tcl_representable", "TCL_NAME", "NUMBERS_TXT", "MOTION_G",
+           "TCL_NAMES"]
 
 TCL_NAME, NUMBERS_TXT, MOTION_G, NOTES_MD = ("model.tcl", "model_numbers.txt", "motion_g.txt",
                                               "model.md")
@@ -93,7 +94,7 @@ def section_kv(rocking_stiffness: float, width: float) -> float:
 
 def tcl_numbers(scene: Scene, dt: float | None = None) -> dict[str, float]:
     """The numbers ``model.tcl`` reads (module docstring), in the scene's units."""
-    from .spec import default_step
+    from .spec import check_step_count, default_step
 
     check_tcl_representable(scene)
     model = build_model(scene)
@@ -107,6 +108,7 @@ def tcl_numbers(scene: Scene, dt: float | None = None) -> dict[str, float]:
     step = default_step(scene, motion) if dt is None else dt
     if not (math.isfinite(step) and 0.0 < step <= duration):
         raise InputError(f"--dt = {step:g}: valid range is (0, {duration:g}] s")
+    check_step_count(scene, step, duration)
     return {
         "g": float(scene.g), "story_weight": float(story.weight),
         "vertical_weight": float(s.vertical_weight), "height": float(story.height),
@@ -199,3 +201,7 @@ def write_tcl(scene: Scene, out: str | Path, dt: float | None = None) -> TclFile
     notes = write_text(out / NOTES_MD, correspondence(scene, numbers))
     script = write_text(out / TCL_NAME, _script_text())
     return TclFiles(script, numbers_file, motion_file, notes)
+
+
+#: The files :func:`write_tcl` writes, declared before any work (the output folder's check).
+TCL_NAMES = (MOTION_G, NUMBERS_TXT, NOTES_MD, TCL_NAME)

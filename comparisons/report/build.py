@@ -91,7 +91,7 @@ from ...workers import single_threaded
 
 __all__ = ["STUDIES", "Section", "Report", "build_report", "markdown_to_html", "study_digest",
            "continuum_pushover", "SectionEstimate", "ReportEstimate", "estimate_report",
-           "REPORT_BUDGET"]
+           "REPORT_BUDGET", "REPORT_NAMES"]
 
 REPORT = "report"
 #: The report's default budget (s of one worker) for a study that estimates its runs' cost
@@ -303,6 +303,11 @@ def _failed(name: str, title: str, intro: str, start: float, exc: BaseException)
                    error=f"{message}\n\n{tail}")
 
 
+#: The files :func:`build_report` writes in its folder (its studies write under ``studies/``
+#: and ``store/``, each in a folder of its own).
+REPORT_NAMES = ("report.html", "report.json")
+
+
 def build_report(fast: bool = False, *, out: str | Path | None = None,
                  scheduler: str | None = None, studies: Sequence[str | Study] = STUDIES,
                  progress=None, force: bool = False,
@@ -323,7 +328,7 @@ def build_report(fast: bool = False, *, out: str | Path | None = None,
         checks.positive("--budget", budget)
     default = Path("results") / (REPORT + ("-fast" if fast else ""))
     with claim(out, default, settings={"command": "report", "fast": fast},
-               force=force) as folder:
+               force=force, outputs=REPORT_NAMES) as folder:
         report = _build(fast, folder, scheduler, studies, progress, start, budget)
     return report
 
@@ -348,8 +353,9 @@ def _build(fast, folder, scheduler, studies, progress, start, budget) -> Report:
     failed = [s.name for s in sections if s.status != "ok"]
     page = render_html(sections, fast=fast, passed=passed, elapsed=elapsed)
     folder.start_writing()
-    path = write_text(out / "report.html", page)
-    summary = write_text(out / "report.json", json.dumps({
+    html, data = REPORT_NAMES
+    path = write_text(out / html, page)
+    summary = write_text(out / data, json.dumps({
         "passed": passed, "fast": fast, "elapsed_s": elapsed, "html": str(path),
         "sections": {s.name: {"status": s.status, "source": s.source,
                                     "seconds": s.seconds,

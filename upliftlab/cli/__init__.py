@@ -38,7 +38,12 @@ the output folder unlocked and without its completion marker, no part file, and 
 process the command started ended (:func:`upliftlab.workers.process_pool`). Finished points of
 a study stay in its store, so the same command resumes it. A continuum dynamic run turns the
 interruption into a flag its time loop checks and writes what it computed, marked incomplete
-(:mod:`.continuum`, :mod:`.stop`).
+(:mod:`.continuum`, :mod:`.stop`). ``upliftlab run`` computes in a child process, which a
+signal ends at once (a compiled loop would hold the signal off until its end), and once the
+response is computed writes its data files before it ends (:func:`.commands.run_command`).
+A signal while the command loads (numpy, from the package's first line:
+:data:`upliftlab.COMMAND_SIGNALS`) ends it with the same line; one after the exit code is
+chosen changes nothing.
 
 BLAS and OpenMP use one thread unless the user set ``OMP_NUM_THREADS``,
 ``OPENBLAS_NUM_THREADS`` or ``MKL_NUM_THREADS``: the solves here are small and the machines
@@ -53,10 +58,7 @@ import os
 for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
-import contextlib  # noqa: E402
-import signal  # noqa: E402
 import sys  # noqa: E402
-import threading  # noqa: E402
 
 from .. import __version__  # noqa: E402
 from ..checks import InputError  # noqa: E402
@@ -64,6 +66,7 @@ from ..log import configure  # noqa: E402
 from .common import Parser, add_verbosity  # noqa: E402
 from .exits import (EXIT_INPUT, EXIT_INTERRUPTED, EXIT_NUMERICS, disk_full_line,  # noqa: E402
                     exit_code, interrupted_line, one_line)
+from .stop import stop_flag  # noqa: E402
 
 __all__ = ["main", "parser"]
 
@@ -104,36 +107,36 @@ def _handler(command: str):
             "store": store.store, "calibrate": calibrate.calibrate_command}[command]
 
 
-def _terminated(signum, frame):
-    raise KeyboardInterrupt(signal.Signals(signum).name)
-
-
-@contextlib.contextmanager
-def _sigterm_interrupts():
-    """SIGTERM raises KeyboardInterrupt, as Ctrl-C does, while the block runs (in the main
-    thread only, where a handler can be set), so that every ``finally`` of the command runs."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    previous = signal.signal(signal.SIGTERM, _terminated)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)
-
-
 def main(argv: list[str] | None = None) -> int:
-    """Run the command line ``argv``; its exit code (:mod:`.exits`)."""
+    """Run the command line ``argv`` (None: this process's own, as the ``upliftlab`` command);
+    its exit code (:mod:`.exits`).
+
+    SIGINT and SIGTERM raise KeyboardInterrupt while the command runs (:mod:`.stop`), so that
+    every ``finally`` of the command runs, and end it with one line. One that came while the
+    command loaded (:data:`upliftlab.COMMAND_SIGNALS`) or while the parser loaded the commands
+    ends it before any work; one whose KeyboardInterrupt was swallowed (raised in a weakref
+    callback) ends it when the command returns. Once the exit code is chosen, a signal no longer
+    changes it."""
+    command = argv is None
     argv = sys.argv[1:] if argv is None else list(argv)
-    try:
-        with _sigterm_interrupts():
-            return _main(argv)
-    except KeyboardInterrupt as exc:  # also one that came while the line above was printed
-        print(interrupted_line(exc, argv), file=sys.stderr)
-        return EXIT_INTERRUPTED
+    with stop_flag() as flag:
+        if command:
+            from .. import COMMAND_SIGNALS
+            flag.adopt(COMMAND_SIGNALS)
+        try:
+            flag.defer()  # while the parser loads the commands, a signal only sets the flag
+            code = _main(argv, flag)
+        except KeyboardInterrupt as exc:  # also one that came while _main printed its line
+            flag.deferred = True
+            print(interrupted_line(exc, argv), file=sys.stderr)
+            code = EXIT_INTERRUPTED
+        flag.deferred = True  # the code is chosen: a signal now only sets the flag
+        return code
 
 
-def _main(argv: list[str]) -> int:
+def _main(argv: list[str], flag) -> int:
+    """:func:`main` after its signal handlers are set: the exit code of the command ``argv``
+    (``flag``: its :class:`.stop.StopFlag`)."""
     try:
         args = parser().parse_args(argv)
     except SystemExit as exc:  # --help, --version, or a one-line usage error
@@ -141,7 +144,11 @@ def _main(argv: list[str]) -> int:
     configure(int(args.verbose) - int(args.quiet))
     args.argv = argv  # a command that names how to resume it
     try:
-        return _handler(args.command)(args)
+        flag.deferred = False  # the command's own code: a signal raises where it comes
+        flag.check()
+        code = _handler(args.command)(args)
+        flag.check()  # a signal whose KeyboardInterrupt a weakref callback swallowed
+        return code
     except InputError as exc:
         print(f"upliftlab: error: {one_line(exc)}", file=sys.stderr)
         return EXIT_INPUT
@@ -153,6 +160,7 @@ def _main(argv: list[str]) -> int:
               "analysis.max_memory, lower it or make the run smaller", file=sys.stderr)
         return EXIT_NUMERICS
     except KeyboardInterrupt as exc:
+        flag.deferred = True  # a second signal does not cut the line short
         print(interrupted_line(exc, argv), file=sys.stderr)
         return EXIT_INTERRUPTED
     except BrokenPipeError:  # `upliftlab scenes | head`: the reader has gone

@@ -27,10 +27,11 @@ from ..budget import in_sequence, time_budget
 from ..checks import InputError
 from ..extras import need_extra
 from ..outdir import claim
-from .common import default_out, mesh_overrides, number, refuse_without_effect
+from .common import (FORCE_HELP, default_out, mesh_overrides, number,
+                     refuse_without_effect)
 from .common import say as _say
 
-__all__ = ["add_calibrate", "calibrate_command", "DEFAULT_EVALUATIONS"]
+__all__ = ["add_calibrate", "calibrate_command", "DEFAULT_EVALUATIONS", "CALIBRATION_NAMES"]
 
 #: The fit's default budget of evaluations (the map's soils converged in 346 and 442).
 DEFAULT_EVALUATIONS = 500
@@ -64,7 +65,7 @@ def add_calibrate(sub) -> None:
     c.add_argument("--out", help="output directory (default results/<scene>-calibrate, with a "
                                  "digest of the options when there are any)")
     c.add_argument("--json", action="store_true", help="print the record as one JSON object")
-    c.add_argument("--force", action="store_true", help="replace a different run in --out")
+    c.add_argument("--force", action="store_true", help=FORCE_HELP)
     c.add_argument("--budget", metavar="SECONDS",
                    help="refuse (exit 2) before any run a calibration estimated to take "
                         "longer than this (default 86400 s)")
@@ -124,6 +125,11 @@ def _fit_progress(started: list, cache=None):
         if cache is not None:
             cache.save()
     return report
+
+
+#: The files the calibration writes at its end (its record and its notes), declared before any
+#: work; its fit cache and store are the state an interrupted calibration resumes from.
+CALIBRATION_NAMES = ("calibration.json", "CALIBRATION.md")
 
 
 def _own_folder(path, root):
@@ -200,7 +206,9 @@ def calibrate_command(args) -> int:
     default = default_out(f"{scene.name}-calibrate",
                           {"overrides": overrides, "fs_v": args.fs_v,
                            "evaluations": args.evaluations})
-    with claim(args.out, default, settings=settings, force=args.force) as out:
+    record_name, notes_name = CALIBRATION_NAMES
+    with claim(args.out, default, settings=settings, force=args.force,
+               outputs=CALIBRATION_NAMES) as out:
         store = _own_folder(out.path / "store", out.path)
         say(f"{scene.name}: calibrating the macro-element at FS_v "
             f"{', '.join(f'{v:g}' for v in fs_v)} ({cost.sizes}); estimated at most "
@@ -221,9 +229,9 @@ def calibrate_command(args) -> int:
         _check_at_rest(scene.with_overrides(*items))
         record = calibration_record(cal, items)
         out.start_writing()
-        written = [write_text(out.path / "calibration.json",
+        written = [write_text(out.path / record_name,
                               json.dumps(record, indent=1, allow_nan=False) + "\n"),
-                   write_text(out.path / "CALIBRATION.md",
+                   write_text(out.path / notes_name,
                               calibration_markdown(cal, shlex.join(_run_line(args, items)),
                                                    command)), cache.path]
         out.complete(written)

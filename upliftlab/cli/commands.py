@@ -8,6 +8,8 @@ Each reads and checks its scene, options and output folder before any work
 from __future__ import annotations
 
 import json
+import shlex
+import sys
 import warnings
 
 from .. import bounds
@@ -16,11 +18,15 @@ from ..extras import need_extra
 from ..log import logger
 from ..outdir import claim
 from ..scenes.motion import INTEGRATORS
-from .common import default_out, number, refuse_without_effect, say_if_rounded
-from .exits import EXIT_NUMERICS, EXIT_OK
+from ..workers import in_child
+from .common import (FORCE_HELP, default_out, number, refuse_without_effect, say_if_rounded,
+                     say_if_step_changed)
+from .exits import EXIT_INTERRUPTED, EXIT_NUMERICS, EXIT_OK
+from .stop import stop_flag
 
 __all__ = ["add_reduced_commands", "run_command", "paper_command", "scenes_command",
-           "advise_command", "REDUCED_KEYS", "ADVISE_KEYS"]
+           "advise_command", "paper_outputs", "REDUCED_KEYS",
+           "ADVISE_KEYS"]
 
 
 def add_reduced_commands(sub) -> None:
@@ -39,7 +45,8 @@ def add_reduced_commands(sub) -> None:
     r.add_argument("--csv", action="store_true", help="also write the histories as CSV")
     r.add_argument("--no-figure", action="store_true", help="skip the PNG figure")
     r.add_argument("--json", action="store_true", help="print the summary as one JSON object")
-    r.add_argument("--force", action="store_true", help="replace a different run in --out")
+    r.add_argument("--force", action="store_true",
+                   help=FORCE_HELP)
     r.add_argument("--budget", metavar="SECONDS",
                    help="refuse (exit 2) before any integration a run estimated to take "
                         "longer than this (default 3600 s); raise it to run one on purpose")
@@ -49,7 +56,7 @@ def add_reduced_commands(sub) -> None:
     pp.add_argument("--out", default=None, help="output directory (default results/paper)")
     pp.add_argument("--motion", help="path of the El Centro 1940 N-S record, if it is not on "
                                      "UPLIFTLAB_MOTIONS")
-    pp.add_argument("--force", action="store_true", help="replace a different run in --out")
+    pp.add_argument("--force", action="store_true", help=FORCE_HELP)
 
     sub.add_parser("scenes", help="list the packaged scenes")
 
@@ -82,6 +89,21 @@ REDUCED_KEYS = ("schema", "units", "title", "description", "reference", "structu
 
 
 def run_command(args) -> int:
+    """``upliftlab run``: check everything, claim the folder, run the scene, write its files.
+
+    An interruption (:mod:`.stop`) before the run is computed ends it at once with nothing
+    written: the run is computed in a child process (:func:`upliftlab.workers.in_child`), since
+    its compiled time loop would hold off a signal until its end. Once the response is here, a
+    signal lets its data files be written (the figure is skipped), leaves the folder without
+    its completion marker and ends with one line and exit 130. After the marker the run is
+    complete: a signal then changes nothing."""
+    with stop_flag() as flag:
+        flag.defer()  # a signal only sets the flag, checked between the steps below
+        return _run(args, flag)
+
+
+def _run(args, flag) -> int:
+    """:func:`run_command` with its ``flag`` (deferred)."""
     from ..scenes import load_scene
 
     if not args.no_figure:
@@ -96,30 +118,52 @@ def run_command(args) -> int:
                 "overrides": list(scene.overrides), "motion": args.motion, "dt": dt,
                 "integrator": args.integrator}
     motion = scene.build_motion()  # the record is read and checked before the folder
+    outputs = [f"{scene.name}{suffix}" for suffix, wanted in
+               ((".nc", True), (".csv", args.csv), (".png", not args.no_figure)) if wanted]
+    flag.check()
     with claim(args.out, default_out(scene.name, variant), settings=settings,
-               force=args.force) as out:
-        from ..reduced import run
-        with warnings.catch_warnings():  # the model's notes are printed as notes, below
-            warnings.simplefilter("ignore")
-            response = run(scene, motion=motion, integrator=args.integrator, dt=dt,
-                           budget=budget)
+               force=args.force, outputs=outputs) as out:
+        response = in_child(_run_quietly, scene, motion, args.integrator, dt, budget,
+                            check=flag.check)  # ends the child, raises, if a signal came
         for note in response.info.get("notes", []):
             logger("cli").warning(f"upliftlab run: note: {note}")
-        say_if_rounded("upliftlab run", scene.analysis.duration or motion.duration,
-                       response.info["steps"], response.info["dt"])
+        duration = scene.analysis.duration or motion.duration
+        say_if_rounded("upliftlab run", duration, response.info["steps"], response.info["dt"])
+        say_if_step_changed("upliftlab run", "--dt" if dt is not None else "analysis.dt",
+                            dt if dt is not None else scene.analysis.dt, response.info["dt"],
+                            duration)
+        say_if_step_changed("upliftlab run", "analysis.output_dt", scene.analysis.output_dt,
+                            response.info["output_dt"], duration)
         out.start_writing()
         written = response.save(out.path / f"{scene.name}.nc", csv=args.csv)
-        if not args.no_figure:
+        if not args.no_figure and not flag.stopped:
             from ..reduced.figures import response_figure, save
             written.append(save(response_figure(response), out.path / f"{scene.name}.png"))
+        if flag.stopped:  # every data file written, no completion marker
+            names = ", ".join(sorted(p.name for p in written))
+            skipped = "" if args.no_figure else " (figure skipped)"
+            print(f"upliftlab: interrupted ({flag.name}) after the run was computed; wrote "
+                  f"{names} to {out.path}{skipped}, not marked complete; resume with: "
+                  f"{shlex.join(['upliftlab', *args.argv])}", file=sys.stderr)
+            return EXIT_INTERRUPTED
         out.complete(written)
-    for path in written:
-        logger("cli").info(f"upliftlab run: wrote {path}")
-    if args.json:
-        print(json.dumps(response.summary(), allow_nan=False))
-    else:
-        print(response.summary_line())
+        for path in written:
+            logger("cli").info(f"upliftlab run: wrote {path}")
+        if args.json:
+            print(json.dumps(response.summary(), allow_nan=False))
+        else:
+            print(response.summary_line())
     return EXIT_OK
+
+
+def _run_quietly(scene, motion, integrator, dt, budget):
+    """The reduced model's response of ``scene`` (:func:`upliftlab.reduced.run`), its warnings
+    silenced: the command prints the model's notes as notes."""
+    from ..reduced import run
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return run(scene, motion=motion, integrator=integrator, dt=dt, budget=budget)
 
 
 def paper_command(args) -> int:
@@ -128,7 +172,8 @@ def paper_command(args) -> int:
     need_extra("upliftlab paper", "matplotlib")
     record = record_for(args.motion)  # the record is read and checked before any work
     settings = {"command": "paper", "motion": None if record is None else record.source}
-    with claim(args.out, "results/paper", settings=settings, force=args.force) as out:
+    with claim(args.out, "results/paper", settings=settings, force=args.force,
+               outputs=paper_outputs(record)) as out:
         summary = paper_main(out.path, record=record, claim=out)
     holds = sum(c["holds"] for c in summary["claims"])
     print(f"upliftlab paper: {len(summary['figures'])} figures and summary.md in {out.path}; "
@@ -136,6 +181,19 @@ def paper_command(args) -> int:
     if summary["note"]:
         print(f"upliftlab paper: {summary['note']}")
     return EXIT_OK
+
+
+def paper_outputs(record) -> list[str]:
+    """The files ``upliftlab paper`` writes with ``record`` (None: no El Centro record), named
+    in its folder: a run per case the record allows (``runs/<key>.nc``), a figure per figure
+    whose cases all ran, ``summary.json`` and ``summary.md``. Derived from the study's own
+    table (:data:`~upliftlab.reduced.paper.FIGURES`) as :func:`~upliftlab.reduced.paper.
+    paper_study` derives them, so that each is checked before any work."""
+    from ..reduced.paper import FIGURES
+
+    ran = {c.key for f in FIGURES for c in f.cases if record is not None or not c.needs_record}
+    figures = [f"fig{f.number:02d}.png" for f in FIGURES if all(c.key in ran for c in f.cases)]
+    return [*(f"runs/{key}.nc" for key in sorted(ran)), *figures, "summary.json", "summary.md"]
 
 
 def scenes_command(_args) -> int:

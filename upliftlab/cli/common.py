@@ -20,7 +20,12 @@ from ..outdir import settings_digest
 from .exits import EXIT_INPUT
 
 __all__ = ["Parser", "add_verbosity", "refuse_without_effect", "number", "say_if_rounded",
-           "default_out", "mesh_overrides", "say", "eta", "MESH_KEYS"]
+           "say_if_step_changed", "default_out", "mesh_overrides", "say", "eta", "MESH_KEYS",
+           "FORCE_HELP"]
+
+#: The help of every ``--force``: what it replaces, and what it never does.
+FORCE_HELP = ("replace a different run in --out (only files upliftlab made there: a file of "
+              "yours at an output's name is refused, --force or not)")
 
 #: ``--mesh`` keys: the [continuum] fields that shape the mesh and its quadrature.
 MESH_KEYS = ("elements_across", "grading", "element", "domain_width", "domain_depth",
@@ -84,6 +89,16 @@ def say_if_rounded(command: str, duration: float, steps: int, dt: float) -> None
     if abs(steps * dt - duration) > 1e-9 * max(duration, 1.0):
         logger("cli").warning(f"{command}: note: the duration {duration:g} s runs as {steps} "
                               f"steps of {dt:.6g} s = {steps * dt:.6g} s")
+
+
+def say_if_step_changed(command: str, field: str, asked: float | None, used: float,
+                        duration: float) -> None:
+    """Say on stderr when a step asked for (s; ``field`` names where it was given) runs as
+    another: a run's steps and its output steps are whole numbers in its ``duration`` (s), so
+    a step that does not divide it is made smaller (or, beyond the duration, the duration)."""
+    if asked is not None and abs(used - asked) > 1e-9 * asked:
+        logger("cli").warning(f"{command}: note: {field} = {asked:g} s runs as {used:.6g} s, "
+                              f"a whole number of steps in the run's {duration:g} s")
 
 
 def _short(settings: dict) -> str:

@@ -36,14 +36,15 @@ from ..budget import (CONTINUUM_BUDGET_SECONDS, MAX_BUDGET_SECONDS, continuum_co
                       in_sequence, time_budget)
 from ..checks import InputError
 from ..extras import need_extra
-from .common import (MESH_KEYS, default_out, eta, mesh_overrides, number,
+from .common import (FORCE_HELP, MESH_KEYS, default_out, eta, mesh_overrides, number,
                      refuse_without_effect, say, say_if_rounded)
 from . import error_estimate as estimate_cli
 from .exits import EXIT_INTERRUPTED, EXIT_NUMERICS
 from ..outdir import claim
 from .stop import stop_flag
 
-__all__ = ["add_continuum", "continuum", "CONTINUUM_ANALYSES", "MAX_ROTATION"]
+__all__ = ["add_continuum", "continuum", "CONTINUUM_ANALYSES", "MAX_ROTATION",
+           "continuum_outputs"]
 
 CONTINUUM_ANALYSES = ("pushover", "dynamic", "impedance")
 #: Largest rotation of a pushover (rad): the continuum is small-strain and small-rotation
@@ -112,10 +113,10 @@ def add_continuum(sub) -> None:
                                  "any)")
     c.add_argument("--no-render", action="store_true",
                    help="skip the PNG and GIF renders (dynamic: the pictures cost at most "
-                        f"{PICTURE_SHARE:.0%} of the solve's CPU time, the GIF taking as many "
-                        "evenly spaced snapshots as fit, at least 9)")
+                        f"{PICTURE_SHARE * 100:.0f}%% of the solve's CPU time, the GIF taking "
+                        "as many evenly spaced snapshots as fit, at least 9)")
     c.add_argument("--json", action="store_true", help="print the summary as one JSON object")
-    c.add_argument("--force", action="store_true", help="replace a different run in --out")
+    c.add_argument("--force", action="store_true", help=FORCE_HELP)
     c.add_argument("--budget", metavar="SECONDS",
                    help="refuse (exit 2) before any meshing a run estimated to take longer "
                         "than this (default 86400 s); raise it to run one on purpose")
@@ -241,7 +242,11 @@ def continuum(args) -> int:
     if coarser:
         settings["error_estimate"] = options["error_estimate"]
     default = default_out(f"{scene.name}-continuum-{args.analysis}", variant)
-    with claim(args.out, default, settings=settings, force=args.force) as out, \
+    outputs = continuum_outputs(args.analysis, not args.no_render)
+    if coarser:
+        outputs += estimate_cli.ESTIMATE_NAMES
+    with claim(args.out, default, settings=settings, force=args.force, outputs=outputs,
+               patterns=[estimate_cli.COARSER_FILES] if coarser else []) as out, \
             stop_flag() as flag:
         from ..continuum import build_model
 
@@ -319,6 +324,21 @@ def continuum(args) -> int:
             for line in estimate.lines():
                 print(f"  {line}")
     return 0
+
+
+#: The files :func:`~upliftlab.continuum.output.series.write_outputs` writes for every run,
+#: for a pushover, and as pictures (its docstring; that module is not to change with this one).
+RUN_FILES = ("result.nc", "fields.xdmf", "fields.h5", "footing.xdmf", "footing.h5")
+PUSHOVER_FILES = ("moment_rotation.png",)
+PICTURE_FILES = ("uplift.png", "uplift.gif")
+
+
+def continuum_outputs(analysis: str, renders: bool) -> list[str]:
+    """The files a continuum ``analysis`` (pushover or dynamic) writes in its folder, with its
+    pictures if ``renders``: declared before any work, so that each is checked
+    (:func:`upliftlab.outdir.claim`)."""
+    return [*RUN_FILES, *(PUSHOVER_FILES if analysis == "pushover" else ()),
+            *(PICTURE_FILES if renders else ())]
 
 
 def _grid(scene, options) -> tuple[int, float]:

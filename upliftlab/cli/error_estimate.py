@@ -20,10 +20,15 @@ from ..checks import InputError
 from .common import number, say
 from .exits import EXIT_INTERRUPTED, EXIT_NUMERICS
 
-__all__ = ["add_argument", "meshes", "coarser", "run_coarser", "write_estimate", "SUBFOLDER"]
+__all__ = ["add_argument", "meshes", "coarser", "run_coarser", "write_estimate", "SUBFOLDER",
+           "ESTIMATE_NAMES", "COARSER_FILES"]
 
 #: The subfolder of ``--out`` that holds the coarser runs' files.
 SUBFOLDER = "error_estimate"
+#: The estimate's files in ``--out``.
+ESTIMATE_NAMES = ("error_estimate.nc", "error_estimate.json")
+#: The glob (in ``--out``) of the coarser runs' files, whose folders are named by the meshes.
+COARSER_FILES = f"{SUBFOLDER}/*_across/*"
 
 
 def add_argument(parser) -> None:
@@ -118,8 +123,9 @@ def write_estimate(out, scene, model, result, coarse) -> tuple[object, list]:
     estimate = estimate_from_results([result, *(r for _, r, _ in coarse)],
                                      [model, *(m for m, _, _ in coarse)], scene)
     files = [f for _, _, written in coarse for f in written]
-    files.append(estimate.save(out.path / "error_estimate.nc"))
-    files.append(write_text(out.path / "error_estimate.json",
+    netcdf, record = ESTIMATE_NAMES
+    files.append(estimate.save(out.path / netcdf))
+    files.append(write_text(out.path / record,
                             json.dumps(estimate.to_dict(), indent=2) + "\n"))
     say(f"wrote {files[-2]} and {files[-1].name}")
     return estimate, files

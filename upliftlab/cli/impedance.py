@@ -10,7 +10,7 @@ from ..checks import InputError
 from .common import default_out, eta, mesh_overrides, number, say
 from ..outdir import claim
 
-__all__ = ["impedance_options", "run_impedance"]
+__all__ = ["impedance_options", "run_impedance", "IMPEDANCE_NAMES"]
 
 
 def impedance_options(args):
@@ -34,6 +34,10 @@ def impedance_options(args):
     return ImpedanceOptions(**kwargs)
 
 
+#: The files the impedance writes: its result and (unless --no-render) its figure.
+IMPEDANCE_NAMES = ("impedance.nc", "impedance.png")
+
+
 def run_impedance(args, scene, overrides) -> int:
     """``--analysis impedance``: the FE impedance, checked against the exact half-plane
     (exit 3 beyond the stated tolerances, before any file is written)."""
@@ -53,7 +57,10 @@ def run_impedance(args, scene, overrides) -> int:
         f"{harmonic_unknowns(model, options)} DOFs in the harmonic solve, {options.boundary} "
         f"box {options.domain_width:g}B x {options.domain_depth:g}B, {scene.soil.interface} "
         f"interface, {len(options.a0)} frequencies")
-    with claim(args.out, default, settings=settings, force=args.force) as out:
+    netcdf, figure = IMPEDANCE_NAMES
+    outputs = [netcdf] if args.no_render else [netcdf, figure]
+    with claim(args.out, default, settings=settings, force=args.force,
+               outputs=outputs) as out:
         started = time.perf_counter()
 
         def progress(k, n, a0):
@@ -66,11 +73,11 @@ def run_impedance(args, scene, overrides) -> int:
         reference = reference_for(result)
         errors = verify(result, reference)  # ImpedanceAccuracyError (exit 3) before any file
         out.start_writing()
-        written = [result.save(out.path / "impedance.nc")]
+        written = [result.save(out.path / netcdf)]
         if not args.no_render:
             from ..reduced.figures import save
             written.append(save(impedance_figure(result, reference),
-                                out.path / "impedance.png"))
+                                out.path / figure))
         out.complete(written)
     for path in written:
         say(f"wrote {path}")

@@ -11,7 +11,7 @@ from .. import checks
 
 from ..extras import need_extra
 from ..log import logger
-from .common import number
+from .common import FORCE_HELP, number
 from .exits import EXIT_FAILED, EXIT_OK
 
 __all__ = ["add_report", "report_command"]
@@ -24,7 +24,7 @@ def add_report(sub) -> None:
     rp.add_argument("--fast", action="store_true", help="small grids and coarse meshes")
     rp.add_argument("--out", help="output directory (default results/report[-fast])")
     rp.add_argument("--scheduler", help="Dask scheduler address for the studies' sweeps")
-    rp.add_argument("--force", action="store_true", help="replace a different run in --out")
+    rp.add_argument("--force", action="store_true", help=FORCE_HELP)
     rp.add_argument("--budget", metavar="SECONDS",
                     help="refuse a study whose continuum runs are estimated above this many "
                          "seconds of one worker (default 3600; the Winkler map's kept runs "

@@ -14,7 +14,7 @@ import argparse
 
 from .. import checks
 from ..log import configure, logger
-from ..paths import check_folder_name
+from ..outdir import probe_folder
 from .common import Parser
 from .exits import EXIT_FAILED, EXIT_OK
 
@@ -67,9 +67,9 @@ def study_command(args) -> int:
     checks.boolean("--fast", options.fast)
     if options.scheduler is not None:
         checks.scheduler_address("--scheduler", options.scheduler, in_process=False)
-    for option in ("out", "store"):
+    for option in ("out", "store"):  # a file, or a place nothing can be made: before work
         if getattr(options, option) is not None:
-            check_folder_name(getattr(options, option), f"--{option}")
+            probe_folder(getattr(options, option), f"--{option}")
     context = Context(fast=options.fast, out=options.out, store=options.store,
                       scheduler=options.scheduler, workers=workers)
     if study.context_from is not None:

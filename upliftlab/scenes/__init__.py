@@ -29,7 +29,7 @@ from pathlib import Path
 from .. import checks
 from ..checks import InputError
 from ..motions import Motion
-from ..paths import path_component
+from ..paths import NO_SUCH_FILE, REGULAR_FILE, file_kind, path_component
 from .motion import (DEFAULT_ENERGY_TOLERANCE, DEFAULT_MAX_MEMORY,  # noqa: F401
                      DEFAULT_MAX_STEPS, DEFAULT_RTOL, INTEGRATORS, MAX_SCALE, MOTION_TYPES,
                      Analysis, MotionSpec, build_motion, read_analysis, read_motion)
@@ -182,9 +182,9 @@ def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
     structure = read_structure(table.get("structure"), units)
     vertical_mass = structure.vertical_weight / g
     scene = Scene(
-        title=table.get("title", string, ""),
-        description=table.get("description", string, ""),
-        reference=table.get("reference", string, ""),
+        title=table.get("title", text, ""),
+        description=table.get("description", text, ""),
+        reference=table.get("reference", text, ""),
         units=units,
         structure=structure,
         foundation=read_foundation(table.get("foundation"), vertical_mass, units),
@@ -209,6 +209,19 @@ def scene_from_dict(data: dict, *, source: str = "", case: str | None = None,
 #: The integrator a scene with curved springs (q–z) takes when it names none (the default, the
 #: event stepper, tabulates piecewise-affine laws and refuses a curved law).
 QZ_INTEGRATOR = "rk4"
+
+
+def text(name: str, value) -> str:
+    """``value`` if it is a string of text: no control character but tab and line breaks. A
+    scene's title, description and reference are written into every result (netCDF refuses a
+    NUL in a string, after the run) and printed on the terminal (an escape sequence there
+    would act on it)."""
+    value = string(name, value)
+    for position, character in enumerate(value):
+        if (ord(character) < 32 and character not in "\t\n\r") or ord(character) == 127:
+            raise InputError(f"{name}: control character {character!r} at position {position}; "
+                             "a scene's text holds printable characters, tabs and line breaks")
+    return value
 
 
 def _analysis_for(analysis: Analysis, analysis_data, foundation_data) -> Analysis:
@@ -273,10 +286,11 @@ def find_scene(name_or_path: str) -> Path:
     """A scene file given by a path, used as given (a path that names no file is refused, never
     replaced by a packaged scene of the same name), or the packaged scene of that name."""
     path = Path(name_or_path).expanduser()
-    if path.is_file():
+    kind = file_kind(path, f"scene {name_or_path!r}")  # not opened: a named pipe would block
+    if kind == REGULAR_FILE:
         return path
     if _is_path(name_or_path):
-        what = "a folder, not a scene file" if path.is_dir() else "no such file"
+        what = kind if kind == NO_SUCH_FILE else f"{kind}, not a scene file"
         raise InputError(f"scene {name_or_path!r}: {what}; a path is used as given (a packaged "
                          "scene is named without folder or .toml, see `upliftlab scenes`)")
     scenes = packaged_scenes()

@@ -10,7 +10,7 @@ from typing import Any
 from .. import bounds, checks
 from ..checks import InputError
 from ..motions import (Motion, cosine_pulse, free_vibration, harmonic, load_motion, ricker_pulse,
-                       sine_pulse)
+                       sample_line, sine_pulse)
 from .table import Table, choice, in_range, string
 from ..units import UnitSystem
 
@@ -117,6 +117,24 @@ def _default_step(duration: float | None, step: float) -> float:
     return duration / max(1, math.ceil(duration / step - 1e-9))
 
 
+def _refuse_a_record_beyond_100_g(record: Motion, scale: float) -> None:
+    """Refuse a record whose PGA times ``scale`` would exceed 100 g (before it is scaled: the
+    product may overflow) by naming the file and the line of its largest value when the file's
+    own PGA is already beyond 100 g (the file is at fault, not ``motion.scale``); else
+    ``motion.scale``."""
+    if not abs(scale) * record.pga > 100.0:
+        return
+    if record.pga > 100.0:
+        peak = int(abs(record.acceleration).argmax())
+        line = sample_line(record, peak)
+        where = f"motion file {record.source!r}" + (f" line {line}" if line else "")
+        raise InputError(f"{where}: acceleration {record.acceleration[peak]:.3g} g, the "
+                         "record's peak; valid: a PGA up to 100 g (a record in g; scale it "
+                         "with motion.pga or motion.scale)")
+    raise InputError(f"motion.scale = {scale:g}: the scaled record's PGA would be "
+                     f"{abs(scale) * record.pga:.3g} g; valid: a PGA up to 100 g")
+
+
 def build_motion(spec: MotionSpec) -> Motion:
     """The :class:`Motion` a spec describes (reads the record file if it names one).
 
@@ -128,6 +146,8 @@ def build_motion(spec: MotionSpec) -> Motion:
     dt = spec.dt
     if spec.type == "record":
         motion = load_motion(spec.name, dt=dt)
+        if spec.pga is None:
+            _refuse_a_record_beyond_100_g(motion, spec.scale)
         motion = (motion.scaled_to_pga(spec.pga) if spec.pga is not None
                   else motion.scaled(spec.scale))
         if motion.pga > 100.0:

@@ -27,8 +27,19 @@ def merge_case(data: dict, case: str | None) -> dict:
     if not isinstance(cases, dict) or case not in cases:
         valid = ", ".join(map(repr, cases)) if isinstance(cases, dict) and cases else "none"
         raise InputError(f"case = {case!r}: not defined in this scene (cases: {valid})")
+    declared = data.get("units")
     deep_merge(data, cases[case], f"cases.{case}")
+    _same_units(declared, data.get("units"), f"cases.{case}.units", "a case table")
     return data
+
+
+def _same_units(declared, new, where: str, changer: str) -> None:
+    """Refuse a change of the unit system after the scene's numbers were written: it would
+    reinterpret every number of the scene (kip and inch read as newton and metre)."""
+    if declared is not None and isinstance(new, str) and new != declared and new in UNIT_SYSTEMS:
+        raise InputError(f"{where} = {new!r}: every number of this scene is in {declared!r}; "
+                         f"{changer} cannot convert them. Write the values in "
+                         f"{new!r} in a scene file of its own")
 
 
 def deep_merge(base: dict, patch: dict, path: str) -> None:
@@ -69,11 +80,7 @@ def apply_overrides(data: dict, overrides) -> None:
             raise InputError(f"--set {item!r}: has no effect: the scene's case is already "
                              "merged; override the scene's fields directly")
         apply_override(data, item)
-    new = data.get("units")
-    if declared is not None and isinstance(new, str) and new != declared and new in UNIT_SYSTEMS:
-        raise InputError(f"units = {data.get('units')!r}: every number of this scene is in "
-                         f"{declared!r}; an override cannot convert them. Write the values in "
-                         f"{data.get('units')!r} in a scene file of its own")
+    _same_units(declared, data.get("units"), "units", "an override")
 
 
 def parse_value(text: str):
@@ -96,9 +103,12 @@ def apply_override(data: dict, item: str) -> None:
     if "=" not in item:
         raise InputError(f"--set {item!r}: expected KEY=VALUE with a dotted TOML key")
     key, text = item.split("=", 1)
-    parts = [p for p in key.strip().split(".") if p]
-    if not parts:
+    parts = key.strip().split(".")
+    if not key.strip():
         raise InputError(f"--set {item!r}: empty key")
+    if not all(part.strip() for part in parts):
+        raise InputError(f"--set {item!r}: the key has an empty part ('..', or a '.' at an "
+                         "end); a dotted TOML key names each table once: structure.weight=…")
     node = data
     for depth, part in enumerate(parts[:-1]):
         where = ".".join(parts[: depth + 1])
