@@ -257,20 +257,28 @@ def probe_folder(folder: str | os.PathLike, option: str) -> Path:
     _refuse_a_file(path, option)
     created = [p for p in reversed([path, *path.parents]) if not p.exists()]
     try:
-        path.mkdir(parents=True, exist_ok=True)
-        fd, probe = tempfile.mkstemp(prefix=".probe.", dir=path)
-        os.close(fd)
-        os.unlink(probe)
-    except OSError as exc:
-        if disk_full(exc):  # not bad input: the command's own exit (3, no space left)
-            raise
-        raise InputError(f"{option} = {str(path)!r}: cannot write there "
-                         f"({exc.strerror or exc})") from None
+        _make_writable(path, option)
     finally:
         for made in reversed(created):
             with contextlib.suppress(OSError):
                 made.rmdir()
     return path
+
+
+def _make_writable(path: Path, option: str) -> None:
+    """Make the folder ``path`` (and its parents) and a probe file in it, removed again: an
+    :class:`InputError` naming ``option`` when nothing can be written there; a full disk is
+    not bad input and keeps its own exit (3, no space left)."""
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+        fd, probe = tempfile.mkstemp(prefix=".probe.", dir=path)
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as exc:
+        if disk_full(exc):
+            raise
+        raise InputError(f"{option} = {str(path)!r}: cannot write there "
+                         f"({exc.strerror or exc})") from None
 
 
 def _claim(path: Path, settings: dict, force: bool, option: str) -> Claim:
@@ -282,16 +290,10 @@ def _claim(path: Path, settings: dict, force: bool, option: str) -> Claim:
     created = [p for p in reversed([path, *path.parents]) if not p.exists()]
     result = Claim(path, settings, created)
     try:
-        path.mkdir(parents=True, exist_ok=True)
-        fd, probe = tempfile.mkstemp(prefix=".probe.", dir=path)
-        os.close(fd)
-        os.unlink(probe)
-    except OSError as exc:
+        _make_writable(path, option)
+    except BaseException:
         result.abandon()
-        if disk_full(exc):
-            raise
-        raise InputError(f"{option} = {str(path)!r}: cannot write there "
-                         f"({exc.strerror or exc})") from None
+        raise
     if (path / LOCK).exists():
         _take_stale_lock(path / LOCK)
     try:  # a live writer is named before the folder's old contents are judged
