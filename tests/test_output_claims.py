@@ -1,5 +1,6 @@
-"""``upliftlab study`` claims its output folder as every command does (``upliftlab/outdir.py``),
-and the completion marker of any command lists only the files upliftlab made.
+"""Output folders claimed (``upliftlab/outdir.py``): ``upliftlab study`` claims its folder as
+every command does, the completion marker of any command lists only the files upliftlab made,
+and the folder is judged before any work (the impedance's mesh came first).
 
 A study names its files only as it writes them, so a file of the user's at one of their names
 is refused when the study comes to write it (``guard``): before, the study replaced it. The
@@ -156,3 +157,23 @@ def test_a_guarded_claim_refuses_a_users_file_through_the_api(tmp_path):
         assert json.loads((out / WRITING).read_text())["files"] == ["y.csv"]
         held.complete([out / "y.csv"])
     assert (out / "x.csv").read_text() == "mine\n"
+
+
+def test_the_impedance_judges_its_folder_before_it_meshes(tmp_path, monkeypatch, capsys):
+    """A user's impedance.png in --out: refused in one line before the mesh is built (it took
+    about 2 s before the refusal; here the mesh would raise AssertionError)."""
+    import upliftlab.continuum.impedance.analysis as analysis
+
+    def never(*args, **kwargs):
+        raise AssertionError("meshed before the output folder was judged")
+
+    monkeypatch.setattr(analysis, "impedance_model", never)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "impedance.png").write_text("mine\n")
+    assert main(["continuum", "strip_footing_clay", "--analysis", "impedance", "--set",
+                 "soil.model=elastic", "--set", "soil.undrained_strength=", "--a0", "0.2",
+                 "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "a file upliftlab did not make" in err
+    assert (out / "impedance.png").read_text() == "mine\n"
