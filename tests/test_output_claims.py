@@ -177,3 +177,30 @@ def test_the_impedance_judges_its_folder_before_it_meshes(tmp_path, monkeypatch,
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "a file upliftlab did not make" in err
     assert (out / "impedance.png").read_text() == "mine\n"
+
+
+def test_a_run_refused_after_it_removed_what_it_wrote_leaves_the_folder_as_it_was(tmp_path):
+    """The map study copies its records, then its budget refuses the run and it removes the
+    copies: the folder must hold its earlier complete run as before (its marker back, no
+    record of files being written), and a folder the claim made is removed (before: the
+    marker was gone and the record stayed, so the empty folder was left)."""
+    from upliftlab.results import write_text
+
+    def refused_after_a_copy(out):
+        with claim(out, out, settings={"command": "probe"}, guard=True):
+            copy = write_text(out / "motions" / "a.txt", "a copied record\n")
+            copy.unlink()
+            copy.parent.rmdir()
+            raise InputError("options.budget = 1 s: refused on purpose")
+
+    out = tmp_path / "out"
+    with claim(out, out, settings={"command": "probe"}, guard=True) as held:
+        held.complete([write_text(out / "x.csv", "x\n")])
+    before = (out / MARKER).read_bytes()
+    with pytest.raises(InputError, match="budget"):
+        refused_after_a_copy(out)
+    assert sorted(p.name for p in out.iterdir()) == [MARKER, "x.csv"]
+    assert (out / MARKER).read_bytes() == before
+    with pytest.raises(InputError, match="budget"):
+        refused_after_a_copy(tmp_path / "new")
+    assert not (tmp_path / "new").exists()

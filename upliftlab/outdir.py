@@ -116,6 +116,8 @@ class Claim:
     watching: bool = False
     writing: bool = False
     made: set[str] | None = None
+    #: The completion marker's bytes when the writing started (None: there was none).
+    old_marker: bytes | None = None
 
     def __enter__(self) -> Claim:
         return self
@@ -180,6 +182,8 @@ class Claim:
         if self.outputs or self.guard:
             self._record_writing()
         self.writing = True
+        with contextlib.suppress(OSError):
+            self.old_marker = (self.path / MARKER).read_bytes()
         with contextlib.suppress(FileNotFoundError):
             (self.path / MARKER).unlink()
 
@@ -195,6 +199,16 @@ class Claim:
             (self.path / WRITING).unlink()  # the marker now lists what was written
         self.release()
         return path
+
+    def _undo_writing(self) -> None:
+        """Remove :data:`WRITING` and put the old completion marker back (see :meth:`abandon`)."""
+        from .results import write_bytes
+
+        with contextlib.suppress(FileNotFoundError):
+            (self.path / WRITING).unlink()
+        if self.old_marker is not None:
+            write_bytes(self.path / MARKER, self.old_marker)
+        self.writing = False
 
     def _own_names(self, files) -> set[str]:
         """The names, in the folder, of those of ``files`` upliftlab made there: declared,
@@ -219,7 +233,12 @@ class Claim:
 
     def abandon(self) -> None:
         """Give the folder up after a failure: unlock it and remove the folders this claim
-        created, if nothing was written in them."""
+        created, if nothing was written in them. A run refused after it started writing whose
+        files are all gone again (a study refused by its budget removes the records it
+        copied) leaves the folder as it found it: its record of files being written removed,
+        the old completion marker put back."""
+        if self.writing and not any(os.path.lexists(self.path / n) for n in self.written):
+            self._undo_writing()
         self.release()
         for folder in reversed(self.created):
             with contextlib.suppress(OSError):
