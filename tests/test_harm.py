@@ -119,6 +119,27 @@ def test_no_scene_string_becomes_code_in_the_opensees_script(field, tmp_path, mo
     assert not (tmp_path / "PWNED").exists()
 
 
+def test_no_scene_title_becomes_markup_in_the_comparison(tmp_path, monkeypatch, capsys):
+    """A title that ends the heading, adds HTML, a link and a table cell: in comparison.md,
+    rendered by a CommonMark parser (markdown-it, an independent implementation), it is one
+    heading of plain text, its words as given (line breaks as spaces), and no HTML, link or
+    second heading appears. Before, the title went into the page raw."""
+    from markdown_it import MarkdownIt
+
+    monkeypatch.chdir(tmp_path)
+    title = "Wall <img src=x onerror=alert(1)>\n# Injected [x](javascript:y) | a_b *c* & `d`"
+    assert cli(["opensees", "wall_free", "--set", f"title={_toml_string(title)}", "--set",
+                "motion.duration=0.2", "--run", "--out", "out"]) == 0, capsys.readouterr().err
+    tokens = MarkdownIt("commonmark").enable("table").parse(
+        (tmp_path / "out" / "comparison.md").read_text())
+    kinds = {t.type for t in tokens} | {c.type for t in tokens for c in t.children or ()}
+    assert not kinds & {"html_inline", "html_block", "link_open", "image"}
+    headings = [tokens[i + 1].content for i, t in enumerate(tokens) if t.type == "heading_open"]
+    assert len(headings) == 1
+    plain = "".join(c.content for c in tokens[1].children if c.type == "text")
+    assert plain == " ".join(title.split()) + ": upliftlab and OpenSees"
+
+
 # ---------------------------------------------------------------------------------------------
 # Writes outside --out
 # ---------------------------------------------------------------------------------------------

@@ -429,3 +429,23 @@ def test_an_override_key_with_an_empty_part_is_refused(key):
     """``structure..weight=1`` was read as ``structure.weight=1``."""
     with pytest.raises(InputError, match="the key has an empty part"):
         load_scene("wall_free", overrides=[f"{key}=1"])
+
+
+def test_a_record_whose_times_do_not_start_at_zero_says_it_is_shifted(tmp_path, caplog):
+    """A record starting at 5 s: its first sample is upliftlab's at 0 s (a motion is samples
+    at a uniform step), and that is said once, naming the file, the line and the 5 s (before:
+    shifted silently). A record starting at 0 s says nothing. Reference: the file's own rows."""
+    import logging
+
+    late, zero = tmp_path / "late.txt", tmp_path / "zero.txt"
+    late.write_text("# a header\n5.00 0.1\n5.02 0.2\n5.04 0.3\n")
+    zero.write_text("0.00 0.1\n0.02 0.2\n0.04 0.3\n")
+    with caplog.at_level(logging.WARNING, logger="upliftlab"):
+        motion = read_motion(late)
+        read_motion(late)
+        read_motion(zero)
+    said = [r.getMessage() for r in caplog.records]
+    assert said == [f"upliftlab: note: motion file {str(late)!r} line 2: its times start at "
+                    "5 s; the record starts at 0 s with this sample (its times shifted by -5 s)"]
+    assert motion.dt == pytest.approx(0.02, rel=1e-12)
+    np.testing.assert_allclose(motion.acceleration, [0.1, 0.2, 0.3], rtol=0)

@@ -383,7 +383,21 @@ def _parse_columns(text: str, path: Path, dt: float | None) -> tuple[float, np.n
         return positive("motion.dt", dt), data[:, 0]
     step = _uniform_step(data[:, 0], path, lines)
     _no_dt(dt, step, path)
+    _say_if_shifted(data[0, 0], step, path, lines[0])
     return step, data[:, 1]
+
+
+def _say_if_shifted(start: float, step: float, path: Path, line: int) -> None:
+    """Say when a record's times do not start at 0 s: upliftlab's record starts with its first
+    sample at 0 s (a motion is samples at a uniform step), so its times are shifted by
+    ``-start`` (s). Said once per file read (the parse is cached)."""
+    if abs(start) > 1e-9 * step:
+        from .log import logger
+
+        logger("motions").warning(
+            f"upliftlab: note: motion file {str(path)!r} line {line}: its times start at "
+            f"{start:g} s; the record starts at 0 s with this sample (its times shifted by "
+            f"{-start:g} s)")
 
 
 def _no_dt(dt: float | None, step: float, path: Path) -> None:

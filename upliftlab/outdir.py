@@ -28,7 +28,15 @@ removes the old completion marker; when every file is written it calls
 :meth:`Claim.complete`, which writes the completion marker :data:`MARKER` last and removes the
 record. A folder whose marker is missing holds an interrupted or failed run; its record still
 names the files upliftlab made, which the next run may replace. The marker lists the files and
-the settings (:func:`settings_digest`).
+the settings (:func:`settings_digest`): of the files the command names, only those upliftlab
+made there (declared, written by this run, or listed before), never a file of the user's.
+
+The claim watches every file the run writes in the folder (through
+:func:`~upliftlab.paths.check_target`). A command whose files are named only as it runs (a
+study) claims its folder with ``guard``: a file there that upliftlab did not make is refused
+when the run comes to write it, not replaced; the run's first file starts the writing
+(:meth:`Claim.start_writing`), and each file it writes is added to :data:`WRITING` before it is
+written, so that an interrupted run's files are still known as upliftlab's.
 
 A lock names the process holding it. A lock whose process has ended is stale and removed; so
 is one whose content is no process id (not a whole number from 1 to 2³¹ − 1: upliftlab never
@@ -101,6 +109,15 @@ class Claim:
     locked: bool = False
     root: Path | None = None
     outputs: list[str] = field(default_factory=list)
+    #: Refuse, when it comes to be written, a file upliftlab did not make (module docstring).
+    guard: bool = False
+    #: The names (in the folder) of the files this run has written or is writing.
+    written: set[str] = field(default_factory=set)
+    watching: bool = False
+    writing: bool = False
+    made: set[str] | None = None
+    #: The completion marker's bytes when the writing started (None: there was none).
+    old_marker: bytes | None = None
 
     def __enter__(self) -> Claim:
         return self
@@ -126,17 +143,47 @@ class Claim:
                 lock.unlink()
             raise
         self.locked = True
-        self.root = push_root(self.path)
+        self.root = push_root(self.path, watch=self._watch)
+
+    def _watch(self, target: Path) -> None:
+        """A file about to be written in the folder (``target``, its folder resolved): recorded
+        as this run's; with :attr:`guard`, refused if a file upliftlab did not make is there."""
+        if not self.watching or self.root is None:
+            return
+        name = str(target.relative_to(self.root))
+        if name in (MARKER, WRITING, LOCK) or name in self.written:
+            return
+        if self.guard:
+            if self.made is None:
+                self.made = _made_here(self.path)
+            if os.path.lexists(target) and name not in self.made:
+                raise InputError(f"output {str(target)!r}: a file upliftlab did not make is "
+                                 "at this output's name; move it away (or remove it), then run "
+                                 "again (--force replaces only upliftlab's own files)")
+            if not self.writing:
+                self.start_writing()
+        self.written.add(name)
+        if self.guard:
+            self._record_writing()
+
+    def _record_writing(self) -> None:
+        """Write :data:`WRITING`: the files upliftlab made here, declared and written."""
+        from .results import write_text
+
+        names = sorted((self.made or set()) | set(self.outputs) | self.written)
+        write_text(self.path / WRITING, json.dumps({"files": names}, indent=2) + "\n")
 
     def start_writing(self) -> None:
         """The first file is about to be written: the folder no longer holds a complete run.
         The declared outputs (and the files upliftlab made here before) are recorded first
         (:data:`WRITING`), so that an interrupted run's files are still known as upliftlab's."""
-        if self.outputs:
-            from .results import write_text
-
-            names = sorted(_made_here(self.path) | set(self.outputs))
-            write_text(self.path / WRITING, json.dumps({"files": names}, indent=2) + "\n")
+        if self.made is None:
+            self.made = _made_here(self.path)
+        if self.outputs or self.guard:
+            self._record_writing()
+        self.writing = True
+        with contextlib.suppress(OSError):
+            self.old_marker = (self.path / MARKER).read_bytes()
         with contextlib.suppress(FileNotFoundError):
             (self.path / MARKER).unlink()
 
@@ -144,9 +191,7 @@ class Claim:
         """Write the completion marker (last) and release the folder."""
         from .results import write_text
 
-        names = sorted({str(Path(f).resolve().relative_to(self.path.resolve()))
-                        if Path(f).resolve().is_relative_to(self.path.resolve()) else str(f)
-                        for f in files})
+        names = sorted(self._own_names(files))
         record = {"complete": True, "settings": self.settings,
                   "settings_digest": settings_digest(self.settings), "files": names}
         path = write_text(self.path / MARKER, json.dumps(record, indent=2, default=str) + "\n")
@@ -154,6 +199,30 @@ class Claim:
             (self.path / WRITING).unlink()  # the marker now lists what was written
         self.release()
         return path
+
+    def _undo_writing(self) -> None:
+        """Remove :data:`WRITING` and put the old completion marker back (see :meth:`abandon`)."""
+        from .results import write_bytes
+
+        with contextlib.suppress(FileNotFoundError):
+            (self.path / WRITING).unlink()
+        if self.old_marker is not None:
+            write_bytes(self.path / MARKER, self.old_marker)
+        self.writing = False
+
+    def _own_names(self, files) -> set[str]:
+        """The names, in the folder, of those of ``files`` upliftlab made there: declared,
+        written by this run, or made by an earlier one (a user's file is never listed)."""
+        if self.made is None:
+            self.made = _made_here(self.path)
+        own = self.made | set(self.outputs) | self.written
+        folder = self.path.resolve()
+        names = set()
+        for file in files:
+            where = Path(os.path.realpath(Path(file).parent)) / Path(file).name
+            if where.is_relative_to(folder) and str(where.relative_to(folder)) in own:
+                names.add(str(where.relative_to(folder)))
+        return names
 
     def release(self) -> None:
         if self.locked:
@@ -164,7 +233,12 @@ class Claim:
 
     def abandon(self) -> None:
         """Give the folder up after a failure: unlock it and remove the folders this claim
-        created, if nothing was written in them."""
+        created, if nothing was written in them. A run refused after it started writing whose
+        files are all gone again (a study refused by its budget removes the records it
+        copied) leaves the folder as it found it: its record of files being written removed,
+        the old completion marker put back."""
+        if self.writing and not any(os.path.lexists(self.path / n) for n in self.written):
+            self._undo_writing()
         self.release()
         for folder in reversed(self.created):
             with contextlib.suppress(OSError):
@@ -207,11 +281,14 @@ def _take_stale_lock(lock: Path) -> None:
 
 
 def claim(out: str | os.PathLike | None, default: str | os.PathLike, *, settings: dict,
-          force: bool = False, option: str = "--out", outputs=(), patterns=()) -> Claim:
+          force: bool = False, option: str = "--out", outputs=(), patterns=(),
+          guard: bool = False) -> Claim:
     """Check and claim the output folder ``out`` (``default`` when None) for a run with
     ``settings`` that will write the files named ``outputs`` in it (module docstring), and
     files whose names, known only as it runs, match the glob ``patterns`` (those already
-    there are checked as outputs). Nothing is computed before this returns. A path through
+    there are checked as outputs). ``guard``: the files are named only as the run goes; each is
+    checked when it comes to be written (module docstring). Nothing is computed before this
+    returns. A path through
     ``..`` is resolved first (links followed), so that no folder is created that the ``..``
     then leaves."""
     if out is not None and (not isinstance(out, (str, os.PathLike)) or not str(out).strip()):
@@ -223,11 +300,13 @@ def claim(out: str | os.PathLike | None, default: str | os.PathLike, *, settings
         result = _claim(path, settings, force, option)
         result.outputs = [str(name) for name in outputs]
         result.outputs += _matching(path, patterns, result.outputs)
+        result.guard = bool(guard)
         try:
             check_outputs(result)
         except BaseException:
             result.abandon()
             raise
+        result.watching = True
         return result
     except OSError as exc:  # a name too long, a folder not reachable: one line, not a trace
         if disk_full(exc):  # not bad input: the command's own exit (3, no space left)

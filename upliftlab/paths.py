@@ -11,7 +11,10 @@ the user's files, whatever field or path carries it:
   holds an output folder (:mod:`upliftlab.outdir` registers it, and a study its store), a
   target whose resolved path, links followed, lies outside every registered root is refused.
   A target that exists and is not a regular file (a device node, a folder, a pipe, a link) is
-  refused in any case, also through the Python API.
+  refused in any case, also through the Python API. A root may be registered with a watcher
+  (:func:`push_root`), which sees every target checked in it (and in no root nested deeper,
+  such as a study's store inside its output folder): the claim of an output folder records
+  there what the run writes, and may refuse to replace a file upliftlab did not make.
 * **Only files upliftlab made are removed** (:func:`temporary_sibling`). A temporary file is
   named ``.<target>.upliftlab-<pid>-<random>.part``, beside its target; before writing a target,
   the temporary files of that same target whose process is no longer alive are removed, and
@@ -59,6 +62,8 @@ _CONTROL_CHAR = re.compile(r"[\x00-\x1f\x7f]")
 _ROOTS: list[Path] = []
 _LIVE: set[Path] = set()  # this process's temporaries not yet moved into place or removed
 _ROOTS_LOCK = threading.Lock()
+#: The watcher of a root registered with one (:func:`push_root`), by root.
+_WATCHES: dict[Path, object] = {}
 
 
 def path_component(name: str, field: str) -> str:
@@ -154,11 +159,16 @@ def output_root(folder: str | os.PathLike) -> Iterator[Path]:
             _ROOTS.remove(root)
 
 
-def push_root(folder: str | os.PathLike) -> Path:
-    """Register ``folder`` (:func:`output_root` without a block); undo with :func:`pop_root`."""
+def push_root(folder: str | os.PathLike, watch=None) -> Path:
+    """Register ``folder`` (:func:`output_root` without a block); undo with :func:`pop_root`.
+    ``watch(target)``, if given, is called by :func:`check_target` with each target (its folder
+    resolved) whose innermost registered root is this one, after the other checks: it may
+    raise :class:`~upliftlab.checks.InputError` to refuse the target."""
     root = Path(folder).resolve()
     with _ROOTS_LOCK:
         _ROOTS.append(root)
+        if watch is not None:
+            _WATCHES[root] = watch
     return root
 
 
@@ -166,6 +176,8 @@ def pop_root(root: Path) -> None:
     """Unregister a root registered by :func:`push_root` (once; a second call does nothing)."""
     with _ROOTS_LOCK, contextlib.suppress(ValueError):
         _ROOTS.remove(root)
+        if root not in _ROOTS:
+            _WATCHES.pop(root, None)
 
 
 def _resolved(path: Path) -> Path:
@@ -190,12 +202,16 @@ def check_target(path: str | os.PathLike) -> Path:
         raise InputError(f"output {str(path)!r}: is {kind}, not a regular file; upliftlab "
                          "replaces only regular files")
     with _ROOTS_LOCK:
-        roots = list(_ROOTS)
+        roots, watches = list(_ROOTS), dict(_WATCHES)
     if roots:
         where = _resolved(path)
-        if not any(where.is_relative_to(root) for root in roots):
+        inside = [root for root in roots if where.is_relative_to(root)]
+        if not inside:
             raise InputError(f"output {str(path)!r}: resolves to {str(where)!r}, outside the "
                              f"output folder {str(roots[-1])!r}; nothing is written there")
+        watch = watches.get(max(inside, key=lambda root: len(root.parts)))
+        if watch is not None:
+            watch(where)
     return path
 
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import statistics
 import time
 from collections.abc import Sequence
@@ -250,13 +251,26 @@ COMPARISON_NAMES = ("comparison.md", "comparison.json", "histories.csv", "uplift
                     "histories.png")
 
 
+#: What can begin markup inside a line of Markdown (CommonMark and its GitHub tables): code,
+#: emphasis, links and images, HTML and entities, table cells, strike-through.
+_MARKUP = re.compile(r"([\\`*_{}\[\]()<>#|!&~])")
+
+
+def markdown_text(text: str) -> str:
+    """``text`` (a scene's title, the user's) as plain text on one line of Markdown: its line
+    breaks and tabs become spaces and each character that could begin markup is escaped with a
+    backslash (CommonMark escapes any ASCII punctuation so), so that a title cannot end the
+    heading, add a link, an image or HTML to the page, or break its table."""
+    return _MARKUP.sub(r"\\\1", " ".join(text.split()))
+
+
 def write_comparison(c: Comparison, out: str | Path, *, curves: bool = True) -> list[Path]:
     """``comparison.md``, ``comparison.json``, ``histories.csv``, ``histories.png`` (the
     difference upliftlab − OpenSees; with ``curves`` both histories beside it) and
     ``upliftlab.nc`` (each atomically)."""
     out = Path(out)
     notes = "\n".join(f"- {n}" for n in c.notes)
-    text = (f"# {c.spec.title}: upliftlab and OpenSees\n\nScene `{c.spec.scene_name}`, units "
+    text = (f"# {markdown_text(c.spec.title)}: upliftlab and OpenSees\n\nScene `{c.spec.scene_name}`, units "
             f"{c.spec.units}; OpenSees script `{c.files.script.name}` in this folder (run it "
             f"with `python {c.files.script.name}`).\n\n{comparison_table(c)}\n\n"
             f"Runtimes: upliftlab's median of 3 runs without stored histories; OpenSees' "

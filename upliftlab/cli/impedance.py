@@ -46,21 +46,21 @@ def run_impedance(args, scene, overrides) -> int:
     from ..continuum.impedance.analysis import harmonic_unknowns, impedance, impedance_model
 
     options = impedance_options(args)
-    model = impedance_model(scene.soil, scene.foundation.width, scene.continuum, options,
-                            scene=scene)
     settings = {"command": "continuum impedance", "scene": scene.name,
                 "scene_digest": scene.digest, "overrides": list(scene.overrides),
                 "a0": args.a0, "boundary": args.boundary}
     default = default_out(f"{scene.name}-continuum-impedance",
                            {"overrides": overrides, "a0": args.a0, "boundary": args.boundary})
-    say(f"{scene.name}: impedance, {model.disc.element}, {model.mesh.nelements} elements, "
-        f"{harmonic_unknowns(model, options)} DOFs in the harmonic solve, {options.boundary} "
-        f"box {options.domain_width:g}B x {options.domain_depth:g}B, {scene.soil.interface} "
-        f"interface, {len(options.a0)} frequencies")
     netcdf, figure = IMPEDANCE_NAMES
     outputs = [netcdf] if args.no_render else [netcdf, figure]
     with claim(args.out, default, settings=settings, force=args.force,
-               outputs=outputs) as out:
+               outputs=outputs) as out:  # the folder first: the mesh alone takes seconds
+        model = impedance_model(scene.soil, scene.foundation.width, scene.continuum, options,
+                                scene=scene)
+        say(f"{scene.name}: impedance, {model.disc.element}, {model.mesh.nelements} elements, "
+            f"{harmonic_unknowns(model, options)} DOFs in the harmonic solve, "
+            f"{options.boundary} box {options.domain_width:g}B x {options.domain_depth:g}B, "
+            f"{scene.soil.interface} interface, {len(options.a0)} frequencies")
         started = time.perf_counter()
 
         def progress(k, n, a0):

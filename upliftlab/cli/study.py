@@ -1,6 +1,13 @@
 """``upliftlab study NAME [--fast] [--out DIR] [--store DIR] [--scheduler ADDR] [--workers N]
-[--no-figures] [the study's own options]``: one study of :mod:`upliftlab.comparisons.studies`,
-on its own (the report runs them all).
+[--no-figures] [--force] [the study's own options]``: one study of
+:mod:`upliftlab.comparisons.studies`, on its own (the report runs them all).
+
+The output folder is claimed as every command's is (:func:`upliftlab.outdir.claim`): locked
+while the study runs, refused if it holds another run's results (other settings) unless
+``--force``, and marked complete at the end. A study names its files only as it writes them,
+so each is checked then: a file there that upliftlab did not make is refused, never replaced
+(``guard``), with or without ``--force``. Its points are in its store by then, so the run that
+follows the user's move costs no computation again.
 
 Each study declares its options (:class:`~upliftlab.comparisons.framework.protocol.Study`):
 ``--scene`` where it takes one, and what its ``arguments`` add. Exit 0 when written and its
@@ -14,11 +21,15 @@ import argparse
 
 from .. import checks
 from ..log import configure, logger
-from ..outdir import probe_folder
+from ..outdir import claim, probe_folder
 from .common import Parser
 from .exits import EXIT_FAILED, EXIT_OK
 
 __all__ = ["add_study", "study_command"]
+
+#: Options that say where and how a study runs, not what it computes: a run into the same
+#: folder with other values of these is the same run.
+_NOT_SETTINGS = frozenset({"out", "store", "scheduler", "workers", "force"})
 
 
 def add_study(sub) -> None:
@@ -42,6 +53,8 @@ def _parser(study) -> argparse.ArgumentParser:
     parser.add_argument("--scheduler", help="Dask scheduler address (or DASK_SCHEDULER_ADDRESS)")
     parser.add_argument("--workers", help="worker processes (default: CPUs)")
     parser.add_argument("--no-figures", action="store_true", help="write no PNG")
+    parser.add_argument("--force", action="store_true",
+                        help="replace another run's results in --out (upliftlab's files only)")
     if study.arguments is not None:
         study.arguments(parser)
     return parser
@@ -49,7 +62,7 @@ def _parser(study) -> argparse.ArgumentParser:
 
 def study_command(args) -> int:
     """Run the study ``args.name`` with its options; the exit code of the module docstring."""
-    from ..comparisons.framework.protocol import Context, run_study
+    from ..comparisons.framework.protocol import Context, default_out, run_study
     from ..comparisons.studies.registry import definition
 
     study = definition(args.name)
@@ -67,17 +80,23 @@ def study_command(args) -> int:
     checks.boolean("--fast", options.fast)
     if options.scheduler is not None:
         checks.scheduler_address("--scheduler", options.scheduler, in_process=False)
-    for option in ("out", "store"):  # a file, or a place nothing can be made: before work
-        if getattr(options, option) is not None:
-            probe_folder(getattr(options, option), f"--{option}")
-    context = Context(fast=options.fast, out=options.out, store=options.store,
-                      scheduler=options.scheduler, workers=workers)
-    if study.context_from is not None:
-        context = study.context_from(options, context, say)
-    try:
-        result = run_study(study, getattr(options, "scene", None), context)
-    except RuntimeError as exc:  # a solver that gave up: which study, what kind, its message
-        raise RuntimeError(f"{study.name} failed ({type(exc).__name__}): {exc}") from exc
+    checks.boolean("--force", options.force)
+    if options.store is not None:  # a file, or a place nothing can be made: before work
+        probe_folder(options.store, "--store")
+    settings = {"command": "study", "study": study.name,
+                **{key: value for key, value in sorted(vars(options).items())
+                   if key not in _NOT_SETTINGS}}
+    with claim(options.out, default_out(study.name, options.fast), settings=settings,
+               force=options.force, guard=True) as folder:
+        context = Context(fast=options.fast, out=folder.path, store=options.store,
+                          scheduler=options.scheduler, workers=workers)
+        if study.context_from is not None:
+            context = study.context_from(options, context, say)
+        try:
+            result = run_study(study, getattr(options, "scene", None), context)
+        except RuntimeError as exc:  # a solver that gave up: which study, what kind, its message
+            raise RuntimeError(f"{study.name} failed ({type(exc).__name__}): {exc}") from exc
+        folder.complete(result.study.files)
     for line in study.describe(result):
         print(line)
     print(f"wrote {len(result.study.files)} files to {result.study.directory} in "
