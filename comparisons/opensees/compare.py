@@ -270,8 +270,9 @@ def write_comparison(c: Comparison, out: str | Path, *, curves: bool = True) -> 
     ``upliftlab.nc`` (each atomically)."""
     out = Path(out)
     notes = "\n".join(f"- {n}" for n in c.notes)
-    text = (f"# {markdown_text(c.spec.title)}: upliftlab and OpenSees\n\nScene `{c.spec.scene_name}`, units "
-            f"{c.spec.units}; OpenSees script `{c.files.script.name}` in this folder (run it "
+    text = (f"# {markdown_text(c.spec.title)}: upliftlab and OpenSees\n\nScene "
+            f"`{c.spec.scene_name}`, units {c.spec.units}; OpenSees script "
+            f"`{c.files.script.name}` in this folder (run it "
             f"with `python {c.files.script.name}`).\n\n{comparison_table(c)}\n\n"
             f"Runtimes: upliftlab's median of 3 runs without stored histories; OpenSees' "
             "time-step loop in its subprocess (model and gravity excluded). Percentages are "
