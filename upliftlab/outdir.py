@@ -223,6 +223,21 @@ class Claim:
                 names.add(str(where.relative_to(folder)))
         return names
 
+    def remove_own(self, name: str) -> bool:
+        """Remove the file ``name`` (in the folder) if an earlier run of upliftlab made it
+        there and this run has not written it: an output of that run this one does not make
+        again (a report's PDF on a paper not asked for now). A file upliftlab did not make is
+        left as it is. True if a file was removed."""
+        target = self.path / name
+        inside = Path(os.path.realpath(target.parent)).is_relative_to(self.path.resolve())
+        if not inside or name in self.written or name not in self._made_before():
+            return False
+        try:
+            target.unlink()
+        except FileNotFoundError:
+            return False
+        return True
+
     def release(self) -> None:
         if self.locked:
             with contextlib.suppress(FileNotFoundError):

@@ -22,7 +22,7 @@ from pathlib import Path
 from ...checks import InputError
 from ...paths import check_target
 
-__all__ = ["PAPERS", "browser", "with_page_size", "print_pdf"]
+__all__ = ["PAPERS", "browser", "need_browser", "with_page_size", "print_pdf"]
 
 #: CSS page size and (width, height) in PostScript points of each paper.
 PAPERS = {"A4": ("A4", (595.28, 841.89)), "Letter": ("letter", (612.0, 792.0))}
@@ -36,6 +36,12 @@ def browser() -> str | None:
         if found:
             return found
     return None
+
+
+def need_browser():
+    """Raise the one-line InputError that says how to install a browser that can print."""
+    raise InputError("printing needs Chromium: apt-get install chromium (Debian/Ubuntu; "
+                     "chromium-browser or google-chrome on the PATH also do)")
 
 
 def with_page_size(page: str, paper: str) -> str:
@@ -57,8 +63,7 @@ def print_pdf(html_path: str | os.PathLike, pdf_path: str | os.PathLike, paper: 
     html_path, pdf_path = Path(html_path), Path(pdf_path)
     exe = executable or browser()
     if exe is None:
-        raise InputError("printing needs Chromium: apt-get install chromium (or set the "
-                         "executable)")
+        need_browser()
     page = with_page_size(html_path.read_text(encoding="utf-8"), paper)
     pdf_path.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(prefix="upliftlab-print-") as tmp:
