@@ -23,6 +23,7 @@ import numpy as np
 
 from ...checks import InputError
 from ...log import logger
+from ...workers import dying_with_this_process
 
 __all__ = ["RUN_OUTPUTS", "OPENSEES_EXTRA", "OpenSeesRun", "OpenSeesError", "opensees_available",
            "require_opensees", "run_script"]
@@ -58,8 +59,9 @@ def opensees_available() -> bool:
     if importlib.util.find_spec("openseespy") is None:
         return False
     try:
-        probe = subprocess.run([sys.executable, "-c", _PROBE], capture_output=True, text=True,
-                               timeout=120, env=_environment())
+        probe = subprocess.run(dying_with_this_process([sys.executable, "-c", _PROBE]),
+                               capture_output=True, text=True, timeout=120,
+                               env=_environment())
     except subprocess.TimeoutExpired:
         return False
     return probe.returncode == 0
@@ -97,18 +99,21 @@ def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True
     outputs = RUN_OUTPUTS
     before = {name: _stamp(folder / name) for name in outputs}  # never read a previous run's
     start = time.perf_counter()
-    child = subprocess.Popen([sys.executable, script.name], cwd=folder, env=_environment(),
-                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    child = subprocess.Popen(dying_with_this_process([sys.executable, script.name]),
+                             cwd=folder, env=_environment(), stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True)
     tail: deque = deque(maxlen=20)
     relay = threading.Thread(target=_relay, args=(child.stderr, tail, echo), daemon=True)
     relay.start()
     try:
         child.wait(timeout=timeout)
     except subprocess.TimeoutExpired:
-        child.kill()
-        child.wait()
+        _end(child)
         raise OpenSeesError(f"OpenSees run of {script} timed out after {timeout:g} s "
                             "(--timeout)") from None
+    except BaseException:  # an interruption (Ctrl-C, SIGTERM): the run ends with this one
+        _end(child)
+        raise
     relay.join(timeout=5)
     child.stdout.close()
     wall = time.perf_counter() - start
@@ -122,6 +127,12 @@ def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True
         raise OpenSeesError(f"OpenSees run of {script}: {summary.get('verdict')} "
                             f"(exit code {child.returncode})")
     return OpenSeesRun(summary, read_histories(folder / RUN_OUTPUTS[1]), wall)
+
+
+def _end(child: subprocess.Popen) -> None:
+    """End the OpenSees run ``child`` now and reap it."""
+    child.kill()
+    child.wait()
 
 
 def _stamp(path: Path) -> tuple[int, int, int] | None:

@@ -21,6 +21,7 @@ from pathlib import Path
 
 from ...checks import InputError
 from ...paths import check_target
+from ...workers import dying_with_this_process
 
 __all__ = ["PAPERS", "browser", "need_browser", "with_page_size", "print_pdf"]
 
@@ -75,7 +76,8 @@ def print_pdf(html_path: str | os.PathLike, pdf_path: str | os.PathLike, paper: 
                    "--disable-sync", "--no-first-run", "--disable-extensions",
                    f"--user-data-dir={Path(tmp) / 'profile'}", "--no-pdf-header-footer",
                    f"--print-to-pdf={out}", copy.as_uri()]
-        done = subprocess.run(command, capture_output=True, text=True, timeout=timeout)
+        done = subprocess.run(dying_with_this_process(command), capture_output=True,
+                              text=True, timeout=timeout)
         if done.returncode != 0 or not out.is_file() or out.stat().st_size == 0:
             raise RuntimeError(f"{Path(exe).name} could not print {html_path.name} "
                                f"(exit {done.returncode}): {done.stderr.strip()[-500:]}")

@@ -1,0 +1,114 @@
+"""The programs upliftlab starts (the OpenSees run of ``upliftlab opensees --run``, the browser
+that prints the report) end with the command that started them, however it ends: SIGTERM, and
+SIGKILL, which nothing can catch (:func:`upliftlab.workers.dying_with_this_process`).
+
+Before: both outlived the command. A SIGTERM or a SIGKILL to ``upliftlab opensees --run`` left
+its ``python model.py`` running, orphaned (parent 1), for as long as its run (up to the
+one-hour ``--timeout``), writing its files into the folder after the command had ended; a
+killed report left its browser running until it finished printing.
+
+Reference: the project's rule (a signal at any moment leaves no orphan process); each test
+finds the program by what only it has (its working folder, the process id it wrote) and asserts
+it has gone within 10 s of the signal.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+#: An OpenSees run of about a minute (a step of 20 µs over 2 s), so that it is running when
+#: the signal comes (upliftlab's own run before it takes seconds).
+SLOW_OPENSEES = ["opensees", "wall_free", "--case", "e10", "--run", "--set",
+                 "analysis.duration=2", "--dt", "0.00002"]
+
+
+def _alive(pid: int) -> bool:
+    """Whether ``pid`` is a running process (a zombie is not)."""
+    try:
+        with open(f"/proc/{pid}/stat") as fh:
+            return fh.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+def _running_in(folder: Path) -> list[int]:
+    """The processes whose working folder is ``folder``."""
+    found = []
+    for entry in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            if Path(os.readlink(f"/proc/{entry}/cwd")) == folder and _alive(int(entry)):
+                found.append(int(entry))
+        except OSError:
+            continue
+    return found
+
+
+def _gone(pids, within: float = 10.0) -> list[int]:
+    """Those of ``pids`` still running ``within`` s from now (killed then, and returned)."""
+    deadline = time.monotonic() + within
+    while any(map(_alive, pids)) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    survivors = [p for p in pids if _alive(p)]
+    for pid in survivors:
+        os.kill(pid, signal.SIGKILL)
+    return survivors
+
+
+def _wait_for(found, proc, what: str, timeout: float = 300.0):
+    """``found()`` once it is true, while ``proc`` runs (else the test fails)."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        value = found()
+        if value:
+            return value
+        if proc.poll() is not None:
+            pytest.fail(f"the command ended before {what}: {proc.stderr.read()[-2000:]}")
+        time.sleep(0.1)
+    proc.kill()
+    pytest.fail(f"no {what} after {timeout:g} s")
+
+
+@pytest.mark.parametrize("how", ["term", "kill"])
+def test_the_opensees_run_ends_with_the_command(how, tmp_path):
+    """``upliftlab opensees --run`` signalled while OpenSees runs: its run has gone within
+    10 s; on SIGTERM the command says it was interrupted, in its last line, exit 130."""
+    out = (tmp_path / "out").resolve()
+    proc = subprocess.Popen([sys.executable, "-m", "upliftlab", *SLOW_OPENSEES, "--out",
+                             str(out)], cwd=tmp_path, env={**os.environ, "MPLBACKEND": "Agg"},
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    children = _wait_for(lambda: _running_in(out), proc, "the OpenSees run")
+    proc.send_signal(signal.SIGTERM if how == "term" else signal.SIGKILL)
+    code = proc.wait(timeout=60)
+    err = proc.stderr.read()
+    assert _gone(children) == []
+    if how == "term":
+        assert code == 130 and err.strip().splitlines()[-1].startswith(
+            "upliftlab: interrupted (SIGTERM)"), err[-2000:]
+
+
+def test_the_browser_ends_with_a_killed_print(tmp_path):
+    """A process printing the report (:func:`print_pdf`, its browser a stand-in that writes
+    its process id and waits) killed with SIGKILL: the browser has gone within 10 s."""
+    browser = tmp_path / "browser"
+    browser.write_text(f"#!/bin/sh\necho $$ > {str(tmp_path / 'pid')!r}\nexec sleep 300\n")
+    browser.chmod(0o755)
+    page = tmp_path / "report.html"
+    page.write_text("<html><head></head><body>a report</body></html>")
+    code = ("import sys\nfrom upliftlab.comparisons.report.printing import print_pdf\n"
+            "print_pdf(sys.argv[1], sys.argv[2], 'A4', executable=sys.argv[3])\n")
+    proc = subprocess.Popen([sys.executable, "-c", code, str(page), str(tmp_path / "r.pdf"),
+                             str(browser)], stderr=subprocess.PIPE, text=True)
+    pid_file = tmp_path / "pid"
+    pid = _wait_for(lambda: pid_file.exists() and pid_file.read_text().strip(), proc,
+                    "the browser")
+    time.sleep(0.2)  # the stand-in has executed sleep in its place
+    proc.kill()
+    proc.wait(timeout=60)
+    assert _gone([int(pid)]) == []
