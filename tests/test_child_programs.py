@@ -7,7 +7,11 @@ its ``python model.py`` running, orphaned (parent 1), for as long as its run (up
 one-hour ``--timeout``), writing its files into the folder after the command had ended; a
 killed report left its browser running until it finished printing.
 
-Reference: the project's rule (a signal at any moment leaves no orphan process); each test
+The PDF the browser printed is put in place at once or not at all: a full disk leaves no part
+of it (before: moved across file systems, a copy of its first bytes stayed at its name).
+
+Reference: the project's rule (a signal at any moment leaves no orphan process; a full disk
+leaves nothing half-written); each test
 finds the program by what only it has (its working folder, the process id it wrote) and asserts
 it has gone within 3 s of the signal.
 """
@@ -113,3 +117,34 @@ def test_the_browser_ends_with_a_killed_print(tmp_path):
     proc.kill()
     proc.wait(timeout=60)
     assert _gone([int(pid)]) == []
+
+
+def test_a_pdf_that_meets_a_full_disk_leaves_no_part_of_itself(tmp_path):
+    """The browser prints into a temporary folder on another file system (TMPDIR on
+    /dev/shm), and the disk of the output folder is full (a file-size limit of 100 kB, which
+    the stand-in browser lifts for itself): print_pdf raises the OSError, and the folder holds
+    no part of the 300 kB PDF (before: the move across file systems copied 100 kB of it into
+    place and left them there)."""
+    if not Path("/dev/shm").is_dir() or os.stat("/dev/shm").st_dev == os.stat(tmp_path).st_dev:
+        pytest.fail("the test needs /dev/shm on a file system other than the test's folder")
+    browser = tmp_path / "browser"
+    browser.write_text(f"#!{sys.executable}\nimport resource, sys\n"
+                       "resource.setrlimit(resource.RLIMIT_FSIZE, (resource.RLIM_INFINITY,) * 2)\n"
+                       "out = next(a for a in sys.argv if a.startswith('--print-to-pdf='))\n"
+                       "open(out.split('=', 1)[1], 'wb').write(b'%PDF' + bytes(300_000))\n")
+    browser.chmod(0o755)
+    page = tmp_path / "report.html"
+    page.write_text("<html><head></head><body>a report</body></html>")
+    folder = tmp_path / "out"
+    folder.mkdir()
+    code = ("import errno, resource, signal, sys\n"
+            "from upliftlab.comparisons.report.printing import print_pdf\n"
+            "signal.signal(signal.SIGXFSZ, signal.SIG_IGN)\n"
+            "resource.setrlimit(resource.RLIMIT_FSIZE, (100_000, resource.RLIM_INFINITY))\n"
+            "try:\n    print_pdf(sys.argv[1], sys.argv[2], 'A4', executable=sys.argv[3])\n"
+            "except OSError as exc:\n    print('full', exc.errno == errno.EFBIG)\n")
+    done = subprocess.run([sys.executable, "-c", code, str(page), str(folder / "r.pdf"),
+                           str(browser)], capture_output=True, text=True, timeout=300,
+                          env={**os.environ, "TMPDIR": "/dev/shm"})
+    assert done.stdout.split() == ["full", "True"], done.stderr[-2000:]
+    assert sorted(p.name for p in folder.iterdir()) == []

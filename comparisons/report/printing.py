@@ -20,7 +20,7 @@ import tempfile
 from pathlib import Path
 
 from ...checks import InputError
-from ...paths import check_target
+from ...results import write_bytes
 from ...workers import dying_with_this_process
 
 __all__ = ["PAPERS", "browser", "need_browser", "with_page_size", "print_pdf"]
@@ -81,6 +81,7 @@ def print_pdf(html_path: str | os.PathLike, pdf_path: str | os.PathLike, paper: 
         if done.returncode != 0 or not out.is_file() or out.stat().st_size == 0:
             raise RuntimeError(f"{Path(exe).name} could not print {html_path.name} "
                                f"(exit {done.returncode}): {done.stderr.strip()[-500:]}")
-        check_target(pdf_path)  # a regular file or none, inside the output folder
-        shutil.move(str(out), pdf_path)
+        # in place at once or not at all (a full disk leaves no part of a PDF), a regular file
+        # or none there before, inside the output folder (write_bytes' check_target)
+        write_bytes(pdf_path, out.read_bytes())
     return pdf_path
