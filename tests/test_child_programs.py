@@ -148,3 +148,29 @@ def test_a_pdf_that_meets_a_full_disk_leaves_no_part_of_itself(tmp_path):
                           env={**os.environ, "TMPDIR": "/dev/shm"})
     assert done.stdout.split() == ["full", "True"], done.stderr[-2000:]
     assert sorted(p.name for p in folder.iterdir()) == []
+
+
+def test_the_opensees_runs_results_that_meet_a_full_disk_end_in_one_line(tmp_path):
+    """``upliftlab opensees --run`` with a file-size limit of 100 kB (its script and numbers
+    fit, the OpenSees run's 400 kB of histories do not): exit 3 and the command's own line for
+    a full disk naming the histories, and no part of them left (before: the script's
+    traceback, a last line "… did not write both its outputs: Process 0 Terminating", and the
+    first 100 kB of the histories at their name)."""
+    def limited():
+        import resource
+
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (100_000, 100_000))
+
+    out = tmp_path / "out"
+    done = subprocess.run([sys.executable, "-m", "upliftlab", "opensees", "wall_free", "--case",
+                           "e10", "--run", "--out", str(out)], cwd=tmp_path,
+                          env={**os.environ, "MPLBACKEND": "Agg"}, capture_output=True,
+                          text=True, timeout=600, preexec_fn=limited)
+    last = done.stderr.strip().splitlines()[-1]
+    assert done.returncode == 3 and last.startswith(
+        f"upliftlab: error: no space left on device writing {out / 'opensees_histories.csv'} "
+        "(File too large)"), done.stderr[-2000:]
+    assert "Traceback" not in done.stderr
+    assert sorted(p.name for p in out.iterdir()) == [".upliftlab-writing.json", "model.json",
+                                                     "model.py"]

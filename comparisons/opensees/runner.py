@@ -8,9 +8,11 @@ lines (stderr) are passed through as they come.
 from __future__ import annotations
 
 import csv
+import errno
 import importlib.util
 import json
 import os
+import re
 import subprocess
 import sys
 import threading
@@ -118,15 +120,38 @@ def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True
     child.stdout.close()
     wall = time.perf_counter() - start
     summary_path = folder / RUN_OUTPUTS[0]
+    if child.returncode == NO_SPACE_EXIT:  # the script's own line says which file
+        raise _no_space(tail, folder)
     if any(_stamp(folder / name) in (None, before[name]) for name in outputs):
         last = next((line for line in reversed(tail) if line.strip()), "no message")
         raise OpenSeesError(f"OpenSees run of {script} exited with code {child.returncode} "
                             f"and did not write both its outputs: {last[:300]}")
-    summary = json.loads(summary_path.read_text())
+    try:
+        summary = json.loads(summary_path.read_text())
+    except (OSError, ValueError) as exc:
+        raise OpenSeesError(f"OpenSees run of {script}: its summary {summary_path.name} cannot "
+                            f"be read ({exc})") from None
     if child.returncode != 0 or summary.get("verdict") != "completed":
         raise OpenSeesError(f"OpenSees run of {script}: {summary.get('verdict')} "
                             f"(exit code {child.returncode})")
     return OpenSeesRun(summary, read_histories(folder / RUN_OUTPUTS[1]), wall)
+
+
+#: The exit code of the script whose results found no room on the disk (:mod:`.model_script`).
+NO_SPACE_EXIT = 3
+_NO_SPACE_LINE = re.compile(r"^opensees: no space left on device writing (.*) \(errno (\d+): ")
+
+
+def _no_space(tail, folder: Path) -> OSError:
+    """The OSError of a run whose results found no room (its errno and file from the script's
+    last line of that kind; ENOSPC and the folder if there is none): the command's own line for
+    a full disk, exit 3."""
+    for line in reversed(tail):
+        found = _NO_SPACE_LINE.match(line)
+        if found:
+            code = int(found.group(2))
+            return OSError(code, os.strerror(code), found.group(1))
+    return OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(folder))
 
 
 def _end(child: subprocess.Popen) -> None:
