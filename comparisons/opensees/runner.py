@@ -8,7 +8,6 @@ lines (stderr) are passed through as they come.
 from __future__ import annotations
 
 import csv
-import errno
 import importlib.util
 import json
 import os
@@ -120,8 +119,9 @@ def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True
     child.stdout.close()
     wall = time.perf_counter() - start
     summary_path = folder / RUN_OUTPUTS[0]
-    if child.returncode == NO_SPACE_EXIT:  # the script's own line says which file
-        raise _no_space(tail, folder)
+    no_space = _no_space(tail) if child.returncode == NO_SPACE_EXIT else None
+    if no_space is not None:
+        raise no_space
     if any(_stamp(folder / name) in (None, before[name]) for name in outputs):
         last = next((line for line in reversed(tail) if line.strip()), "no message")
         raise OpenSeesError(f"OpenSees run of {script} exited with code {child.returncode} "
@@ -142,16 +142,16 @@ NO_SPACE_EXIT = 3
 _NO_SPACE_LINE = re.compile(r"^opensees: no space left on device writing (.*) \(errno (\d+): ")
 
 
-def _no_space(tail, folder: Path) -> OSError:
-    """The OSError of a run whose results found no room (its errno and file from the script's
-    last line of that kind; ENOSPC and the folder if there is none): the command's own line for
-    a full disk, exit 3."""
+def _no_space(tail) -> OSError | None:
+    """The OSError of a run whose results found no room, its errno and file from the script's
+    line that says so (the command's own line for a full disk follows, exit 3); None if no
+    line of the run's last says so (a script that exits 3 for another reason)."""
     for line in reversed(tail):
         found = _NO_SPACE_LINE.match(line)
         if found:
             code = int(found.group(2))
             return OSError(code, os.strerror(code), found.group(1))
-    return OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(folder))
+    return None
 
 
 def _end(child: subprocess.Popen) -> None:
