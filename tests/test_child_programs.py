@@ -174,3 +174,62 @@ def test_the_opensees_runs_results_that_meet_a_full_disk_end_in_one_line(tmp_pat
     assert "Traceback" not in done.stderr
     assert sorted(p.name for p in out.iterdir()) == [".upliftlab-writing.json", "model.json",
                                                      "model.py"]
+
+
+def test_the_wrapper_runs_no_module_of_the_users_folder_and_says_what_it_cannot_run(tmp_path):
+    """The wrapper of :func:`dying_with_this_process` started in a folder holding a
+    ``ctypes.py`` and a ``signal.py`` of the user's: neither runs (the program runs, exit 0);
+    a program that does not exist: exit 127 and one line naming it (before the fix: the user's
+    module ran in its place; a missing program ended in a traceback)."""
+    from upliftlab.workers import dying_with_this_process
+
+    for name in ("ctypes.py", "signal.py"):
+        (tmp_path / name).write_text(f"open({str(tmp_path / 'ran')!r}, 'w').write('ran')\n")
+    done = subprocess.run(dying_with_this_process(["true"]), cwd=tmp_path, capture_output=True,
+                          text=True, timeout=60)
+    assert done.returncode == 0 and not (tmp_path / "ran").exists(), done.stderr
+    missing = str(tmp_path / "no-such-program")
+    done = subprocess.run(dying_with_this_process([missing]), cwd=tmp_path,
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 127
+    assert done.stderr == f"cannot run {missing!r}: No such file or directory\n"
+
+
+def test_the_scripts_results_are_whole_and_never_beside_an_earlier_summary(tmp_path,
+                                                                            monkeypatch):
+    """The OpenSees script's writer (:func:`model_script.write_outputs`) failing in the middle
+    of the histories (a row that cannot be formatted): the earlier run's summary is gone, and
+    neither a part of the histories nor a temporary file is left; the temporary files are named
+    as upliftlab's own, so that the next run through upliftlab removes a killed run's
+    (:func:`~upliftlab.paths.remove_stale_temporaries`)."""
+    from upliftlab.comparisons.opensees import model_script as ms
+    from upliftlab.paths import remove_stale_temporaries
+
+    monkeypatch.setattr(ms, "HERE", str(tmp_path))
+    monkeypatch.setattr(ms, "TITLE", "t")
+    monkeypatch.setattr(ms, "UNITS", "kip-in-s")
+    (tmp_path / "opensees_summary.json").write_text('{"verdict": "completed"}')
+
+    class Rows:
+        rows = [(0.0,) * 6, ("not a number",) * 6]
+        peak = {}
+
+    with pytest.raises(ValueError):
+        ms.write_outputs(Rows(), "completed", 1.0, 1.0, 1)
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
+    with monkeypatch.context() as m:  # a run killed before it could remove its temporary
+        m.setattr(ms.os, "remove", lambda path: None)
+        with pytest.raises(ValueError):
+            ms.write_outputs(Rows(), "completed", 1.0, 1.0, 1)
+    (left,) = tmp_path.iterdir()
+    dead = _a_dead_pid()
+    stale = left.rename(tmp_path / left.name.replace(f"-{os.getpid()}-", f"-{dead}-"))
+    assert remove_stale_temporaries(tmp_path / "opensees_histories.csv") == [stale]
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
+
+
+def _a_dead_pid() -> int:
+    """The process id of a process that has ended."""
+    child = subprocess.Popen(["true"])
+    child.wait()
+    return child.pid

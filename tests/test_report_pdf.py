@@ -75,3 +75,52 @@ def test_the_pdfs_are_the_reports_own_files(tmp_path, monkeypatch):
     assert not (out / "report-Letter.pdf").exists()
     assert json.loads((out / MARKER).read_text())["files"] == ["report-A4.pdf", "report.html",
                                                                "report.json"]
+
+
+def test_pdf_given_twice_prints_both(tmp_path, monkeypatch):
+    """``--pdf A4 --pdf Letter`` asks for both papers (before the fix: only the last, and the
+    report then removed its earlier A4 PDF as stale)."""
+    asked: list = []
+
+    def stand_in(fast, folder, scheduler, studies, progress, start, budget, papers):
+        asked.append(papers)
+        raise RuntimeError("stand-in: nothing built")
+
+    monkeypatch.setattr(rp, "_build", stand_in)
+    monkeypatch.setattr("upliftlab.comparisons.report.printing.browser", lambda: "/bin/true")
+    main(["report", "--fast", "--pdf", "A4", "--pdf", "Letter", "--out", str(tmp_path / "r")])
+    assert asked == [("A4", "Letter")]
+
+
+def test_a_stale_pdf_once_removed_is_no_longer_upliftlabs(tmp_path):
+    """A report removes its earlier Letter PDF and then fails (no completion marker): a
+    Letter PDF the user puts there afterwards is theirs, kept by the next report and refused
+    as an output (before the fix: the record of the files being written still listed it, so
+    the next report removed the user's file). A link at a stale PDF's name is left as it is."""
+    from upliftlab.outdir import claim
+    from upliftlab.results import write_bytes, write_text
+
+    out = tmp_path / "r"
+    with claim(out, out, settings={"command": "report"}, outputs=["report-Letter.pdf"]) as run:
+        run.start_writing()
+        write_bytes(out / "report-Letter.pdf", b"%PDF upliftlab's\n")
+        run.complete([out / "report-Letter.pdf"])
+    with pytest.raises(RuntimeError):
+        with claim(out, out, settings={"command": "report"}, outputs=["report.html"]) as run:
+            run.start_writing()
+            write_text(out / "report.html", "<html></html>")
+            assert run.remove_own("report-Letter.pdf")
+            raise RuntimeError("a section failed")
+    (out / "report-Letter.pdf").write_bytes(b"%PDF the user's\n")
+    with claim(out, out, settings={"command": "report"}, outputs=["report.html"]) as run:
+        run.start_writing()
+        assert not run.remove_own("report-Letter.pdf")
+    assert (out / "report-Letter.pdf").read_bytes() == b"%PDF the user's\n"
+    with pytest.raises(InputError, match="report-Letter.pdf.*did not make"):
+        claim(out, out, settings={"command": "report"}, outputs=["report-Letter.pdf"])
+    (tmp_path / "mine.pdf").write_bytes(b"%PDF the user's own\n")
+    (out / "report-A4.pdf").symlink_to(tmp_path / "mine.pdf")
+    with claim(out, out, settings={"command": "report"}, outputs=["report.html"]) as run:
+        run.made = {"report-A4.pdf"}  # as if upliftlab had listed it
+        assert not run.remove_own("report-A4.pdf")
+    assert (out / "report-A4.pdf").is_symlink() and (tmp_path / "mine.pdf").exists()

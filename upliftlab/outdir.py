@@ -227,15 +227,22 @@ class Claim:
         """Remove the file ``name`` (in the folder) if an earlier run of upliftlab made it
         there and this run has not written it: an output of that run this one does not make
         again (a report's PDF on a paper not asked for now). A file upliftlab did not make is
-        left as it is. True if a file was removed."""
+        left as it is, and so is anything but a regular file (a link, a folder). Once removed,
+        the name is no longer upliftlab's here: the record of the files being written forgets
+        it, so that a file the user puts there later is theirs. True if a file was removed."""
         target = self.path / name
         inside = Path(os.path.realpath(target.parent)).is_relative_to(self.path.resolve())
         if not inside or name in self.written or name not in self._made_before():
             return False
         try:
+            if not stat.S_ISREG(os.lstat(target).st_mode):
+                return False
             target.unlink()
-        except FileNotFoundError:
+        except OSError:  # gone already, or not ours to remove after all: left as it is
             return False
+        self.made.discard(name)
+        if self.writing and (self.outputs or self.guard):
+            self._record_writing()
         return True
 
     def release(self) -> None:

@@ -438,7 +438,9 @@ def write_whole(name, write):
     a temporary file first, moved to its name once written and flushed to the disk (a full disk
     leaves no half of it, and no temporary file)."""
     path = os.path.join(HERE, name)
-    part = f"{path}.{os.getpid()}.part"
+    # named as upliftlab's own temporaries (.<name>.upliftlab-<pid>-<tag>.part): one that a
+    # killed run leaves is removed by the next run through upliftlab
+    part = os.path.join(HERE, f".{name}.upliftlab-{os.getpid()}-opensees.part")
     try:
         with open(part, "w") as f:
             write(f)
@@ -456,6 +458,9 @@ def write_whole(name, write):
 def write_outputs(observer, status, runtime, setup, steps):
     """opensees_histories.csv and opensees_summary.json beside this script (the summary last:
     it says the run is complete)."""
+    summary_path = os.path.join(HERE, "opensees_summary.json")
+    if os.path.exists(summary_path):  # an earlier run's: never beside this run's histories
+        os.remove(summary_path)
     names = "time,u,theta,V,left_spring_displacement,base_shear"
     header = (f"{TITLE}: OpenSees histories; units {UNITS}; theta as upliftlab's; "
               "left_spring_displacement is the compression from rest")

@@ -24,6 +24,7 @@ import numpy as np
 
 from ...checks import InputError
 from ...log import logger
+from ...paths import remove_stale_temporaries
 from ...workers import dying_with_this_process
 
 __all__ = ["RUN_OUTPUTS", "OPENSEES_EXTRA", "OpenSeesRun", "OpenSeesError", "opensees_available",
@@ -99,6 +100,8 @@ def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True
     folder = script.parent
     outputs = RUN_OUTPUTS
     before = {name: _stamp(folder / name) for name in outputs}  # never read a previous run's
+    for name in outputs:  # the temporaries of a run that was killed while it wrote them
+        remove_stale_temporaries(folder / name)
     start = time.perf_counter()
     child = subprocess.Popen(dying_with_this_process([sys.executable, script.name]),
                              cwd=folder, env=_environment(), stdout=subprocess.PIPE,
@@ -109,11 +112,11 @@ def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True
     try:
         child.wait(timeout=timeout)
     except subprocess.TimeoutExpired:
-        _end(child)
+        _end(child, folder)
         raise OpenSeesError(f"OpenSees run of {script} timed out after {timeout:g} s "
                             "(--timeout)") from None
     except BaseException:  # an interruption (Ctrl-C, SIGTERM): the run ends with this one
-        _end(child)
+        _end(child, folder)
         raise
     relay.join(timeout=5)
     child.stdout.close()
@@ -154,10 +157,13 @@ def _no_space(tail) -> OSError | None:
     return None
 
 
-def _end(child: subprocess.Popen) -> None:
-    """End the OpenSees run ``child`` now and reap it."""
+def _end(child: subprocess.Popen, folder: Path) -> None:
+    """End the OpenSees run ``child`` now, reap it, and remove the temporary file it was
+    writing, if any."""
     child.kill()
     child.wait()
+    for name in RUN_OUTPUTS:
+        remove_stale_temporaries(folder / name)
 
 
 def _stamp(path: Path) -> tuple[int, int, int] | None:

@@ -321,11 +321,11 @@ def _check_papers(papers) -> tuple[str, ...]:
     paper not in :data:`.printing.PAPERS`, or for any paper when no browser can print."""
     from .printing import PAPERS, browser, need_browser
 
-    if isinstance(papers, str) or not isinstance(papers, Sequence):
+    if isinstance(papers, (str, bytes)) or not isinstance(papers, Sequence):
         raise InputError(f"--pdf = {papers!r}: expected a list of papers "
                          f"({', '.join(PAPERS)})")
     for paper in papers:
-        if paper not in PAPERS:
+        if not isinstance(paper, str) or paper not in PAPERS:
             raise InputError(f"--pdf = {paper!r}: expected one of {', '.join(PAPERS)}")
     if papers and browser() is None:
         need_browser()

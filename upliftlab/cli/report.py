@@ -32,7 +32,8 @@ def add_report(sub) -> None:
                     help="refuse a study whose continuum runs are estimated above this many "
                          "seconds of one worker (default 3600; the Winkler map's kept runs "
                          "cost nothing)")
-    rp.add_argument("--pdf", nargs="+", metavar="PAPER", choices=("A4", "Letter"),
+    rp.add_argument("--pdf", nargs="+", action="extend", metavar="PAPER",
+                    choices=("A4", "Letter"),
                     help="also print the report to PDF on A4 and/or Letter (headless Chromium)")
 
 
