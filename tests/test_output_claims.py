@@ -33,13 +33,17 @@ class _Result:
     study: object = None
 
 
-def _stand_in(monkeypatch, computed: list, fail_after: str | None = None):
-    """``upliftlab study fixed_vs_uplift`` runs a stand-in that counts its computations in
-    ``computed`` and writes :data:`WRITTEN` (stopping with an error after ``fail_after``)."""
+def _stand_in(monkeypatch, computed: list, fail_after: str | None = None,
+              definition=None):
+    """``upliftlab study fixed_vs_uplift`` (or ``definition``'s study, with its own options)
+    runs a stand-in that counts its computations in ``computed`` and writes :data:`WRITTEN`
+    (stopping with an error after ``fail_after``)."""
     from upliftlab.comparisons.framework.study import StudyResult, write_summary
     from upliftlab.comparisons.studies import registry
     from upliftlab.comparisons.studies.fixed_vs_uplift import DEFINITION
     from upliftlab.results import write_text
+
+    definition = DEFINITION if definition is None else definition
 
     def compute(scene, context):
         computed.append(context.out)
@@ -53,7 +57,7 @@ def _stand_in(monkeypatch, computed: list, fail_after: str | None = None):
         return StudyResult("fixed_vs_uplift", context.fast, context.out, files, "", {"n": 1},
                            {}, 0.0)
 
-    study = replace(DEFINITION, compute=compute, write=write,
+    study = replace(definition, compute=compute, write=write, context_from=None,
                     describe=lambda result: (), passed=lambda result: True)
     monkeypatch.setattr(registry, "definition", lambda name: study)
 
@@ -105,6 +109,27 @@ def test_a_study_into_a_folder_of_another_run_needs_force(tmp_path, monkeypatch,
     assert err.count("\n") == 1 and "holds a different run" in err and "--force" in err
     assert len(computed) == 2
     assert _study(out, "--force") == 0 and len(computed) == 3
+
+
+def test_a_studys_own_budget_is_not_a_setting_of_its_run(tmp_path, monkeypatch, capsys):
+    """The map's --budget only refuses a run before it starts (it changes no number): the same
+    map with another budget is the same run, not refused as another (before: exit 2, "holds a
+    different run", so a rerun with a larger budget needed --force). Its grid is a setting."""
+    from upliftlab.comparisons.studies.winkler_map.workflow import DEFINITION
+
+    computed: list = []
+    _stand_in(monkeypatch, computed, definition=DEFINITION)
+    out = tmp_path / "out"
+
+    def run(*extra):
+        return main(["study", "winkler_map", "--no-figures", "--out", str(out), *extra])
+
+    assert run("--budget", "100") == 0
+    assert run("--budget", "200") == 0, capsys.readouterr().err
+    assert run() == 0 and len(computed) == 3
+    capsys.readouterr()
+    assert run("--grid", "soils=clay") == 2
+    assert "holds a different run" in capsys.readouterr().err and len(computed) == 3
 
 
 def test_a_study_stopped_after_its_first_file_leaves_it_known_as_upliftlabs(

@@ -148,23 +148,25 @@ class Claim:
     def _watch(self, target: Path) -> None:
         """A file about to be written in the folder (``target``, its folder resolved): recorded
         as this run's; with :attr:`guard`, refused if a file upliftlab did not make is there."""
-        if not self.watching or self.root is None:
+        if not self.watching:  # the watcher is registered with the root, in _lock
             return
         name = str(target.relative_to(self.root))
         if name in (MARKER, WRITING, LOCK) or name in self.written:
             return
         if self.guard:
-            if self.made is None:
-                self.made = _made_here(self.path)
-            if os.path.lexists(target) and name not in self.made:
-                raise InputError(f"output {str(target)!r}: a file upliftlab did not make is "
-                                 "at this output's name; move it away (or remove it), then run "
-                                 "again (--force replaces only upliftlab's own files)")
+            _refuse_a_users_file(target, name, self._made_before())
             if not self.writing:
                 self.start_writing()
         self.written.add(name)
         if self.guard:
             self._record_writing()
+
+    def _made_before(self) -> set[str]:
+        """The files upliftlab made in the folder before this run (:func:`_made_here`), read
+        once: this run's own records of its writing must not add to them."""
+        if self.made is None:
+            self.made = _made_here(self.path)
+        return self.made
 
     def _record_writing(self) -> None:
         """Write :data:`WRITING`: the files upliftlab made here, declared and written."""
@@ -177,8 +179,7 @@ class Claim:
         """The first file is about to be written: the folder no longer holds a complete run.
         The declared outputs (and the files upliftlab made here before) are recorded first
         (:data:`WRITING`), so that an interrupted run's files are still known as upliftlab's."""
-        if self.made is None:
-            self.made = _made_here(self.path)
+        self._made_before()
         if self.outputs or self.guard:
             self._record_writing()
         self.writing = True
@@ -213,9 +214,7 @@ class Claim:
     def _own_names(self, files) -> set[str]:
         """The names, in the folder, of those of ``files`` upliftlab made there: declared,
         written by this run, or made by an earlier one (a user's file is never listed)."""
-        if self.made is None:
-            self.made = _made_here(self.path)
-        own = self.made | set(self.outputs) | self.written
+        own = self._made_before() | set(self.outputs) | self.written
         folder = self.path.resolve()
         names = set()
         for file in files:
@@ -223,6 +222,28 @@ class Claim:
             if where.is_relative_to(folder) and str(where.relative_to(folder)) in own:
                 names.add(str(where.relative_to(folder)))
         return names
+
+    def remove_own(self, name: str) -> bool:
+        """Remove the file ``name`` (in the folder) if an earlier run of upliftlab made it
+        there and this run has not written it: an output of that run this one does not make
+        again (a report's PDF on a paper not asked for now). A file upliftlab did not make is
+        left as it is, and so is anything but a regular file (a link, a folder). Once removed,
+        the name is no longer upliftlab's here: the record of the files being written forgets
+        it, so that a file the user puts there later is theirs. True if a file was removed."""
+        target = self.path / name
+        inside = Path(os.path.realpath(target.parent)).is_relative_to(self.path.resolve())
+        if not inside or name in self.written or name not in self._made_before():
+            return False
+        try:
+            if not stat.S_ISREG(os.lstat(target).st_mode):
+                return False
+            target.unlink()
+        except OSError:  # gone already, or not ours to remove after all: left as it is
+            return False
+        self.made.discard(name)
+        if self.writing and (self.outputs or self.guard):
+            self._record_writing()
+        return True
 
     def release(self) -> None:
         if self.locked:
@@ -457,8 +478,13 @@ def check_outputs(held: Claim) -> None:
     ``force`` or not."""
     made = _made_here(held.path) if held.outputs else set()
     for name in held.outputs:
-        target = check_target(check_output_name(held.path / name))
-        if os.path.lexists(target) and name not in made:
-            raise InputError(f"output {str(target)!r}: a file upliftlab did not make is at "
-                             "this output's name; move it away (or remove it), then run "
-                             "again (--force replaces only upliftlab's own files)")
+        _refuse_a_users_file(check_target(check_output_name(held.path / name)), name, made)
+
+
+def _refuse_a_users_file(target: Path, name: str, made: set[str]) -> None:
+    """Refuse ``target`` (``name`` in its folder) if a file is there that upliftlab did not
+    make (not in ``made``): it is the user's, and never replaced, ``force`` or not."""
+    if os.path.lexists(target) and name not in made:
+        raise InputError(f"output {str(target)!r}: a file upliftlab did not make is at this "
+                         "output's name; move it away (or remove it), then run again (--force "
+                         "replaces only upliftlab's own files)")

@@ -42,7 +42,7 @@ from .paths import remove_live_temporaries
 
 __all__ = ["SINGLE_THREAD_ENVIRONMENT", "PARENT_POLL", "TERMINATE_GRACE",
            "inherited_environment", "signals_deferred", "process_pool", "watch_parent",
-           "single_threaded", "in_child"]
+           "single_threaded", "in_child", "dying_with_this_process"]
 
 #: One thread for OpenMP, MKL, OpenBLAS and numba.
 SINGLE_THREAD_ENVIRONMENT = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
@@ -282,6 +282,44 @@ def _child(parent: int, write: int, work: Callable, args, kwargs) -> None:
             sys.stdout.flush()
             sys.stderr.flush()
         os._exit(code)
+
+
+#: A program that runs another in its own place (``exec``) after asking Linux to end it
+#: (SIGKILL) when the process that started it dies: argv[1] that process's id, argv[2:] the
+#: command. The parent-death signal survives the exec; a parent already gone ends it at once.
+#: A program that cannot be run ends it with one line and exit 127, as a shell's does.
+_DIES_WITH_PARENT = """import ctypes, os, signal, sys
+try:
+    ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)
+except (OSError, AttributeError):
+    pass
+if os.getppid() != int(sys.argv[1]):
+    os._exit(1)
+try:
+    os.execvp(sys.argv[2], sys.argv[2:])
+except OSError as exc:
+    print(f"cannot run {sys.argv[2]!r}: {exc.strerror}", file=sys.stderr)
+    os._exit(127)
+"""
+
+
+def dying_with_this_process(command) -> list[str]:
+    """``command`` (a program and its arguments) as a command that runs it, in its own place,
+    so that it ends when this process dies, also by SIGKILL, which nothing here can catch (a
+    program upliftlab starts, OpenSees or a browser, must not outlive it). Linux's parent-death
+    signal, set by a few fixed lines of Python before they execute ``command`` (which reaches
+    them only as arguments, never as code). It follows the thread that starts the program: start
+    it from the thread that waits for it; Linux clears it when a set-user-id program is executed
+    (a browser started through one is then not covered). Elsewhere than Linux: ``command`` as it
+    is, and a killed upliftlab does not end it."""
+    import sys
+
+    command = [str(part) for part in command]
+    if not sys.platform.startswith("linux"):
+        return command
+    # -I: the folder it starts in (the user's) is not on its path, nor PYTHON* variables
+    # read: no module of theirs named ctypes or signal runs in its place
+    return [sys.executable, "-I", "-c", _DIES_WITH_PARENT, str(os.getpid()), *command]
 
 
 def _die_with(parent: int) -> None:

@@ -9,11 +9,13 @@ no number and no text of the scene, only the model's code. Run it with ``python 
 prints the scene's modelling notes (how each part compares with upliftlab's reduced model),
 runs gravity and the motion, writes ``opensees_histories.csv`` (time, u, theta, V, the
 leftmost spring's compression from rest, base shear) and ``opensees_summary.json`` (the peaks)
-beside itself, and prints the summary.
+beside itself, each whole or not at all, and prints the summary. Exit 0 when the run completed,
+1 when it did not, 3 (one line naming the file) when its results found no room on the disk.
 
 2D, three DOFs per node, in the scene's consistent units (``model.json``: ``units``, ``g``).
 """
 
+import errno
 import json
 import math
 import os
@@ -425,17 +427,52 @@ class Observer:
         self.rows.append((t, u, th, v, eps - self.rest[5], shear))
 
 
+#: The errors of a write that found no room (a full disk, a quota, a file-size limit), and
+#: the exit code that says so (as upliftlab's own: 3), after one line naming the file.
+NO_SPACE = (errno.ENOSPC, errno.EDQUOT, errno.EFBIG)
+NO_SPACE_EXIT = 3
+
+
+def write_whole(name, write):
+    """Write the file ``name`` beside this script with ``write(file)``, whole or not at all: into
+    a temporary file first, moved to its name once written and flushed to the disk (a full disk
+    leaves no half of it, and no temporary file)."""
+    path = os.path.join(HERE, name)
+    # named as upliftlab's own temporaries (.<name>.upliftlab-<pid>-<tag>.part): one that a
+    # killed run leaves is removed by the next run through upliftlab
+    part = os.path.join(HERE, f".{name}.upliftlab-{os.getpid()}-opensees.part")
+    try:
+        with open(part, "w") as f:
+            write(f)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(part, path)
+    except BaseException as exc:
+        if os.path.exists(part):
+            os.remove(part)
+        if isinstance(exc, OSError) and exc.filename is None:  # a write names no file
+            raise OSError(exc.errno, exc.strerror, path) from None
+        raise
+
+
 def write_outputs(observer, status, runtime, setup, steps):
-    """opensees_histories.csv and opensees_summary.json beside this script."""
+    """opensees_histories.csv and opensees_summary.json beside this script (the summary last:
+    it says the run is complete)."""
+    summary_path = os.path.join(HERE, "opensees_summary.json")
+    if os.path.exists(summary_path):  # an earlier run's: never beside this run's histories
+        os.remove(summary_path)
     names = "time,u,theta,V,left_spring_displacement,base_shear"
     header = (f"{TITLE}: OpenSees histories; units {UNITS}; theta as upliftlab's; "
               "left_spring_displacement is the compression from rest")
-    with open(os.path.join(HERE, "opensees_histories.csv"), "w") as f:
+
+    def histories(f):
         # every line of the header a comment, a title's line breaks included (as upliftlab's
         # own CSV): no line of the title can become a row of numbers
         f.write("".join(f"# {line}\n" for line in header.splitlines()) + names + "\n")
         for row in observer.rows:
             f.write(",".join(f"{value:.10g}" for value in row) + "\n")
+
+    write_whole("opensees_histories.csv", histories)
     pk, last = observer.peak, observer.rows[-1]
     summary = {"scene": SCENE, "verdict": status, "integrator": "opensees newmark",
                "dt": DT, "units": UNITS, "steps": steps, "runtime_s": runtime,
@@ -450,8 +487,7 @@ def write_outputs(observer, status, runtime, setup, steps):
         summary["verdict"] = f"failed: non-finite {', '.join(bad)}"
         for key in bad:
             summary[key] = None
-    with open(os.path.join(HERE, "opensees_summary.json"), "w") as f:
-        json.dump(summary, f, indent=1)
+    write_whole("opensees_summary.json", lambda f: json.dump(summary, f, indent=1))
     return summary
 
 
@@ -503,7 +539,14 @@ def main():
             print(f"opensees: t = {n * DT:.3f}/{DURATION:g} s, {elapsed:.1f} s elapsed, "
                   f"ETA {elapsed * (steps - n) / n:.0f} s", file=sys.stderr, flush=True)
     runtime = time.perf_counter() - start
-    summary = write_outputs(observer, status, runtime, setup, steps)
+    try:
+        summary = write_outputs(observer, status, runtime, setup, steps)
+    except OSError as exc:
+        if exc.errno not in NO_SPACE:
+            raise
+        print(f"opensees: no space left on device writing {exc.filename or HERE} "
+              f"(errno {exc.errno}: {exc.strerror})", file=sys.stderr, flush=True)
+        return NO_SPACE_EXIT
     ops.wipe()
     print(json.dumps(summary))
     return 0 if summary["verdict"] == "completed" else 1

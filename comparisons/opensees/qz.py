@@ -38,9 +38,9 @@ import numpy as np
 
 from ...checks import InputError
 
-__all__ = ["QzSimple2Type", "QZSIMPLE2_TYPES", "QzSimple2Spring", "qzsimple2_springs", "flexibility",
-           "qzsimple2_compression", "qzsimple2_force", "NEAR_STIFFNESS", "CLOSED_STIFFNESS",
-           "SUCTION_CAP"]
+__all__ = ["QzSimple2Type", "QZSIMPLE2_TYPES", "QzSimple2Spring", "qzsimple2_springs",
+           "flexibility", "qzsimple2_compression", "qzsimple2_force", "NEAR_STIFFNESS",
+           "CLOSED_STIFFNESS", "SUCTION_CAP"]
 
 
 @dataclass(frozen=True)

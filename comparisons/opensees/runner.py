@@ -11,6 +11,7 @@ import csv
 import importlib.util
 import json
 import os
+import re
 import subprocess
 import sys
 import threading
@@ -23,6 +24,8 @@ import numpy as np
 
 from ...checks import InputError
 from ...log import logger
+from ...paths import remove_stale_temporaries
+from ...workers import dying_with_this_process
 
 __all__ = ["RUN_OUTPUTS", "OPENSEES_EXTRA", "OpenSeesRun", "OpenSeesError", "opensees_available",
            "require_opensees", "run_script"]
@@ -58,8 +61,9 @@ def opensees_available() -> bool:
     if importlib.util.find_spec("openseespy") is None:
         return False
     try:
-        probe = subprocess.run([sys.executable, "-c", _PROBE], capture_output=True, text=True,
-                               timeout=120, env=_environment())
+        probe = subprocess.run(dying_with_this_process([sys.executable, "-c", _PROBE]),
+                               capture_output=True, text=True, timeout=120,
+                               env=_environment())
     except subprocess.TimeoutExpired:
         return False
     return probe.returncode == 0
@@ -96,32 +100,70 @@ def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True
     folder = script.parent
     outputs = RUN_OUTPUTS
     before = {name: _stamp(folder / name) for name in outputs}  # never read a previous run's
+    for name in outputs:  # the temporaries of a run that was killed while it wrote them
+        remove_stale_temporaries(folder / name)
     start = time.perf_counter()
-    child = subprocess.Popen([sys.executable, script.name], cwd=folder, env=_environment(),
-                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    child = subprocess.Popen(dying_with_this_process([sys.executable, script.name]),
+                             cwd=folder, env=_environment(), stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True)
     tail: deque = deque(maxlen=20)
     relay = threading.Thread(target=_relay, args=(child.stderr, tail, echo), daemon=True)
     relay.start()
     try:
         child.wait(timeout=timeout)
     except subprocess.TimeoutExpired:
-        child.kill()
-        child.wait()
+        _end(child, folder)
         raise OpenSeesError(f"OpenSees run of {script} timed out after {timeout:g} s "
                             "(--timeout)") from None
+    except BaseException:  # an interruption (Ctrl-C, SIGTERM): the run ends with this one
+        _end(child, folder)
+        raise
     relay.join(timeout=5)
     child.stdout.close()
     wall = time.perf_counter() - start
     summary_path = folder / RUN_OUTPUTS[0]
+    no_space = _no_space(tail) if child.returncode == NO_SPACE_EXIT else None
+    if no_space is not None:
+        raise no_space
     if any(_stamp(folder / name) in (None, before[name]) for name in outputs):
         last = next((line for line in reversed(tail) if line.strip()), "no message")
         raise OpenSeesError(f"OpenSees run of {script} exited with code {child.returncode} "
                             f"and did not write both its outputs: {last[:300]}")
-    summary = json.loads(summary_path.read_text())
+    try:
+        summary = json.loads(summary_path.read_text())
+    except (OSError, ValueError) as exc:
+        raise OpenSeesError(f"OpenSees run of {script}: its summary {summary_path.name} cannot "
+                            f"be read ({exc})") from None
     if child.returncode != 0 or summary.get("verdict") != "completed":
         raise OpenSeesError(f"OpenSees run of {script}: {summary.get('verdict')} "
                             f"(exit code {child.returncode})")
     return OpenSeesRun(summary, read_histories(folder / RUN_OUTPUTS[1]), wall)
+
+
+#: The exit code of the script whose results found no room on the disk (:mod:`.model_script`).
+NO_SPACE_EXIT = 3
+_NO_SPACE_LINE = re.compile(r"^opensees: no space left on device writing (.*) \(errno (\d+): ")
+
+
+def _no_space(tail) -> OSError | None:
+    """The OSError of a run whose results found no room, its errno and file from the script's
+    line that says so (the command's own line for a full disk follows, exit 3); None if no
+    line of the run's last says so (a script that exits 3 for another reason)."""
+    for line in reversed(tail):
+        found = _NO_SPACE_LINE.match(line)
+        if found:
+            code = int(found.group(2))
+            return OSError(code, os.strerror(code), found.group(1))
+    return None
+
+
+def _end(child: subprocess.Popen, folder: Path) -> None:
+    """End the OpenSees run ``child`` now, reap it, and remove the temporary file it was
+    writing, if any."""
+    child.kill()
+    child.wait()
+    for name in RUN_OUTPUTS:
+        remove_stale_temporaries(folder / name)
 
 
 def _stamp(path: Path) -> tuple[int, int, int] | None:

@@ -1,11 +1,11 @@
 """One self-contained HTML report of every study: ``upliftlab report [--fast] [--out DIR]``.
 
 The report is a single file, ``<out>/report.html``: plots are embedded as SVG and the rendered
-soil frames as PNG (:mod:`.report_figures`), each figure numbered with a caption computed from
-its data (:mod:`.figure_record`); the style sheets (screen and print) are inline; there are no
-external links or fonts, and one inline script, the uplift animation's frame slider
-(:mod:`.report_animation`), so it can be mailed or archived as it is and opened from disk
-offline. :mod:`.report_print` prints it to PDF on A4 or Letter. Beside it ``report.json``
+soil frames as PNG (:mod:`.figures`), each figure numbered with a caption computed from its
+data (:mod:`..framework.figure_record`); the style sheets (screen and print) are inline; there
+are no external links or fonts, and one inline script, the uplift animation's frame slider
+(:mod:`.animation`), so it can be mailed or archived as it is and opened from disk
+offline. :mod:`.printing` prints it to PDF on A4 or Letter. Beside it ``report.json``
 records what each section did.
 
 Sections, in order: the verification anchors (measured error, tolerance, pass/fail) and the
@@ -148,6 +148,8 @@ class Report:
     passed: bool
     ok: bool
     elapsed: float
+    #: The PDFs printed beside the page (:mod:`.printing`), one per paper asked for.
+    pdfs: tuple[Path, ...] = ()
 
     def section(self, name: str) -> Section:
         return next(s for s in self.sections if s.name == name)
@@ -304,20 +306,44 @@ def _failed(name: str, title: str, intro: str, start: float, exc: BaseException)
 
 
 #: The files :func:`build_report` writes in its folder (its studies write under ``studies/``
-#: and ``store/``, each in a folder of its own).
+#: and ``store/``, each in a folder of its own), and the PDF of each paper asked for
+#: (:func:`pdf_name`).
 REPORT_NAMES = ("report.html", "report.json")
+
+
+def pdf_name(paper: str) -> str:
+    """The name of the report's PDF on ``paper``, beside the page."""
+    return f"report-{paper}.pdf"
+
+
+def _check_papers(papers) -> tuple[str, ...]:
+    """The papers to print on, each once, in their order; InputError before any work for a
+    paper not in :data:`.printing.PAPERS`, or for any paper when no browser can print."""
+    from .printing import PAPERS, browser, need_browser
+
+    if isinstance(papers, (str, bytes)) or not isinstance(papers, Sequence):
+        raise InputError(f"--pdf = {papers!r}: expected a list of papers "
+                         f"({', '.join(PAPERS)})")
+    for paper in papers:
+        if not isinstance(paper, str) or paper not in PAPERS:
+            raise InputError(f"--pdf = {paper!r}: expected one of {', '.join(PAPERS)}")
+    if papers and browser() is None:
+        need_browser()
+    return tuple(dict.fromkeys(papers))
 
 
 def build_report(fast: bool = False, *, out: str | Path | None = None,
                  scheduler: str | None = None, studies: Sequence[str | Study] = STUDIES,
                  progress=None, force: bool = False,
-                 budget: float | None = REPORT_BUDGET) -> Report:
+                 budget: float | None = REPORT_BUDGET, papers: Sequence[str] = ()) -> Report:
     """Run (or read from the stores) every study of ``studies`` (module names under
     ``upliftlab.comparisons``, or :class:`.protocol.Study` records; default the registry's)
-    and write ``<out>/report.html`` and ``report.json``. ``budget`` (s of one worker, None: no
-    limit) refuses a study whose estimated cost exceeds it (its section fails with the
-    estimate). Options and the output folder are checked before anything runs
-    (:class:`InputError`)."""
+    and write ``<out>/report.html`` and ``report.json``, then print the page to a PDF on each
+    of ``papers`` (A4, Letter: :func:`pdf_name`). ``budget`` (s of one worker, None: no limit)
+    refuses a study whose estimated cost exceeds it (its section fails with the estimate).
+    Options and the output folder (a PDF of the user's at a PDF's name included) are checked
+    before anything runs (:class:`InputError`). A PDF upliftlab printed here before on a paper
+    not asked for now is removed: it shows the report this one replaces."""
     from ...outdir import claim
 
     start = time.perf_counter()
@@ -326,14 +352,15 @@ def build_report(fast: bool = False, *, out: str | Path | None = None,
         scheduler = checks.scheduler_address("--scheduler", scheduler)
     if budget is not None:
         checks.positive("--budget", budget)
+    papers = _check_papers(papers)
     default = Path("results") / (REPORT + ("-fast" if fast else ""))
-    with claim(out, default, settings={"command": "report", "fast": fast},
-               force=force, outputs=REPORT_NAMES) as folder:
-        report = _build(fast, folder, scheduler, studies, progress, start, budget)
+    with claim(out, default, settings={"command": "report", "fast": fast}, force=force,
+               outputs=REPORT_NAMES + tuple(pdf_name(p) for p in papers)) as folder:
+        report = _build(fast, folder, scheduler, studies, progress, start, budget, papers)
     return report
 
 
-def _build(fast, folder, scheduler, studies, progress, start, budget) -> Report:
+def _build(fast, folder, scheduler, studies, progress, start, budget, papers) -> Report:
     out = folder.path
     os.environ.setdefault("MPLBACKEND", "Agg")
     say = progress or (lambda message: None)
@@ -362,10 +389,28 @@ def _build(fast, folder, scheduler, studies, progress, start, budget) -> Report:
                                     "error": s.error.split("\n", 1)[0]}
                      for s in sections},
         "provenance": provenance(study=REPORT, fast=fast)}, indent=2, default=str) + "\n")
+    pdfs = tuple(_print(path, out / pdf_name(paper), paper, say) for paper in papers)
+    _remove_stale_pdfs(folder, papers)
     ok = passed and not failed
     if ok:
-        folder.complete([path, summary])
-    return Report(path, sections, passed, ok, elapsed)
+        folder.complete([path, summary, *pdfs])
+    return Report(path, sections, passed, ok, elapsed, pdfs)
+
+
+def _print(page: Path, pdf: Path, paper: str, say) -> Path:
+    from .printing import print_pdf
+
+    say(f"printing {pdf.name}")
+    return print_pdf(page, pdf, paper)
+
+
+def _remove_stale_pdfs(folder, papers) -> None:
+    """Remove the PDFs upliftlab printed in ``folder`` before on a paper not in ``papers``."""
+    from .printing import PAPERS
+
+    for paper in PAPERS:
+        if paper not in papers:
+            folder.remove_own(pdf_name(paper))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -20,9 +20,10 @@ import tempfile
 from pathlib import Path
 
 from ...checks import InputError
-from ...paths import check_target
+from ...results import write_bytes
+from ...workers import dying_with_this_process
 
-__all__ = ["PAPERS", "browser", "with_page_size", "print_pdf"]
+__all__ = ["PAPERS", "browser", "need_browser", "with_page_size", "print_pdf"]
 
 #: CSS page size and (width, height) in PostScript points of each paper.
 PAPERS = {"A4": ("A4", (595.28, 841.89)), "Letter": ("letter", (612.0, 792.0))}
@@ -36,6 +37,12 @@ def browser() -> str | None:
         if found:
             return found
     return None
+
+
+def need_browser():
+    """Raise the one-line InputError that says how to install a browser that can print."""
+    raise InputError("printing needs Chromium: apt-get install chromium (Debian/Ubuntu; "
+                     "chromium-browser or google-chrome on the PATH also do)")
 
 
 def with_page_size(page: str, paper: str) -> str:
@@ -57,8 +64,7 @@ def print_pdf(html_path: str | os.PathLike, pdf_path: str | os.PathLike, paper: 
     html_path, pdf_path = Path(html_path), Path(pdf_path)
     exe = executable or browser()
     if exe is None:
-        raise InputError("printing needs Chromium: apt-get install chromium (or set the "
-                         "executable)")
+        need_browser()
     page = with_page_size(html_path.read_text(encoding="utf-8"), paper)
     pdf_path.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(prefix="upliftlab-print-") as tmp:
@@ -70,10 +76,12 @@ def print_pdf(html_path: str | os.PathLike, pdf_path: str | os.PathLike, paper: 
                    "--disable-sync", "--no-first-run", "--disable-extensions",
                    f"--user-data-dir={Path(tmp) / 'profile'}", "--no-pdf-header-footer",
                    f"--print-to-pdf={out}", copy.as_uri()]
-        done = subprocess.run(command, capture_output=True, text=True, timeout=timeout)
+        done = subprocess.run(dying_with_this_process(command), capture_output=True,
+                              text=True, timeout=timeout)
         if done.returncode != 0 or not out.is_file() or out.stat().st_size == 0:
             raise RuntimeError(f"{Path(exe).name} could not print {html_path.name} "
                                f"(exit {done.returncode}): {done.stderr.strip()[-500:]}")
-        check_target(pdf_path)  # a regular file or none, inside the output folder
-        shutil.move(str(out), pdf_path)
+        # in place at once or not at all (a full disk leaves no part of a PDF), a regular file
+        # or none there before, inside the output folder (write_bytes' check_target)
+        write_bytes(pdf_path, out.read_bytes())
     return pdf_path

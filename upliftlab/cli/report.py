@@ -1,5 +1,8 @@
-"""``upliftlab report [--fast] [--out DIR] [--scheduler ADDR] [--force] [--budget SECONDS]``:
-one self-contained HTML report of every study (:mod:`upliftlab.comparisons.report.build`).
+"""``upliftlab report [--fast] [--out DIR] [--scheduler ADDR] [--force] [--budget SECONDS]
+[--pdf PAPER ...]``: one self-contained HTML report of every study
+(:mod:`upliftlab.comparisons.report.build`), and its PDF on each paper asked for
+(``report-A4.pdf``, ``report-Letter.pdf``: outputs of the same run, so a file of the user's at
+their name is refused before any section runs).
 
 Exit 0 when every section was built and the verification passed, 1 when a section failed
 (its error is in the report and on stderr), 2 for bad input before any section ran.
@@ -29,7 +32,8 @@ def add_report(sub) -> None:
                     help="refuse a study whose continuum runs are estimated above this many "
                          "seconds of one worker (default 3600; the Winkler map's kept runs "
                          "cost nothing)")
-    rp.add_argument("--pdf", nargs="+", metavar="PAPER", choices=("A4", "Letter"),
+    rp.add_argument("--pdf", nargs="+", action="extend", metavar="PAPER",
+                    choices=("A4", "Letter"),
                     help="also print the report to PDF on A4 and/or Letter (headless Chromium)")
 
 
@@ -46,7 +50,8 @@ def report_command(args) -> int:
 
     budget = number("--budget", args.budget, high=1e9)
     report = build_report(args.fast, out=args.out, scheduler=args.scheduler, progress=say,
-                          force=args.force, budget=REPORT_BUDGET if budget is None else budget)
+                          force=args.force, budget=REPORT_BUDGET if budget is None else budget,
+                          papers=args.pdf or ())
     failed = [s for s in report.sections if s.status != "ok"]
     for s in failed:
         say(f"section {s.name}: {s.status}: {s.error.split(chr(10), 1)[0]}")
@@ -54,12 +59,6 @@ def report_command(args) -> int:
     sections = (f"; {len(failed)} of {len(report.sections)} sections FAILED "
                 f"({', '.join(s.name for s in failed)})" if failed else "")
     print(f"upliftlab report: wrote {report.path} in {report.elapsed:.1f} s; {verdict}{sections}")
-    if args.pdf:
-        from ..comparisons.report.printing import print_pdf
-        from ..outdir import claim
-
-        with claim(report.path.parent, report.path.parent, settings={"command": "report --pdf"},
-                   force=True) as folder:
-            for paper in args.pdf:
-                say(f"wrote {print_pdf(report.path, folder.path / f'report-{paper}.pdf', paper)}")
+    for pdf in report.pdfs:
+        say(f"wrote {pdf}")
     return EXIT_OK if report.ok else EXIT_FAILED

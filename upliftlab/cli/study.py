@@ -28,8 +28,9 @@ from .exits import EXIT_FAILED, EXIT_OK
 __all__ = ["add_study", "study_command"]
 
 #: Options that say where and how a study runs, not what it computes: a run into the same
-#: folder with other values of these is the same run.
-_NOT_SETTINGS = frozenset({"out", "store", "scheduler", "workers", "force"})
+#: folder with other values of these is the same run. A study's ``budget`` only refuses a run
+#: before it starts, so it is one of them.
+_NOT_SETTINGS = frozenset({"out", "store", "scheduler", "workers", "force", "budget"})
 
 
 def add_study(sub) -> None:
