@@ -1,7 +1,7 @@
 """How long the Winkler map's continuum runs take on a cluster of N workers, from the run
 times its store keeps.
 
-    python benchmarks/map_cluster.py [--store DIR] [--workers 8,32,128] [--slowdown F]
+    python benchmarks/map_cluster.py [--store DIR ...] [--workers 8,32,128] [--slowdown F]
                                      [--out DIR] [--write]
 
 Every continuum run of the map is one task of a Dask sweep (:mod:`upliftlab.comparisons.
@@ -13,8 +13,10 @@ makespan is what is reported, beside that bound. Not counted: starting each work
 process loads the compiled kernels from the on-disk cache in about 4 s,
 ``benchmarks/CONTINUUM_STARTUP.md``, or compiles them in about 50 s when its node has no
 cache), the reduced model's beds (milliseconds per run) and the map's assembly. ``--slowdown``
-scales every run's time (a reference whose runs cost more than the store's: ``--store``
-the half-plane's kept store reads that reference's own times).
+scales every run's time (a reference whose runs cost more than the store's). One section per
+store (``--store``, repeatable; by default both kept stores, the box's
+``benchmarks/winkler_map_store`` and the half-plane's ``benchmarks/winkler_map_halfplane_store``,
+each read for its own reference's run times).
 
 Writes ``MAP_CLUSTER.md`` to ``--out`` (default ``results/bench/map_cluster``); ``--write``
 also rewrites the committed ``benchmarks/MAP_CLUSTER.md``. It runs nothing but reads the store
@@ -34,6 +36,8 @@ from bench_output import HERE, add_output_arguments, output_folder, say, write_t
 
 NAME = "map_cluster"
 #: The map's point functions whose runs are continuum runs (the store's ``function`` names).
+#: The kept stores read by default: the box's and the half-plane's map.
+KEPT_STORES = ("winkler_map_store", "winkler_map_halfplane_store")
 CONTINUUM_FUNCTIONS = ("evaluate_dynamic", "evaluate_energy", "evaluate_static",
                        "evaluate_impedance")
 
@@ -82,7 +86,8 @@ def table(times: dict[str, list[float]], workers: list[int], slowdown: float) ->
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     add_output_arguments(parser, NAME)
-    parser.add_argument("--store", default=str(HERE / "winkler_map_store"))
+    parser.add_argument("--store", action="append", default=None,
+                        help="a map's store (repeatable; default: both kept stores)")
     parser.add_argument("--workers", default="8,32,128")
     parser.add_argument("--slowdown", type=float, default=1.0)
     args = parser.parse_args(argv)
@@ -94,17 +99,24 @@ def main(argv=None) -> int:
         parser.error(f"--workers: {args.workers!r}; valid: 1 to 100000 each")
     if not 0.0 < args.slowdown <= 1000.0:
         parser.error(f"--slowdown: {args.slowdown!r}; valid: (0, 1000]")
-    if not Path(args.store).is_dir():
-        parser.error(f"--store: {args.store!r} is not a folder")
+    stores = args.store or [str(HERE / name) for name in KEPT_STORES]
+    for store in stores:
+        if not Path(store).is_dir():
+            parser.error(f"--store: {store!r} is not a folder")
+    if len({Path(s).resolve() for s in stores}) != len(stores):
+        parser.error(f"--store: {stores!r} names one store twice")
+    sections = []
+    for store in stores:
+        times = run_times(Path(store))
+        if not times:
+            parser.error(f"--store: {store!r} keeps no continuum run of the map")
+        sections.append(f"## `{Path(store).name}`\n\n" + table(times, workers, args.slowdown))
     folder = output_folder(args, NAME)
-    times = run_times(Path(args.store))
-    if not times:
-        parser.error(f"--store: {args.store!r} keeps no continuum run of the map")
     command = " ".join(["python benchmarks/map_cluster.py", *(sys.argv[1:] if argv is None
                                                                else argv)])
     text = (f"# The Winkler map's continuum runs on N workers\n\nFrom the run times kept in "
-            f"the store, {datetime.date.today()}; command `{command}`. What is modelled and "
-            f"what is not: the script's docstring.\n\n" + table(times, workers, args.slowdown))
+            f"each store, {datetime.date.today()}; command `{command}`. What is modelled and "
+            f"what is not: the script's docstring.\n\n" + "\n".join(sections))
     write_text(folder / "MAP_CLUSTER.md", text)
     if args.write:
         write_text(HERE / "MAP_CLUSTER.md", text)

@@ -376,14 +376,18 @@ def test_write_refuses_a_quick_run(tmp_path):
 def test_map_cluster_schedule_and_table(tmp_path):
     """The longest-first list schedule against a hand-worked case (Graham 1969's tight example
     for three machines: 5, 5, 4, 4, 3, 3, 3 gives 11 by LPT, 9 at best), and the table read
-    from the kept store (seconds; nothing is run)."""
+    from both kept stores, one section each (seconds; nothing is run): the box's holds all
+    1,248 of the map's dynamic runs, and each section has its own 8-worker row."""
     import map_cluster
 
     assert map_cluster.lpt_makespan([5, 5, 4, 4, 3, 3, 3], 3) == 11
     assert map_cluster.lpt_makespan([2.0, 1.0, 1.0], 2) == 2.0
     assert map_cluster.main(["--out", str(tmp_path), "--workers", "8"]) == 0
     text = (tmp_path / "MAP_CLUSTER.md").read_text()
-    assert "`evaluate_dynamic`: 1248 runs" in text and "| 8 |" in text
+    box, half_plane = text.split("## `winkler_map_store`")[1].split(
+        "## `winkler_map_halfplane_store`")
+    assert "`evaluate_dynamic`: 1248 runs" in box
+    assert "| 8 |" in box and "| 8 |" in half_plane and "`evaluate_dynamic`: " in half_plane
 
 
 def test_map_references_fast_path(tmp_path):
