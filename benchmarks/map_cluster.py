@@ -33,11 +33,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_output import HERE, add_output_arguments, output_folder, say, write_text  # noqa: E402
+from map_references import STORES as KEPT_STORES  # noqa: E402  (the box's, the half-plane's)
 
 NAME = "map_cluster"
 #: The map's point functions whose runs are continuum runs (the store's ``function`` names).
-#: The kept stores read by default: the box's and the half-plane's map.
-KEPT_STORES = ("winkler_map_store", "winkler_map_halfplane_store")
 CONTINUUM_FUNCTIONS = ("evaluate_dynamic", "evaluate_energy", "evaluate_static",
                        "evaluate_impedance")
 
@@ -99,7 +98,7 @@ def main(argv=None) -> int:
         parser.error(f"--workers: {args.workers!r}; valid: 1 to 100000 each")
     if not 0.0 < args.slowdown <= 1000.0:
         parser.error(f"--slowdown: {args.slowdown!r}; valid: (0, 1000]")
-    stores = args.store or [str(HERE / name) for name in KEPT_STORES]
+    stores = args.store or [str(path) for path in KEPT_STORES.values()]
     for store in stores:
         if not Path(store).is_dir():
             parser.error(f"--store: {store!r} is not a folder")
