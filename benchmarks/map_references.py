@@ -29,7 +29,10 @@ stores lack; the beds are run live, about 0.2 s per point and bed on this machin
 must be one the box's store holds whole (the full map's grid holds every one of its slices):
 the box section runs with a budget of 1 s and is refused otherwise. ``--quick`` is one point
 that both kept stores hold (:data:`QUICK_GRID`: a smoke check of the script, seconds of beds).
-``--write`` rewrites the committed ``benchmarks/MAP_REFERENCES.md``.
+``--beds`` runs only the beds named (both maps; the table names those left out): on the
+half-plane the q–z bed's runs take seconds each (its footing's own mass on the sway tie sets a
+step of microseconds), most of the whole grid's bed time. ``--write`` rewrites the committed
+``benchmarks/MAP_REFERENCES.md``.
 """
 
 from __future__ import annotations
@@ -65,12 +68,21 @@ def shared_beds() -> list[str]:
     return [name for name, entry in BEDS.items() if set(STORES) <= set(entry.references)]
 
 
+def _beds(text: str) -> list[str]:
+    """``--beds``: names of :func:`shared_beds`, comma-separated."""
+    names, known = [n.strip() for n in text.split(",") if n.strip()], shared_beds()
+    unknown = [n for n in names if n not in known]
+    if not names or unknown:
+        raise argparse.ArgumentTypeError(f"{text!r}: valid: names of {', '.join(known)}")
+    return names
+
+
 def run_map(reference: str, grid: list[str], folder: Path, args) -> Path:
     """The map on ``reference`` (its kept store) into ``folder/reference``; its map.nc."""
     out = folder / reference
     command = [sys.executable, "-m", "upliftlab", "study", "winkler_map", "--out", str(out),
                "--store", str(STORES[reference]), "--reference", reference, "--no-figures",
-               "--beds", ",".join(shared_beds())]
+               "--beds", ",".join(args.beds or shared_beds())]
     for assignment in grid:
         command += ["--grid", assignment]
     if args.workers:
@@ -197,8 +209,13 @@ def _holdout_table(c: dict) -> list[str]:
 
 
 def table(c: dict, command: str) -> str:
+    from upliftlab.comparisons.studies.winkler_map.sections import short
+
     v = {r: c["verdicts"][r] for r in REFERENCES}
-    lines = [f"{c['points']} points on each reference; motions: {', '.join(c['motions'])}. "
+    left_out = [short(b) for b in shared_beds() if b not in c["beds"]]
+    lines = [f"Beds: {', '.join(short(b) for b in c['beds'])}"
+             + (f" (left out by --beds: {', '.join(left_out)})" if left_out else "") + ".", "",
+             f"{c['points']} points on each reference; motions: {', '.join(c['motions'])}. "
              f"Runs beyond the small-strain reference (left out): box "
              f"{v['box']['beyond_small_strain']}, half-plane "
              f"{v['half_plane']['beyond_small_strain']}; far fields that yielded: box "
@@ -226,6 +243,9 @@ def main(argv=None) -> int:
     parser.add_argument("--workers", type=int, default=None)
     parser.add_argument("--scheduler", default=None)
     parser.add_argument("--budget", type=float, default=None)
+    parser.add_argument("--beds", type=_beds, default=None, metavar="NAME,...",
+                        help="the beds both maps run (default: every bed that stands on both "
+                             "references, shared_beds())")
     parser.add_argument("--quick", action="store_true",
                         help="one point both kept stores hold (a smoke check; no --write)")
     args = parser.parse_args(argv)

@@ -69,9 +69,23 @@ def netcdf_numbers(path: Path) -> dict:
 
 
 def study_name(folder: Path, summary: dict) -> str:
-    """Which study wrote ``folder``: its summary's provenance, else the folder's name."""
-    study = summary.get("provenance", {}).get("study")
-    return study or folder.name.removesuffix("-fast")
+    """Which study wrote ``folder``: its summary's provenance, else the folder's name; with
+    ``_<reference>`` after it when the study ran on a continuum reference other than the box
+    (``winkler_map --reference half_plane`` -> ``winkler_map_half_plane``), so that the map on
+    each reference keeps its own data file."""
+    provenance = summary.get("provenance", {})
+    study = provenance.get("study") or folder.name.removesuffix("-fast")
+    reference = provenance.get("options", {}).get("reference", "box")
+    return study if reference in ("box", None) else f"{study}_{reference}"
+
+
+def source_command(summary: dict, study: str, fast: bool) -> str:
+    """The command that wrote the data, as far as the summary tells it."""
+    provenance = summary.get("provenance", {})
+    name = provenance.get("study") or study
+    reference = provenance.get("options", {}).get("reference", "box")
+    return (f"upliftlab study {name}" + (" --fast" if fast else "")
+            + (f" --reference {reference}" if reference not in ("box", None) else ""))
 
 
 def collect(folder: Path) -> tuple[str, dict]:
@@ -90,7 +104,7 @@ def collect(folder: Path) -> tuple[str, dict]:
     fast = provenance.get("fast", folder.name.endswith("-fast"))
     data = {
         "study": study,
-        "source": f"upliftlab study {study}" + (" --fast" if fast else ""),
+        "source": source_command(summary, study, fast),
         "fast": bool(fast),
         "created_utc": provenance.get("created_utc", attrs.get("created_utc")),
         "upliftlab_version": provenance.get("upliftlab_version",
