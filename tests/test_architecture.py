@@ -212,3 +212,52 @@ def test_the_package_has_no_path_hack():
     """``upliftlab/__init__.py`` does not add the checkout to its path: the package works as
     installed (editable or not), and nothing else."""
     assert "__path__" not in (ROOT / "upliftlab" / "__init__.py").read_text()
+
+
+def _top_level_names(tree: ast.Module) -> set[str]:
+    """The names a module binds at its top level, in ``if``/``try`` blocks as well."""
+    names, body = set(), list(tree.body)
+    while body:
+        node = body.pop()
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            names.add(node.name)
+        elif isinstance(node, (ast.Import, ast.ImportFrom)):
+            names |= {(a.asname or a.name).split(".")[0] for a in node.names}
+        elif isinstance(node, (ast.Assign, ast.AnnAssign, ast.AugAssign)):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            names |= {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+        elif isinstance(node, (ast.If, ast.Try, ast.With)):
+            body += [*node.body, *getattr(node, "orelse", []), *getattr(node, "finalbody", []),
+                     *[n for h in getattr(node, "handlers", []) for n in h.body]]
+    return names
+
+
+def _declared_public(tree: ast.Module) -> list[str]:
+    """The strings of a module's ``__all__`` (assigned or extended at its top level)."""
+    out = []
+    for node in tree.body:
+        targets = (node.targets if isinstance(node, ast.Assign) else
+                   [node.target] if isinstance(node, (ast.AugAssign, ast.AnnAssign)) else [])
+        if any(isinstance(t, ast.Name) and t.id == "__all__" for t in targets):
+            out += [n.value for n in ast.walk(node.value)
+                    if isinstance(n, ast.Constant) and isinstance(n.value, str)]
+    return out
+
+
+@pytest.mark.parametrize("module", sorted(MODULES))
+def test_every_public_name_is_defined(module):
+    """Each name in a module's ``__all__`` is bound in it (or is a submodule of its package):
+    a name that is not makes ``from module import *`` fail and the API page name nothing."""
+    path = MODULES[module]
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    bound = _top_level_names(tree)
+    if path.name == "__init__.py":
+        bound |= {p.stem for p in path.parent.glob("*.py")} | {
+            p.name for p in path.parent.iterdir() if (p / "__init__.py").is_file()}
+    undefined = [name for name in _declared_public(tree) if name not in bound]
+    if undefined and "__getattr__" in bound:  # a lazy face (PEP 562): ask it
+        import importlib
+
+        loaded = importlib.import_module(module)
+        undefined = [name for name in undefined if not hasattr(loaded, name)]
+    assert not undefined, f"{module}: __all__ names {undefined}, which it does not define"

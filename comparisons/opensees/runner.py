@@ -26,6 +26,7 @@ from ...checks import InputError
 from ...log import logger
 from ...paths import remove_stale_temporaries
 from ...workers import dying_with_this_process
+from .model_script import NO_SPACE_EXIT  # the script's exit code for a full disk
 
 __all__ = ["RUN_OUTPUTS", "OPENSEES_EXTRA", "OpenSeesRun", "OpenSeesError", "opensees_available",
            "require_opensees", "run_script"]
@@ -140,8 +141,6 @@ def run_script(script: str | Path, *, timeout: float = 3600.0, echo: bool = True
     return OpenSeesRun(summary, read_histories(folder / RUN_OUTPUTS[1]), wall)
 
 
-#: The exit code of the script whose results found no room on the disk (:mod:`.model_script`).
-NO_SPACE_EXIT = 3
 _NO_SPACE_LINE = re.compile(r"^opensees: no space left on device writing (.*) \(errno (\d+): ")
 
 

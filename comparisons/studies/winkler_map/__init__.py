@@ -74,8 +74,8 @@ __all__ = ["STUDY", "SOILS", "MEASURES", "Grid", "Options", "FULL_GRID", "FAST_G
            "Share", "Speed",
            "analyse", "cell_passes", "median_over_motions", "key_numbers", "summarise",
            "DEFINITION", "compute",
-           "write", "run", "main", "KEPT_STORE", "FLOOR_FRACTION", "impedance_dofs",
+           "write", "run", "KEPT_STORE", "FLOOR_FRACTION", "impedance_dofs",
            "timed_dynamic_runs", "evaluate_impedance", "impedance_point_of", "soil_impedance",
            "reduced_measures", "continuum_measures", "scales", "story_constants",
-           "pushover_points", "study_motions", "REFERENCES", "handbook_sway", "reference_soil", "reference_continuum",
-           "KEPT_STORES"]
+           "pushover_points", "study_motions", "REFERENCES", "handbook_sway", "reference_soil",
+           "reference_continuum", "KEPT_STORES"]
