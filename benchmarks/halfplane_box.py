@@ -2,7 +2,7 @@
 on the old boundaries (a rigid base) and on the half-plane ones (a compliant base).
 
     python benchmarks/halfplane_box.py [--out DIR] [--write] [--cases a,b,...] [--boxes 10,20]
-                                       [--across 8]
+                                       [--across 8,16]
                                        [--point clay-pulse,clay-record,sand-record]
                                        [--tail SECONDS] [--soil KEY=VALUE ...]
                                        [--continuum KEY=VALUE ...]
@@ -34,7 +34,10 @@ and C_h = ρ V_s B its high-frequency dashpot (Gazetas 1991,
 0.4 s, 4 s). ``clay-record`` / ``sand-record``: the map's point (:mod:`upliftlab.comparisons.
 studies.winkler_map.points`) with the clay scene's N = 171.4 kN/m (FS_v = 3 on the clay's
 Prandtl capacity; more on the sand), h/B = 1.5, T = 0.5 s, under the first ``--record-seconds``
-(default 10) of El Centro at 1.5 a_up (0.167 g), on the map's clay or sand. ``--elastic``: the
+(default 10) of El Centro at 1.5 a_up (0.167 g), on the map's clay or sand;
+``clay-record-light`` / ``sand-record-light``: the same with N × :data:`LIGHT_LOAD` (FS_v 10 on
+the clay), points whose plastic strain stays within the small-strain limit on the map's mesh
+(the heavier ones pass it there: the map leaves them out). ``--elastic``: the
 same points on elastic soil (the uplift stays), which separates the boundaries from the soil's
 yielding. ``--tail``: the motion padded with that many seconds of still ground after it ends
 (free vibration), so that the settlement is read once the rocking has died out (radiation damps
@@ -66,6 +69,7 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
 import argparse  # noqa: E402
+import itertools  # noqa: E402
 import json  # noqa: E402
 import math  # noqa: E402
 import sys  # noqa: E402
@@ -83,7 +87,9 @@ CASES = {"rigid-fixed": ("rigid", "fixed", False, False),
          "compliant-lysmer": ("compliant", "lysmer", True, True),
          "compliant-shear-undamped": ("compliant", "shear", True, False),
          "compliant-lysmer-undamped": ("compliant", "lysmer", True, False)}
-POINTS = ("clay-pulse", "clay-record", "sand-record")
+POINTS = ("clay-pulse", "clay-record", "sand-record", "clay-record-light", "sand-record-light")
+#: N of a ``-light`` point over the clay scene's: FS_v 10 on the clay's Prandtl capacity
+LIGHT_LOAD = 0.3
 #: The map point of a record run: h/B, T (s), intensity (× a_up); N is the clay scene's
 RECORD_POINT = (1.5, 0.5, 1.5)
 TARGETS = {"theta": 0.02, "uplift": 0.02, "residual_settlement": 0.05}
@@ -112,7 +118,8 @@ def point_data(point: str, across: int, record_seconds: float) -> dict:
 
         soil = point.split("-")[0]
         hb, period, intensity = RECORD_POINT
-        data = point_table(data, soil, across, base.structure.vertical_weight, hb, period, base.g)
+        N = base.structure.vertical_weight * (LIGHT_LOAD if point.endswith("-light") else 1.0)
+        data = point_table(data, soil, across, N, hb, period, base.g)
         data["motion"] = motion_table({"type": "record", "_path": str(find_motion(ELCENTRO))},
                                       intensity, 2.0 * data["foundation"]["half_width"],
                                       data["structure"]["height"])
@@ -208,14 +215,14 @@ def tail_mean(result) -> float:
 def table(rows: list[dict]) -> str:
     """The Markdown table of ``rows``: each larger box against the box before it (the
     doubling), each 'input ×' row against the first box, of the same case and point."""
-    head = ("| point | case | box (×B, W or WxD) | peak θ (mrad) | uplift (mm) "
+    head = ("| point | case | across | box (×B, W or WxD) | peak θ (mrad) | uplift (mm) "
             "| residual settlement (mm) "
             "| Δθ | Δuplift | Δsettlement | within targets | mean settlement, last quarter (mm) "
             "| its Δ | largest ε̄p | DOFs | energy error | wall (s) |")
     lines = [head, "|" + "|".join("---" for _ in range(head.count("|") - 1)) + "|"]
     first, before = {}, {}
     for r in rows:
-        key = (r["point"], r["case"])
+        key = (r["point"], r["case"], r["across"])
         ref = first.setdefault(key, r)
         if "input" not in str(r["box"]):  # a box: against the one before it
             ref, before[key] = before.get(key, r), r
@@ -227,7 +234,8 @@ def table(rows: list[dict]) -> str:
             mean = r["settlement_mean"] / ref["settlement_mean"] - 1.0
             d = [f"{100 * ch[m]:+.1f} %" for m in TARGETS] + [
                 "yes" if ok else "no", f"{1e3 * r['settlement_mean']:.2f}", f"{100 * mean:+.1f} %"]
-        lines.append(f"| {r['point']} | {r['case']} | {r['box']} | {1e3 * r['theta']:.3f} | "
+        lines.append(f"| {r['point']} | {r['case']} | {r['across']} | {r['box']} | "
+                     f"{1e3 * r['theta']:.3f} | "
                      f"{1e3 * r['uplift']:.2f} | {1e3 * r['residual_settlement']:.2f} | "
                      + " | ".join(d) + f" | {r['max_plastic_strain']:.3g} | {r['dofs']} | "
                      f"{r['energy']:.3g} | {r['wall']:.0f} |")
@@ -241,7 +249,9 @@ def main(argv=None) -> int:
     parser.add_argument("--points", default="clay-pulse")
     parser.add_argument("--boxes", default="10,20",
                         help="boxes (× B): a width = depth, or WxD (width x depth)")
-    parser.add_argument("--across", type=int, default=8)
+    parser.add_argument("--across", default="8",
+                        help="elements across the footing, comma separated (e.g. 8,16: each "
+                             "mesh its own rows)")
     parser.add_argument("--record-seconds", type=float, default=10.0)
     parser.add_argument("--tail", type=float, default=0.0,
                         help="seconds of still ground after the motion (free vibration)")
@@ -302,22 +312,27 @@ def main(argv=None) -> int:
     for f in scales:
         if not (0.5 <= f <= 2.0):
             parser.error(f"--input-scales: {f:g}; valid: 0.5 to 2")
+    try:
+        meshes = [int(x) for x in args.across.split(",")]
+    except ValueError:
+        meshes = []
+    if not meshes or any(not 2 <= n <= 64 for n in meshes):
+        parser.error(f"--across: {args.across!r}; valid: integers 2 to 64, comma separated")
     folder = output_folder(args, NAME)
     rows = []
-    for p in points:
-        for c in cases:
-            for b, f in [(b, 1.0) for b in boxes] + [(boxes[0], f) for f in scales]:
-                say(f"{NAME}: {p}, {c}, box {b} B, input ×{f:g}, {args.across} across ...")
-                try:
-                    rows.append(run(p, c, b, args.across, args.record_seconds, args.elastic,
-                                    args.tail, soil, f, continuum))
-                except Exception as exc:  # a failed run is reported, the others go on
-                    say(f"{NAME}: {p}, {c}, box {b}: {type(exc).__name__}: {exc}")
-                    continue
-                say(f"{NAME}:   {rows[-1]['wall']:.0f} s")
-                write_text(folder / "halfplane_box.json", json.dumps(rows, indent=1))
-                write_text(folder / "HALFPLANE_BOX.md", table(rows))
-    failed = len(points) * len(cases) * (len(boxes) + len(scales)) - len(rows)
+    for p, c, across in itertools.product(points, cases, meshes):
+        for b, f in [(b, 1.0) for b in boxes] + [(boxes[0], f) for f in scales]:
+            say(f"{NAME}: {p}, {c}, box {b} B, input ×{f:g}, {across} across ...")
+            try:
+                rows.append(run(p, c, b, across, args.record_seconds, args.elastic,
+                                args.tail, soil, f, continuum))
+            except Exception as exc:  # a failed run is reported, the others go on
+                say(f"{NAME}: {p}, {c}, box {b}: {type(exc).__name__}: {exc}")
+                continue
+            say(f"{NAME}:   {rows[-1]['wall']:.0f} s")
+            write_text(folder / "halfplane_box.json", json.dumps(rows, indent=1))
+            write_text(folder / "HALFPLANE_BOX.md", table(rows))
+    failed = len(points) * len(cases) * len(meshes) * (len(boxes) + len(scales)) - len(rows)
     if args.write and failed:
         say(f"{NAME}: {failed} run(s) failed: benchmarks/HALFPLANE_BOX.md not rewritten")
         return 1
