@@ -220,3 +220,22 @@ def _a_dead_pid() -> int:
     child = subprocess.Popen(["true"])
     child.wait()
     return child.pid
+
+
+def test_an_interrupted_wait_does_not_leave_the_run_unreaped(tmp_path):
+    """An interruption that lands in ``Popen.wait`` just after it took its internal lock leaves
+    the lock held (CPython's timed wait releases it in a ``finally`` it has not entered yet);
+    ending the run must still kill and reap the script, not block on the lock for ever (the
+    signal test above hung 60 s once under load). Reference: the process table (the script's
+    pid gone) and a thread that returns within 10 s."""
+    import threading
+
+    from upliftlab.comparisons.opensees.runner import _end
+
+    child = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(300)"])
+    child._waitpid_lock.acquire()  # as the interrupted timed wait leaves it
+    ended = threading.Thread(target=_end, args=(child, tmp_path), daemon=True)
+    ended.start()
+    ended.join(timeout=10)
+    assert not ended.is_alive(), "ending the run blocked on Popen's wait lock"
+    assert _gone([child.pid]) == []

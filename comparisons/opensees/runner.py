@@ -7,6 +7,7 @@ lines (stderr) are passed through as they come.
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import importlib.util
 import json
@@ -158,9 +159,15 @@ def _no_space(tail) -> OSError | None:
 
 def _end(child: subprocess.Popen, folder: Path) -> None:
     """End the OpenSees run ``child`` now, reap it, and remove the temporary file it was
-    writing, if any."""
+    writing, if any. Reaped with ``os.waitpid`` when ``Popen.wait`` cannot: an interruption
+    that lands in ``Popen.wait`` just after it took its internal lock and before its ``try``
+    leaves the lock held, and a second ``wait`` would then block for ever."""
     child.kill()
-    child.wait()
+    try:
+        child.wait(timeout=5.0)
+    except subprocess.TimeoutExpired:  # Popen's lock left held: reap the child directly
+        with contextlib.suppress(ChildProcessError):
+            os.waitpid(child.pid, 0)
     for name in RUN_OUTPUTS:
         remove_stale_temporaries(folder / name)
 
